@@ -1,0 +1,7 @@
+"""``python -m lkspace``."""
+
+import sys
+
+from .cli import main
+
+sys.exit(main())

@@ -1,0 +1,74 @@
+"""Shared pieces of the command line: MESH loading, label options, output, errors."""
+
+from __future__ import annotations
+
+import json
+import sys
+
+import click
+import numpy as np
+
+from .. import load
+from ..errors import LabelError
+from ..labels import parse_label_set, parse_nulls, parse_twists
+from ..mesh import Scaffold
+from ..scaffolds import DEFAULT
+
+
+class Context:
+    """What a command needs to report: the JSON flag and notes for the JSON object."""
+
+    def __init__(self, as_json: bool):
+        self.as_json = as_json
+        self.notes: dict = {}
+
+
+def load_mesh(ctx: Context, mesh: str | None) -> Scaffold:
+    """Load MESH, or the default built-in (said on stderr and in the JSON)."""
+    if mesh is None:
+        click.echo(f"lkspace: no MESH given; using the built-in {DEFAULT!r}", err=True)
+        ctx.notes["default_scaffold"] = True
+        mesh = DEFAULT
+    scaffold = load(mesh)
+    ctx.notes["scaffold"] = scaffold.name
+    return scaffold
+
+
+def twists_of(scaffold: Scaffold, spec: str | None) -> np.ndarray:
+    """``--twist`` value, else the labels stored in the scaffold file."""
+    if spec is None:
+        if scaffold.twists is None:
+            raise LabelError(f"{scaffold.name}: no --twist given and the scaffold carries no twist labels")
+        return scaffold.twists
+    return parse_twists(scaffold, spec)
+
+
+def nulls_of(scaffold: Scaffold, spec: str | None):
+    return scaffold.nulls if spec is None else parse_nulls(scaffold, spec)
+
+
+def label_set(spec: str) -> np.ndarray:
+    return parse_label_set(spec)
+
+
+def emit(ctx: Context, payload: dict, human) -> None:
+    """Print ``payload`` as one JSON object (``--json``) or call ``human()``."""
+    if ctx.as_json:
+        out = {**ctx.notes, **payload}
+        sys.stdout.write(json.dumps(out, default=_jsonable) + "\n")
+    else:
+        human()
+
+
+def _jsonable(value):
+    if isinstance(value, np.integer):
+        return int(value)
+    if isinstance(value, np.floating):
+        return float(value)
+    if isinstance(value, np.ndarray):
+        return value.tolist()
+    raise TypeError(f"not JSON serializable: {type(value).__name__}")
+
+
+json_option = click.option("--json", "as_json", is_flag=True, help="Print one JSON object on stdout and nothing else.")
+mesh_argument = click.argument("mesh", required=False, metavar="[MESH]")

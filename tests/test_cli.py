@@ -1,0 +1,119 @@
+"""The command line: JSON contract, defaults, and one-line errors for bad input."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+
+import pytest
+
+from lkspace.cli import main
+
+
+def run(capsys, *args):
+    code = main(list(args))
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+def run_json(capsys, *args):
+    code, out, err = run(capsys, *args, "--json")
+    assert code == 0, err
+    return json.loads(out), err
+
+
+def test_trace_default_scaffold(capsys):
+    data, err = run_json(capsys, "trace", "--twist", "1")
+    assert "tetrahedron" in err
+    assert data["default_scaffold"] is True
+    assert data["components"] == 3 and data["holds_together"] is True
+    assert sum(len(s["faces"]) for s in data["strands"]) == 12
+
+
+@pytest.mark.parametrize("spec, components", [("-1,0,1,1,1,1", 2), ("-1", 3), ("0", 4), ("2", 4)])
+def test_trace_negative_values_work_as_typed(capsys, spec, components):
+    data, _ = run_json(capsys, "trace", "tetrahedron", "--twist", spec)
+    assert data["components"] == components
+
+
+def test_trace_twist_file(capsys, tmp_path):
+    f = tmp_path / "tw.txt"
+    f.write_text("# labels\n0-1 1\n2 3 -1\n* 0\n")
+    data, _ = run_json(capsys, "trace", "tetrahedron", "--twist", str(f))
+    assert data["twists"] == [1, 0, 0, 0, 0, -1]
+
+
+def test_trace_null(capsys):
+    data, _ = run_json(capsys, "trace", "tetrahedron", "--twist", "1", "--null", "0.0")
+    assert data["n_open"] == 1
+    assert sum(not s["closed"] for s in data["strands"]) == 1
+
+
+def test_trace_labels_from_scaffold_file(capsys, tmp_path):
+    path = tmp_path / "d.json"
+    assert run(capsys, "scaffold", "tetrahedron", "-o", str(path))[0] == 0
+    doc = json.loads(path.read_text())
+    doc["twists"] = [1] * 6
+    path.write_text(json.dumps(doc))
+    data, _ = run_json(capsys, "trace", str(path))
+    assert data["components"] == 3
+
+
+def test_info(capsys):
+    data, _ = run_json(capsys, "info", "book:3")
+    assert data["edges"] == 10 and data["edge_degrees"] == {"1": 9, "3": 1}
+    assert data["boundary_edges"] == 9 and data["non_manifold_edges"] == 1
+
+
+def test_scaffold_writes_file(capsys, tmp_path):
+    data, _ = run_json(capsys, "scaffold", "cube", "-o", str(tmp_path / "c.obj"))
+    assert data["faces"] == 6
+    assert (tmp_path / "c.obj").read_text().count("\nf ") == 6
+
+
+def test_human_output(capsys):
+    code, out, _ = run(capsys, "trace", "cube", "--twist", "1")
+    assert code == 0 and "4 component(s)" in out
+
+
+@pytest.mark.parametrize("args, message", [
+    (["trace", "nope.obj", "--twist", "1"], "nope.obj: no such file"),
+    (["trace", "cube", "--twist", "1,2"], "expected 12 twist labels"),
+    (["trace", "cube", "--twist", "1.5"], "neither an integer"),
+    (["trace", "cube", "--twist", "1,x,1,1,1,1,1,1,1,1,1,1"], "'x' is not an integer"),
+    (["trace", "cube"], "no --twist given"),
+    (["trace", "cube", "--twist", "1", "--null", "9.0"], "face 9 out of range"),
+    (["info", "dodecahedronx"], "neither a file nor a built-in"),
+    (["scaffold", "prism"], "unknown scaffold name 'prism'"),
+    (["frobnicate"], "No such command"),
+    (["trace", "--bogus"], "No such option"),
+])
+def test_bad_input_is_one_line(capsys, args, message):
+    code, out, err = run(capsys, *args, "--json")
+    assert code != 0
+    assert out == ""
+    lines = [line for line in err.splitlines() if line.strip() and "no MESH given" not in line]
+    assert len(lines) == 1, err
+    assert message in lines[0]
+    assert "Traceback" not in err
+
+
+def test_bad_obj_file_names_line(capsys, tmp_path):
+    p = tmp_path / "bad.obj"
+    p.write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n")
+    code, _, err = run(capsys, "trace", str(p), "--twist", "1")
+    assert code == 2 and "bad.obj line 4" in err
+
+
+def test_ambiguous_radial_order_cli(capsys, tmp_path):
+    p = tmp_path / "amb.obj"
+    p.write_text("v 0 0 0\nv 0 0 1\nv 1 0 .5\nv 2 0 .5\nv -1 0 .5\nf 1 2 3\nf 1 2 4\nf 1 2 5\n")
+    code, _, err = run(capsys, "trace", str(p), "--twist", "1")
+    assert code == 2 and "ambiguous radial order at edge 0 (0-1)" in err
+
+
+def test_python_dash_m_entry_point():
+    proc = subprocess.run([sys.executable, "-m", "lkspace", "trace", "cube", "--twist", "2", "--json"],
+                          capture_output=True, text=True, check=True)
+    assert json.loads(proc.stdout)["components"] == 6

@@ -1,0 +1,145 @@
+"""OBJ and scaffold-file readers/writers: round trips and bad input."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+
+import lkspace
+from lkspace import io
+from lkspace.errors import ScaffoldError
+from lkspace.io.obj import parse_obj
+
+from .strategies import scaffolds
+
+
+def _same(a, b):
+    assert np.array_equal(a.vertices, b.vertices)
+    assert a.faces() == b.faces()
+    assert np.array_equal(a.edge_keys, b.edge_keys)
+
+
+@pytest.mark.parametrize("name", ["tetrahedron", "cube", "dodecahedron", "truncated-octahedron", "book:3", "dihedron:4"])
+@pytest.mark.parametrize("ext", [".obj", ".json"])
+def test_roundtrip_builtin(tmp_path, name, ext):
+    s = lkspace.load(name)
+    path = tmp_path / f"s{ext}"
+    io.write(s, path)
+    _same(s, lkspace.load(str(path)))
+
+
+@settings(max_examples=60, deadline=None)
+@given(scaffolds())
+def test_roundtrip_random_json_with_labels(tmp_path_factory, s):
+    rng = np.random.default_rng(s.n_corners)
+    twists = rng.integers(-3, 4, s.n_edges)
+    nulls = rng.random(s.n_corners) < 0.2
+    path = tmp_path_factory.mktemp("rt") / "s.json"
+    io.write(s, path, twists, nulls)
+    back = lkspace.load(str(path))
+    _same(s, back)
+    assert back.twists.tolist() == twists.tolist()
+    if nulls.any():
+        assert back.nulls.tolist() == nulls.tolist()
+    else:
+        assert back.nulls is None
+
+
+def test_json_roundtrip_keeps_radial_orders(tmp_path):
+    v = [[0, 0, 0], [0, 0, 1], [1, 0, 0.5], [2, 0, 0.5], [-1, 0, 0.5]]
+    s = lkspace.Scaffold.from_faces(v, [[0, 1, 2], [0, 1, 3], [0, 1, 4]], radial_orders={(0, 1, ()): (0, 3, 6)})
+    io.write(s, tmp_path / "r.json")
+    back = lkspace.load(str(tmp_path / "r.json"))
+    assert back.radial_orders == {(0, 1, ()): (0, 3, 6)}
+    assert lkspace.trace(back, 1).components == 1
+
+
+def test_obj_features():
+    text = """# a quad and a triangle
+o thing
+v 0 0 0
+v 1 0 0
+v 1 1 0 1.0
+v 0 1 0
+vt 0 0
+vn 0 0 1
+g group
+s off
+f 1/1/1 2/1/1 3//1 4
+f -4 -2 -1   # negative indices: 1 3 4
+"""
+    s = parse_obj(text, "t.obj")
+    assert s.faces() == [[0, 1, 2, 3], [0, 2, 3]]
+
+
+@pytest.mark.parametrize("text, match", [
+    ("v 0 0\n", "line 1: vertex needs 3 coordinates"),
+    ("v 0 0 x\n", "line 1: vertex coordinates must be numbers"),
+    ("v 0 0 nan\n", "line 1: vertex 0 has a non-finite"),
+    ("v 0 0 inf\n", "non-finite"),
+    ("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n", "line 4: face vertex index 9 out of range 1..3"),
+    ("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2\n", "line 4: face 0 has 2 vertices"),
+    ("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 2\n", "line 4: face 0 repeats a vertex"),
+    ("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 a\n", "line 4: face vertex 'a'"),
+    ("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 0\n", "index 0 out of range"),
+    ("v 0 0 0\nv 0 0 0\nv 0 1 0\nf 1 2 3\n", "zero-length edge between vertices 0 and 1"),
+    ("v 0 0 0\nv 1 0 0\nv 0 1 0\nfoo 1 2 3\n", "line 4: unknown OBJ statement 'foo'"),
+    ("v 0 0 0\n", "no faces"),
+    ("", "no vertices"),
+])
+def test_obj_errors(text, match):
+    with pytest.raises(ScaffoldError, match=match):
+        parse_obj(text, "bad.obj")
+
+
+def _write(tmp_path, data):
+    path = tmp_path / "bad.json"
+    path.write_text(json.dumps(data) if not isinstance(data, str) else data)
+    return str(path)
+
+
+GOOD = {"vertices": [[0, 0, 0], [1, 0, 0], [0, 1, 0]], "faces": [[0, 1, 2]]}
+
+
+@pytest.mark.parametrize("patch, match", [
+    ({"vertices": [[0, 0], [1, 0, 0], [0, 1, 0]]}, "vertices\\[0\\]: expected 3 entries"),
+    ({"faces": [[0, 1, 5]]}, "face 0: vertex index 5 out of range"),
+    ({"faces": [[0, 1, "x"]]}, "faces\\[0\\]\\[2\\]: expected an integer"),
+    ({"twists": [1, 2]}, "twists: expected 3 entries"),
+    ({"twists": [1, 2, 1.5]}, "twists\\[2\\]: expected an integer"),
+    ({"version": 99}, "version 99 is not supported"),
+    ({"colour": 1}, "unknown key"),
+    ({"nulls": [[0, 7]]}, "face 0 has no side 7"),
+    ({"offsets": [[[0, 0, 0]] * 3]}, "offsets given without a lattice"),
+])
+def test_json_errors(tmp_path, patch, match):
+    with pytest.raises(ScaffoldError, match=match):
+        lkspace.load(_write(tmp_path, {**GOOD, **patch}))
+
+
+def test_json_syntax_error_has_line(tmp_path):
+    with pytest.raises(ScaffoldError, match="bad.json line 2: invalid JSON"):
+        lkspace.load(_write(tmp_path, '{"vertices": [],\n "faces": [,]}'))
+
+
+def test_unknown_extension_and_name(tmp_path):
+    with pytest.raises(ScaffoldError, match="unknown file type"):
+        lkspace.load("mesh.stl")
+    with pytest.raises(ScaffoldError, match="neither a file nor a built-in"):
+        lkspace.load("nosuchthing")
+    with pytest.raises(ScaffoldError, match="expected book:N with an integer"):
+        lkspace.load("book")
+    with pytest.raises(ScaffoldError, match="expected book:N with an integer"):
+        lkspace.load("book:x")
+
+
+def test_write_is_atomic_on_failure(tmp_path):
+    target = tmp_path / "keep.json"
+    target.write_text("old")
+    with pytest.raises(ScaffoldError):
+        io.write(lkspace.load("cube"), tmp_path / "keep.stl")
+    assert target.read_text() == "old"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["keep.json"]
