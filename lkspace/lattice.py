@@ -57,12 +57,12 @@ class Lattice:
         return float(np.linalg.norm(np.cross(self.basis[0], self.basis[1])))
 
     @classmethod
-    def cubic(cls, a: float = 1.0) -> "Lattice":
+    def cubic(cls, a: float = 1.0) -> Lattice:
         """Simple cubic lattice with edge ``a``."""
         return cls(a * np.eye(3))
 
     @classmethod
-    def square(cls, a: float = 1.0) -> "Lattice":
+    def square(cls, a: float = 1.0) -> Lattice:
         """Square lattice in the xy plane."""
         return cls(a * np.eye(3)[:2])
 

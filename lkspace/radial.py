@@ -53,21 +53,20 @@ def perpendicular_frames(axes: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return u1, u2
 
 
-def side_angles(scaffold) -> tuple[np.ndarray, np.ndarray]:
-    """Angle ``(n_corners,)`` of every side about its edge axis and the length of ``r``."""
-    points = scaffold.edge_points
-    axes = points[:, 1] - points[:, 0]
-    axes /= np.linalg.norm(axes, axis=1, keepdims=True)
-    u1, u2 = perpendicular_frames(axes)
-    e = scaffold.side_edge
-    origin = points[e, 0]
+def side_angles(scaffold, sides: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """Angle of ``sides`` (default all) about their edge axes, and the length of ``r``."""
+    sides = np.arange(scaffold.n_corners) if sides is None else sides
+    e = scaffold.side_edge[sides]
+    points = scaffold.edge_points[e]
+    d = points[:, 1] - points[:, 0]
+    d /= np.linalg.norm(d, axis=1, keepdims=True)
+    u1, u2 = perpendicular_frames(d)
+    origin = points[:, 0]
     if scaffold.lattice is not None:
-        origin = origin + scaffold.lattice.translate(scaffold.side_translation)
-    r = scaffold.face_centroids[scaffold.corner_face] - origin
-    d = axes[e]
-    r = r - np.sum(r, axis=1, keepdims=True) * d
-    x = np.sum(r * u1[e], axis=1)
-    y = np.sum(r * u2[e], axis=1)
+        origin = origin + scaffold.lattice.translate(scaffold.side_translation[sides])
+    r = scaffold.face_centroids[scaffold.corner_face[sides]] - origin
+    x = np.einsum("ij,ij->i", r, u1)
+    y = np.einsum("ij,ij->i", r, u2)
     return np.arctan2(y, x), np.hypot(x, y)
 
 
@@ -76,10 +75,15 @@ def radial_order(scaffold) -> RadialOrder:
     n_edges = scaffold.n_edges
     degrees = scaffold.edge_degrees
     edge_starts = np.concatenate([[0], np.cumsum(degrees)]).astype(np.int64)
-    angles, radii = side_angles(scaffold)
-    order = np.lexsort((angles, scaffold.side_edge))
-    sorted_angles = angles[order]
-    sorted_edges = scaffold.side_edge[order]
+    # K <= 2: any order is the same cyclic order; sides stay in side order
+    order = np.argsort(scaffold.side_edge, kind="stable")
+    ordered = degrees[scaffold.side_edge[order]] >= 3
+    high = order[ordered]
+    angles, radii = side_angles(scaffold, high)
+    resort = np.lexsort((angles, scaffold.side_edge[high]))
+    order[ordered] = high[resort]
+    sorted_angles = angles[resort]
+    sorted_edges = scaffold.side_edge[high][resort]
 
     explicit = np.zeros(n_edges, bool)
     edge_sides = order.copy()
@@ -102,9 +106,9 @@ def radial_order(scaffold) -> RadialOrder:
 
     check = (degrees >= 3) & ~explicit
     scale = max(1.0, float(np.abs(scaffold.edge_points).max()))
-    degenerate = np.flatnonzero(check[scaffold.side_edge] & (radii <= 1e-9 * scale))
+    degenerate = np.flatnonzero(check[scaffold.side_edge[high]] & (radii <= 1e-9 * scale))
     if len(degenerate):
-        s = degenerate[0]
+        s = high[degenerate[0]]
         e = scaffold.side_edge[s]
         raise RadialOrderError(
             f"{scaffold.name}: ambiguous radial order at edge {e} ({scaffold.edge_name(e)}): "
@@ -113,19 +117,18 @@ def radial_order(scaffold) -> RadialOrder:
     gaps = np.diff(sorted_angles)
     same_edge = sorted_edges[1:] == sorted_edges[:-1]
     close = same_edge & (gaps < ANGLE_TOLERANCE) & check[sorted_edges[1:]]
-    wrap = np.zeros(n_edges, bool)
-    nonempty = degrees > 0
-    first = sorted_angles[edge_starts[:-1][nonempty]]
-    last = sorted_angles[edge_starts[1:][nonempty] - 1]
-    wrap[nonempty] = (first + 2 * np.pi - last) < ANGLE_TOLERANCE
-    wrap &= check
+    group_start = np.r_[len(sorted_edges) > 0, ~same_edge]
+    first_of_group = np.flatnonzero(group_start)
+    last_of_group = np.r_[first_of_group[1:], len(sorted_edges)][: len(first_of_group)] - 1
+    wrap = (sorted_angles[first_of_group] + 2 * np.pi - sorted_angles[last_of_group] < ANGLE_TOLERANCE)
+    wrap &= check[sorted_edges[first_of_group]]
     if close.any() or wrap.any():
         if close.any():
             i = np.flatnonzero(close)[0]
-            s1, s2 = order[i], order[i + 1]
+            s1, s2 = high[resort][i], high[resort][i + 1]
         else:
-            e = np.flatnonzero(wrap)[0]
-            s1, s2 = order[edge_starts[e]], order[edge_starts[e + 1] - 1]
+            g = np.flatnonzero(wrap)[0]
+            s1, s2 = high[resort][first_of_group[g]], high[resort][last_of_group[g]]
         e = scaffold.side_edge[s1]
         raise RadialOrderError(
             f"{scaffold.name}: ambiguous radial order at edge {e} ({scaffold.edge_name(e)}): "

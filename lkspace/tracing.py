@@ -186,18 +186,18 @@ class Trace:
     def winding_links(self) -> np.ndarray:
         """(n_links, 2) int64: strand pairs that wind around each other.
 
-        For each edge with ``t != 0``, every strand through it is linked to the first one
-        (a star per edge): enough to decide connectivity, linear in the corners.
+        At every edge with ``t != 0`` each strand through it is linked to the strand in
+        the edge's slot 0 (a star per edge): enough to decide connectivity, linear in the
+        number of corners.  Pairs may repeat.
         """
-        edge_of_port = np.repeat(self.scaffold.side_edge, 2)
-        active = self.twists[edge_of_port] != 0
-        pairs = np.unique(np.column_stack([edge_of_port[active], self.port_strand[active]]), axis=0)
-        if len(pairs) == 0:
-            return np.zeros((0, 2), np.int64)
-        first = np.r_[True, pairs[1:, 0] != pairs[:-1, 0]]
-        leader = pairs[np.flatnonzero(first)[np.cumsum(first) - 1], 1]
-        links = np.column_stack([leader, pairs[:, 1]])
-        return links[links[:, 0] != links[:, 1]]
+        sc = self.scaffold
+        model = sc_port_model(sc)
+        leader_port = model.port_a[model.edge_starts[:-1][sc.edge_degrees > 0]]
+        leader = np.full(sc.n_edges, -1, np.int64)
+        leader[sc.edge_degrees > 0] = self.port_strand[leader_port]
+        edge_of_port = np.repeat(sc.side_edge, 2)
+        active = (self.twists[edge_of_port] != 0) & (leader[edge_of_port] != self.port_strand)
+        return np.column_stack([leader[edge_of_port[active]], self.port_strand[active]])
 
     @cached_property
     def n_pieces(self) -> int:

@@ -48,7 +48,7 @@ def reference_trace(vertices, faces, twists, nulls=()):
         u1 = [x / nu for x in u1]
         u2 = _cross(d, u1)
 
-        def angle(side):
+        def angle(side, pa=pa, u1=u1, u2=u2):
             face = faces[side[0]]
             c = [sum(vertices[v][i] for v in face) / len(face) for i in range(3)]
             r = _sub(c, pa)

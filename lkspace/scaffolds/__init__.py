@@ -16,7 +16,7 @@ book:K                     K quads sharing one edge at equal angles, K >= 1
 
 from __future__ import annotations
 
-from typing import Callable
+from collections.abc import Callable
 
 from ..errors import ScaffoldError
 from ..mesh import Scaffold
