@@ -57,14 +57,48 @@ class Lattice:
         return float(np.linalg.norm(np.cross(self.basis[0], self.basis[1])))
 
     @classmethod
+    def square(cls, a: float = 1.0) -> Lattice:
+        """Square lattice in the xy plane: ``a x, a y``."""
+        return cls(a * np.eye(3)[:2])
+
+    @classmethod
+    def hexagonal2d(cls, a: float = 1.0) -> Lattice:
+        """Hexagonal lattice in the xy plane: ``a (1, 0, 0), a (1/2, sqrt(3)/2, 0)``."""
+        return cls(a * np.array([[1.0, 0, 0], [0.5, 3**0.5 / 2, 0]]))
+
+    @classmethod
     def cubic(cls, a: float = 1.0) -> Lattice:
-        """Simple cubic lattice with edge ``a``."""
+        """Primitive cubic (cP): ``a x, a y, a z``."""
         return cls(a * np.eye(3))
 
     @classmethod
-    def square(cls, a: float = 1.0) -> Lattice:
-        """Square lattice in the xy plane."""
-        return cls(a * np.eye(3)[:2])
+    def hexagonal(cls, a: float = 1.0, c: float = 1.0) -> Lattice:
+        """Primitive hexagonal (hP): ``a (1, 0, 0), a (1/2, sqrt(3)/2, 0), c z``."""
+        return cls(np.array([[a, 0, 0], [a / 2, a * 3**0.5 / 2, 0], [0, 0, c]]))
+
+    @classmethod
+    def face_centred_orthorhombic(cls, a: float = 1.0, b: float = 1.25, c: float = 1.5) -> Lattice:
+        """Face-centred orthorhombic (oF), conventional cell ``a x b x c``; primitive
+        vectors ``(0, b, c)/2, (a, 0, c)/2, (a, b, 0)/2``."""
+        return cls(np.array([[0, b / 2, c / 2], [a / 2, 0, c / 2], [a / 2, b / 2, 0]]))
+
+    @classmethod
+    def face_centred_cubic(cls, a: float = 1.0) -> Lattice:
+        """Face-centred cubic (cF), conventional cube ``a``: ``(0,1,1)a/2, (1,0,1)a/2, (1,1,0)a/2``."""
+        return cls(a / 2 * np.array([[0.0, 1, 1], [1, 0, 1], [1, 1, 0]]))
+
+    @classmethod
+    def body_centred_cubic(cls, a: float = 1.0) -> Lattice:
+        """Body-centred cubic (cI), conventional cube ``a``: ``(-1,1,1)a/2, (1,-1,1)a/2, (1,1,-1)a/2``."""
+        return cls(a / 2 * np.array([[-1.0, 1, 1], [1, -1, 1], [1, 1, -1]]))
+
+    def fractional(self, points: np.ndarray) -> np.ndarray:
+        """Lattice coordinates ``(..., dim)`` of ``points (..., 3)`` (least squares in 2D)."""
+        return np.asarray(points, dtype=np.float64) @ np.linalg.pinv(self.basis)
+
+    def supercell(self, sizes) -> Lattice:
+        """The lattice spanned by ``sizes[i] * basis[i]``."""
+        return Lattice(self.basis * np.asarray(sizes, dtype=np.float64)[:, None])
 
     def __eq__(self, other) -> bool:
         return isinstance(other, Lattice) and np.array_equal(self.basis, other.basis)

@@ -15,7 +15,9 @@ Conventions (SPEC §1)
   from ``(u, o_u)`` to ``(w, o_w)`` let ``delta = o_w - o_u``; its edge key is
   ``(u, w, delta)`` if ``u < w`` or (``u == w`` and ``delta`` is lexicographically
   positive), else ``(w, u, -delta)``.  Edges are numbered in lexicographic order of
-  the key ``(a, b, delta)`` — for finite scaffolds simply ``(a, b)`` with ``a < b``.
+  ``(a, b, -delta)`` — vertex pair first, then larger offsets first, so that the cubic
+  honeycomb's three edge classes come out x, y, z — and for finite scaffolds simply in
+  lexicographic order of ``(a, b)`` with ``a < b``.
   The edge's end ``a`` is vertex ``a`` at offset 0 and end ``b`` is vertex ``b`` at
   offset ``delta``; each side lies on its edge translated by ``side_translation``.
 * **Axis** of edge ``(a, b)``: the unit vector from end ``a`` to end ``b``.
@@ -255,8 +257,8 @@ class Scaffold:
         a = np.where(forward, u[:, 0], w[:, 0])
         b = np.where(forward, w[:, 0], u[:, 0])
         d = np.where(forward[:, None], delta, -delta)
-        keys = np.column_stack([a, b, d])
-        edge_keys, side_edge = unique_rows(keys)
+        sort_keys, side_edge = unique_rows(np.column_stack([a, b, -d]))
+        edge_keys = np.column_stack([sort_keys[:, :2], -sort_keys[:, 2:]])
         translation = np.where(forward[:, None], u[:, 1:], w[:, 1:])
         return edge_keys, side_edge.reshape(-1), forward, translation
 

@@ -26,7 +26,8 @@ current face copy by ``side_translation[s] - side_translation[s']``; the sum aro
 closed strand is its **period** (0: a closed loop; otherwise an infinite thread).
 
 Two strands **wind around each other** at an edge with ``t != 0`` that both run through
-(own a port of).  The structure **holds together** when that relation connects all strands.
+(own a port of).  The structure **holds together** when that relation connects all strands
+(see :mod:`lkspace.connectivity`, which also handles the infinite lift of periodic ones).
 """
 
 from __future__ import annotations
@@ -36,8 +37,6 @@ from functools import cached_property
 
 import numba
 import numpy as np
-import scipy.sparse
-import scipy.sparse.csgraph
 
 from .mesh import Scaffold, check_nulls, check_twists
 
@@ -105,6 +104,7 @@ def _walk(corner_partner, edge_partner, translation):  # pragma: no cover - comp
     closed = np.empty(n_ports // 2, np.bool_)
     periods = np.zeros((n_ports // 2, dim), np.int64)
     port_strand = np.empty(n_ports, np.int64)
+    port_shift = np.zeros((n_ports, dim), np.int64)
     n_steps = 0
     n_strands = 0
     for phase in range(2):
@@ -121,6 +121,9 @@ def _walk(corner_partner, edge_partner, translation):  # pragma: no cover - comp
                 visited[y] = True
                 port_strand[x] = n_strands
                 port_strand[y] = n_strands
+                for j in range(dim):
+                    port_shift[x, j] = periods[n_strands, j]
+                    port_shift[y, j] = periods[n_strands, j]
                 z = edge_partner[y]
                 if z == -1:
                     closed[n_strands] = False
@@ -133,7 +136,7 @@ def _walk(corner_partner, edge_partner, translation):  # pragma: no cover - comp
                 x = z
             n_strands += 1
     starts[n_strands] = n_steps
-    return steps, starts[: n_strands + 1], closed[:n_strands], periods[:n_strands], port_strand
+    return steps, starts[: n_strands + 1], closed[:n_strands], periods[:n_strands], port_strand, port_shift
 
 
 @dataclass(frozen=True, eq=False)
@@ -152,6 +155,8 @@ class Trace:
     periods : (n_strands, dim) int64
         Lattice translation picked up once around each strand (``dim = 0`` if finite).
     port_strand : (2 * n_corners,) int64
+    port_shift : (2 * n_corners, dim) int64
+        Lattice translation of each port's face copy relative to its strand's start.
     edge_partner : (2 * n_corners,) int64
         Edge-link partner of every port, -1 where a null side cuts it.
     """
@@ -165,6 +170,7 @@ class Trace:
     closed: np.ndarray
     periods: np.ndarray
     port_strand: np.ndarray
+    port_shift: np.ndarray
     edge_partner: np.ndarray
 
     @property
@@ -183,33 +189,21 @@ class Trace:
         return self.scaffold.corner_face[self.step_corners[s:e]]
 
     @cached_property
-    def winding_links(self) -> np.ndarray:
-        """(n_links, 2) int64: strand pairs that wind around each other.
+    def connectivity(self):
+        """How the strands hold together: :class:`~lkspace.connectivity.Connectivity`."""
+        from .connectivity import connectivity
 
-        At every edge with ``t != 0`` each strand through it is linked to the strand in
-        the edge's slot 0 (a star per edge): enough to decide connectivity, linear in the
-        number of corners.  Pairs may repeat.
-        """
-        sc = self.scaffold
-        model = sc_port_model(sc)
-        leader_port = model.port_a[model.edge_starts[:-1][sc.edge_degrees > 0]]
-        leader = np.full(sc.n_edges, -1, np.int64)
-        leader[sc.edge_degrees > 0] = self.port_strand[leader_port]
-        edge_of_port = np.repeat(sc.side_edge, 2)
-        active = (self.twists[edge_of_port] != 0) & (leader[edge_of_port] != self.port_strand)
-        return np.column_stack([leader[edge_of_port[active]], self.port_strand[active]])
+        return connectivity(self)
 
-    @cached_property
+    @property
     def n_pieces(self) -> int:
-        """Number of parts that fall apart from each other (SPEC §1, holding together)."""
-        n = self.components
-        g = self.winding_links
-        adj = scipy.sparse.coo_matrix((np.ones(len(g)), (g[:, 0], g[:, 1])), shape=(n, n))
-        return int(scipy.sparse.csgraph.connected_components(adj, directed=False)[0])
+        """Strand groups that fall apart from each other in the quotient (SPEC §1)."""
+        return self.connectivity.n_pieces
 
     @property
     def holds_together(self) -> bool:
-        return self.n_pieces == 1
+        """Whether the structure holds together (for periodic ones: its infinite lift)."""
+        return self.connectivity.holds_together
 
     def strand_ends(self, k: int) -> list[dict] | None:
         """The two cut ends of open strand ``k`` (face, side, vertex); ``None`` if closed."""
@@ -240,16 +234,36 @@ class Trace:
             }
             if sc.periodic and self.closed[k]:
                 entry["infinite"] = bool(np.any(self.periods[k] != 0))
+                entry["direction"] = thread_direction(sc, self.periods[k])
             if not self.closed[k]:
                 entry["ends"] = self.strand_ends(k)
             strands.append(entry)
-        return {
+        out = {
             "components": self.components,
             "holds_together": self.holds_together,
             "pieces": self.n_pieces,
             "n_open": int(np.sum(~self.closed)),
             "strands": strands,
         }
+        if sc.periodic:
+            out["lift_index"] = self.connectivity.lift_index
+            infinite = self.closed & np.any(self.periods != 0, axis=1)
+            out["threads_per_module"] = self.components
+            out["closed_loops"] = int(np.sum(self.closed & ~infinite))
+            out["infinite_threads"] = int(np.sum(infinite))
+        return out
+
+
+def thread_direction(scaffold: Scaffold, period: np.ndarray) -> list[float] | None:
+    """Unit direction in space of a thread with lattice ``period``, sign-normalized
+    (first non-zero coordinate positive); ``None`` for a closed loop."""
+    vector = scaffold.lattice.translate(period)
+    norm = np.linalg.norm(vector)
+    if norm == 0:
+        return None
+    vector = vector / norm
+    first = vector[np.flatnonzero(np.abs(vector) > 1e-12)[0]]
+    return np.round(np.sign(first) * vector, 12).tolist()
 
 
 def sc_port_model(scaffold: Scaffold) -> PortModel:
@@ -290,6 +304,8 @@ def trace(scaffold: Scaffold, twists=None, nulls=None) -> Trace:
         partner[partner[cut]] = -1
         partner[cut] = -1
     translation = scaffold.side_translation if scaffold.periodic else np.zeros((scaffold.n_corners, 0), np.int64)
-    steps, starts, closed, periods, port_strand = _walk(model.corner_partner, partner, np.ascontiguousarray(translation))
+    steps, starts, closed, periods, port_strand, port_shift = _walk(
+        model.corner_partner, partner, np.ascontiguousarray(translation)
+    )
     even = np.where(steps % 2 == 0, steps, model.corner_partner[steps])
-    return Trace(scaffold, twists, null_mask, steps, even // 2, starts, closed, periods, port_strand, partner)
+    return Trace(scaffold, twists, null_mask, steps, even // 2, starts, closed, periods, port_strand, port_shift, partner)

@@ -16,6 +16,9 @@ Format version 1::
       "nulls": [[face, k], ...]                    # optional: null edge-sides
     }
 
+A generalized Voronoi scaffold can be given instead by its lattice and generator points:
+``{"format": "lkspace-voronoi", "version": 1, "lattice": [...], "points": [[x, y, z], ...]}``.
+
 A face-side is named ``[face, k]``: side ``k`` of the face runs from its ``k``-th vertex
 to the next.  Unknown keys are an error (a typo must not be silently ignored).
 """
@@ -32,6 +35,7 @@ from ..lattice import Lattice
 from ..mesh import Scaffold
 
 FORMAT = "lkspace-scaffold"
+VORONOI_FORMAT = "lkspace-voronoi"
 VERSION = 1
 KEYS = {"format", "version", "name", "vertices", "faces", "lattice", "offsets", "radial_orders", "edges", "twists", "nulls", "comment"}
 
@@ -64,6 +68,8 @@ def scaffold_from_dict(data: dict, name: str = "<json>") -> Scaffold:
     """Build a scaffold (with its labels and nulls, if any) from the parsed JSON."""
     if not isinstance(data, dict):
         raise ScaffoldError(f"{name}: expected a JSON object")
+    if data.get("format") == VORONOI_FORMAT:
+        return voronoi_from_dict(data, name)
     unknown = set(data) - KEYS
     if unknown:
         raise ScaffoldError(f"{name}: unknown key(s) {sorted(unknown)}")
@@ -134,6 +140,26 @@ def scaffold_from_dict(data: dict, name: str = "<json>") -> Scaffold:
     if twists is not None or nulls is not None:
         scaffold = scaffold.with_labels(twists, nulls)
     return scaffold
+
+
+def voronoi_from_dict(data: dict, name: str) -> Scaffold:
+    """A generalized Voronoi scaffold from ``{"format": "lkspace-voronoi", "version": 1,
+    "lattice": [[...], ...], "points": [[x, y, z], ...], "name": ...}``."""
+    from ..scaffolds.periodic import voronoi_scaffold
+
+    unknown = set(data) - {"format", "version", "name", "lattice", "points", "comment"}
+    if unknown:
+        raise ScaffoldError(f"{name}: unknown key(s) {sorted(unknown)}")
+    if data.get("version", VERSION) != VERSION:
+        raise ScaffoldError(f"{name}: voronoi file version {data.get('version')!r} is not supported (expected {VERSION})")
+    lattice = Lattice(np.array(_list(data.get("lattice"), f"{name}: lattice"), dtype=float))
+    points = _list(data.get("points"), f"{name}: points")
+    for i, p in enumerate(points):
+        p = _list(p, f"{name}: points[{i}]", 3)
+        if not all(isinstance(x, (int, float)) and not isinstance(x, bool) and np.isfinite(x) for x in p):
+            raise ScaffoldError(f"{name}: points[{i}]: coordinates must be finite numbers, got {p}")
+    label = data.get("name", name) if isinstance(data.get("name"), str) else name
+    return voronoi_scaffold(lattice, np.array(points, dtype=float), label)
 
 
 def scaffold_to_dict(scaffold: Scaffold, twists=None, nulls=None) -> dict:

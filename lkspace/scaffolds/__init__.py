@@ -11,7 +11,19 @@ icosahedron                regular icosahedron (20 triangles, 30 edges)
 truncated-octahedron       truncated octahedron (6 squares + 8 hexagons, 36 edges)
 dihedron:N                 two-sided regular N-gon (two faces on one N-cycle), N >= 3
 book:K                     K quads sharing one edge at equal angles, K >= 1
+tiling:square              square tiling (periodic, 1 face, 2 edge classes)
+tiling:hexagonal           hexagonal tiling (periodic, 1 face, 3 edge classes)
+honeycomb:cP               cubic honeycomb (3 faces, edge classes x, y, z)
+honeycomb:hP               hexagonal-prism honeycomb
+honeycomb:oF               face-centred orthorhombic Wigner–Seitz honeycomb
+honeycomb:cF               rhombic-dodecahedral honeycomb (face-centred cubic)
+honeycomb:cI               truncated-octahedral honeycomb (body-centred cubic)
+voronoi:cube-faces         Voronoi scaffold of a cubic lattice with points at the
+                           cube's face centres (the paper's figure; 12 triangles)
+NAME@AxBxC                 the A x B x C supercell of a periodic NAME (AxB in 2D)
 =========================  ==========================================================
+
+Periodic cells and lattice parameters: :mod:`lkspace.scaffolds.periodic`.
 """
 
 from __future__ import annotations
@@ -20,7 +32,7 @@ from collections.abc import Callable
 
 from ..errors import ScaffoldError
 from ..mesh import Scaffold
-from . import polyhedra, special
+from . import periodic, polyhedra, special
 
 SOLIDS: dict[str, Callable[[], Scaffold]] = {
     "tetrahedron": polyhedra.tetrahedron,
@@ -41,13 +53,13 @@ DEFAULT = "tetrahedron"
 
 def builtin_names() -> list[str]:
     """Every built-in name, families written with their parameter (``book:K``)."""
-    return list(SOLIDS) + [f"{f}:N" if f == "dihedron" else f"{f}:K" for f in FAMILIES]
+    return list(SOLIDS) + [f"{f}:N" if f == "dihedron" else f"{f}:K" for f in FAMILIES] + list(periodic.LATTICES) + list(periodic.VORONOI_EXAMPLES)
 
 
 def is_builtin_name(name: str) -> bool:
     """Whether ``name`` looks like a built-in name rather than a path."""
     head = name.split(":", 1)[0].split("@", 1)[0]
-    return head in SOLIDS or head in FAMILIES or name.startswith(("tiling:", "honeycomb:"))
+    return head in SOLIDS or head in FAMILIES or name.startswith(("tiling:", "honeycomb:", "voronoi:"))
 
 
 def builtin(name: str) -> Scaffold:
@@ -58,6 +70,16 @@ def builtin(name: str) -> Scaffold:
     >>> builtin("book:3").edge_degrees.max()
     np.int64(3)
     """
+    if "@" in name:
+        base_name, _, sizes = name.partition("@")
+        base = builtin(base_name)
+        if not base.periodic:
+            raise ScaffoldError(f"{name!r}: supercells need a periodic scaffold, {base_name!r} is finite")
+        return periodic.supercell(base, periodic.parse_supercell(sizes, base.dim))
+    if name in periodic.LATTICES:
+        return periodic.wigner_seitz(name)
+    if name in periodic.VORONOI_EXAMPLES:
+        return periodic.voronoi_example(name)
     if name in SOLIDS:
         return SOLIDS[name]()
     head, _, arg = name.partition(":")

@@ -1,0 +1,212 @@
+"""Periodic scaffolds: Wigner–Seitz tilings and honeycombs, Voronoi scaffolds, supercells.
+
+A periodic scaffold is the quotient of an infinite periodic polygon complex by its
+lattice (see :mod:`lkspace.mesh`).  Cells are computed with scipy's Voronoi (Qhull):
+
+* 2D (``tiling:*``): the faces are the Voronoi cells (tiles) of the lattice points in the
+  xy plane; every edge is shared by two tiles.
+* 3D (``honeycomb:*``, Voronoi scaffolds): the faces are the walls between Voronoi cells;
+  each cell is the convex hull (coplanar facets merged) of its Voronoi vertices.
+
+Polygons that are lattice translates of each other are one face class, positions that
+differ by a lattice vector one vertex class; each class keeps the representative whose
+lattice coordinates lie in ``[0, 1)``, and every face corner carries the integer offset of
+its actual position.
+
+Lattice parameters of the built-ins (see :class:`~lkspace.lattice.Lattice`):
+``tiling:square`` a = 1; ``tiling:hexagonal`` a = 1; ``honeycomb:cP`` a = 1 (cubes);
+``honeycomb:hP`` a = c = 1 (hexagonal prisms); ``honeycomb:oF`` a, b, c = 1, 1.25, 1.5;
+``honeycomb:cF`` a = 1 (rhombic dodecahedra); ``honeycomb:cI`` a = 1 (truncated octahedra).
+"""
+
+from __future__ import annotations
+
+import itertools
+import re
+
+import numpy as np
+from scipy.spatial import ConvexHull, Voronoi
+
+from ..errors import ScaffoldError
+from ..lattice import Lattice
+from ..mesh import Scaffold
+from .polyhedra import convex_polyhedron
+
+DECIMALS = 6  # rounding of lattice coordinates when identifying translates
+
+LATTICES = {
+    "tiling:square": Lattice.square,
+    "tiling:hexagonal": Lattice.hexagonal2d,
+    "honeycomb:cP": Lattice.cubic,
+    "honeycomb:hP": Lattice.hexagonal,
+    "honeycomb:oF": Lattice.face_centred_orthorhombic,
+    "honeycomb:cF": Lattice.face_centred_cubic,
+    "honeycomb:cI": Lattice.body_centred_cubic,
+}
+
+
+def _translates(lattice: Lattice, points: np.ndarray, reach: int = 2) -> tuple[np.ndarray, np.ndarray]:
+    """All ``points + n @ basis`` for ``n`` in ``[-reach, reach]^dim``; and which are base."""
+    shifts = np.array(list(itertools.product(range(-reach, reach + 1), repeat=lattice.dim)))
+    order = np.argsort(np.abs(shifts).sum(axis=1), kind="stable")  # the zero shift first
+    shifts = shifts[order]
+    cloud = (points[None, :, :] + lattice.translate(shifts)[:, None, :]).reshape(-1, 3)
+    return cloud, np.arange(len(points))
+
+
+def _planar_frame(lattice: Lattice) -> np.ndarray:
+    """(2, 3) orthonormal basis of the plane of a 2D lattice."""
+    q, _ = np.linalg.qr(lattice.basis.T)
+    return q.T
+
+
+def voronoi_polygons(lattice: Lattice, generators) -> list[np.ndarray]:
+    """Polygons ``(m, 3)`` of the Voronoi complex of ``generators`` + lattice.
+
+    2D lattices give the tiles of the base generators, 3D lattices the walls of their
+    cells (each wall once per cell, so shared walls appear twice: deduplicated later).
+    """
+    generators = np.atleast_2d(np.asarray(generators, dtype=np.float64))
+    cloud, base = _translates(lattice, generators)
+    polygons = []
+    if lattice.dim == 2:
+        frame = _planar_frame(lattice)
+        origin = generators[0]
+        vor = Voronoi((cloud - origin) @ frame.T)
+        for i in base:
+            region = vor.regions[vor.point_region[i]]
+            if -1 in region or not region:
+                raise ScaffoldError("voronoi: a cell of the base generators is unbounded")
+            pts2 = vor.vertices[region]
+            hull = ConvexHull(pts2)
+            polygons.append(pts2[hull.vertices] @ frame + origin)
+        return polygons
+    vor = Voronoi(cloud)
+    for i in base:
+        region = vor.regions[vor.point_region[i]]
+        if -1 in region or not region:
+            raise ScaffoldError("voronoi: a cell of the base generators is unbounded")
+        cell = convex_polyhedron(vor.vertices[region], decimals=DECIMALS)
+        polygons += [cell.vertices[face] for face in cell.faces()]
+    return polygons
+
+
+def quotient_scaffold(lattice: Lattice, polygons, name: str) -> Scaffold:
+    """The periodic scaffold of ``polygons`` (each ``(m, 3)``) modulo ``lattice``."""
+    dim = lattice.dim
+    vertex_keys: dict[tuple, int] = {}
+    vertex_positions = []
+    face_keys = set()
+    faces, offsets = [], []
+    for poly in polygons:
+        frac = np.round(lattice.fractional(poly), DECIMALS)
+        shift = np.floor(np.round(frac.mean(axis=0), DECIMALS - 1))
+        frac = frac - shift
+        key = tuple(sorted(map(tuple, np.round(frac, DECIMALS - 1).tolist())))
+        if key in face_keys:
+            continue
+        face_keys.add(key)
+        cell = np.floor(np.round(frac, DECIMALS - 1)).astype(np.int64)
+        wrapped = np.round(frac - cell, DECIMALS - 1)
+        face, offs = [], []
+        for w, c, p in zip(wrapped.tolist(), cell, poly - lattice.translate(shift)):
+            vkey = tuple(w)
+            if vkey not in vertex_keys:
+                vertex_keys[vkey] = len(vertex_positions)
+                vertex_positions.append(p - lattice.translate(c))
+            face.append(vertex_keys[vkey])
+            offs.append(c.tolist())
+        faces.append(face)
+        offsets.append(offs)
+    # number vertices and faces deterministically: by position of the representative
+    positions = np.array(vertex_positions)
+    order = np.lexsort(np.round(positions, DECIMALS).T[::-1])
+    renumber = np.empty(len(order), np.int64)
+    renumber[order] = np.arange(len(order))
+    faces = [renumber[f].tolist() for f in faces]
+    del dim
+    return Scaffold.from_faces(positions[order], faces, lattice=lattice, offsets=offsets, name=name)
+
+
+def wigner_seitz(name: str) -> Scaffold:
+    """The built-in Wigner–Seitz tiling or honeycomb ``name`` (see the module docstring)."""
+    if name not in LATTICES:
+        raise ScaffoldError(f"unknown periodic scaffold {name!r}; known: {', '.join(LATTICES)}")
+    lattice = LATTICES[name]()
+    return quotient_scaffold(lattice, voronoi_polygons(lattice, np.zeros((1, 3))), name)
+
+
+def voronoi_scaffold(lattice: Lattice, generators, name: str = "voronoi") -> Scaffold:
+    """Generalized Voronoi scaffold: ``generators (n, 3)`` in the fundamental domain.
+
+    Examples
+    --------
+    >>> s = voronoi_scaffold(Lattice.cubic(), [[0.5, 0.5, 0], [0.5, 0, 0.5], [0, 0.5, 0.5]])
+    >>> s.n_faces, sorted(set(s.edge_degrees.tolist()))
+    (12, [3, 4])
+    """
+    generators = np.atleast_2d(np.asarray(generators, dtype=np.float64))
+    if generators.ndim != 2 or generators.shape[1] != 3 or len(generators) == 0:
+        raise ScaffoldError(f"{name}: generator points must be an (n, 3) array, got shape {generators.shape}")
+    frac = lattice.fractional(generators)
+    keys = np.round(frac - np.floor(np.round(frac, DECIMALS)), DECIMALS - 1)
+    if len(np.unique(keys, axis=0)) < len(keys):
+        raise ScaffoldError(f"{name}: two generator points coincide modulo the lattice")
+    if lattice.dim == 2 and np.any(np.abs(generators @ np.cross(*lattice.basis)) > 1e-9):
+        raise ScaffoldError(f"{name}: generator points must lie in the plane of the 2D lattice")
+    return quotient_scaffold(lattice, voronoi_polygons(lattice, generators), name)
+
+
+VORONOI_EXAMPLES = {
+    # the paper's figure: a cubic lattice with points at the cube's face centres
+    "voronoi:cube-faces": (Lattice.cubic, [[0.5, 0.5, 0.0], [0.5, 0.0, 0.5], [0.0, 0.5, 0.5]]),
+}
+
+
+def voronoi_example(name: str) -> Scaffold:
+    """A built-in generalized Voronoi scaffold (see ``VORONOI_EXAMPLES``)."""
+    make_lattice, points = VORONOI_EXAMPLES[name]
+    return voronoi_scaffold(make_lattice(), points, name)
+
+
+_SUPERCELL = re.compile(r"^(\d+)x(\d+)(?:x(\d+))?$")
+
+
+def parse_supercell(text: str, dim: int) -> tuple[int, ...]:
+    """``"2x2x1"`` -> ``(2, 2, 1)``; the number of factors must match ``dim``."""
+    m = _SUPERCELL.match(text)
+    sizes = tuple(int(g) for g in m.groups() if g is not None) if m else ()
+    if len(sizes) != dim or min(sizes, default=0) < 1:
+        want = "AxB" if dim == 2 else "AxBxC"
+        raise ScaffoldError(f"supercell {text!r}: expected {want} with positive integers")
+    return sizes
+
+
+def supercell(scaffold: Scaffold, sizes) -> Scaffold:
+    """The ``A x B (x C)`` repeating domain of a periodic scaffold.
+
+    Cell ``m = (i, j, k)`` with ``0 <= m < sizes`` gets index ``(i * B + j) * C + k``;
+    vertex ``v`` of cell ``m`` becomes ``cell_index * n_vertices + v`` and face ``f`` becomes
+    ``cell_index * n_faces + f``.  Edges are then numbered by the usual rule
+    (:mod:`lkspace.mesh`), so per-cell labels are given in that documented edge order.
+    """
+    if not scaffold.periodic:
+        raise ScaffoldError(f"{scaffold.name}: supercells need a periodic scaffold")
+    sizes = np.asarray(sizes, dtype=np.int64)
+    if sizes.shape != (scaffold.dim,):
+        raise ScaffoldError(f"{scaffold.name}: supercell needs {scaffold.dim} sizes, got {sizes.tolist()}")
+    cells = np.array(list(itertools.product(*(range(s) for s in sizes))), dtype=np.int64)
+    n_cells = len(cells)
+    vertices = (scaffold.vertices[None] + scaffold.lattice.translate(cells)[:, None]).reshape(-1, 3)
+    absolute = cells[:, None, :] + scaffold.corner_offsets[None]  # (cells, corners, dim)
+    cell_of = np.mod(absolute, sizes)
+    super_offsets = np.floor_divide(absolute, sizes)
+    strides = np.cumprod(np.r_[1, sizes[::-1][:-1]])[::-1]
+    cell_index = cell_of @ strides
+    corners = cell_index * scaffold.n_vertices + scaffold.corners[None]
+    starts = np.concatenate([[0], np.cumsum(np.tile(scaffold.face_sizes, n_cells))]).astype(np.int64)
+    return Scaffold(
+        vertices, starts, corners.reshape(-1), lattice=scaffold.lattice.supercell(sizes),
+        corner_offsets=super_offsets.reshape(-1, scaffold.dim),
+        name=f"{scaffold.name}@{'x'.join(map(str, sizes.tolist()))}",
+    )
