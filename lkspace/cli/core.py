@@ -33,6 +33,19 @@ def scaffold_cmd(name, output, as_json):
       truncated-octahedron                6 squares + 8 hexagons
       dihedron:N                          two-sided regular N-gon (two faces, one N-cycle)
       book:K                              K quads sharing one edge at equal angles
+      tiling:square, tiling:hexagonal     the 2D Wigner-Seitz tilings (periodic)
+      honeycomb:cP                        cubes; edge classes x, y, z
+      honeycomb:hP                        hexagonal prisms
+      honeycomb:oF                        face-centred orthorhombic cells (a,b,c = 1,1.25,1.5)
+      honeycomb:cF                        rhombic dodecahedra
+      honeycomb:cI                        truncated octahedra
+      voronoi:cube-faces                  Voronoi cells of a cubic lattice with points at
+                                          the cube's face centres (the paper's figure)
+      NAME@AxBxC                          A x B x C supercell of a periodic NAME (AxB in 2D)
+
+    \b
+    A .json file {"format": "lkspace-voronoi", "lattice": [...], "points": [...]}
+    gives a Voronoi scaffold of your own generator points.
     """
     ctx = Context(as_json)
     scaffold = builtin(name)
@@ -117,7 +130,10 @@ def trace_cmd(mesh, twist_spec, null_spec, as_json):
     def human():
         con = _console()
         con.print(f"{scaffold.name}: {result.components} component(s), "
-                  f"{'holds together' if result.holds_together else f'falls apart into {result.n_pieces} pieces'}")
+                  f"{'holds together' if result.holds_together else 'falls apart'}")
+        if scaffold.periodic:
+            con.print(f"threads per module: {data['threads_per_module']} "
+                      f"({data['closed_loops']} closed loops, {data['infinite_threads']} infinite threads)")
         table = Table("strand", "closed", "length", "period", "faces")
         for k, s in enumerate(data["strands"]):
             faces = " ".join(map(str, s["faces"][:24])) + (" …" if len(s["faces"]) > 24 else "")
