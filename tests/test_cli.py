@@ -132,7 +132,7 @@ def test_trace_json_matches_reference_on_random_meshes(capsys, tmp_path):
 
     rng = np.random.default_rng(7)
     checked = 0
-    for trial in range(120):
+    for trial in range(150):
         n = int(rng.integers(4, 9))
         vertices = rng.normal(size=(n, 3))
         faces = [rng.permutation(n)[: int(rng.integers(3, min(n, 6) + 1))].tolist() for _ in range(int(rng.integers(1, 7)))]
@@ -153,4 +153,4 @@ def test_trace_json_matches_reference_on_random_meshes(capsys, tmp_path):
         theirs = Counter(tuple(sorted(Counter(f).items())) for _, f in ref)
         assert mine == theirs
         checked += 1
-    assert checked > 100
+    assert checked >= 100
