@@ -33,6 +33,8 @@ def scaffold_cmd(name, output, as_json):
       truncated-octahedron                6 squares + 8 hexagons
       dihedron:N                          two-sided regular N-gon (two faces, one N-cycle)
       book:K                              K quads sharing one edge at equal angles
+      cube-net, cube-lid                  a cube unfolded flat; an open box with a lid
+      cubes:piano, cubes:vertex           two cubes sharing an edge; sharing a vertex
       tiling:square, tiling:hexagonal     the 2D Wigner-Seitz tilings (periodic)
       honeycomb:cP                        cubes; edge classes x, y, z
       honeycomb:hP                        hexagonal prisms

@@ -18,6 +18,10 @@ honeycomb:hP               hexagonal-prism honeycomb
 honeycomb:oF               face-centred orthorhombic Wigner–Seitz honeycomb
 honeycomb:cF               rhombic-dodecahedral honeycomb (face-centred cubic)
 honeycomb:cI               truncated-octahedral honeycomb (body-centred cubic)
+cube-net                   the cube unfolded flat into a cross of six squares
+cube-lid                   open box with its lid swung open about one top edge
+cubes:piano                two cubes sharing an edge (piano hinge, degree 4)
+cubes:vertex               two cubes sharing a vertex
 voronoi:cube-faces         Voronoi scaffold of a cubic lattice with points at the
                            cube's face centres (the paper's figure; 12 triangles)
 NAME@AxBxC                 the A x B x C supercell of a periodic NAME (AxB in 2D)
@@ -32,7 +36,7 @@ from collections.abc import Callable
 
 from ..errors import ScaffoldError
 from ..mesh import Scaffold
-from . import periodic, polyhedra, special
+from . import hinged, periodic, polyhedra, special
 
 SOLIDS: dict[str, Callable[[], Scaffold]] = {
     "tetrahedron": polyhedra.tetrahedron,
@@ -42,6 +46,8 @@ SOLIDS: dict[str, Callable[[], Scaffold]] = {
     "icosahedron": polyhedra.icosahedron,
     "truncated-octahedron": polyhedra.truncated_octahedron,
 }
+
+SOLIDS.update(hinged.HINGED)
 
 FAMILIES: dict[str, Callable[[int], Scaffold]] = {
     "dihedron": special.dihedron,
@@ -59,7 +65,7 @@ def builtin_names() -> list[str]:
 def is_builtin_name(name: str) -> bool:
     """Whether ``name`` looks like a built-in name rather than a path."""
     head = name.split(":", 1)[0].split("@", 1)[0]
-    return head in SOLIDS or head in FAMILIES or name.startswith(("tiling:", "honeycomb:", "voronoi:"))
+    return name in SOLIDS or head in SOLIDS or head in FAMILIES or name.startswith(("tiling:", "honeycomb:", "voronoi:"))
 
 
 def builtin(name: str) -> Scaffold:
