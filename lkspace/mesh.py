@@ -26,7 +26,7 @@ Conventions (SPEC §1)
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from functools import cached_property
 
 import numpy as np
@@ -101,7 +101,6 @@ class Scaffold:
     twists: np.ndarray | None = None
     nulls: np.ndarray | None = None
     name: str = "scaffold"
-    source: dict = field(default_factory=dict, repr=False)
 
     def __post_init__(self):
         set_ = lambda k, v: object.__setattr__(self, k, v)  # noqa: E731
@@ -324,7 +323,7 @@ class Scaffold:
         """A copy carrying default ``twists`` and ``nulls``."""
         return Scaffold(
             self.vertices, self.face_starts, self.corners, self.lattice, self.corner_offsets,
-            self.radial_orders, twists, nulls, self.name, self.source,
+            self.radial_orders, twists, nulls, self.name,
         )
 
     @classmethod
