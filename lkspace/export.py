@@ -220,8 +220,11 @@ def write_glb(real: Realization, path, radius: float | None = None, sides: int =
 
 
 def render_png(real: Realization, path, show_mesh: bool = True, radius: float | None = None,
-               size: int = 900, elev: float = 24.0, azim: float = -58.0, title: str | None = None) -> None:
-    """A shaded picture of the tubes (one colour per strand), the input mesh faint behind."""
+               size: int = 900, elev: float | None = None, azim: float = -58.0, title: str | None = None) -> None:
+    """A shaded picture of the tubes (one colour per strand), the input mesh faint behind.
+
+    ``elev`` defaults to 24 degrees, or 55 for a flat scaffold seen from above.
+    """
     require("matplotlib", "render", "PNG export")
     import matplotlib
 
@@ -230,6 +233,10 @@ def render_png(real: Realization, path, show_mesh: bool = True, radius: float | 
     from mpl_toolkits.mplot3d.art3d import Poly3DCollection
 
     radius = real.tube_radius if radius is None else radius
+    pts = np.vstack(real.curves + ([real.scaffold.corner_positions] if show_mesh else []))
+    extent = np.ptp(pts, axis=0)
+    if elev is None:
+        elev = 55.0 if extent[2] < 0.25 * extent.max() else 24.0
     fig = plt.figure(figsize=(size / 100, size / 100), dpi=100)
     ax = fig.add_subplot(projection="3d", computed_zorder=False)
     ax.view_init(elev=elev, azim=azim)
@@ -258,13 +265,12 @@ def render_png(real: Realization, path, show_mesh: bool = True, radius: float | 
     depth = tris.mean(axis=1) @ view
     order = np.argsort(depth)                            # far first: painter's algorithm
     ax.add_collection3d(Poly3DCollection(tris[order], facecolors=cols[order], edgecolors="none", linewidths=0))
-    pts = np.vstack(real.curves + ([sc.corner_positions] if show_mesh else []))
     lo, hi = pts.min(0) - 2 * radius, pts.max(0) + 2 * radius
     center, half = (lo + hi) / 2, (hi - lo).max() / 2
     ax.set_xlim(center[0] - half, center[0] + half)
     ax.set_ylim(center[1] - half, center[1] + half)
     ax.set_zlim(center[2] - half, center[2] + half)
-    ax.set_box_aspect((1, 1, 1))
+    ax.set_box_aspect((1, 1, 1), zoom=1.3)
     ax.set_axis_off()
     if title:
         ax.set_title(title, fontsize=13)

@@ -67,7 +67,7 @@ class GeometryParams:
         Offset ``h`` of the tracks along the face normal (default ``0.35 * radius``).
     margin : float or None
         Length at each edge end kept straight for the corner turns (default
-        ``0.28 * scale``, at most ``0.3`` of the edge).
+        ``0.28 * scale``; longer at acute corners, at most ``0.42`` of the edge).
     tube_radius : float or None
         Radius of exported tubes (default ``0.03 * scale``, shrunk to ``0.45`` of the
         minimum separation found).
@@ -183,7 +183,7 @@ class _Frame:
     length: np.ndarray      # (n_edges,)
     u1: np.ndarray          # (n_edges, 3)
     u2: np.ndarray          # (n_edges, 3)
-    margin: np.ndarray      # (n_edges,) fraction of the edge
+    margin: np.ndarray      # (n_edges, 2) fraction of the edge kept straight at ends a, b
     side_shift: np.ndarray  # (n_corners, 3) lattice shift of each side's copy
     slot_angle: np.ndarray  # (n_corners,) unwrapped angle, slot order per edge
     slot_gap: np.ndarray    # (n_corners,) angle to the next slot
@@ -236,14 +236,29 @@ def _frame(scaffold: Scaffold, rho: float, h: float, margin: float) -> _Frame:
         raise GeometryError(
             f"{scaffold.name}: edge {scaffold.edge_name(k)}: the normal offset {h:.3g} reorders the strands "
             "around the edge; use a smaller normal offset")
-    frac = np.minimum(margin / length, 0.3)
+    # margins: at least ``margin``, longer at acute corners so that the corner turn ends
+    # before the helix starts (the inset corner lies rho * cot(alpha / 2) from the vertex)
+    pos = scaffold.corner_positions
+    to_prev = pos[scaffold.corner_prev] - pos
+    to_next = pos[scaffold.corner_next] - pos
+    cosang = np.sum(to_prev * to_next, axis=1) / (np.linalg.norm(to_prev, axis=1) * np.linalg.norm(to_next, axis=1))
+    half = 0.5 * np.arccos(np.clip(cosang, -1.0, 1.0))
+    need = np.maximum(margin, 1.4 * np.hypot(rho, h) / np.tan(np.maximum(half, 1e-3)))   # per corner
+    side_need = np.column_stack([need, need[scaffold.corner_next]])                  # first, second corner
+    fwd_side = scaffold.side_forward
+    need_a = np.where(fwd_side, side_need[:, 0], side_need[:, 1])
+    need_b = np.where(fwd_side, side_need[:, 1], side_need[:, 0])
+    ends_need = np.zeros((len(length), 2))
+    np.maximum.at(ends_need[:, 0], e, need_a)
+    np.maximum.at(ends_need[:, 1], e, need_b)
+    frac = np.minimum(ends_need / length[:, None], 0.42)
     # straight track ends: each port's point and the direction toward its corner
     n_ports = 2 * scaffold.n_corners
     ports = np.arange(n_ports)
     ps = ports // 2
     at_a = (ports % 2 == 0) == scaffold.side_forward[ps]
     pe = e[ps]
-    par = np.where(at_a, frac[pe], 1.0 - frac[pe])
+    par = np.where(at_a, frac[pe, 0], 1.0 - frac[pe, 1])
     port_point = pa[pe] + par[:, None] * vec[pe] + shift[ps] + w[ps]
     port_dir = np.where(at_a[:, None], -axis[pe], axis[pe])
     out = _Frame(pa, pb, axis, length, u1, u2, frac, shift, slot_angle, gap, rad[sides], port_point, port_dir)
@@ -366,8 +381,9 @@ def realize(scaffold: Scaffold, twists=None, nulls=None, params: GeometryParams 
     slot = scaffold.radial.side_slot[ys][piece]
     g = smoothstep(sig)
     xs = np.where(fwd, slot + t[piece] * g, slot - t[piece] * g)
-    frac = fr.margin[ep]
-    par = np.where(fwd, frac + (1 - 2 * frac) * sig, 1 - frac - (1 - 2 * frac) * sig)
+    fa, fb = fr.margin[ep, 0], fr.margin[ep, 1]
+    span = 1 - fa - fb
+    par = np.where(fwd, fa + span * sig, 1 - fb - span * sig)
     kk = k[piece]
     j0 = np.floor(xs).astype(np.int64)
     rem = xs - j0

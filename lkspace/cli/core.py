@@ -33,6 +33,8 @@ def scaffold_cmd(name, output, as_json):
       truncated-octahedron                6 squares + 8 hexagons
       dihedron:N                          two-sided regular N-gon (two faces, one N-cycle)
       book:K                              K quads sharing one edge at equal angles
+      figure-eight                        the paper's 4_1 mesh (design as default twists)
+      whitehead                           the paper's L5a1 mesh (design as default twists)
     """
     ctx = Context(as_json)
     scaffold = builtin(name)

@@ -11,7 +11,12 @@ icosahedron                regular icosahedron (20 triangles, 30 edges)
 truncated-octahedron       truncated octahedron (6 squares + 8 hexagons, 36 edges)
 dihedron:N                 two-sided regular N-gon (two faces on one N-cycle), N >= 3
 book:K                     K quads sharing one edge at equal angles, K >= 1
+figure-eight               square: two triangles in front, a quad behind (paper; 4_1)
+whitehead                  square fanned into four triangles, no back (paper; L5a1)
 =========================  ==========================================================
+
+``figure-eight`` and ``whitehead`` carry their paper designs as default twists
+(see :mod:`lkspace.scaffolds.paper`).
 """
 
 from __future__ import annotations
@@ -20,7 +25,7 @@ from typing import Callable
 
 from ..errors import ScaffoldError
 from ..mesh import Scaffold
-from . import polyhedra, special
+from . import paper, polyhedra, special
 
 SOLIDS: dict[str, Callable[[], Scaffold]] = {
     "tetrahedron": polyhedra.tetrahedron,
@@ -29,6 +34,8 @@ SOLIDS: dict[str, Callable[[], Scaffold]] = {
     "dodecahedron": polyhedra.dodecahedron,
     "icosahedron": polyhedra.icosahedron,
     "truncated-octahedron": polyhedra.truncated_octahedron,
+    "figure-eight": paper.figure_eight,
+    "whitehead": paper.whitehead,
 }
 
 FAMILIES: dict[str, Callable[[int], Scaffold]] = {
