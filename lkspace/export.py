@@ -264,7 +264,7 @@ def render_png(real: Realization, path, show_mesh: bool = True, radius: float | 
     cols = np.concatenate(all_cols)
     depth = tris.mean(axis=1) @ view
     order = np.argsort(depth)                            # far first: painter's algorithm
-    ax.add_collection3d(Poly3DCollection(tris[order], facecolors=cols[order], edgecolors="none", linewidths=0))
+    ax.add_collection3d(Poly3DCollection(tris[order], facecolors=cols[order], edgecolors=cols[order], linewidths=0.25))
     lo, hi = pts.min(0) - 2 * radius, pts.max(0) + 2 * radius
     center, half = (lo + hi) / 2, (hi - lo).max() / 2
     ax.set_xlim(center[0] - half, center[0] + half)

@@ -466,13 +466,38 @@ def resample(curve: np.ndarray, closed: bool, spacing: float) -> tuple[np.ndarra
     return out, s, length
 
 
-def _pieces_apart(owner, arc, lengths, closed, i, j, exclusion):
-    """Mask of sample pairs ``(i, j)`` on distinct pieces (other curve, or far along one)."""
-    same = owner[i] == owner[j]
+def _pieces_apart(owner, arc, lengths, closed, i, j, exclusion, joins=None):
+    """Mask of sample pairs ``(i, j)`` on distinct pieces (other curve, or far along one).
+
+    ``joins`` maps ``(curve_a, curve_b)`` to True when ``a``'s end is ``b``'s start (the
+    periods of one infinite thread in a block of translates): their near-end samples
+    count as one piece.
+    """
+    oi, oj = owner[i], owner[j]
+    same = oi == oj
     along = np.abs(arc[i] - arc[j])
-    cyc = closed[owner[i]]
-    along = np.where(same & cyc, np.minimum(along, lengths[owner[i]] - along), along)
-    return ~same | (along > exclusion)
+    cyc = closed[oi]
+    along = np.where(same & cyc, np.minimum(along, lengths[oi] - along), along)
+    apart = ~same | (along > exclusion)
+    if joins:
+        for a, b in joins:
+            for x, y in ((i, j), (j, i)):
+                m = (owner[x] == a) & (owner[y] == b)
+                if m.any():
+                    gap = (lengths[a] - arc[x[m]]) + arc[y[m]]
+                    apart[m] &= gap > exclusion
+    return apart
+
+
+def _joins(curves, closed, tol: float) -> list:
+    """Pairs ``(a, b)`` of open curves where ``a`` ends at ``b``'s start."""
+    open_ids = [k for k, c in enumerate(closed) if not c]
+    if len(open_ids) < 2:
+        return []
+    starts = np.array([curves[k][0] for k in open_ids])
+    ends = np.array([curves[k][-1] for k in open_ids])
+    pairs = cKDTree(ends).query_ball_point(starts, tol)
+    return [(open_ids[a], open_ids[b]) for b, hits in enumerate(pairs) for a in hits if a != b]
 
 
 def _samples(curves, closed, spacing):
@@ -502,6 +527,7 @@ def check_embedding(curves, closed, min_separation: float, scale: float) -> tupl
         ``{"curves": [i, j], "point": [x, y, z]}`` of the closest pair (empty if none).
     """
     closed = np.asarray(closed, bool)
+    joins = _joins(curves, closed, 1e-9 * max(1.0, scale))
     best, where = float("inf"), {}
 
     def consider(pts, owner, i, j):
@@ -518,7 +544,7 @@ def check_embedding(curves, closed, min_separation: float, scale: float) -> tupl
     pts, arc, owner, lengths = _samples(curves, closed, min_separation / 2.0)
     pairs = cKDTree(pts).query_pairs(min_separation, output_type="ndarray")
     if len(pairs):
-        keep = _pieces_apart(owner, arc, lengths, closed, pairs[:, 0], pairs[:, 1], 4 * min_separation)
+        keep = _pieces_apart(owner, arc, lengths, closed, pairs[:, 0], pairs[:, 1], 4 * min_separation, joins)
         consider(pts, owner, pairs[keep, 0], pairs[keep, 1])
     spacing = max(min_separation / 2.0, 0.02 * scale)
     pts, arc, owner, lengths = _samples(curves, closed, spacing)
@@ -528,6 +554,6 @@ def check_embedding(curves, closed, min_separation: float, scale: float) -> tupl
     j = nb.reshape(-1)
     found = j < len(pts)
     i, j = i[found], j[found]
-    keep = _pieces_apart(owner, arc, lengths, closed, i, j, 0.3 * scale)
+    keep = _pieces_apart(owner, arc, lengths, closed, i, j, 0.3 * scale, joins)
     consider(pts, owner, i[keep], j[keep])
     return best, where
