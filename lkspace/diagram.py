@@ -103,7 +103,6 @@ def project(curves, seed: int = 0, rotation: np.ndarray | None = None) -> Diagra
     rot = Rotation.random(random_state=seed).as_matrix() if rotation is None else np.asarray(rotation)
     curves = [np.asarray(c, np.float64) @ rot.T for c in curves]
     p0, p1, owner, index = _segments(curves)
-    n_seg = len(p0)
     lengths = np.array([len(c) for c in curves])
     first = np.concatenate([[0], np.cumsum(lengths)])
     a2, b2 = p0[:, :2], p1[:, :2]
@@ -148,8 +147,6 @@ def project(curves, seed: int = 0, rotation: np.ndarray | None = None) -> Diagra
     # passages: each crossing is passed twice (over, under); order them along components
     seg = np.concatenate([over, under])
     par = np.concatenate([t_over, t_under])
-    crossing = np.concatenate([np.arange(n_x), np.arange(n_x)])
-    is_under = np.concatenate([np.zeros(n_x, bool), np.ones(n_x, bool)])
     comp = owner[seg]
     position = (seg - first[comp]) + par
     order = np.lexsort((position, comp))

@@ -116,7 +116,7 @@ def tube(points: np.ndarray, closed: bool, radius: float, sides: int = 12):
 def _tubes(real: Realization, radius: float | None, sides: int, spacing: float | None = None):
     radius = real.tube_radius if radius is None else radius
     out = []
-    for curve, closed in zip(real.curves, real.closed):
+    for curve, closed in zip(real.curves, real.closed, strict=False):
         pts = curve if spacing is None else resample(curve, bool(closed), spacing)[0]
         out.append(tube(pts, bool(closed), radius, sides))
     return out
@@ -133,7 +133,7 @@ def write_obj(real: Realization, path, tubes: bool = False, radius: float | None
             lines.extend(f"f {a + base} {b + base} {c + base}" for a, b, c in f)
             base += len(v)
     else:
-        for k, (curve, closed) in enumerate(zip(real.curves, real.closed)):
+        for k, (curve, closed) in enumerate(zip(real.curves, real.closed, strict=False)):
             lines.append(f"o strand_{k}")
             lines.extend(f"v {x:.6f} {y:.6f} {z:.6f}" for x, y, z in curve)
             idx = list(range(base, base + len(curve))) + ([base] if closed else [])
@@ -154,7 +154,7 @@ def write_ply(real: Realization, path, tubes: bool = False, radius: float | None
             elems.append(f + base)
             base += len(v)
     else:
-        for k, (curve, closed) in enumerate(zip(real.curves, real.closed)):
+        for k, (curve, closed) in enumerate(zip(real.curves, real.closed, strict=False)):
             n = len(curve)
             verts.append(curve)
             vcols.append(np.repeat(cols[k][None], n, 0))
@@ -170,7 +170,7 @@ def write_ply(real: Realization, path, tubes: bool = False, radius: float | None
               "property uchar red", "property uchar green", "property uchar blue", f"element {kind} {len(e)}"]
     header += ["property list uchar int vertex_indices"] if tubes else ["property int vertex1", "property int vertex2"]
     header.append("end_header")
-    body = [f"{x:.6f} {y:.6f} {z:.6f} {r} {g} {b}" for (x, y, z), (r, g, b) in zip(v, c)]
+    body = [f"{x:.6f} {y:.6f} {z:.6f} {r} {g} {b}" for (x, y, z), (r, g, b) in zip(v, c, strict=False)]
     body += [("3 " if tubes else "") + " ".join(map(str, row)) for row in e]
     write_text(path, "\n".join(header + body) + "\n")
 
@@ -188,7 +188,7 @@ def glb_bytes(real: Realization, radius: float | None = None, sides: int = 12) -
         offset += len(data) + pad
         return len(views) - 1
 
-    for k, ((v, nrm, f), rgb) in enumerate(zip(_tubes(real, radius, sides), colors(real.n_curves))):
+    for k, ((v, nrm, f), rgb) in enumerate(zip(_tubes(real, radius, sides), colors(real.n_curves), strict=False)):
         v32 = v.astype(np.float32)
         pos = add_view(v32.tobytes(), 34962)
         accessors.append({"bufferView": pos, "componentType": 5126, "count": len(v32), "type": "VEC3",
@@ -246,12 +246,12 @@ def render_png(real: Realization, path, show_mesh: bool = True, radius: float | 
     light /= np.linalg.norm(light)
     sc = real.scaffold
     if show_mesh:
-        polys = [sc.corner_positions[s:t] for s, t in zip(sc.face_starts[:-1], sc.face_starts[1:])]
+        polys = [sc.corner_positions[s:t] for s, t in zip(sc.face_starts[:-1], sc.face_starts[1:], strict=False)]
         ax.add_collection3d(Poly3DCollection(polys, facecolors=(0.6, 0.65, 0.75, 0.07),
                                              edgecolors=(0.35, 0.35, 0.4, 0.35), linewidths=0.6))
     spacing = 1.2 * radius
     all_tris, all_cols = [], []
-    for (v, nrm, f), rgb in zip(_tubes(real, radius, 10, spacing), colors(real.n_curves)):
+    for (v, nrm, f), rgb in zip(_tubes(real, radius, 10, spacing), colors(real.n_curves), strict=False):
         fn = nrm[f].mean(axis=1)
         fn /= np.maximum(np.linalg.norm(fn, axis=1, keepdims=True), 1e-12)
         lam = np.clip(fn @ light, 0, 1)

@@ -340,9 +340,6 @@ def realize(scaffold: Scaffold, twists=None, nulls=None, params: GeometryParams 
     x = steps
     y = cp[x]
     z = tr.edge_partner[y]                               # -1 at a cut
-    nxt_index = np.arange(1, n_steps + 1)
-    ends = tr.strand_starts[1:] - 1
-    nxt_index[ends] = tr.strand_starts[:-1]
     # lattice copy of every step: accumulate the translation of each edge link
     if dim:
         st = scaffold.side_translation
@@ -501,7 +498,7 @@ def _joins(curves, closed, tol: float) -> list:
 
 
 def _samples(curves, closed, spacing):
-    chunks = [resample(c, bool(cl), spacing) for c, cl in zip(curves, closed)]
+    chunks = [resample(c, bool(cl), spacing) for c, cl in zip(curves, closed, strict=False)]
     pts = np.vstack([c[0] for c in chunks])
     arc = np.concatenate([c[1] for c in chunks])
     owner = np.repeat(np.arange(len(chunks)), [len(c[0]) for c in chunks])
