@@ -282,11 +282,12 @@ def _identify_row(args) -> dict:
     scaffold, labels, seed = args
     try:
         r = identify(scaffold, np.asarray(labels, np.int64), seed=seed)
-        return {"knot_name": r["name"], "mirror": r.get("mirror"), "crossings": r.get("crossings"),
+        return {"knot_name": r["name"], "components": r["components"], "split": r.get("split"),
+                "mirror": r.get("mirror"), "crossings": r.get("crossings"),
                 "jones": r.get("jones"), "linking_matrix": json.dumps(r["linking_matrix"]), "error": None}
     except LkspaceError as exc:
-        return {"knot_name": None, "mirror": None, "crossings": None, "jones": None, "linking_matrix": None,
-                "error": str(exc)}
+        return {"knot_name": None, "components": None, "split": None, "mirror": None, "crossings": None,
+                "jones": None, "linking_matrix": None, "error": str(exc)}
 
 
 def identify_batch(scaffold: Scaffold, labels_2d, processes: int = 1, seed: int = 0):
@@ -301,9 +302,10 @@ def identify_batch(scaffold: Scaffold, labels_2d, processes: int = 1, seed: int 
     Returns
     -------
     pandas.DataFrame
-        Columns ``knot_name``, ``mirror``, ``crossings`` (simplified diagram), ``jones``,
-        ``linking_matrix`` (JSON text) and ``error`` (``None`` unless the design could not
-        be identified, e.g. open strands).
+        Columns ``knot_name`` (missing when unknown or split), ``components``, ``split``,
+        ``mirror``, ``crossings`` (simplified diagram), ``jones``, ``linking_matrix`` (JSON
+        text) and ``error`` (missing unless the design could not be identified, e.g.
+        open strands).
     """
     import pandas as pd
 
@@ -317,4 +319,5 @@ def identify_batch(scaffold: Scaffold, labels_2d, processes: int = 1, seed: int 
             rows = pool.map(_identify_row, jobs, chunksize=max(1, len(jobs) // (4 * processes)))
     else:
         rows = [_identify_row(j) for j in jobs]
-    return pd.DataFrame(rows, columns=["knot_name", "mirror", "crossings", "jones", "linking_matrix", "error"])
+    return pd.DataFrame(rows, columns=["knot_name", "components", "split", "mirror", "crossings", "jones",
+                                       "linking_matrix", "error"])
