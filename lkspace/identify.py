@@ -25,7 +25,7 @@ from functools import lru_cache
 
 import numpy as np
 
-from .diagram import project
+from .diagram import DiagramError, project
 from .errors import LkspaceError, require
 from .geometry import GeometryParams, realize
 from .mesh import Scaffold
@@ -273,15 +273,27 @@ def identify(scaffold: Scaffold, twists=None, nulls=None, params: GeometryParams
         tr = real.trace
         reason = "open strands (null edge-sides)" if not tr.closed.all() else "infinite periodic threads"
         raise LkspaceError(f"{scaffold.name}: cannot identify a structure with {reason}")
-    out = identify_curves(real.curves, seed=seed)
+    for attempt in range(3):                             # a rare non-generic projection: turn again
+        try:
+            out = identify_curves(real.curves, seed=seed + attempt)
+            break
+        except DiagramError:
+            if attempt == 2:
+                raise
     out["min_distance"] = real.min_distance
     return out
 
 
-def _identify_row(args) -> dict:
-    scaffold, labels, seed = args
+_WORKER: dict = {}
+
+
+def _init_worker(scaffold: Scaffold, seed: int) -> None:
+    _WORKER["scaffold"], _WORKER["seed"] = scaffold, seed
+
+
+def _identify_row(labels) -> dict:
     try:
-        r = identify(scaffold, np.asarray(labels, np.int64), seed=seed)
+        r = identify(_WORKER["scaffold"], np.asarray(labels, np.int64), seed=_WORKER["seed"])
         return {"knot_name": r["name"], "components": r["components"], "split": r.get("split"),
                 "mirror": r.get("mirror"), "crossings": r.get("crossings"),
                 "jones": r.get("jones"), "linking_matrix": json.dumps(r["linking_matrix"]), "error": None}
@@ -290,14 +302,23 @@ def _identify_row(args) -> dict:
                 "jones": None, "linking_matrix": None, "error": str(exc)}
 
 
-def identify_batch(scaffold: Scaffold, labels_2d, processes: int = 1, seed: int = 0):
+COLUMNS = ["knot_name", "components", "split", "mirror", "crossings", "jones", "linking_matrix", "error"]
+
+
+def identify_batch(scaffold: Scaffold, labels_2d, processes: int = 1, seed: int = 0, progress: bool | None = None):
     """Identify many designs of one scaffold: a ``pandas.DataFrame``, one row per design.
 
     Parameters
     ----------
+    scaffold : Scaffold
     labels_2d : (n_designs, n_edges) int
     processes : int
-        Worker processes (``1``: in this process).
+        Worker processes (``1``: in this process).  Workers are forked and receive the
+        scaffold once; rows travel in chunks.
+    seed : int
+        Seed of the generic projection.
+    progress : bool, optional
+        Show a progress bar on stderr (default: when stderr is a terminal).
 
     Returns
     -------
@@ -305,19 +326,44 @@ def identify_batch(scaffold: Scaffold, labels_2d, processes: int = 1, seed: int 
         Columns ``knot_name`` (missing when unknown or split), ``components``, ``split``,
         ``mirror``, ``crossings`` (simplified diagram), ``jones``, ``linking_matrix`` (JSON
         text) and ``error`` (missing unless the design could not be identified, e.g.
-        open strands).
+        open strands), in the order of ``labels_2d``.
+
+    Examples
+    --------
+    >>> from lkspace import load
+    >>> identify_batch(load("dihedron:3"), [[1, 1, 1], [1, 0, 0]])["knot_name"].tolist()
+    ['3_1', '0_1']
     """
+    import sys
+
     import pandas as pd
 
     _modules()
+    tables()                                             # loaded once, shared by forked workers
     labels_2d = np.asarray(labels_2d, np.int64).reshape(-1, scaffold.n_edges)
-    jobs = [(scaffold, row, seed) for row in labels_2d]
-    if processes > 1 and len(jobs) > 1:
+    if progress is None:
+        progress = sys.stderr.isatty()
+    _init_worker(scaffold, seed)
+    chunk = max(1, min(64, len(labels_2d) // (4 * max(processes, 1)) or 1))
+    if processes > 1 and len(labels_2d) > 1:
         import multiprocessing as mp
 
-        with mp.get_context("fork").Pool(processes) as pool:
-            rows = pool.map(_identify_row, jobs, chunksize=max(1, len(jobs) // (4 * processes)))
+        pool = mp.get_context("fork").Pool(processes, initializer=_init_worker, initargs=(scaffold, seed))
+        rows_iter = pool.imap(_identify_row, labels_2d, chunksize=chunk)
     else:
-        rows = [_identify_row(j) for j in jobs]
-    return pd.DataFrame(rows, columns=["knot_name", "components", "split", "mirror", "crossings", "jones",
-                                       "linking_matrix", "error"])
+        pool = None
+        rows_iter = map(_identify_row, labels_2d)
+    try:
+        if progress:
+            from rich.console import Console
+            from rich.progress import track
+
+            rows = list(track(rows_iter, total=len(labels_2d), description="identifying", transient=True,
+                              console=Console(stderr=True)))
+        else:
+            rows = list(rows_iter)
+    finally:
+        if pool is not None:
+            pool.close()
+            pool.join()
+    return pd.DataFrame(rows, columns=COLUMNS)
