@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
 
 import lkspace
 from lkspace.geometry import GeometryError, GeometryParams, check_embedding, realize, smoothstep
@@ -124,3 +126,27 @@ def test_periodic_block_of_translates(twists, n_open):
     # a block copy is the base copy translated by its lattice vector
     k = int(np.flatnonzero(real.copy_of == 4)[0])
     assert np.allclose(real.curves[k], real.curves[real.strand_of[k]] + [1, 1, 0])
+
+
+@settings(max_examples=8, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(half=st.lists(st.integers(-2, 2), min_size=12, max_size=12))
+def test_cube_chainmail_linking_numbers(cube, half):
+    """Even labels keep every face a loop; adjacent loops link by -t/2 (Gauss integral oracle).
+
+    Faces are oriented outward, so two adjacent face loops run along their shared edge in
+    opposite directions, as the two faces of a dihedron do; a right-handed twist t = 2m
+    gives them linking number -m (mirror labels: +m).
+    """
+    twists = 2 * np.array(half)
+    real = realize(cube, twists)
+    tr = real.trace
+    face_of = [int(tr.strand_faces(k)[0]) for k in range(tr.components)]
+    assert sorted(face_of) == list(range(6))
+    expected = np.zeros((6, 6))
+    for e in range(cube.n_edges):
+        f, g = cube.corner_face[cube.radial.edge_sides[cube.radial.edge_starts[e]:cube.radial.edge_starts[e + 1]]]
+        expected[f, g] = expected[g, f] = -twists[e] / 2
+    for a in range(6):
+        for b in range(a + 1, 6):
+            lk = gauss_linking(real.curves[a], real.curves[b])
+            assert abs(lk - expected[face_of[a], face_of[b]]) < 0.05

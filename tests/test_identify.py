@@ -150,3 +150,13 @@ def test_cli_identify_human_and_errors(capsys):
     assert main(["identify", "tetrahedron", "--twist", "1", "--null", "0.0"]) == 2
     _, err = capsys.readouterr()
     assert err.count("\n") == 1 and "open strands" in err
+
+
+def test_missing_extra_names_the_install_hint(monkeypatch, tetra):
+    from lkspace.errors import MissingDependencyError
+
+    monkeypatch.setitem(__import__("sys").modules, "spherogram", None)
+    with pytest.raises(MissingDependencyError, match=r"pip install 'lkspace\[knots\]'"):
+        identify(tetra, 1)
+    code = main(["identify", "tetrahedron", "--twist", "1"])
+    assert code == 2
