@@ -223,6 +223,8 @@ def render_png(real: Realization, path, show_mesh: bool = True, radius: float | 
                size: int = 900, elev: float | None = None, azim: float = -58.0, title: str | None = None) -> None:
     """A shaded picture of the tubes (one colour per strand), the input mesh faint behind.
 
+    Lattice translates of one strand (a periodic block) share its colour.
+
     ``elev`` defaults to 24 degrees, or 55 for a flat scaffold seen from above.
     """
     require("matplotlib", "render", "PNG export")
@@ -233,7 +235,7 @@ def render_png(real: Realization, path, show_mesh: bool = True, radius: float | 
     from mpl_toolkits.mplot3d.art3d import Poly3DCollection
 
     radius = real.tube_radius if radius is None else radius
-    pts = np.vstack(real.curves + ([real.scaffold.corner_positions] if show_mesh else []))
+    pts = np.vstack(real.curves)
     extent = np.ptp(pts, axis=0)
     if elev is None:
         elev = 55.0 if extent[2] < 0.25 * extent.max() else 24.0
@@ -246,12 +248,16 @@ def render_png(real: Realization, path, show_mesh: bool = True, radius: float | 
     light /= np.linalg.norm(light)
     sc = real.scaffold
     if show_mesh:
-        polys = [sc.corner_positions[s:t] for s, t in zip(sc.face_starts[:-1], sc.face_starts[1:], strict=False)]
+        base = [sc.corner_positions[s:t] for s, t in zip(sc.face_starts[:-1], sc.face_starts[1:], strict=True)]
+        shifts = (sc.lattice.translate(real.translations) if sc.periodic and real.translations is not None
+                  else np.zeros((1, 3)))
+        polys = [p + d for d in shifts for p in base]
         ax.add_collection3d(Poly3DCollection(polys, facecolors=(0.6, 0.65, 0.75, 0.07),
                                              edgecolors=(0.35, 0.35, 0.4, 0.35), linewidths=0.6))
     spacing = 1.2 * radius
     all_tris, all_cols = [], []
-    for (v, nrm, f), rgb in zip(_tubes(real, radius, 10, spacing), colors(real.n_curves), strict=False):
+    palette = colors(int(real.strand_of.max()) + 1)[real.strand_of]      # translates share their strand's colour
+    for (v, nrm, f), rgb in zip(_tubes(real, radius, 10, spacing), palette, strict=True):
         fn = nrm[f].mean(axis=1)
         fn /= np.maximum(np.linalg.norm(fn, axis=1, keepdims=True), 1e-12)
         lam = np.clip(fn @ light, 0, 1)

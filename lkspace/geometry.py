@@ -111,6 +111,8 @@ class Realization:
         Smallest sampled distance between distinct pieces (non-adjacent stretches).
     closest : dict
         Where it occurs: the two curves and the nearest scaffold element.
+    translations : (n_copies, dim) int64
+        Lattice translations of the copies (one zero row for a single copy).
     """
 
     scaffold: Scaffold
@@ -127,6 +129,7 @@ class Realization:
     min_separation: float
     min_distance: float
     closest: dict = field(default_factory=dict)
+    translations: np.ndarray | None = None
 
     @property
     def n_curves(self) -> int:
@@ -404,6 +407,8 @@ def realize(scaffold: Scaffold, twists=None, nulls=None, params: GeometryParams 
     points[edge_index] = edge_pts
     curves, closed, strand_of, copy_of = [], [], [], []
     periods = tr.periods if dim else np.zeros((tr.components, 0), np.int64)
+    if translations is not None and not dim:
+        raise GeometryError(f"{scaffold.name}: translated copies need a periodic scaffold")
     translations = np.zeros((1, dim), np.int64) if translations is None else np.asarray(translations, np.int64).reshape(-1, dim)
     copy_shift = _lattice_shift(scaffold, translations)
     for c_i, shift in enumerate(copy_shift):
@@ -433,7 +438,8 @@ def realize(scaffold: Scaffold, twists=None, nulls=None, params: GeometryParams 
             "self-intersect (try a smaller --radius or --normal-offset)")
     tube = params.tube_radius if params.tube_radius is not None else min(0.03 * scale, 0.45 * min_dist)
     return Realization(scaffold, tr, curves, closed, np.array(strand_of, np.int64), np.array(copy_of, np.int64),
-                       scale, float(rho), float(h), float(margin), float(tube), float(min_sep), float(min_dist), closest)
+                       scale, float(rho), float(h), float(margin), float(tube), float(min_sep), float(min_dist), closest,
+                       translations)
 
 
 def _place(scaffold: Scaffold, point) -> str:

@@ -188,3 +188,20 @@ def test_cli_catalog_without_metadata(tmp_path, capsys):
     pq.write_table(pa.table({"labels": [[1, 1, 1]]}), cat)
     code, _, err = run(capsys, "export", str(cat), "--row", "0", "-o", str(tmp_path / "x.obj"))
     assert code == 2 and "not an lkspace catalog" in err
+
+
+def test_cli_export_periodic_block(tmp_path, capsys):
+    from lkspace import io
+    from tests.test_geometry import square_torus
+
+    mesh = tmp_path / "sq.json"
+    io.write(square_torus(), mesh)
+    code, out, err = run(capsys, "export", str(mesh), "--twist", "1", "--block", "3x3", "-o", str(tmp_path / "w.glb"),
+                         "--json")
+    assert code == 0, err
+    data = json.loads(out)
+    assert data["curves"] == 18 and data["components"] == 2          # two diagonal threads, 9 translates each
+    code, _, err = run(capsys, "export", "cube", "--twist", "1", "--block", "3x3", "-o", str(tmp_path / "c.glb"))
+    assert code == 2 and "not periodic" in err
+    code, _, err = run(capsys, "export", str(mesh), "--twist", "1", "--block", "3x3x3", "-o", str(tmp_path / "c.glb"))
+    assert code == 2 and "2 positive sizes" in err

@@ -9,7 +9,7 @@ import click
 import numpy as np
 
 from .. import load
-from ..errors import CatalogError, LabelError
+from ..errors import CatalogError, LabelError, ScaffoldError
 from ..geometry import GeometryParams, realize
 from .common import Context, emit, json_option, load_mesh, nulls_of, twists_of
 
@@ -95,6 +95,22 @@ def resolve_design(ctx: Context, mesh, twist_spec, null_spec, row):
     return scaffold, twists_of(scaffold, twist_spec), nulls_of(scaffold, null_spec)
 
 
+def block_translations(scaffold, spec: str | None):
+    """Lattice translations ``(n, dim)`` of an ``AxBxC`` block, or ``None``."""
+    if spec is None:
+        return None
+    if not scaffold.periodic:
+        raise ScaffoldError(f"--block {spec}: {scaffold.name} is not periodic")
+    try:
+        sizes = [int(x) for x in spec.lower().split("x")]
+    except ValueError:
+        raise LabelError(f"--block {spec!r}: expected sizes like 3x3 or 2x2x2") from None
+    if len(sizes) != scaffold.dim or min(sizes) < 1:
+        raise LabelError(f"--block {spec!r}: give {scaffold.dim} positive sizes for a {scaffold.dim}D lattice")
+    grids = np.meshgrid(*[np.arange(n) for n in sizes], indexing="ij")
+    return np.column_stack([g.reshape(-1) for g in grids])
+
+
 def params_of(radius, normal_offset, tube_radius) -> GeometryParams:
     return GeometryParams(radius=radius, normal_offset=normal_offset, tube_radius=tube_radius)
 
@@ -105,8 +121,10 @@ def params_of(radius, normal_offset, tube_radius) -> GeometryParams:
               help="Output file: .obj, .ply, .glb or .png (the format follows the extension).")
 @click.option("--tubes", is_flag=True, help="Write tube meshes instead of polylines (.obj, .ply; .glb is always tubes).")
 @click.option("--no-mesh", is_flag=True, help="Leave the input mesh out of the picture (.png).")
+@click.option("--block", metavar="AxB[xC]", help="Periodic scaffolds: realize an A x B (x C) block of lattice translates.")
 @json_option
-def export_cmd(mesh, twist_spec, null_spec, row, radius, normal_offset, tube_radius, output, tubes, no_mesh, as_json):
+def export_cmd(mesh, twist_spec, null_spec, row, radius, normal_offset, tube_radius, output, tubes, no_mesh, block,
+               as_json):
     """Realize the strands of MESH labelled by --twist and write them to -o FILE.
 
     \b
@@ -120,7 +138,8 @@ def export_cmd(mesh, twist_spec, null_spec, row, radius, normal_offset, tube_rad
 
     ctx = Context(as_json)
     scaffold, twists, nulls = resolve_design(ctx, mesh, twist_spec, null_spec, row)
-    real = realize(scaffold, twists, nulls, params_of(radius, normal_offset, tube_radius))
+    real = realize(scaffold, twists, nulls, params_of(radius, normal_offset, tube_radius),
+                   translations=block_translations(scaffold, block))
     fmt = export(real, output, tubes=tubes, show_mesh=not no_mesh)
     data = {"written": os.path.abspath(output), "format": fmt, "twists": np.asarray(twists).tolist(),
             "components": real.trace.components, **real.summary()}
