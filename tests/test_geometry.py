@@ -8,7 +8,8 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 import lkspace
-from lkspace.geometry import GeometryError, GeometryParams, check_embedding, realize, smoothstep
+from lkspace.embedding import check_embedding
+from lkspace.geometry import GeometryError, GeometryParams, realize, smoothstep
 from lkspace.lattice import Lattice
 from lkspace.mesh import Scaffold
 
