@@ -7,6 +7,8 @@ import json
 import numpy as np
 import pandas as pd
 import pytest
+from hypothesis import assume, given, settings
+from hypothesis import strategies as st
 
 pytest.importorskip("snappy")
 pytest.importorskip("spherogram")
@@ -160,3 +162,33 @@ def test_missing_extra_names_the_install_hint(monkeypatch, tetra):
         identify(tetra, 1)
     code = main(["identify", "tetrahedron", "--twist", "1"])
     assert code == 2
+
+
+TORUS_2 = {1: "0_1", 2: "L2a1", 3: "3_1", 4: "L4a1", 5: "5_1", 6: "L6a3", 7: "7_1", 8: "L8a14", 9: "9_1"}
+
+
+@settings(max_examples=15, deadline=None)
+@given(st.integers(3, 6).flatmap(lambda n: st.lists(st.integers(-3, 3), min_size=n, max_size=n)))
+def test_any_dihedron_labelling_is_the_torus_link_of_its_sum(labels):
+    """dihedron:N with labels adding up to s realizes T(2, s), whatever the individual labels."""
+    s = sum(labels)
+    assume(s != 0 and abs(s) in TORUS_2)
+    r = identify(lkspace.load(f"dihedron:{len(labels)}"), np.array(labels))
+    assert r["components"] == (2 if s % 2 == 0 else 1)
+    assert r["name"] == TORUS_2[abs(s)]
+    if abs(s) % 2 and abs(s) > 1:
+        assert r["mirror"] is (s < 0)                   # positive twists: positive torus knots
+
+
+@settings(max_examples=6, deadline=None)
+@given(st.lists(st.integers(-2, 2), min_size=6, max_size=6), st.integers(0, 10))
+def test_diagram_linking_numbers_match_the_gauss_integral(labels, seed):
+    from lkspace.geometry import realize
+    from tests.test_geometry import gauss_linking
+
+    real = realize(lkspace.load("tetrahedron"), np.array(labels))
+    lk = project(real.curves, seed=seed).linking_matrix()
+    n = real.n_curves
+    for a in range(n):
+        for b in range(a + 1, n):
+            assert lk[a, b] == round(gauss_linking(real.curves[a], real.curves[b]))
