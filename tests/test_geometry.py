@@ -151,3 +151,13 @@ def test_cube_chainmail_linking_numbers(cube, half):
         for b in range(a + 1, 6):
             lk = gauss_linking(real.curves[a], real.curves[b])
             assert abs(lk - expected[face_of[a], face_of[b]]) < 0.05
+
+
+def test_normal_offset_that_reorders_the_strands_is_refused():
+    book = lkspace.load("book:3")
+    faces = book.faces()
+    faces[1] = faces[1][::-1]                          # one page turned over: its normal flips
+    flipped = Scaffold.from_faces(book.vertices, faces, name="book:3-flipped")
+    realize(flipped, 1)                                # the default offset keeps the order
+    with pytest.raises(GeometryError, match=r"edge 0-1: the normal offset .* reorders"):
+        realize(flipped, 1, params=GeometryParams(radius=0.1, normal_offset=0.3))
