@@ -31,6 +31,7 @@ from .geometry import GeometryParams, realize
 from .mesh import Scaffold
 
 PURPOSE = "knot identification"
+HOMFLY_MAX_CROSSINGS = 40   # HOMFLY-PT (regina) of larger simplified diagrams is skipped
 _X = Fraction(2, 3)
 
 
@@ -177,9 +178,8 @@ def name_diagram(pd: list, n_components: int) -> dict:
     index = tables()
     cands = [(e, False) for e in index.get(fp, [])] + [(e, True) for e in index.get(fp_mirror, [])]
     cands = [(e, m) for e, m in cands if e["components"] == n_components and e["crossings"] <= len(pd)]
-    homfly = None
-    if len({e["name"] for e, _ in cands}) > 1 or (cands and len({m for _, m in cands}) > 1):
-        homfly = str(rl.homfly())
+    homfly = str(rl.homfly()) if len(pd) <= HOMFLY_MAX_CROSSINGS else None
+    if homfly is not None and cands:
         cands = [(e, m) for e, m in cands if e["pd"] and _homfly(regina, json.loads(e["pd"]), m) == homfly]
     link = spherogram.Link(pd)
     names, volume = _identify_names(link)
@@ -216,44 +216,74 @@ def _one_based(pd) -> list:
     return [[int(v) + 1 for v in x] for x in pd]
 
 
+def name_pd(pd: list, n_components: int) -> dict:
+    """Simplify and name the link of a PD code (1-based, KnotTheory convention).
+
+    Split links are named piece by piece (``name`` stays ``None``, ``pieces`` lists
+    them); a composite whose prime factors are all in the tables gets the name
+    ``"3_1#4_1"`` (``prime: False``, ``factors``).
+    """
+    spherogram, _, _ = _modules()
+    if not pd:
+        out = {"name": "0_1" if n_components == 1 else None, "crossings": 0, "split": n_components > 1,
+               "mirror": None, "jones": "1"}
+        if n_components > 1:
+            out["pieces"] = ["0_1"] * n_components
+            out["note"] = f"unlink of {n_components} components"
+        return out
+    link = spherogram.Link(pd)
+    n_free = n_components - len(link.link_components)
+    link.simplify("global")
+    pieces = link.split_link_diagram()
+    n_free += link.unlinked_unknot_components
+    if len(pieces) + n_free > 1:
+        named = [name_pd(_one_based(p.PD_code()), len(p.link_components)) for p in pieces]
+        out = {"name": None, "split": True, "crossings": sum(p.get("crossings", 0) for p in named),
+               "pieces": [p["name"] for p in named] + ["0_1"] * n_free, "mirror": None}
+        out["note"] = "split link: " + " + ".join(str(p) for p in out["pieces"])
+        return out
+    simple = _one_based(link.PD_code())
+    out = name_diagram(simple, n_components)
+    out["split"] = False
+    if out["name"] is None and simple:
+        factors = link.copy().deconnect_sum()
+        if len(factors) > 1:
+            named = [name_diagram(_one_based(f.PD_code()), len(f.link_components)) for f in factors]
+            out["factors"] = [f.get("chiral_name") or f["name"] for f in named]
+            if all(f["name"] for f in named):
+                out.update(name="#".join(sorted((f["name"] for f in named), key=_name_key)), prime=False,
+                           mirror=None)
+                if all(f.get("chiral_name") or f["mirror"] is None for f in named) and n_components == 1:
+                    out["chiral_name"] = "#".join(sorted(out["factors"], key=_name_key))
+    if n_components == 1 and simple:
+        try:
+            hfk = link.knot_floer_homology()
+            out["knot_floer"] = {k: hfk[k] for k in ("seifert_genus", "fibered", "tau", "total_rank", "L_space_knot")}
+        except Exception:  # noqa: BLE001 - optional invariant
+            pass
+    return out
+
+
+def _name_key(name: str):
+    import re
+
+    m = re.match(r"m?L?(\d+)", name)
+    return (int(m[1]) if m else 0, name)
+
+
 def identify_curves(curves, seed: int = 0) -> dict:
     """Identify the link formed by closed polylines ``curves`` (list of ``(n_k, 3)``).
 
     Returns
     -------
     dict
-        ``components``, ``name``, ``linking_matrix`` and invariants (see module docstring).
+        ``components``, ``name``, ``linking_matrix``, ``projected_crossings`` and the
+        results of :func:`name_pd` (invariants, see the module docstring).
     """
-    spherogram, _, _ = _modules()
     diagram = project(curves, seed=seed)
     out = {"components": len(curves), "linking_matrix": diagram.linking_matrix().tolist(),
            "projected_crossings": diagram.n_crossings}
-    if not diagram.pd:
-        out.update(name="0_1" if len(curves) == 1 else None, crossings=0, split=len(curves) > 1,
-                   mirror=None, jones="1")
-        if len(curves) > 1:
-            out["note"] = f"unlink of {len(curves)} components"
-        return out
-    link = spherogram.Link(diagram.pd)
-    link.simplify("global")
-    pieces = link.split_link_diagram()
-    n_free = len(diagram.free_components) + link.unlinked_unknot_components
-    if len(pieces) + n_free > 1:
-        named = [name_diagram(_one_based(p.PD_code()), len(p.link_components)) for p in pieces]
-        out.update(name=None, split=True, crossings=sum(p.get("crossings", 0) for p in named),
-                   pieces=[p["name"] for p in named] + ["0_1"] * n_free, mirror=None)
-        out["note"] = "split link: " + " + ".join(str(p) for p in out["pieces"])
-        return out
-    pd = _one_based(link.PD_code())
-    named = name_diagram(pd, out["components"])
-    out.update(named)
-    out["split"] = False
-    if out["components"] == 1 and pd:
-        try:
-            hfk = link.knot_floer_homology()
-            out["knot_floer"] = {k: hfk[k] for k in ("seifert_genus", "fibered", "tau", "total_rank", "L_space_knot")}
-        except Exception:  # noqa: BLE001 - optional invariant
-            pass
+    out.update(name_pd(diagram.pd, len(curves)))
     return out
 
 

@@ -192,3 +192,17 @@ def test_diagram_linking_numbers_match_the_gauss_integral(labels, seed):
     for a in range(n):
         for b in range(a + 1, n):
             assert lk[a, b] == round(gauss_linking(real.curves[a], real.curves[b]))
+
+
+def test_composite_knots_are_named_by_their_factors():
+    import spherogram
+
+    from lkspace.identify import _one_based, name_pd
+
+    trefoil = spherogram.Link("K3a1")
+    granny = name_pd(_one_based(trefoil.connected_sum(spherogram.Link("K3a1")).PD_code()), 1)
+    square = name_pd(_one_based(trefoil.connected_sum(trefoil.mirror()).PD_code()), 1)
+    assert granny["name"] == square["name"] == "3_1#3_1" and granny["prime"] is False
+    assert sorted(square["factors"]) == ["3_1", "m3_1"] and len(set(granny["factors"])) == 1
+    mixed = name_pd(_one_based(trefoil.connected_sum(spherogram.Link("K4a1")).PD_code()), 1)
+    assert mixed["name"] == "3_1#4_1"
