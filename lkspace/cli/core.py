@@ -35,6 +35,8 @@ def scaffold_cmd(name, output, as_json):
       book:K                              K quads sharing one edge at equal angles
       cube-net, cube-lid                  a cube unfolded flat; an open box with a lid
       cubes:piano, cubes:vertex           two cubes sharing an edge; sharing a vertex
+      figure-eight                        the paper's 4_1 mesh (design as default twists)
+      whitehead                           the paper's L5a1 mesh (design as default twists)
       tiling:square, tiling:hexagonal     the 2D Wigner-Seitz tilings (periodic)
       honeycomb:cP                        cubes; edge classes x, y, z
       honeycomb:hP                        hexagonal prisms

@@ -22,12 +22,16 @@ cube-net                   the cube unfolded flat into a cross of six squares
 cube-lid                   open box with its lid swung open about one top edge
 cubes:piano                two cubes sharing an edge (piano hinge, degree 4)
 cubes:vertex               two cubes sharing a vertex
+figure-eight               square: two triangles in front, a quad behind (paper; 4_1)
+whitehead                  square fanned into four triangles, no back (paper; L5a1)
 voronoi:cube-faces         Voronoi scaffold of a cubic lattice with points at the
                            cube's face centres (the paper's figure; 12 triangles)
 NAME@AxBxC                 the A x B x C supercell of a periodic NAME (AxB in 2D)
 =========================  ==========================================================
 
 Periodic cells and lattice parameters: :mod:`lkspace.scaffolds.periodic`.
+``figure-eight`` and ``whitehead`` carry their paper designs as default twists
+(see :mod:`lkspace.scaffolds.paper`).
 """
 
 from __future__ import annotations
@@ -36,7 +40,7 @@ from collections.abc import Callable
 
 from ..errors import ScaffoldError
 from ..mesh import Scaffold
-from . import hinged, periodic, polyhedra, special
+from . import hinged, paper, periodic, polyhedra, special
 
 SOLIDS: dict[str, Callable[[], Scaffold]] = {
     "tetrahedron": polyhedra.tetrahedron,
@@ -45,6 +49,8 @@ SOLIDS: dict[str, Callable[[], Scaffold]] = {
     "dodecahedron": polyhedra.dodecahedron,
     "icosahedron": polyhedra.icosahedron,
     "truncated-octahedron": polyhedra.truncated_octahedron,
+    "figure-eight": paper.figure_eight,
+    "whitehead": paper.whitehead,
 }
 
 SOLIDS.update(hinged.HINGED)

@@ -1,0 +1,149 @@
+"""``lkspace export``: strand geometry to .obj, .ply, .glb or .png; also catalog rows."""
+
+from __future__ import annotations
+
+import json
+import os
+
+import click
+import numpy as np
+
+from .. import load
+from ..errors import CatalogError, LabelError, ScaffoldError
+from ..geometry import GeometryParams, realize
+from .common import Context, emit, json_option, load_mesh, nulls_of, twists_of
+
+
+def is_catalog(path: str | None) -> bool:
+    """Whether MESH names a Parquet catalog (a ``.parquet`` file or a folder of parts)."""
+    if path is None:
+        return False
+    if path.endswith(".parquet"):
+        return True
+    return os.path.isdir(path) and any(n.endswith(".parquet") for n in os.listdir(path))
+
+
+def catalog_scaffold_name(meta: dict, path: str) -> str:
+    """The scaffold a catalog's ``lkspace`` metadata names (tolerant of the exact key)."""
+    for key in ("scaffold", "scaffold_name", "mesh", "name"):
+        value = meta.get(key)
+        if isinstance(value, str) and value:
+            return value
+        if isinstance(value, dict):
+            for sub in ("path", "name", "source"):
+                if isinstance(value.get(sub), str) and value[sub]:
+                    return value[sub]
+    raise CatalogError(f"{path}: the 'lkspace' metadata names no scaffold (keys: {', '.join(sorted(meta)) or 'none'})")
+
+
+def catalog_row(path: str, row: int):
+    """``(scaffold, labels (n_edges,) int64)`` of row ``row`` of the catalog at ``path``."""
+    import pyarrow.parquet as pq
+
+    try:
+        dataset = pq.ParquetDataset(path)
+        schema = dataset.schema
+        table = dataset.read(columns=["labels"])
+    except (OSError, ValueError, KeyError) as exc:
+        raise CatalogError(f"{path}: cannot read a catalog: {exc}") from None
+    raw = (schema.metadata or {}).get(b"lkspace")
+    if raw is None:
+        raise CatalogError(f"{path}: no 'lkspace' key-value metadata; not an lkspace catalog")
+    try:
+        meta = json.loads(raw)
+    except json.JSONDecodeError as exc:
+        raise CatalogError(f"{path}: 'lkspace' metadata is not JSON: {exc}") from None
+    if not 0 <= row < table.num_rows:
+        raise CatalogError(f"{path}: row {row} out of range 0..{table.num_rows - 1}")
+    labels = np.asarray(table.column("labels")[row].as_py(), np.int64)
+    name = catalog_scaffold_name(meta, path)
+    scaffold = load(name)
+    if len(labels) != scaffold.n_edges:
+        raise CatalogError(f"{path} row {row}: {len(labels)} labels, but {scaffold.name} has {scaffold.n_edges} edges")
+    return scaffold, labels
+
+
+def design_options(func):
+    """MESH, --twist, --null, --row and the geometry options shared by export and identify."""
+    options = [
+        click.argument("mesh", required=False, metavar="[MESH|CATALOG.parquet]"),
+        click.option("--twist", "twist_spec", metavar="SPEC", help="One integer, a comma list per edge, or a file naming edges."),
+        click.option("--null", "null_spec", metavar="SPEC", help="Null edge-sides as FACE.SIDE, comma separated."),
+        click.option("--row", type=int, help="Row of CATALOG.parquet to use (instead of --twist)."),
+        click.option("--radius", type=float, help="Distance of the strands from their edge (default 0.12 x shortest edge)."),
+        click.option("--normal-offset", type=float, help="Offset of the strands along the face normal (default 0.35 x radius)."),
+        click.option("--tube-radius", type=float, help="Tube radius (default from the mesh and the strand spacing)."),
+    ]
+    for option in reversed(options):
+        func = option(func)
+    return func
+
+
+def resolve_design(ctx: Context, mesh, twist_spec, null_spec, row):
+    """``(scaffold, twists, nulls)`` from MESH + labels, or from a catalog row."""
+    if is_catalog(mesh):
+        if row is None:
+            raise CatalogError(f"{mesh}: give --row I to pick a design of the catalog")
+        if twist_spec is not None:
+            raise LabelError("--twist and a catalog --row are exclusive")
+        scaffold, twists = catalog_row(mesh, row)
+        ctx.notes.update(scaffold=scaffold.name, catalog=os.path.abspath(mesh), row=row)
+        return scaffold, twists, nulls_of(scaffold, null_spec)
+    if row is not None:
+        raise LabelError("--row needs a catalog (.parquet) as MESH")
+    scaffold = load_mesh(ctx, mesh)
+    return scaffold, twists_of(scaffold, twist_spec), nulls_of(scaffold, null_spec)
+
+
+def block_translations(scaffold, spec: str | None):
+    """Lattice translations ``(n, dim)`` of an ``AxBxC`` block, or ``None``."""
+    if spec is None:
+        return None
+    if not scaffold.periodic:
+        raise ScaffoldError(f"--block {spec}: {scaffold.name} is not periodic")
+    try:
+        sizes = [int(x) for x in spec.lower().split("x")]
+    except ValueError:
+        raise LabelError(f"--block {spec!r}: expected sizes like 3x3 or 2x2x2") from None
+    if len(sizes) != scaffold.dim or min(sizes) < 1:
+        raise LabelError(f"--block {spec!r}: give {scaffold.dim} positive sizes for a {scaffold.dim}D lattice")
+    grids = np.meshgrid(*[np.arange(n) for n in sizes], indexing="ij")
+    return np.column_stack([g.reshape(-1) for g in grids])
+
+
+def params_of(radius, normal_offset, tube_radius) -> GeometryParams:
+    return GeometryParams(radius=radius, normal_offset=normal_offset, tube_radius=tube_radius)
+
+
+@click.command("export")
+@design_options
+@click.option("-o", "--output", required=True, type=click.Path(dir_okay=False),
+              help="Output file: .obj, .ply, .glb or .png (the format follows the extension).")
+@click.option("--tubes", is_flag=True, help="Write tube meshes instead of polylines (.obj, .ply; .glb is always tubes).")
+@click.option("--no-mesh", is_flag=True, help="Leave the input mesh out of the picture (.png).")
+@click.option("--block", metavar="AxB[xC]", help="Periodic scaffolds: realize an A x B (x C) block of lattice translates.")
+@json_option
+def export_cmd(mesh, twist_spec, null_spec, row, radius, normal_offset, tube_radius, output, tubes, no_mesh, block,
+               as_json):
+    """Realize the strands of MESH labelled by --twist and write them to -o FILE.
+
+    \b
+    Examples:
+      lkspace export dihedron:3 --twist 1 -o trefoil.png
+      lkspace export tetrahedron --twist 1 -o borromean.glb
+      lkspace export cube --twist 2 --tubes -o chainmail.obj
+      lkspace export designs.parquet --row 7 -o design7.png
+    """
+    from ..export import export
+
+    ctx = Context(as_json)
+    scaffold, twists, nulls = resolve_design(ctx, mesh, twist_spec, null_spec, row)
+    real = realize(scaffold, twists, nulls, params_of(radius, normal_offset, tube_radius),
+                   translations=block_translations(scaffold, block))
+    fmt = export(real, output, tubes=tubes, show_mesh=not no_mesh)
+    data = {"written": os.path.abspath(output), "format": fmt, "twists": np.asarray(twists).tolist(),
+            "components": real.trace.components, **real.summary()}
+    data.pop("closed")
+    emit(ctx, data, lambda: click.echo(
+        f"wrote {output}: {real.n_curves} strand(s) of {scaffold.name}, "
+        f"minimum distance between strands {real.min_distance:.3g} (tube radius {real.tube_radius:.3g})"))

@@ -1,0 +1,51 @@
+"""``lkspace identify``: the knot or link type of a labelled scaffold."""
+
+from __future__ import annotations
+
+import click
+import numpy as np
+
+from .common import Context, emit, json_option
+from .export import design_options, params_of, resolve_design
+
+
+@click.command("identify")
+@design_options
+@click.option("--seed", type=int, default=0, show_default=True, help="Seed of the generic projection.")
+@json_option
+def identify_cmd(mesh, twist_spec, null_spec, row, radius, normal_offset, tube_radius, seed, as_json):
+    """Name the knot or link that MESH labelled by --twist realizes.
+
+    Needs the extra [knots] (snappy, spherogram, regina, database-knotinfo).  Names are
+    Rolfsen's for knots (0_1, 3_1, 4_1, 8_19, ...) and Thistlethwaite's for links (L2a1,
+    L4a1, L6a4, ...); 'name' is null when no table entry is certain.
+
+    \b
+    Examples:
+      lkspace identify dihedron:5 --twist 1          # 5_1
+      lkspace identify book:4 --twist 3              # 8_19
+      lkspace identify tetrahedron --twist 1 --json  # L6a4, the Borromean rings
+    """
+    from ..identify import identify
+
+    ctx = Context(as_json)
+    scaffold, twists, nulls = resolve_design(ctx, mesh, twist_spec, null_spec, row)
+    result = identify(scaffold, twists, nulls, params_of(radius, normal_offset, tube_radius), seed=seed)
+    result["twists"] = np.asarray(twists).tolist()
+
+    def human():
+        name = result["name"] or "unknown"
+        chir = ""
+        if result.get("mirror") is not None:
+            chir = " (mirror of the table diagram)" if result["mirror"] else " (as in the table)"
+        click.echo(f"{scaffold.name}: {result['components']} component(s): {name}{chir}")
+        click.echo(f"  crossings of the simplified diagram: {result.get('crossings')}")
+        click.echo(f"  linking matrix: {result['linking_matrix']}")
+        if result.get("jones"):
+            click.echo(f"  Jones polynomial (in sqrt t): {result['jones']}")
+        if not result["name"] and result.get("candidates"):
+            click.echo(f"  candidates: {', '.join(result['candidates'])}")
+        if result.get("note"):
+            click.echo(f"  note: {result['note']}")
+
+    emit(ctx, result, human)

@@ -1,0 +1,117 @@
+"""Numerical embedding check of polylines: the smallest distance between distinct pieces.
+
+Curves are resampled at a fixed spacing and the samples put in a ``scipy.spatial.cKDTree``.
+Two samples belong to distinct pieces when they lie on different curves, or on one curve
+farther apart along it than an exclusion length; open curves that continue one another
+(the periods of one infinite thread in a block of lattice translates) count as one curve.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from scipy.spatial import cKDTree
+
+
+def resample(curve: np.ndarray, closed: bool, spacing: float) -> tuple[np.ndarray, np.ndarray, float]:
+    """Points every ``spacing`` along a polyline: ``(points (m, 3), arclength (m,), length)``."""
+    pts = np.vstack([curve, curve[:1]]) if closed else curve
+    seg = np.linalg.norm(np.diff(pts, axis=0), axis=1)
+    cum = np.concatenate([[0.0], np.cumsum(seg)])
+    length = float(cum[-1])
+    m = max(2, int(np.ceil(length / spacing)) + (0 if closed else 1))
+    s = np.linspace(0.0, length, m, endpoint=not closed)
+    out = np.column_stack([np.interp(s, cum, pts[:, i]) for i in range(3)])
+    return out, s, length
+
+
+def _pieces_apart(owner, arc, lengths, closed, i, j, exclusion, joins=None):
+    """Mask of sample pairs ``(i, j)`` on distinct pieces (other curve, or far along one).
+
+    ``joins`` maps ``(curve_a, curve_b)`` to True when ``a``'s end is ``b``'s start (the
+    periods of one infinite thread in a block of translates): their near-end samples
+    count as one piece.
+    """
+    oi, oj = owner[i], owner[j]
+    same = oi == oj
+    along = np.abs(arc[i] - arc[j])
+    cyc = closed[oi]
+    along = np.where(same & cyc, np.minimum(along, lengths[oi] - along), along)
+    apart = ~same | (along > exclusion)
+    if joins:
+        for a, b in joins:
+            for x, y in ((i, j), (j, i)):
+                m = (owner[x] == a) & (owner[y] == b)
+                if m.any():
+                    gap = (lengths[a] - arc[x[m]]) + arc[y[m]]
+                    apart[m] &= gap > exclusion
+    return apart
+
+
+def _joins(curves, closed, tol: float) -> list:
+    """Pairs ``(a, b)`` of open curves where ``a`` ends at ``b``'s start."""
+    open_ids = [k for k, c in enumerate(closed) if not c]
+    if len(open_ids) < 2:
+        return []
+    starts = np.array([curves[k][0] for k in open_ids])
+    ends = np.array([curves[k][-1] for k in open_ids])
+    pairs = cKDTree(ends).query_ball_point(starts, tol)
+    return [(open_ids[a], open_ids[b]) for b, hits in enumerate(pairs) for a in hits if a != b]
+
+
+def _samples(curves, closed, spacing):
+    chunks = [resample(c, bool(cl), spacing) for c, cl in zip(curves, closed, strict=False)]
+    pts = np.vstack([c[0] for c in chunks])
+    arc = np.concatenate([c[1] for c in chunks])
+    owner = np.repeat(np.arange(len(chunks)), [len(c[0]) for c in chunks])
+    lengths = np.array([c[2] for c in chunks])
+    return pts, arc, owner, lengths
+
+
+def check_embedding(curves, closed, min_separation: float, scale: float) -> tuple[float, dict]:
+    """Smallest distance between distinct pieces of the polylines (sampled).
+
+    Two sample points are on distinct pieces when they lie on different curves, or on one
+    curve farther apart along it than ``4 * min_separation`` (fine pass) or ``0.3 *
+    scale`` (coarse pass).  The fine pass samples every ``min_separation / 2`` and finds
+    every pair closer than ``min_separation`` (so a true crossing is always found); the
+    coarse pass samples every ``0.02 * scale`` and finds the nearest distinct piece of
+    every sample among its 48 nearest neighbours, up to ``0.3 * scale``.
+
+    Returns
+    -------
+    min_distance : float
+        ``inf`` when no two distinct pieces come within ``0.3 * scale``.
+    closest : dict
+        ``{"curves": [i, j], "point": [x, y, z]}`` of the closest pair (empty if none).
+    """
+    closed = np.asarray(closed, bool)
+    joins = _joins(curves, closed, 1e-9 * max(1.0, scale))
+    best, where = float("inf"), {}
+
+    def consider(pts, owner, i, j):
+        nonlocal best, where
+        if len(i) == 0:
+            return
+        d = np.linalg.norm(pts[i] - pts[j], axis=1)
+        b = int(np.argmin(d))
+        if d[b] < best:
+            best = float(d[b])
+            where = {"curves": sorted([int(owner[i[b]]), int(owner[j[b]])]),
+                     "point": (0.5 * (pts[i[b]] + pts[j[b]])).tolist()}
+
+    pts, arc, owner, lengths = _samples(curves, closed, min_separation / 2.0)
+    pairs = cKDTree(pts).query_pairs(min_separation, output_type="ndarray")
+    if len(pairs):
+        keep = _pieces_apart(owner, arc, lengths, closed, pairs[:, 0], pairs[:, 1], 4 * min_separation, joins)
+        consider(pts, owner, pairs[keep, 0], pairs[keep, 1])
+    spacing = max(min_separation / 2.0, 0.02 * scale)
+    pts, arc, owner, lengths = _samples(curves, closed, spacing)
+    k = min(48, len(pts))
+    dist, nb = cKDTree(pts).query(pts, k=k, distance_upper_bound=0.3 * scale)
+    i = np.repeat(np.arange(len(pts)), k)
+    j = nb.reshape(-1)
+    found = j < len(pts)
+    i, j = i[found], j[found]
+    keep = _pieces_apart(owner, arc, lengths, closed, i, j, 0.3 * scale, joins)
+    consider(pts, owner, i[keep], j[keep])
+    return best, where

@@ -1,0 +1,207 @@
+"""Exports opened by independent readers (trimesh, pygltflib, matplotlib); CLI and catalog rows."""
+
+from __future__ import annotations
+
+import json
+import os
+
+import numpy as np
+import pytest
+
+import lkspace
+from lkspace.cli import main
+from lkspace.export import ExportError, export, glb_bytes, tube
+from lkspace.geometry import realize
+
+trimesh = pytest.importorskip("trimesh")
+
+
+@pytest.fixture(scope="module")
+def borromean():
+    return realize(lkspace.load("tetrahedron"), 1)
+
+
+def test_obj_polylines(tmp_path, borromean):
+    path = tmp_path / "b.obj"
+    export(borromean, path)
+    lines = path.read_text().splitlines()
+    polylines = [ln for ln in lines if ln.startswith("l ")]
+    assert len(polylines) == 3
+    n_vertices = sum(ln.startswith("v ") for ln in lines)
+    assert n_vertices == sum(len(c) for c in borromean.curves)
+    first = polylines[0].split()[1:]
+    assert first[0] == first[-1]                       # closed polyline returns to its start
+
+
+def test_obj_tubes_open_in_trimesh(tmp_path, borromean):
+    path = tmp_path / "b.obj"
+    export(borromean, path, tubes=True)
+    mesh = trimesh.load(path, force="mesh")
+    bodies = mesh.split(only_watertight=False)
+    assert len(bodies) == 3 and all(b.is_watertight for b in bodies)
+    assert path.read_text().count("\no strand_") == 3
+
+
+def test_ply_tubes_and_polylines(tmp_path, borromean):
+    path = tmp_path / "b.ply"
+    export(borromean, path, tubes=True)
+    mesh = trimesh.load(path)
+    assert mesh.is_watertight and mesh.volume > 0
+    colours = np.unique(mesh.visual.vertex_colors[:, :3], axis=0)
+    assert len(colours) == 3
+    export(borromean, tmp_path / "p.ply")
+    text = (tmp_path / "p.ply").read_text()
+    assert f"element edge {sum(len(c) for c in borromean.curves)}" in text
+
+
+def test_glb_opens_in_trimesh_and_pygltflib(tmp_path, borromean):
+    pygltflib = pytest.importorskip("pygltflib")
+    path = tmp_path / "b.glb"
+    export(borromean, path)
+    scene = trimesh.load(path)
+    assert len(scene.geometry) == 3
+    assert all(g.is_watertight for g in scene.geometry.values())
+    gltf = pygltflib.GLTF2().load(str(path))
+    assert len(gltf.meshes) == len(gltf.nodes) == len(gltf.materials) == 3
+    colours = {tuple(m.pbrMetallicRoughness.baseColorFactor) for m in gltf.materials}
+    assert len(colours) == 3
+    assert len(gltf.binary_blob()) == gltf.buffers[0].byteLength
+    assert glb_bytes(borromean)[:4] == b"glTF"
+
+
+def test_png_is_a_clear_picture(tmp_path, borromean):
+    plt = pytest.importorskip("matplotlib.pyplot")
+    path = tmp_path / "b.png"
+    export(borromean, path)
+    img = plt.imread(path)
+    assert img.shape[0] >= 600 and img.shape[1] >= 600
+    rgb = img[..., :3]
+    saturated = (rgb.max(axis=2) - rgb.min(axis=2)) > 0.4
+    assert saturated.mean() > 0.02                     # tubes cover a visible part of the image
+    hues = {tuple(np.round(p, 1)) for p in rgb[saturated][::50]}
+    assert len(hues) >= 3
+
+
+def test_tube_of_an_open_polyline_is_capped():
+    pts = np.column_stack([np.linspace(0, 1, 20), np.zeros(20), np.zeros(20)])
+    v, n, f = tube(pts, False, 0.1, sides=8)
+    mesh = trimesh.Trimesh(v, f)
+    assert mesh.is_watertight and mesh.volume == pytest.approx(np.pi * 0.01 * 1, rel=0.1)
+
+
+def test_bad_extension_writes_nothing(tmp_path, borromean):
+    with pytest.raises(ExportError, match="unknown output format"):
+        export(borromean, tmp_path / "x.stl")
+    assert os.listdir(tmp_path) == []
+
+
+def test_failed_write_leaves_the_old_file(tmp_path, borromean, monkeypatch):
+    path = tmp_path / "b.obj"
+    path.write_text("old")
+    import lkspace.export as ex
+
+    def boom(*a, **k):
+        raise RuntimeError("disk full")
+
+    monkeypatch.setattr(ex, "_tubes", boom)
+    with pytest.raises(RuntimeError):
+        export(borromean, path, tubes=True)
+    assert path.read_text() == "old" and os.listdir(tmp_path) == ["b.obj"]
+
+
+def run(capsys, *args):
+    code = main(list(args))
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+def test_cli_export_json(tmp_path, capsys):
+    out_path = tmp_path / "t.glb"
+    code, out, err = run(capsys, "export", "dihedron:3", "--twist", "1", "-o", str(out_path), "--json")
+    assert code == 0, err
+    data = json.loads(out)
+    assert data["written"] == str(out_path) and data["format"] == "glb" and data["components"] == 1
+    assert data["min_distance"] > data["min_separation"]
+    assert out_path.exists()
+
+
+def test_cli_export_errors_are_one_line(tmp_path, capsys):
+    code, _, err = run(capsys, "export", "book:6", "--twist", "1", "--radius", "0.6", "-o", str(tmp_path / "x.obj"))
+    assert code == 2 and err.count("\n") == 1 and "self-intersect" in err
+    assert not (tmp_path / "x.obj").exists()
+    code, _, err = run(capsys, "export", "cube", "--twist", "1,2", "-o", str(tmp_path / "x.obj"))
+    assert code == 2 and err.count("\n") == 1
+
+
+def write_catalog(path, scaffold_name="dihedron:3", meta_key="scaffold"):
+    import pyarrow as pa
+    import pyarrow.parquet as pq
+
+    table = pa.table({"labels": [[1, 1, 1], [-1, 0, 0], [2, 2, 2]], "components": [1, 1, 1]})
+    meta = {meta_key: scaffold_name, "labels": "-2..2", "format_version": 1}
+    table = table.replace_schema_metadata({"lkspace": json.dumps(meta)})
+    pq.write_table(table, path)
+
+
+def test_cli_export_catalog_row(tmp_path, capsys):
+    cat = tmp_path / "designs.parquet"
+    write_catalog(cat)
+    out_path = tmp_path / "row2.obj"
+    code, out, err = run(capsys, "export", str(cat), "--row", "2", "-o", str(out_path), "--json")
+    assert code == 0, err
+    data = json.loads(out)
+    assert data["twists"] == [2, 2, 2] and data["row"] == 2 and data["scaffold"] == "dihedron:3"
+    assert data["components"] == 2                      # T(2, 6)
+    assert out_path.read_text().count("\nl ") == 2
+
+
+def test_cli_catalog_with_nested_metadata(tmp_path, capsys):
+    import pyarrow as pa
+    import pyarrow.parquet as pq
+
+    cat = tmp_path / "c.parquet"
+    table = pa.table({"labels": [[1, 1, 1, 1, 0]]})
+    meta = {"scaffold": {"name": "figure-eight", "content_hash": "x"}}
+    pq.write_table(table.replace_schema_metadata({"lkspace": json.dumps(meta)}), cat)
+    code, out, err = run(capsys, "export", str(cat), "--row", "0", "-o", str(tmp_path / "f.ply"), "--json")
+    assert code == 0, err
+    assert json.loads(out)["components"] == 1
+
+
+@pytest.mark.parametrize("args, message", [
+    (["--row", "3"], "row 3 out of range 0..2"),
+    ([], "give --row"),
+    (["--row", "0", "--twist", "1"], "exclusive"),
+])
+def test_cli_catalog_errors(tmp_path, capsys, args, message):
+    cat = tmp_path / "designs.parquet"
+    write_catalog(cat)
+    code, _, err = run(capsys, "export", str(cat), *args, "-o", str(tmp_path / "x.obj"))
+    assert code == 2 and message in err and err.count("\n") == 1
+
+
+def test_cli_catalog_without_metadata(tmp_path, capsys):
+    import pyarrow as pa
+    import pyarrow.parquet as pq
+
+    cat = tmp_path / "plain.parquet"
+    pq.write_table(pa.table({"labels": [[1, 1, 1]]}), cat)
+    code, _, err = run(capsys, "export", str(cat), "--row", "0", "-o", str(tmp_path / "x.obj"))
+    assert code == 2 and "not an lkspace catalog" in err
+
+
+def test_cli_export_periodic_block(tmp_path, capsys):
+    from lkspace import io
+    from tests.test_geometry import square_torus
+
+    mesh = tmp_path / "sq.json"
+    io.write(square_torus(), mesh)
+    code, out, err = run(capsys, "export", str(mesh), "--twist", "1", "--block", "3x3", "-o", str(tmp_path / "w.glb"),
+                         "--json")
+    assert code == 0, err
+    data = json.loads(out)
+    assert data["curves"] == 18 and data["components"] == 2          # two diagonal threads, 9 translates each
+    code, _, err = run(capsys, "export", "cube", "--twist", "1", "--block", "3x3", "-o", str(tmp_path / "c.glb"))
+    assert code == 2 and "not periodic" in err
+    code, _, err = run(capsys, "export", str(mesh), "--twist", "1", "--block", "3x3x3", "-o", str(tmp_path / "c.glb"))
+    assert code == 2 and "2 positive sizes" in err
