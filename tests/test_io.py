@@ -143,3 +143,12 @@ def test_write_is_atomic_on_failure(tmp_path):
         io.write(lkspace.load("cube"), tmp_path / "keep.stl")
     assert target.read_text() == "old"
     assert sorted(p.name for p in tmp_path.iterdir()) == ["keep.json"]
+
+
+def test_written_files_get_the_usual_permissions(tmp_path):
+    import os
+
+    io.write(lkspace.load("cube"), tmp_path / "c.obj")
+    umask = os.umask(0)
+    os.umask(umask)
+    assert (os.stat(tmp_path / "c.obj").st_mode & 0o777) == (0o666 & ~umask)
