@@ -1,0 +1,430 @@
+"""The design-space walk: one row per design up to symmetry.
+
+A **design** is an orbit of label assignments ``t in SET^edges`` under the symmetry group
+``G`` of the mode (:mod:`lkspace.symmetry`; a reflection maps ``t`` on ``e`` to ``-t`` on its
+image).  The strands depend only on the **residue class** ``t mod K`` per edge (``K`` the
+edge's degree), so the walk goes class by class:
+
+1. List the residue classes (product over edges of the residues the label set reaches)
+   and let ``G`` act on them.  A class is a **representative class** when its residue
+   vector, written as indices into each edge's sorted residues, is the lexicographically
+   smallest of its ``G``-orbit; its **stabilizer** ``H`` is the set of group elements
+   fixing it.
+2. Trace each representative class once (the numba walk of :mod:`lkspace.tracing` on the
+   residues, no ``Trace`` objects): components, strand lengths, periods.
+3. Expand the class's label assignments (a product set, walked in lexicographic order by
+   a numba kernel) and keep those that are the lexicographically smallest under ``H``.
+
+**Canonical representative.**  Of all assignments in an orbit, the row holds the one
+that is smallest in the order "residue vector ``t mod K`` in edge order first, then the
+labels ``t`` in edge order", both lexicographic.  Because ``G`` maps residue classes to
+residue classes, that minimum lies in the orbit's representative class and is the
+``H``-smallest there, so testing it needs only ``H`` (usually trivial), never the whole
+group.  ``orbit_size = |G| / |Stab(t)|`` with ``Stab(t) = {h in H : h t = t}``, counted
+in the same kernel.  ``|G|`` is the number of distinct signed edge permutations
+(:meth:`~lkspace.symmetry.SymmetryGroup.action`).
+
+**Counting without listing** (Burnside): the designs in a representative class number
+``(1/|H|) sum_{h in H} fix(h)``, where ``fix(h)`` is a product over the cycles of ``h``'s
+edge permutation: the class's label count on the cycle's first edge when the signs around
+the cycle multiply to ``+1``, else 1 if 0 is such a label (``t = -t``), else 0.
+Components are constant on an orbit, so this gives exact counts by component number.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from functools import cached_property
+from typing import Iterator
+
+import numba
+import numpy as np
+
+from .errors import LabelError
+from .labels import parse_label_set
+from .mesh import Scaffold
+from .symmetry import check_label_set, check_mode, symmetry_group
+from .tracing import _walk, edge_partner, sc_port_model
+
+MAX_CLASSES = 1 << 21
+CHUNK = 1 << 20
+
+
+@dataclass(frozen=True, eq=False)
+class ClassInfo:
+    """Label-independent facts of one residue class (from one trace)."""
+
+    components: int
+    strand_lengths: np.ndarray  # (n_strands,) int64, descending
+    periods: np.ndarray  # (n_strands, dim) int64, same order
+    edge_ptr: np.ndarray  # (n_edges + 1,) strands through each edge (CSR)
+    edge_strands: np.ndarray
+
+
+@dataclass(frozen=True, eq=False)
+class DesignSpace:
+    """A scaffold, a label set and a symmetry mode: the space ``lkspace enumerate`` walks.
+
+    Parameters
+    ----------
+    scaffold : Scaffold
+    labels : (n_labels,) int64
+        The label set ``SET`` (sorted, unique).
+    mode : str
+        ``"rotations"``, ``"isometries"`` or ``"none"``.
+    no_zero : bool
+        Leave label 0 out of the walk (a filter: ``assignments`` still counts ``|SET|^edges``).
+    """
+
+    scaffold: Scaffold
+    labels: np.ndarray
+    mode: str = "rotations"
+    no_zero: bool = False
+    group_order: int = field(init=False)
+
+    def __post_init__(self):
+        labels = np.unique(np.asarray(self.labels, dtype=np.int64))
+        if labels.size == 0:
+            raise LabelError("label set is empty")
+        if np.abs(labels).max() > 127:
+            raise LabelError(f"labels must lie in -127..127 for a catalog, got {labels.min()}..{labels.max()}")
+        object.__setattr__(self, "labels", labels)
+        check_mode(self.mode)
+        check_label_set(labels, self.mode)
+        group = symmetry_group(self.scaffold) if self.mode != "none" else None
+        object.__setattr__(self, "group_order", group.mode_order(self.mode) if group else 1)
+        if len(self.walk_labels) == 0:
+            raise LabelError("--no-zero leaves no labels to walk")
+
+    @cached_property
+    def walk_labels(self) -> np.ndarray:
+        return self.labels[self.labels != 0] if self.no_zero else self.labels
+
+    @cached_property
+    def action(self) -> tuple[np.ndarray, np.ndarray]:
+        """``(perms (n_g, n_edges), signs (n_g,))``: distinct signed edge permutations, identity first."""
+        if self.mode == "none":
+            n = self.scaffold.n_edges
+            return np.arange(n, dtype=np.int64)[None, :], np.ones(1, np.int64)
+        return symmetry_group(self.scaffold).action(self.mode)
+
+    @property
+    def n_actions(self) -> int:
+        return int(len(self.action[1]))
+
+    @property
+    def assignments(self) -> int:
+        """``|SET| ** n_edges`` (exact Python int)."""
+        return len(self.labels) ** self.scaffold.n_edges
+
+    # ---- residues -------------------------------------------------------------
+    @cached_property
+    def moduli(self) -> np.ndarray:
+        """(n_edges,) int64: ``K`` per edge (residues are ``t mod K``)."""
+        return np.asarray(self.scaffold.edge_degrees, np.int64)
+
+    @cached_property
+    def residue_table(self):
+        """Per edge: residues reached (sorted), label options per residue, lookup value -> index."""
+        k = self.moduli
+        n_e = len(k)
+        per_k = {}
+        for kk in np.unique(k).tolist():
+            res = np.unique(self.walk_labels % kk)
+            per_k[kk] = (res, [self.walk_labels[self.walk_labels % kk == r] for r in res])
+        max_r = max(len(v[0]) for v in per_k.values())
+        max_o = max(len(o) for v in per_k.values() for o in v[1])
+        n_res = np.array([len(per_k[kk][0]) for kk in k.tolist()], np.int64)
+        values = np.zeros((n_e, max_r), np.int64)
+        n_opts = np.zeros((n_e, max_r), np.int64)
+        opts = np.zeros((n_e, max_r, max_o), np.int64)
+        lookup = np.full((n_e, int(k.max())), -1, np.int64)
+        for e, kk in enumerate(k.tolist()):
+            res, options = per_k[kk]
+            values[e, : len(res)] = res
+            lookup[e, res] = np.arange(len(res))
+            for i, o in enumerate(options):
+                n_opts[e, i] = len(o)
+                opts[e, i, : len(o)] = o
+        return n_res, values, n_opts, opts, lookup
+
+    @property
+    def n_classes(self) -> int:
+        return math.prod(self.residue_table[0].tolist())
+
+    @cached_property
+    def classes(self) -> "ClassOrbits":
+        """Residue classes, their representatives and stabilizers."""
+        return class_orbits(self)
+
+    def class_info(self, residues: np.ndarray) -> ClassInfo:
+        """Trace residue vector ``residues (n_edges,)`` once: components, strand lengths, periods."""
+        sc = self.scaffold
+        model = sc_port_model(sc)
+        partner = edge_partner(model, self.moduli, np.asarray(residues, np.int64))
+        translation = sc.side_translation if sc.periodic else np.zeros((sc.n_corners, 0), np.int64)
+        _, starts, _, periods, port_strand = _walk(model.corner_partner, partner, np.ascontiguousarray(translation))
+        lengths = np.diff(starts)
+        order = np.argsort(-lengths, kind="stable")
+        edge_of_port = np.repeat(sc.side_edge, 2)
+        pairs = np.unique(np.column_stack([edge_of_port, port_strand]), axis=0)
+        ptr = np.searchsorted(pairs[:, 0], np.arange(sc.n_edges + 1))
+        return ClassInfo(len(lengths), lengths[order], periods[order], ptr, pairs[:, 1].copy())
+
+    def class_design_count(self, c: int) -> int:
+        """Designs in representative class ``c`` (Burnside over its stabilizer), exact."""
+        co = self.classes
+        n_res, values, n_opts, opts, _ = self.residue_table
+        idx = co.indices[c]
+        e_range = np.arange(len(idx))
+        counts = n_opts[e_range, idx]
+        has_zero = np.any((opts[e_range, idx] == 0) & (np.arange(opts.shape[2]) < counts[:, None]), axis=1)
+        total = 0
+        for h in co.stabilizers[c]:
+            heads, even = self.cycles[h]
+            total += math.prod(np.where(even, counts[heads], has_zero[heads]).tolist())
+        return total // len(co.stabilizers[c])
+
+    def class_size(self, c: int) -> int:
+        """Label assignments in class ``c`` (exact)."""
+        n_res, values, n_opts, opts, _ = self.residue_table
+        idx = self.classes.indices[c]
+        return math.prod(n_opts[np.arange(len(idx)), idx].tolist())
+
+    @cached_property
+    def cycles(self) -> list[tuple[np.ndarray, np.ndarray]]:
+        """Per group action: first edge of each cycle and whether its signs multiply to +1."""
+        perms, signs = self.action
+        out = []
+        for perm, s in zip(perms, signs, strict=True):
+            seen = np.zeros(len(perm), bool)
+            heads, even = [], []
+            for e in range(len(perm)):
+                if seen[e]:
+                    continue
+                n, x = 0, e
+                while not seen[x]:
+                    seen[x] = True
+                    x = perm[x]
+                    n += 1
+                heads.append(e)
+                even.append(s == 1 or n % 2 == 0)
+            out.append((np.array(heads, np.int64), np.array(even, bool)))
+        return out
+
+
+@dataclass(frozen=True, eq=False)
+class ClassOrbits:
+    """Residue classes under the group.
+
+    Attributes
+    ----------
+    indices : (n_reps, n_edges) int64
+        Residue index per edge (into the edge's sorted residues) of each representative.
+    residues : (n_reps, n_edges) int64
+        Residue values ``t mod K``.
+    codes : (n_reps,) int64
+        Mixed-radix code of the class (edge 0 most significant): the ``residue_class`` key.
+    orbit_sizes : (n_reps,) int64
+        Classes in each representative's orbit.
+    stabilizers : list of (n_h,) int64
+        Group actions fixing each representative, identity first.
+    """
+
+    indices: np.ndarray
+    residues: np.ndarray
+    codes: np.ndarray
+    orbit_sizes: np.ndarray
+    stabilizers: list
+
+
+def class_orbits(space: DesignSpace) -> ClassOrbits:
+    """Representatives (lexicographically smallest residue vector) of the class orbits."""
+    n_res, values, _, _, lookup = space.residue_table
+    n_cls = space.n_classes
+    if n_cls > MAX_CLASSES:
+        raise LabelError(
+            f"{space.scaffold.name}: {n_cls} residue classes (labels {space.labels.tolist()}) are too many to walk "
+            f"(limit {MAX_CLASSES}); use --mode spanning-trees or a smaller label set"
+        )
+    dims = tuple(n_res.tolist())
+    idx = np.stack(np.unravel_index(np.arange(n_cls, dtype=np.int64), dims), axis=1).astype(np.int64)
+    e = np.arange(len(dims))
+    val = values[e, idx]
+    k = space.moduli
+    perms, signs = space.action
+    best = np.arange(n_cls, dtype=np.int64)
+    image_codes = []
+    for perm, s in zip(perms, signs, strict=True):
+        img = np.empty_like(idx)
+        img[:, perm] = lookup[perm, (s * val) % k]
+        code = np.ravel_multi_index(tuple(img.T), dims)
+        image_codes.append(code)
+        np.minimum(best, code, out=best)
+    reps = np.flatnonzero(best == np.arange(n_cls))
+    codes = np.stack(image_codes, axis=1)[reps]  # (n_reps, n_g)
+    fixes = codes == reps[:, None]
+    stabilizers = [np.flatnonzero(row) for row in fixes]
+    orbit_sizes = len(perms) // fixes.sum(axis=1)
+    return ClassOrbits(idx[reps], val[reps], reps, orbit_sizes.astype(np.int64), stabilizers)
+
+
+@numba.njit(cache=True)
+def _canonical_block(opts, n_opts, inv_perms, signs, start, stop, out_labels, out_stab):  # pragma: no cover
+    """Walk assignments ``start..stop`` of one class (mixed radix, last edge fastest) and keep
+    those lexicographically smallest under the stabilizer ``(inv_perms, signs)`` (identity
+    excluded); returns the number kept, rows in ``out_labels``, stabilizer sizes in ``out_stab``."""
+    n_e = len(n_opts)
+    n_h = len(signs)
+    digits = np.zeros(n_e, np.int64)
+    cur = np.zeros(n_e, np.int64)
+    rest = start
+    for j in range(n_e - 1, -1, -1):
+        digits[j] = rest % n_opts[j]
+        rest //= n_opts[j]
+        cur[j] = opts[j, digits[j]]
+    m = 0
+    for _ in range(start, stop):
+        canon = True
+        stab = 1
+        for h in range(n_h):
+            cmp = 0
+            s = signs[h]
+            for j in range(n_e):
+                v = s * cur[inv_perms[h, j]]
+                if v != cur[j]:
+                    cmp = -1 if v < cur[j] else 1
+                    break
+            if cmp < 0:
+                canon = False
+                break
+            if cmp == 0:
+                stab += 1
+        if canon:
+            for j in range(n_e):
+                out_labels[m, j] = cur[j]
+            out_stab[m] = stab
+            m += 1
+        j = n_e - 1
+        while j >= 0:
+            digits[j] += 1
+            if digits[j] < n_opts[j]:
+                cur[j] = opts[j, digits[j]]
+                break
+            digits[j] = 0
+            cur[j] = opts[j, 0]
+            j -= 1
+    return m
+
+
+@numba.njit(cache=True)
+def _holds_together(labels, edge_ptr, edge_strands, n_strands):  # pragma: no cover
+    """(m,) bool: strands joined by winding at nonzero-label edges form one piece."""
+    m, n_e = labels.shape
+    out = np.ones(m, np.bool_)
+    if n_strands <= 1:
+        return out
+    parent = np.empty(n_strands, np.int64)
+    for i in range(m):
+        for k in range(n_strands):
+            parent[k] = k
+        pieces = n_strands
+        for e in range(n_e):
+            if labels[i, e] == 0:
+                continue
+            a = edge_strands[edge_ptr[e]]
+            while parent[a] != a:
+                a = parent[a]
+            for p in range(edge_ptr[e] + 1, edge_ptr[e + 1]):
+                b = edge_strands[p]
+                while parent[b] != b:
+                    b = parent[b]
+                if a != b:
+                    parent[b] = a
+                    pieces -= 1
+        out[i] = pieces == 1
+    return out
+
+
+@dataclass
+class Block:
+    """Designs of one representative class (or a chunk of it)."""
+
+    class_code: int
+    residues: np.ndarray  # (n_edges,)
+    info: ClassInfo
+    labels: np.ndarray  # (m, n_edges) int8
+    orbit_sizes: np.ndarray  # (m,) int64
+    holds_together: np.ndarray  # (m,) bool
+
+
+def class_weights(space: DesignSpace, components: int | None = None) -> np.ndarray:
+    """(n_reps,) int64: designs per representative class (0 where ``components`` excludes it)."""
+    co = space.classes
+    out = np.zeros(len(co.codes), dtype=object)
+    for c in range(len(co.codes)):
+        if components is not None and space.class_info(co.residues[c]).components != components:
+            continue
+        out[c] = space.class_design_count(c)
+    return out
+
+
+def walk_blocks(space: DesignSpace, class_ids=None, components: int | None = None) -> Iterator[Block]:
+    """Yield the designs of the representative classes ``class_ids`` (default all), in order."""
+    co = space.classes
+    perms, signs = space.action
+    inv = np.argsort(perms, axis=1)
+    n_res, values, n_opts_t, opts_t, _ = space.residue_table
+    e = np.arange(space.scaffold.n_edges)
+    ids = range(len(co.codes)) if class_ids is None else class_ids
+    for c in ids:
+        info = space.class_info(co.residues[c])
+        if components is not None and info.components != components:
+            continue
+        n_opts = n_opts_t[e, co.indices[c]]
+        opts = np.ascontiguousarray(opts_t[e, co.indices[c]])
+        h = co.stabilizers[c][1:]
+        size = math.prod(n_opts.tolist())
+        for start in range(0, size, CHUNK):
+            stop = min(size, start + CHUNK)
+            out = np.empty((stop - start, len(e)), np.int8)
+            stab = np.empty(stop - start, np.int64)
+            m = _canonical_block(opts, n_opts, np.ascontiguousarray(inv[h]), np.ascontiguousarray(signs[h]),
+                                 start, stop, out, stab)
+            labels = out[:m]
+            holds = _holds_together(labels, info.edge_ptr, info.edge_strands, info.components)
+            yield Block(int(co.codes[c]), co.residues[c], info, labels, space.n_actions // stab[:m], holds)
+
+
+def burnside_total(space: DesignSpace) -> int:
+    """Designs counted by Burnside's lemma over the whole group (no residue classes)."""
+    lab = space.walk_labels
+    n_l, zero = len(lab), int(np.any(lab == 0))
+    total = sum(math.prod([n_l if ev else zero for ev in even.tolist()]) for _, even in space.cycles)
+    return total // space.n_actions
+
+
+def count(space: DesignSpace, components: int | None = None) -> dict:
+    """Exact totals without listing: designs, assignments covered, designs by components."""
+    co = space.classes
+    by: dict[int, int] = {}
+    covered = 0
+    for c in range(len(co.codes)):
+        comp = space.class_info(co.residues[c]).components
+        if components is not None and comp != components:
+            continue
+        n = space.class_design_count(c)
+        by[comp] = by.get(comp, 0) + n
+        covered += space.class_size(c) * int(co.orbit_sizes[c])
+    return {"designs": sum(by.values()), "assignments": space.assignments, "assignments_covered": covered,
+            "by_components": {str(k): v for k, v in sorted(by.items())}}
+
+
+def make_space(scaffold, labels="-2..2", symmetry: str = "rotations", no_zero: bool = False) -> DesignSpace:
+    """A :class:`DesignSpace` from user-level arguments (name or Scaffold, label SET or array)."""
+    from . import load
+
+    sc = load(scaffold) if not isinstance(scaffold, Scaffold) else scaffold
+    lab = parse_label_set(labels) if isinstance(labels, str) else np.asarray(labels, np.int64)
+    return DesignSpace(sc, lab, symmetry, no_zero)
