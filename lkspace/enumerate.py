@@ -34,9 +34,9 @@ Components are constant on an orbit, so this gives exact counts by component num
 from __future__ import annotations
 
 import math
+from collections.abc import Iterator
 from dataclasses import dataclass, field
 from functools import cached_property
-from typing import Iterator
 
 import numba
 import numpy as np
@@ -154,7 +154,7 @@ class DesignSpace:
         return math.prod(self.residue_table[0].tolist())
 
     @cached_property
-    def classes(self) -> "ClassOrbits":
+    def classes(self) -> ClassOrbits:
         """Residue classes, their representatives and stabilizers."""
         return class_orbits(self)
 
