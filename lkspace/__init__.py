@@ -17,9 +17,11 @@ from .lattice import Lattice
 from .mesh import Scaffold
 from .tracing import Trace, trace
 
+from .enumerate import enumerate_designs as enumerate  # noqa: E402,A001  (rebinds the submodule name)
+
 __version__ = "0.1.0"
 
-__all__ = ["load", "trace", "Scaffold", "Lattice", "Trace", "LkspaceError", "ScaffoldError",
+__all__ = ["load", "trace", "enumerate", "Scaffold", "Lattice", "Trace", "LkspaceError", "ScaffoldError",
            "LabelError", "MissingDependencyError", "__version__"]
 
 

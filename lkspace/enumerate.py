@@ -175,22 +175,72 @@ class DesignSpace:
     def class_design_count(self, c: int) -> int:
         """Designs in representative class ``c`` (Burnside over its stabilizer), exact."""
         co = self.classes
-        n_res, values, n_opts, opts, _ = self.residue_table
-        idx = co.indices[c]
-        e_range = np.arange(len(idx))
-        counts = n_opts[e_range, idx]
-        has_zero = np.any((opts[e_range, idx] == 0) & (np.arange(opts.shape[2]) < counts[:, None]), axis=1)
+        return self.design_count(co.indices[c], co.stabilizers[c])
+
+    def design_count(self, indices: np.ndarray, stabilizer) -> int:
+        """Designs in the class with residue ``indices (n_edges,)`` fixed by the actions ``stabilizer``."""
+        _, _, n_opts, opts, _ = self.residue_table
+        e_range = np.arange(len(indices))
+        counts = n_opts[e_range, indices]
+        has_zero = np.any((opts[e_range, indices] == 0) & (np.arange(opts.shape[2]) < counts[:, None]), axis=1)
         total = 0
-        for h in co.stabilizers[c]:
+        for h in stabilizer:
             heads, even = self.cycles[h]
             total += math.prod(np.where(even, counts[heads], has_zero[heads]).tolist())
-        return total // len(co.stabilizers[c])
+        return total // len(stabilizer)
+
+    def canonical_class(self, residues: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Smallest image of residue vector ``residues`` under the group and its stabilizer.
+
+        Returns ``(indices (n_edges,) int64, stabilizer (n_h,) int64)`` without listing classes.
+        """
+        n_res, values, _, _, lookup = self.residue_table
+        k = self.moduli
+        perms, signs = self.action
+        idx = lookup[np.arange(len(k)), np.asarray(residues) % k]
+        if np.any(idx < 0):
+            raise LabelError("residue vector not reachable with this label set")
+        val = values[np.arange(len(k)), idx]
+        images = np.empty((len(signs), len(k)), np.int64)
+        images[np.arange(len(signs))[:, None], perms] = lookup[perms, (signs[:, None] * val[None, :]) % k[perms]]
+        best = images[np.lexsort(images.T[::-1])[0]]
+        # stabilizer of the best image: conjugate by any element mapping idx to it
+        return best, self._stabilizer(best)
+
+    def _stabilizer(self, indices: np.ndarray) -> np.ndarray:
+        _, values, _, _, lookup = self.residue_table
+        k = self.moduli
+        perms, signs = self.action
+        val = values[np.arange(len(k)), indices]
+        images = np.empty((len(signs), len(k)), np.int64)
+        images[np.arange(len(signs))[:, None], perms] = lookup[perms, (signs[:, None] * val[None, :]) % k[perms]]
+        return np.flatnonzero(np.all(images == indices[None, :], axis=1))
+
+    def representative_labels(self, indices: np.ndarray) -> np.ndarray:
+        """(n_edges,) int8: per edge the option of the class with the smallest ``|t|`` (ties: positive)."""
+        _, _, n_opts, opts, _ = self.residue_table
+        out = np.empty(len(indices), np.int8)
+        for e, i in enumerate(indices.tolist()):
+            o = opts[e, i, : n_opts[e, i]]
+            out[e] = o[np.lexsort((-o, np.abs(o)))[0]]
+        return out
+
+    def class_code(self, indices: np.ndarray) -> int:
+        """Mixed-radix code of a class (edge 0 most significant); exact Python int."""
+        n_res = self.residue_table[0].tolist()
+        code = 0
+        for i, r in zip(indices.tolist(), n_res, strict=True):
+            code = code * r + i
+        return code
 
     def class_size(self, c: int) -> int:
-        """Label assignments in class ``c`` (exact)."""
-        n_res, values, n_opts, opts, _ = self.residue_table
-        idx = self.classes.indices[c]
-        return math.prod(n_opts[np.arange(len(idx)), idx].tolist())
+        """Label assignments in representative class ``c`` (exact)."""
+        return self.size_of(self.classes.indices[c])
+
+    def size_of(self, indices: np.ndarray) -> int:
+        """Label assignments in the class with residue ``indices`` (exact)."""
+        n_opts = self.residue_table[2]
+        return math.prod(n_opts[np.arange(len(indices)), indices].tolist())
 
     @cached_property
     def cycles(self) -> list[tuple[np.ndarray, np.ndarray]]:
@@ -428,3 +478,130 @@ def make_space(scaffold, labels="-2..2", symmetry: str = "rotations", no_zero: b
     sc = load(scaffold) if not isinstance(scaffold, Scaffold) else scaffold
     lab = parse_label_set(labels) if isinstance(labels, str) else np.asarray(labels, np.int64)
     return DesignSpace(sc, lab, symmetry, no_zero)
+
+
+def design_batches(space: DesignSpace, class_ids=None, components: int | None = None,
+                   max_designs: int | None = None, batch_rows: int | None = None):
+    """Arrow record batches of designs (catalog schema), streamed class by class."""
+    from .catalog import ROW_GROUP, blocks_to_batch
+
+    batch_rows = batch_rows or ROW_GROUP
+    n_edges, periodic = space.scaffold.n_edges, space.scaffold.periodic
+    pending, n_pending, n_total = [], 0, 0
+    for block in walk_blocks(space, class_ids, components):
+        if max_designs is not None and n_total + len(block.labels) > max_designs:
+            keep = max_designs - n_total
+            block = Block(block.class_code, block.residues, block.info, block.labels[:keep],
+                          block.orbit_sizes[:keep], block.holds_together[:keep])
+        pending.append(block)
+        n_pending += len(block.labels)
+        n_total += len(block.labels)
+        if n_pending >= batch_rows:
+            yield blocks_to_batch(pending, n_edges, periodic)
+            pending, n_pending = [], 0
+        if max_designs is not None and n_total >= max_designs:
+            break
+    if pending:
+        yield blocks_to_batch(pending, n_edges, periodic)
+
+
+def residue_row(space: DesignSpace, indices: np.ndarray, stabilizer, info: ClassInfo | None = None) -> dict:
+    """One ``--mode residues`` row for the class orbit of ``indices`` (a representative)."""
+    from .catalog import label_stats
+
+    e = np.arange(len(indices))
+    residues = space.residue_table[1][e, indices]
+    info = info or space.class_info(residues)
+    labels = space.representative_labels(indices)
+    holds = bool(_holds_together(labels[None, :], info.edge_ptr, info.edge_strands, info.components)[0])
+    stats = label_stats(labels[None, :])
+    n_classes = space.n_actions // len(stabilizer)
+    row = {
+        "residues": residues.astype(np.int8).tolist(), "labels": labels.tolist(), "components": info.components,
+        "orbit_size": space.size_of(indices) * n_classes, "designs": space.design_count(indices, stabilizer),
+        "classes": n_classes, "holds_together": holds, "n_zero": int(stats["n_zero"][0]),
+        "n_odd": int(np.sum(residues % 2 != 0)), "residue_class": space.class_code(indices),
+        "strand_lengths": info.strand_lengths.tolist(),
+    }
+    if space.scaffold.periodic:
+        row["n_infinite"] = int(np.sum(np.any(info.periods != 0, axis=1)))
+        row["strand_periods"] = info.periods.tolist()
+    return row
+
+
+def residue_batches(space: DesignSpace, class_ids=None, components: int | None = None,
+                    max_designs: int | None = None, batch_rows: int | None = None):
+    """Record batches of ``--mode residues`` rows: one per residue-class orbit."""
+    from .catalog import ROW_GROUP, residue_rows_to_batch
+
+    batch_rows = batch_rows or ROW_GROUP
+    co = space.classes
+    rows: list[dict] = []
+    n_total = 0
+    for c in range(len(co.codes)) if class_ids is None else class_ids:
+        info = space.class_info(co.residues[c])
+        if components is not None and info.components != components:
+            continue
+        rows.append(residue_row(space, co.indices[c], co.stabilizers[c], info))
+        n_total += 1
+        if len(rows) >= batch_rows:
+            yield residue_rows_to_batch(rows, space.scaffold.periodic)
+            rows = []
+        if max_designs is not None and n_total >= max_designs:
+            break
+    if rows:
+        yield residue_rows_to_batch(rows, space.scaffold.periodic)
+
+
+MODES = ("designs", "residues", "spanning-trees")
+
+
+def enumerate_designs(scaffold, labels="-2..2", symmetry: str = "rotations", *, mode: str = "designs",
+                      components: int | None = None, no_zero: bool = False, max_designs: int | None = None,
+                      sample: int | None = None, seed: int = 0, batch_rows: int | None = None,
+                      as_arrow: bool = False):
+    """Walk a design space and yield its catalog rows in batches (no files).
+
+    Parameters
+    ----------
+    scaffold : Scaffold or str
+        A scaffold or a built-in name / path.
+    labels : str or sequence of int
+        The label set ``SET`` (``"-2..2"``, ``"-2,2"``, or a list).
+    symmetry : {"rotations", "isometries", "none"}
+    mode : {"designs", "residues", "spanning-trees"}
+        One row per design, per residue-class orbit, or per spanning-tree class.
+    components, no_zero, max_designs
+        Filters applied during the walk.
+    sample, seed
+        ``spanning-trees`` only: sample ``sample`` uniform spanning trees instead of all.
+    batch_rows : int, optional
+        Rows per batch (default 262,144).
+    as_arrow : bool
+        Yield ``pyarrow.RecordBatch`` instead of pandas DataFrames.
+
+    Yields
+    ------
+    pandas.DataFrame or pyarrow.RecordBatch
+        Columns as in :mod:`lkspace.catalog`.
+
+    Examples
+    --------
+    >>> import lkspace
+    >>> df = next(lkspace.enumerate("tetrahedron", "-2,2"))
+    >>> len(df), int(df.orbit_size.sum())
+    (12, 64)
+    """
+    space = make_space(scaffold, labels, symmetry, no_zero)
+    if mode not in MODES:
+        raise LabelError(f"unknown mode {mode!r}; choose one of {', '.join(MODES)}")
+    if mode == "designs":
+        batches = design_batches(space, None, components, max_designs, batch_rows)
+    elif mode == "residues":
+        batches = residue_batches(space, None, components, max_designs, batch_rows)
+    else:
+        from .spanning import spanning_tree_batches
+
+        batches = spanning_tree_batches(space, sample=sample, seed=seed, max_designs=max_designs)
+    for batch in batches:
+        yield batch if as_arrow else batch.to_pandas()
