@@ -111,8 +111,9 @@ def enumerate_cmd(mesh, labels_spec, symmetry, output, mode, components, no_zero
 
     def human():
         con = Console(highlight=False)
-        table = Table(title=f"{scaffold.name}: labels {labels.tolist()}, symmetry {symmetry} "
-                            f"(group order {space.group_order})", show_header=False, box=None)
+        con.print(f"{scaffold.name}: labels {labels.tolist()}, symmetry {symmetry} (group order {space.group_order}), "
+                  f"mode {mode}")
+        table = Table(show_header=False, box=None)
         table.add_row("designs", f"{payload['designs']:,}")
         table.add_row("assignments", f"{payload['assignments']:,}")
         for k, v in payload["by_components"].items():
