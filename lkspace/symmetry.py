@@ -5,7 +5,7 @@ How the group is found
 1. **Combinatorial candidates.**  The incidence structure is a vertex-coloured graph with
    one node per vertex (colour 0), per edge (colour 1) and per face (colour 2); a vertex
    node is joined to the edges it bounds, an edge node to the faces it lies on.  Its
-   automorphisms (python-igraph, VF2 with colours) give candidate vertex permutations
+   automorphisms (python-igraph: BLISS generators, closed into the group) give candidate vertex permutations
    ``sigma`` (duplicates that only permute faces on the same vertex cycle, as in a
    two-sided polygon, collapse).
 2. **Rigid-motion check.**  A candidate survives only if a rigid motion
@@ -170,36 +170,40 @@ def incidence_graph(scaffold: Scaffold):
 
 
 def candidate_vertex_perms(scaffold: Scaffold) -> np.ndarray:
-    """(n_candidates, n_vertices) int64: vertex parts of the incidence automorphisms."""
+    """(n_candidates, n_vertices) int64: vertex parts of the incidence automorphisms.
+
+    BLISS (igraph) gives generators of the automorphism group; the group is their closure,
+    built breadth-first with numpy (much faster than listing automorphisms with VF2).
+    """
     graph, colours = incidence_graph(scaffold)
-    count = graph.count_automorphisms(color=colours)
+    count = int(graph.count_automorphisms(color=colours))
     if count > MAX_AUTOMORPHISMS:
         raise ScaffoldError(
             f"{scaffold.name}: the incidence structure has {count} automorphisms (more than "
             f"{MAX_AUTOMORPHISMS}); use --symmetry none"
         )
-    perms = np.array(graph.get_automorphisms_vf2(color=colours), dtype=np.int64)[:, : scaffold.n_vertices]
+    n = graph.vcount()
+    gens = np.array(graph.automorphism_group(color=colours), dtype=np.int64).reshape(-1, n)
+    elements = {np.arange(n, dtype=np.int64).tobytes()}
+    frontier = np.arange(n, dtype=np.int64)[None, :]
+    while len(frontier):
+        products = gens[:, frontier].reshape(-1, n)  # g o x for every generator g and element x
+        new = []
+        for row in products:
+            key = row.tobytes()
+            if key not in elements:
+                elements.add(key)
+                new.append(row)
+        frontier = np.array(new, dtype=np.int64).reshape(-1, n)
+    if len(elements) != count:  # pragma: no cover - BLISS and the closure disagree
+        raise ScaffoldError(f"{scaffold.name}: automorphism closure found {len(elements)} of {count} elements")
+    perms = np.frombuffer(b"".join(elements), dtype=np.int64).reshape(-1, n)[:, : scaffold.n_vertices]
     return np.unique(perms, axis=0)
 
 
 # ---- rigid-motion check ---------------------------------------------------------------
 def _tolerance(scaffold: Scaffold) -> float:
     return 1e-6 * max(1.0, float(np.abs(scaffold.vertices).max()))
-
-
-def _edge_lookup(scaffold: Scaffold) -> dict:
-    return {tuple(k): e for e, k in enumerate(scaffold.edge_keys.tolist())}
-
-
-def _edge_key(a: int, b: int, delta: np.ndarray) -> tuple:
-    """Edge key ``(a, b, delta...)`` of the side from ``(a, 0)`` to ``(b, delta)`` (mesh.py's rule)."""
-    delta = np.asarray(delta, dtype=np.int64)
-    nz = np.flatnonzero(delta)
-    if a < b or (a == b and (len(nz) == 0 or delta[nz[0]] > 0)):
-        return (a, b, *delta.tolist())
-    if a > b:
-        return (b, a, *(-delta).tolist())
-    return (a, b, *(-delta).tolist())
 
 
 def _finite_motions(scaffold: Scaffold, sigmas: np.ndarray):
@@ -247,19 +251,27 @@ def lattice_point_group(scaffold: Scaffold) -> list[tuple[np.ndarray, np.ndarray
     return out
 
 
-def _lattice_coords(scaffold: Scaffold, vectors: np.ndarray, tol: float):
-    """Integer lattice coordinates of ``vectors (m, 3)``, or None if one is not a lattice vector."""
-    basis = scaffold.lattice.basis
-    coords, *_ = np.linalg.lstsq(basis.T, vectors.T, rcond=None)
-    coords = coords.T
-    rounded = np.round(coords)
-    if np.abs(rounded @ basis - vectors).max() > tol:
-        return None
-    return rounded.astype(np.int64)
+def _face_keys(corner_keys: np.ndarray, face_starts: np.ndarray):
+    """Faces as translation-normalized corner sets, sorted: an exact integer fingerprint.
 
-
-def _face_keys(corner_keys: np.ndarray, face_starts: np.ndarray) -> list:
-    """Sorted list of faces as translation-normalized corner sets (exact integer tuples)."""
+    Vectorized when all faces have one size and each face's smallest vertex occurs once
+    (anchor: that corner); otherwise every corner is tried as anchor (Python).
+    """
+    sizes = np.diff(face_starts)
+    m = int(sizes[0])
+    if np.all(sizes == m):
+        block = corner_keys.reshape(len(sizes), m, -1)
+        verts = block[:, :, 0]
+        first = np.argmin(verts, axis=1)
+        if np.all(np.sum(verts == verts[np.arange(len(sizes)), first][:, None], axis=1) == 1):
+            moved = block.copy()
+            moved[:, :, 1:] -= block[np.arange(len(sizes)), first][:, None, 1:]
+            flat = moved.reshape(len(sizes) * m, -1)
+            order = np.lexsort(flat.T[::-1])  # sort corners within faces: by face, then key
+            face_of = np.repeat(np.arange(len(sizes)), m)
+            order = order[np.argsort(face_of[order], kind="stable")]
+            rows = flat[order].reshape(len(sizes), -1)
+            return rows[np.lexsort(rows.T[::-1])]
     out = []
     for f in range(len(face_starts) - 1):
         block = corner_keys[face_starts[f] : face_starts[f + 1]]
@@ -270,40 +282,49 @@ def _face_keys(corner_keys: np.ndarray, face_starts: np.ndarray) -> list:
             key = tuple(sorted(map(tuple, moved.tolist())))
             best = key if best is None or key < best else best
         out.append(best)
-    return sorted(out)
+    return np.array(sorted(out), dtype=np.int64).reshape(len(out), -1)
 
 
 def _periodic_motions(scaffold: Scaffold, sigmas: np.ndarray):
     tol = _tolerance(scaffold)
     pos = scaffold.vertices
+    basis = scaffold.lattice.basis
+    pinv = np.linalg.pinv(basis)  # x = c @ basis  ->  c = x @ pinv
     faces = _face_keys(scaffold.corner_keys, scaffold.face_starts)
     for q, n in lattice_point_group(scaffold):
-        for sigma in sigmas:
-            tau = pos[sigma[0]] - q @ pos[0]
-            offsets = _lattice_coords(scaffold, pos @ q.T + tau - pos[sigma], tol)
-            if offsets is None:
-                continue
+        taus = pos[sigmas[:, 0]] - q @ pos[0]  # (n_sigma, 3)
+        diffs = (pos @ q.T)[None, :, :] + taus[:, None, :] - pos[sigmas]  # (n_sigma, n_vertices, 3)
+        coords = np.round(diffs @ pinv)
+        ok = np.all(np.abs(coords @ basis - diffs) <= tol, axis=(1, 2))
+        for i in np.flatnonzero(ok):
+            sigma, offsets = sigmas[i], coords[i].astype(np.int64)
             image = np.column_stack([sigma[scaffold.corners], offsets[scaffold.corners] + scaffold.corner_offsets @ n])
-            if _face_keys(image, scaffold.face_starts) != faces:
+            if not np.array_equal(_face_keys(image, scaffold.face_starts), faces):
                 continue
-            yield sigma, q, tau, (offsets, n)
+            yield sigma, q, taus[i], (offsets, n)
 
 
-def _edge_perm(scaffold: Scaffold, sigma: np.ndarray, lattice_part, lookup: dict) -> np.ndarray | None:
-    perm = np.empty(scaffold.n_edges, np.int64)
-    for e, key in enumerate(scaffold.edge_keys):
-        a, b = int(key[0]), int(key[1])
-        if lattice_part is None:
-            image = (min(sigma[a], sigma[b]), max(sigma[a], sigma[b]))
-        else:
-            offsets, n = lattice_part
-            delta = offsets[b] + key[2:] @ n - offsets[a]
-            image = _edge_key(int(sigma[a]), int(sigma[b]), delta)
-        image = tuple(int(v) for v in image)
-        if image not in lookup:
-            return None
-        perm[e] = lookup[image]
-    if len(np.unique(perm)) != len(perm):
+def _edge_perm(scaffold: Scaffold, sigma: np.ndarray, lattice_part) -> np.ndarray | None:
+    """(n_edges,) int64: image edge of each edge under the motion, or None if one is no edge."""
+    keys = scaffold.edge_keys
+    a, b = sigma[keys[:, 0]], sigma[keys[:, 1]]
+    if lattice_part is None:
+        image = np.column_stack([np.minimum(a, b), np.maximum(a, b)])
+    else:
+        offsets, n = lattice_part
+        delta = offsets[keys[:, 1]] + keys[:, 2:] @ n - offsets[keys[:, 0]]
+        nz = delta != 0
+        first = delta[np.arange(len(delta)), np.argmax(nz, axis=1)]
+        forward = (a < b) | ((a == b) & (first > 0))
+        image = np.column_stack([np.where(forward, a, b), np.where(forward, b, a),
+                                 np.where(forward[:, None], delta, -delta)])
+    both = np.concatenate([keys, image])
+    _, inverse = np.unique(both, axis=0, return_inverse=True)
+    inverse = inverse.reshape(-1)
+    slot = np.full(len(both), -1, np.int64)
+    slot[inverse[: len(keys)]] = np.arange(len(keys))
+    perm = slot[inverse[len(keys) :]]
+    if np.any(perm < 0) or len(np.unique(perm)) != len(perm):
         return None
     return perm
 
@@ -311,14 +332,13 @@ def _edge_perm(scaffold: Scaffold, sigma: np.ndarray, lattice_part, lookup: dict
 def _compute(scaffold: Scaffold) -> SymmetryGroup:
     sigmas = candidate_vertex_perms(scaffold)
     motions = _periodic_motions(scaffold, sigmas) if scaffold.periodic else _finite_motions(scaffold, sigmas)
-    lookup = _edge_lookup(scaffold)
     rows = []
     seen = set()
     for sigma, q, tau, lattice_part in motions:
         key = (sigma.tobytes(), np.round(q, 6).tobytes())
         if key in seen:
             continue
-        perm = _edge_perm(scaffold, sigma, lattice_part, lookup)
+        perm = _edge_perm(scaffold, sigma, lattice_part)
         if perm is None:
             continue
         seen.add(key)

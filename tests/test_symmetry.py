@@ -24,6 +24,31 @@ def square_tiling(n: int = 1) -> Scaffold:
     return Scaffold.from_faces(verts, faces, offsets=offsets, lattice=Lattice.square(float(n)), name=f"square{n}")
 
 
+def cubic_honeycomb(n: int = 1) -> Scaffold:
+    """The cubic honeycomb (three square faces per cell) with an n x n x n supercell (tests only)."""
+    import itertools
+
+    def corner(i, j, k):
+        return (i % n) + n * (j % n) + n * n * (k % n), [i // n, j // n, k // n]
+
+    verts = [[i, j, k] for k in range(n) for j in range(n) for i in range(n)]
+    faces, offsets = [], []
+    quads = ([(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0)], [(0, 0, 0), (0, 1, 0), (0, 1, 1), (0, 0, 1)],
+             [(0, 0, 0), (0, 0, 1), (1, 0, 1), (1, 0, 0)])
+    for i, j, k in itertools.product(range(n), repeat=3):
+        for quad in quads:
+            cs = [corner(i + a, j + b, k + c) for a, b, c in quad]
+            faces.append([c[0] for c in cs])
+            offsets.append([c[1] for c in cs])
+    return Scaffold.from_faces(verts, faces, offsets=offsets, lattice=Lattice.cubic(float(n)), name=f"cP{n}")
+
+
+@pytest.mark.parametrize("n, isometries, rotations", [(1, 48, 24), (2, 384, 192)])
+def test_periodic_cubic_honeycomb_orders(n, isometries, rotations):
+    g = symmetry_group(cubic_honeycomb(n))
+    assert (g.order, g.n_rotations) == (isometries, rotations)
+
+
 @pytest.mark.parametrize("name, isometries, rotations", [
     ("tetrahedron", 24, 12), ("cube", 48, 24), ("octahedron", 48, 24), ("dodecahedron", 120, 60),
     ("icosahedron", 120, 60), ("truncated-octahedron", 48, 24), ("dihedron:3", 12, 6), ("dihedron:7", 28, 14),
@@ -62,9 +87,9 @@ def _strand_multiset(sc, t):
     return sorted(lkspace.trace(sc, t).strand_lengths.tolist())
 
 
-@pytest.mark.parametrize("name", ["book:3", "book:4", "cube", "tetrahedron", "dihedron:4"])
+@pytest.mark.parametrize("name", ["book:3", "book:4", "cube", "tetrahedron", "dihedron:4", "cP1", "cP2"])
 def test_tracing_is_invariant_under_the_group(name, rng):
-    sc = lkspace.load(name)
+    sc = cubic_honeycomb(int(name[2])) if name.startswith("cP") else lkspace.load(name)
     perms, signs = symmetry_group(sc).action("isometries")
     for _ in range(15):
         t = rng.integers(-3, 4, sc.n_edges)
