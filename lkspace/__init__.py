@@ -12,12 +12,12 @@ from __future__ import annotations
 
 import os
 
+# ``lkspace.enumerate`` is the function (its module stays importable: ``from lkspace.enumerate import ...``)
+from .enumerate import enumerate_designs as enumerate  # noqa: A001
 from .errors import LabelError, LkspaceError, MissingDependencyError, ScaffoldError
 from .lattice import Lattice
 from .mesh import Scaffold
 from .tracing import Trace, trace
-
-from .enumerate import enumerate_designs as enumerate  # noqa: E402,A001  (rebinds the submodule name)
 
 __version__ = "0.1.0"
 

@@ -183,7 +183,18 @@ def burnside_total(space: DesignSpace) -> int:
 
 
 def count(space: DesignSpace, components: int | None = None) -> dict:
-    """Exact totals without listing: designs, assignments covered, designs by components."""
+    """Exact totals without listing: designs, assignments covered, designs by components.
+
+    Per representative residue class (Burnside over its stabilizer).  When there are too
+    many residue classes to list and no component filter is asked for, the total comes
+    from Burnside over the whole group and ``by_components`` is ``None``.
+    """
+    from .space import MAX_CLASSES
+
+    if space.n_classes > MAX_CLASSES and components is None:
+        return {"designs": burnside_total(space), "assignments": space.assignments,
+                "assignments_covered": len(space.walk_labels) ** space.scaffold.n_edges, "by_components": None,
+                "note": f"{space.n_classes} residue classes: too many to split the count by components"}
     co = space.classes
     by: dict[int, int] = {}
     covered = 0
@@ -234,9 +245,12 @@ def residue_row(space: DesignSpace, indices: np.ndarray, stabilizer, info: Class
     holds = bool(_holds_together(labels[None, :], info.edge_ptr, info.edge_strands, info.components)[0])
     stats = label_stats(labels[None, :])
     n_classes = space.n_actions // len(stabilizer)
+    big = 2**63 - 1  # counts past int64 are stored as -1 (possible only for huge spaces)
+    assignments = space.size_of(indices) * n_classes
+    designs = space.design_count(indices, stabilizer)
     row = {
         "residues": residues.astype(np.int8).tolist(), "labels": labels.tolist(), "components": info.components,
-        "orbit_size": space.size_of(indices) * n_classes, "designs": space.design_count(indices, stabilizer),
+        "orbit_size": assignments if assignments <= big else -1, "designs": designs if designs <= big else -1,
         "classes": n_classes, "holds_together": holds, "n_zero": int(stats["n_zero"][0]),
         "n_odd": int(np.sum(residues % 2 != 0)), "residue_class": space.class_code(indices),
         "strand_lengths": info.strand_lengths.tolist(),

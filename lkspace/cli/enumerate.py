@@ -116,7 +116,7 @@ def enumerate_cmd(mesh, labels_spec, symmetry, output, mode, components, no_zero
         table = Table(show_header=False, box=None)
         table.add_row("designs", f"{payload['designs']:,}")
         table.add_row("assignments", f"{payload['assignments']:,}")
-        for k, v in payload["by_components"].items():
+        for k, v in (payload["by_components"] or {}).items():
             table.add_row(f"  {k} component(s)", f"{v:,}")
         table.add_row("written", str(payload.get("written") or "- (count only; give -o FILE to write)"))
         table.add_row("seconds", str(payload["seconds"]))
