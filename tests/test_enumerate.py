@@ -180,3 +180,15 @@ def test_blocks_are_in_class_order():
     space = make_space("tetrahedron", "-1..1", "rotations")
     codes = [b.class_code for b in walk_blocks(space)]
     assert codes == sorted(codes)
+
+
+def test_count_by_cycle_index_for_a_space_too_big_to_list():
+    """Dodecahedron, labels -2..2: Burnside from the rotation group's cycle types on the 30 edges
+    (identity; 24 five-fold: 6 five-cycles; 20 three-fold: 10 three-cycles; 15 half-turns: 2 fixed
+    edges and 14 two-cycles)."""
+    space = make_space("dodecahedron", "-2..2", "rotations")
+    expected = (5**30 + 24 * 5**6 + 20 * 5**10 + 15 * 5**16) // 60
+    totals = count(space)
+    assert totals["designs"] == expected and totals["by_components"] is None
+    with pytest.raises(LabelError, match="too many"):
+        next(design_batches(space))
