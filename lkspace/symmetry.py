@@ -177,6 +177,8 @@ def candidate_vertex_perms(scaffold: Scaffold) -> np.ndarray:
     """
     graph, colours = incidence_graph(scaffold)
     count = int(graph.count_automorphisms(color=colours))
+    if count > MAX_AUTOMORPHISMS and not scaffold.periodic:
+        return geometric_vertex_perms(scaffold)
     if count > MAX_AUTOMORPHISMS:
         raise ScaffoldError(
             f"{scaffold.name}: the incidence structure has {count} automorphisms (more than "
@@ -198,6 +200,68 @@ def candidate_vertex_perms(scaffold: Scaffold) -> np.ndarray:
     if len(elements) != count:  # pragma: no cover - BLISS and the closure disagree
         raise ScaffoldError(f"{scaffold.name}: automorphism closure found {len(elements)} of {count} elements")
     perms = np.frombuffer(b"".join(elements), dtype=np.int64).reshape(-1, n)[:, : scaffold.n_vertices]
+    return np.unique(perms, axis=0)
+
+
+def geometric_vertex_perms(scaffold: Scaffold) -> np.ndarray:
+    """Vertex permutations of rigid motions found from a vertex frame (finite scaffolds).
+
+    Used when the incidence structure has too many automorphisms to list (e.g. a book of
+    many pages): the images of vertex 0 and two of its neighbours fix the motion; every
+    candidate motion maps all vertices by position and is kept when it preserves edges
+    and faces.
+    """
+    from scipy.spatial import cKDTree
+
+    x = scaffold.vertices - scaffold.vertices.mean(axis=0)
+    tol = _tolerance(scaffold)
+    ev = scaffold.edge_vertices
+    nbrs = [set() for _ in range(scaffold.n_vertices)]
+    for a, b in ev.tolist():
+        nbrs[a].add(b)
+        nbrs[b].add(a)
+    v0 = 0
+    ranked = sorted(nbrs[v0])
+    v1 = ranked[0]
+    v2 = max(ranked[1:], key=lambda w: np.linalg.norm(np.cross(x[v1] - x[v0], x[w] - x[v0])), default=None)
+    frame = [v0, v1] + ([v2] if v2 is not None else [])
+    norms = np.linalg.norm(x, axis=1)
+    tree = cKDTree(x)
+    faces = sorted(tuple(sorted(f)) for f in scaffold.faces())
+    edges = {tuple(e) for e in ev.tolist()}
+    found = set()
+
+    def close(a, b):
+        return abs(a - b) <= tol
+
+    for w0 in range(scaffold.n_vertices):
+        if not close(norms[w0], norms[v0]) or len(nbrs[w0]) != len(nbrs[v0]):
+            continue
+        for w1 in nbrs[w0]:
+            if not close(norms[w1], norms[v1]) or not close(np.linalg.norm(x[w1] - x[w0]), np.linalg.norm(x[v1] - x[v0])):
+                continue
+            for w2 in (nbrs[w0] - {w1}) if v2 is not None else [None]:
+                if w2 is not None and (not close(norms[w2], norms[v2]) or not close(
+                        np.linalg.norm(x[w2] - x[w1]), np.linalg.norm(x[v2] - x[v1]))):
+                    continue
+                src = x[frame]
+                dst = x[[w0, w1] + ([w2] if w2 is not None else [])]
+                u, _, wt = np.linalg.svd(dst.T @ src)
+                q0 = u @ wt
+                _, sv, vt = np.linalg.svd(src)
+                mirror = np.eye(3) - 2 * np.outer(vt[-1], vt[-1])
+                for q in (q0, q0 @ mirror) if len(sv) < 3 or sv[-1] <= tol else (q0,):
+                    if np.abs(src @ q.T - dst).max() > tol:
+                        continue
+                    dist, sigma = tree.query(x @ q.T)
+                    if dist.max() > tol or len(np.unique(sigma)) != len(sigma):
+                        continue
+                    if {tuple(sorted((sigma[a], sigma[b]))) for a, b in ev.tolist()} != edges:
+                        continue
+                    if sorted(tuple(sorted(sigma[f].tolist())) for f in map(np.array, scaffold.faces())) != faces:
+                        continue
+                    found.add(sigma.astype(np.int64).tobytes())
+    perms = np.frombuffer(b"".join(sorted(found)), dtype=np.int64).reshape(len(found), scaffold.n_vertices)
     return np.unique(perms, axis=0)
 
 

@@ -123,3 +123,19 @@ def test_isometries_need_negation_closed_labels():
     with pytest.raises(LabelError, match="lacks"):
         check_label_set(np.array([-1, 0, 1, 2]), "isometries")
     check_label_set(np.array([-1, 0, 1, 2]), "rotations")
+
+
+@pytest.mark.parametrize("name", ["cube", "tetrahedron", "dihedron:5", "book:4", "truncated-octahedron"])
+def test_geometric_fallback_agrees_with_igraph(name, monkeypatch):
+    import lkspace.symmetry as sym
+
+    normal = symmetry_group(lkspace.load(name))
+    monkeypatch.setattr(sym, "MAX_AUTOMORPHISMS", 0)  # force the frame-based search
+    forced = symmetry_group(lkspace.load(name))
+    assert (forced.order, forced.n_rotations) == (normal.order, normal.n_rotations)
+    assert set(map(bytes, forced.edge_perms)) == set(map(bytes, normal.edge_perms))
+
+
+def test_books_with_many_pages():
+    g = symmetry_group(lkspace.load("book:9"))  # 9! * 2 incidence automorphisms: too many to list
+    assert (g.order, g.n_rotations) == (36, 18)
