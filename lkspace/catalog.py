@@ -353,9 +353,10 @@ def write_catalog(space, path: str | os.PathLike, *, mode: str = "designs", comp
         expected = min(expected, max_designs) if max_designs is not None else expected
     else:
         weights, expected = None, None
-    if shards is None:
-        big = mode == "designs" and expected > 4_000_000
-        shards = max(2 * jobs, -(-expected // 2_000_000)) if (jobs > 1 or big) and mode == "designs" else 1
+    if shards is None:  # auto: one file, or ~2M-row parts for big parallel/resumable runs
+        whole = mode == "designs" and max_designs is None
+        big = whole and expected > 4_000_000
+        shards = max(2 * jobs, -(-expected // 2_000_000)) if whole and (jobs > 1 or big) else 1
     if shards > 1 and (mode != "designs" or max_designs is not None):
         raise CatalogError("--shards/--jobs apply to full design walks (not with --max-designs or other modes)")
     advance = progress(expected) if progress is not None else None

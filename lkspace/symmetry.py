@@ -7,7 +7,10 @@ How the group is found
    node is joined to the edges it bounds, an edge node to the faces it lies on.  Its
    automorphisms (python-igraph: BLISS generators, closed into the group) give candidate vertex permutations
    ``sigma`` (duplicates that only permute faces on the same vertex cycle, as in a
-   two-sided polygon, collapse).
+   two-sided polygon, collapse).  When there are too many to list (more than
+   ``MAX_AUTOMORPHISMS``, e.g. a book of many pages), finite scaffolds fall back to a
+   frame search: the images of vertex 0 and two neighbours fix a candidate motion
+   (:func:`geometric_vertex_perms`).
 2. **Rigid-motion check.**  A candidate survives only if a rigid motion
    ``x -> Q x + tau`` (``Q`` orthogonal) carries every vertex ``v`` onto ``sigma(v)``:
 
