@@ -116,7 +116,8 @@ def main() -> None:
         "peak_memory": memory,
         "naive": {**naive, "extrapolated_seconds": round(naive_total), "extrapolated_hours": round(naive_total / 3600, 1)},
         "speedup_vs_naive": round(naive_total / t_write),
-        "machine": {"cpus": os.cpu_count(), "python": platform.python_version(), "platform": platform.platform()},
+        "machine": {"cpus": os.cpu_count(), "python": platform.python_version(), "platform": platform.platform(),
+                    "load_average_at_end": list(os.getloadavg())},
     }
     os.makedirs(RESULTS, exist_ok=True)
     write_text(os.path.join(RESULTS, "bench_enumerate.json"), json.dumps(result, indent=1) + "\n")
@@ -135,6 +136,8 @@ def main() -> None:
 | per-assignment implementation (sample {args.sample:,}) | {naive['seconds_per_assignment'] * 1e6:.1f} us per assignment |
 | ... extrapolated to all assignments | {naive_total / 3600:.1f} h |
 | speed-up | {naive_total / t_write:,.0f}x |
+
+Load average at the end of the run: {", ".join(f"{x:.1f}" for x in os.getloadavg())} (other processes share the 2 cores).
 
 Per-assignment implementation: for every assignment, build all group images, test whether
 it is the smallest (same canonical rule as the catalog), and trace it with `lkspace.trace`.
