@@ -306,9 +306,13 @@ def _part_worker(i: int) -> dict:
     meta = {**st["meta"], "shard": {"index": i, "count": len(st["ranges"])}}
     counter = st["counter"]
 
+    live = st.get("live")
+
     def on_rows(n):
         with counter.get_lock():
             counter.value += n
+        if live is not None:  # same process (jobs == 1): update the bar as rows arrive
+            live(counter.value + st["base"])
 
     return _write_one(st["parts"][i], st["schema"], meta,
                       _batches(st["space"], "designs", ids, st["components"], None, None, 0), on_rows)
@@ -406,6 +410,7 @@ def write_catalog(space, path: str | os.PathLike, *, mode: str = "designs", comp
     _STATE.update(space=space, ranges=ranges, meta=meta, schema=schema, parts=parts, components=components,
                   counter=counter)
     base = sum(s["rows"] for s in summaries if s)
+    _STATE.update(base=base, live=advance if jobs <= 1 else None)
     try:
         if jobs <= 1:
             for i in todo:

@@ -24,6 +24,9 @@ group.  ``orbit_size = |G| / |Stab(t)|`` with ``Stab(t) = {h in H : h t = t}``, 
 in the same kernel.  ``|G|`` is the number of distinct signed edge permutations
 (:meth:`~lkspace.symmetry.SymmetryGroup.action`).
 
+Null edge-sides stored with a scaffold are not part of a design space: the walk traces
+every strand closed.
+
 **Counting without listing** (Burnside): the designs in a representative class number
 ``(1/|H|) sum_{h in H} fix(h)``, where ``fix(h)`` is a product over the cycles of ``h``'s
 edge permutation: the class's label count on the cycle's first edge when the signs around
