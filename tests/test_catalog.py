@@ -131,3 +131,30 @@ def test_cli_errors_are_one_line(capsys, args, message):
     code, out, err = run(capsys, "enumerate", *args, "--json")
     assert code == 2 and out == ""
     assert message in err and len(err.strip().splitlines()) == 1
+
+
+def test_interrupted_run_leaves_no_partial_part_and_resumes(tmp_path, monkeypatch):
+    import lkspace.catalog as catalog
+
+    space = make_space("cube", "-1..1", "rotations")
+    folder = tmp_path / "run"
+    real = catalog._batches
+    calls = {"n": 0}
+
+    def flaky(*args, **kwargs):
+        calls["n"] += 1
+        if calls["n"] == 2:  # the second shard dies after its first batch
+            def broken():
+                yield from list(real(*args, **kwargs))[:1]
+                raise KeyboardInterrupt
+            return broken()
+        return real(*args, **kwargs)
+
+    monkeypatch.setattr(catalog, "_batches", flaky)
+    with pytest.raises(KeyboardInterrupt):
+        write_catalog(space, folder, shards=3)
+    assert sorted(os.listdir(folder)) == ["_lkspace.json", "part-00000.parquet"]  # no temporary or partial part
+    monkeypatch.setattr(catalog, "_batches", real)
+    totals = write_catalog(space, folder, shards=3, resume=True)
+    assert totals["shards_resumed"] == 1 and totals["designs"] == 22815
+    assert pd.read_parquet(folder).orbit_size.sum() == 3**12
