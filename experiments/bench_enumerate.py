@@ -60,8 +60,12 @@ def naive_rate(space, n_sample: int, seed: int = 0) -> dict:
         components = lkspace.trace(sc, t).components
         kept += (not smaller) and components > 0
     seconds = time.perf_counter() - start
-    return {"sample": n_sample, "seconds": seconds, "seconds_per_assignment": seconds / n_sample,
-            "canonical_in_sample": kept}
+    return {
+        "sample": n_sample,
+        "seconds": seconds,
+        "seconds_per_assignment": seconds / n_sample,
+        "canonical_in_sample": kept,
+    }
 
 
 def peak_rss_mb() -> dict:
@@ -90,8 +94,11 @@ def main() -> None:
     written = write_catalog(space, path, jobs=args.jobs)
     t_write = time.perf_counter() - t0
     memory = peak_rss_mb()
-    size = sum(os.path.getsize(os.path.join(path, f)) for f in os.listdir(path)) if os.path.isdir(path) \
+    size = (
+        sum(os.path.getsize(os.path.join(path, f)) for f in os.listdir(path))
+        if os.path.isdir(path)
         else os.path.getsize(path)
+    )
 
     t0 = time.perf_counter()
     import pandas as pd
@@ -106,18 +113,34 @@ def main() -> None:
     naive = naive_rate(space, args.sample)
     naive_total = naive["seconds_per_assignment"] * space.assignments
     result = {
-        "scaffold": "cube", "labels": "-2..2", "symmetry": "rotations",
-        "assignments": space.assignments, "designs": written["designs"], "by_components": written["by_components"],
-        "burnside_count_seconds": round(t_count, 3), "burnside_designs": totals["designs"],
-        "catalog_seconds": round(t_write, 2), "jobs": args.jobs, "shards": written["shards"],
+        "scaffold": "cube",
+        "labels": "-2..2",
+        "symmetry": "rotations",
+        "assignments": space.assignments,
+        "designs": written["designs"],
+        "by_components": written["by_components"],
+        "burnside_count_seconds": round(t_count, 3),
+        "burnside_designs": totals["designs"],
+        "catalog_seconds": round(t_write, 2),
+        "jobs": args.jobs,
+        "shards": written["shards"],
         "assignments_per_second": round(space.assignments / t_write),
         "designs_per_second": round(written["designs"] / t_write),
-        "catalog_bytes": size, "read_back_seconds_3_columns": round(t_read, 2),
+        "catalog_bytes": size,
+        "read_back_seconds_3_columns": round(t_read, 2),
         "peak_memory": memory,
-        "naive": {**naive, "extrapolated_seconds": round(naive_total), "extrapolated_hours": round(naive_total / 3600, 1)},
+        "naive": {
+            **naive,
+            "extrapolated_seconds": round(naive_total),
+            "extrapolated_hours": round(naive_total / 3600, 1),
+        },
         "speedup_vs_naive": round(naive_total / t_write),
-        "machine": {"cpus": os.cpu_count(), "python": platform.python_version(), "platform": platform.platform(),
-                    "load_average_at_end": list(os.getloadavg())},
+        "machine": {
+            "cpus": os.cpu_count(),
+            "python": platform.python_version(),
+            "platform": platform.platform(),
+            "load_average_at_end": list(os.getloadavg()),
+        },
     }
     os.makedirs(RESULTS, exist_ok=True)
     write_text(os.path.join(RESULTS, "bench_enumerate.json"), json.dumps(result, indent=1) + "\n")
@@ -126,14 +149,14 @@ def main() -> None:
 | quantity | value |
 |---|---|
 | assignments | {space.assignments:,} |
-| designs (rows written) | {written['designs']:,} |
+| designs (rows written) | {written["designs"]:,} |
 | Burnside count (no rows) | {t_count:.2f} s |
-| full catalog to Parquet ({args.jobs} jobs, {written['shards']} shards) | **{t_write:.1f} s** |
+| full catalog to Parquet ({args.jobs} jobs, {written["shards"]} shards) | **{t_write:.1f} s** |
 | assignments per second | {space.assignments / t_write:,.0f} |
-| designs (rows) per second | {written['designs'] / t_write:,.0f} |
+| designs (rows) per second | {written["designs"] / t_write:,.0f} |
 | catalog size | {size / 1e6:.0f} MB |
-| peak RSS, main process / largest worker | {memory['main_mb']:.0f} MB / {memory['largest_child_mb']:.0f} MB |
-| per-assignment implementation (sample {args.sample:,}) | {naive['seconds_per_assignment'] * 1e6:.1f} us per assignment |
+| peak RSS, main process / largest worker | {memory["main_mb"]:.0f} MB / {memory["largest_child_mb"]:.0f} MB |
+| per-assignment implementation (sample {args.sample:,}) | {naive["seconds_per_assignment"] * 1e6:.1f} us per assignment |
 | ... extrapolated to all assignments | {naive_total / 3600:.1f} h |
 | speed-up | {naive_total / t_write:,.0f}x |
 

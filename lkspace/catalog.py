@@ -59,10 +59,18 @@ METADATA_KEY = b"lkspace"
 def design_schema(n_edges: int, periodic: bool) -> pa.Schema:
     """Arrow schema of a designs catalog."""
     fields = [
-        ("labels", pa.list_(pa.int8())), ("key", pa.binary(n_edges)), ("components", pa.int16()),
-        ("orbit_size", pa.int64()), ("holds_together", pa.bool_()), ("n_zero", pa.int16()),
-        ("n_odd", pa.int16()), ("n_even", pa.int16()), ("abs_sum", pa.int32()), ("abs_max", pa.int16()),
-        ("residue_class", pa.int64()), ("strand_lengths", pa.list_(pa.int32())),
+        ("labels", pa.list_(pa.int8())),
+        ("key", pa.binary(n_edges)),
+        ("components", pa.int16()),
+        ("orbit_size", pa.int64()),
+        ("holds_together", pa.bool_()),
+        ("n_zero", pa.int16()),
+        ("n_odd", pa.int16()),
+        ("n_even", pa.int16()),
+        ("abs_sum", pa.int32()),
+        ("abs_max", pa.int16()),
+        ("residue_class", pa.int64()),
+        ("strand_lengths", pa.list_(pa.int32())),
     ]
     if periodic:
         fields += [("n_infinite", pa.int16()), ("strand_periods", pa.list_(pa.list_(pa.int64())))]
@@ -72,10 +80,17 @@ def design_schema(n_edges: int, periodic: bool) -> pa.Schema:
 def residue_schema(periodic: bool) -> pa.Schema:
     """Arrow schema of a residues / spanning-trees catalog."""
     fields = [
-        ("residues", pa.list_(pa.int8())), ("labels", pa.list_(pa.int8())), ("components", pa.int16()),
-        ("orbit_size", pa.int64()), ("designs", pa.int64()), ("classes", pa.int64()),
-        ("holds_together", pa.bool_()), ("n_zero", pa.int16()), ("n_odd", pa.int16()),
-        ("residue_class", pa.int64()), ("strand_lengths", pa.list_(pa.int32())),
+        ("residues", pa.list_(pa.int8())),
+        ("labels", pa.list_(pa.int8())),
+        ("components", pa.int16()),
+        ("orbit_size", pa.int64()),
+        ("designs", pa.int64()),
+        ("classes", pa.int64()),
+        ("holds_together", pa.bool_()),
+        ("n_zero", pa.int16()),
+        ("n_odd", pa.int16()),
+        ("residue_class", pa.int64()),
+        ("strand_lengths", pa.list_(pa.int32())),
     ]
     if periodic:
         fields += [("n_infinite", pa.int16()), ("strand_periods", pa.list_(pa.list_(pa.int64())))]
@@ -92,12 +107,19 @@ def _periods_column(blocks_periods: list[np.ndarray], repeats: list[int]) -> pa.
     """Nested list column: per row, the class's ``(n_strands, dim)`` periods."""
     dims = [p.shape[1] for p in blocks_periods]
     dim = dims[0] if dims else 0
-    flat = np.concatenate([np.tile(p.reshape(-1), r) for p, r in zip(blocks_periods, repeats, strict=True)]
-                          ) if blocks_periods else np.zeros(0, np.int64)
-    n_strands = np.concatenate([np.full(r, len(p), np.int64) for p, r in zip(blocks_periods, repeats, strict=True)]
-                               ) if blocks_periods else np.zeros(0, np.int64)
-    inner = pa.ListArray.from_arrays(pa.array(np.arange(len(flat) // max(dim, 1) + 1, dtype=np.int32) * dim),
-                                     pa.array(flat, pa.int64()))
+    flat = (
+        np.concatenate([np.tile(p.reshape(-1), r) for p, r in zip(blocks_periods, repeats, strict=True)])
+        if blocks_periods
+        else np.zeros(0, np.int64)
+    )
+    n_strands = (
+        np.concatenate([np.full(r, len(p), np.int64) for p, r in zip(blocks_periods, repeats, strict=True)])
+        if blocks_periods
+        else np.zeros(0, np.int64)
+    )
+    inner = pa.ListArray.from_arrays(
+        pa.array(np.arange(len(flat) // max(dim, 1) + 1, dtype=np.int32) * dim), pa.array(flat, pa.int64())
+    )
     offsets = np.zeros(len(n_strands) + 1, np.int32)
     np.cumsum(n_strands, out=offsets[1:])
     return pa.ListArray.from_arrays(pa.array(offsets), inner)
@@ -121,8 +143,12 @@ def label_stats(labels: np.ndarray) -> dict:
     """Per-row summary columns of ``labels (m, n_edges) int8`` (one compiled pass)."""
     labels = np.ascontiguousarray(labels, dtype=np.int8)
     m = len(labels)
-    out = {"n_zero": np.empty(m, np.int16), "n_odd": np.empty(m, np.int16),
-           "abs_sum": np.empty(m, np.int32), "abs_max": np.empty(m, np.int16)}
+    out = {
+        "n_zero": np.empty(m, np.int16),
+        "n_odd": np.empty(m, np.int16),
+        "abs_sum": np.empty(m, np.int32),
+        "abs_max": np.empty(m, np.int16),
+    }
     _label_stats(labels, out["n_zero"], out["n_odd"], out["abs_sum"], out["abs_max"])
     out["n_even"] = (labels.shape[1] - out["n_odd"]).astype(np.int16)
     return out
@@ -137,11 +163,15 @@ def blocks_to_batch(blocks: list, n_edges: int, periodic: bool) -> pa.RecordBatc
     m = len(labels)
     stats = label_stats(labels)
     strand_counts = np.repeat([len(b.info.strand_lengths) for b in blocks], sizes) if blocks else np.zeros(0, np.int64)
-    strand_values = (np.concatenate([np.tile(b.info.strand_lengths, len(b.labels)) for b in blocks])
-                     if blocks else np.zeros(0, np.int64))
+    strand_values = (
+        np.concatenate([np.tile(b.info.strand_lengths, len(b.labels)) for b in blocks])
+        if blocks
+        else np.zeros(0, np.int64)
+    )
     cols = {
-        "labels": pa.ListArray.from_arrays(pa.array(np.arange(m + 1, dtype=np.int32) * n_edges),
-                                           pa.array(labels.reshape(-1), pa.int8())),
+        "labels": pa.ListArray.from_arrays(
+            pa.array(np.arange(m + 1, dtype=np.int32) * n_edges), pa.array(labels.reshape(-1), pa.int8())
+        ),
         "key": pa.FixedSizeBinaryArray.from_buffers(pa.binary(n_edges), m, [None, pa.py_buffer(labels.tobytes())]),
         "components": pa.array(np.repeat([b.info.components for b in blocks], sizes).astype(np.int16)),
         "orbit_size": pa.array(np.concatenate([b.orbit_sizes for b in blocks]) if blocks else np.zeros(0, np.int64)),
@@ -247,8 +277,9 @@ def read_catalog(path: str | os.PathLike, columns: list[str] | None = None):
 
 
 # ---- writing whole catalogs: shards, parallel jobs, resume ---------------------------------
-CANONICAL_RULE = ("orbit member smallest in (t mod K per edge, then t per edge), lexicographic in edge order; "
-                  "see lkspace.enumerate")
+CANONICAL_RULE = (
+    "orbit member smallest in (t mod K per edge, then t per edge), lexicographic in edge order; see lkspace.enumerate"
+)
 _STATE: dict = {}
 
 
@@ -257,12 +288,23 @@ def catalog_metadata(space, mode: str, components, max_designs, sample, seed) ->
     sc = space.scaffold
     return {
         "format_version": FORMAT_VERSION,
-        "scaffold": {"name": sc.name, "content_hash": sc.content_hash(), "edges": sc.n_edges,
-                     "faces": sc.n_faces, "periodic": sc.periodic},
-        "labels": space.labels.tolist(), "symmetry": space.mode, "group_order": space.group_order,
-        "acting_order": space.n_actions, "assignments": space.assignments, "mode": mode,
+        "scaffold": {
+            "name": sc.name,
+            "content_hash": sc.content_hash(),
+            "edges": sc.n_edges,
+            "faces": sc.n_faces,
+            "periodic": sc.periodic,
+        },
+        "labels": space.labels.tolist(),
+        "symmetry": space.mode,
+        "group_order": space.group_order,
+        "acting_order": space.n_actions,
+        "assignments": space.assignments,
+        "mode": mode,
         "filters": {"components": components, "no_zero": space.no_zero, "max_designs": max_designs},
-        "sample": sample, "seed": seed if sample is not None else None, "canonical_rule": CANONICAL_RULE,
+        "sample": sample,
+        "seed": seed if sample is not None else None,
+        "canonical_rule": CANONICAL_RULE,
     }
 
 
@@ -314,8 +356,13 @@ def _part_worker(i: int) -> dict:
         if live is not None:  # same process (jobs == 1): update the bar as rows arrive
             live(counter.value + st["base"])
 
-    return _write_one(st["parts"][i], st["schema"], meta,
-                      _batches(st["space"], "designs", ids, st["components"], None, None, 0), on_rows)
+    return _write_one(
+        st["parts"][i],
+        st["schema"],
+        meta,
+        _batches(st["space"], "designs", ids, st["components"], None, None, 0),
+        on_rows,
+    )
 
 
 def split_classes(weights: np.ndarray, n_shards: int) -> list[list[int]]:
@@ -328,9 +375,20 @@ def split_classes(weights: np.ndarray, n_shards: int) -> list[list[int]]:
     return [[c for c in range(bounds[i], bounds[i + 1]) if w[c] > 0] for i in range(n_shards)]
 
 
-def write_catalog(space, path: str | os.PathLike, *, mode: str = "designs", components: int | None = None,
-                  max_designs: int | None = None, sample: int | None = None, seed: int = 0, jobs: int = 1,
-                  shards: int | None = None, resume: bool = False, progress=None) -> dict:
+def write_catalog(
+    space,
+    path: str | os.PathLike,
+    *,
+    mode: str = "designs",
+    components: int | None = None,
+    max_designs: int | None = None,
+    sample: int | None = None,
+    seed: int = 0,
+    jobs: int = 1,
+    shards: int | None = None,
+    resume: bool = False,
+    progress=None,
+) -> dict:
     """Walk ``space`` and write its catalog; returns the totals (the ``enumerate`` JSON).
 
     A single shard writes one Parquet file at ``path``; several shards write a folder
@@ -373,9 +431,15 @@ def write_catalog(space, path: str | os.PathLike, *, mode: str = "designs", comp
         else:
             if os.path.isdir(path):
                 raise CatalogError(f"{path}: is a folder; give a file name or use --shards")
-            summaries = [_write_one(path, schema, {**meta, "shard": {"index": 0, "count": 1}},
-                                    _batches(space, mode, None, components, max_designs, sample, seed),
-                                    advance and _accumulate(advance))]
+            summaries = [
+                _write_one(
+                    path,
+                    schema,
+                    {**meta, "shard": {"index": 0, "count": 1}},
+                    _batches(space, mode, None, components, max_designs, sample, seed),
+                    advance and _accumulate(advance),
+                )
+            ]
             skipped = 0
         return _totals(space, meta, summaries, path, 1, skipped)
     manifest = os.path.join(path, "_lkspace.json")
@@ -386,8 +450,10 @@ def write_catalog(space, path: str | os.PathLike, *, mode: str = "designs", comp
             raise CatalogError(f"{path}: folder is not empty and holds no lkspace catalog; choose another -o")
         old = json.loads(open(manifest, encoding="utf-8").read())
         if resume and old != {**meta, "shards": shards}:
-            raise CatalogError(f"{path}: --resume with different settings than the catalog there "
-                               f"(scaffold, labels, symmetry, filters or shards differ)")
+            raise CatalogError(
+                f"{path}: --resume with different settings than the catalog there "
+                f"(scaffold, labels, symmetry, filters or shards differ)"
+            )
         if not resume:
             for name in os.listdir(path):
                 if name.startswith("part-") and name.endswith(".parquet"):
@@ -407,8 +473,9 @@ def write_catalog(space, path: str | os.PathLike, *, mode: str = "designs", comp
             todo.append(i)
     ctx = mp.get_context("fork")
     counter = ctx.Value("q", 0)
-    _STATE.update(space=space, ranges=ranges, meta=meta, schema=schema, parts=parts, components=components,
-                  counter=counter)
+    _STATE.update(
+        space=space, ranges=ranges, meta=meta, schema=schema, parts=parts, components=components, counter=counter
+    )
     base = sum(s["rows"] for s in summaries if s)
     _STATE.update(base=base, live=advance if jobs <= 1 else None)
     try:
@@ -456,11 +523,17 @@ def _totals(space, meta: dict, summaries: list[dict], path: str, shards: int, sk
         for k, v in s["by_components"].items():
             by[k] = by.get(k, 0) + v
     return {
-        "designs": sum(s["rows"] for s in summaries), "assignments": space.assignments,
+        "designs": sum(s["rows"] for s in summaries),
+        "assignments": space.assignments,
         "assignments_covered": sum(s["assignments_covered"] for s in summaries),
-        "group_order": space.group_order, "acting_order": space.n_actions, "symmetry": space.mode,
-        "labels": space.labels.tolist(), "mode": meta["mode"],
+        "group_order": space.group_order,
+        "acting_order": space.n_actions,
+        "symmetry": space.mode,
+        "labels": space.labels.tolist(),
+        "mode": meta["mode"],
         "by_components": dict(sorted(by.items(), key=lambda kv: int(kv[0]))),
-        "output": os.path.abspath(path), "shards": shards, "shards_resumed": skipped,
+        "output": os.path.abspath(path),
+        "shards": shards,
+        "shards_resumed": skipped,
         "format_version": FORMAT_VERSION,
     }

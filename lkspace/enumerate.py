@@ -34,7 +34,6 @@ the cycle multiply to ``+1``, else 1 if 0 is such a label (``t = -t``), else 0.
 Components are constant on an orbit, so this gives exact counts by component number.
 """
 
-
 from __future__ import annotations
 
 import math
@@ -170,8 +169,9 @@ def walk_blocks(space: DesignSpace, class_ids=None, components: int | None = Non
             stop = min(size, start + CHUNK)
             out = np.empty((stop - start, len(e)), np.int8)
             stab = np.empty(stop - start, np.int64)
-            m = _canonical_block(opts, n_opts, np.ascontiguousarray(inv[h]), np.ascontiguousarray(signs[h]),
-                                 start, stop, out, stab)
+            m = _canonical_block(
+                opts, n_opts, np.ascontiguousarray(inv[h]), np.ascontiguousarray(signs[h]), start, stop, out, stab
+            )
             labels = out[:m]
             holds = _holds_together(labels, info.edge_ptr, info.edge_strands, info.components)
             yield Block(int(co.codes[c]), co.residues[c], info, labels, space.n_actions // stab[:m], holds)
@@ -195,9 +195,13 @@ def count(space: DesignSpace, components: int | None = None) -> dict:
     from .space import MAX_CLASSES
 
     if space.n_classes > MAX_CLASSES and components is None:
-        return {"designs": burnside_total(space), "assignments": space.assignments,
-                "assignments_covered": len(space.walk_labels) ** space.scaffold.n_edges, "by_components": None,
-                "note": f"{space.n_classes} residue classes: too many to split the count by components"}
+        return {
+            "designs": burnside_total(space),
+            "assignments": space.assignments,
+            "assignments_covered": len(space.walk_labels) ** space.scaffold.n_edges,
+            "by_components": None,
+            "note": f"{space.n_classes} residue classes: too many to split the count by components",
+        }
     co = space.classes
     by: dict[int, int] = {}
     covered = 0
@@ -208,12 +212,21 @@ def count(space: DesignSpace, components: int | None = None) -> dict:
         n = space.class_design_count(c)
         by[comp] = by.get(comp, 0) + n
         covered += space.class_size(c) * int(co.orbit_sizes[c])
-    return {"designs": sum(by.values()), "assignments": space.assignments, "assignments_covered": covered,
-            "by_components": {str(k): v for k, v in sorted(by.items())}}
+    return {
+        "designs": sum(by.values()),
+        "assignments": space.assignments,
+        "assignments_covered": covered,
+        "by_components": {str(k): v for k, v in sorted(by.items())},
+    }
 
 
-def design_batches(space: DesignSpace, class_ids=None, components: int | None = None,
-                   max_designs: int | None = None, batch_rows: int | None = None):
+def design_batches(
+    space: DesignSpace,
+    class_ids=None,
+    components: int | None = None,
+    max_designs: int | None = None,
+    batch_rows: int | None = None,
+):
     """Arrow record batches of designs (catalog schema), streamed class by class."""
     from .catalog import ROW_GROUP, blocks_to_batch
 
@@ -223,8 +236,14 @@ def design_batches(space: DesignSpace, class_ids=None, components: int | None = 
     for block in walk_blocks(space, class_ids, components):
         if max_designs is not None and n_total + len(block.labels) > max_designs:
             keep = max_designs - n_total
-            block = Block(block.class_code, block.residues, block.info, block.labels[:keep],
-                          block.orbit_sizes[:keep], block.holds_together[:keep])
+            block = Block(
+                block.class_code,
+                block.residues,
+                block.info,
+                block.labels[:keep],
+                block.orbit_sizes[:keep],
+                block.holds_together[:keep],
+            )
         pending.append(block)
         n_pending += len(block.labels)
         n_total += len(block.labels)
@@ -252,10 +271,16 @@ def residue_row(space: DesignSpace, indices: np.ndarray, stabilizer, info: Class
     assignments = space.size_of(indices) * n_classes
     designs = space.design_count(indices, stabilizer)
     row = {
-        "residues": residues.astype(np.int8).tolist(), "labels": labels.tolist(), "components": info.components,
-        "orbit_size": assignments if assignments <= big else -1, "designs": designs if designs <= big else -1,
-        "classes": n_classes, "holds_together": holds, "n_zero": int(stats["n_zero"][0]),
-        "n_odd": int(np.sum(residues % 2 != 0)), "residue_class": space.class_code(indices),
+        "residues": residues.astype(np.int8).tolist(),
+        "labels": labels.tolist(),
+        "components": info.components,
+        "orbit_size": assignments if assignments <= big else -1,
+        "designs": designs if designs <= big else -1,
+        "classes": n_classes,
+        "holds_together": holds,
+        "n_zero": int(stats["n_zero"][0]),
+        "n_odd": int(np.sum(residues % 2 != 0)),
+        "residue_class": space.class_code(indices),
         "strand_lengths": info.strand_lengths.tolist(),
     }
     if space.scaffold.periodic:
@@ -264,8 +289,13 @@ def residue_row(space: DesignSpace, indices: np.ndarray, stabilizer, info: Class
     return row
 
 
-def residue_batches(space: DesignSpace, class_ids=None, components: int | None = None,
-                    max_designs: int | None = None, batch_rows: int | None = None):
+def residue_batches(
+    space: DesignSpace,
+    class_ids=None,
+    components: int | None = None,
+    max_designs: int | None = None,
+    batch_rows: int | None = None,
+):
     """Record batches of ``--mode residues`` rows: one per residue-class orbit."""
     from .catalog import ROW_GROUP, residue_rows_to_batch
 
@@ -291,10 +321,20 @@ def residue_batches(space: DesignSpace, class_ids=None, components: int | None =
 MODES = ("designs", "residues", "spanning-trees")
 
 
-def enumerate_designs(scaffold, labels="-2..2", symmetry: str = "rotations", *, mode: str = "designs",
-                      components: int | None = None, no_zero: bool = False, max_designs: int | None = None,
-                      sample: int | None = None, seed: int = 0, batch_rows: int | None = None,
-                      as_arrow: bool = False):
+def enumerate_designs(
+    scaffold,
+    labels="-2..2",
+    symmetry: str = "rotations",
+    *,
+    mode: str = "designs",
+    components: int | None = None,
+    no_zero: bool = False,
+    max_designs: int | None = None,
+    sample: int | None = None,
+    seed: int = 0,
+    batch_rows: int | None = None,
+    as_arrow: bool = False,
+):
     """Walk a design space and yield its catalog rows in batches (no files).
 
     Parameters

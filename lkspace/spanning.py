@@ -88,8 +88,13 @@ def all_spanning_trees(n_nodes: int, pairs: np.ndarray, limit: int = MAX_TREES):
     yield from rec(0, list(range(n_nodes)))
 
 
-def spanning_tree_batches(space: DesignSpace, sample: int | None = None, seed: int = 0,
-                          max_designs: int | None = None, stats: dict | None = None):
+def spanning_tree_batches(
+    space: DesignSpace,
+    sample: int | None = None,
+    seed: int = 0,
+    max_designs: int | None = None,
+    stats: dict | None = None,
+):
     """Record batches of one-component residue-class rows seeded from dual spanning trees."""
     from .catalog import residue_rows_to_batch
 
@@ -98,7 +103,9 @@ def spanning_tree_batches(space: DesignSpace, sample: int | None = None, seed: i
     k = space.moduli
     lookup = space.residue_table[4]
     if np.any(lookup[np.arange(len(k)), 0] < 0):
-        raise LabelError(f"--mode spanning-trees needs even labels (t = 0 mod K); {space.walk_labels.tolist()} has none")
+        raise LabelError(
+            f"--mode spanning-trees needs even labels (t = 0 mod K); {space.walk_labels.tolist()} has none"
+        )
     if len(ids) and np.any(lookup[ids, 1] < 0):
         raise LabelError(f"--mode spanning-trees needs odd labels; {space.walk_labels.tolist()} has none")
     if len(ids) == 0 and sc.n_faces > 1:

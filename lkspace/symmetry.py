@@ -241,11 +241,15 @@ def geometric_vertex_perms(scaffold: Scaffold) -> np.ndarray:
         if not close(norms[w0], norms[v0]) or len(nbrs[w0]) != len(nbrs[v0]):
             continue
         for w1 in nbrs[w0]:
-            if not close(norms[w1], norms[v1]) or not close(np.linalg.norm(x[w1] - x[w0]), np.linalg.norm(x[v1] - x[v0])):
+            if not close(norms[w1], norms[v1]) or not close(
+                np.linalg.norm(x[w1] - x[w0]), np.linalg.norm(x[v1] - x[v0])
+            ):
                 continue
             for w2 in (nbrs[w0] - {w1}) if v2 is not None else [None]:
-                if w2 is not None and (not close(norms[w2], norms[v2]) or not close(
-                        np.linalg.norm(x[w2] - x[w1]), np.linalg.norm(x[v2] - x[v1]))):
+                if w2 is not None and (
+                    not close(norms[w2], norms[v2])
+                    or not close(np.linalg.norm(x[w2] - x[w1]), np.linalg.norm(x[v2] - x[v1]))
+                ):
                     continue
                 src = x[frame]
                 dst = x[[w0, w1] + ([w2] if w2 is not None else [])]
@@ -284,7 +288,7 @@ def _finite_motions(scaffold: Scaffold, sigmas: np.ndarray):
         y = x[sigma]
         u, _, wt = np.linalg.svd(y.T @ x)
         q0 = u @ wt
-        for q in ((q0, q0 @ mirror) if flat else (q0,)):
+        for q in (q0, q0 @ mirror) if flat else (q0,):
             if np.abs(x @ q.T - y).max() <= tol:
                 yield sigma, q, scaffold.vertices.mean(axis=0) - q @ scaffold.vertices.mean(axis=0), None
 
@@ -383,8 +387,9 @@ def _edge_perm(scaffold: Scaffold, sigma: np.ndarray, lattice_part) -> np.ndarra
         nz = delta != 0
         first = delta[np.arange(len(delta)), np.argmax(nz, axis=1)]
         forward = (a < b) | ((a == b) & (first > 0))
-        image = np.column_stack([np.where(forward, a, b), np.where(forward, b, a),
-                                 np.where(forward[:, None], delta, -delta)])
+        image = np.column_stack(
+            [np.where(forward, a, b), np.where(forward, b, a), np.where(forward[:, None], delta, -delta)]
+        )
     both = np.concatenate([keys, image])
     _, inverse = np.unique(both, axis=0, return_inverse=True)
     inverse = inverse.reshape(-1)
@@ -411,13 +416,19 @@ def _compute(scaffold: Scaffold) -> SymmetryGroup:
         seen.add(key)
         rows.append((sigma, q, tau, perm, np.linalg.det(q) > 0))
     # identity first
-    rows.sort(key=lambda r: (not (np.allclose(r[1], np.eye(3)) and np.array_equal(r[0], np.arange(len(r[0]))))))
+    rows.sort(key=lambda r: not (np.allclose(r[1], np.eye(3)) and np.array_equal(r[0], np.arange(len(r[0])))))
     if not rows or not np.allclose(rows[0][1], np.eye(3)):
         raise ScaffoldError(f"{scaffold.name}: symmetry search failed to find the identity")  # pragma: no cover
     sig, qs, taus, perms, proper = zip(*rows, strict=True)
-    arrays = [np.array(sig, np.int64), np.array(qs, np.float64), np.array(taus, np.float64),
-              np.array(perms, np.int64), np.array(proper, bool)]
+    arrays = [
+        np.array(sig, np.int64),
+        np.array(qs, np.float64),
+        np.array(taus, np.float64),
+        np.array(perms, np.int64),
+        np.array(proper, bool),
+    ]
     for a in arrays:
         a.setflags(write=False)
-    return SymmetryGroup(matrices=arrays[1], translations=arrays[2], vertex_perms=arrays[0],
-                         edge_perms=arrays[3], proper=arrays[4])
+    return SymmetryGroup(
+        matrices=arrays[1], translations=arrays[2], vertex_perms=arrays[0], edge_perms=arrays[3], proper=arrays[4]
+    )

@@ -29,7 +29,9 @@ def test_single_file_catalog(tmp_path):
     assert sum(df.strand_lengths.iloc[0]) == 12
     meta = json.loads(pq.read_metadata(path).metadata[b"lkspace"])
     assert meta["format_version"] == FORMAT_VERSION
-    assert meta["scaffold"]["name"] == "tetrahedron" and meta["scaffold"]["content_hash"] == space.scaffold.content_hash()
+    assert (
+        meta["scaffold"]["name"] == "tetrahedron" and meta["scaffold"]["content_hash"] == space.scaffold.content_hash()
+    )
     assert meta["labels"] == [-2, -1, 0, 1, 2] and meta["symmetry"] == "rotations" and meta["group_order"] == 12
     assert meta["rows"] == 1475
     assert [p for p in os.listdir(tmp_path)] == ["t.parquet"]  # no temporary files left
@@ -101,8 +103,21 @@ def test_cli_default_scaffold_json(capsys):
 
 def test_cli_writes_catalog(capsys, tmp_path):
     path = tmp_path / "c.parquet"
-    code, out, _ = run(capsys, "enumerate", "tetrahedron", "--labels", "-2..2", "--symmetry", "isometries",
-                       "--components", "1", "--no-zero", "-o", str(path), "--json")
+    code, out, _ = run(
+        capsys,
+        "enumerate",
+        "tetrahedron",
+        "--labels",
+        "-2..2",
+        "--symmetry",
+        "isometries",
+        "--components",
+        "1",
+        "--no-zero",
+        "-o",
+        str(path),
+        "--json",
+    )
     assert code == 0
     data = json.loads(out)
     df = pd.read_parquet(path)
@@ -114,19 +129,32 @@ def test_cli_count_only_matches_walk(capsys, tmp_path):
     code, out, _ = run(capsys, "enumerate", "cube", "--labels", "-2..2", "--count-only", "--json")
     data = json.loads(out)
     assert data["designs"] == 10_194_250 and data["assignments"] == 244_140_625 and data["written"] is None
-    code, out, _ = run(capsys, "enumerate", "book:3", "--labels", "-1..1", "--mode", "residues", "-o",
-                       str(tmp_path / "r.parquet"), "--json")
+    code, out, _ = run(
+        capsys,
+        "enumerate",
+        "book:3",
+        "--labels",
+        "-1..1",
+        "--mode",
+        "residues",
+        "-o",
+        str(tmp_path / "r.parquet"),
+        "--json",
+    )
     data = json.loads(out)
     df = pd.read_parquet(tmp_path / "r.parquet")
     assert data["designs"] == len(df) and df.orbit_size.sum() == 3**10
 
 
-@pytest.mark.parametrize("args, message", [
-    (["cube", "--labels", "0..2", "--symmetry", "isometries"], "closed under negation"),
-    (["cube", "--sample", "3"], "spanning-trees"),
-    (["cube", "--labels", "2..1"], "empty range"),
-    (["nosuchthing"], "neither a file nor a built-in"),
-])
+@pytest.mark.parametrize(
+    "args, message",
+    [
+        (["cube", "--labels", "0..2", "--symmetry", "isometries"], "closed under negation"),
+        (["cube", "--sample", "3"], "spanning-trees"),
+        (["cube", "--labels", "2..1"], "empty range"),
+        (["nosuchthing"], "neither a file nor a built-in"),
+    ],
+)
 def test_cli_errors_are_one_line(capsys, args, message):
     code, out, err = run(capsys, "enumerate", *args, "--json")
     assert code == 2 and out == ""
@@ -144,9 +172,11 @@ def test_interrupted_run_leaves_no_partial_part_and_resumes(tmp_path, monkeypatc
     def flaky(*args, **kwargs):
         calls["n"] += 1
         if calls["n"] == 2:  # the second shard dies after its first batch
+
             def broken():
                 yield from list(real(*args, **kwargs))[:1]
                 raise KeyboardInterrupt
+
             return broken()
         return real(*args, **kwargs)
 

@@ -42,11 +42,22 @@ def test_tetrahedron_pm2_has_12_chainmails():
 
 
 CASES = [
-    ("tetrahedron", "-1..1", "rotations"), ("tetrahedron", "-1..1", "isometries"), ("tetrahedron", "-1..1", "none"),
-    ("tetrahedron", "-2..2", "rotations"), ("tetrahedron", "-2,2", "isometries"), ("cube", "-1,1", "rotations"),
-    ("cube", "-1..1", "rotations"), ("cube", "-1..1", "isometries"), ("octahedron", "-1,1", "isometries"),
-    ("dihedron:3", "-2..2", "isometries"), ("dihedron:4", "-1..1", "rotations"), ("dihedron:5", "0,1,2", "rotations"),
-    ("book:3", "-1..1", "rotations"), ("book:3", "-1..1", "isometries"), ("book:4", "-1..1", "isometries"), ("book:3", "0..3", "rotations"),
+    ("tetrahedron", "-1..1", "rotations"),
+    ("tetrahedron", "-1..1", "isometries"),
+    ("tetrahedron", "-1..1", "none"),
+    ("tetrahedron", "-2..2", "rotations"),
+    ("tetrahedron", "-2,2", "isometries"),
+    ("cube", "-1,1", "rotations"),
+    ("cube", "-1..1", "rotations"),
+    ("cube", "-1..1", "isometries"),
+    ("octahedron", "-1,1", "isometries"),
+    ("dihedron:3", "-2..2", "isometries"),
+    ("dihedron:4", "-1..1", "rotations"),
+    ("dihedron:5", "0,1,2", "rotations"),
+    ("book:3", "-1..1", "rotations"),
+    ("book:3", "-1..1", "isometries"),
+    ("book:4", "-1..1", "isometries"),
+    ("book:3", "0..3", "rotations"),
 ]
 
 
@@ -118,7 +129,7 @@ def test_residue_mode_sums():
     df = pd.concat([b.to_pandas() for b in residue_batches(space)])
     assert df.orbit_size.sum() == space.assignments
     assert df.designs.sum() == 10_194_250
-    assert df.classes.sum() == 2 ** 12  # every residue class of the 12 edges (K = 2) once
+    assert df.classes.sum() == 2**12  # every residue class of the 12 edges (K = 2) once
     for _, row in df.sample(20, random_state=0).iterrows():
         assert lkspace.trace(space.scaffold, np.asarray(row.labels, np.int64)).components == row.components
 
@@ -152,7 +163,11 @@ def test_errors():
 
 
 @settings(max_examples=40, deadline=None)
-@given(st.lists(st.integers(-2, 2), min_size=12, max_size=12), st.integers(0, 47), st.sampled_from(["rotations", "isometries"]))
+@given(
+    st.lists(st.integers(-2, 2), min_size=12, max_size=12),
+    st.integers(0, 47),
+    st.sampled_from(["rotations", "isometries"]),
+)
 def test_symmetric_relabelings_share_one_canonical_key(labels, g, mode):
     space = make_space("cube", "-2..2", mode)
     perms, signs = space.action

@@ -33,8 +33,11 @@ def cubic_honeycomb(n: int = 1) -> Scaffold:
 
     verts = [[i, j, k] for k in range(n) for j in range(n) for i in range(n)]
     faces, offsets = [], []
-    quads = ([(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0)], [(0, 0, 0), (0, 1, 0), (0, 1, 1), (0, 0, 1)],
-             [(0, 0, 0), (0, 0, 1), (1, 0, 1), (1, 0, 0)])
+    quads = (
+        [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0)],
+        [(0, 0, 0), (0, 1, 0), (0, 1, 1), (0, 0, 1)],
+        [(0, 0, 0), (0, 0, 1), (1, 0, 1), (1, 0, 0)],
+    )
     for i, j, k in itertools.product(range(n), repeat=3):
         for quad in quads:
             cs = [corner(i + a, j + b, k + c) for a, b, c in quad]
@@ -49,11 +52,22 @@ def test_periodic_cubic_honeycomb_orders(n, isometries, rotations):
     assert (g.order, g.n_rotations) == (isometries, rotations)
 
 
-@pytest.mark.parametrize("name, isometries, rotations", [
-    ("tetrahedron", 24, 12), ("cube", 48, 24), ("octahedron", 48, 24), ("dodecahedron", 120, 60),
-    ("icosahedron", 120, 60), ("truncated-octahedron", 48, 24), ("dihedron:3", 12, 6), ("dihedron:7", 28, 14),
-    ("book:1", 16, 8), ("book:3", 12, 6), ("book:5", 20, 10),
-])
+@pytest.mark.parametrize(
+    "name, isometries, rotations",
+    [
+        ("tetrahedron", 24, 12),
+        ("cube", 48, 24),
+        ("octahedron", 48, 24),
+        ("dodecahedron", 120, 60),
+        ("icosahedron", 120, 60),
+        ("truncated-octahedron", 48, 24),
+        ("dihedron:3", 12, 6),
+        ("dihedron:7", 28, 14),
+        ("book:1", 16, 8),
+        ("book:3", 12, 6),
+        ("book:5", 20, 10),
+    ],
+)
 def test_known_orders(name, isometries, rotations):
     g = symmetry_group(lkspace.load(name))
     assert (g.order, g.n_rotations) == (isometries, rotations)
@@ -73,8 +87,9 @@ def test_elements_are_rigid_symmetries(name):
     sc = lkspace.load(name)
     g = symmetry_group(sc)
     assert np.allclose(g.matrices[0], np.eye(3)) and np.array_equal(g.vertex_perms[0], np.arange(sc.n_vertices))
-    for q, tau, sigma, perm, proper in zip(g.matrices, g.translations, g.vertex_perms, g.edge_perms, g.proper,
-                                           strict=True):
+    for q, tau, sigma, perm, proper in zip(
+        g.matrices, g.translations, g.vertex_perms, g.edge_perms, g.proper, strict=True
+    ):
         assert np.allclose(q @ q.T, np.eye(3))
         assert (np.linalg.det(q) > 0) == proper
         assert np.allclose(sc.vertices @ q.T + tau, sc.vertices[sigma], atol=1e-9)
