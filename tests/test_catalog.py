@@ -162,7 +162,7 @@ def test_cli_errors_are_one_line(capsys, args, message):
 
 
 def test_interrupted_run_leaves_no_partial_part_and_resumes(tmp_path, monkeypatch):
-    import lkspace.catalog as catalog
+    import lkspace.shards as catalog
 
     space = make_space("cube", "-1..1", "rotations")
     folder = tmp_path / "run"
