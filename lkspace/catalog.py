@@ -276,4 +276,10 @@ def read_catalog(path: str | os.PathLike, columns: list[str] | None = None):
     return pd.read_parquet(os.fspath(path), columns=columns)
 
 
-from .shards import split_classes, write_catalog  # noqa: E402,F401  (re-exported: the writer of whole catalogs)
+def __getattr__(name: str):
+    """Lazy re-export of :func:`lkspace.shards.write_catalog` and ``split_classes`` (no import cycle)."""
+    if name in ("write_catalog", "split_classes"):
+        from . import shards
+
+        return getattr(shards, name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
