@@ -29,9 +29,9 @@ import numpy as np
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
 import lkspace  # noqa: E402
-from lkspace.catalog import write_catalog  # noqa: E402
 from lkspace.enumerate import count, make_space  # noqa: E402
 from lkspace.io.atomic import write_text  # noqa: E402
+from lkspace.shards import write_catalog  # noqa: E402
 
 RESULTS = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "results")
 

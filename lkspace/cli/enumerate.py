@@ -9,9 +9,9 @@ import click
 from rich.console import Console
 from rich.table import Table
 
-from ..catalog import write_catalog
 from ..enumerate import MODES, count, enumerate_designs, make_space
 from ..errors import LabelError
+from ..shards import write_catalog
 from ..symmetry import MODES as SYMMETRY_MODES
 from .common import Context, emit, json_option, label_set, load_mesh, mesh_argument
 
