@@ -12,6 +12,8 @@ from __future__ import annotations
 
 import os
 
+# ``lkspace.enumerate`` is the function (its module stays importable: ``from lkspace.enumerate import ...``)
+from .enumerate import enumerate_designs as enumerate  # noqa: A001
 from .errors import LabelError, LkspaceError, MissingDependencyError, ScaffoldError
 from .lattice import Lattice
 from .mesh import Scaffold
@@ -19,7 +21,7 @@ from .tracing import Trace, trace
 
 __version__ = "0.1.0"
 
-__all__ = ["load", "trace", "Scaffold", "Lattice", "Trace", "LkspaceError", "ScaffoldError",
+__all__ = ["load", "trace", "enumerate", "Scaffold", "Lattice", "Trace", "LkspaceError", "ScaffoldError",
            "LabelError", "MissingDependencyError", "__version__"]
 
 

@@ -1,0 +1,190 @@
+"""Parquet catalogs: schema, metadata, shards, resume, and the enumerate command."""
+
+from __future__ import annotations
+
+import json
+import os
+
+import numpy as np
+import pandas as pd
+import pyarrow.parquet as pq
+import pytest
+
+from lkspace.catalog import FORMAT_VERSION, read_catalog, read_metadata, split_classes, write_catalog
+from lkspace.cli import main
+from lkspace.enumerate import make_space
+from lkspace.errors import CatalogError
+
+
+def test_single_file_catalog(tmp_path):
+    space = make_space("tetrahedron", "-2..2", "rotations")
+    path = tmp_path / "t.parquet"
+    totals = write_catalog(space, path)
+    df = pd.read_parquet(path)
+    assert len(df) == totals["designs"] == 1475
+    assert df.orbit_size.sum() == totals["assignments"] == 5**6
+    for col in ("labels", "components", "orbit_size", "n_zero", "strand_lengths"):
+        assert col in df.columns
+    assert all(isinstance(int(x), int) for x in df.labels.iloc[0]) and len(df.labels.iloc[0]) == 6
+    assert sum(df.strand_lengths.iloc[0]) == 12
+    meta = json.loads(pq.read_metadata(path).metadata[b"lkspace"])
+    assert meta["format_version"] == FORMAT_VERSION
+    assert (
+        meta["scaffold"]["name"] == "tetrahedron" and meta["scaffold"]["content_hash"] == space.scaffold.content_hash()
+    )
+    assert meta["labels"] == [-2, -1, 0, 1, 2] and meta["symmetry"] == "rotations" and meta["group_order"] == 12
+    assert meta["rows"] == 1475
+    assert [p for p in os.listdir(tmp_path)] == ["t.parquet"]  # no temporary files left
+    assert pq.read_schema(path).field("labels").type.value_type.bit_width == 8
+
+
+def test_sharded_catalog_and_resume(tmp_path):
+    space = make_space("cube", "-1..1", "rotations")
+    single = tmp_path / "one.parquet"
+    write_catalog(space, single)
+    folder = tmp_path / "many"
+    totals = write_catalog(space, folder, shards=3)
+    assert totals["shards"] == 3 and totals["designs"] == 22815
+    a = pd.read_parquet(single).sort_values("key").reset_index(drop=True)
+    b = pd.read_parquet(folder).sort_values("key").reset_index(drop=True)
+    assert a.key.tolist() == b.key.tolist() and a.orbit_size.tolist() == b.orbit_size.tolist()
+    parts = sorted(p for p in os.listdir(folder) if p.startswith("part-"))
+    assert len(parts) == 3
+    kept = os.path.getmtime(folder / parts[0])
+    os.remove(folder / parts[1])
+    again = write_catalog(space, folder, shards=3, resume=True)
+    assert again["shards_resumed"] == 2 and again["designs"] == 22815
+    assert os.path.getmtime(folder / parts[0]) == kept
+    assert len(read_catalog(folder)) == 22815
+    with pytest.raises(CatalogError, match="different settings"):
+        write_catalog(make_space("cube", "-1..1", "isometries"), folder, shards=3, resume=True)
+    assert read_metadata(folder)["shard"]["count"] == 3
+
+
+def test_parallel_jobs(tmp_path):
+    space = make_space("cube", "-1..1", "isometries")
+    totals = write_catalog(space, tmp_path / "p", jobs=2, shards=4)
+    df = pd.read_parquet(tmp_path / "p")
+    assert len(df) == totals["designs"] and df.orbit_size.sum() == 3**12
+    assert df.key.is_unique
+
+
+def test_split_classes_balances_and_covers():
+    w = np.array([5, 0, 1, 1, 7, 2, 0, 3], dtype=object)
+    runs = split_classes(w, 3)
+    assert sorted(c for r in runs for c in r) == [0, 2, 3, 4, 5, 7]
+
+
+def test_not_a_catalog(tmp_path):
+    path = tmp_path / "x.parquet"
+    pd.DataFrame({"a": [1]}).to_parquet(path)
+    with pytest.raises(CatalogError, match="not an lkspace catalog"):
+        read_metadata(path)
+    (tmp_path / "junk").mkdir()
+    (tmp_path / "junk" / "f.txt").write_text("x")
+    with pytest.raises(CatalogError, match="not empty"):
+        write_catalog(make_space("tetrahedron", "-1..1"), tmp_path / "junk", shards=2)
+
+
+# ---- the command line ----------------------------------------------------------------------
+def run(capsys, *args):
+    code = main(list(args))
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+def test_cli_default_scaffold_json(capsys):
+    code, out, err = run(capsys, "enumerate", "--labels", "-2,2", "--json")
+    assert code == 0 and "tetrahedron" in err
+    data = json.loads(out)
+    assert data["designs"] == 12 and data["assignments"] == 64 and data["group_order"] == 12
+    assert data["by_components"] == {"4": 12}
+
+
+def test_cli_writes_catalog(capsys, tmp_path):
+    path = tmp_path / "c.parquet"
+    code, out, _ = run(
+        capsys,
+        "enumerate",
+        "tetrahedron",
+        "--labels",
+        "-2..2",
+        "--symmetry",
+        "isometries",
+        "--components",
+        "1",
+        "--no-zero",
+        "-o",
+        str(path),
+        "--json",
+    )
+    assert code == 0
+    data = json.loads(out)
+    df = pd.read_parquet(path)
+    assert data["designs"] == len(df) > 0 and (df.components == 1).all() and (df.n_zero == 0).all()
+    assert data["group_order"] == 24 and data["by_components"] == {"1": len(df)}
+
+
+def test_cli_count_only_matches_walk(capsys, tmp_path):
+    code, out, _ = run(capsys, "enumerate", "cube", "--labels", "-2..2", "--count-only", "--json")
+    data = json.loads(out)
+    assert data["designs"] == 10_194_250 and data["assignments"] == 244_140_625 and data["written"] is None
+    code, out, _ = run(
+        capsys,
+        "enumerate",
+        "book:3",
+        "--labels",
+        "-1..1",
+        "--mode",
+        "residues",
+        "-o",
+        str(tmp_path / "r.parquet"),
+        "--json",
+    )
+    data = json.loads(out)
+    df = pd.read_parquet(tmp_path / "r.parquet")
+    assert data["designs"] == len(df) and df.orbit_size.sum() == 3**10
+
+
+@pytest.mark.parametrize(
+    "args, message",
+    [
+        (["cube", "--labels", "0..2", "--symmetry", "isometries"], "closed under negation"),
+        (["cube", "--sample", "3"], "spanning-trees"),
+        (["cube", "--labels", "2..1"], "empty range"),
+        (["nosuchthing"], "neither a file nor a built-in"),
+    ],
+)
+def test_cli_errors_are_one_line(capsys, args, message):
+    code, out, err = run(capsys, "enumerate", *args, "--json")
+    assert code == 2 and out == ""
+    assert message in err and len(err.strip().splitlines()) == 1
+
+
+def test_interrupted_run_leaves_no_partial_part_and_resumes(tmp_path, monkeypatch):
+    import lkspace.shards as catalog
+
+    space = make_space("cube", "-1..1", "rotations")
+    folder = tmp_path / "run"
+    real = catalog._batches
+    calls = {"n": 0}
+
+    def flaky(*args, **kwargs):
+        calls["n"] += 1
+        if calls["n"] == 2:  # the second shard dies after its first batch
+
+            def broken():
+                yield from list(real(*args, **kwargs))[:1]
+                raise KeyboardInterrupt
+
+            return broken()
+        return real(*args, **kwargs)
+
+    monkeypatch.setattr(catalog, "_batches", flaky)
+    with pytest.raises(KeyboardInterrupt):
+        write_catalog(space, folder, shards=3)
+    assert sorted(os.listdir(folder)) == ["_lkspace.json", "part-00000.parquet"]  # no temporary or partial part
+    monkeypatch.setattr(catalog, "_batches", real)
+    totals = write_catalog(space, folder, shards=3, resume=True)
+    assert totals["shards_resumed"] == 1 and totals["designs"] == 22815
+    assert pd.read_parquet(folder).orbit_size.sum() == 3**12

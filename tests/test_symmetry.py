@@ -1,0 +1,156 @@
+"""Symmetry groups: known orders, every element a rigid symmetry, tracing invariant under it."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import lkspace
+from lkspace.errors import LabelError
+from lkspace.lattice import Lattice
+from lkspace.mesh import Scaffold
+from lkspace.symmetry import check_label_set, symmetry_group
+
+
+def square_tiling(n: int = 1) -> Scaffold:
+    """The square tiling with an n x n supercell (built here; tests only)."""
+    verts = [[i, j, 0.0] for j in range(n) for i in range(n)]
+    faces, offsets = [], []
+    for j in range(n):
+        for i in range(n):
+            corners = [(i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1)]
+            faces.append([(x % n) + n * (y % n) for x, y in corners])
+            offsets.append([[x // n, y // n] for x, y in corners])
+    return Scaffold.from_faces(verts, faces, offsets=offsets, lattice=Lattice.square(float(n)), name=f"square{n}")
+
+
+def cubic_honeycomb(n: int = 1) -> Scaffold:
+    """The cubic honeycomb (three square faces per cell) with an n x n x n supercell (tests only)."""
+    import itertools
+
+    def corner(i, j, k):
+        return (i % n) + n * (j % n) + n * n * (k % n), [i // n, j // n, k // n]
+
+    verts = [[i, j, k] for k in range(n) for j in range(n) for i in range(n)]
+    faces, offsets = [], []
+    quads = (
+        [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0)],
+        [(0, 0, 0), (0, 1, 0), (0, 1, 1), (0, 0, 1)],
+        [(0, 0, 0), (0, 0, 1), (1, 0, 1), (1, 0, 0)],
+    )
+    for i, j, k in itertools.product(range(n), repeat=3):
+        for quad in quads:
+            cs = [corner(i + a, j + b, k + c) for a, b, c in quad]
+            faces.append([c[0] for c in cs])
+            offsets.append([c[1] for c in cs])
+    return Scaffold.from_faces(verts, faces, offsets=offsets, lattice=Lattice.cubic(float(n)), name=f"cP{n}")
+
+
+@pytest.mark.parametrize("n, isometries, rotations", [(1, 48, 24), (2, 384, 192)])
+def test_periodic_cubic_honeycomb_orders(n, isometries, rotations):
+    g = symmetry_group(cubic_honeycomb(n))
+    assert (g.order, g.n_rotations) == (isometries, rotations)
+
+
+@pytest.mark.parametrize(
+    "name, isometries, rotations",
+    [
+        ("tetrahedron", 24, 12),
+        ("cube", 48, 24),
+        ("octahedron", 48, 24),
+        ("dodecahedron", 120, 60),
+        ("icosahedron", 120, 60),
+        ("truncated-octahedron", 48, 24),
+        ("dihedron:3", 12, 6),
+        ("dihedron:7", 28, 14),
+        ("book:1", 16, 8),
+        ("book:3", 12, 6),
+        ("book:5", 20, 10),
+    ],
+)
+def test_known_orders(name, isometries, rotations):
+    g = symmetry_group(lkspace.load(name))
+    assert (g.order, g.n_rotations) == (isometries, rotations)
+
+
+def test_periodic_square_tiling_orders():
+    g = symmetry_group(square_tiling(1))
+    assert (g.order, g.n_rotations) == (16, 8)  # p4m point group x the mirror in the plane
+    perms, signs = g.action("isometries")
+    assert len(perms) == 4  # on the two edge classes: identity/swap, each with both signs
+    g2 = symmetry_group(square_tiling(2))
+    assert (g2.order, g2.n_rotations) == (64, 32)  # 4 supercell translations x 16
+
+
+@pytest.mark.parametrize("name", ["tetrahedron", "cube", "dodecahedron", "dihedron:5", "book:4"])
+def test_elements_are_rigid_symmetries(name):
+    sc = lkspace.load(name)
+    g = symmetry_group(sc)
+    assert np.allclose(g.matrices[0], np.eye(3)) and np.array_equal(g.vertex_perms[0], np.arange(sc.n_vertices))
+    for q, tau, sigma, perm, proper in zip(
+        g.matrices, g.translations, g.vertex_perms, g.edge_perms, g.proper, strict=True
+    ):
+        assert np.allclose(q @ q.T, np.eye(3))
+        assert (np.linalg.det(q) > 0) == proper
+        assert np.allclose(sc.vertices @ q.T + tau, sc.vertices[sigma], atol=1e-9)
+        a, b = sc.edge_vertices[:, 0], sc.edge_vertices[:, 1]
+        image = np.sort(np.column_stack([sigma[a], sigma[b]]), axis=1)
+        assert np.array_equal(image, sc.edge_vertices[perm])
+
+
+def _strand_multiset(sc, t):
+    return sorted(lkspace.trace(sc, t).strand_lengths.tolist())
+
+
+@pytest.mark.parametrize("name", ["book:3", "book:4", "cube", "tetrahedron", "dihedron:4", "cP1", "cP2"])
+def test_tracing_is_invariant_under_the_group(name, rng):
+    sc = cubic_honeycomb(int(name[2])) if name.startswith("cP") else lkspace.load(name)
+    perms, signs = symmetry_group(sc).action("isometries")
+    for _ in range(15):
+        t = rng.integers(-3, 4, sc.n_edges)
+        ref = _strand_multiset(sc, t)
+        for perm, s in zip(perms, signs, strict=True):
+            img = np.empty_like(t)
+            img[perm] = s * t
+            assert _strand_multiset(sc, img) == ref
+
+
+def test_mirror_images_merge_only_under_isometries(rng):
+    """Chirality: the mirror image of t (reflected edges, labels negated) is the same
+    design under isometries, and usually a different one under rotations."""
+    from lkspace.enumerate import canonical_form, make_space
+
+    sc = lkspace.load("cube")
+    g = symmetry_group(sc)
+    mirror = int(np.flatnonzero(~g.proper)[0])
+    iso, rot = make_space(sc, "-3..3", "isometries"), make_space(sc, "-3..3", "rotations")
+    chiral = 0
+    for _ in range(20):
+        t = rng.integers(-3, 4, 12)
+        image = np.empty_like(t)
+        image[g.edge_perms[mirror]] = -t
+        assert np.array_equal(canonical_form(iso, t)[0], canonical_form(iso, image)[0])
+        chiral += not np.array_equal(canonical_form(rot, t)[0], canonical_form(rot, image)[0])
+    assert chiral > 10
+
+
+def test_isometries_need_negation_closed_labels():
+    with pytest.raises(LabelError, match="lacks"):
+        check_label_set(np.array([-1, 0, 1, 2]), "isometries")
+    check_label_set(np.array([-1, 0, 1, 2]), "rotations")
+
+
+@pytest.mark.parametrize("name", ["cube", "tetrahedron", "dihedron:5", "book:4", "truncated-octahedron"])
+def test_geometric_fallback_agrees_with_igraph(name, monkeypatch):
+    import lkspace.symmetry as sym
+
+    normal = symmetry_group(lkspace.load(name))
+    monkeypatch.setattr(sym, "MAX_AUTOMORPHISMS", 0)  # force the frame-based search
+    forced = symmetry_group(lkspace.load(name))
+    assert (forced.order, forced.n_rotations) == (normal.order, normal.n_rotations)
+    assert set(map(bytes, forced.edge_perms)) == set(map(bytes, normal.edge_perms))
+
+
+def test_books_with_many_pages():
+    g = symmetry_group(lkspace.load("book:9"))  # 9! * 2 incidence automorphisms: too many to list
+    assert (g.order, g.n_rotations) == (36, 18)
