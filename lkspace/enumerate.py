@@ -126,6 +126,31 @@ def _holds_together(labels, edge_ptr, edge_strands, n_strands):  # pragma: no co
     return out
 
 
+def holds_together_rows(space: DesignSpace, residues: np.ndarray, info: ClassInfo, labels: np.ndarray) -> np.ndarray:
+    """(m,) bool: whether each design of one residue class holds together.
+
+    Finite scaffolds: a numba union-find over the class's strands.  Periodic ones need
+    the infinite lift (:mod:`lkspace.connectivity`), which depends only on the residues
+    and on which labels are zero: traced once per distinct zero pattern.
+    """
+    if not space.scaffold.periodic:
+        return _holds_together(labels, info.edge_ptr, info.edge_strands, info.components)
+    from .tracing import trace
+
+    nonzero = labels != 0
+    if len(labels) == 1:
+        patterns, inverse = nonzero, np.zeros(1, np.int64)
+    else:
+        patterns, inverse = np.unique(nonzero, axis=0, return_inverse=True)
+    moduli = space.moduli
+    verdicts = np.empty(len(patterns), bool)
+    for i, pattern in enumerate(patterns):
+        # same residues, same zero pattern: a residue of 0 on a nonzero edge becomes K
+        stand_in = np.where(pattern & (residues == 0), moduli, residues)
+        verdicts[i] = trace(space.scaffold, stand_in).holds_together
+    return verdicts[inverse.reshape(-1)]
+
+
 @dataclass
 class Block:
     """Designs of one representative class (or a chunk of it)."""
@@ -173,7 +198,7 @@ def walk_blocks(space: DesignSpace, class_ids=None, components: int | None = Non
                 opts, n_opts, np.ascontiguousarray(inv[h]), np.ascontiguousarray(signs[h]), start, stop, out, stab
             )
             labels = out[:m]
-            holds = _holds_together(labels, info.edge_ptr, info.edge_strands, info.components)
+            holds = holds_together_rows(space, co.residues[c], info, labels)
             yield Block(int(co.codes[c]), co.residues[c], info, labels, space.n_actions // stab[:m], holds)
 
 
@@ -264,7 +289,7 @@ def residue_row(space: DesignSpace, indices: np.ndarray, stabilizer, info: Class
     residues = space.residue_table[1][e, indices]
     info = info or space.class_info(residues)
     labels = space.representative_labels(indices)
-    holds = bool(_holds_together(labels[None, :], info.edge_ptr, info.edge_strands, info.components)[0])
+    holds = bool(holds_together_rows(space, residues, info, labels[None, :])[0])
     stats = label_stats(labels[None, :])
     n_classes = space.n_actions // len(stabilizer)
     big = 2**63 - 1  # counts past int64 are stored as -1 (possible only for huge spaces)

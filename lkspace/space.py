@@ -136,7 +136,7 @@ class DesignSpace:
         model = sc_port_model(sc)
         partner = edge_partner(model, self.moduli, np.asarray(residues, np.int64))
         translation = sc.side_translation if sc.periodic else np.zeros((sc.n_corners, 0), np.int64)
-        _, starts, _, periods, port_strand = _walk(model.corner_partner, partner, np.ascontiguousarray(translation))
+        _, starts, _, periods, port_strand, _ = _walk(model.corner_partner, partner, np.ascontiguousarray(translation))
         lengths = np.diff(starts)
         order = np.argsort(-lengths, kind="stable")
         edge_of_port = np.repeat(sc.side_edge, 2)

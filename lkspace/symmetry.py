@@ -353,7 +353,7 @@ def _face_keys(corner_keys: np.ndarray, face_starts: np.ndarray):
             key = tuple(sorted(map(tuple, moved.tolist())))
             best = key if best is None or key < best else best
         out.append(best)
-    return np.array(sorted(out), dtype=np.int64).reshape(len(out), -1)
+    return tuple(sorted(out))  # faces of mixed sizes: compare as nested tuples
 
 
 def _periodic_motions(scaffold: Scaffold, sigmas: np.ndarray):
@@ -370,7 +370,9 @@ def _periodic_motions(scaffold: Scaffold, sigmas: np.ndarray):
         for i in np.flatnonzero(ok):
             sigma, offsets = sigmas[i], coords[i].astype(np.int64)
             image = np.column_stack([sigma[scaffold.corners], offsets[scaffold.corners] + scaffold.corner_offsets @ n])
-            if not np.array_equal(_face_keys(image, scaffold.face_starts), faces):
+            image_faces = _face_keys(image, scaffold.face_starts)
+            same = image_faces == faces if isinstance(faces, tuple) else np.array_equal(image_faces, faces)
+            if not same:
                 continue
             yield sigma, q, taus[i], (offsets, n)
 

@@ -154,3 +154,28 @@ def _minors_gcd(vectors, dim):
 def test_lattice_index_is_gcd_of_minors(case):
     dim, vectors = case
     assert lattice_index(np.array(vectors, dtype=np.int64).reshape(-1, dim), dim) == _minors_gcd(vectors, dim)
+
+
+@pytest.mark.parametrize("name, labels", [("tiling:square@2x1", "-1..1"), ("honeycomb:cP", "-2..2"),
+                                          ("tiling:hexagonal", "-2..2")])
+def test_periodic_catalog_rows_match_the_tracer(name, labels):
+    # the enumerator's holds_together must be the lift-aware one of the tracer
+    import pandas as pd
+
+    s = lkspace.load(name)
+    df = pd.concat(list(lkspace.enumerate(name, labels)))
+    assert df.orbit_size.sum() == len(lkspace.labels.parse_label_set(labels)) ** s.n_edges
+    for row in df.itertuples():
+        t = trace(s, np.array(row.labels))
+        assert (t.components, t.holds_together) == (row.components, row.holds_together)
+    assert not df.holds_together.all()
+
+
+def test_periodic_symmetry_orders():
+    from lkspace.symmetry import symmetry_group
+
+    orders = {name: (symmetry_group(lkspace.load(name)).order, symmetry_group(lkspace.load(name)).n_rotations)
+              for name in ("tiling:square", "tiling:hexagonal", "honeycomb:cP", "honeycomb:cI", "honeycomb:cP@2x2x2")}
+    # 2D tilings live in 3D: turning the plane over is a rotation too
+    assert orders == {"tiling:square": (16, 8), "tiling:hexagonal": (24, 12), "honeycomb:cP": (48, 24),
+                      "honeycomb:cI": (48, 24), "honeycomb:cP@2x2x2": (384, 192)}
