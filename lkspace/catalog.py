@@ -237,9 +237,6 @@ class CatalogWriter:
         meta = {**self.metadata, **(summary or {}), "rows": self.rows}
         self._writer.add_key_value_metadata({METADATA_KEY: json.dumps(meta).encode()})
         self._writer.close()
-        umask = os.umask(0)
-        os.umask(umask)
-        os.chmod(self._tmp, 0o666 & ~umask)  # mkstemp creates 0600; a catalog is an ordinary file
         self._ctx.__exit__(None, None, None)
 
     def abort(self, exc: BaseException) -> None:

@@ -107,6 +107,7 @@ def _count_payload(space, mode, components, max_designs, sample, seed) -> dict:
 @click.option("--jobs", type=click.IntRange(min=1), default=1, show_default=True, help="Parallel processes.")
 @click.option("--shards", type=click.IntRange(min=1), help="Parts of the catalog (default: 1, or more for big runs).")
 @click.option("--resume", is_flag=True, help="Keep the finished parts of an interrupted run and do the rest.")
+@click.option("--identify", is_flag=True, help="Add knot/link names and invariants to every row (extra [knots]; slow).")
 @json_option
 def enumerate_cmd(
     mesh,
@@ -123,6 +124,7 @@ def enumerate_cmd(
     jobs,
     shards,
     resume,
+    identify,
     as_json,
 ):
     """Walk the design space of MESH: one row per design up to symmetry.
@@ -142,6 +144,8 @@ def enumerate_cmd(
     labels = label_set(labels_spec)
     if sample is not None and mode != "spanning-trees":
         raise LabelError("--sample applies to --mode spanning-trees only")
+    if identify and (output is None or count_only):
+        raise LabelError("--identify names the rows of a written catalog: give -o CATALOG.parquet")
     space = make_space(scaffold, labels, symmetry, no_zero)
     started = time.perf_counter()
     if count_only or output is None:
@@ -171,6 +175,10 @@ def enumerate_cmd(
             if bar is not None:
                 bar.stop()
         payload["written"] = payload.pop("output")
+        if identify:
+            from ..catalog_identify import identify_catalog
+
+            payload["identified"] = identify_catalog(output, scaffold, processes=jobs)
     payload["seconds"] = round(time.perf_counter() - started, 3)
 
     def human():
@@ -185,6 +193,9 @@ def enumerate_cmd(
         for k, v in (payload["by_components"] or {}).items():
             table.add_row(f"  {k} component(s)", f"{v:,}")
         table.add_row("written", str(payload.get("written") or "- (count only; give -o FILE to write)"))
+        if "identified" in payload:
+            top = ", ".join(f"{k} ({v})" for k, v in list(payload["identified"]["names"].items())[:6])
+            table.add_row("identified", f"{payload['identified']['named']:,} of {payload['identified']['rows']:,} named: {top}")
         table.add_row("seconds", str(payload["seconds"]))
         con.print(table)
 
