@@ -1,0 +1,503 @@
+"""Inverse design: twist labels with exactly N strand components (CP-SAT).
+
+The question: given a scaffold, a set of allowed labels per edge and a target N, find
+labels ``t`` whose traced structure has exactly N components (SPEC §2, ``lkspace
+solve``), or prove that none exists.  :func:`build_model` builds the CP-SAT model;
+:func:`solve` runs it (after the linear-time fast path of :mod:`lkspace.spanning` when
+that can answer) and re-traces every solution.
+
+Formulation
+-----------
+**Nodes.**  The strand model of :mod:`lkspace.tracing` is a 2-regular graph on ports:
+corner links (fixed) alternate with edge links (set by the labels).  Contract every corner
+link: node ``c`` is face corner ``c`` (its ports ``2c`` and ``2 prev(c) + 1``).  Every node
+has two ports and every port exactly one edge link, so the edge links form a 2-regular
+multigraph on the corners whose cycles are the components.
+
+**Residues.**  Only ``t mod K`` matters on an edge of degree K.  Edge ``e`` gets one boolean
+``x[e, r]`` per residue ``r`` reachable by its allowed labels, exactly one true.  Residue
+``r`` creates the K links "slot i at end a -- slot (i + r) mod K at end b": the literal of
+each such link *is* ``x[e, r]``.  The label reported for ``r`` is the cheapest allowed
+label in that class (see ``objective``).
+
+**Contraction.**  An edge with a single reachable residue (boundary edges, ``K = 1``;
+``--fix``; label sets that pin the class) contributes fixed links.  The fixed links cut the
+corners into paths and closed cycles; a closed cycle is a component in every design
+(counted as the constant ``n_fixed_cycles``), and a path becomes one **super-node** with its
+two free end ports.  The model lives on the M super-nodes, so boundaries and fixed edges
+cost nothing.  We need exactly ``N' = N - n_fixed_cycles`` cycles among them.
+
+**Upper bound (routes).**  ``AddMultipleCircuit`` on the super-nodes plus a depot 0: arcs
+``u -> v`` and ``v -> u`` for every pair joined by some candidate link, each arc implying
+that one of those links is active; depot arcs ``0 -> u`` ("a route starts at u") and
+``u -> 0`` are free.  Every super-node lies on exactly one route and consecutive nodes of a
+route are joined by an active link, so each route lies inside one component and each
+component holds at least one route: #components <= #routes.  We require exactly N' routes.
+
+**Lower bound (labelling).**  An integer ``L[u] in 0..u`` per super-node, equal on the two
+ends of every active link (``x => L[u] == L[v]``), and ``root[u] <=> L[u] == u``.  On a
+component C all labels are one value ``l <= min(C)``, and a node u of C can be a root only
+if ``u = l``, i.e. ``u = min(C)``: at most one root per component, so #components >=
+#roots.  We require exactly N' roots and tie them to the routes, ``start[u] == root[u]``
+(skipped when N' = 1, where #components >= 1 holds anyway; the single route then starts at
+node 0).
+
+**Exactness.**  Together: N' <= #components <= N'.  Conversely every design with exactly
+N' components satisfies the model: label each component by its minimum node, make that
+node the root, and run each component once around as a route starting at its root (a
+component of one super-node whose two ends are linked to each other is the route
+``0 -> u -> 0``).  So the model is feasible exactly when a design exists, and a time-out
+says ``unknown``, never ``infeasible``.  Every solution is re-traced by
+:func:`lkspace.trace` anyway; a mismatch raises :class:`SolveVerificationError`.
+
+**Objective.**  ``min-abs`` minimizes the total ``|t|``, ``min-nonzero`` the number of
+non-zero labels; each is linear in the residue booleans because the cheapest label of
+each residue class is fixed in advance.  Distinct solutions (``count``) differ in residues,
+that is, in how the strands connect; excluding one (and its images under a symmetry
+group) is a clause over the residue booleans (solve-and-exclude, never a census).
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+import scipy.sparse
+import scipy.sparse.csgraph
+
+from .errors import LabelError, LkspaceError
+from .labels import parse_label_set
+from .mesh import Scaffold
+from .tracing import sc_port_model, trace
+
+OBJECTIVES = (None, "min-abs", "min-nonzero")
+STATUSES = ("optimal", "feasible", "infeasible", "unknown")
+
+
+class SolveVerificationError(RuntimeError):
+    """A solver answer failed the tracer check: a bug in lkspace, never bad input."""
+
+
+@dataclass(frozen=True)
+class Query:
+    """What a design must satisfy.
+
+    Parameters
+    ----------
+    components : int
+        Exact number of strand components N.
+    labels : (n_labels,) int64
+        Labels the design may use (default ``-2..2``).
+    no_zero : bool
+        Forbid ``t = 0``.
+    fixes : dict of int -> int
+        Edge -> label it must carry (may lie outside ``labels``).
+    parities : dict of int -> int
+        Edge -> required parity of its label (0 even, 1 odd).
+    objective : None, ``"min-abs"`` or ``"min-nonzero"``
+    """
+
+    components: int
+    labels: np.ndarray = field(default_factory=lambda: np.arange(-2, 3))
+    no_zero: bool = False
+    fixes: dict = field(default_factory=dict)
+    parities: dict = field(default_factory=dict)
+    objective: str | None = None
+
+    def __post_init__(self):
+        if self.objective not in OBJECTIVES:
+            raise LabelError(f"objective {self.objective!r}: expected one of min-abs, min-nonzero or none")
+        if int(self.components) < 1:
+            raise LabelError(f"--components {self.components}: need at least 1")
+
+
+def label_cost(labels: np.ndarray, objective: str | None) -> np.ndarray:
+    """Objective cost of each label ``(n,) int64`` (all 0 without objective)."""
+    labels = np.asarray(labels, np.int64)
+    if objective == "min-abs":
+        return np.abs(labels)
+    if objective == "min-nonzero":
+        return (labels != 0).astype(np.int64)
+    return np.zeros(len(labels), np.int64)
+
+
+def allowed_labels(scaffold: Scaffold, query: Query) -> list[np.ndarray]:
+    """Labels each edge may carry after ``--labels``, ``--no-zero``, fixes and parities.
+
+    Returns a list of ``n_edges`` sorted ``(k,) int64`` arrays; an empty one means no
+    design exists.  A fix that contradicts ``--no-zero`` or a parity raises
+    :class:`~lkspace.errors.LabelError` (the query contradicts itself).
+    """
+    base = np.unique(np.asarray(query.labels, np.int64))
+    if query.no_zero:
+        base = base[base != 0]
+    out = [base] * scaffold.n_edges
+    for e, t in query.fixes.items():
+        name = scaffold.edge_name(e)
+        if query.no_zero and t == 0:
+            raise LabelError(f"--fix {name}=0 contradicts --no-zero")
+        if e in query.parities and t % 2 != query.parities[e]:
+            raise LabelError(f"--fix {name}={t} contradicts --parity {name}={'odd' if query.parities[e] else 'even'}")
+        out[e] = np.array([t], np.int64)
+    for e, p in query.parities.items():
+        out[e] = out[e][out[e] % 2 == p]
+    return out
+
+
+def representatives(labels: np.ndarray, k: int, objective: str | None) -> dict[int, int]:
+    """Residue ``r`` -> the label reported for it: cheapest, then smallest ``|t|``, then positive."""
+    best: dict[int, tuple] = {}
+    costs = label_cost(labels, objective)
+    for t, c in zip(labels.tolist(), costs.tolist(), strict=True):
+        key = (c, abs(t), t < 0)
+        r = t % k
+        if r not in best or key < best[r][0]:
+            best[r] = (key, t)
+    return {r: v[1] for r, v in sorted(best.items())}
+
+
+@dataclass(eq=False)
+class DesignModel:
+    """A CP-SAT model of one query, built apart from solving it (:func:`build_model`).
+
+    Attributes
+    ----------
+    model : ortools.sat.python.cp_model.CpModel or None
+        ``None`` when the query is decided without search (see ``decided``).
+    decided : str or None
+        ``"infeasible"`` with ``reason`` when the query has no design before search.
+    residue_literals : dict of int -> list of (residue, literal)
+        Free edges only.
+    choices : list of dict of int -> int
+        Per edge, residue -> reported label.
+    fixed_residues : (n_edges,) int64
+        Residue of every edge with one choice, -1 for free edges.
+    n_fixed_cycles : int
+        Components made of fixed links only.
+    n_nodes : int
+        Super-nodes M of the model.
+    """
+
+    scaffold: Scaffold
+    query: Query
+    model: object
+    residue_literals: dict
+    choices: list
+    fixed_residues: np.ndarray
+    n_fixed_cycles: int
+    n_nodes: int
+    decided: str | None = None
+    reason: str = ""
+
+    def labels_of(self, residues: np.ndarray) -> np.ndarray:
+        """Reported labels ``(n_edges,) int64`` of a residue vector."""
+        return np.array([self.choices[e][int(r)] for e, r in enumerate(residues)], np.int64)
+
+    def residues_from(self, value) -> np.ndarray:
+        """Residue vector ``(n_edges,) int64`` of a solved model (``value(literal) -> bool``)."""
+        res = self.fixed_residues.copy()
+        for e, lits in self.residue_literals.items():
+            res[e] = next(r for r, lit in lits if value(lit))
+        return res
+
+    def exclude(self, residues: np.ndarray) -> None:
+        """Forbid the residue vector ``residues`` (a no-good clause over the free edges)."""
+        fixed = self.fixed_residues >= 0
+        if np.any(residues[fixed] != self.fixed_residues[fixed]):
+            return  # not a design of this query: nothing to exclude
+        clause = []
+        for e, lits in self.residue_literals.items():
+            match = [lit.Not() for r, lit in lits if r == residues[e]]
+            if not match:
+                return
+            clause += match
+        self.model.add_bool_or(clause)  # empty when nothing is free: the model becomes infeasible
+
+    def hint(self, residues: np.ndarray) -> None:
+        """Give CP-SAT a starting point."""
+        self.model.clear_hints()
+        for e, lits in self.residue_literals.items():
+            for r, lit in lits:
+                self.model.add_hint(lit, bool(r == residues[e]))
+
+
+def _fixed_structure(scaffold: Scaffold, fixed_residues: np.ndarray):
+    """Contract fixed links: super-node of every corner and the number of closed fixed cycles."""
+    pm = sc_port_model(scaffold)
+    n = scaffold.n_corners
+    node_of_port = np.empty(2 * n, np.int64)
+    node_of_port[0::2] = np.arange(n)
+    node_of_port[1::2] = scaffold.corner_next
+    degrees = scaffold.edge_degrees
+    slot_fixed = fixed_residues[pm.slot_edge] >= 0
+    k = degrees[pm.slot_edge]
+    target = pm.edge_starts[pm.slot_edge] + (pm.slot_index + np.maximum(fixed_residues[pm.slot_edge], 0)) % k
+    u = node_of_port[pm.port_a[slot_fixed]]
+    v = node_of_port[pm.port_b[target[slot_fixed]]]
+    graph = scipy.sparse.coo_matrix((np.ones(len(u)), (u, v)), shape=(n, n))
+    n_comp, comp = scipy.sparse.csgraph.connected_components(graph, directed=False)
+    size = np.bincount(comp, minlength=n_comp)
+    links = np.bincount(comp[u], minlength=n_comp)
+    closed = links == size
+    super_id = np.cumsum(~closed) - 1
+    return node_of_port, super_id[comp], int(closed.sum()), int((~closed).sum())
+
+
+def build_model(scaffold: Scaffold, query: Query) -> DesignModel:
+    """The CP-SAT model of ``query`` on ``scaffold`` (see the module docstring).
+
+    Examples
+    --------
+    >>> from lkspace import load
+    >>> m = build_model(load("cube"), Query(1, labels=np.array([-1, 1])))
+    >>> m.n_nodes, m.n_fixed_cycles
+    (24, 0)
+    """
+    from ortools.sat.python import cp_model
+
+    if scaffold.nulls is not None and np.any(scaffold.nulls):
+        raise LabelError(f"{scaffold.name}: solve does not handle null edge-sides; remove them from the scaffold")
+    allowed = allowed_labels(scaffold, query)
+    degrees = scaffold.edge_degrees
+    choices = [representatives(a, int(k), query.objective) for a, k in zip(allowed, degrees, strict=True)]
+    fixed = np.array([next(iter(c)) if len(c) == 1 else -1 for c in choices], np.int64)
+    empty = [e for e, c in enumerate(choices) if not c]
+    dm = DesignModel(scaffold, query, None, {}, choices, fixed, 0, 0)
+    if empty:
+        dm.decided = "infeasible"
+        dm.reason = f"edge {scaffold.edge_name(empty[0])} has no allowed label"
+        return dm
+    node_of_port, super_of, n_fixed_cycles, m = _fixed_structure(scaffold, fixed)
+    dm.n_fixed_cycles, dm.n_nodes = n_fixed_cycles, m
+    need = int(query.components) - n_fixed_cycles
+    if m == 0 and need != 0 or m > 0 and not 1 <= need <= m:
+        dm.decided = "infeasible"
+        dm.reason = (f"{n_fixed_cycles} component(s) are fixed and {m} free path(s) remain; "
+                     f"{query.components} component(s) cannot be reached")
+        return dm
+    model = cp_model.CpModel()
+    dm.model = model
+    pm = sc_port_model(scaffold)
+    pair_lits: dict[tuple[int, int], list] = {}
+    objective = []
+    for e in np.flatnonzero(fixed < 0).tolist():
+        opts = choices[e]
+        k = int(degrees[e])
+        start = int(pm.edge_starts[e])
+        lits = []
+        for j, r in enumerate(opts):
+            if j == 1 and len(opts) == 2:
+                lit = lits[0][1].Not()
+            else:
+                lit = model.new_bool_var(f"x{e}_{r}")
+            lits.append((r, lit))
+            cost = int(label_cost(np.array([opts[r]]), query.objective)[0])
+            if cost:
+                objective.append(cost * lit)
+            for i in range(k):
+                a = super_of[node_of_port[pm.port_a[start + i]]]
+                b = super_of[node_of_port[pm.port_b[start + (i + r) % k]]]
+                if a != b:
+                    pair_lits.setdefault((min(a, b), max(a, b)), []).append(lit)
+        if len(opts) > 2:
+            model.add_exactly_one([lit for _, lit in lits])
+        dm.residue_literals[e] = lits
+    arcs = []
+    starts = [model.new_bool_var(f"start{u}") for u in range(m)]
+    for u in range(m):
+        arcs += [(0, u + 1, starts[u]), (u + 1, 0, model.new_bool_var(f"end{u}"))]
+    for (a, b), lits in pair_lits.items():
+        for tail, head in ((a, b), (b, a)):
+            arc = model.new_bool_var(f"arc{tail}_{head}")
+            if len(lits) == 1:
+                model.add_implication(arc, lits[0])
+            else:
+                model.add_bool_or(lits).only_enforce_if(arc)
+            arcs.append((tail + 1, head + 1, arc))
+    if m:
+        model.add_multiple_circuit(arcs)
+        model.add(sum(starts) == need)
+    if need == 1 and m:
+        model.add(starts[0] == 1)
+    elif need > 1:
+        label = [model.new_int_var(0, u, f"L{u}") for u in range(m)]
+        for (a, b), lits in pair_lits.items():
+            for lit in {x.Index(): x for x in lits}.values():
+                model.add(label[a] == label[b]).only_enforce_if(lit)
+        for u in range(m):
+            model.add(label[u] == u).only_enforce_if(starts[u])
+            if u:
+                model.add(label[u] <= u - 1).only_enforce_if(starts[u].Not())
+            else:
+                model.add(starts[0] == 1)
+    if objective:
+        model.minimize(sum(objective))
+    return dm
+
+
+@dataclass(frozen=True)
+class Solution:
+    """One design: labels ``(n_edges,) int64`` and its traced component count."""
+
+    labels: np.ndarray
+    components: int
+
+    def to_dict(self) -> dict:
+        return {"labels": self.labels.tolist(), "components": self.components}
+
+
+@dataclass(frozen=True)
+class SolveResult:
+    """The answer to a query (SPEC §2: ``status`` and ``solutions``).
+
+    ``status`` is ``"optimal"`` (objective proved optimal), ``"feasible"``, ``"infeasible"``
+    (proved: no design exists) or ``"unknown"`` (time ran out before either).  ``method`` is
+    ``"fast-path"``, ``"cp-sat"`` or ``"presolve"`` (decided before search).
+    """
+
+    status: str
+    solutions: list
+    method: str
+    wall_time: float
+    reason: str = ""
+    exhausted: bool = False
+    stats: dict = field(default_factory=dict)
+
+    def to_dict(self) -> dict:
+        out = {"status": self.status, "solutions": [s.to_dict() for s in self.solutions], "method": self.method,
+               "wall_time": round(self.wall_time, 6), "exhausted": self.exhausted, **self.stats}
+        if self.reason:
+            out["reason"] = self.reason
+        return out
+
+
+def verify(scaffold: Scaffold, labels: np.ndarray, components: int) -> Solution:
+    """Trace ``labels``; raise :class:`SolveVerificationError` unless it has ``components``."""
+    got = trace(scaffold, labels, np.zeros(scaffold.n_corners, bool)).components
+    if got != components:
+        raise SolveVerificationError(
+            f"internal error: solver design {labels.tolist()} on {scaffold.name} traces to {got} "
+            f"components, not {components}; please report this bug")
+    return Solution(np.asarray(labels, np.int64), got)
+
+
+def _orbit(residues: np.ndarray, actions, degrees: np.ndarray) -> list[np.ndarray]:
+    """Images of a residue vector under edge actions ``(perm, sign)``: ``t'[perm[e]] = sign * t[e]``."""
+    images = []
+    for perm, sign in actions:
+        img = np.empty_like(residues)
+        img[perm] = (sign * residues) % degrees[perm]
+        images.append(img)
+    return images
+
+
+def solve(scaffold: Scaffold, components: int, *, labels="-2..2", no_zero: bool = False, fixes=None,
+          parities=None, count: int = 1, distinct_up_to: str = "none", objective: str | None = None,
+          time_limit: float | None = None, workers: int = 0, seed: int = 0,
+          fast_path: bool = True) -> SolveResult:
+    """Find up to ``count`` designs on ``scaffold`` with exactly ``components`` strands.
+
+    Parameters
+    ----------
+    labels : str or sequence of int
+        Label set (``"-2..2"``, ``"-1,1"``, or integers).
+    no_zero : bool
+        Forbid label 0.
+    fixes : dict of int -> int, optional
+        Edge index -> label.
+    parities : dict of int -> {0, 1}, optional
+        Edge index -> 0 (even) or 1 (odd).
+    count : int
+        Distinct solutions wanted (different strand connectivity).
+    distinct_up_to : ``"none"``, ``"rotations"`` or ``"isometries"``
+        With a symmetry group, no two solutions lie in one orbit.
+    objective : None, ``"min-abs"`` or ``"min-nonzero"``
+    time_limit : float, optional
+        Seconds for the whole call; running out gives status ``"unknown"`` (or
+        ``"feasible"`` if some solutions were found).
+    workers, seed : int
+        CP-SAT search workers (0: all cores) and random seed.
+    fast_path : bool
+        Try the spanning-tree construction first for one component (:mod:`lkspace.spanning`).
+
+    Examples
+    --------
+    >>> from lkspace import load
+    >>> solve(load("cube"), 1, labels="-1,1").status
+    'infeasible'
+    >>> r = solve(load("tetrahedron"), 1, no_zero=True)
+    >>> r.status, r.solutions[0].components
+    ('feasible', 1)
+    """
+    t0 = time.perf_counter()
+    label_set = parse_label_set(labels) if isinstance(labels, str) else np.unique(np.asarray(labels, np.int64))
+    query = Query(int(components), label_set, bool(no_zero), dict(fixes or {}), dict(parities or {}), objective)
+    if count < 1:
+        raise LabelError(f"--count {count}: need at least 1")
+    actions = symmetry_actions(scaffold, distinct_up_to, label_set)
+    if fast_path and query.components == 1 and (count == 1 or distinct_up_to == "none"):
+        from .spanning import single_component_designs
+
+        found, optimal = single_component_designs(scaffold, query, count, seed)
+        if len(found) == count and (objective is None or optimal):
+            sols = [verify(scaffold, t, 1) for t in found]
+            status = "optimal" if objective is not None else "feasible"
+            return SolveResult(status, sols, "fast-path", time.perf_counter() - t0)
+    return _solve_cp_sat(scaffold, query, count, actions, time_limit, workers, seed, t0)
+
+
+def symmetry_actions(scaffold: Scaffold, mode: str, label_set: np.ndarray) -> list:
+    """Edge actions ``(perm (n_edges,) int64, sign)`` of the non-identity symmetries for ``mode``."""
+    if mode == "none":
+        return []
+    if mode not in ("rotations", "isometries"):
+        raise LabelError(f"--distinct-up-to {mode!r}: expected rotations, isometries or none")
+    if mode == "isometries" and not np.array_equal(np.sort(-label_set), label_set):
+        raise LabelError("--distinct-up-to isometries: the label set must be closed under negation")
+    try:
+        from .symmetry import edge_actions
+    except ImportError:
+        raise LkspaceError(f"--distinct-up-to {mode} needs lkspace.symmetry, which this installation lacks") from None
+    return edge_actions(scaffold, mode)
+
+
+def _solve_cp_sat(scaffold, query, count, actions, time_limit, workers, seed, t0) -> SolveResult:
+    from ortools.sat.python import cp_model
+
+    dm = build_model(scaffold, query)
+    stats = {"model_nodes": dm.n_nodes, "fixed_cycles": dm.n_fixed_cycles}
+    if dm.decided:
+        return SolveResult(dm.decided, [], "presolve", time.perf_counter() - t0, dm.reason, True, stats)
+    solver = cp_model.CpSolver()
+    solver.parameters.num_workers = int(workers)
+    solver.parameters.random_seed = int(seed)
+    degrees = scaffold.edge_degrees
+    solutions: list[Solution] = []
+    status = "unknown"
+    exhausted = False
+    while len(solutions) < count:
+        if time_limit is not None:
+            left = time_limit - (time.perf_counter() - t0)
+            if left <= 0:
+                break
+            solver.parameters.max_time_in_seconds = left
+        code = solver.solve(dm.model)
+        if code in (cp_model.OPTIMAL, cp_model.FEASIBLE):
+            residues = dm.residues_from(solver.boolean_value)
+            solutions.append(verify(scaffold, dm.labels_of(residues), query.components))
+            if len(solutions) == 1:
+                status = "optimal" if code == cp_model.OPTIMAL and query.objective else "feasible"
+            for res in [residues, *_orbit(residues, actions, degrees)]:
+                dm.exclude(res)
+        elif code == cp_model.INFEASIBLE:
+            exhausted = True
+            if not solutions:
+                status = "infeasible"
+            break
+        elif code == cp_model.MODEL_INVALID:  # pragma: no cover - a bug in build_model
+            raise SolveVerificationError(f"internal error: invalid CP-SAT model: {dm.model.validate()}")
+        else:
+            break
+    stats["search_time"] = round(solver.wall_time, 6)
+    return SolveResult(status, solutions, "cp-sat", time.perf_counter() - t0, "", exhausted, stats)
