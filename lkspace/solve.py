@@ -50,6 +50,11 @@ component of one super-node whose two ends are linked to each other is the route
 says ``unknown``, never ``infeasible``.  Every solution is re-traced by
 :func:`lkspace.trace` anyway; a mismatch raises :class:`SolveVerificationError`.
 
+**Redundant cut.**  Residue r on an edge of degree K differs from residue 0 by
+K - gcd(K, r) swaps of two edge links (2-opt moves); each changes the number of components
+by at most one, and all-zero labels leave one component per face.  So
+``sum_e (K_e - gcd(K_e, r_e)) >= |F - N|``: implied by the model, added for the LP bound.
+
 **Objective.**  ``min-abs`` minimizes the total ``|t|``, ``min-nonzero`` the number of
 non-zero labels; each is linear in the residue booleans because the cheapest label of
 each residue class is fixed in advance.  Distinct solutions (``count``) differ in residues,
@@ -59,6 +64,7 @@ group) is a clause over the residue booleans (solve-and-exclude, never a census)
 
 from __future__ import annotations
 
+import math
 import time
 from dataclasses import dataclass, field
 
@@ -331,6 +337,15 @@ def build_model(scaffold: Scaffold, query: Query) -> DesignModel:
                 model.add(label[u] <= u - 1).only_enforce_if(starts[u].Not())
             else:
                 model.add(starts[0] == 1)
+    # Redundant cut: residue r on an edge of degree K is K - gcd(K, r) swaps (2-opt moves) away
+    # from residue 0, each changing the component count by at most one, and all-zero labels
+    # give one component per face.  So the total swap distance is at least |F - N|.
+    base = sum(int(k) - math.gcd(int(k), int(r)) for k, r in zip(degrees, fixed, strict=True) if r > 0)
+    distance = [(int(degrees[e]) - math.gcd(int(degrees[e]), r)) * lit
+                for e, lits in dm.residue_literals.items() for r, lit in lits if r]
+    gap = abs(scaffold.n_faces - int(query.components)) - base
+    if distance and gap > 0:
+        model.add(sum(distance) >= gap)
     if objective:
         model.minimize(sum(objective))
     return dm
