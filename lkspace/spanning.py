@@ -10,6 +10,9 @@ in time linear in the mesh.  (The same argument shows every single-component des
 at least F - 1 odd edges, which bounds the objectives from below.)  Boundary edges
 (K = 1) have one residue: any allowed label does.
 
+Edges of degree K >= 3 generalize this (:func:`_greedy_designs`): a residue coprime to K
+on an edge whose K faces lie on K different strands chains them into one.
+
 Allowed labels may pin some edges odd (they must lie in the tree) or even (outside it);
 Kruskal's algorithm with the pinned-odd edges first either finds such a tree or gives up,
 and the caller falls back to CP-SAT.  Every design is re-traced by the caller.
@@ -45,10 +48,12 @@ def single_component_designs(scaffold: Scaffold, query: Query, count: int = 1, s
         Whether the first design meets the lower bound of ``query.objective``.
     """
     degrees = scaffold.edge_degrees
-    if query.components != 1 or scaffold.n_edges == 0 or degrees.max() > 2:
+    if query.components != 1 or scaffold.n_edges == 0:
         return [], False
     if scaffold.nulls is not None and np.any(scaffold.nulls):
         return [], False
+    if degrees.max() > 2:
+        return _greedy_designs(scaffold, query, count, seed), False
     allowed = allowed_labels(scaffold, query)
     n_edges = scaffold.n_edges
     base = np.zeros(n_edges, np.int64)
@@ -141,3 +146,67 @@ def _meets_lower_bound(labels, costs, can, degrees, delta, forced, two, n_faces,
         return False
     bound += int(gains[:take].sum())
     return cost == bound
+
+
+def _finder(parent: np.ndarray):
+    """Union-find lookup with path halving over ``parent`` (updated in place)."""
+
+    def find(x: int) -> int:
+        while parent[x] != x:
+            parent[x] = parent[parent[x]]
+            x = parent[x]
+        return int(x)
+
+    return find
+
+
+def _greedy_designs(scaffold: Scaffold, query: Query, count: int, seed: int) -> list[np.ndarray]:
+    """Single-component designs on scaffolds with K >= 3 edges by greedy merging.
+
+    Start from residue 0 everywhere (one strand per face) and visit the edges (those that
+    cannot take residue 0 first, then by decreasing K, ties at random).  When the K faces of
+    an edge lie on K different strands so far, a residue coprime to K joins them into one
+    (the K cut strands are chained by the shift ``i -> i + r``); otherwise the edge keeps
+    residue 0.  Returns no design if some edge cannot follow the rule or strands remain apart.
+    """
+    degrees = scaffold.edge_degrees
+    allowed = allowed_labels(scaffold, query)
+    sides, starts = scaffold.radial.edge_sides, scaffold.radial.edge_starts
+    faces_of = [scaffold.corner_face[sides[starts[e]:starts[e + 1]]] for e in range(scaffold.n_edges)]
+    stay, merge = [], []
+    for e, labels in enumerate(allowed):
+        k = int(degrees[e])
+        residues = labels % k
+        coprime = np.array([np.gcd(k, int(r)) == 1 for r in residues], bool) if k > 1 else np.zeros(len(labels), bool)
+        stay.append(_cheapest(labels[residues == 0], query.objective))
+        merge.append(_cheapest(labels[coprime], query.objective))
+    if any(a is None and b is None for a, b in zip(stay, merge, strict=True)):
+        return []
+    rng = np.random.default_rng(seed)
+    designs, seen = [], set()
+    for _ in range(4 * count):
+        must_merge = np.array([a is None for a in stay])
+        order = np.lexsort((rng.random(scaffold.n_edges), -degrees, ~must_merge))
+        parent = np.arange(scaffold.n_faces)
+        find = _finder(parent)
+        labels = np.zeros(scaffold.n_edges, np.int64)
+        for e in order.tolist():
+            roots = {find(int(f)) for f in faces_of[e]}
+            if degrees[e] > 1 and len(roots) == degrees[e] and merge[e] is not None:
+                labels[e] = merge[e][1]
+                first, *rest = roots
+                for r in rest:
+                    parent[r] = first
+            elif stay[e] is not None:
+                labels[e] = stay[e][1]
+            else:
+                return designs
+        if len({find(f) for f in range(scaffold.n_faces)}) != 1:
+            return designs
+        key = labels.tobytes()
+        if key not in seen:
+            seen.add(key)
+            designs.append(labels)
+        if len(designs) == count:
+            break
+    return designs

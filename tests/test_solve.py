@@ -256,3 +256,14 @@ def test_cli_infeasible_is_an_answer(capsys):
 def test_cli_bad_input_is_one_line(capsys, args):
     code, out, err = _run(capsys, "solve", "cube", "-n", "1", *args)
     assert code == 2 and out == "" and err.count("\n") == 1 and "Traceback" not in err
+
+
+@pytest.mark.parametrize("name", ["book:5", "random1", "random15"])
+def test_greedy_fast_path_on_non_manifold(name):
+    scaffold = _scaffold(name)
+    assert scaffold.edge_degrees.max() >= 3
+    result = solve(scaffold, 1, no_zero=True)
+    allowed = allowed_per_edge(scaffold, range(-2, 3), no_zero=True)
+    assert result.status == ("feasible" if 1 in component_census(scaffold, allowed) else "infeasible")
+    if result.method == "fast-path":
+        assert trace(scaffold, result.solutions[0].labels).components == 1
