@@ -434,7 +434,8 @@ def solve(scaffold: Scaffold, components: int, *, labels="-2..2", no_zero: bool 
     workers, seed : int
         CP-SAT search workers (0: all cores) and random seed.
     fast_path : bool
-        Try the spanning-tree construction first for one component (:mod:`lkspace.spanning`).
+        Try the spanning-tree/forest construction of :mod:`lkspace.spanning` first (it
+        answers many queries with N <= F in linear time; CP-SAT takes over otherwise).
 
     Examples
     --------
@@ -451,12 +452,12 @@ def solve(scaffold: Scaffold, components: int, *, labels="-2..2", no_zero: bool 
     if count < 1:
         raise LabelError(f"--count {count}: need at least 1")
     actions = symmetry_actions(scaffold, distinct_up_to, label_set)
-    if fast_path and query.components == 1 and (count == 1 or distinct_up_to == "none"):
-        from .spanning import single_component_designs
+    if fast_path and (count == 1 or distinct_up_to == "none"):
+        from .spanning import spanning_designs
 
-        found, optimal = single_component_designs(scaffold, query, count, seed)
+        found, optimal = spanning_designs(scaffold, query, count, seed)
         if len(found) == count and (objective is None or optimal):
-            sols = [verify(scaffold, t, 1) for t in found]
+            sols = [verify(scaffold, t, query.components) for t in found]
             status = "optimal" if objective is not None else "feasible"
             return SolveResult(status, sols, "fast-path", time.perf_counter() - t0)
     return _solve_cp_sat(scaffold, query, count, actions, time_limit, workers, seed, t0)

@@ -1,4 +1,4 @@
-"""The fast path of :func:`lkspace.solve.solve`: one component from a spanning tree.
+"""The fast path of :func:`lkspace.solve.solve`: designs from spanning trees, no search.
 
 On a scaffold whose edges all have degree K <= 2 (manifold or not orientable, with or
 without boundary), label every edge even and each face is its own strand.  Making a
@@ -10,8 +10,9 @@ in time linear in the mesh.  (The same argument shows every single-component des
 at least F - 1 odd edges, which bounds the objectives from below.)  Boundary edges
 (K = 1) have one residue: any allowed label does.
 
-Edges of degree K >= 3 generalize this (:func:`_greedy_designs`): a residue coprime to K
-on an edge whose K faces lie on K different strands chains them into one.
+Edges of degree K >= 3 and targets N > 1 generalize this (:func:`_greedy_designs`): a
+residue coprime to K on an edge whose K faces lie on K different strands chains them into
+one, and merging stops when N strands are left (a spanning forest).
 
 Allowed labels may pin some edges odd (they must lie in the tree) or even (outside it);
 Kruskal's algorithm with the pinned-odd edges first either finds such a tree or gives up,
@@ -37,8 +38,11 @@ def _cheapest(labels: np.ndarray, objective) -> tuple[int, int] | None:
     return int(cost[key]), int(labels[key])
 
 
-def single_component_designs(scaffold: Scaffold, query: Query, count: int = 1, seed: int = 0):
-    """Up to ``count`` distinct single-component designs from random dual spanning trees.
+def spanning_designs(scaffold: Scaffold, query: Query, count: int = 1, seed: int = 0):
+    """Up to ``count`` distinct designs with ``query.components`` strands, without search.
+
+    One component on a K <= 2 scaffold: random dual spanning trees; otherwise (any K,
+    N <= F components) greedy merging, :func:`_greedy_designs`.
 
     Returns
     -------
@@ -48,11 +52,11 @@ def single_component_designs(scaffold: Scaffold, query: Query, count: int = 1, s
         Whether the first design meets the lower bound of ``query.objective``.
     """
     degrees = scaffold.edge_degrees
-    if query.components != 1 or scaffold.n_edges == 0:
+    if not 1 <= query.components <= scaffold.n_faces or scaffold.n_edges == 0:
         return [], False
     if scaffold.nulls is not None and np.any(scaffold.nulls):
         return [], False
-    if degrees.max() > 2:
+    if degrees.max() > 2 or query.components > 1:
         return _greedy_designs(scaffold, query, count, seed), False
     allowed = allowed_labels(scaffold, query)
     n_edges = scaffold.n_edges
@@ -161,13 +165,15 @@ def _finder(parent: np.ndarray):
 
 
 def _greedy_designs(scaffold: Scaffold, query: Query, count: int, seed: int) -> list[np.ndarray]:
-    """Single-component designs on scaffolds with K >= 3 edges by greedy merging.
+    """Designs with N <= F components (any K) by greedy merging.
 
     Start from residue 0 everywhere (one strand per face) and visit the edges (those that
     cannot take residue 0 first, then by decreasing K, ties at random).  When the K faces of
     an edge lie on K different strands so far, a residue coprime to K joins them into one
-    (the K cut strands are chained by the shift ``i -> i + r``); otherwise the edge keeps
-    residue 0.  Returns no design if some edge cannot follow the rule or strands remain apart.
+    (the K cut strands are chained by the shift ``i -> i + r``), as long as at least N
+    strands remain; otherwise the edge keeps residue 0, which changes nothing.  The strand
+    count is thus known exactly at every step.  Returns no design if some edge cannot follow
+    the rule or the count does not end at N.
     """
     degrees = scaffold.edge_degrees
     allowed = allowed_labels(scaffold, query)
@@ -190,18 +196,22 @@ def _greedy_designs(scaffold: Scaffold, query: Query, count: int, seed: int) -> 
         parent = np.arange(scaffold.n_faces)
         find = _finder(parent)
         labels = np.zeros(scaffold.n_edges, np.int64)
+        n_strands = scaffold.n_faces
         for e in order.tolist():
+            k = int(degrees[e])
             roots = {find(int(f)) for f in faces_of[e]}
-            if degrees[e] > 1 and len(roots) == degrees[e] and merge[e] is not None:
+            distinct = k > 1 and len(roots) == k and merge[e] is not None
+            if distinct and (n_strands - (k - 1) >= query.components or stay[e] is None):
                 labels[e] = merge[e][1]
                 first, *rest = roots
                 for r in rest:
                     parent[r] = first
+                n_strands -= k - 1
             elif stay[e] is not None:
                 labels[e] = stay[e][1]
             else:
                 return designs
-        if len({find(f) for f in range(scaffold.n_faces)}) != 1:
+        if n_strands != query.components:
             return designs
         key = labels.tobytes()
         if key not in seen:
