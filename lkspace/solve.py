@@ -279,8 +279,9 @@ def build_model(scaffold: Scaffold, query: Query) -> DesignModel:
     need = int(query.components) - n_fixed_cycles
     if m == 0 and need != 0 or m > 0 and not 1 <= need <= m:
         dm.decided = "infeasible"
-        dm.reason = (f"{n_fixed_cycles} component(s) are fixed and {m} free path(s) remain; "
-                     f"{query.components} component(s) cannot be reached")
+        dm.reason = (f"the allowed labels fix every edge mod K: always {n_fixed_cycles} component(s)" if m == 0 else
+                     f"{n_fixed_cycles} component(s) are fixed and {m} free path(s) remain: "
+                     f"only {n_fixed_cycles + 1}..{n_fixed_cycles + m} component(s) are possible")
         return dm
     model = cp_model.CpModel()
     dm.model = model
