@@ -267,3 +267,35 @@ def test_greedy_fast_path_on_non_manifold(name):
     assert result.status == ("feasible" if 1 in component_census(scaffold, allowed) else "infeasible")
     if result.method == "fast-path":
         assert trace(scaffold, result.solutions[0].labels).components == 1
+
+
+def test_distinct_up_to_symmetry_gives_one_design_per_orbit():
+    from lkspace.solve import _solve_cp_sat
+
+    scaffold = lkspace.load("dihedron:6")
+    ev = scaffold.edge_vertices
+    index = {tuple(sorted(p)): e for e, p in enumerate(ev.tolist())}
+    actions = []
+    for shift in range(1, 6):  # rotations of the hexagon act on edges; labels keep their sign
+        perm = np.array([index[tuple(sorted(((a + shift) % 6, (b + shift) % 6)))] for a, b in ev.tolist()])
+        actions.append((perm, 1))
+    classes = residue_classes(scaffold, allowed_per_edge(scaffold, [0, 1]), 2)
+    orbits = set()
+    for c in classes:
+        images = [c] + [tuple(np.array(c)[np.argsort(perm)].tolist()) for perm, _ in actions]
+        orbits.add(min(images))
+    query = Query(2, labels=np.array([0, 1]))
+    result = _solve_cp_sat(scaffold, query, 50, actions, None, 1, 0, 0.0)
+    got = {min([tuple((s.labels % 2).tolist())] + [tuple((s.labels % 2)[np.argsort(p)].tolist()) for p, _ in actions])
+           for s in result.solutions}
+    assert len(result.solutions) == len(orbits) == len(got) and got == orbits and result.exhausted
+
+
+def test_distinct_up_to_needs_symmetry_module_or_says_so():
+    import importlib.util
+
+    if importlib.util.find_spec("lkspace.symmetry") is None:
+        with pytest.raises(lkspace.LkspaceError, match="symmetry"):
+            solve(lkspace.load("cube"), 1, count=2, distinct_up_to="rotations")
+    with pytest.raises(LabelError):
+        solve(lkspace.load("cube"), 1, labels="0,1", count=2, distinct_up_to="isometries")
