@@ -256,9 +256,12 @@ def build_model(scaffold: Scaffold, query: Query) -> DesignModel:
     Examples
     --------
     >>> from lkspace import load
-    >>> m = build_model(load("cube"), Query(1, labels=np.array([-1, 1])))
-    >>> m.n_nodes, m.n_fixed_cycles
-    (24, 0)
+    >>> m = build_model(load("cube"), Query(1, labels=np.array([-1, 1])))  # odd everywhere
+    >>> m.n_nodes, m.n_fixed_cycles, m.decided
+    (0, 4, 'infeasible')
+    >>> m = build_model(load("cube"), Query(2, labels=np.array([0, 1])))
+    >>> m.n_nodes, m.n_fixed_cycles, m.decided
+    (24, 0, None)
     """
     from ortools.sat.python import cp_model
 

@@ -299,3 +299,11 @@ def test_distinct_up_to_needs_symmetry_module_or_says_so():
             solve(lkspace.load("cube"), 1, count=2, distinct_up_to="rotations")
     with pytest.raises(LabelError):
         solve(lkspace.load("cube"), 1, labels="0,1", count=2, distinct_up_to="isometries")
+
+
+def test_real_time_out_reports_unknown():
+    from lkspace.scaffolds.spheres import cube_sphere
+
+    result = solve(cube_sphere(10), 1, no_zero=True, fast_path=False, time_limit=1.0)
+    assert result.status in ("unknown", "feasible")
+    assert (result.status == "unknown") == (result.solutions == [])
