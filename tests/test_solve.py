@@ -66,7 +66,8 @@ def _scaffold(name):
     if name.startswith("random"):
         return random_mesh(int(name[6:]))
     if name.startswith("torus"):
-        return square_torus(2, 2)
+        a, b = name[5:].split("x")
+        return square_torus(int(a), int(b))
     if name == "mobius":
         return mobius()
     return lkspace.load(name)
@@ -92,7 +93,8 @@ def test_feasibility_matches_enumeration(name, labels):
 
 
 @pytest.mark.parametrize("name, labels", [("random1", "-2..2"), ("random5", "-2..2"), ("random7", "-2..2"),
-                                          ("random14", "-2..2"), ("torus", "0,1"), ("mobius", "-1..1")])
+                                          ("random14", "-2..2"), ("torus2x2", "0,1"), ("torus3x1", "-1..1"),
+                                          ("mobius", "-1..1")])
 def test_feasibility_matches_enumeration_irregular(name, labels):
     _check_against_census(_scaffold(name), labels)
 
