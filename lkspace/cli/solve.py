@@ -56,7 +56,7 @@ def _parity(value: str, item: str) -> int:
 @click.option("--count", type=click.IntRange(min=1), default=1, show_default=True,
               help="Distinct designs wanted (they differ in how the strands connect).")
 @click.option("--distinct-up-to", type=click.Choice(["none", "rotations", "isometries"]), default="none",
-              show_default=True, help="With --count: no two designs related by a symmetry of this kind.")
+              show_default=True, help="With --count: no two designs related by a symmetry of this kind (needs lkspace.symmetry).")
 @click.option("--objective", type=click.Choice(["none", "min-abs", "min-nonzero"]), default="none", show_default=True,
               help="Minimize the total |t| or the number of non-zero labels.")
 @click.option("--time-limit", type=click.FloatRange(min=0), default=None, metavar="S",
@@ -79,7 +79,7 @@ def solve_cmd(mesh, components, no_zero, labels_spec, fix_items, parity_items, c
     Examples:
       lkspace solve --components 1
       lkspace solve cube --components 1 --no-zero --count 3
-      lkspace solve dodecahedron -n 2 --labels -1,1,2 --fix 0-1=2 --objective min-abs
+      lkspace solve dodecahedron -n 2 --labels -1,1,2 --fix 0=2 --objective min-abs
     """
     ctx = Context(as_json)
     scaffold = load_mesh(ctx, mesh)
