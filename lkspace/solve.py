@@ -195,6 +195,8 @@ class DesignModel:
     n_nodes: int
     decided: str | None = None
     reason: str = ""
+    links: list = field(default_factory=list)
+    route_vars: tuple = ((), (), {}, [])
 
     def labels_of(self, residues: np.ndarray) -> np.ndarray:
         """Reported labels ``(n_edges,) int64`` of a residue vector."""
@@ -221,11 +223,47 @@ class DesignModel:
         self.model.add_bool_or(clause)  # empty when nothing is free: the model becomes infeasible
 
     def hint(self, residues: np.ndarray) -> None:
-        """Give CP-SAT a starting point."""
-        self.model.clear_hints()
+        """Give CP-SAT a complete starting point: a design and its routes and labels.
+
+        Each component of the design is walked once from its smallest super-node (its root
+        and label) along the active links, which is exactly the assignment of the proof in
+        the module docstring.
+        """
+        model = self.model
+        model.clear_hints()
         for e, lits in self.residue_literals.items():
             for r, lit in lits:
-                self.model.add_hint(lit, bool(r == residues[e]))
+                if lit.Index() >= 0:  # the second of two choices is the negation of the first
+                    model.add_hint(lit, bool(r == residues[e]))
+        starts, ends, arcs, labels = self.route_vars
+        adjacency: list[list[tuple[int, int]]] = [[] for _ in range(self.n_nodes)]
+        active = [(a, b) for a, b, e, r in self.links if residues[e] == r]
+        for lid, (a, b) in enumerate(active):
+            adjacency[a].append((lid, b))
+            adjacency[b].append((lid, a))
+        root_of = np.full(self.n_nodes, -1, np.int64)
+        lasts: set[int] = set()
+        used: set[tuple[int, int]] = set()
+        for root in range(self.n_nodes):
+            if root_of[root] >= 0:
+                continue
+            cur, came_by = root, -1
+            root_of[root] = root
+            while True:
+                lid, nxt = next((x for x in adjacency[cur] if x[0] != came_by), (-1, root))
+                if nxt == root or root_of[nxt] >= 0:
+                    break
+                used.add((cur, nxt))
+                root_of[nxt] = root
+                cur, came_by = nxt, lid
+            lasts.add(cur)
+        for u in range(self.n_nodes):
+            model.add_hint(starts[u], bool(root_of[u] == u))
+            model.add_hint(ends[u], u in lasts)
+        for (tail, head), var in arcs.items():
+            model.add_hint(var, (tail, head) in used)
+        for u, var in enumerate(labels):
+            model.add_hint(var, int(root_of[u]))
 
 
 def _fixed_structure(scaffold: Scaffold, fixed_residues: np.ndarray):
@@ -308,6 +346,7 @@ def build_model(scaffold: Scaffold, query: Query) -> DesignModel:
             for i in range(k):
                 a = super_of[node_of_port[pm.port_a[start + i]]]
                 b = super_of[node_of_port[pm.port_b[start + (i + r) % k]]]
+                dm.links.append((int(a), int(b), e, r))
                 if a != b:
                     pair_lits.setdefault((min(a, b), max(a, b)), []).append(lit)
         if len(opts) > 2:
@@ -315,11 +354,13 @@ def build_model(scaffold: Scaffold, query: Query) -> DesignModel:
         dm.residue_literals[e] = lits
     arcs = []
     starts = [model.new_bool_var(f"start{u}") for u in range(m)]
+    ends = [model.new_bool_var(f"end{u}") for u in range(m)]
+    dm.route_vars = (starts, ends, {}, [])
     for u in range(m):
-        arcs += [(0, u + 1, starts[u]), (u + 1, 0, model.new_bool_var(f"end{u}"))]
+        arcs += [(0, u + 1, starts[u]), (u + 1, 0, ends[u])]
     for (a, b), lits in pair_lits.items():
         for tail, head in ((a, b), (b, a)):
-            arc = model.new_bool_var(f"arc{tail}_{head}")
+            arc = dm.route_vars[2][(tail, head)] = model.new_bool_var(f"arc{tail}_{head}")
             if len(lits) == 1:
                 model.add_implication(arc, lits[0])
             else:
@@ -332,6 +373,7 @@ def build_model(scaffold: Scaffold, query: Query) -> DesignModel:
         model.add(starts[0] == 1)
     elif need > 1:
         label = [model.new_int_var(0, u, f"L{u}") for u in range(m)]
+        dm.route_vars[3].extend(label)
         for (a, b), lits in pair_lits.items():
             for lit in {x.Index(): x for x in lits}.values():
                 model.add(label[a] == label[b]).only_enforce_if(lit)
@@ -464,7 +506,18 @@ def solve(scaffold: Scaffold, components: int, *, labels="-2..2", no_zero: bool 
             sols = [verify(scaffold, t, query.components) for t in found]
             status = "optimal" if objective is not None else "feasible"
             return SolveResult(status, sols, "fast-path", time.perf_counter() - t0)
-    return _solve_cp_sat(scaffold, query, count, actions, time_limit, workers, seed, t0)
+    else:
+        found = []
+    hint = found[0] % scaffold.edge_degrees if found else None
+    result = _solve_cp_sat(scaffold, query, count, actions, time_limit, workers, seed, t0, hint)
+    if found and result.status == "infeasible":
+        raise SolveVerificationError(f"internal error: CP-SAT calls {scaffold.name} infeasible for "
+                                     f"{query.components} component(s) but {found[0].tolist()} is a design")
+    if found and not result.solutions:  # time ran out: the constructed designs still stand
+        sols = [verify(scaffold, t, query.components) for t in found]
+        return SolveResult("feasible", sols, "fast-path", time.perf_counter() - t0,
+                           "CP-SAT found no better design in time", False, result.stats)
+    return result
 
 
 def symmetry_actions(scaffold: Scaffold, mode: str, label_set: np.ndarray) -> list:
@@ -482,13 +535,15 @@ def symmetry_actions(scaffold: Scaffold, mode: str, label_set: np.ndarray) -> li
     return edge_actions(scaffold, mode)
 
 
-def _solve_cp_sat(scaffold, query, count, actions, time_limit, workers, seed, t0) -> SolveResult:
+def _solve_cp_sat(scaffold, query, count, actions, time_limit, workers, seed, t0, hint=None) -> SolveResult:
     from ortools.sat.python import cp_model
 
     dm = build_model(scaffold, query)
     stats = {"model_nodes": dm.n_nodes, "fixed_cycles": dm.n_fixed_cycles}
     if dm.decided:
         return SolveResult(dm.decided, [], "presolve", time.perf_counter() - t0, dm.reason, True, stats)
+    if hint is not None:
+        dm.hint(hint)
     solver = cp_model.CpSolver()
     solver.parameters.num_workers = int(workers)
     solver.parameters.random_seed = int(seed)

@@ -309,3 +309,22 @@ def test_real_time_out_reports_unknown():
     result = solve(cube_sphere(10), 1, no_zero=True, fast_path=False, time_limit=1.0)
     assert result.status in ("unknown", "feasible")
     assert (result.status == "unknown") == (result.solutions == [])
+
+
+@pytest.mark.parametrize("name, n", [("cube", 1), ("cube", 3), ("book:4", 2), ("random1", 2), ("torus3x1", 1),
+                                     ("dodecahedron", 4)])
+def test_every_design_satisfies_the_model(name, n):
+    """The constructive half of exactness: a design's own routes and labels satisfy the model."""
+    from ortools.sat.python import cp_model
+
+    scaffold = _scaffold(name)
+    allowed = allowed_per_edge(scaffold, range(-2, 3))
+    design = next((t for t, c in _designs(scaffold, allowed) if c == n), None) if scaffold.n_edges <= 12 else None
+    if design is None:
+        design = solve(scaffold, n).solutions[0].labels
+    dm = build_model(scaffold, Query(n))
+    dm.hint(design % scaffold.edge_degrees)
+    solver = cp_model.CpSolver()
+    solver.parameters.num_workers = 1
+    solver.parameters.fix_variables_to_their_hinted_value = True
+    assert solver.solve(dm.model) in (cp_model.OPTIMAL, cp_model.FEASIBLE)
