@@ -272,7 +272,7 @@ def test_greedy_fast_path_on_non_manifold(name):
 
 
 def test_distinct_up_to_symmetry_gives_one_design_per_orbit():
-    from lkspace.solve import _solve_cp_sat
+    from lkspace.solver import _solve_cp_sat
 
     scaffold = lkspace.load("dihedron:6")
     ev = scaffold.edge_vertices
