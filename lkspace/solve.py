@@ -138,6 +138,12 @@ def allowed_labels(scaffold: Scaffold, query: Query) -> list[np.ndarray]:
     if query.no_zero:
         base = base[base != 0]
     out = [base] * scaffold.n_edges
+    for option, edges in (("fix", query.fixes), ("parity", query.parities)):
+        bad = [e for e in edges if not 0 <= e < scaffold.n_edges]
+        if bad:
+            raise LabelError(f"{option} on edge {bad[0]}: out of range 0..{scaffold.n_edges - 1}")
+    if any(p not in (0, 1) for p in query.parities.values()):
+        raise LabelError("parities must be 0 (even) or 1 (odd)")
     for e, t in query.fixes.items():
         name = scaffold.edge_name(e)
         if query.no_zero and t == 0:

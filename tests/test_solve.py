@@ -328,3 +328,10 @@ def test_every_design_satisfies_the_model(name, n):
     solver.parameters.num_workers = 1
     solver.parameters.fix_variables_to_their_hinted_value = True
     assert solver.solve(dm.model) in (cp_model.OPTIMAL, cp_model.FEASIBLE)
+
+
+def test_api_rejects_out_of_range_edges():
+    cube = lkspace.load("cube")
+    for kw in ({"fixes": {12: 1}}, {"parities": {-1: 0}}, {"parities": {0: 2}}):
+        with pytest.raises(LabelError):
+            solve(cube, 1, **kw)
