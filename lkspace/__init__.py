@@ -17,11 +17,12 @@ from .enumerate import enumerate_designs as enumerate  # noqa: A001
 from .errors import LabelError, LkspaceError, MissingDependencyError, ScaffoldError
 from .lattice import Lattice
 from .mesh import Scaffold
+from .solve import solve  # eager: importing lkspace.solve would shadow a lazy wrapper; ortools loads on use
 from .tracing import Trace, trace
 
 __version__ = "0.1.0"
 
-__all__ = ["load", "trace", "enumerate", "Scaffold", "Lattice", "Trace", "LkspaceError", "ScaffoldError",
+__all__ = ["load", "trace", "enumerate", "solve", "Scaffold", "Lattice", "Trace", "LkspaceError", "ScaffoldError",
            "LabelError", "MissingDependencyError", "__version__"]
 
 

@@ -1,0 +1,201 @@
+"""Running a query: fast path first, then CP-SAT (solve-and-exclude), every design re-traced.
+
+:mod:`lkspace.solve` builds the model and states why it is exact; this module runs it.
+:func:`solve` is re-exported as ``lkspace.solve.solve`` and ``lkspace.solve(...)``.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .errors import LabelError, LkspaceError
+from .labels import parse_label_set
+from .mesh import Scaffold
+from .solve import Query, SolveVerificationError, build_model
+from .tracing import trace
+
+
+@dataclass(frozen=True)
+class Solution:
+    """One design: labels ``(n_edges,) int64`` and its traced component count."""
+
+    labels: np.ndarray
+    components: int
+
+    def to_dict(self) -> dict:
+        return {"labels": self.labels.tolist(), "components": self.components}
+
+
+@dataclass(frozen=True)
+class SolveResult:
+    """The answer to a query (SPEC §2: ``status`` and ``solutions``).
+
+    ``status`` is ``"optimal"`` (objective proved optimal), ``"feasible"``, ``"infeasible"``
+    (proved: no design exists) or ``"unknown"`` (time ran out before either).  ``method`` is
+    ``"fast-path"``, ``"cp-sat"`` or ``"presolve"`` (decided before search).
+    """
+
+    status: str
+    solutions: list
+    method: str
+    wall_time: float
+    reason: str = ""
+    exhausted: bool = False
+    stats: dict = field(default_factory=dict)
+
+    def to_dict(self) -> dict:
+        out = {"status": self.status, "solutions": [s.to_dict() for s in self.solutions], "method": self.method,
+               "wall_time": round(self.wall_time, 6), "exhausted": self.exhausted, **self.stats}
+        if self.reason:
+            out["reason"] = self.reason
+        return out
+
+
+def verify(scaffold: Scaffold, labels: np.ndarray, components: int) -> Solution:
+    """Trace ``labels``; raise :class:`SolveVerificationError` unless it has ``components``."""
+    got = trace(scaffold, labels, np.zeros(scaffold.n_corners, bool)).components
+    if got != components:
+        raise SolveVerificationError(
+            f"internal error: solver design {labels.tolist()} on {scaffold.name} traces to {got} "
+            f"components, not {components}; please report this bug")
+    return Solution(np.asarray(labels, np.int64), got)
+
+
+def _orbit(residues: np.ndarray, actions, degrees: np.ndarray) -> list[np.ndarray]:
+    """Images of a residue vector under edge actions ``(perm, sign)``: ``t'[perm[e]] = sign * t[e]``."""
+    images = []
+    for perm, sign in actions:
+        img = np.empty_like(residues)
+        img[perm] = (sign * residues) % degrees[perm]
+        images.append(img)
+    return images
+
+
+def solve(scaffold: Scaffold, components: int, *, labels="-2..2", no_zero: bool = False, fixes=None,
+          parities=None, count: int = 1, distinct_up_to: str = "none", objective: str | None = None,
+          time_limit: float | None = None, workers: int = 0, seed: int = 0,
+          fast_path: bool = True) -> SolveResult:
+    """Find up to ``count`` designs on ``scaffold`` with exactly ``components`` strands.
+
+    Parameters
+    ----------
+    labels : str or sequence of int
+        Label set (``"-2..2"``, ``"-1,1"``, or integers).
+    no_zero : bool
+        Forbid label 0.
+    fixes : dict of int -> int, optional
+        Edge index -> label.
+    parities : dict of int -> {0, 1}, optional
+        Edge index -> 0 (even) or 1 (odd).
+    count : int
+        Distinct solutions wanted (different strand connectivity).
+    distinct_up_to : ``"none"``, ``"rotations"`` or ``"isometries"``
+        With a symmetry group, no two solutions lie in one orbit.
+    objective : None, ``"min-abs"`` or ``"min-nonzero"``
+    time_limit : float, optional
+        Seconds for the whole call; running out gives status ``"unknown"`` (or
+        ``"feasible"`` if some solutions were found).
+    workers, seed : int
+        CP-SAT search workers (0: all cores) and random seed.
+    fast_path : bool
+        Try the spanning-tree/forest construction of :mod:`lkspace.fastpath` first (it
+        answers many queries with N <= F in linear time; CP-SAT takes over otherwise).
+
+    Examples
+    --------
+    >>> from lkspace import load
+    >>> solve(load("cube"), 1, labels="-1,1").status
+    'infeasible'
+    >>> r = solve(load("tetrahedron"), 1, no_zero=True)
+    >>> r.status, r.solutions[0].components
+    ('feasible', 1)
+    """
+    t0 = time.perf_counter()
+    label_set = parse_label_set(labels) if isinstance(labels, str) else np.unique(np.asarray(labels, np.int64))
+    query = Query(int(components), label_set, bool(no_zero), dict(fixes or {}), dict(parities or {}), objective)
+    if count < 1:
+        raise LabelError(f"--count {count}: need at least 1")
+    actions = symmetry_actions(scaffold, distinct_up_to, label_set)
+    if fast_path and (count == 1 or distinct_up_to == "none"):
+        from .fastpath import spanning_designs
+
+        found, optimal = spanning_designs(scaffold, query, count, seed)
+        if len(found) == count and (objective is None or optimal):
+            sols = [verify(scaffold, t, query.components) for t in found]
+            status = "optimal" if objective is not None else "feasible"
+            return SolveResult(status, sols, "fast-path", time.perf_counter() - t0)
+    else:
+        found = []
+    hint = found[0] % scaffold.edge_degrees if found else None
+    result = _solve_cp_sat(scaffold, query, count, actions, time_limit, workers, seed, t0, hint)
+    if found and result.status == "infeasible":
+        raise SolveVerificationError(f"internal error: CP-SAT calls {scaffold.name} infeasible for "
+                                     f"{query.components} component(s) but {found[0].tolist()} is a design")
+    if found and not result.solutions:  # time ran out: the constructed designs still stand
+        sols = [verify(scaffold, t, query.components) for t in found]
+        return SolveResult("feasible", sols, "fast-path", time.perf_counter() - t0,
+                           "CP-SAT found no better design in time", False, result.stats)
+    return result
+
+
+def symmetry_actions(scaffold: Scaffold, mode: str, label_set: np.ndarray) -> list:
+    """Edge actions ``(perm (n_edges,) int64, sign)`` of the non-identity symmetries for ``mode``."""
+    if mode == "none":
+        return []
+    if mode not in ("rotations", "isometries"):
+        raise LabelError(f"--distinct-up-to {mode!r}: expected rotations, isometries or none")
+    if mode == "isometries" and not np.array_equal(np.sort(-label_set), label_set):
+        raise LabelError("--distinct-up-to isometries: the label set must be closed under negation")
+    try:
+        from .symmetry import edge_actions
+    except ImportError:
+        raise LkspaceError(f"--distinct-up-to {mode} needs lkspace.symmetry, which this installation lacks") from None
+    return edge_actions(scaffold, mode)
+
+
+def _solve_cp_sat(scaffold, query, count, actions, time_limit, workers, seed, t0, hint=None) -> SolveResult:
+    from ortools.sat.python import cp_model
+
+    dm = build_model(scaffold, query)
+    stats = {"model_nodes": dm.n_nodes, "fixed_cycles": dm.n_fixed_cycles}
+    if dm.decided:
+        return SolveResult(dm.decided, [], "presolve", time.perf_counter() - t0, dm.reason, True, stats)
+    if hint is not None:
+        dm.hint(hint)
+    solver = cp_model.CpSolver()
+    solver.parameters.num_workers = int(workers)
+    solver.parameters.random_seed = int(seed)
+    degrees = scaffold.edge_degrees
+    solutions: list[Solution] = []
+    status = "unknown"
+    exhausted = False
+    search_time = 0.0
+    while len(solutions) < count:
+        if time_limit is not None:
+            left = time_limit - (time.perf_counter() - t0)
+            if left <= 0:
+                break
+            solver.parameters.max_time_in_seconds = left
+        code = solver.solve(dm.model)
+        search_time += solver.wall_time
+        if code in (cp_model.OPTIMAL, cp_model.FEASIBLE):
+            residues = dm.residues_from(solver.boolean_value)
+            solutions.append(verify(scaffold, dm.labels_of(residues), query.components))
+            if len(solutions) == 1:
+                status = "optimal" if code == cp_model.OPTIMAL and query.objective else "feasible"
+            for res in [residues, *_orbit(residues, actions, degrees)]:
+                dm.exclude(res)
+        elif code == cp_model.INFEASIBLE:
+            exhausted = True
+            if not solutions:
+                status = "infeasible"
+            break
+        elif code == cp_model.MODEL_INVALID:  # pragma: no cover - a bug in build_model
+            raise SolveVerificationError(f"internal error: invalid CP-SAT model: {dm.model.validate()}")
+        else:
+            break
+    stats["search_time"] = round(search_time, 6)
+    return SolveResult(status, solutions, "cp-sat", time.perf_counter() - t0, "", exhausted, stats)
