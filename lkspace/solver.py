@@ -11,7 +11,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .errors import LabelError, LkspaceError
+from .errors import LabelError
 from .labels import parse_label_set
 from .mesh import Scaffold
 from .solve import Query, SolveVerificationError, build_model
@@ -149,11 +149,10 @@ def symmetry_actions(scaffold: Scaffold, mode: str, label_set: np.ndarray) -> li
         raise LabelError(f"--distinct-up-to {mode!r}: expected rotations, isometries or none")
     if mode == "isometries" and not np.array_equal(np.sort(-label_set), label_set):
         raise LabelError("--distinct-up-to isometries: the label set must be closed under negation")
-    try:
-        from .symmetry import edge_actions
-    except ImportError:
-        raise LkspaceError(f"--distinct-up-to {mode} needs lkspace.symmetry, which this installation lacks") from None
-    return edge_actions(scaffold, mode)
+    from .symmetry import symmetry_group
+
+    perms, signs = symmetry_group(scaffold).action(mode)
+    return [(perm, int(sign)) for perm, sign in zip(perms[1:], signs[1:], strict=True)]  # identity first
 
 
 def _solve_cp_sat(scaffold, query, count, actions, time_limit, workers, seed, t0, hint=None) -> SolveResult:

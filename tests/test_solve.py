@@ -293,12 +293,22 @@ def test_distinct_up_to_symmetry_gives_one_design_per_orbit():
     assert len(result.solutions) == len(orbits) == len(got) and got == orbits and result.exhausted
 
 
-def test_distinct_up_to_needs_symmetry_module_or_says_so():
-    import importlib.util
+@pytest.mark.parametrize("name, labels, mode", [("tetrahedron", "0,1", "rotations"), ("cube", "0,1", "rotations"),
+                                                ("cube", "-1..1", "isometries"), ("book:3", "0..2", "rotations")])
+def test_distinct_up_to_symmetry_matches_the_residue_orbits(name, labels, mode):
+    # solutions are distinct up to symmetry at the level of residues (the design's topology):
+    # as many as the one-component residue-class orbits that enumerate --mode residues lists
+    import pandas as pd
 
-    if importlib.util.find_spec("lkspace.symmetry") is None:
-        with pytest.raises(lkspace.LkspaceError, match="symmetry"):
-            solve(lkspace.load("cube"), 1, count=2, distinct_up_to="rotations")
+    scaffold = lkspace.load(name)
+    result = solve(scaffold, 1, labels=labels, count=500, distinct_up_to=mode, fast_path=False)
+    orbits = pd.concat(list(lkspace.enumerate(scaffold, labels, mode, mode="residues", components=1)))
+    assert result.status == "optimal" or result.exhausted
+    assert len(result.solutions) == len(orbits)
+    assert all(trace(scaffold, s.labels).components == 1 for s in result.solutions)
+
+
+def test_distinct_up_to_isometries_needs_a_symmetric_label_set():
     with pytest.raises(LabelError):
         solve(lkspace.load("cube"), 1, labels="0,1", count=2, distinct_up_to="isometries")
 
