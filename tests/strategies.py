@@ -29,5 +29,16 @@ def scaffolds(draw, max_vertices: int = 8, max_faces: int = 7):
     return Scaffold.from_faces(vertices, faces, name="random")
 
 
-def twist_labels(scaffold, lo: int = -4, hi: int = 4):
-    return st.lists(st.integers(lo, hi), min_size=scaffold.n_edges, max_size=scaffold.n_edges)
+def _traceable(scaffold) -> bool:
+    from lkspace.errors import RadialOrderError
+
+    try:
+        scaffold.radial
+    except RadialOrderError:  # two faces at one angle around an edge of degree >= 3
+        return False
+    return True
+
+
+def traceable_scaffolds(**kwargs):
+    """Random scaffolds whose radial order is unambiguous."""
+    return scaffolds(**kwargs).filter(_traceable)
