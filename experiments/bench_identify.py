@@ -49,7 +49,9 @@ def best_of(fn, repeat=3):
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--random", type=int, default=6, help="random designs per solid")
-    parser.add_argument("--out", default=os.path.join(os.path.dirname(__file__), "..", "results", "bench_identify.json"))
+    parser.add_argument(
+        "--out", default=os.path.join(os.path.dirname(__file__), "..", "results", "bench_identify.json")
+    )
     args = parser.parse_args()
     t0 = time.perf_counter()
     tables()
@@ -61,25 +63,48 @@ def main() -> None:
         s = lkspace.load(name)
         t_real, real = best_of(lambda s=s, twists=twists: realize(s, twists))
         t_id, res = best_of(lambda real=real: identify_curves(real.curves))
-        row = {"scaffold": name, "twists": np.atleast_1d(twists).tolist(), "components": res["components"],
-               "points": int(sum(len(c) for c in real.curves)), "projected_crossings": res["projected_crossings"],
-               "crossings": res.get("crossings"), "name": res["name"],
-               "realize_s": round(t_real, 4), "identify_s": round(t_id, 4), "total_s": round(t_real + t_id, 4)}
+        row = {
+            "scaffold": name,
+            "twists": np.atleast_1d(twists).tolist(),
+            "components": res["components"],
+            "points": int(sum(len(c) for c in real.curves)),
+            "projected_crossings": res["projected_crossings"],
+            "crossings": res.get("crossings"),
+            "name": res["name"],
+            "realize_s": round(t_real, 4),
+            "identify_s": round(t_id, 4),
+            "total_s": round(t_real + t_id, 4),
+        }
         rows.append(row)
-        print(f"{name:14s} {str(row['twists'])[:24]:24s} comps {row['components']:2d}  crossings "
-              f"{row['projected_crossings']:3d} -> {str(row['crossings']):>4s}  {str(row['name']):8s} "
-              f"realize {t_real:6.3f} s  identify {t_id:6.3f} s")
+        print(
+            f"{name:14s} {str(row['twists'])[:24]:24s} comps {row['components']:2d}  crossings "
+            f"{row['projected_crossings']:3d} -> {str(row['crossings']):>4s}  {str(row['name']):8s} "
+            f"realize {t_real:6.3f} s  identify {t_id:6.3f} s"
+        )
     upto30 = [r["total_s"] for r in rows if r["projected_crossings"] <= 30]
-    summary = {"designs": len(rows), "warmup_s": round(warmup, 3),
-               "max_total_s_up_to_30_crossings": max(upto30) if upto30 else None,
-               "median_total_s_up_to_30_crossings": float(np.median(upto30)) if upto30 else None,
-               "target_s": 1.0}
+    summary = {
+        "designs": len(rows),
+        "warmup_s": round(warmup, 3),
+        "max_total_s_up_to_30_crossings": max(upto30) if upto30 else None,
+        "median_total_s_up_to_30_crossings": float(np.median(upto30)) if upto30 else None,
+        "target_s": 1.0,
+    }
     print(json.dumps(summary))
     from lkspace.io.atomic import write_text
 
-    write_text(args.out, json.dumps({"benchmark": "identify", "machine": {"cpus": os.cpu_count(),
-                                     "python": platform.python_version()}, "summary": summary, "rows": rows},
-                                    indent=1) + "\n")
+    write_text(
+        args.out,
+        json.dumps(
+            {
+                "benchmark": "identify",
+                "machine": {"cpus": os.cpu_count(), "python": platform.python_version()},
+                "summary": summary,
+                "rows": rows,
+            },
+            indent=1,
+        )
+        + "\n",
+    )
 
 
 if __name__ == "__main__":

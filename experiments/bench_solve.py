@@ -73,13 +73,23 @@ def meshes(quick: bool):
 
 def run_query(scaffold, n, no_zero, fast, args):
     t0 = time.perf_counter()
-    result = lkspace.solve(scaffold, n, no_zero=no_zero, fast_path=fast, time_limit=args.time_limit,
-                           workers=args.workers, seed=0)
+    result = lkspace.solve(
+        scaffold, n, no_zero=no_zero, fast_path=fast, time_limit=args.time_limit, workers=args.workers, seed=0
+    )
     wall = time.perf_counter() - t0
-    return {"mesh": scaffold.name, "faces": scaffold.n_faces, "edges": scaffold.n_edges,
-            "max_degree": int(scaffold.edge_degrees.max()), "components": n, "no_zero": no_zero,
-            "fast_path_allowed": fast, "method": result.method, "status": result.status,
-            "seconds": round(wall, 4), "model_nodes": result.stats.get("model_nodes", "")}
+    return {
+        "mesh": scaffold.name,
+        "faces": scaffold.n_faces,
+        "edges": scaffold.n_edges,
+        "max_degree": int(scaffold.edge_degrees.max()),
+        "components": n,
+        "no_zero": no_zero,
+        "fast_path_allowed": fast,
+        "method": result.method,
+        "status": result.status,
+        "seconds": round(wall, 4),
+        "model_nodes": result.stats.get("model_nodes", ""),
+    }
 
 
 def main(argv=None):

@@ -64,10 +64,18 @@ def measure(n: int, rng: np.random.Generator) -> dict:
         result = lkspace.trace(s, twists)
         result.holds_together
         best = min(best, time.perf_counter() - t3)
-    return {"n": n, "faces": s.n_faces, "edges": s.n_edges, "corners": s.n_corners,
-            "build_s": round(t1 - t0, 4), "prepare_s": round(t2 - t1, 4), "trace_s": round(best, 4),
-            "corners_per_s": round(s.n_corners / best),
-            "corners_per_s_with_prepare": round(s.n_corners / (best + t2 - t1)), "components": result.components}
+    return {
+        "n": n,
+        "faces": s.n_faces,
+        "edges": s.n_edges,
+        "corners": s.n_corners,
+        "build_s": round(t1 - t0, 4),
+        "prepare_s": round(t2 - t1, 4),
+        "trace_s": round(best, 4),
+        "corners_per_s": round(s.n_corners / best),
+        "corners_per_s_with_prepare": round(s.n_corners / (best + t2 - t1)),
+        "components": result.components,
+    }
 
 
 def main() -> None:
@@ -83,8 +91,12 @@ def main() -> None:
         rows.append(measure(n, rng))
         print(json.dumps(rows[-1]))
         n *= 2
-    report = {"benchmark": "trace", "machine": {"cpus": os.cpu_count(), "python": platform.python_version()},
-              "target_corners_per_s": 1_000_000, "rows": rows}
+    report = {
+        "benchmark": "trace",
+        "machine": {"cpus": os.cpu_count(), "python": platform.python_version()},
+        "target_corners_per_s": 1_000_000,
+        "rows": rows,
+    }
     os.makedirs(os.path.dirname(os.path.abspath(args.out)), exist_ok=True)
     with open(args.out, "w") as fh:
         json.dump(report, fh, indent=1)

@@ -23,13 +23,23 @@ import lkspace
 from lkspace.enumerate import count
 from lkspace.space import make_space
 
-SCAFFOLDS = ["tiling:square", "tiling:hexagonal", "honeycomb:cP", "honeycomb:hP", "honeycomb:oF",
-             "honeycomb:cF", "honeycomb:cI", "voronoi:cube-faces"]
+SCAFFOLDS = [
+    "tiling:square",
+    "tiling:hexagonal",
+    "honeycomb:cP",
+    "honeycomb:hP",
+    "honeycomb:oF",
+    "honeycomb:cF",
+    "honeycomb:cI",
+    "voronoi:cube-faces",
+]
 LABEL_SETS = ["0,1", "-1..1", "-2..2"]
 LIST_LIMIT = 30_000  # list designs (not just count them) when there are at most this many assignments
-SUPERCELLS = [("tiling:square", ["1x1", "2x1", "2x2", "3x2", "3x3", "4x4"], "-1..1"),
-              ("tiling:hexagonal", ["1x1", "2x1", "2x2", "3x3"], "-1..1"),
-              ("honeycomb:cP", ["1x1x1", "2x1x1", "2x2x1", "2x2x2", "3x3x3"], "-1..1")]
+SUPERCELLS = [
+    ("tiling:square", ["1x1", "2x1", "2x2", "3x2", "3x3", "4x4"], "-1..1"),
+    ("tiling:hexagonal", ["1x1", "2x1", "2x2", "3x3"], "-1..1"),
+    ("honeycomb:cP", ["1x1x1", "2x1x1", "2x2x1", "2x2x2", "3x3x3"], "-1..1"),
+]
 
 
 def listed_summary(name: str, labels: str) -> dict:
@@ -53,9 +63,15 @@ def main() -> None:
             t0 = time.perf_counter()
             space = make_space(s, labels)
             totals = count(space)
-            row = {"scaffold": name, "labels": labels, "edges": s.n_edges, "group_order": space.group_order,
-                   "assignments": totals["assignments"], "designs": totals["designs"],
-                   "threads_per_module": totals["by_components"]}
+            row = {
+                "scaffold": name,
+                "labels": labels,
+                "edges": s.n_edges,
+                "group_order": space.group_order,
+                "assignments": totals["assignments"],
+                "designs": totals["designs"],
+                "threads_per_module": totals["by_components"],
+            }
             if totals["assignments"] <= LIST_LIMIT:
                 row.update(listed_summary(name, labels))
             row["seconds"] = round(time.perf_counter() - t0, 2)
@@ -68,27 +84,49 @@ def main() -> None:
             t0 = time.perf_counter()
             space = make_space(full, labels)
             totals = count(space)
-            growth.append({"scaffold": full, "labels": labels, "cells": int(np.prod([int(x) for x in size.split("x")])),
-                           "edges": space.scaffold.n_edges, "group_order": space.group_order,
-                           "assignments": totals["assignments"], "designs": totals["designs"],
-                           "seconds": round(time.perf_counter() - t0, 2)})
+            growth.append(
+                {
+                    "scaffold": full,
+                    "labels": labels,
+                    "cells": int(np.prod([int(x) for x in size.split("x")])),
+                    "edges": space.scaffold.n_edges,
+                    "group_order": space.group_order,
+                    "assignments": totals["assignments"],
+                    "designs": totals["designs"],
+                    "seconds": round(time.perf_counter() - t0, 2),
+                }
+            )
             print(json.dumps(growth[-1]))
     out_dir = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "results")
     os.makedirs(out_dir, exist_ok=True)
     with open(os.path.join(out_dir, "periodic_catalog.json"), "w") as fh:
         json.dump({"designs": rows, "supercell_growth": growth}, fh, indent=1, default=str)
-    lines = ["# Periodic design spaces", "", "Designs up to symmetry (rotations), threads per module "
-             "(components of the quotient) and, for listed spaces, how the designs behave.", "",
-             "| scaffold | labels | edges | group | assignments | designs | threads per module | holds together | only loops | only threads |",
-             "|---|---|---|---|---|---|---|---|---|---|"]
+    lines = [
+        "# Periodic design spaces",
+        "",
+        "Designs up to symmetry (rotations), threads per module "
+        "(components of the quotient) and, for listed spaces, how the designs behave.",
+        "",
+        "| scaffold | labels | edges | group | assignments | designs | threads per module | holds together | only loops | only threads |",
+        "|---|---|---|---|---|---|---|---|---|---|",
+    ]
     for r in rows:
-        lines.append(f"| {r['scaffold']} | {r['labels']} | {r['edges']} | {r['group_order']} | {r['assignments']:,} | "
-                     f"{r['designs']:,} | {r['threads_per_module']} | {r.get('holds_together', '')} | "
-                     f"{r.get('only_closed_loops', '')} | {r.get('only_infinite_threads', '')} |")
-    lines += ["", "## Growth with the supercell", "", "| supercell | labels | edges | group | assignments | designs |",
-              "|---|---|---|---|---|---|"]
+        lines.append(
+            f"| {r['scaffold']} | {r['labels']} | {r['edges']} | {r['group_order']} | {r['assignments']:,} | "
+            f"{r['designs']:,} | {r['threads_per_module']} | {r.get('holds_together', '')} | "
+            f"{r.get('only_closed_loops', '')} | {r.get('only_infinite_threads', '')} |"
+        )
+    lines += [
+        "",
+        "## Growth with the supercell",
+        "",
+        "| supercell | labels | edges | group | assignments | designs |",
+        "|---|---|---|---|---|---|",
+    ]
     for g in growth:
-        lines.append(f"| {g['scaffold']} | {g['labels']} | {g['edges']} | {g['group_order']} | {g['assignments']:,} | {g['designs']:,} |")
+        lines.append(
+            f"| {g['scaffold']} | {g['labels']} | {g['edges']} | {g['group_order']} | {g['assignments']:,} | {g['designs']:,} |"
+        )
     with open(os.path.join(out_dir, "periodic_catalog.md"), "w") as fh:
         fh.write("\n".join(lines) + "\n")
 

@@ -22,8 +22,20 @@ from .tracing import Trace, trace
 
 __version__ = "0.1.0"
 
-__all__ = ["load", "trace", "enumerate", "solve", "Scaffold", "Lattice", "Trace", "LkspaceError", "ScaffoldError",
-           "LabelError", "MissingDependencyError", "__version__"]
+__all__ = [
+    "load",
+    "trace",
+    "enumerate",
+    "solve",
+    "Scaffold",
+    "Lattice",
+    "Trace",
+    "LkspaceError",
+    "ScaffoldError",
+    "LabelError",
+    "MissingDependencyError",
+    "__version__",
+]
 
 
 def load(source: str | os.PathLike | Scaffold) -> Scaffold:

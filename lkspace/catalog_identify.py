@@ -80,7 +80,9 @@ def identify_catalog(path: str | os.PathLike, scaffold, processes: int = 1, seed
                 table = table.drop_columns([name])
             table = table.append_column(pa.field(name, type_), column)
         meta["identified"] = True
-        table = table.replace_schema_metadata({**(table.schema.metadata or {}), METADATA_KEY: json.dumps(meta).encode()})
+        table = table.replace_schema_metadata(
+            {**(table.schema.metadata or {}), METADATA_KEY: json.dumps(meta).encode()}
+        )
         with atomic_path(file, suffix=".parquet.tmp") as tmp:
             pq.write_table(table, tmp, compression="zstd")
         rows += table.num_rows

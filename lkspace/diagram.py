@@ -163,10 +163,9 @@ def project(curves, seed: int = 0, rotation: np.ndarray | None = None) -> Diagra
     lab_out[order] = label_out
     o_in, o_out = lab_in[:n_x], lab_out[:n_x]
     u_in, u_out = lab_in[n_x:], lab_out[n_x:]
-    pd = np.where((signs > 0)[:, None],
-                  np.column_stack([u_in, o_out, u_out, o_in]),
-                  np.column_stack([u_in, o_in, u_out, o_out]))
+    pd = np.where(
+        (signs > 0)[:, None], np.column_stack([u_in, o_out, u_out, o_in]), np.column_stack([u_in, o_in, u_out, o_out])
+    )
     # the over strand points 90 degrees clockwise of the under strand for a positive crossing
     free = [int(c) for c in range(len(curves)) if counts[c] == 0]
-    return Diagram(pd.tolist(), signs, np.column_stack([owner[over], owner[under]]).astype(np.int64),
-                   len(curves), free)
+    return Diagram(pd.tolist(), signs, np.column_stack([owner[over], owner[under]]).astype(np.int64), len(curves), free)

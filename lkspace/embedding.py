@@ -96,8 +96,10 @@ def check_embedding(curves, closed, min_separation: float, scale: float) -> tupl
         b = int(np.argmin(d))
         if d[b] < best:
             best = float(d[b])
-            where = {"curves": sorted([int(owner[i[b]]), int(owner[j[b]])]),
-                     "point": (0.5 * (pts[i[b]] + pts[j[b]])).tolist()}
+            where = {
+                "curves": sorted([int(owner[i[b]]), int(owner[j[b]])]),
+                "point": (0.5 * (pts[i[b]] + pts[j[b]])).tolist(),
+            }
 
     pts, arc, owner, lengths = _samples(curves, closed, min_separation / 2.0)
     pairs = cKDTree(pts).query_pairs(min_separation, output_type="ndarray")

@@ -41,10 +41,7 @@ class MissingDependencyError(LkspaceError, ImportError):
     """An optional dependency is missing; the message names the extra to install."""
 
     def __init__(self, package: str, extra: str, purpose: str):
-        super().__init__(
-            f"{purpose} needs the optional package {package!r}: "
-            f"pip install 'lkspace[{extra}]'"
-        )
+        super().__init__(f"{purpose} needs the optional package {package!r}: pip install 'lkspace[{extra}]'")
         self.package = package
         self.extra = extra
 

@@ -25,11 +25,22 @@ from .io.atomic import atomic_path, write_bytes, write_text
 
 FORMATS = (".obj", ".ply", ".glb", ".png")
 
-PALETTE = np.array([
-    [0.89, 0.10, 0.11], [0.12, 0.47, 0.71], [0.20, 0.63, 0.17], [1.00, 0.50, 0.00], [0.42, 0.24, 0.60],
-    [0.09, 0.75, 0.81], [0.90, 0.67, 0.00], [0.65, 0.34, 0.16], [0.97, 0.51, 0.75], [0.40, 0.40, 0.40],
-    [0.55, 0.80, 0.20], [0.00, 0.30, 0.55],
-])
+PALETTE = np.array(
+    [
+        [0.89, 0.10, 0.11],
+        [0.12, 0.47, 0.71],
+        [0.20, 0.63, 0.17],
+        [1.00, 0.50, 0.00],
+        [0.42, 0.24, 0.60],
+        [0.09, 0.75, 0.81],
+        [0.90, 0.67, 0.00],
+        [0.65, 0.34, 0.16],
+        [0.97, 0.51, 0.75],
+        [0.40, 0.40, 0.40],
+        [0.55, 0.80, 0.20],
+        [0.00, 0.30, 0.55],
+    ]
+)
 
 
 class ExportError(LkspaceError, ValueError):
@@ -57,7 +68,7 @@ def _frames(points: np.ndarray, closed: bool) -> tuple[np.ndarray, np.ndarray, n
     helper = np.eye(3)[np.argmin(np.abs(tan[0]))]
     v = np.cross(tan[0], helper)
     normal[0] = v / np.linalg.norm(v)
-    for i in range(1, n):                                # parallel transport (double reflection)
+    for i in range(1, n):  # parallel transport (double reflection)
         v1 = points[i] - points[i - 1]
         c1 = v1 @ v1
         if c1 < 1e-300:
@@ -69,7 +80,7 @@ def _frames(points: np.ndarray, closed: bool) -> tuple[np.ndarray, np.ndarray, n
         c2 = v2 @ v2
         normal[i] = r_l - (2 / c2) * (v2 @ r_l) * v2 if c2 > 1e-300 else r_l
     binormal = np.cross(tan, normal)
-    if closed and n > 2:                                  # spread the closing twist along the curve
+    if closed and n > 2:  # spread the closing twist along the curve
         angle = np.arctan2(np.cross(normal[-1], normal[0]) @ tan[0], normal[-1] @ normal[0])
         phi = angle * np.arange(n) / n
         c, s = np.cos(phi)[:, None], np.sin(phi)[:, None]
@@ -95,13 +106,13 @@ def tube(points: np.ndarray, closed: bool, radius: float, sides: int = 12):
     norms = ring.reshape(-1, 3)
     i = np.arange(n if closed else n - 1)
     j = np.arange(sides)
-    i0 = (i[:, None] * sides + j[None, :])
+    i0 = i[:, None] * sides + j[None, :]
     i1 = ((i[:, None] + 1) % n) * sides + j[None, :]
     j1 = (j[None, :] + 1) % sides
     i0n = i[:, None] * sides + j1
     i1n = ((i[:, None] + 1) % n) * sides + j1
     faces = np.concatenate([np.stack([i0, i0n, i1], -1).reshape(-1, 3), np.stack([i0n, i1n, i1], -1).reshape(-1, 3)])
-    if not closed:                                       # flat caps
+    if not closed:  # flat caps
         t0 = points[1] - points[0]
         t1 = points[-1] - points[-2]
         c0, c1 = len(verts), len(verts) + 1
@@ -165,9 +176,19 @@ def write_ply(real: Realization, path, tubes: bool = False, radius: float | None
     c = np.vstack(vcols)
     e = np.vstack(elems)
     kind = "face" if tubes else "edge"
-    header = ["ply", "format ascii 1.0", f"comment lkspace strands of {real.scaffold.name}",
-              f"element vertex {len(v)}", "property float x", "property float y", "property float z",
-              "property uchar red", "property uchar green", "property uchar blue", f"element {kind} {len(e)}"]
+    header = [
+        "ply",
+        "format ascii 1.0",
+        f"comment lkspace strands of {real.scaffold.name}",
+        f"element vertex {len(v)}",
+        "property float x",
+        "property float y",
+        "property float z",
+        "property uchar red",
+        "property uchar green",
+        "property uchar blue",
+        f"element {kind} {len(e)}",
+    ]
     header += ["property list uchar int vertex_indices"] if tubes else ["property int vertex1", "property int vertex2"]
     header.append("end_header")
     body = [f"{x:.6f} {y:.6f} {z:.6f} {r} {g} {b}" for (x, y, z), (r, g, b) in zip(v, c, strict=False)]
@@ -191,36 +212,83 @@ def glb_bytes(real: Realization, radius: float | None = None, sides: int = 12) -
     for k, ((v, nrm, f), rgb) in enumerate(zip(_tubes(real, radius, sides), colors(real.n_curves), strict=False)):
         v32 = v.astype(np.float32)
         pos = add_view(v32.tobytes(), 34962)
-        accessors.append({"bufferView": pos, "componentType": 5126, "count": len(v32), "type": "VEC3",
-                          "min": v32.min(0).tolist(), "max": v32.max(0).tolist()})
+        accessors.append(
+            {
+                "bufferView": pos,
+                "componentType": 5126,
+                "count": len(v32),
+                "type": "VEC3",
+                "min": v32.min(0).tolist(),
+                "max": v32.max(0).tolist(),
+            }
+        )
         nv = add_view(nrm.astype(np.float32).tobytes(), 34962)
         accessors.append({"bufferView": nv, "componentType": 5126, "count": len(nrm), "type": "VEC3"})
         iv = add_view(f.astype(np.uint32).reshape(-1).tobytes(), 34963)
         accessors.append({"bufferView": iv, "componentType": 5125, "count": int(f.size), "type": "SCALAR"})
-        materials.append({"name": f"strand_{k}", "doubleSided": False,
-                          "pbrMetallicRoughness": {"baseColorFactor": [*map(float, rgb), 1.0],
-                                                   "metallicFactor": 0.1, "roughnessFactor": 0.6}})
-        meshes.append({"name": f"strand_{k}", "primitives": [{
-            "attributes": {"POSITION": 3 * k, "NORMAL": 3 * k + 1}, "indices": 3 * k + 2, "material": k, "mode": 4}]})
+        materials.append(
+            {
+                "name": f"strand_{k}",
+                "doubleSided": False,
+                "pbrMetallicRoughness": {
+                    "baseColorFactor": [*map(float, rgb), 1.0],
+                    "metallicFactor": 0.1,
+                    "roughnessFactor": 0.6,
+                },
+            }
+        )
+        meshes.append(
+            {
+                "name": f"strand_{k}",
+                "primitives": [
+                    {
+                        "attributes": {"POSITION": 3 * k, "NORMAL": 3 * k + 1},
+                        "indices": 3 * k + 2,
+                        "material": k,
+                        "mode": 4,
+                    }
+                ],
+            }
+        )
         nodes.append({"name": f"strand_{k}", "mesh": k})
     binary = b"".join(blobs)
-    doc = {"asset": {"version": "2.0", "generator": "lkspace"}, "scene": 0,
-           "scenes": [{"name": real.scaffold.name, "nodes": list(range(len(nodes)))}],
-           "nodes": nodes, "meshes": meshes, "materials": materials, "accessors": accessors,
-           "bufferViews": views, "buffers": [{"byteLength": len(binary)}]}
+    doc = {
+        "asset": {"version": "2.0", "generator": "lkspace"},
+        "scene": 0,
+        "scenes": [{"name": real.scaffold.name, "nodes": list(range(len(nodes)))}],
+        "nodes": nodes,
+        "meshes": meshes,
+        "materials": materials,
+        "accessors": accessors,
+        "bufferViews": views,
+        "buffers": [{"byteLength": len(binary)}],
+    }
     text = json.dumps(doc, separators=(",", ":")).encode()
     text += b" " * ((-len(text)) % 4)
     total = 12 + 8 + len(text) + 8 + len(binary)
-    return (struct.pack("<4sII", b"glTF", 2, total) + struct.pack("<I4s", len(text), b"JSON") + text
-            + struct.pack("<I4s", len(binary), b"BIN\0") + binary)
+    return (
+        struct.pack("<4sII", b"glTF", 2, total)
+        + struct.pack("<I4s", len(text), b"JSON")
+        + text
+        + struct.pack("<I4s", len(binary), b"BIN\0")
+        + binary
+    )
 
 
 def write_glb(real: Realization, path, radius: float | None = None, sides: int = 12) -> None:
     write_bytes(path, glb_bytes(real, radius, sides))
 
 
-def render_png(real: Realization, path, show_mesh: bool = True, radius: float | None = None,
-               size: int = 900, elev: float | None = None, azim: float = -58.0, title: str | None = None) -> None:
+def render_png(
+    real: Realization,
+    path,
+    show_mesh: bool = True,
+    radius: float | None = None,
+    size: int = 900,
+    elev: float | None = None,
+    azim: float = -58.0,
+    title: str | None = None,
+) -> None:
     """A shaded picture of the tubes (one colour per strand), the input mesh faint behind.
 
     Lattice translates of one strand (a periodic block) share its colour.
@@ -249,14 +317,20 @@ def render_png(real: Realization, path, show_mesh: bool = True, radius: float | 
     sc = real.scaffold
     if show_mesh:
         base = [sc.corner_positions[s:t] for s, t in zip(sc.face_starts[:-1], sc.face_starts[1:], strict=True)]
-        shifts = (sc.lattice.translate(real.translations) if sc.periodic and real.translations is not None
-                  else np.zeros((1, 3)))
+        shifts = (
+            sc.lattice.translate(real.translations)
+            if sc.periodic and real.translations is not None
+            else np.zeros((1, 3))
+        )
         polys = [p + d for d in shifts for p in base]
-        ax.add_collection3d(Poly3DCollection(polys, facecolors=(0.6, 0.65, 0.75, 0.07),
-                                             edgecolors=(0.35, 0.35, 0.4, 0.35), linewidths=0.6))
+        ax.add_collection3d(
+            Poly3DCollection(
+                polys, facecolors=(0.6, 0.65, 0.75, 0.07), edgecolors=(0.35, 0.35, 0.4, 0.35), linewidths=0.6
+            )
+        )
     spacing = 1.2 * radius
     all_tris, all_cols = [], []
-    palette = colors(int(real.strand_of.max()) + 1)[real.strand_of]      # translates share their strand's colour
+    palette = colors(int(real.strand_of.max()) + 1)[real.strand_of]  # translates share their strand's colour
     for (v, nrm, f), rgb in zip(_tubes(real, radius, 10, spacing), palette, strict=True):
         fn = nrm[f].mean(axis=1)
         fn /= np.maximum(np.linalg.norm(fn, axis=1, keepdims=True), 1e-12)
@@ -269,7 +343,7 @@ def render_png(real: Realization, path, show_mesh: bool = True, radius: float | 
     tris = np.concatenate(all_tris)
     cols = np.concatenate(all_cols)
     depth = tris.mean(axis=1) @ view
-    order = np.argsort(depth)                            # far first: painter's algorithm
+    order = np.argsort(depth)  # far first: painter's algorithm
     ax.add_collection3d(Poly3DCollection(tris[order], facecolors=cols[order], edgecolors=cols[order], linewidths=0.25))
     lo, hi = pts.min(0) - 2 * radius, pts.max(0) + 2 * radius
     center, half = (lo + hi) / 2, (hi - lo).max() / 2
@@ -286,8 +360,14 @@ def render_png(real: Realization, path, show_mesh: bool = True, radius: float | 
     plt.close(fig)
 
 
-def export(real: Realization, path, tubes: bool = False, radius: float | None = None, show_mesh: bool = True,
-           title: str | None = None) -> str:
+def export(
+    real: Realization,
+    path,
+    tubes: bool = False,
+    radius: float | None = None,
+    show_mesh: bool = True,
+    title: str | None = None,
+) -> str:
     """Write ``real`` to ``path``; the format follows the extension (:data:`FORMATS`)."""
     ext = os.path.splitext(os.fspath(path))[1].lower()
     if ext not in FORMATS:

@@ -96,8 +96,9 @@ def spanning_designs(scaffold: Scaffold, query: Query, count: int = 1, seed: int
     designs: list[np.ndarray] = []
     seen: set[bytes] = set()
     for _ in range(4 * count):
-        weights = np.where(forced, 1e-3 * (1 + rng.random(len(two))),
-                           1 + (delta - delta.min()) + 0.5 * rng.random(len(two)))
+        weights = np.where(
+            forced, 1e-3 * (1 + rng.random(len(two))), 1 + (delta - delta.min()) + 0.5 * rng.random(len(two))
+        )
         tree = _spanning_tree(n_faces, f0[candidate], f1[candidate], weights[candidate])
         if tree is None:
             break
@@ -131,8 +132,9 @@ def _spanning_tree(n_faces, u, v, weights):
     if mst.nnz != n_faces - 1:
         return None
     lookup = {(int(x), int(y)): int(i) for x, y, i in zip(a[keep], b[keep], keep, strict=True)}
-    return np.array([lookup[(min(x, y), max(x, y))] for x, y in zip(mst.row.tolist(), mst.col.tolist(),
-                                                                       strict=True)], np.int64)
+    return np.array(
+        [lookup[(min(x, y), max(x, y))] for x, y in zip(mst.row.tolist(), mst.col.tolist(), strict=True)], np.int64
+    )
 
 
 def _meets_lower_bound(labels, costs, can, degrees, delta, forced, two, n_faces, query) -> bool:
@@ -178,7 +180,7 @@ def _greedy_designs(scaffold: Scaffold, query: Query, count: int, seed: int) -> 
     degrees = scaffold.edge_degrees
     allowed = allowed_labels(scaffold, query)
     sides, starts = scaffold.radial.edge_sides, scaffold.radial.edge_starts
-    faces_of = [scaffold.corner_face[sides[starts[e]:starts[e + 1]]] for e in range(scaffold.n_edges)]
+    faces_of = [scaffold.corner_face[sides[starts[e] : starts[e + 1]]] for e in range(scaffold.n_edges)]
     stay, merge = [], []
     for e, labels in enumerate(allowed):
         k = int(degrees[e])

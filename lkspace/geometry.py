@@ -160,11 +160,13 @@ def face_normals(scaffold: Scaffold) -> np.ndarray:
     """(n_faces, 3) float64: unit normals by Newell's method over the corner order."""
     p = scaffold.corner_positions
     q = p[scaffold.corner_next]
-    terms = np.column_stack([
-        (p[:, 1] - q[:, 1]) * (p[:, 2] + q[:, 2]),
-        (p[:, 2] - q[:, 2]) * (p[:, 0] + q[:, 0]),
-        (p[:, 0] - q[:, 0]) * (p[:, 1] + q[:, 1]),
-    ])
+    terms = np.column_stack(
+        [
+            (p[:, 1] - q[:, 1]) * (p[:, 2] + q[:, 2]),
+            (p[:, 2] - q[:, 2]) * (p[:, 0] + q[:, 0]),
+            (p[:, 0] - q[:, 0]) * (p[:, 1] + q[:, 1]),
+        ]
+    )
     normals = np.add.reduceat(terms, scaffold.face_starts[:-1], axis=0)
     norms = np.linalg.norm(normals, axis=1, keepdims=True)
     return normals / np.where(norms > 0, norms, 1.0)
@@ -180,19 +182,19 @@ def _lattice_shift(scaffold: Scaffold, offsets: np.ndarray) -> np.ndarray:
 class _Frame:
     """Label-independent per-side and per-edge arrays of the construction."""
 
-    pa: np.ndarray          # (n_edges, 3)
-    pb: np.ndarray          # (n_edges, 3)
-    axis: np.ndarray        # (n_edges, 3) unit
-    length: np.ndarray      # (n_edges,)
-    u1: np.ndarray          # (n_edges, 3)
-    u2: np.ndarray          # (n_edges, 3)
-    margin: np.ndarray      # (n_edges, 2) fraction of the edge kept straight at ends a, b
+    pa: np.ndarray  # (n_edges, 3)
+    pb: np.ndarray  # (n_edges, 3)
+    axis: np.ndarray  # (n_edges, 3) unit
+    length: np.ndarray  # (n_edges,)
+    u1: np.ndarray  # (n_edges, 3)
+    u2: np.ndarray  # (n_edges, 3)
+    margin: np.ndarray  # (n_edges, 2) fraction of the edge kept straight at ends a, b
     side_shift: np.ndarray  # (n_corners, 3) lattice shift of each side's copy
     slot_angle: np.ndarray  # (n_corners,) unwrapped angle, slot order per edge
-    slot_gap: np.ndarray    # (n_corners,) angle to the next slot
+    slot_gap: np.ndarray  # (n_corners,) angle to the next slot
     slot_radius: np.ndarray  # (n_corners,)
     port_point: np.ndarray  # (2 n_corners, 3) end of each side's straight track
-    port_dir: np.ndarray    # (2 n_corners, 3) unit direction toward the corner
+    port_dir: np.ndarray  # (2 n_corners, 3) unit direction toward the corner
 
 
 def _frame(scaffold: Scaffold, rho: float, h: float, margin: float) -> _Frame:
@@ -204,21 +206,25 @@ def _frame(scaffold: Scaffold, rho: float, h: float, margin: float) -> _Frame:
     u1, u2 = perpendicular_frames(axis)
     e = scaffold.side_edge
     d = axis[e]
-    shift = _lattice_shift(scaffold, scaffold.side_translation) if scaffold.periodic else np.zeros((scaffold.n_corners, 3))
+    shift = (
+        _lattice_shift(scaffold, scaffold.side_translation) if scaffold.periodic else np.zeros((scaffold.n_corners, 3))
+    )
     r = scaffold.face_centroids[scaffold.corner_face] - (pa[e] + shift)
     r = r - np.sum(r * d, axis=1, keepdims=True) * d
     r_norm = np.linalg.norm(r, axis=1)
     bad = np.flatnonzero(r_norm <= 1e-9 * max(1.0, float(length.max())))
     if len(bad):
         s = bad[0]
-        raise GeometryError(f"{scaffold.name}: face {scaffold.corner_face[s]} has its centroid on the line of "
-                            f"edge {scaffold.edge_name(e[s])}; cannot place its strand")
+        raise GeometryError(
+            f"{scaffold.name}: face {scaffold.corner_face[s]} has its centroid on the line of "
+            f"edge {scaffold.edge_name(e[s])}; cannot place its strand"
+        )
     r /= r_norm[:, None]
     n = face_normals(scaffold)[scaffold.corner_face]
     n = n - np.sum(n * d, axis=1, keepdims=True) * d
     n_norm = np.linalg.norm(n, axis=1, keepdims=True)
     n = np.where(n_norm > 1e-9, n / np.where(n_norm > 0, n_norm, 1), 0.0)
-    w = rho * r + h * n                                  # (n_corners, 3) track offsets
+    w = rho * r + h * n  # (n_corners, 3) track offsets
     ang = np.arctan2(np.sum(w * u2[e], axis=1), np.sum(w * u1[e], axis=1))
     rad = np.linalg.norm(w, axis=1)
     # unwrap the angles of each edge in slot order: strictly increasing within one turn
@@ -238,7 +244,8 @@ def _frame(scaffold: Scaffold, rho: float, h: float, margin: float) -> _Frame:
         k = edge_of[broken[0]]
         raise GeometryError(
             f"{scaffold.name}: edge {scaffold.edge_name(k)}: the normal offset {h:.3g} reorders the strands "
-            "around the edge; use a smaller normal offset")
+            "around the edge; use a smaller normal offset"
+        )
     # margins: at least ``margin``, longer at acute corners so that the corner turn ends
     # before the helix starts (the inset corner lies rho * cot(alpha / 2) from the vertex)
     pos = scaffold.corner_positions
@@ -246,8 +253,8 @@ def _frame(scaffold: Scaffold, rho: float, h: float, margin: float) -> _Frame:
     to_next = pos[scaffold.corner_next] - pos
     cosang = np.sum(to_prev * to_next, axis=1) / (np.linalg.norm(to_prev, axis=1) * np.linalg.norm(to_next, axis=1))
     half = 0.5 * np.arccos(np.clip(cosang, -1.0, 1.0))
-    need = np.maximum(margin, 1.4 * np.hypot(rho, h) / np.tan(np.maximum(half, 1e-3)))   # per corner
-    side_need = np.column_stack([need, need[scaffold.corner_next]])                  # first, second corner
+    need = np.maximum(margin, 1.4 * np.hypot(rho, h) / np.tan(np.maximum(half, 1e-3)))  # per corner
+    side_need = np.column_stack([need, need[scaffold.corner_next]])  # first, second corner
     fwd_side = scaffold.side_forward
     need_a = np.where(fwd_side, side_need[:, 0], side_need[:, 1])
     need_b = np.where(fwd_side, side_need[:, 1], side_need[:, 0])
@@ -292,8 +299,15 @@ def default_scale(scaffold: Scaffold) -> float:
     return float(np.linalg.norm(p[:, 1] - p[:, 0], axis=1).min())
 
 
-def realize(scaffold: Scaffold, twists=None, nulls=None, params: GeometryParams | None = None,
-            translations=None, check: bool = True, result: Trace | None = None) -> Realization:
+def realize(
+    scaffold: Scaffold,
+    twists=None,
+    nulls=None,
+    params: GeometryParams | None = None,
+    translations=None,
+    check: bool = True,
+    result: Trace | None = None,
+) -> Realization:
     """Realize the strands of ``scaffold`` under ``twists`` as 3D polylines.
 
     Parameters
@@ -342,7 +356,7 @@ def realize(scaffold: Scaffold, twists=None, nulls=None, params: GeometryParams 
     strand_of_step = np.repeat(np.arange(tr.components), np.diff(tr.strand_starts))
     x = steps
     y = cp[x]
-    z = tr.edge_partner[y]                               # -1 at a cut
+    z = tr.edge_partner[y]  # -1 at a cut
     # lattice copy of every step: accumulate the translation of each edge link
     if dim:
         st = scaffold.side_translation
@@ -362,21 +376,22 @@ def realize(scaffold: Scaffold, twists=None, nulls=None, params: GeometryParams 
     q_pt = _bezier_controls(a_pt, fr.port_dir[x], c_pt, -fr.port_dir[y])
     u = np.arange(nc) / nc
     b0, b1, b2 = (1 - u) ** 2, 2 * u * (1 - u), u**2
-    corner_pts = (b0[None, :, None] * a_pt[:, None] + b1[None, :, None] * q_pt[:, None]
-                  + b2[None, :, None] * c_pt[:, None])      # (n_steps, nc, 3)
+    corner_pts = (
+        b0[None, :, None] * a_pt[:, None] + b1[None, :, None] * q_pt[:, None] + b2[None, :, None] * c_pt[:, None]
+    )  # (n_steps, nc, 3)
 
     # edge pieces: the helix from port y to port z
     ys = y // 2
     e = scaffold.side_edge[ys]
     k = degrees[e]
-    t = np.where(k > 1, twist[e], 0)     # a lone strand's full turns about an empty axis are a curl: drawn straight
+    t = np.where(k > 1, twist[e], 0)  # a lone strand's full turns about an empty axis are a curl: drawn straight
     has_edge = z >= 0
     turns = np.abs(t) / k
     n_edge = np.where(has_edge, params.edge_samples + np.ceil(params.samples_per_turn * turns).astype(np.int64), 0)
     piece = np.repeat(np.arange(n_steps), n_edge)
     offsets = np.concatenate([[0], np.cumsum(n_edge)])
     sig = (np.arange(len(piece)) - offsets[piece]) / np.maximum(n_edge[piece], 1)
-    fwd = ((y % 2 == 0) == scaffold.side_forward[ys])[piece]       # port y at end a
+    fwd = ((y % 2 == 0) == scaffold.side_forward[ys])[piece]  # port y at end a
     ep = e[piece]
     slot = scaffold.radial.side_slot[ys][piece]
     g = smoothstep(sig)
@@ -393,8 +408,13 @@ def realize(scaffold: Scaffold, twists=None, nulls=None, params: GeometryParams 
     nxt_idx = np.where(jm + 1 == kk, scaffold.radial.edge_starts[ep], idx + 1)
     phi = fr.slot_angle[idx] + rem * fr.slot_gap[idx] + 2 * np.pi * wraps
     rad = (1 - rem) * fr.slot_radius[idx] + rem * fr.slot_radius[nxt_idx]
-    edge_pts = (fr.pa[ep] + par[:, None] * (fr.pb[ep] - fr.pa[ep]) + fr.side_shift[ys][piece] + step_shift[piece]
-                + rad[:, None] * (np.cos(phi)[:, None] * fr.u1[ep] + np.sin(phi)[:, None] * fr.u2[ep]))
+    edge_pts = (
+        fr.pa[ep]
+        + par[:, None] * (fr.pb[ep] - fr.pa[ep])
+        + fr.side_shift[ys][piece]
+        + step_shift[piece]
+        + rad[:, None] * (np.cos(phi)[:, None] * fr.u1[ep] + np.sin(phi)[:, None] * fr.u2[ep])
+    )
 
     # assemble: per step, the corner turn then its edge piece
     per_step = nc + n_edge
@@ -409,7 +429,9 @@ def realize(scaffold: Scaffold, twists=None, nulls=None, params: GeometryParams 
     periods = tr.periods if dim else np.zeros((tr.components, 0), np.int64)
     if translations is not None and not dim:
         raise GeometryError(f"{scaffold.name}: translated copies need a periodic scaffold")
-    translations = np.zeros((1, dim), np.int64) if translations is None else np.asarray(translations, np.int64).reshape(-1, dim)
+    translations = (
+        np.zeros((1, dim), np.int64) if translations is None else np.asarray(translations, np.int64).reshape(-1, dim)
+    )
     copy_shift = _lattice_shift(scaffold, translations)
     for c_i, shift in enumerate(copy_shift):
         for s_i in range(tr.components):
@@ -419,7 +441,7 @@ def realize(scaffold: Scaffold, twists=None, nulls=None, params: GeometryParams 
             if not tr.closed[s_i]:
                 last = tr.strand_starts[s_i + 1] - 1
                 pts = np.vstack([pts, c_pt[last]])
-            elif not is_closed:                          # one period of an infinite thread
+            elif not is_closed:  # one period of an infinite thread
                 last = tr.strand_starts[s_i + 1] - 1
                 first = tr.strand_starts[s_i]
                 pts = np.vstack([pts, a_pt[first] + _lattice_shift(scaffold, periods[s_i][None])[0]])
@@ -435,11 +457,26 @@ def realize(scaffold: Scaffold, twists=None, nulls=None, params: GeometryParams 
         raise GeometryError(
             f"{scaffold.name}: strands {closest['curves'][0]} and {closest['curves'][1]} come within "
             f"{min_dist:.3g} (< min_separation {min_sep:.3g}) near {closest['place']}; the geometry would "
-            "self-intersect (try a smaller --radius or --normal-offset)")
+            "self-intersect (try a smaller --radius or --normal-offset)"
+        )
     tube = params.tube_radius if params.tube_radius is not None else min(0.03 * scale, 0.45 * min_dist)
-    return Realization(scaffold, tr, curves, closed, np.array(strand_of, np.int64), np.array(copy_of, np.int64),
-                       scale, float(rho), float(h), float(margin), float(tube), float(min_sep), float(min_dist), closest,
-                       translations)
+    return Realization(
+        scaffold,
+        tr,
+        curves,
+        closed,
+        np.array(strand_of, np.int64),
+        np.array(copy_of, np.int64),
+        scale,
+        float(rho),
+        float(h),
+        float(margin),
+        float(tube),
+        float(min_sep),
+        float(min_dist),
+        closest,
+        translations,
+    )
 
 
 def _place(scaffold: Scaffold, point) -> str:

@@ -31,7 +31,7 @@ from .geometry import GeometryParams, realize
 from .mesh import Scaffold
 
 PURPOSE = "knot identification"
-HOMFLY_MAX_CROSSINGS = 40   # HOMFLY-PT (regina) of larger simplified diagrams is skipped
+HOMFLY_MAX_CROSSINGS = 40  # HOMFLY-PT (regina) of larger simplified diagrams is skipped
 _X = Fraction(2, 3)
 
 
@@ -112,8 +112,17 @@ def _build_tables(dki) -> dict:
         fp = _eval_table(row["jones_polynomial"], "t", _X)
         if fp is None:
             continue
-        add({"name": name, "table_name": name, "components": 1, "pd": row.get("pd_notation"), "fp": fp,
-             "crossings": int(row.get("crossing_number") or 0), "volume": _float(row.get("volume"))})
+        add(
+            {
+                "name": name,
+                "table_name": name,
+                "components": 1,
+                "pd": row.get("pd_notation"),
+                "fp": fp,
+                "crossings": int(row.get("crossing_number") or 0),
+                "volume": _float(row.get("volume")),
+            }
+        )
     for row in dki.link_list(proper_links=True):
         name = row.get("name")
         if not name or name == "Name" or not row.get("jones_polynomial"):
@@ -122,9 +131,17 @@ def _build_tables(dki) -> dict:
         if fp is None:
             continue
         pd = row.get("pd_notation_vector")
-        add({"name": name.split("{")[0], "table_name": name, "components": int(row.get("components") or 0),
-             "pd": pd.replace("{", "[").replace("}", "]") if pd else None, "fp": fp,
-             "crossings": int(row.get("crossing_number") or 0), "volume": _float(row.get("volume"))})
+        add(
+            {
+                "name": name.split("{")[0],
+                "table_name": name,
+                "components": int(row.get("components") or 0),
+                "pd": pd.replace("{", "[").replace("}", "]") if pd else None,
+                "fp": fp,
+                "crossings": int(row.get("crossing_number") or 0),
+                "volume": _float(row.get("volume")),
+            }
+        )
     return index
 
 
@@ -225,8 +242,13 @@ def name_pd(pd: list, n_components: int) -> dict:
     """
     spherogram, _, _ = _modules()
     if not pd:
-        out = {"name": "0_1" if n_components == 1 else None, "crossings": 0, "split": n_components > 1,
-               "mirror": None, "jones": "1"}
+        out = {
+            "name": "0_1" if n_components == 1 else None,
+            "crossings": 0,
+            "split": n_components > 1,
+            "mirror": None,
+            "jones": "1",
+        }
         if n_components > 1:
             out["pieces"] = ["0_1"] * n_components
             out["note"] = f"unlink of {n_components} components"
@@ -238,8 +260,13 @@ def name_pd(pd: list, n_components: int) -> dict:
     n_free += link.unlinked_unknot_components
     if len(pieces) + n_free > 1:
         named = [name_pd(_one_based(p.PD_code()), len(p.link_components)) for p in pieces]
-        out = {"name": None, "split": True, "crossings": sum(p.get("crossings", 0) for p in named),
-               "pieces": [p["name"] for p in named] + ["0_1"] * n_free, "mirror": None}
+        out = {
+            "name": None,
+            "split": True,
+            "crossings": sum(p.get("crossings", 0) for p in named),
+            "pieces": [p["name"] for p in named] + ["0_1"] * n_free,
+            "mirror": None,
+        }
         out["note"] = "split link: " + " + ".join(str(p) for p in out["pieces"])
         return out
     simple = _one_based(link.PD_code())
@@ -251,8 +278,7 @@ def name_pd(pd: list, n_components: int) -> dict:
             named = [name_diagram(_one_based(f.PD_code()), len(f.link_components)) for f in factors]
             out["factors"] = [f.get("chiral_name") or f["name"] for f in named]
             if all(f["name"] for f in named):
-                out.update(name="#".join(sorted((f["name"] for f in named), key=_name_key)), prime=False,
-                           mirror=None)
+                out.update(name="#".join(sorted((f["name"] for f in named), key=_name_key)), prime=False, mirror=None)
                 if all(f.get("chiral_name") or f["mirror"] is None for f in named) and n_components == 1:
                     out["chiral_name"] = "#".join(sorted(out["factors"], key=_name_key))
     if n_components == 1 and simple:
@@ -281,14 +307,16 @@ def identify_curves(curves, seed: int = 0) -> dict:
         results of :func:`name_pd` (invariants, see the module docstring).
     """
     diagram = project(curves, seed=seed)
-    out = {"components": len(curves), "linking_matrix": diagram.linking_matrix().tolist(),
-           "projected_crossings": diagram.n_crossings}
+    out = {
+        "components": len(curves),
+        "linking_matrix": diagram.linking_matrix().tolist(),
+        "projected_crossings": diagram.n_crossings,
+    }
     out.update(name_pd(diagram.pd, len(curves)))
     return out
 
 
-def identify(scaffold: Scaffold, twists=None, nulls=None, params: GeometryParams | None = None,
-             seed: int = 0) -> dict:
+def identify(scaffold: Scaffold, twists=None, nulls=None, params: GeometryParams | None = None, seed: int = 0) -> dict:
     """Knot/link type of ``scaffold`` labelled by ``twists`` (SPEC §2 ``identify``).
 
     Examples
@@ -303,7 +331,7 @@ def identify(scaffold: Scaffold, twists=None, nulls=None, params: GeometryParams
         tr = real.trace
         reason = "open strands (null edge-sides)" if not tr.closed.all() else "infinite periodic threads"
         raise LkspaceError(f"{scaffold.name}: cannot identify a structure with {reason}")
-    for attempt in range(3):                             # a rare non-generic projection: turn again
+    for attempt in range(3):  # a rare non-generic projection: turn again
         try:
             out = identify_curves(real.curves, seed=seed + attempt)
             break
@@ -324,12 +352,27 @@ def _init_worker(scaffold: Scaffold, seed: int) -> None:
 def _identify_row(labels) -> dict:
     try:
         r = identify(_WORKER["scaffold"], np.asarray(labels, np.int64), seed=_WORKER["seed"])
-        return {"knot_name": r["name"], "components": r["components"], "split": r.get("split"),
-                "mirror": r.get("mirror"), "crossings": r.get("crossings"),
-                "jones": r.get("jones"), "linking_matrix": json.dumps(r["linking_matrix"]), "error": None}
+        return {
+            "knot_name": r["name"],
+            "components": r["components"],
+            "split": r.get("split"),
+            "mirror": r.get("mirror"),
+            "crossings": r.get("crossings"),
+            "jones": r.get("jones"),
+            "linking_matrix": json.dumps(r["linking_matrix"]),
+            "error": None,
+        }
     except LkspaceError as exc:
-        return {"knot_name": None, "components": None, "split": None, "mirror": None, "crossings": None,
-                "jones": None, "linking_matrix": None, "error": str(exc)}
+        return {
+            "knot_name": None,
+            "components": None,
+            "split": None,
+            "mirror": None,
+            "crossings": None,
+            "jones": None,
+            "linking_matrix": None,
+            "error": str(exc),
+        }
 
 
 COLUMNS = ["knot_name", "components", "split", "mirror", "crossings", "jones", "linking_matrix", "error"]
@@ -369,7 +412,7 @@ def identify_batch(scaffold: Scaffold, labels_2d, processes: int = 1, seed: int 
     import pandas as pd
 
     _modules()
-    tables()                                             # loaded once, shared by forked workers
+    tables()  # loaded once, shared by forked workers
     labels_2d = np.asarray(labels_2d, np.int64).reshape(-1, scaffold.n_edges)
     if progress is None:
         progress = sys.stderr.isatty()
@@ -388,8 +431,15 @@ def identify_batch(scaffold: Scaffold, labels_2d, processes: int = 1, seed: int 
             from rich.console import Console
             from rich.progress import track
 
-            rows = list(track(rows_iter, total=len(labels_2d), description="identifying", transient=True,
-                              console=Console(stderr=True)))
+            rows = list(
+                track(
+                    rows_iter,
+                    total=len(labels_2d),
+                    description="identifying",
+                    transient=True,
+                    console=Console(stderr=True),
+                )
+            )
         else:
             rows = list(rows_iter)
     finally:

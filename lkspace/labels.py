@@ -127,7 +127,9 @@ def read_twist_file(scaffold: Scaffold, path: str) -> np.ndarray:
         labels[~named] = default
     elif not named.all():
         missing = ", ".join(scaffold.edge_name(e) for e in np.flatnonzero(~named)[:5])
-        raise LabelError(f"{name}: no label for {int((~named).sum())} edge(s) ({missing}); add them or a '* T' default line")
+        raise LabelError(
+            f"{name}: no label for {int((~named).sum())} edge(s) ({missing}); add them or a '* T' default line"
+        )
     return labels
 
 

@@ -30,9 +30,7 @@ class Lattice:
     def __post_init__(self):
         basis = np.array(self.basis, dtype=np.float64)
         if basis.ndim != 2 or basis.shape[1] != 3 or basis.shape[0] not in (2, 3):
-            raise ScaffoldError(
-                f"lattice: expected 2 or 3 basis vectors of length 3, got shape {basis.shape}"
-            )
+            raise ScaffoldError(f"lattice: expected 2 or 3 basis vectors of length 3, got shape {basis.shape}")
         if not np.all(np.isfinite(basis)):
             raise ScaffoldError("lattice: basis vectors must be finite numbers")
         if np.linalg.matrix_rank(basis, tol=1e-9 * max(1.0, np.abs(basis).max())) < len(basis):

@@ -130,7 +130,11 @@ class Scaffold:
         if self.lattice is not None:
             if not isinstance(self.lattice, Lattice):
                 set_("lattice", Lattice(self.lattice))
-            offsets = np.zeros((len(corners), self.lattice.dim), np.int64) if self.corner_offsets is None else self.corner_offsets
+            offsets = (
+                np.zeros((len(corners), self.lattice.dim), np.int64)
+                if self.corner_offsets is None
+                else self.corner_offsets
+            )
             offsets = np.asarray(offsets)
             if offsets.shape != (len(corners), self.lattice.dim) or not np.issubdtype(offsets.dtype, np.integer):
                 raise ScaffoldError(
@@ -322,8 +326,15 @@ class Scaffold:
     def with_labels(self, twists=None, nulls=None) -> Scaffold:
         """A copy carrying default ``twists`` and ``nulls``."""
         return Scaffold(
-            self.vertices, self.face_starts, self.corners, self.lattice, self.corner_offsets,
-            self.radial_orders, twists, nulls, self.name,
+            self.vertices,
+            self.face_starts,
+            self.corners,
+            self.lattice,
+            self.corner_offsets,
+            self.radial_orders,
+            twists,
+            nulls,
+            self.name,
         )
 
     @classmethod
@@ -341,8 +352,12 @@ class Scaffold:
         corners = np.concatenate([np.asarray(f, dtype=np.int64) for f in faces]) if faces else np.zeros(0, np.int64)
         offsets = kwargs.pop("offsets", None)
         if offsets is not None:
-            offsets = np.concatenate([np.asarray(o, dtype=np.int64).reshape(len(f), -1) for o, f in zip(offsets, faces)])
-        return cls(np.asarray(vertices, dtype=np.float64).reshape(-1, 3), starts, corners, corner_offsets=offsets, **kwargs)
+            offsets = np.concatenate(
+                [np.asarray(o, dtype=np.int64).reshape(len(f), -1) for o, f in zip(offsets, faces)]
+            )
+        return cls(
+            np.asarray(vertices, dtype=np.float64).reshape(-1, 3), starts, corners, corner_offsets=offsets, **kwargs
+        )
 
     def faces(self) -> list[list[int]]:
         """Faces as lists of vertex indices."""
@@ -374,9 +389,7 @@ def check_twists(scaffold: Scaffold, twists) -> np.ndarray:
     elif arr.dtype.kind not in "iub":
         raise LabelError(f"twist labels must be integers, got {arr.dtype}")
     if arr.shape != (scaffold.n_edges,):
-        raise LabelError(
-            f"{scaffold.name}: expected {scaffold.n_edges} twist labels (one per edge), got {arr.size}"
-        )
+        raise LabelError(f"{scaffold.name}: expected {scaffold.n_edges} twist labels (one per edge), got {arr.size}")
     return arr.astype(np.int64)
 
 

@@ -101,7 +101,7 @@ def radial_order(scaffold) -> RadialOrder:
                     f"{scaffold.name}: radial order of edge {scaffold.edge_name(e)} must list its "
                     f"{len(expected)} face-sides {expected.tolist()}, got {sides.tolist()}"
                 )
-            edge_sides[edge_starts[e]:edge_starts[e + 1]] = sides
+            edge_sides[edge_starts[e] : edge_starts[e + 1]] = sides
             explicit[e] = True
 
     check = (degrees >= 3) & ~explicit
@@ -120,7 +120,7 @@ def radial_order(scaffold) -> RadialOrder:
     group_start = np.r_[len(sorted_edges) > 0, ~same_edge]
     first_of_group = np.flatnonzero(group_start)
     last_of_group = np.r_[first_of_group[1:], len(sorted_edges)][: len(first_of_group)] - 1
-    wrap = (sorted_angles[first_of_group] + 2 * np.pi - sorted_angles[last_of_group] < ANGLE_TOLERANCE)
+    wrap = sorted_angles[first_of_group] + 2 * np.pi - sorted_angles[last_of_group] < ANGLE_TOLERANCE
     wrap &= check[sorted_edges[first_of_group]]
     if close.any() or wrap.any():
         if close.any():

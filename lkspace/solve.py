@@ -325,9 +325,12 @@ def build_model(scaffold: Scaffold, query: Query) -> DesignModel:
     need = int(query.components) - n_fixed_cycles
     if m == 0 and need != 0 or m > 0 and not 1 <= need <= m:
         dm.decided = "infeasible"
-        dm.reason = (f"the allowed labels fix every edge mod K: always {n_fixed_cycles} component(s)" if m == 0 else
-                     f"{n_fixed_cycles} component(s) are fixed and {m} free path(s) remain: "
-                     f"only {n_fixed_cycles + 1}..{n_fixed_cycles + m} component(s) are possible")
+        dm.reason = (
+            f"the allowed labels fix every edge mod K: always {n_fixed_cycles} component(s)"
+            if m == 0
+            else f"{n_fixed_cycles} component(s) are fixed and {m} free path(s) remain: "
+            f"only {n_fixed_cycles + 1}..{n_fixed_cycles + m} component(s) are possible"
+        )
         return dm
     model = cp_model.CpModel()
     dm.model = model
@@ -392,8 +395,12 @@ def build_model(scaffold: Scaffold, query: Query) -> DesignModel:
     # from residue 0, each changing the component count by at most one, and all-zero labels
     # give one component per face.  So the total swap distance is at least |F - N|.
     base = sum(int(k) - math.gcd(int(k), int(r)) for k, r in zip(degrees, fixed, strict=True) if r > 0)
-    distance = [(int(degrees[e]) - math.gcd(int(degrees[e]), r)) * lit
-                for e, lits in dm.residue_literals.items() for r, lit in lits if r]
+    distance = [
+        (int(degrees[e]) - math.gcd(int(degrees[e]), r)) * lit
+        for e, lits in dm.residue_literals.items()
+        for r, lit in lits
+        if r
+    ]
     gap = abs(scaffold.n_faces - int(query.components)) - base
     if distance and gap > 0:
         model.add(sum(distance) >= gap)
@@ -404,5 +411,19 @@ def build_model(scaffold: Scaffold, query: Query) -> DesignModel:
 
 from .solver import Solution, SolveResult, solve, symmetry_actions, verify  # noqa: E402  (re-exported API)
 
-__all__ = ["Query", "DesignModel", "build_model", "allowed_labels", "label_cost", "representatives", "solve",
-           "SolveResult", "Solution", "verify", "symmetry_actions", "SolveVerificationError", "OBJECTIVES", "STATUSES"]
+__all__ = [
+    "Query",
+    "DesignModel",
+    "build_model",
+    "allowed_labels",
+    "label_cost",
+    "representatives",
+    "solve",
+    "SolveResult",
+    "Solution",
+    "verify",
+    "symmetry_actions",
+    "SolveVerificationError",
+    "OBJECTIVES",
+    "STATUSES",
+]

@@ -47,8 +47,14 @@ class SolveResult:
     stats: dict = field(default_factory=dict)
 
     def to_dict(self) -> dict:
-        out = {"status": self.status, "solutions": [s.to_dict() for s in self.solutions], "method": self.method,
-               "wall_time": round(self.wall_time, 6), "exhausted": self.exhausted, **self.stats}
+        out = {
+            "status": self.status,
+            "solutions": [s.to_dict() for s in self.solutions],
+            "method": self.method,
+            "wall_time": round(self.wall_time, 6),
+            "exhausted": self.exhausted,
+            **self.stats,
+        }
         if self.reason:
             out["reason"] = self.reason
         return out
@@ -60,7 +66,8 @@ def verify(scaffold: Scaffold, labels: np.ndarray, components: int) -> Solution:
     if got != components:
         raise SolveVerificationError(
             f"internal error: solver design {labels.tolist()} on {scaffold.name} traces to {got} "
-            f"components, not {components}; please report this bug")
+            f"components, not {components}; please report this bug"
+        )
     return Solution(np.asarray(labels, np.int64), got)
 
 
@@ -74,10 +81,22 @@ def _orbit(residues: np.ndarray, actions, degrees: np.ndarray) -> list[np.ndarra
     return images
 
 
-def solve(scaffold: Scaffold, components: int, *, labels="-2..2", no_zero: bool = False, fixes=None,
-          parities=None, count: int = 1, distinct_up_to: str = "none", objective: str | None = None,
-          time_limit: float | None = None, workers: int = 0, seed: int = 0,
-          fast_path: bool = True) -> SolveResult:
+def solve(
+    scaffold: Scaffold,
+    components: int,
+    *,
+    labels="-2..2",
+    no_zero: bool = False,
+    fixes=None,
+    parities=None,
+    count: int = 1,
+    distinct_up_to: str = "none",
+    objective: str | None = None,
+    time_limit: float | None = None,
+    workers: int = 0,
+    seed: int = 0,
+    fast_path: bool = True,
+) -> SolveResult:
     """Find up to ``count`` designs on ``scaffold`` with exactly ``components`` strands.
 
     Parameters
@@ -132,12 +151,21 @@ def solve(scaffold: Scaffold, components: int, *, labels="-2..2", no_zero: bool 
     hint = found[0] % scaffold.edge_degrees if found else None
     result = _solve_cp_sat(scaffold, query, count, actions, time_limit, workers, seed, t0, hint)
     if found and result.status == "infeasible":
-        raise SolveVerificationError(f"internal error: CP-SAT calls {scaffold.name} infeasible for "
-                                     f"{query.components} component(s) but {found[0].tolist()} is a design")
+        raise SolveVerificationError(
+            f"internal error: CP-SAT calls {scaffold.name} infeasible for "
+            f"{query.components} component(s) but {found[0].tolist()} is a design"
+        )
     if found and not result.solutions:  # time ran out: the constructed designs still stand
         sols = [verify(scaffold, t, query.components) for t in found]
-        return SolveResult("feasible", sols, "fast-path", time.perf_counter() - t0,
-                           "CP-SAT found no better design in time", False, result.stats)
+        return SolveResult(
+            "feasible",
+            sols,
+            "fast-path",
+            time.perf_counter() - t0,
+            "CP-SAT found no better design in time",
+            False,
+            result.stats,
+        )
     return result
 
 

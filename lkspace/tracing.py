@@ -217,8 +217,14 @@ class Trace:
         for port in (first, last):
             side = int(port // 2)
             corner = side if port % 2 == 0 else int(sc.corner_next[side])
-            out.append({"face": int(sc.corner_face[side]), "side": side, "edge": int(sc.side_edge[side]),
-                        "vertex": int(sc.corners[corner])})
+            out.append(
+                {
+                    "face": int(sc.corner_face[side]),
+                    "side": side,
+                    "edge": int(sc.side_edge[side]),
+                    "vertex": int(sc.corners[corner]),
+                }
+            )
         return out
 
     def to_dict(self) -> dict:
@@ -308,4 +314,6 @@ def trace(scaffold: Scaffold, twists=None, nulls=None) -> Trace:
         model.corner_partner, partner, np.ascontiguousarray(translation)
     )
     even = np.where(steps % 2 == 0, steps, model.corner_partner[steps])
-    return Trace(scaffold, twists, null_mask, steps, even // 2, starts, closed, periods, port_strand, port_shift, partner)
+    return Trace(
+        scaffold, twists, null_mask, steps, even // 2, starts, closed, periods, port_strand, port_shift, partner
+    )

@@ -15,7 +15,10 @@ pytest.importorskip("snappy")
 
 def test_enumerate_identify_dihedron(tmp_path, capsys):
     out = tmp_path / "d3.parquet"
-    assert main(["enumerate", "dihedron:3", "--labels", "-1..1", "-o", str(out), "--identify", "--jobs", "2", "--json"]) == 0
+    assert (
+        main(["enumerate", "dihedron:3", "--labels", "-1..1", "-o", str(out), "--identify", "--jobs", "2", "--json"])
+        == 0
+    )
     payload = json.loads(capsys.readouterr().out)
     assert payload["identified"]["rows"] == 10
     df = pd.read_parquet(out)

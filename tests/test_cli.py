@@ -77,18 +77,21 @@ def test_human_output(capsys):
     assert code == 0 and "4 component(s)" in out
 
 
-@pytest.mark.parametrize("args, message", [
-    (["trace", "nope.obj", "--twist", "1"], "nope.obj: no such file"),
-    (["trace", "cube", "--twist", "1,2"], "expected 12 twist labels"),
-    (["trace", "cube", "--twist", "1.5"], "neither an integer"),
-    (["trace", "cube", "--twist", "1,x,1,1,1,1,1,1,1,1,1,1"], "'x' is not an integer"),
-    (["trace", "cube"], "no --twist given"),
-    (["trace", "cube", "--twist", "1", "--null", "9.0"], "face 9 out of range"),
-    (["info", "dodecahedronx"], "neither a file nor a built-in"),
-    (["scaffold", "prism"], "unknown scaffold name 'prism'"),
-    (["frobnicate"], "No such command"),
-    (["trace", "--bogus"], "No such option"),
-])
+@pytest.mark.parametrize(
+    "args, message",
+    [
+        (["trace", "nope.obj", "--twist", "1"], "nope.obj: no such file"),
+        (["trace", "cube", "--twist", "1,2"], "expected 12 twist labels"),
+        (["trace", "cube", "--twist", "1.5"], "neither an integer"),
+        (["trace", "cube", "--twist", "1,x,1,1,1,1,1,1,1,1,1,1"], "'x' is not an integer"),
+        (["trace", "cube"], "no --twist given"),
+        (["trace", "cube", "--twist", "1", "--null", "9.0"], "face 9 out of range"),
+        (["info", "dodecahedronx"], "neither a file nor a built-in"),
+        (["scaffold", "prism"], "unknown scaffold name 'prism'"),
+        (["frobnicate"], "No such command"),
+        (["trace", "--bogus"], "No such option"),
+    ],
+)
 def test_bad_input_is_one_line(capsys, args, message):
     code, out, err = run(capsys, *args, "--json")
     assert code != 0
@@ -114,8 +117,12 @@ def test_ambiguous_radial_order_cli(capsys, tmp_path):
 
 
 def test_python_dash_m_entry_point():
-    proc = subprocess.run([sys.executable, "-m", "lkspace", "trace", "cube", "--twist", "2", "--json"],
-                          capture_output=True, text=True, check=True)
+    proc = subprocess.run(
+        [sys.executable, "-m", "lkspace", "trace", "cube", "--twist", "2", "--json"],
+        capture_output=True,
+        text=True,
+        check=True,
+    )
     assert json.loads(proc.stdout)["components"] == 6
 
 
@@ -135,9 +142,14 @@ def test_trace_json_matches_reference_on_random_meshes(capsys, tmp_path):
     for trial in range(150):
         n = int(rng.integers(4, 9))
         vertices = rng.normal(size=(n, 3))
-        faces = [rng.permutation(n)[: int(rng.integers(3, min(n, 6) + 1))].tolist() for _ in range(int(rng.integers(1, 7)))]
+        faces = [
+            rng.permutation(n)[: int(rng.integers(3, min(n, 6) + 1))].tolist() for _ in range(int(rng.integers(1, 7)))
+        ]
         path = tmp_path / f"m{trial}.obj"
-        path.write_text("".join(f"v {x} {y} {z}\n" for x, y, z in vertices) + "".join("f " + " ".join(str(v + 1) for v in f) + "\n" for f in faces))
+        path.write_text(
+            "".join(f"v {x} {y} {z}\n" for x, y, z in vertices)
+            + "".join("f " + " ".join(str(v + 1) for v in f) + "\n" for f in faces)
+        )
         s = lkspace.load(str(path))
         try:
             s.radial
@@ -147,7 +159,9 @@ def test_trace_json_matches_reference_on_random_meshes(capsys, tmp_path):
         code, out, err = run(capsys, "trace", str(path), "--twist", ",".join(map(str, twists)), "--json")
         assert code == 0, err
         data = json.loads(out)
-        ref = reference_trace(vertices.tolist(), faces, {tuple(e): int(t) for e, t in zip(s.edge_vertices.tolist(), twists)})
+        ref = reference_trace(
+            vertices.tolist(), faces, {tuple(e): int(t) for e, t in zip(s.edge_vertices.tolist(), twists)}
+        )
         assert data["components"] == len(ref)
         mine = Counter(tuple(sorted(Counter(st["faces"]).items())) for st in data["strands"])
         theirs = Counter(tuple(sorted(Counter(f).items())) for _, f in ref)

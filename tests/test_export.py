@@ -30,7 +30,7 @@ def test_obj_polylines(tmp_path, borromean):
     n_vertices = sum(ln.startswith("v ") for ln in lines)
     assert n_vertices == sum(len(c) for c in borromean.curves)
     first = polylines[0].split()[1:]
-    assert first[0] == first[-1]                       # closed polyline returns to its start
+    assert first[0] == first[-1]  # closed polyline returns to its start
 
 
 def test_obj_tubes_open_in_trimesh(tmp_path, borromean):
@@ -77,7 +77,7 @@ def test_png_is_a_clear_picture(tmp_path, borromean):
     assert img.shape[0] >= 600 and img.shape[1] >= 600
     rgb = img[..., :3]
     saturated = (rgb.max(axis=2) - rgb.min(axis=2)) > 0.4
-    assert saturated.mean() > 0.02                     # tubes cover a visible part of the image
+    assert saturated.mean() > 0.02  # tubes cover a visible part of the image
     hues = {tuple(np.round(p, 1)) for p in rgb[saturated][::50]}
     assert len(hues) >= 3
 
@@ -151,7 +151,7 @@ def test_cli_export_catalog_row(tmp_path, capsys):
     assert code == 0, err
     data = json.loads(out)
     assert data["twists"] == [2, 2, 2] and data["row"] == 2 and data["scaffold"] == "dihedron:3"
-    assert data["components"] == 2                      # T(2, 6)
+    assert data["components"] == 2  # T(2, 6)
     assert out_path.read_text().count("\nl ") == 2
 
 
@@ -168,11 +168,14 @@ def test_cli_catalog_with_nested_metadata(tmp_path, capsys):
     assert json.loads(out)["components"] == 1
 
 
-@pytest.mark.parametrize("args, message", [
-    (["--row", "3"], "row 3 out of range 0..2"),
-    ([], "give --row"),
-    (["--row", "0", "--twist", "1"], "exclusive"),
-])
+@pytest.mark.parametrize(
+    "args, message",
+    [
+        (["--row", "3"], "row 3 out of range 0..2"),
+        ([], "give --row"),
+        (["--row", "0", "--twist", "1"], "exclusive"),
+    ],
+)
 def test_cli_catalog_errors(tmp_path, capsys, args, message):
     cat = tmp_path / "designs.parquet"
     write_catalog(cat)
@@ -196,11 +199,12 @@ def test_cli_export_periodic_block(tmp_path, capsys):
 
     mesh = tmp_path / "sq.json"
     io.write(square_torus(), mesh)
-    code, out, err = run(capsys, "export", str(mesh), "--twist", "1", "--block", "3x3", "-o", str(tmp_path / "w.glb"),
-                         "--json")
+    code, out, err = run(
+        capsys, "export", str(mesh), "--twist", "1", "--block", "3x3", "-o", str(tmp_path / "w.glb"), "--json"
+    )
     assert code == 0, err
     data = json.loads(out)
-    assert data["curves"] == 18 and data["components"] == 2          # two diagonal threads, 9 translates each
+    assert data["curves"] == 18 and data["components"] == 2  # two diagonal threads, 9 translates each
     code, _, err = run(capsys, "export", "cube", "--twist", "1", "--block", "3x3", "-o", str(tmp_path / "c.glb"))
     assert code == 2 and "not periodic" in err
     code, _, err = run(capsys, "export", str(mesh), "--twist", "1", "--block", "3x3x3", "-o", str(tmp_path / "c.glb"))

@@ -73,7 +73,9 @@ def test_helix_handedness_on_the_spine(twist):
     assert np.sign(sum(turn)) == np.sign(twist)
 
 
-@pytest.mark.parametrize("labels, s", [([1, 1, 1, 1], 4), ([2, 2, -1, 1], 4), ([-1, -1, -1, -1], -4), ([2, 0, 0, 0], 2)])
+@pytest.mark.parametrize(
+    "labels, s", [([1, 1, 1, 1], 4), ([2, 2, -1, 1], 4), ([-1, -1, -1, -1], -4), ([2, 0, 0, 0], 2)]
+)
 def test_dihedron_linking_number_is_half_the_label_sum(labels, s):
     real = realize(lkspace.load("dihedron:4"), np.array(labels))
     assert real.n_curves == 2
@@ -99,11 +101,11 @@ def test_collision_is_refused_with_the_place():
 def test_check_embedding_finds_a_crossing():
     t = np.linspace(0, 2 * np.pi, 100, endpoint=False)
     a = np.column_stack([np.cos(t), np.sin(t), 0 * t])
-    b = np.column_stack([np.cos(t), 0 * t, np.sin(t)])          # meets a at (+-1, 0, 0)
+    b = np.column_stack([np.cos(t), 0 * t, np.sin(t)])  # meets a at (+-1, 0, 0)
     d, where = check_embedding([a, b], [True, True], 0.01, 1.0)
     assert d < 0.01 and where["curves"] == [0, 1]
     d2, _ = check_embedding([a, b + [0, 0.5, 0]], [True, True], 0.01, 1.0)
-    assert abs(d2 - (1 - 0.75**0.5)) < 0.02                    # nearest: (0.866, .5, 0) to (1, .5, 0)
+    assert abs(d2 - (1 - 0.75**0.5)) < 0.02  # nearest: (0.866, .5, 0) to (1, .5, 0)
     d3, where3 = check_embedding([a, b + [5, 0, 0]], [True, True], 0.01, 1.0)
     assert d3 == np.inf and where3 == {}
 
@@ -122,8 +124,13 @@ def test_open_strands_end_at_their_cut(tetra):
 
 def square_torus() -> Scaffold:
     """One square face on the square lattice: a periodic scaffold with two edge classes."""
-    return Scaffold.from_faces([[0, 0, 0]], [[0, 0, 0, 0]], offsets=[[[0, 0], [1, 0], [1, 1], [0, 1]]],
-                               lattice=Lattice.square(), name="square-torus")
+    return Scaffold.from_faces(
+        [[0, 0, 0]],
+        [[0, 0, 0, 0]],
+        offsets=[[[0, 0], [1, 0], [1, 1], [0, 1]]],
+        lattice=Lattice.square(),
+        name="square-torus",
+    )
 
 
 @pytest.mark.parametrize("twists, n_open", [([2, 2], 0), ([1, 1], 2), ([0, 0], 0)])
@@ -155,7 +162,7 @@ def test_cube_chainmail_linking_numbers(cube, half):
     assert sorted(face_of) == list(range(6))
     expected = np.zeros((6, 6))
     for e in range(cube.n_edges):
-        f, g = cube.corner_face[cube.radial.edge_sides[cube.radial.edge_starts[e]:cube.radial.edge_starts[e + 1]]]
+        f, g = cube.corner_face[cube.radial.edge_sides[cube.radial.edge_starts[e] : cube.radial.edge_starts[e + 1]]]
         expected[f, g] = expected[g, f] = -twists[e] / 2
     for a in range(6):
         for b in range(a + 1, 6):
@@ -166,8 +173,8 @@ def test_cube_chainmail_linking_numbers(cube, half):
 def test_normal_offset_that_reorders_the_strands_is_refused():
     book = lkspace.load("book:3")
     faces = book.faces()
-    faces[1] = faces[1][::-1]                          # one page turned over: its normal flips
+    faces[1] = faces[1][::-1]  # one page turned over: its normal flips
     flipped = Scaffold.from_faces(book.vertices, faces, name="book:3-flipped")
-    realize(flipped, 1)                                # the default offset keeps the order
+    realize(flipped, 1)  # the default offset keeps the order
     with pytest.raises(GeometryError, match=r"edge 0-1: the normal offset .* reorders"):
         realize(flipped, 1, params=GeometryParams(radius=0.1, normal_offset=0.3))

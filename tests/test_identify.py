@@ -55,42 +55,47 @@ def test_parametric_torus_links(p, q, name):
     assert r["name"] == name
     m = identify_curves(torus(p, q, sign=-1))
     assert m["name"] == name
-    if np.gcd(p, q) == 1:                                   # knots: KnotInfo's diagrams are the positive ones
+    if np.gcd(p, q) == 1:  # knots: KnotInfo's diagrams are the positive ones
         assert (r["mirror"], m["mirror"]) == (False, True)
 
 
-@pytest.mark.parametrize("mesh, twists, name, components", [
-    ("dihedron:3", 1, "3_1", 1),
-    ("dihedron:3", [2, 2, -1], "3_1", 1),          # only the sum s = 3 matters: T(2, 3)
-    ("dihedron:5", [1, 1, 1, 0, 0], "3_1", 1),
-    ("dihedron:5", 1, "5_1", 1),
-    ("dihedron:7", 1, "7_1", 1),
-    ("dihedron:3", [1, 0, 0], "0_1", 1),           # s = 1: unknot
-    ("dihedron:3", [-1, 0, 0], "0_1", 1),
-    ("dihedron:4", 1, "L4a1", 2),                  # Solomon link T(2, 4)
-    ("dihedron:4", [1, 1, 0, 0], "L2a1", 2),       # Hopf link T(2, 2)
-    ("dihedron:8", 1, "L8a14", 2),
-    ("book:3", 2, "3_1", 1),                       # T(3, 2)
-    ("book:5", 2, "5_1", 1),                       # T(5, 2) = T(2, 5)
-    ("book:4", 3, "8_19", 1),                      # T(4, 3)
-    ("book:3", 3, "L6n1", 3),                      # T(3, 3)
-    ("book:3", 1, "0_1", 1),                       # T(3, 1)
-    ("tetrahedron", 1, "L6a4", 3),                 # Borromean rings
-    ("figure-eight", [1, 1, 1, 1, 0], "4_1", 1),
-    ("whitehead", [0, 0, -2, 0, -1, 0, -1, 2], "L5a1", 2),
-])
+@pytest.mark.parametrize(
+    "mesh, twists, name, components",
+    [
+        ("dihedron:3", 1, "3_1", 1),
+        ("dihedron:3", [2, 2, -1], "3_1", 1),  # only the sum s = 3 matters: T(2, 3)
+        ("dihedron:5", [1, 1, 1, 0, 0], "3_1", 1),
+        ("dihedron:5", 1, "5_1", 1),
+        ("dihedron:7", 1, "7_1", 1),
+        ("dihedron:3", [1, 0, 0], "0_1", 1),  # s = 1: unknot
+        ("dihedron:3", [-1, 0, 0], "0_1", 1),
+        ("dihedron:4", 1, "L4a1", 2),  # Solomon link T(2, 4)
+        ("dihedron:4", [1, 1, 0, 0], "L2a1", 2),  # Hopf link T(2, 2)
+        ("dihedron:8", 1, "L8a14", 2),
+        ("book:3", 2, "3_1", 1),  # T(3, 2)
+        ("book:5", 2, "5_1", 1),  # T(5, 2) = T(2, 5)
+        ("book:4", 3, "8_19", 1),  # T(4, 3)
+        ("book:3", 3, "L6n1", 3),  # T(3, 3)
+        ("book:3", 1, "0_1", 1),  # T(3, 1)
+        ("tetrahedron", 1, "L6a4", 3),  # Borromean rings
+        ("figure-eight", [1, 1, 1, 1, 0], "4_1", 1),
+        ("whitehead", [0, 0, -2, 0, -1, 0, -1, 2], "L5a1", 2),
+    ],
+)
 def test_known_knots_and_links(mesh, twists, name, components):
     r = name_of(mesh, twists)
     assert r["components"] == components
     assert r["name"] == name, r
 
 
-@pytest.mark.parametrize("mesh, twist, name", [("dihedron:3", 1, "3_1"), ("dihedron:5", 1, "5_1"), ("book:4", 3, "8_19")])
+@pytest.mark.parametrize(
+    "mesh, twist, name", [("dihedron:3", 1, "3_1"), ("dihedron:5", 1, "5_1"), ("book:4", 3, "8_19")]
+)
 def test_mirror_labels_give_mirror_knots(mesh, twist, name):
     pos = name_of(mesh, twist)
     neg = name_of(mesh, -twist)
     assert pos["name"] == neg["name"] == name
-    assert pos["mirror"] is False and neg["mirror"] is True   # positive twists: positive torus knots
+    assert pos["mirror"] is False and neg["mirror"] is True  # positive twists: positive torus knots
     assert pos["chiral_name"] == name and neg["chiral_name"] == "m" + name
 
 
@@ -109,14 +114,14 @@ def test_linking_matrix_of_the_solomon_link():
 
 
 def test_unknown_beyond_the_tables_keeps_invariants():
-    r = name_of("book:4", 4)                       # T(4, 4): 12 crossings, beyond LinkInfo
+    r = name_of("book:4", 4)  # T(4, 4): 12 crossings, beyond LinkInfo
     assert r["components"] == 4 and r["name"] is None
     assert r["jones"] and r["crossings"] >= 12
     assert len(r["linking_matrix"]) == 4
 
 
 def test_split_link_is_not_named():
-    r = name_of("cube", 0)                         # six separate face loops
+    r = name_of("cube", 0)  # six separate face loops
     assert r["components"] == 6 and r["name"] is None and r["split"] is True
 
 
@@ -131,7 +136,7 @@ def test_identify_batch_in_two_processes():
     df = identify_batch(sc, labels, processes=2)
     assert list(df["knot_name"][:4]) == ["3_1", "3_1", "0_1", "5_1"]
     assert list(df["mirror"][:2]) == [False, True]
-    assert pd.isna(df["knot_name"][4]) and bool(df["split"][4]) and pd.isna(df["error"][4])   # two loops
+    assert pd.isna(df["knot_name"][4]) and bool(df["split"][4]) and pd.isna(df["error"][4])  # two loops
     assert list(df["components"]) == [1, 1, 1, 1, 2]
     assert json.loads(df["linking_matrix"][0]) == [[0]]
 
@@ -177,7 +182,7 @@ def test_any_dihedron_labelling_is_the_torus_link_of_its_sum(labels):
     assert r["components"] == (2 if s % 2 == 0 else 1)
     assert r["name"] == TORUS_2[abs(s)]
     if abs(s) % 2 and abs(s) > 1:
-        assert r["mirror"] is (s < 0)                   # positive twists: positive torus knots
+        assert r["mirror"] is (s < 0)  # positive twists: positive torus knots
 
 
 @settings(max_examples=6, deadline=None)

@@ -22,7 +22,9 @@ def _same(a, b):
     assert np.array_equal(a.edge_keys, b.edge_keys)
 
 
-@pytest.mark.parametrize("name", ["tetrahedron", "cube", "dodecahedron", "truncated-octahedron", "book:3", "dihedron:4"])
+@pytest.mark.parametrize(
+    "name", ["tetrahedron", "cube", "dodecahedron", "truncated-octahedron", "book:3", "dihedron:4"]
+)
 @pytest.mark.parametrize("ext", [".obj", ".json"])
 def test_roundtrip_builtin(tmp_path, name, ext):
     s = lkspace.load(name)
@@ -75,21 +77,24 @@ f -4 -2 -1   # negative indices: 1 3 4
     assert s.faces() == [[0, 1, 2, 3], [0, 2, 3]]
 
 
-@pytest.mark.parametrize("text, match", [
-    ("v 0 0\n", "line 1: vertex needs 3 coordinates"),
-    ("v 0 0 x\n", "line 1: vertex coordinates must be numbers"),
-    ("v 0 0 nan\n", "line 1: vertex 0 has a non-finite"),
-    ("v 0 0 inf\n", "non-finite"),
-    ("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n", "line 4: face vertex index 9 out of range 1..3"),
-    ("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2\n", "line 4: face 0 has 2 vertices"),
-    ("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 2\n", "line 4: face 0 repeats a vertex"),
-    ("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 a\n", "line 4: face vertex 'a'"),
-    ("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 0\n", "index 0 out of range"),
-    ("v 0 0 0\nv 0 0 0\nv 0 1 0\nf 1 2 3\n", "zero-length edge between vertices 0 and 1"),
-    ("v 0 0 0\nv 1 0 0\nv 0 1 0\nfoo 1 2 3\n", "line 4: unknown OBJ statement 'foo'"),
-    ("v 0 0 0\n", "no faces"),
-    ("", "no vertices"),
-])
+@pytest.mark.parametrize(
+    "text, match",
+    [
+        ("v 0 0\n", "line 1: vertex needs 3 coordinates"),
+        ("v 0 0 x\n", "line 1: vertex coordinates must be numbers"),
+        ("v 0 0 nan\n", "line 1: vertex 0 has a non-finite"),
+        ("v 0 0 inf\n", "non-finite"),
+        ("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n", "line 4: face vertex index 9 out of range 1..3"),
+        ("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2\n", "line 4: face 0 has 2 vertices"),
+        ("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 2\n", "line 4: face 0 repeats a vertex"),
+        ("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 a\n", "line 4: face vertex 'a'"),
+        ("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 0\n", "index 0 out of range"),
+        ("v 0 0 0\nv 0 0 0\nv 0 1 0\nf 1 2 3\n", "zero-length edge between vertices 0 and 1"),
+        ("v 0 0 0\nv 1 0 0\nv 0 1 0\nfoo 1 2 3\n", "line 4: unknown OBJ statement 'foo'"),
+        ("v 0 0 0\n", "no faces"),
+        ("", "no vertices"),
+    ],
+)
 def test_obj_errors(text, match):
     with pytest.raises(ScaffoldError, match=match):
         parse_obj(text, "bad.obj")
@@ -104,17 +109,20 @@ def _write(tmp_path, data):
 GOOD = {"vertices": [[0, 0, 0], [1, 0, 0], [0, 1, 0]], "faces": [[0, 1, 2]]}
 
 
-@pytest.mark.parametrize("patch, match", [
-    ({"vertices": [[0, 0], [1, 0, 0], [0, 1, 0]]}, "vertices\\[0\\]: expected 3 entries"),
-    ({"faces": [[0, 1, 5]]}, "face 0: vertex index 5 out of range"),
-    ({"faces": [[0, 1, "x"]]}, "faces\\[0\\]\\[2\\]: expected an integer"),
-    ({"twists": [1, 2]}, "twists: expected 3 entries"),
-    ({"twists": [1, 2, 1.5]}, "twists\\[2\\]: expected an integer"),
-    ({"version": 99}, "version 99 is not supported"),
-    ({"colour": 1}, "unknown key"),
-    ({"nulls": [[0, 7]]}, "face 0 has no side 7"),
-    ({"offsets": [[[0, 0, 0]] * 3]}, "offsets given without a lattice"),
-])
+@pytest.mark.parametrize(
+    "patch, match",
+    [
+        ({"vertices": [[0, 0], [1, 0, 0], [0, 1, 0]]}, "vertices\\[0\\]: expected 3 entries"),
+        ({"faces": [[0, 1, 5]]}, "face 0: vertex index 5 out of range"),
+        ({"faces": [[0, 1, "x"]]}, "faces\\[0\\]\\[2\\]: expected an integer"),
+        ({"twists": [1, 2]}, "twists: expected 3 entries"),
+        ({"twists": [1, 2, 1.5]}, "twists\\[2\\]: expected an integer"),
+        ({"version": 99}, "version 99 is not supported"),
+        ({"colour": 1}, "unknown key"),
+        ({"nulls": [[0, 7]]}, "face 0 has no side 7"),
+        ({"offsets": [[[0, 0, 0]] * 3]}, "offsets given without a lattice"),
+    ],
+)
 def test_json_errors(tmp_path, patch, match):
     with pytest.raises(ScaffoldError, match=match):
         lkspace.load(_write(tmp_path, {**GOOD, **patch}))

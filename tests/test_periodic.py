@@ -35,11 +35,18 @@ def test_cubic_edge_classes_are_x_y_z():
     assert s.edge_degrees.tolist() == [4, 4, 4]
 
 
-@pytest.mark.parametrize("name, faces, edges, degrees", [
-    ("tiling:square", 1, 2, {2}), ("tiling:hexagonal", 1, 3, {2}), ("honeycomb:cP", 3, 3, {4}),
-    ("honeycomb:hP", 4, 5, {3, 4}), ("honeycomb:cF", 6, 8, {3}), ("honeycomb:cI", 7, 12, {3}),
-    ("honeycomb:oF", 7, 12, {3}),
-])
+@pytest.mark.parametrize(
+    "name, faces, edges, degrees",
+    [
+        ("tiling:square", 1, 2, {2}),
+        ("tiling:hexagonal", 1, 3, {2}),
+        ("honeycomb:cP", 3, 3, {4}),
+        ("honeycomb:hP", 4, 5, {3, 4}),
+        ("honeycomb:cF", 6, 8, {3}),
+        ("honeycomb:cI", 7, 12, {3}),
+        ("honeycomb:oF", 7, 12, {3}),
+    ],
+)
 def test_wigner_seitz_cells(name, faces, edges, degrees):
     s = lkspace.load(name)
     assert (s.n_faces, s.n_edges, set(s.edge_degrees.tolist())) == (faces, edges, degrees)
@@ -69,9 +76,17 @@ def _period_order(period, sizes):
     return math.lcm(*[s // math.gcd(s, int(p)) for p, s in zip(period, sizes)])
 
 
-@pytest.mark.parametrize("name, sizes", [("honeycomb:cP", (2, 2, 2)), ("honeycomb:cP", (1, 2, 3)),
-                                         ("tiling:square", (3, 2)), ("tiling:hexagonal", (2, 2)),
-                                         ("honeycomb:cI", (2, 1, 1)), ("honeycomb:hP", (1, 1, 2))])
+@pytest.mark.parametrize(
+    "name, sizes",
+    [
+        ("honeycomb:cP", (2, 2, 2)),
+        ("honeycomb:cP", (1, 2, 3)),
+        ("tiling:square", (3, 2)),
+        ("tiling:hexagonal", (2, 2)),
+        ("honeycomb:cI", (2, 1, 1)),
+        ("honeycomb:hP", (1, 1, 2)),
+    ],
+)
 @pytest.mark.parametrize("t", [0, 1, 2, 3])
 def test_supercell_consistency(name, sizes, t):
     base = lkspace.load(name)
@@ -82,8 +97,11 @@ def test_supercell_consistency(name, sizes, t):
     # each base thread of period p splits into n_cells / order(p mod sizes) threads of the supercell
     expected = sum(n_cells // _period_order(p, sizes) for p in a.periods)
     assert b.components == expected
-    lengths = sorted(int(a.strand_lengths[k]) * _period_order(a.periods[k], sizes)
-                     for k in range(a.components) for _ in range(n_cells // _period_order(a.periods[k], sizes)))
+    lengths = sorted(
+        int(a.strand_lengths[k]) * _period_order(a.periods[k], sizes)
+        for k in range(a.components)
+        for _ in range(n_cells // _period_order(a.periods[k], sizes))
+    )
     assert sorted(b.strand_lengths.tolist()) == lengths
     assert a.holds_together == b.holds_together
 
@@ -115,14 +133,29 @@ def test_voronoi_file(tmp_path, capsys):
     from lkspace.cli import main
 
     p = tmp_path / "v.json"
-    p.write_text(json.dumps({"format": "lkspace-voronoi", "version": 1, "lattice": np.eye(3).tolist(),
-                             "points": [[0.5, 0.5, 0], [0.5, 0, 0.5], [0, 0.5, 0.5]]}))
+    p.write_text(
+        json.dumps(
+            {
+                "format": "lkspace-voronoi",
+                "version": 1,
+                "lattice": np.eye(3).tolist(),
+                "points": [[0.5, 0.5, 0], [0.5, 0, 0.5], [0, 0.5, 0.5]],
+            }
+        )
+    )
     assert main(["info", str(p), "--json"]) == 0
     assert json.loads(capsys.readouterr().out)["faces"] == 12
 
 
-@pytest.mark.parametrize("name, match", [("tiling:square@2x2x2", "expected AxB"), ("honeycomb:cP@2x2", "expected AxBxC"),
-                                         ("cube@2x2x2", "supercells need a periodic"), ("honeycomb:xx", "unknown")])
+@pytest.mark.parametrize(
+    "name, match",
+    [
+        ("tiling:square@2x2x2", "expected AxB"),
+        ("honeycomb:cP@2x2", "expected AxBxC"),
+        ("cube@2x2x2", "supercells need a periodic"),
+        ("honeycomb:xx", "unknown"),
+    ],
+)
 def test_bad_periodic_names(name, match):
     with pytest.raises(ScaffoldError, match=match):
         lkspace.load(name)
@@ -149,15 +182,21 @@ def _minors_gcd(vectors, dim):
 
 
 @settings(max_examples=200, deadline=None)
-@given(st.integers(2, 3).flatmap(lambda d: st.tuples(st.just(d), st.lists(
-    st.lists(st.integers(-4, 4), min_size=d, max_size=d), min_size=0, max_size=5))))
+@given(
+    st.integers(2, 3).flatmap(
+        lambda d: st.tuples(
+            st.just(d), st.lists(st.lists(st.integers(-4, 4), min_size=d, max_size=d), min_size=0, max_size=5)
+        )
+    )
+)
 def test_lattice_index_is_gcd_of_minors(case):
     dim, vectors = case
     assert lattice_index(np.array(vectors, dtype=np.int64).reshape(-1, dim), dim) == _minors_gcd(vectors, dim)
 
 
-@pytest.mark.parametrize("name, labels", [("tiling:square@2x1", "-1..1"), ("honeycomb:cP", "-2..2"),
-                                          ("tiling:hexagonal", "-2..2")])
+@pytest.mark.parametrize(
+    "name, labels", [("tiling:square@2x1", "-1..1"), ("honeycomb:cP", "-2..2"), ("tiling:hexagonal", "-2..2")]
+)
 def test_periodic_catalog_rows_match_the_tracer(name, labels):
     # the enumerator's holds_together must be the lift-aware one of the tracer
     import pandas as pd
@@ -174,8 +213,15 @@ def test_periodic_catalog_rows_match_the_tracer(name, labels):
 def test_periodic_symmetry_orders():
     from lkspace.symmetry import symmetry_group
 
-    orders = {name: (symmetry_group(lkspace.load(name)).order, symmetry_group(lkspace.load(name)).n_rotations)
-              for name in ("tiling:square", "tiling:hexagonal", "honeycomb:cP", "honeycomb:cI", "honeycomb:cP@2x2x2")}
+    orders = {
+        name: (symmetry_group(lkspace.load(name)).order, symmetry_group(lkspace.load(name)).n_rotations)
+        for name in ("tiling:square", "tiling:hexagonal", "honeycomb:cP", "honeycomb:cI", "honeycomb:cP@2x2x2")
+    }
     # 2D tilings live in 3D: turning the plane over is a rotation too
-    assert orders == {"tiling:square": (16, 8), "tiling:hexagonal": (24, 12), "honeycomb:cP": (48, 24),
-                      "honeycomb:cI": (48, 24), "honeycomb:cP@2x2x2": (384, 192)}
+    assert orders == {
+        "tiling:square": (16, 8),
+        "tiling:hexagonal": (24, 12),
+        "honeycomb:cP": (48, 24),
+        "honeycomb:cI": (48, 24),
+        "honeycomb:cP@2x2x2": (384, 192),
+    }

@@ -44,10 +44,15 @@ def test_every_builtin_has_an_unambiguous_radial_order_and_traces(name):
         assert r.strand_lengths.sum() == s.n_corners
 
 
-@pytest.mark.parametrize("name, v, e, f, degrees", [
-    ("cube-net", 14, 19, 6, {1: 14, 2: 5}), ("cube-lid", 10, 15, 6, {1: 6, 2: 9}),
-    ("cubes:piano", 14, 23, 12, {2: 22, 4: 1}), ("cubes:vertex", 15, 24, 12, {2: 24}),
-])
+@pytest.mark.parametrize(
+    "name, v, e, f, degrees",
+    [
+        ("cube-net", 14, 19, 6, {1: 14, 2: 5}),
+        ("cube-lid", 10, 15, 6, {1: 6, 2: 9}),
+        ("cubes:piano", 14, 23, 12, {2: 22, 4: 1}),
+        ("cubes:vertex", 15, 24, 12, {2: 24}),
+    ],
+)
 def test_hinged(name, v, e, f, degrees):
     s = lkspace.load(name)
     assert (s.n_vertices, s.n_edges, s.n_faces) == (v, e, f)

@@ -33,8 +33,9 @@ def square_torus(a: int, b: int) -> Scaffold:
             corners = [(i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1)]
             faces.append([(x % a) * b + (y % b) for x, y in corners])
             offsets.append([[x // a, y // b] for x, y in corners])
-    return Scaffold.from_faces(vertices, faces, offsets=offsets, lattice=Lattice(np.diag([a, b, 1.0])[:2]),
-                               name=f"torus{a}x{b}")
+    return Scaffold.from_faces(
+        vertices, faces, offsets=offsets, lattice=Lattice(np.diag([a, b, 1.0])[:2]), name=f"torus{a}x{b}"
+    )
 
 
 def mobius(n: int = 5) -> Scaffold:
@@ -55,10 +56,19 @@ def solve(scaffold, n, **kw):
 
 
 CASES = [
-    ("tetrahedron", "-1,1"), ("tetrahedron", "0,1"), ("tetrahedron", "-2..2"),
-    ("cube", "-1,1"), ("cube", "0,1"), ("octahedron", "1,2"),
-    ("book:3", "-2..2"), ("book:4", "-2..2"), ("book:6", "0..5"), ("book:2", "1"),
-    ("dihedron:3", "-1..1"), ("dihedron:4", "-1..1"), ("dihedron:6", "0,1"),
+    ("tetrahedron", "-1,1"),
+    ("tetrahedron", "0,1"),
+    ("tetrahedron", "-2..2"),
+    ("cube", "-1,1"),
+    ("cube", "0,1"),
+    ("octahedron", "1,2"),
+    ("book:3", "-2..2"),
+    ("book:4", "-2..2"),
+    ("book:6", "0..5"),
+    ("book:2", "1"),
+    ("dihedron:3", "-1..1"),
+    ("dihedron:4", "-1..1"),
+    ("dihedron:6", "0,1"),
 ]
 
 
@@ -74,8 +84,13 @@ def _scaffold(name):
 
 
 def _check_against_census(scaffold, labels, **query):
-    allowed = allowed_per_edge(scaffold, lkspace.labels.parse_label_set(labels), query.get("no_zero", False),
-                               query.get("fixes"), query.get("parities"))
+    allowed = allowed_per_edge(
+        scaffold,
+        lkspace.labels.parse_label_set(labels),
+        query.get("no_zero", False),
+        query.get("fixes"),
+        query.get("parities"),
+    )
     census = component_census(scaffold, allowed)
     for n in range(1, max(census) + 2):
         for fast in (True, False):
@@ -83,8 +98,11 @@ def _check_against_census(scaffold, labels, **query):
             assert result.status == ("feasible" if n in census else "infeasible"), (scaffold.name, labels, n, fast)
             for sol in result.solutions:
                 assert sol.components == n == trace(scaffold, sol.labels).components
-                assert all(int(t) in opts for t, opts, k in zip(sol.labels, allowed, scaffold.edge_degrees,
-                                                                 strict=True) if k > 1 or True)
+                assert all(
+                    int(t) in opts
+                    for t, opts, k in zip(sol.labels, allowed, scaffold.edge_degrees, strict=True)
+                    if k > 1 or True
+                )
 
 
 @pytest.mark.parametrize("name, labels", CASES)
@@ -92,9 +110,18 @@ def test_feasibility_matches_enumeration(name, labels):
     _check_against_census(_scaffold(name), labels)
 
 
-@pytest.mark.parametrize("name, labels", [("random1", "-2..2"), ("random5", "-2..2"), ("random7", "-2..2"),
-                                          ("random14", "-2..2"), ("torus2x2", "0,1"), ("torus3x1", "-1..1"),
-                                          ("mobius", "-1..1")])
+@pytest.mark.parametrize(
+    "name, labels",
+    [
+        ("random1", "-2..2"),
+        ("random5", "-2..2"),
+        ("random7", "-2..2"),
+        ("random14", "-2..2"),
+        ("torus2x2", "0,1"),
+        ("torus3x1", "-1..1"),
+        ("mobius", "-1..1"),
+    ],
+)
 def test_feasibility_matches_enumeration_irregular(name, labels):
     _check_against_census(_scaffold(name), labels)
 
@@ -110,13 +137,21 @@ def test_fixes_and_parities_match_enumeration(name):
     inner = np.flatnonzero(scaffold.edge_degrees > 1)
     fixes = {int(inner[0]): 1}
     parities = {int(inner[-1]): 0} if len(inner) > 1 else {}
-    _check_against_census(scaffold, "-2..2" if name != "cube" else "0..2", fixes=fixes, parities=parities,
-                          no_zero=name == "random5")
+    _check_against_census(
+        scaffold, "-2..2" if name != "cube" else "0..2", fixes=fixes, parities=parities, no_zero=name == "random5"
+    )
 
 
-@pytest.mark.parametrize("name, labels, n", [("tetrahedron", "0,1", 1), ("tetrahedron", "0,1", 2),
-                                             ("book:4", "-2..2", 2), ("random7", "-2..2", 2),
-                                             ("random5", "-2..2", 3)])
+@pytest.mark.parametrize(
+    "name, labels, n",
+    [
+        ("tetrahedron", "0,1", 1),
+        ("tetrahedron", "0,1", 2),
+        ("book:4", "-2..2", 2),
+        ("random7", "-2..2", 2),
+        ("random5", "-2..2", 3),
+    ],
+)
 def test_count_returns_every_distinct_design_and_no_more(name, labels, n):
     scaffold = _scaffold(name)
     allowed = allowed_per_edge(scaffold, lkspace.labels.parse_label_set(labels))
@@ -235,8 +270,26 @@ def test_cli_default_scaffold_as_typed(capsys):
 
 def test_cli_json_and_output_file(capsys, tmp_path):
     path = tmp_path / "design.json"
-    code, out, _ = _run(capsys, "solve", "cube", "--components", "2", "--labels", "-1,1,2", "--fix", "0-1=2",
-                        "--parity", "1=odd", "--count", "2", "--workers", "1", "-o", str(path), "--json")
+    code, out, _ = _run(
+        capsys,
+        "solve",
+        "cube",
+        "--components",
+        "2",
+        "--labels",
+        "-1,1,2",
+        "--fix",
+        "0-1=2",
+        "--parity",
+        "1=odd",
+        "--count",
+        "2",
+        "--workers",
+        "1",
+        "-o",
+        str(path),
+        "--json",
+    )
     data = json.loads(out)
     assert code == 0 and data["status"] == "feasible" and len(data["solutions"]) == 2
     cube = lkspace.load("cube")
@@ -253,8 +306,18 @@ def test_cli_infeasible_is_an_answer(capsys):
     assert code == 0 and json.loads(out)["status"] == "infeasible"
 
 
-@pytest.mark.parametrize("args", [["--fix", "0-9=1"], ["--fix", "3"], ["--parity", "0=blue"], ["--fix", "0=x"],
-                                  ["--labels", "2..1"], ["--distinct-up-to", "sideways"], ["-o", "x.obj"]])
+@pytest.mark.parametrize(
+    "args",
+    [
+        ["--fix", "0-9=1"],
+        ["--fix", "3"],
+        ["--parity", "0=blue"],
+        ["--fix", "0=x"],
+        ["--labels", "2..1"],
+        ["--distinct-up-to", "sideways"],
+        ["-o", "x.obj"],
+    ],
+)
 def test_cli_bad_input_is_one_line(capsys, args):
     code, out, err = _run(capsys, "solve", "cube", "-n", "1", *args)
     assert code == 2 and out == "" and err.count("\n") == 1 and "Traceback" not in err
@@ -288,13 +351,22 @@ def test_distinct_up_to_symmetry_gives_one_design_per_orbit():
         orbits.add(min(images))
     query = Query(2, labels=np.array([0, 1]))
     result = _solve_cp_sat(scaffold, query, 50, actions, None, 1, 0, 0.0)
-    got = {min([tuple((s.labels % 2).tolist())] + [tuple((s.labels % 2)[np.argsort(p)].tolist()) for p, _ in actions])
-           for s in result.solutions}
+    got = {
+        min([tuple((s.labels % 2).tolist())] + [tuple((s.labels % 2)[np.argsort(p)].tolist()) for p, _ in actions])
+        for s in result.solutions
+    }
     assert len(result.solutions) == len(orbits) == len(got) and got == orbits and result.exhausted
 
 
-@pytest.mark.parametrize("name, labels, mode", [("tetrahedron", "0,1", "rotations"), ("cube", "0,1", "rotations"),
-                                                ("cube", "-1..1", "isometries"), ("book:3", "0..2", "rotations")])
+@pytest.mark.parametrize(
+    "name, labels, mode",
+    [
+        ("tetrahedron", "0,1", "rotations"),
+        ("cube", "0,1", "rotations"),
+        ("cube", "-1..1", "isometries"),
+        ("book:3", "0..2", "rotations"),
+    ],
+)
 def test_distinct_up_to_symmetry_matches_the_residue_orbits(name, labels, mode):
     # solutions are distinct up to symmetry at the level of residues (the design's topology):
     # as many as the one-component residue-class orbits that enumerate --mode residues lists
@@ -321,8 +393,9 @@ def test_real_time_out_reports_unknown():
     assert (result.status == "unknown") == (result.solutions == [])
 
 
-@pytest.mark.parametrize("name, n", [("cube", 1), ("cube", 3), ("book:4", 2), ("random1", 2), ("torus3x1", 1),
-                                     ("dodecahedron", 4)])
+@pytest.mark.parametrize(
+    "name, n", [("cube", 1), ("cube", 3), ("book:4", 2), ("random1", 2), ("torus3x1", 1), ("dodecahedron", 4)]
+)
 def test_every_design_satisfies_the_model(name, n):
     """The constructive half of exactness: a design's own routes and labels satisfy the model."""
     from ortools.sat.python import cp_model

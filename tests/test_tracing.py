@@ -41,8 +41,19 @@ def test_dihedron_twist_one(n):
     assert trace(lkspace.load(f"dihedron:{n}"), 1).components == (1 if n % 2 else 2)
 
 
-@pytest.mark.parametrize("name", ["tetrahedron", "cube", "octahedron", "dodecahedron", "icosahedron",
-                                  "truncated-octahedron", "dihedron:5", "book:4"])
+@pytest.mark.parametrize(
+    "name",
+    [
+        "tetrahedron",
+        "cube",
+        "octahedron",
+        "dodecahedron",
+        "icosahedron",
+        "truncated-octahedron",
+        "dihedron:5",
+        "book:4",
+    ],
+)
 def test_uniform_zero_is_one_strand_per_face(name):
     s = lkspace.load(name)
     result = trace(s, 0)
@@ -52,8 +63,9 @@ def test_uniform_zero_is_one_strand_per_face(name):
         assert len(set(faces.tolist())) == 1
 
 
-@pytest.mark.parametrize("name, petrie", [("tetrahedron", 3), ("cube", 4), ("octahedron", 4),
-                                          ("dodecahedron", 6), ("icosahedron", 6)])
+@pytest.mark.parametrize(
+    "name, petrie", [("tetrahedron", 3), ("cube", 4), ("octahedron", 4), ("dodecahedron", 6), ("icosahedron", 6)]
+)
 def test_uniform_one_gives_petrie_polygons(name, petrie):
     # on a closed 2-manifold twist 1 everywhere swaps the two sides of every edge:
     # the strands are the Petrie polygons of the polyhedron
@@ -67,8 +79,7 @@ def test_zero_twist_falls_apart_and_twist_two_holds(cube):
 
 
 def test_faces_meeting_at_a_vertex_fall_apart():
-    s = Scaffold.from_faces([[0, 0, 0], [1, 0, 0], [0, 1, 0], [-1, 0, 0.5], [0, -1, 0.2]],
-                            [[0, 1, 2], [0, 3, 4]])
+    s = Scaffold.from_faces([[0, 0, 0], [1, 0, 0], [0, 1, 0], [-1, 0, 0.5], [0, -1, 0.2]], [[0, 1, 2], [0, 3, 4]])
     result = trace(s, 3)
     assert result.components == 2 and not result.holds_together
 
@@ -83,7 +94,7 @@ def test_chirality_on_book3(t):
     # order is the page order counter-clockwise about +z
     s = lkspace.load("book:3")
     spine = int(np.flatnonzero(s.edge_degrees == 3)[0])
-    sides = s.radial.edge_sides[s.radial.edge_starts[spine]:s.radial.edge_starts[spine + 1]].tolist()
+    sides = s.radial.edge_sides[s.radial.edge_starts[spine] : s.radial.edge_starts[spine + 1]].tolist()
     assert _cyclic_equal(sides, [int(s.face_starts[f]) + 3 for f in range(3)])  # side 3 of page f: 1 -> 0
     twists = np.zeros(s.n_edges, np.int64)
     twists[spine] = t
@@ -126,10 +137,18 @@ def _multiset(strands):
 def test_matches_reference(data, scaffold):
     twists = data.draw(st.lists(st.integers(-5, 5), min_size=scaffold.n_edges, max_size=scaffold.n_edges))
     n_null = data.draw(st.integers(0, 2))
-    null_sides = data.draw(st.lists(st.integers(0, scaffold.n_corners - 1), min_size=n_null, max_size=n_null, unique=True))
+    null_sides = data.draw(
+        st.lists(st.integers(0, scaffold.n_corners - 1), min_size=n_null, max_size=n_null, unique=True)
+    )
     result = trace(scaffold, twists, null_sides)
     starts = scaffold.face_starts
-    nulls = {(int(np.searchsorted(starts, c, side="right") - 1), int(c - starts[np.searchsorted(starts, c, side="right") - 1])) for c in null_sides}
+    nulls = {
+        (
+            int(np.searchsorted(starts, c, side="right") - 1),
+            int(c - starts[np.searchsorted(starts, c, side="right") - 1]),
+        )
+        for c in null_sides
+    }
     ref = _ref_components(scaffold, twists, nulls)
     assert result.components == len(ref)
     mine = [(bool(result.closed[k]), result.strand_faces(k).tolist()) for k in range(result.components)]

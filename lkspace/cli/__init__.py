@@ -33,8 +33,12 @@ def _register_optional():
     """Commands living in their own modules (added as the product grows)."""
     import importlib
 
-    for module, name in (("enumerate", "enumerate_cmd"), ("solve", "solve_cmd"), ("export", "export_cmd"),
-                         ("identify", "identify_cmd")):
+    for module, name in (
+        ("enumerate", "enumerate_cmd"),
+        ("solve", "solve_cmd"),
+        ("export", "export_cmd"),
+        ("identify", "identify_cmd"),
+    ):
         try:
             mod = importlib.import_module(f"{__name__}.{module}")
         except ModuleNotFoundError as exc:

@@ -21,7 +21,9 @@ def _console() -> Console:
 
 @click.command("scaffold")
 @click.argument("name")
-@click.option("-o", "--output", type=click.Path(dir_okay=False), help="File to write (.obj or .json); default: JSON on stdout.")
+@click.option(
+    "-o", "--output", type=click.Path(dir_okay=False), help="File to write (.obj or .json); default: JSON on stdout."
+)
 @json_option
 def scaffold_cmd(name, output, as_json):
     """Write the built-in scaffold NAME to a file.
@@ -60,10 +62,20 @@ def scaffold_cmd(name, output, as_json):
             click.echo(io.format_scaffold_json(scaffold), nl=False)
         return
     io.write(scaffold, output)
-    emit(ctx, {"scaffold": name, "written": os.path.abspath(output), "vertices": scaffold.n_vertices,
-               "edges": scaffold.n_edges, "faces": scaffold.n_faces},
-         lambda: click.echo(f"wrote {name} to {output} ({scaffold.n_vertices} vertices, "
-                            f"{scaffold.n_edges} edges, {scaffold.n_faces} faces)"))
+    emit(
+        ctx,
+        {
+            "scaffold": name,
+            "written": os.path.abspath(output),
+            "vertices": scaffold.n_vertices,
+            "edges": scaffold.n_edges,
+            "faces": scaffold.n_faces,
+        },
+        lambda: click.echo(
+            f"wrote {name} to {output} ({scaffold.n_vertices} vertices, "
+            f"{scaffold.n_edges} edges, {scaffold.n_faces} faces)"
+        ),
+    )
 
 
 def info_dict(scaffold) -> dict:
@@ -119,7 +131,9 @@ def info_cmd(mesh, as_json):
 
 @click.command("trace")
 @mesh_argument
-@click.option("--twist", "twist_spec", metavar="SPEC", help="One integer, a comma list per edge, or a file naming edges.")
+@click.option(
+    "--twist", "twist_spec", metavar="SPEC", help="One integer, a comma list per edge, or a file naming edges."
+)
 @click.option("--null", "null_spec", metavar="SPEC", help="Null edge-sides as FACE.SIDE, comma separated.")
 @json_option
 def trace_cmd(mesh, twist_spec, null_spec, as_json):
@@ -133,16 +147,25 @@ def trace_cmd(mesh, twist_spec, null_spec, as_json):
 
     def human():
         con = _console()
-        con.print(f"{scaffold.name}: {result.components} component(s), "
-                  f"{'holds together' if result.holds_together else 'falls apart'}")
+        con.print(
+            f"{scaffold.name}: {result.components} component(s), "
+            f"{'holds together' if result.holds_together else 'falls apart'}"
+        )
         if scaffold.periodic:
-            con.print(f"threads per module: {data['threads_per_module']} "
-                      f"({data['closed_loops']} closed loops, {data['infinite_threads']} infinite threads)")
+            con.print(
+                f"threads per module: {data['threads_per_module']} "
+                f"({data['closed_loops']} closed loops, {data['infinite_threads']} infinite threads)"
+            )
         table = Table("strand", "closed", "length", "period", "faces")
         for k, s in enumerate(data["strands"]):
             faces = " ".join(map(str, s["faces"][:24])) + (" …" if len(s["faces"]) > 24 else "")
-            table.add_row(str(k), "yes" if s["closed"] else "no", str(s["length"]),
-                          "-" if s["period"] is None else str(s["period"]), faces)
+            table.add_row(
+                str(k),
+                "yes" if s["closed"] else "no",
+                str(s["length"]),
+                "-" if s["period"] is None else str(s["period"]),
+                faces,
+            )
         con.print(table)
 
     emit(ctx, data, human)

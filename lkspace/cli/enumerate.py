@@ -195,7 +195,9 @@ def enumerate_cmd(
         table.add_row("written", str(payload.get("written") or "- (count only; give -o FILE to write)"))
         if "identified" in payload:
             top = ", ".join(f"{k} ({v})" for k, v in list(payload["identified"]["names"].items())[:6])
-            table.add_row("identified", f"{payload['identified']['named']:,} of {payload['identified']['rows']:,} named: {top}")
+            table.add_row(
+                "identified", f"{payload['identified']['named']:,} of {payload['identified']['rows']:,} named: {top}"
+            )
         table.add_row("seconds", str(payload["seconds"]))
         con.print(table)
 

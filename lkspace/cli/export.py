@@ -67,11 +67,17 @@ def design_options(func):
     """MESH, --twist, --null, --row and the geometry options shared by export and identify."""
     options = [
         click.argument("mesh", required=False, metavar="[MESH|CATALOG.parquet]"),
-        click.option("--twist", "twist_spec", metavar="SPEC", help="One integer, a comma list per edge, or a file naming edges."),
+        click.option(
+            "--twist", "twist_spec", metavar="SPEC", help="One integer, a comma list per edge, or a file naming edges."
+        ),
         click.option("--null", "null_spec", metavar="SPEC", help="Null edge-sides as FACE.SIDE, comma separated."),
         click.option("--row", type=int, help="Row of CATALOG.parquet to use (instead of --twist)."),
-        click.option("--radius", type=float, help="Distance of the strands from their edge (default 0.12 x shortest edge)."),
-        click.option("--normal-offset", type=float, help="Offset of the strands along the face normal (default 0.35 x radius)."),
+        click.option(
+            "--radius", type=float, help="Distance of the strands from their edge (default 0.12 x shortest edge)."
+        ),
+        click.option(
+            "--normal-offset", type=float, help="Offset of the strands along the face normal (default 0.35 x radius)."
+        ),
         click.option("--tube-radius", type=float, help="Tube radius (default from the mesh and the strand spacing)."),
     ]
     for option in reversed(options):
@@ -117,14 +123,24 @@ def params_of(radius, normal_offset, tube_radius) -> GeometryParams:
 
 @click.command("export")
 @design_options
-@click.option("-o", "--output", required=True, type=click.Path(dir_okay=False),
-              help="Output file: .obj, .ply, .glb or .png (the format follows the extension).")
-@click.option("--tubes", is_flag=True, help="Write tube meshes instead of polylines (.obj, .ply; .glb is always tubes).")
+@click.option(
+    "-o",
+    "--output",
+    required=True,
+    type=click.Path(dir_okay=False),
+    help="Output file: .obj, .ply, .glb or .png (the format follows the extension).",
+)
+@click.option(
+    "--tubes", is_flag=True, help="Write tube meshes instead of polylines (.obj, .ply; .glb is always tubes)."
+)
 @click.option("--no-mesh", is_flag=True, help="Leave the input mesh out of the picture (.png).")
-@click.option("--block", metavar="AxB[xC]", help="Periodic scaffolds: realize an A x B (x C) block of lattice translates.")
+@click.option(
+    "--block", metavar="AxB[xC]", help="Periodic scaffolds: realize an A x B (x C) block of lattice translates."
+)
 @json_option
-def export_cmd(mesh, twist_spec, null_spec, row, radius, normal_offset, tube_radius, output, tubes, no_mesh, block,
-               as_json):
+def export_cmd(
+    mesh, twist_spec, null_spec, row, radius, normal_offset, tube_radius, output, tubes, no_mesh, block, as_json
+):
     """Realize the strands of MESH labelled by --twist and write them to -o FILE.
 
     \b
@@ -138,12 +154,27 @@ def export_cmd(mesh, twist_spec, null_spec, row, radius, normal_offset, tube_rad
 
     ctx = Context(as_json)
     scaffold, twists, nulls = resolve_design(ctx, mesh, twist_spec, null_spec, row)
-    real = realize(scaffold, twists, nulls, params_of(radius, normal_offset, tube_radius),
-                   translations=block_translations(scaffold, block))
+    real = realize(
+        scaffold,
+        twists,
+        nulls,
+        params_of(radius, normal_offset, tube_radius),
+        translations=block_translations(scaffold, block),
+    )
     fmt = export(real, output, tubes=tubes, show_mesh=not no_mesh)
-    data = {"written": os.path.abspath(output), "format": fmt, "twists": np.asarray(twists).tolist(),
-            "components": real.trace.components, **real.summary()}
+    data = {
+        "written": os.path.abspath(output),
+        "format": fmt,
+        "twists": np.asarray(twists).tolist(),
+        "components": real.trace.components,
+        **real.summary(),
+    }
     data.pop("closed")
-    emit(ctx, data, lambda: click.echo(
-        f"wrote {output}: {real.n_curves} strand(s) of {scaffold.name}, "
-        f"minimum distance between strands {real.min_distance:.3g} (tube radius {real.tube_radius:.3g})"))
+    emit(
+        ctx,
+        data,
+        lambda: click.echo(
+            f"wrote {output}: {real.n_curves} strand(s) of {scaffold.name}, "
+            f"minimum distance between strands {real.min_distance:.3g} (tube radius {real.tube_radius:.3g})"
+        ),
+    )

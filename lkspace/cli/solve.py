@@ -22,7 +22,9 @@ def _edge_values(scaffold, items, option: str, parse) -> dict[int, int]:
     for item in items:
         name, eq, value = item.rpartition("=")
         if not eq or not name.strip():
-            raise LabelError(f"{option} {item!r}: write EDGE=VALUE, e.g. {option} 3-7={'odd' if 'parity' in option else '2'}")
+            raise LabelError(
+                f"{option} {item!r}: write EDGE=VALUE, e.g. {option} 3-7={'odd' if 'parity' in option else '2'}"
+            )
         e = edge_index(scaffold, name)
         if e in out:
             raise LabelError(f"{option}: edge {scaffold.edge_name(e)} given twice")
@@ -45,31 +47,96 @@ def _parity(value: str, item: str) -> int:
 
 @click.command("solve")
 @mesh_argument
-@click.option("--components", "-n", type=click.IntRange(min=1), required=True, help="Exact number of strand components N.")
+@click.option(
+    "--components", "-n", type=click.IntRange(min=1), required=True, help="Exact number of strand components N."
+)
 @click.option("--no-zero", is_flag=True, help="Forbid twist label 0.")
-@click.option("--labels", "labels_spec", default="-2..2", show_default=True, metavar="SET",
-              help="Labels the design may use: a range -2..2 or a list -2,-1,1,2.")
-@click.option("--fix", "fix_items", multiple=True, metavar="EDGE=T",
-              help="Pin edge EDGE (index or vertex pair u-v) to label T; repeatable.")
-@click.option("--parity", "parity_items", multiple=True, metavar="EDGE=odd|even",
-              help="Require an odd or even label on EDGE; repeatable.")
-@click.option("--count", type=click.IntRange(min=1), default=1, show_default=True,
-              help="Distinct designs wanted (they differ in how the strands connect).")
-@click.option("--distinct-up-to", type=click.Choice(["none", "rotations", "isometries"]), default="none",
-              show_default=True, help="With --count: no two designs related by a symmetry of this kind (needs lkspace.symmetry).")
-@click.option("--objective", type=click.Choice(["none", "min-abs", "min-nonzero"]), default="none", show_default=True,
-              help="Minimize the total |t| or the number of non-zero labels.")
-@click.option("--time-limit", type=click.FloatRange(min=0), default=None, metavar="S",
-              help="Give up after S seconds (status 'unknown' if nothing is proved).")
-@click.option("--workers", type=click.IntRange(min=0), default=0, show_default=True,
-              help="CP-SAT search workers (0: one per core).")
+@click.option(
+    "--labels",
+    "labels_spec",
+    default="-2..2",
+    show_default=True,
+    metavar="SET",
+    help="Labels the design may use: a range -2..2 or a list -2,-1,1,2.",
+)
+@click.option(
+    "--fix",
+    "fix_items",
+    multiple=True,
+    metavar="EDGE=T",
+    help="Pin edge EDGE (index or vertex pair u-v) to label T; repeatable.",
+)
+@click.option(
+    "--parity",
+    "parity_items",
+    multiple=True,
+    metavar="EDGE=odd|even",
+    help="Require an odd or even label on EDGE; repeatable.",
+)
+@click.option(
+    "--count",
+    type=click.IntRange(min=1),
+    default=1,
+    show_default=True,
+    help="Distinct designs wanted (they differ in how the strands connect).",
+)
+@click.option(
+    "--distinct-up-to",
+    type=click.Choice(["none", "rotations", "isometries"]),
+    default="none",
+    show_default=True,
+    help="With --count: no two designs related by a symmetry of this kind (needs lkspace.symmetry).",
+)
+@click.option(
+    "--objective",
+    type=click.Choice(["none", "min-abs", "min-nonzero"]),
+    default="none",
+    show_default=True,
+    help="Minimize the total |t| or the number of non-zero labels.",
+)
+@click.option(
+    "--time-limit",
+    type=click.FloatRange(min=0),
+    default=None,
+    metavar="S",
+    help="Give up after S seconds (status 'unknown' if nothing is proved).",
+)
+@click.option(
+    "--workers",
+    type=click.IntRange(min=0),
+    default=0,
+    show_default=True,
+    help="CP-SAT search workers (0: one per core).",
+)
 @click.option("--seed", type=int, default=0, show_default=True, help="Random seed (search and spanning trees).")
-@click.option("--no-fast-path", is_flag=True, help="Always use CP-SAT, even where the spanning-tree construction applies.")
-@click.option("-o", "--output", type=click.Path(dir_okay=False), default=None,
-              help="Write the first design as a scaffold file with its labels (.json) for trace/export.")
+@click.option(
+    "--no-fast-path", is_flag=True, help="Always use CP-SAT, even where the spanning-tree construction applies."
+)
+@click.option(
+    "-o",
+    "--output",
+    type=click.Path(dir_okay=False),
+    default=None,
+    help="Write the first design as a scaffold file with its labels (.json) for trace/export.",
+)
 @json_option
-def solve_cmd(mesh, components, no_zero, labels_spec, fix_items, parity_items, count, distinct_up_to, objective,
-              time_limit, workers, seed, no_fast_path, output, as_json):
+def solve_cmd(
+    mesh,
+    components,
+    no_zero,
+    labels_spec,
+    fix_items,
+    parity_items,
+    count,
+    distinct_up_to,
+    objective,
+    time_limit,
+    workers,
+    seed,
+    no_fast_path,
+    output,
+    as_json,
+):
     """Find twist labels on MESH giving exactly --components strands, or prove none exist.
 
     Status is optimal (objective proved), feasible, infeasible (proved: no design) or
@@ -89,26 +156,47 @@ def solve_cmd(mesh, components, no_zero, labels_spec, fix_items, parity_items, c
     fixes = _edge_values(scaffold, fix_items, "--fix", _label)
     parities = _edge_values(scaffold, parity_items, "--parity", _parity)
     console = Console(stderr=True)
-    spinner = console.status(f"solving {scaffold.name} for {components} component(s)…") \
-        if console.is_terminal and not as_json else nullcontext()
+    spinner = (
+        console.status(f"solving {scaffold.name} for {components} component(s)…")
+        if console.is_terminal and not as_json
+        else nullcontext()
+    )
     with spinner:
-        result = solve(scaffold, components, labels=labels, no_zero=no_zero, fixes=fixes, parities=parities,
-                       count=count, distinct_up_to=distinct_up_to,
-                       objective=None if objective == "none" else objective, time_limit=time_limit,
-                       workers=workers, seed=seed, fast_path=not no_fast_path)
+        result = solve(
+            scaffold,
+            components,
+            labels=labels,
+            no_zero=no_zero,
+            fixes=fixes,
+            parities=parities,
+            count=count,
+            distinct_up_to=distinct_up_to,
+            objective=None if objective == "none" else objective,
+            time_limit=time_limit,
+            workers=workers,
+            seed=seed,
+            fast_path=not no_fast_path,
+        )
     written = None
     if output is not None and result.solutions:
         io.write(scaffold, output, result.solutions[0].labels)
         written = os.path.abspath(output)
-    data = {"components": components, "label_set": labels.tolist(), "no_zero": no_zero, **result.to_dict(),
-            "written": written}
+    data = {
+        "components": components,
+        "label_set": labels.tolist(),
+        "no_zero": no_zero,
+        **result.to_dict(),
+        "written": written,
+    }
 
     def human():
         line = f"{scaffold.name}: {result.status}"
         if result.reason:
             line += f" ({result.reason})"
-        click.echo(f"{line} — {len(result.solutions)} design(s) with {components} component(s) "
-                   f"[{result.method}, {result.wall_time:.3f} s]")
+        click.echo(
+            f"{line} — {len(result.solutions)} design(s) with {components} component(s) "
+            f"[{result.method}, {result.wall_time:.3f} s]"
+        )
         for k, sol in enumerate(result.solutions):
             click.echo(f"  {k}: {','.join(map(str, sol.labels.tolist()))}")
         if result.status == "unknown":

@@ -54,9 +54,7 @@ def parse_obj(text: str, name: str = "<obj>") -> Scaffold:
                 elif index < 0 and -index <= n:
                     face.append(n + index)
                 else:
-                    raise ScaffoldError(
-                        f"{where}: face vertex index {index} out of range 1..{n} (or -{n}..-1)"
-                    )
+                    raise ScaffoldError(f"{where}: face vertex index {index} out of range 1..{n} (or -{n}..-1)")
             if len(set(face)) != len(face):
                 raise ScaffoldError(f"{where}: face {len(faces)} repeats a vertex: {parts}")
             faces.append(face)

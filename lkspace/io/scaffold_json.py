@@ -37,7 +37,20 @@ from ..mesh import Scaffold
 FORMAT = "lkspace-scaffold"
 VORONOI_FORMAT = "lkspace-voronoi"
 VERSION = 1
-KEYS = {"format", "version", "name", "vertices", "faces", "lattice", "offsets", "radial_orders", "edges", "twists", "nulls", "comment"}
+KEYS = {
+    "format",
+    "version",
+    "name",
+    "vertices",
+    "faces",
+    "lattice",
+    "offsets",
+    "radial_orders",
+    "edges",
+    "twists",
+    "nulls",
+    "comment",
+}
 
 
 def _int(value, where):
@@ -117,10 +130,19 @@ def scaffold_from_dict(data: dict, name: str = "<json>") -> Scaffold:
             edge = _list(entry["edge"], f"{where}.edge")
             delta = tuple(edge[2]) if len(edge) == 3 else ()
             key = (min(edge[0], edge[1]), max(edge[0], edge[1]), delta)
-            radial[key] = tuple(_side(faces, s, f"{where}.sides[{j}]", starts) for j, s in enumerate(_list(entry["sides"], f"{where}.sides")))
+            radial[key] = tuple(
+                _side(faces, s, f"{where}.sides[{j}]", starts)
+                for j, s in enumerate(_list(entry["sides"], f"{where}.sides"))
+            )
     try:
-        scaffold = Scaffold.from_faces(rows, faces, lattice=lattice, offsets=offsets, radial_orders=radial,
-                                       name=data.get("name", name) if isinstance(data.get("name"), str) else name)
+        scaffold = Scaffold.from_faces(
+            rows,
+            faces,
+            lattice=lattice,
+            offsets=offsets,
+            radial_orders=radial,
+            name=data.get("name", name) if isinstance(data.get("name"), str) else name,
+        )
     except ScaffoldError as exc:
         raise ScaffoldError(f"{name}: {exc}") from None
     if "edges" in data:
@@ -136,7 +158,9 @@ def scaffold_from_dict(data: dict, name: str = "<json>") -> Scaffold:
             _int(t, f"{name}: twists[{i}]")
     nulls = None
     if "nulls" in data:
-        nulls = [_side(faces, s, f"{name}: nulls[{j}]", starts) for j, s in enumerate(_list(data["nulls"], f"{name}: nulls"))]
+        nulls = [
+            _side(faces, s, f"{name}: nulls[{j}]", starts) for j, s in enumerate(_list(data["nulls"], f"{name}: nulls"))
+        ]
     if twists is not None or nulls is not None:
         scaffold = scaffold.with_labels(twists, nulls)
     return scaffold
@@ -151,7 +175,9 @@ def voronoi_from_dict(data: dict, name: str) -> Scaffold:
     if unknown:
         raise ScaffoldError(f"{name}: unknown key(s) {sorted(unknown)}")
     if data.get("version", VERSION) != VERSION:
-        raise ScaffoldError(f"{name}: voronoi file version {data.get('version')!r} is not supported (expected {VERSION})")
+        raise ScaffoldError(
+            f"{name}: voronoi file version {data.get('version')!r} is not supported (expected {VERSION})"
+        )
     lattice = Lattice(np.array(_list(data.get("lattice"), f"{name}: lattice"), dtype=float))
     points = _list(data.get("points"), f"{name}: points")
     for i, p in enumerate(points):
@@ -172,8 +198,13 @@ def scaffold_to_dict(scaffold: Scaffold, twists=None, nulls=None) -> dict:
         f = int(np.searchsorted(starts, s, side="right") - 1)
         return [f, int(s - starts[f])]
 
-    out = {"format": FORMAT, "version": VERSION, "name": scaffold.name,
-           "vertices": scaffold.vertices.tolist(), "faces": scaffold.faces()}
+    out = {
+        "format": FORMAT,
+        "version": VERSION,
+        "name": scaffold.name,
+        "vertices": scaffold.vertices.tolist(),
+        "faces": scaffold.faces(),
+    }
     if scaffold.periodic:
         out["lattice"] = scaffold.lattice.basis.tolist()
         offs = scaffold.corner_offsets.tolist()
@@ -183,8 +214,10 @@ def scaffold_to_dict(scaffold: Scaffold, twists=None, nulls=None) -> dict:
             {"edge": [a, b, list(d)] if d else [a, b], "sides": [side_name(s) for s in sides]}
             for (a, b, d), sides in sorted(scaffold.radial_orders.items())
         ]
-    out["edges"] = [[int(k[0]), int(k[1]), [int(x) for x in k[2:]]] if scaffold.dim else [int(k[0]), int(k[1])]
-                    for k in scaffold.edge_keys.tolist()]
+    out["edges"] = [
+        [int(k[0]), int(k[1]), [int(x) for x in k[2:]]] if scaffold.dim else [int(k[0]), int(k[1])]
+        for k in scaffold.edge_keys.tolist()
+    ]
     if twists is not None:
         out["twists"] = [int(t) for t in np.broadcast_to(twists, (scaffold.n_edges,))]
     if nulls is not None:

@@ -65,13 +65,20 @@ DEFAULT = "tetrahedron"
 
 def builtin_names() -> list[str]:
     """Every built-in name, families written with their parameter (``book:K``)."""
-    return list(SOLIDS) + [f"{f}:N" if f == "dihedron" else f"{f}:K" for f in FAMILIES] + list(periodic.LATTICES) + list(periodic.VORONOI_EXAMPLES)
+    return (
+        list(SOLIDS)
+        + [f"{f}:N" if f == "dihedron" else f"{f}:K" for f in FAMILIES]
+        + list(periodic.LATTICES)
+        + list(periodic.VORONOI_EXAMPLES)
+    )
 
 
 def is_builtin_name(name: str) -> bool:
     """Whether ``name`` looks like a built-in name rather than a path."""
     head = name.split(":", 1)[0].split("@", 1)[0]
-    return name in SOLIDS or head in SOLIDS or head in FAMILIES or name.startswith(("tiling:", "honeycomb:", "voronoi:"))
+    return (
+        name in SOLIDS or head in SOLIDS or head in FAMILIES or name.startswith(("tiling:", "honeycomb:", "voronoi:"))
+    )
 
 
 def builtin(name: str) -> Scaffold:

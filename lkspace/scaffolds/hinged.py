@@ -48,14 +48,17 @@ def cube_net() -> Scaffold:
 
 def cube_lid() -> Scaffold:
     """Unit open box (no top) with its lid opened 90 degrees about the top edge y = 1."""
-    box = [(np.array(q, dtype=float), [[0, 1, 2, 3]]) for q in (
-        [[0, 0, 0], [0, 1, 0], [1, 1, 0], [1, 0, 0]],  # bottom
-        [[0, 0, 0], [1, 0, 0], [1, 0, 1], [0, 0, 1]],  # front
-        [[0, 1, 0], [0, 1, 1], [1, 1, 1], [1, 1, 0]],  # back
-        [[0, 0, 0], [0, 0, 1], [0, 1, 1], [0, 1, 0]],  # left
-        [[1, 0, 0], [1, 1, 0], [1, 1, 1], [1, 0, 1]],  # right
-        [[0, 1, 1], [0, 1, 2], [1, 1, 2], [1, 1, 1]],  # lid, standing up from the back edge
-    )]
+    box = [
+        (np.array(q, dtype=float), [[0, 1, 2, 3]])
+        for q in (
+            [[0, 0, 0], [0, 1, 0], [1, 1, 0], [1, 0, 0]],  # bottom
+            [[0, 0, 0], [1, 0, 0], [1, 0, 1], [0, 0, 1]],  # front
+            [[0, 1, 0], [0, 1, 1], [1, 1, 1], [1, 1, 0]],  # back
+            [[0, 0, 0], [0, 0, 1], [0, 1, 1], [0, 1, 0]],  # left
+            [[1, 0, 0], [1, 1, 0], [1, 1, 1], [1, 0, 1]],  # right
+            [[0, 1, 1], [0, 1, 2], [1, 1, 2], [1, 1, 1]],  # lid, standing up from the back edge
+        )
+    ]
     return _merge(box, "cube-lid")
 
 
@@ -75,5 +78,3 @@ HINGED = {
     "cubes:piano": piano_hinged_cubes,
     "cubes:vertex": vertex_hinged_cubes,
 }
-
-

@@ -44,6 +44,7 @@ def whitehead() -> Scaffold:
     >>> s.n_faces, s.edge_degrees.tolist()
     (4, [1, 1, 2, 1, 2, 1, 2, 2])
     """
-    base = Scaffold.from_faces(_SQUARE + [[0.0, 0.0, 0.0]], [[0, 1, 4], [1, 2, 4], [2, 3, 4], [3, 0, 4]],
-                               name="whitehead")
+    base = Scaffold.from_faces(
+        _SQUARE + [[0.0, 0.0, 0.0]], [[0, 1, 4], [1, 2, 4], [2, 3, 4], [3, 0, 4]], name="whitehead"
+    )
     return base.with_labels(np.array([0, 0, -2, 0, -1, 0, -1, 2]))

@@ -206,7 +206,10 @@ def supercell(scaffold: Scaffold, sizes) -> Scaffold:
     corners = cell_index * scaffold.n_vertices + scaffold.corners[None]
     starts = np.concatenate([[0], np.cumsum(np.tile(scaffold.face_sizes, n_cells))]).astype(np.int64)
     return Scaffold(
-        vertices, starts, corners.reshape(-1), lattice=scaffold.lattice.supercell(sizes),
+        vertices,
+        starts,
+        corners.reshape(-1),
+        lattice=scaffold.lattice.supercell(sizes),
         corner_offsets=super_offsets.reshape(-1, scaffold.dim),
         name=f"{scaffold.name}@{'x'.join(map(str, sizes.tolist()))}",
     )

@@ -33,8 +33,9 @@ def geodesic_sphere(level: int) -> Scaffold:
         m = len(vertices) + inverse.reshape(3, -1)  # midpoints of sides 01, 12, 20
         vertices = np.vstack([vertices, mid])
         a, b, c = faces.T
-        faces = np.concatenate([np.column_stack(f) for f in ((a, m[0], m[2]), (m[0], b, m[1]),
-                                                             (m[2], m[1], c), (m[0], m[1], m[2]))])
+        faces = np.concatenate(
+            [np.column_stack(f) for f in ((a, m[0], m[2]), (m[0], b, m[1]), (m[2], m[1], c), (m[0], m[1], m[2]))]
+        )
     return Scaffold.from_faces(vertices, faces.tolist(), name=f"geodesic-sphere:{level}")
 
 
