@@ -166,6 +166,9 @@ def _finder(parent: np.ndarray):
     return find
 
 
+GREEDY_ATTEMPTS = 16
+
+
 def _greedy_designs(scaffold: Scaffold, query: Query, count: int, seed: int) -> list[np.ndarray]:
     """Designs with N <= F components (any K) by greedy merging.
 
@@ -192,13 +195,14 @@ def _greedy_designs(scaffold: Scaffold, query: Query, count: int, seed: int) -> 
         return []
     rng = np.random.default_rng(seed)
     designs, seen = [], set()
-    for _ in range(4 * count):
+    for _ in range(GREEDY_ATTEMPTS * count):  # a greedy order can get stuck: try others
         must_merge = np.array([a is None for a in stay])
         order = np.lexsort((rng.random(scaffold.n_edges), -degrees, ~must_merge))
         parent = np.arange(scaffold.n_faces)
         find = _finder(parent)
         labels = np.zeros(scaffold.n_edges, np.int64)
         n_strands = scaffold.n_faces
+        stuck = False
         for e in order.tolist():
             k = int(degrees[e])
             roots = {find(int(f)) for f in faces_of[e]}
@@ -212,9 +216,10 @@ def _greedy_designs(scaffold: Scaffold, query: Query, count: int, seed: int) -> 
             elif stay[e] is not None:
                 labels[e] = stay[e][1]
             else:
-                return designs
-        if n_strands != query.components:
-            return designs
+                stuck = True
+                break
+        if stuck or n_strands != query.components:
+            continue
         key = labels.tobytes()
         if key not in seen:
             seen.add(key)
