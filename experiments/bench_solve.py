@@ -3,7 +3,7 @@
 Writes ``results/bench_solve.csv`` (one row per query) and prints the table.  Meshes: the
 built-in solids, geodesic and cube spheres (:mod:`lkspace.scaffolds.spheres`), and
 non-manifold ones: cube spheres with fins (an extra quad on every fifth or seventh
-edge, K = 3) and a chain of books.  Queries: ``--components 1 --no-zero`` and
+edge, K = 3), a chain of books and honeycomb supercells (K = 3 and 4).  Queries: ``--components 1 --no-zero`` and
 exact N = 2 and N = 5, each as ``lkspace solve`` runs it (fast path first) and with CP-SAT
 alone (``--no-fast-path``; exact N with CP-SAT alone only up to 1,500 faces).
 
@@ -63,12 +63,15 @@ def meshes(quick: bool):
     yield cube_sphere(10)
     yield with_fins(cube_sphere(6))
     yield books(300)
+    yield lkspace.load("honeycomb:cI@2x2x2")  # periodic, non-manifold (K = 3)
     if not quick:
         yield geodesic_sphere(3)
         yield geodesic_sphere(4)
         yield cube_sphere(29)
         yield with_fins(cube_sphere(29), every=7)
         yield books(2600)
+        yield lkspace.load("honeycomb:cI@9x9x9")  # 5,103 faces, every edge K = 3
+        yield lkspace.load("honeycomb:cP@12x12x12")  # 5,184 faces, every edge K = 4
 
 
 def run_query(scaffold, n, no_zero, fast, args):

@@ -14,6 +14,9 @@ Edges of degree K >= 3 and targets N > 1 generalize this (:func:`_greedy_designs
 residue coprime to K on an edge whose K faces lie on K different strands chains them into
 one, and merging stops when N strands are left (a spanning forest).
 
+Where the greedy order gets stuck (often on non-manifold scaffolds such as honeycomb
+supercells), :mod:`lkspace.localsearch` continues from its closest attempt.
+
 Allowed labels may pin some edges odd (they must lie in the tree) or even (outside it);
 Kruskal's algorithm with the pinned-odd edges first either finds such a tree or gives up,
 and the caller falls back to CP-SAT.  Every design is re-traced by the caller.
@@ -38,11 +41,13 @@ def _cheapest(labels: np.ndarray, objective) -> tuple[int, int] | None:
     return int(cost[key]), int(labels[key])
 
 
-def spanning_designs(scaffold: Scaffold, query: Query, count: int = 1, seed: int = 0):
+def spanning_designs(scaffold: Scaffold, query: Query, count: int = 1, seed: int = 0, time_budget: float = 5.0):
     """Up to ``count`` distinct designs with ``query.components`` strands, without search.
 
     One component on a K <= 2 scaffold: random dual spanning trees; otherwise (any K,
-    N <= F components) greedy merging, :func:`_greedy_designs`.
+    N <= F components) greedy merging, :func:`_greedy_designs`, and where that gets stuck
+    a local search from its closest attempt (:mod:`lkspace.localsearch`, at most
+    ``time_budget`` seconds).
 
     Returns
     -------
@@ -57,7 +62,13 @@ def spanning_designs(scaffold: Scaffold, query: Query, count: int = 1, seed: int
     if scaffold.nulls is not None and np.any(scaffold.nulls):
         return [], False
     if degrees.max() > 2 or query.components > 1:
-        return _greedy_designs(scaffold, query, count, seed), False
+        partial: list = []
+        designs = _greedy_designs(scaffold, query, count, seed, partial)
+        if len(designs) < count and partial:
+            from .localsearch import local_search
+
+            designs += local_search(scaffold, query, partial[0][1], count - len(designs), seed, time_budget)
+        return designs, False
     allowed = allowed_labels(scaffold, query)
     n_edges = scaffold.n_edges
     base = np.zeros(n_edges, np.int64)
@@ -169,7 +180,9 @@ def _finder(parent: np.ndarray):
 GREEDY_ATTEMPTS = 16
 
 
-def _greedy_designs(scaffold: Scaffold, query: Query, count: int, seed: int) -> list[np.ndarray]:
+def _greedy_designs(
+    scaffold: Scaffold, query: Query, count: int, seed: int, partial: list | None = None
+) -> list[np.ndarray]:
     """Designs with N <= F components (any K) by greedy merging.
 
     Start from residue 0 everywhere (one strand per face) and visit the edges (those that
@@ -178,7 +191,8 @@ def _greedy_designs(scaffold: Scaffold, query: Query, count: int, seed: int) -> 
     (the K cut strands are chained by the shift ``i -> i + r``), as long as at least N
     strands remain; otherwise the edge keeps residue 0, which changes nothing.  The strand
     count is thus known exactly at every step.  Returns no design if some edge cannot follow
-    the rule or the count does not end at N.
+    the rule or the count does not end at N; then ``partial`` (a list, if given) receives
+    the attempt that came closest, as a start for :mod:`lkspace.localsearch`.
     """
     degrees = scaffold.edge_degrees
     allowed = allowed_labels(scaffold, query)
@@ -217,8 +231,10 @@ def _greedy_designs(scaffold: Scaffold, query: Query, count: int, seed: int) -> 
                 labels[e] = stay[e][1]
             else:
                 stuck = True
-                break
+                labels[e] = merge[e][1]  # keeps the partial design within the allowed labels
         if stuck or n_strands != query.components:
+            if partial is not None and (not partial or n_strands < partial[0][0]):
+                partial[:] = [(n_strands, labels)]
             continue
         key = labels.tobytes()
         if key not in seen:
