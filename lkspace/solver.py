@@ -141,7 +141,9 @@ def solve(
     if fast_path and (count == 1 or distinct_up_to == "none"):
         from .fastpath import spanning_designs
 
-        found, optimal = spanning_designs(scaffold, query, count, seed)
+        # the local search behind the fast path gets half of the time limit (30 s without one)
+        budget = 0.5 * time_limit if time_limit else LOCAL_SEARCH_SECONDS
+        found, optimal = spanning_designs(scaffold, query, count, seed, time_budget=budget)
         if len(found) == count and (objective is None or optimal):
             sols = [verify(scaffold, t, query.components) for t in found]
             status = "optimal" if objective is not None else "feasible"
@@ -167,6 +169,9 @@ def solve(
             result.stats,
         )
     return result
+
+
+LOCAL_SEARCH_SECONDS = 30.0
 
 
 def symmetry_actions(scaffold: Scaffold, mode: str, label_set: np.ndarray) -> list:

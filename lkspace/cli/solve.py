@@ -45,6 +45,9 @@ def _parity(value: str, item: str) -> int:
     return int(value.lower() == "odd")
 
 
+DEFAULT_TIME_LIMIT = 120.0  # seconds: a command should come back; 0 lifts the limit
+
+
 @click.command("solve")
 @mesh_argument
 @click.option(
@@ -97,9 +100,10 @@ def _parity(value: str, item: str) -> int:
 @click.option(
     "--time-limit",
     type=click.FloatRange(min=0),
-    default=None,
+    default=DEFAULT_TIME_LIMIT,
+    show_default=True,
     metavar="S",
-    help="Give up after S seconds (status 'unknown' if nothing is proved).",
+    help="Give up after S seconds (status 'unknown' if nothing is proved); 0: no limit.",
 )
 @click.option(
     "--workers",
@@ -172,7 +176,7 @@ def solve_cmd(
             count=count,
             distinct_up_to=distinct_up_to,
             objective=None if objective == "none" else objective,
-            time_limit=time_limit,
+            time_limit=time_limit or None,
             workers=workers,
             seed=seed,
             fast_path=not no_fast_path,
