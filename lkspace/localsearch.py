@@ -7,7 +7,9 @@ least two strands (when there are too many strands) or any edge of degree >= 2 (
 few), trying one label per residue class (the cheapest) and keeping the one whose
 component count is closest to N; sideways moves are kept, worse ones with a small
 probability.  Every evaluation is an exact trace (numba), so what it returns is correct
-by construction and is traced again by the solver.
+by construction and is traced again by the solver.  It stops at the time budget or after
+``max(PATIENCE, 2 * n_edges)`` moves without getting closer to N, so an infeasible query
+costs little before CP-SAT takes over.
 """
 
 from __future__ import annotations
@@ -21,6 +23,7 @@ from .solve import Query, allowed_labels, label_cost
 from .tracing import _walk, edge_partner, sc_port_model
 
 WORSE_MOVE_PROBABILITY = 0.02
+PATIENCE = 300  # moves without getting closer to N (at least; more on big scaffolds) before giving up
 
 
 def residue_options(scaffold: Scaffold, query: Query) -> list[np.ndarray]:
@@ -56,7 +59,9 @@ def local_search(scaffold: Scaffold, query: Query, start: np.ndarray, count: int
     designs, seen = [], set()
     movable = np.flatnonzero([len(o) > 1 for o in options])
     deadline = time.perf_counter() + time_budget
-    while len(movable) and time.perf_counter() < deadline:
+    patience = max(PATIENCE, 2 * scaffold.n_edges)
+    closest, stale = abs(n - target), 0
+    while len(movable) and time.perf_counter() < deadline and stale < patience:
         if n == target:
             key = labels.tobytes()
             if key not in seen:
@@ -89,4 +94,8 @@ def local_search(scaffold: Scaffold, query: Query, start: np.ndarray, count: int
         if best is not None and (best <= abs(n - target) or rng.random() < WORSE_MOVE_PROBABILITY):
             labels = best_labels
             n, port_strand = best_state
+        if abs(n - target) < closest:
+            closest, stale = abs(n - target), 0
+        else:
+            stale += 1
     return designs
