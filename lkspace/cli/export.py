@@ -38,8 +38,12 @@ def catalog_scaffold_name(meta: dict, path: str) -> str:
 
 def catalog_row(path: str, row: int):
     """``(scaffold, labels (n_edges,) int64)`` of row ``row`` of the catalog at ``path``."""
+    import os
+
     import pyarrow.parquet as pq
 
+    if not os.path.exists(path):
+        raise CatalogError(f"{path}: no such catalog file or folder")
     try:
         dataset = pq.ParquetDataset(path)
         schema = dataset.schema
