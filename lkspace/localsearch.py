@@ -18,9 +18,10 @@ import time
 
 import numpy as np
 
+from .fastpath import _cheapest
 from .mesh import Scaffold
-from .solve import Query, allowed_labels, label_cost
-from .tracing import _walk, edge_partner, sc_port_model
+from .solve import Query, allowed_labels
+from .tracing import walk
 
 WORSE_MOVE_PROBABILITY = 0.02
 PATIENCE = 300  # moves without getting closer to N (at least; more on big scaffolds) before giving up
@@ -28,30 +29,22 @@ PATIENCE = 300  # moves without getting closer to N (at least; more on big scaff
 
 def residue_options(scaffold: Scaffold, query: Query) -> list[np.ndarray]:
     """Per edge: the cheapest allowed label of each residue class mod K."""
-    degrees = scaffold.edge_degrees
     out = []
-    for e, labels in enumerate(allowed_labels(scaffold, query)):
-        k = int(degrees[e])
-        cost = label_cost(labels, query.objective)
-        order = np.lexsort((labels < 0, np.abs(labels), cost))
-        _, first = np.unique(labels[order] % k, return_index=True)
-        out.append(labels[order][first])
+    for k, labels in zip(scaffold.edge_degrees.tolist(), allowed_labels(scaffold, query), strict=True):
+        residues = labels % k
+        out.append(np.array([_cheapest(labels[residues == r], query.objective)[1] for r in np.unique(residues)]))
     return out
 
 
 def local_search(scaffold: Scaffold, query: Query, start: np.ndarray, count: int, seed: int, time_budget: float):
     """Up to ``count`` distinct designs with ``query.components`` strands, from ``start``."""
     options = residue_options(scaffold, query)
-    degrees = scaffold.edge_degrees
-    model = sc_port_model(scaffold)
-    translation = np.zeros((scaffold.n_corners, 0), np.int64)
     edge_of_port = np.repeat(scaffold.side_edge, 2)
     target = query.components
     rng = np.random.default_rng(seed)
 
     def evaluate(labels):
-        partner = edge_partner(model, degrees, labels)
-        _, starts, _, _, port_strand, _ = _walk(model.corner_partner, partner, translation)
+        _, (_, starts, _, _, port_strand, _) = walk(scaffold, labels)
         return len(starts) - 1, port_strand
 
     labels = np.asarray(start, np.int64).copy()

@@ -18,7 +18,7 @@ from .errors import LabelError
 from .labels import parse_label_set
 from .mesh import Scaffold
 from .symmetry import check_label_set, check_mode, symmetry_group
-from .tracing import _walk, edge_partner, sc_port_model
+from .tracing import walk
 
 MAX_CLASSES = 1 << 21
 
@@ -133,10 +133,7 @@ class DesignSpace:
     def class_info(self, residues: np.ndarray) -> ClassInfo:
         """Trace residue vector ``residues (n_edges,)`` once: components, strand lengths, periods."""
         sc = self.scaffold
-        model = sc_port_model(sc)
-        partner = edge_partner(model, self.moduli, np.asarray(residues, np.int64))
-        translation = sc.side_translation if sc.periodic else np.zeros((sc.n_corners, 0), np.int64)
-        _, starts, _, periods, port_strand, _ = _walk(model.corner_partner, partner, np.ascontiguousarray(translation))
+        _, (_, starts, _, periods, port_strand, _) = walk(sc, residues)
         lengths = np.diff(starts)
         order = np.argsort(-lengths, kind="stable")
         edge_of_port = np.repeat(sc.side_edge, 2)

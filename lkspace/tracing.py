@@ -281,6 +281,23 @@ def sc_port_model(scaffold: Scaffold) -> PortModel:
     return cached
 
 
+def walk(scaffold: Scaffold, twists: np.ndarray, null_mask: np.ndarray | None = None):
+    """Run the strand walk for validated ``twists`` (residues suffice) and optional nulls.
+
+    Returns the edge-link partners and the kernel's arrays ``(steps, strand_starts,
+    closed, periods, port_strand, port_shift)``; :func:`trace` wraps them in a
+    :class:`Trace`, the enumerator and the solver's local search use them raw.
+    """
+    model = sc_port_model(scaffold)
+    partner = edge_partner(model, scaffold.edge_degrees, np.asarray(twists, np.int64))
+    if null_mask is not None and null_mask.any():
+        cut = 2 * np.flatnonzero(null_mask) + np.where(scaffold.side_forward[null_mask], 0, 1)
+        partner[partner[cut]] = -1
+        partner[cut] = -1
+    translation = scaffold.side_translation if scaffold.periodic else np.zeros((scaffold.n_corners, 0), np.int64)
+    return partner, _walk(model.corner_partner, partner, np.ascontiguousarray(translation))
+
+
 def trace(scaffold: Scaffold, twists=None, nulls=None) -> Trace:
     """Trace the strands of ``scaffold`` under ``twists`` (and optional ``nulls``).
 
@@ -303,17 +320,8 @@ def trace(scaffold: Scaffold, twists=None, nulls=None) -> Trace:
     if nulls is None:
         nulls = scaffold.nulls
     null_mask = np.zeros(scaffold.n_corners, bool) if nulls is None else check_nulls(scaffold, nulls)
-    model = sc_port_model(scaffold)
-    partner = edge_partner(model, scaffold.edge_degrees, twists)
-    if null_mask.any():
-        cut = 2 * np.flatnonzero(null_mask) + np.where(scaffold.side_forward[null_mask], 0, 1)
-        partner[partner[cut]] = -1
-        partner[cut] = -1
-    translation = scaffold.side_translation if scaffold.periodic else np.zeros((scaffold.n_corners, 0), np.int64)
-    steps, starts, closed, periods, port_strand, port_shift = _walk(
-        model.corner_partner, partner, np.ascontiguousarray(translation)
-    )
-    even = np.where(steps % 2 == 0, steps, model.corner_partner[steps])
+    partner, (steps, starts, closed, periods, port_strand, port_shift) = walk(scaffold, twists, null_mask)
+    even = np.where(steps % 2 == 0, steps, sc_port_model(scaffold).corner_partner[steps])
     return Trace(
         scaffold, twists, null_mask, steps, even // 2, starts, closed, periods, port_strand, port_shift, partner
     )

@@ -72,3 +72,11 @@ def _jsonable(value):
 
 json_option = click.option("--json", "as_json", is_flag=True, help="Print one JSON object on stdout and nothing else.")
 mesh_argument = click.argument("mesh", required=False, metavar="[MESH]")
+labels_option = click.option(
+    "--labels",
+    "labels_spec",
+    default="-2..2",
+    show_default=True,
+    metavar="SET",
+    help="Label set: a range like -2..2 or a comma list like -2,-1,1,2.",
+)

@@ -11,6 +11,7 @@ from rich.table import Table
 
 from .. import io
 from ..scaffolds import builtin
+from ..symmetry import symmetry_group
 from ..tracing import trace
 from .common import Context, emit, json_option, load_mesh, mesh_argument, nulls_of, twists_of
 
@@ -111,13 +112,8 @@ def info_cmd(mesh, as_json):
     scaffold = load_mesh(ctx, mesh)
     scaffold.radial  # validates the radial order
     data = info_dict(scaffold)
-    try:
-        from ..symmetry import symmetry_group
-    except ImportError:
-        symmetry_group = None
-    if symmetry_group is not None:
-        group = symmetry_group(scaffold)
-        data["symmetry_group_order"] = {"rotations": group.n_rotations, "isometries": group.order}
+    group = symmetry_group(scaffold)
+    data["symmetry_group_order"] = {"rotations": group.n_rotations, "isometries": group.order}
 
     def human():
         table = Table(title=f"{scaffold.name}", show_header=False, box=None)

@@ -13,7 +13,7 @@ from ..enumerate import MODES, count, enumerate_designs, make_space
 from ..errors import LabelError
 from ..shards import write_catalog
 from ..symmetry import MODES as SYMMETRY_MODES
-from .common import Context, emit, json_option, label_set, load_mesh, mesh_argument
+from .common import Context, emit, json_option, label_set, labels_option, load_mesh, mesh_argument
 
 
 def _progress_factory(enabled: bool):
@@ -70,14 +70,7 @@ def _count_payload(space, mode, components, max_designs, sample, seed) -> dict:
 
 @click.command("enumerate")
 @mesh_argument
-@click.option(
-    "--labels",
-    "labels_spec",
-    default="-2..2",
-    show_default=True,
-    metavar="SET",
-    help="Label set: a range like -2..2 or a comma list like -2,-1,1,2.",
-)
+@labels_option
 @click.option(
     "--symmetry",
     type=click.Choice(SYMMETRY_MODES),

@@ -13,7 +13,7 @@ from .. import io
 from ..errors import LabelError
 from ..labels import edge_index
 from ..solve import solve
-from .common import Context, emit, json_option, label_set, load_mesh, mesh_argument
+from .common import Context, emit, json_option, label_set, labels_option, load_mesh, mesh_argument
 
 
 def _edge_values(scaffold, items, option: str, parse) -> dict[int, int]:
@@ -54,14 +54,7 @@ DEFAULT_TIME_LIMIT = 120.0  # seconds: a command should come back; 0 lifts the l
     "--components", "-n", type=click.IntRange(min=1), required=True, help="Exact number of strand components N."
 )
 @click.option("--no-zero", is_flag=True, help="Forbid twist label 0.")
-@click.option(
-    "--labels",
-    "labels_spec",
-    default="-2..2",
-    show_default=True,
-    metavar="SET",
-    help="Labels the design may use: a range -2..2 or a list -2,-1,1,2.",
-)
+@labels_option
 @click.option(
     "--fix",
     "fix_items",
