@@ -29,9 +29,10 @@ import numpy as np
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
 import lkspace  # noqa: E402
-from lkspace.enumerate import count, make_space  # noqa: E402
+from lkspace.catalog.shards import write_catalog  # noqa: E402
+from lkspace.design.counting import count_space
+from lkspace.design.space import make_space  # noqa: E402
 from lkspace.io.atomic import write_text  # noqa: E402
-from lkspace.shards import write_catalog  # noqa: E402
 
 RESULTS = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "results")
 
@@ -39,7 +40,7 @@ RESULTS = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__)
 def naive_rate(space, n_sample: int, seed: int = 0) -> dict:
     """Seconds per assignment of the per-assignment implementation, on a random sample."""
     sc = space.scaffold
-    labels = space.labels
+    labels = space.label_set
     perms, signs = space.action
     inv = np.argsort(perms, axis=1)
     rng = np.random.default_rng(seed)
@@ -85,7 +86,7 @@ def main() -> None:
     # warm up: numba compilation and the symmetry group, outside the timing
     write_catalog(make_space("tetrahedron", "-2..2"), os.path.join(tempfile.mkdtemp(), "warm.parquet"))
     t0 = time.perf_counter()
-    totals = count(space)
+    totals = count_space(space).to_dict()
     t_count = time.perf_counter() - t0
 
     out_dir = args.keep or tempfile.mkdtemp(prefix="lkspace-bench-")

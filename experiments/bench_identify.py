@@ -3,7 +3,7 @@
 Designs: the torus families ``dihedron:N`` (all labels 1: T(2, N)) and ``book:K`` with
 twist t (T(K, t)), and random labels in -2..2 (seeded) on the Platonic solids.  For each
 design it times :func:`lkspace.geometry.realize` (with the embedding check) and
-:func:`lkspace.identify.identify_curves` (projection, PD code, simplification, table
+:func:`lkspace.knots.recognition.identify_curves` (projection, PD code, simplification, table
 lookup) separately, best of three, after a warm-up that loads the KnotInfo/LinkInfo
 index.  Writes ``results/bench_identify.json``.  Target: under 1 s in total for diagrams
 of up to 30 crossings.
@@ -22,8 +22,9 @@ import time
 import numpy as np
 
 import lkspace
-from lkspace.geometry import realize
-from lkspace.identify import identify_curves, tables
+from lkspace.geometry.realization import realize
+from lkspace.knots.recognition import identify_curves
+from lkspace.knots.tables import tables
 
 
 def designs(n_random: int, rng: np.random.Generator):

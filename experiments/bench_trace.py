@@ -19,7 +19,7 @@ import time
 import numpy as np
 
 import lkspace
-from lkspace.tracing import sc_port_model
+from lkspace.strands.ports import port_model
 
 
 def cube_sphere(n: int) -> lkspace.Scaffold:
@@ -55,7 +55,7 @@ def measure(n: int, rng: np.random.Generator) -> dict:
     s = cube_sphere(n)
     t1 = time.perf_counter()
     s.radial
-    sc_port_model(s)
+    port_model(s)
     t2 = time.perf_counter()
     twists = rng.integers(-2, 3, s.n_edges)
     best = float("inf")

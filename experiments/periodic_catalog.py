@@ -20,8 +20,8 @@ import numpy as np
 import pandas as pd
 
 import lkspace
-from lkspace.enumerate import count
-from lkspace.space import make_space
+from lkspace.design.counting import count_space
+from lkspace.design.space import make_space
 
 SCAFFOLDS = [
     "tiling:square",
@@ -43,7 +43,7 @@ SUPERCELLS = [
 
 
 def listed_summary(name: str, labels: str) -> dict:
-    df = pd.concat(list(lkspace.enumerate(name, labels)))
+    df = pd.concat(list(lkspace.designs(name, labels)))
     threads = df.strand_periods.map(lambda ps: sum(any(p) for p in ps))
     loops = df.components - threads
     return {
@@ -62,7 +62,7 @@ def main() -> None:
         for labels in LABEL_SETS:
             t0 = time.perf_counter()
             space = make_space(s, labels)
-            totals = count(space)
+            totals = count_space(space).to_dict()
             row = {
                 "scaffold": name,
                 "labels": labels,
@@ -83,7 +83,7 @@ def main() -> None:
             full = f"{name}@{size}"
             t0 = time.perf_counter()
             space = make_space(full, labels)
-            totals = count(space)
+            totals = count_space(space).to_dict()
             growth.append(
                 {
                     "scaffold": full,

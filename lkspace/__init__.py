@@ -1,52 +1,119 @@
 """lkspace: knots, links and chainmail designed by twist labels on polygon meshes.
 
+The public API, loaded on first use (``import lkspace`` stays fast); every function that
+works on a scaffold also takes a path or a built-in name:
+
+=======================  ===============================================================
+:func:`load`             a scaffold from a built-in name or a ``.obj`` / ``.json`` file
+:func:`trace`            the strands of a labelled scaffold (:class:`Trace`)
+:func:`designs`          a design space, batch by batch (pandas DataFrames)
+:func:`count_designs`    exact counts of a design space, without listing it
+:func:`write_catalog`    a design space written to a Parquet catalog
+:func:`read_catalog`     a catalog back, labels as one ``(n, n_edges) int8`` array
+:func:`solve`            designs with exactly N components (CP-SAT)
+:func:`realize`          strands as 3D curves (:class:`Realization`)
+:func:`export`           strands to ``.obj``, ``.ply``, ``.glb`` or ``.png``
+:func:`identify`         the knot or link type (extra ``[knots]``)
+=======================  ===============================================================
+
 Quick start
 -----------
 >>> import lkspace
->>> s = lkspace.load("tetrahedron")
->>> lkspace.trace(s, 1).components
-3
+>>> lkspace.trace("tetrahedron", 1)
+Trace(tetrahedron: 3 components, holds together, lengths [4, 4, 4])
 """
 
 from __future__ import annotations
 
-import os
+import importlib
+import warnings
+from importlib.metadata import PackageNotFoundError, version
+from typing import TYPE_CHECKING, Any
 
-# ``lkspace.enumerate`` is the function (its module stays importable: ``from lkspace.enumerate import ...``)
-from .enumerate import enumerate_designs as enumerate  # noqa: A001
-from .errors import LabelError, LkspaceError, MissingDependencyError, ScaffoldError
-from .lattice import Lattice
-from .mesh import Scaffold
-from .solve import solve  # eager: importing lkspace.solve would shadow a lazy wrapper; ortools loads on use
-from .tracing import Trace, trace
+from .errors import CatalogError, LabelError, LkspaceError, MissingDependencyError, ScaffoldError
+from .model.lattice import Lattice
+from .model.scaffold import Scaffold
 
-__version__ = "0.1.0"
+if TYPE_CHECKING:
+    from .catalog.listing import designs
+    from .catalog.reader import Catalog, read_catalog
+    from .catalog.shards import write_catalog
+    from .design.counting import DesignCount, count_designs
+    from .formats.registry import export
+    from .geometry.realization import GeometryParams, Realization, realize
+    from .inverse.pipeline import Solution, SolveResult, solve
+    from .io.sources import load
+    from .knots.recognition import Identification, identify
+    from .strands.tracing import Trace, trace
+
+try:
+    __version__ = version("lkspace")
+except PackageNotFoundError:  # pragma: no cover - running from a source tree without installing
+    __version__ = "0+unknown"
+
+_LAZY = {
+    "load": "io.sources",
+    "trace": "strands.tracing",
+    "Trace": "strands.tracing",
+    "designs": "catalog.listing",
+    "count_designs": "design.counting",
+    "DesignCount": "design.counting",
+    "write_catalog": "catalog.shards",
+    "read_catalog": "catalog.reader",
+    "Catalog": "catalog.reader",
+    "solve": "inverse.pipeline",
+    "SolveResult": "inverse.pipeline",
+    "Solution": "inverse.pipeline",
+    "realize": "geometry.realization",
+    "Realization": "geometry.realization",
+    "GeometryParams": "geometry.realization",
+    "export": "formats.registry",
+    "identify": "knots.recognition",
+    "Identification": "knots.recognition",
+}
+"""Public name -> the module (under ``lkspace``) that defines it, imported on first use."""
 
 __all__ = [
     "load",
     "trace",
-    "enumerate",
+    "Trace",
+    "designs",
+    "count_designs",
+    "DesignCount",
+    "write_catalog",
+    "read_catalog",
+    "Catalog",
     "solve",
+    "SolveResult",
+    "Solution",
+    "realize",
+    "Realization",
+    "GeometryParams",
+    "export",
+    "identify",
+    "Identification",
     "Scaffold",
     "Lattice",
-    "Trace",
     "LkspaceError",
     "ScaffoldError",
     "LabelError",
+    "CatalogError",
     "MissingDependencyError",
     "__version__",
 ]
 
 
-def load(source: str | os.PathLike | Scaffold) -> Scaffold:
-    """A scaffold from a built-in name (``"cube"``, ``"book:3"``) or a ``.obj``/``.json`` path."""
-    from . import io, scaffolds
+def __getattr__(name: str) -> Any:
+    """Import public names on first use; ``enumerate`` is a deprecated alias of :func:`designs`."""
+    if name == "enumerate":
+        warnings.warn("lkspace.enumerate is deprecated; use lkspace.designs", DeprecationWarning, stacklevel=2)
+        name = "designs"
+    if name not in _LAZY:
+        raise AttributeError(f"module 'lkspace' has no attribute {name!r}")
+    value = getattr(importlib.import_module(f".{_LAZY[name]}", __name__), name)
+    globals()[name] = value
+    return value
 
-    if isinstance(source, Scaffold):
-        return source
-    text = os.fspath(source)
-    if scaffolds.is_builtin_name(text) and not os.path.exists(text):
-        return scaffolds.builtin(text)
-    if os.path.exists(text) or os.path.splitext(text)[1] or os.sep in text:
-        return io.read(text)
-    raise ScaffoldError(f"{text!r} is neither a file nor a built-in scaffold name; see 'lkspace scaffold --help'")
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(_LAZY))

@@ -1,6 +1,6 @@
 """Brute-force orbit computation (tests only): every assignment, every group element.
 
-Independent of the residue-class walk of :mod:`lkspace.enumerate`: it codes all
+Independent of the residue-class walk of :mod:`lkspace.design.walk`: it codes all
 ``|SET|^edges`` assignments, applies every signed edge permutation and keeps, per orbit,
 the member with the smallest key (residue indices per edge, then label indices per
 edge: the catalog's canonical rule).

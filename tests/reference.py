@@ -1,6 +1,6 @@
 """A slow, independent reference implementation of the strand model (tests only).
 
-Written straight from SPEC §1 with Python dicts and ``math``: it shares no code with
+Written straight from the model's rules (docs/model.md) with Python dicts and ``math``: it shares no code with
 ``lkspace`` beyond reading the scaffold's raw arrays.
 """
 

@@ -10,9 +10,11 @@ import pandas as pd
 import pyarrow.parquet as pq
 import pytest
 
-from lkspace.catalog import FORMAT_VERSION, read_catalog, read_metadata, split_classes, write_catalog
+from lkspace.catalog.reader import read_catalog, read_metadata
+from lkspace.catalog.schema import FORMAT_VERSION
+from lkspace.catalog.shards import split_classes, write_catalog
 from lkspace.cli import main
-from lkspace.enumerate import make_space
+from lkspace.design.space import make_space
 from lkspace.errors import CatalogError
 
 
@@ -32,7 +34,7 @@ def test_single_file_catalog(tmp_path):
     assert (
         meta["scaffold"]["name"] == "tetrahedron" and meta["scaffold"]["content_hash"] == space.scaffold.content_hash()
     )
-    assert meta["labels"] == [-2, -1, 0, 1, 2] and meta["symmetry"] == "rotations" and meta["group_order"] == 12
+    assert meta["label_set"] == [-2, -1, 0, 1, 2] and meta["symmetry"] == "rotations" and meta["group_order"] == 12
     assert meta["rows"] == 1475
     assert [p for p in os.listdir(tmp_path)] == ["t.parquet"]  # no temporary files left
     assert pq.read_schema(path).field("labels").type.value_type.bit_width == 8
@@ -162,11 +164,11 @@ def test_cli_errors_are_one_line(capsys, args, message):
 
 
 def test_interrupted_run_leaves_no_partial_part_and_resumes(tmp_path, monkeypatch):
-    import lkspace.shards as catalog
+    import lkspace.catalog.shards as catalog
 
     space = make_space("cube", "-1..1", "rotations")
     folder = tmp_path / "run"
-    real = catalog._batches
+    real = catalog.space_batches
     calls = {"n": 0}
 
     def flaky(*args, **kwargs):
@@ -180,11 +182,11 @@ def test_interrupted_run_leaves_no_partial_part_and_resumes(tmp_path, monkeypatc
             return broken()
         return real(*args, **kwargs)
 
-    monkeypatch.setattr(catalog, "_batches", flaky)
+    monkeypatch.setattr(catalog, "space_batches", flaky)
     with pytest.raises(KeyboardInterrupt):
         write_catalog(space, folder, shards=3)
     assert sorted(os.listdir(folder)) == ["_lkspace.json", "part-00000.parquet"]  # no temporary or partial part
-    monkeypatch.setattr(catalog, "_batches", real)
+    monkeypatch.setattr(catalog, "space_batches", real)
     totals = write_catalog(space, folder, shards=3, resume=True)
     assert totals["shards_resumed"] == 1 and totals["designs"] == 22815
     assert pd.read_parquet(folder).orbit_size.sum() == 3**12

@@ -7,7 +7,7 @@ import json
 import pandas as pd
 import pytest
 
-from lkspace.catalog import read_metadata
+from lkspace.catalog.reader import read_metadata
 from lkspace.cli import main
 
 pytest.importorskip("snappy")

@@ -41,7 +41,7 @@ def test_trace_twist_file(capsys, tmp_path):
     f = tmp_path / "tw.txt"
     f.write_text("# labels\n0-1 1\n2 3 -1\n* 0\n")
     data, _ = run_json(capsys, "trace", "tetrahedron", "--twist", str(f))
-    assert data["twists"] == [1, 0, 0, 0, 0, -1]
+    assert data["labels"] == [1, 0, 0, 0, 0, -1]
 
 
 def test_trace_null(capsys):
@@ -54,7 +54,7 @@ def test_trace_labels_from_scaffold_file(capsys, tmp_path):
     path = tmp_path / "d.json"
     assert run(capsys, "scaffold", "tetrahedron", "-o", str(path))[0] == 0
     doc = json.loads(path.read_text())
-    doc["twists"] = [1] * 6
+    doc["labels"] = [1] * 6
     path.write_text(json.dumps(doc))
     data, _ = run_json(capsys, "trace", str(path))
     assert data["components"] == 3

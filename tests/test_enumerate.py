@@ -8,17 +8,12 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import lkspace
-from lkspace.enumerate import (
-    burnside_total,
-    canonical_form,
-    count,
-    design_batches,
-    make_space,
-    residue_batches,
-    walk_blocks,
-)
+from lkspace.catalog.batches import design_batches, residue_batches
+from lkspace.design.counting import burnside_total, count_space
+from lkspace.design.space import canonical_form, make_space
+from lkspace.design.spanning import all_spanning_trees, dual_edges
+from lkspace.design.walk import walk_blocks
 from lkspace.errors import LabelError
-from lkspace.spanning import all_spanning_trees, dual_edges
 
 from .brute_orbits import brute_orbits
 from .test_symmetry import cubic_honeycomb, square_tiling
@@ -36,7 +31,7 @@ def test_tetrahedron_pm2_has_12_chainmails():
     """The paper: labels {+2, -2} on the tetrahedron give 12 distinct chainmails up to rotation."""
     space = make_space("tetrahedron", "-2,2", "rotations")
     df = walked(space)
-    assert len(df) == 12 == burnside_total(space) == count(space)["designs"]
+    assert len(df) == 12 == burnside_total(space) == count_space(space).designs
     assert df.orbit_size.sum() == 64
     assert (df.components == 4).all()  # t = +-2 = 0 mod 2: every face its own loop
 
@@ -72,7 +67,7 @@ def test_walk_matches_brute_force(name, labels, mode):
     assert np.array_equal(got[order], reps[want])
     assert np.array_equal(df.orbit_size.to_numpy()[order], sizes[want])
     assert df.orbit_size.sum() == space.assignments
-    totals = count(space)
+    totals = count_space(space).to_dict()
     assert totals["designs"] == len(df) == burnside_total(space)
     assert totals["by_components"] == {str(k): int(v) for k, v in df.components.value_counts().sort_index().items()}
 
@@ -106,7 +101,7 @@ def test_rows_agree_with_the_tracer(name, labels, rng):
 
 def test_cube_minus2_to_2_counts():
     space = make_space("cube", "-2..2", "rotations")
-    totals = count(space)
+    totals = count_space(space).to_dict()
     assert totals["designs"] == 10_194_250 == burnside_total(space)
     assert totals["assignments"] == totals["assignments_covered"] == 244_140_625
     assert sum(totals["by_components"].values()) == 10_194_250
@@ -116,7 +111,7 @@ def test_filters_apply_during_the_walk():
     space = make_space("cube", "-1..1", "rotations")
     full = walked(space)
     one = walked(space, components=1)
-    assert len(one) == int((full.components == 1).sum()) == count(space, 1)["designs"]
+    assert len(one) == int((full.components == 1).sum()) == count_space(space, 1).designs
     nz = walked(make_space("cube", "-1..1", "rotations", no_zero=True))
     assert len(nz) == int((full.n_zero == 0).sum())
     assert len(walked(space, max_designs=1000)) == 1000
@@ -138,18 +133,18 @@ def test_spanning_trees_give_single_components():
     space = make_space("cube", "-1..1", "rotations")
     _, pairs = dual_edges(space)
     assert len(list(all_spanning_trees(6, pairs))) == 384  # spanning trees of the octahedron
-    df = next(lkspace.enumerate("cube", "-1..1", mode="spanning-trees"))
+    df = next(lkspace.designs("cube", "-1..1", mode="spanning-trees"))
     assert (df.components == 1).all() and len(df) > 0
-    a = next(lkspace.enumerate("cube", "-2..2", mode="spanning-trees", sample=30, seed=7))
-    b = next(lkspace.enumerate("cube", "-2..2", mode="spanning-trees", sample=30, seed=7))
+    a = next(lkspace.designs("cube", "-2..2", mode="spanning-trees", sample=30, seed=7))
+    b = next(lkspace.designs("cube", "-2..2", mode="spanning-trees", sample=30, seed=7))
     assert a.residues.map(tuple).tolist() == b.residues.map(tuple).tolist()
     assert set(a.residues.map(tuple)) <= set(df.residues.map(tuple))
 
 
 def test_api_yields_dataframes_and_arrow():
-    frames = list(lkspace.enumerate("tetrahedron", "-1..1", symmetry="isometries", batch_rows=50))
+    frames = list(lkspace.designs("tetrahedron", "-1..1", symmetry="isometries", batch_rows=50))
     assert sum(len(f) for f in frames) == burnside_total(make_space("tetrahedron", "-1..1", "isometries"))
-    batch = next(lkspace.enumerate("tetrahedron", [-2, 2], as_arrow=True))
+    batch = next(lkspace.designs("tetrahedron", [-2, 2], as_arrow=True))
     assert batch.num_rows == 12
 
 
@@ -203,7 +198,7 @@ def test_count_by_cycle_index_for_a_space_too_big_to_list():
     edges and 14 two-cycles)."""
     space = make_space("dodecahedron", "-2..2", "rotations")
     expected = (5**30 + 24 * 5**6 + 20 * 5**10 + 15 * 5**16) // 60
-    totals = count(space)
+    totals = count_space(space).to_dict()
     assert totals["designs"] == expected and totals["by_components"] is None
     with pytest.raises(LabelError, match="too many"):
         next(design_batches(space))

@@ -10,8 +10,11 @@ import pytest
 
 import lkspace
 from lkspace.cli import main
-from lkspace.export import ExportError, export, glb_bytes, tube
-from lkspace.geometry import realize
+from lkspace.errors import ExportError
+from lkspace.formats.glb import glb_bytes
+from lkspace.formats.registry import export
+from lkspace.formats.tubes import tube
+from lkspace.geometry.realization import realize
 
 trimesh = pytest.importorskip("trimesh")
 
@@ -98,12 +101,12 @@ def test_bad_extension_writes_nothing(tmp_path, borromean):
 def test_failed_write_leaves_the_old_file(tmp_path, borromean, monkeypatch):
     path = tmp_path / "b.obj"
     path.write_text("old")
-    import lkspace.export as ex
+    import lkspace.formats.obj as ex
 
     def boom(*a, **k):
         raise RuntimeError("disk full")
 
-    monkeypatch.setattr(ex, "_tubes", boom)
+    monkeypatch.setattr(ex, "tube_meshes", boom)
     with pytest.raises(RuntimeError):
         export(borromean, path, tubes=True)
     assert path.read_text() == "old" and os.listdir(tmp_path) == ["b.obj"]
@@ -133,24 +136,22 @@ def test_cli_export_errors_are_one_line(tmp_path, capsys):
     assert code == 2 and err.count("\n") == 1
 
 
-def write_catalog(path, scaffold_name="dihedron:3", meta_key="scaffold"):
-    import pyarrow as pa
-    import pyarrow.parquet as pq
-
-    table = pa.table({"labels": [[1, 1, 1], [-1, 0, 0], [2, 2, 2]], "components": [1, 1, 1]})
-    meta = {meta_key: scaffold_name, "labels": "-2..2", "format_version": 1}
-    table = table.replace_schema_metadata({"lkspace": json.dumps(meta)})
-    pq.write_table(table, path)
+def write_catalog(capsys, path):
+    """The real catalog ``enumerate`` writes: dihedron:3 with labels {0, 2}, 4 designs."""
+    code, _, err = run(capsys, "enumerate", "dihedron:3", "--labels", "0,2", "-o", str(path), "--json")
+    assert code == 0, err
+    return lkspace.read_catalog(path)
 
 
 def test_cli_export_catalog_row(tmp_path, capsys):
     cat = tmp_path / "designs.parquet"
-    write_catalog(cat)
-    out_path = tmp_path / "row2.obj"
-    code, out, err = run(capsys, "export", str(cat), "--row", "2", "-o", str(out_path), "--json")
+    catalog = write_catalog(capsys, cat)
+    row = int(np.flatnonzero((catalog.labels == 2).all(axis=1))[0])
+    out_path = tmp_path / "row.obj"
+    code, out, err = run(capsys, "export", str(cat), "--row", str(row), "-o", str(out_path), "--json")
     assert code == 0, err
     data = json.loads(out)
-    assert data["twists"] == [2, 2, 2] and data["row"] == 2 and data["scaffold"] == "dihedron:3"
+    assert data["labels"] == [2, 2, 2] and data["row"] == row and data["scaffold"] == "dihedron:3"
     assert data["components"] == 2  # T(2, 6)
     assert out_path.read_text().count("\nl ") == 2
 
@@ -161,7 +162,7 @@ def test_cli_catalog_with_nested_metadata(tmp_path, capsys):
 
     cat = tmp_path / "c.parquet"
     table = pa.table({"labels": [[1, 1, 1, 1, 0]]})
-    meta = {"scaffold": {"name": "figure-eight", "content_hash": "x"}}
+    meta = {"scaffold": {"name": "figure-eight", "content_hash": lkspace.load("figure-eight").content_hash()}}
     pq.write_table(table.replace_schema_metadata({"lkspace": json.dumps(meta)}), cat)
     code, out, err = run(capsys, "export", str(cat), "--row", "0", "-o", str(tmp_path / "f.ply"), "--json")
     assert code == 0, err
@@ -171,14 +172,14 @@ def test_cli_catalog_with_nested_metadata(tmp_path, capsys):
 @pytest.mark.parametrize(
     "args, message",
     [
-        (["--row", "3"], "row 3 out of range 0..2"),
+        (["--row", "4"], "row 4 out of range 0..3"),
         ([], "give --row"),
         (["--row", "0", "--twist", "1"], "exclusive"),
     ],
 )
 def test_cli_catalog_errors(tmp_path, capsys, args, message):
     cat = tmp_path / "designs.parquet"
-    write_catalog(cat)
+    write_catalog(capsys, cat)
     code, _, err = run(capsys, "export", str(cat), *args, "-o", str(tmp_path / "x.obj"))
     assert code == 2 and message in err and err.count("\n") == 1
 

@@ -8,10 +8,12 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 import lkspace
-from lkspace.embedding import check_embedding
-from lkspace.geometry import GeometryError, GeometryParams, realize, smoothstep
-from lkspace.lattice import Lattice
-from lkspace.mesh import Scaffold
+from lkspace.errors import GeometryError
+from lkspace.geometry.clearance import check_embedding
+from lkspace.geometry.realization import GeometryParams, realize
+from lkspace.geometry.tracks import smoothstep
+from lkspace.model.lattice import Lattice
+from lkspace.model.scaffold import Scaffold
 
 
 def builtin_names() -> list[str]:

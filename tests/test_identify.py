@@ -17,14 +17,14 @@ pytest.importorskip("database_knotinfo")
 
 import lkspace  # noqa: E402
 from lkspace.cli import main  # noqa: E402
-from lkspace.diagram import project  # noqa: E402
 from lkspace.errors import LkspaceError  # noqa: E402
-from lkspace.identify import identify, identify_batch, identify_curves  # noqa: E402
+from lkspace.knots.diagram import project  # noqa: E402
+from lkspace.knots.recognition import identify, identify_batch, identify_curves  # noqa: E402
 
 
 def name_of(mesh, twists):
     scaffold = lkspace.load(mesh)
-    return identify(scaffold, np.asarray(twists) if not np.isscalar(twists) else twists)
+    return identify(scaffold, np.asarray(twists) if not np.isscalar(twists) else twists).to_dict()
 
 
 def torus(p: int, q: int, n: int = 400, sign: int = 1) -> list[np.ndarray]:
@@ -178,7 +178,7 @@ def test_any_dihedron_labelling_is_the_torus_link_of_its_sum(labels):
     """dihedron:N with labels adding up to s realizes T(2, s), whatever the individual labels."""
     s = sum(labels)
     assume(s != 0 and abs(s) in TORUS_2)
-    r = identify(lkspace.load(f"dihedron:{len(labels)}"), np.array(labels))
+    r = identify(lkspace.load(f"dihedron:{len(labels)}"), np.array(labels)).to_dict()
     assert r["components"] == (2 if s % 2 == 0 else 1)
     assert r["name"] == TORUS_2[abs(s)]
     if abs(s) % 2 and abs(s) > 1:
@@ -188,7 +188,7 @@ def test_any_dihedron_labelling_is_the_torus_link_of_its_sum(labels):
 @settings(max_examples=6, deadline=None)
 @given(st.lists(st.integers(-2, 2), min_size=6, max_size=6), st.integers(0, 10))
 def test_diagram_linking_numbers_match_the_gauss_integral(labels, seed):
-    from lkspace.geometry import realize
+    from lkspace.geometry.realization import realize
     from tests.test_geometry import gauss_linking
 
     real = realize(lkspace.load("tetrahedron"), np.array(labels))
@@ -202,12 +202,12 @@ def test_diagram_linking_numbers_match_the_gauss_integral(labels, seed):
 def test_composite_knots_are_named_by_their_factors():
     import spherogram
 
-    from lkspace.identify import _one_based, name_pd
+    from lkspace.knots.naming import name_pd, one_based
 
     trefoil = spherogram.Link("K3a1")
-    granny = name_pd(_one_based(trefoil.connected_sum(spherogram.Link("K3a1")).PD_code()), 1)
-    square = name_pd(_one_based(trefoil.connected_sum(trefoil.mirror()).PD_code()), 1)
+    granny = name_pd(one_based(trefoil.connected_sum(spherogram.Link("K3a1")).PD_code()), 1)
+    square = name_pd(one_based(trefoil.connected_sum(trefoil.mirror()).PD_code()), 1)
     assert granny["name"] == square["name"] == "3_1#3_1" and granny["prime"] is False
     assert sorted(square["factors"]) == ["3_1", "m3_1"] and len(set(granny["factors"])) == 1
-    mixed = name_pd(_one_based(trefoil.connected_sum(spherogram.Link("K4a1")).PD_code()), 1)
+    mixed = name_pd(one_based(trefoil.connected_sum(spherogram.Link("K4a1")).PD_code()), 1)
     assert mixed["name"] == "3_1#4_1"

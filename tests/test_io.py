@@ -43,7 +43,7 @@ def test_roundtrip_random_json_with_labels(tmp_path_factory, s):
     io.write(s, path, twists, nulls)
     back = lkspace.load(str(path))
     _same(s, back)
-    assert back.twists.tolist() == twists.tolist()
+    assert back.labels.tolist() == twists.tolist()
     if nulls.any():
         assert back.nulls.tolist() == nulls.tolist()
     else:

@@ -9,8 +9,8 @@ from hypothesis import strategies as st
 
 import lkspace
 from lkspace import trace
-from lkspace.localsearch import local_search, residue_options
-from lkspace.solve import Query
+from lkspace.inverse.local_search import local_search, residue_options
+from lkspace.inverse.query import Query
 
 from .strategies import traceable_scaffolds
 
@@ -28,7 +28,7 @@ def test_fast_path_answers_honeycomb_supercells(name, no_zero):
 
 def test_residue_options_are_cheapest_per_class():
     s = lkspace.load("book:3")
-    options = residue_options(s, Query(1, labels=np.arange(-4, 5)))
+    options = residue_options(s, Query(1, label_set=np.arange(-4, 5)))
     spine = int(np.flatnonzero(s.edge_degrees == 3)[0])
     assert sorted(options[spine].tolist()) == [-1, 0, 1]  # residues 2, 0, 1 with the smallest |t|
 
@@ -37,7 +37,7 @@ def test_residue_options_are_cheapest_per_class():
 @given(data=st.data(), scaffold=traceable_scaffolds())
 def test_local_search_returns_only_exact_designs(data, scaffold):
     target = data.draw(st.integers(1, scaffold.n_faces))
-    query = Query(target, labels=np.arange(-2, 3))
+    query = Query(target, label_set=np.arange(-2, 3))
     start = np.zeros(scaffold.n_edges, np.int64)
     found = local_search(scaffold, query, start, 3, data.draw(st.integers(0, 99)), time_budget=0.2)
     assert len({d.tobytes() for d in found}) == len(found)

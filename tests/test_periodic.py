@@ -12,10 +12,11 @@ from hypothesis import strategies as st
 
 import lkspace
 from lkspace import trace
-from lkspace.connectivity import lattice_index
 from lkspace.errors import ScaffoldError
-from lkspace.lattice import Lattice
+from lkspace.model.lattice import Lattice
+from lkspace.model.specs import parse_label_set
 from lkspace.scaffolds.periodic import voronoi_scaffold
+from lkspace.strands.holding_together import lattice_index
 
 
 def test_cubic_honeycomb_threads_per_module():
@@ -168,7 +169,7 @@ def test_voronoi_rejects_coincident_points():
 
 def test_periodic_scaffold_file_roundtrip(tmp_path):
     s = lkspace.load("honeycomb:cF")
-    lkspace.io.write(s, tmp_path / "cf.json", twists=np.arange(s.n_edges) % 3)
+    lkspace.io.write(s, tmp_path / "cf.json", labels=np.arange(s.n_edges) % 3)
     back = lkspace.load(str(tmp_path / "cf.json"))
     assert np.array_equal(back.edge_keys, s.edge_keys)
     assert trace(back).components == trace(s, np.arange(s.n_edges) % 3).components
@@ -202,8 +203,8 @@ def test_periodic_catalog_rows_match_the_tracer(name, labels):
     import pandas as pd
 
     s = lkspace.load(name)
-    df = pd.concat(list(lkspace.enumerate(name, labels)))
-    assert df.orbit_size.sum() == len(lkspace.labels.parse_label_set(labels)) ** s.n_edges
+    df = pd.concat(list(lkspace.designs(name, labels)))
+    assert df.orbit_size.sum() == len(parse_label_set(labels)) ** s.n_edges
     for row in df.itertuples():
         t = trace(s, np.array(row.labels))
         assert (t.components, t.holds_together) == (row.components, row.holds_together)
@@ -211,7 +212,7 @@ def test_periodic_catalog_rows_match_the_tracer(name, labels):
 
 
 def test_periodic_symmetry_orders():
-    from lkspace.symmetry import symmetry_group
+    from lkspace.symmetry.group import symmetry_group
 
     orders = {
         name: (symmetry_group(lkspace.load(name)).order, symmetry_group(lkspace.load(name)).n_rotations)

@@ -10,9 +10,12 @@ import pytest
 import lkspace
 from lkspace import Lattice, Scaffold, trace
 from lkspace.cli import main
-from lkspace.errors import LabelError
-from lkspace.solve import Query, SolveVerificationError, build_model, verify
-from lkspace.solve import solve as solve_design
+from lkspace.errors import LabelError, SolveVerificationError
+from lkspace.inverse.cpsat_model import build_model
+from lkspace.inverse.pipeline import solve as solve_design
+from lkspace.inverse.pipeline import verify
+from lkspace.inverse.query import Query
+from lkspace.model.specs import parse_label_set
 from tests.brute import allowed_per_edge, component_census, residue_classes
 
 
@@ -86,7 +89,7 @@ def _scaffold(name):
 def _check_against_census(scaffold, labels, **query):
     allowed = allowed_per_edge(
         scaffold,
-        lkspace.labels.parse_label_set(labels),
+        parse_label_set(labels),
         query.get("no_zero", False),
         query.get("fixes"),
         query.get("parities"),
@@ -94,7 +97,7 @@ def _check_against_census(scaffold, labels, **query):
     census = component_census(scaffold, allowed)
     for n in range(1, max(census) + 2):
         for fast in (True, False):
-            result = solve(scaffold, n, labels=labels, fast_path=fast, **query)
+            result = solve(scaffold, n, label_set=labels, fast_path=fast, **query)
             assert result.status == ("feasible" if n in census else "infeasible"), (scaffold.name, labels, n, fast)
             for sol in result.solutions:
                 assert sol.components == n == trace(scaffold, sol.labels).components
@@ -127,7 +130,7 @@ def test_feasibility_matches_enumeration_irregular(name, labels):
 
 
 def test_cube_plus_minus_one_has_no_single_component():
-    result = solve(lkspace.load("cube"), 1, labels="-1,1")
+    result = solve(lkspace.load("cube"), 1, label_set="-1,1")
     assert result.status == "infeasible" and result.solutions == []
 
 
@@ -154,9 +157,9 @@ def test_fixes_and_parities_match_enumeration(name):
 )
 def test_count_returns_every_distinct_design_and_no_more(name, labels, n):
     scaffold = _scaffold(name)
-    allowed = allowed_per_edge(scaffold, lkspace.labels.parse_label_set(labels))
+    allowed = allowed_per_edge(scaffold, parse_label_set(labels))
     classes = residue_classes(scaffold, allowed, n)
-    result = solve(scaffold, n, labels=labels, count=len(classes) + 3)
+    result = solve(scaffold, n, label_set=labels, count=len(classes) + 3)
     got = {tuple((s.labels % scaffold.edge_degrees).tolist()) for s in result.solutions}
     assert got == classes and len(result.solutions) == len(classes)
     assert result.exhausted and result.status == "feasible"
@@ -188,7 +191,7 @@ def test_fast_path_respects_pinned_edges_or_falls_back():
     # the three edges at a vertex join three faces in a triangle of the dual graph: no
     # spanning tree holds all three, so pinning them odd sends the query to CP-SAT
     star = np.flatnonzero(np.any(cube.edge_vertices == 0, axis=1))
-    result = solve(cube, 1, labels="0,1", parities={int(e): 1 for e in star})
+    result = solve(cube, 1, label_set="0,1", parities={int(e): 1 for e in star})
     assert len(star) == 3 and result.method == "cp-sat"
     allowed = allowed_per_edge(cube, [0, 1], parities={int(e): 1 for e in star})
     assert result.status == ("feasible" if 1 in component_census(cube, allowed) else "infeasible")
@@ -234,7 +237,7 @@ def test_contradictions_and_empty_choices():
         solve(cube, 1, no_zero=True, fixes={0: 0})
     with pytest.raises(LabelError):
         solve(cube, 1, fixes={0: 1}, parities={0: 0})
-    result = solve(cube, 1, labels="1", parities={3: 0})
+    result = solve(cube, 1, label_set="1", parities={3: 0})
     assert result.status == "infeasible" and "3" in result.reason or "edge" in result.reason
     with pytest.raises(LabelError):
         solve(cube, 0)
@@ -243,7 +246,7 @@ def test_contradictions_and_empty_choices():
 def test_model_contracts_fixed_links():
     model = build_model(lkspace.load("book:3"), Query(1))
     assert model.n_nodes == 3 and model.n_fixed_cycles == 0  # every page is one path through the spine
-    model = build_model(lkspace.load("cube"), Query(2, labels=np.array([0])))
+    model = build_model(lkspace.load("cube"), Query(2, label_set=np.array([0])))
     assert model.decided == "infeasible" and model.n_fixed_cycles == 6
 
 
@@ -297,8 +300,8 @@ def test_cli_json_and_output_file(capsys, tmp_path):
         assert sol["components"] == 2 and sol["labels"][0] == 2 and sol["labels"][1] % 2 == 1
         assert set(sol["labels"]) <= {-1, 1, 2}
     design = lkspace.load(str(path))
-    assert design.twists.tolist() == data["solutions"][0]["labels"]
-    assert trace(design).components == 2 == trace(cube, design.twists).components
+    assert design.labels.tolist() == data["solutions"][0]["labels"]
+    assert trace(design).components == 2 == trace(cube, design.labels).components
 
 
 def test_cli_infeasible_is_an_answer(capsys):
@@ -335,7 +338,7 @@ def test_greedy_fast_path_on_non_manifold(name):
 
 
 def test_distinct_up_to_symmetry_gives_one_design_per_orbit():
-    from lkspace.solver import _solve_cp_sat
+    from lkspace.inverse.pipeline import solve_cp_sat
 
     scaffold = lkspace.load("dihedron:6")
     ev = scaffold.edge_vertices
@@ -349,8 +352,8 @@ def test_distinct_up_to_symmetry_gives_one_design_per_orbit():
     for c in classes:
         images = [c] + [tuple(np.array(c)[np.argsort(perm)].tolist()) for perm, _ in actions]
         orbits.add(min(images))
-    query = Query(2, labels=np.array([0, 1]))
-    result = _solve_cp_sat(scaffold, query, 50, actions, None, 1, 0, 0.0)
+    query = Query(2, label_set=np.array([0, 1]))
+    result = solve_cp_sat(scaffold, query, 50, actions, None, 1, 0, 0.0)
     got = {
         min([tuple((s.labels % 2).tolist())] + [tuple((s.labels % 2)[np.argsort(p)].tolist()) for p, _ in actions])
         for s in result.solutions
@@ -373,8 +376,8 @@ def test_distinct_up_to_symmetry_matches_the_residue_orbits(name, labels, mode):
     import pandas as pd
 
     scaffold = lkspace.load(name)
-    result = solve(scaffold, 1, labels=labels, count=500, distinct_up_to=mode, fast_path=False)
-    orbits = pd.concat(list(lkspace.enumerate(scaffold, labels, mode, mode="residues", components=1)))
+    result = solve(scaffold, 1, label_set=labels, count=500, distinct_up_to=mode, fast_path=False)
+    orbits = pd.concat(list(lkspace.designs(scaffold, labels, mode, mode="residues", components=1)))
     assert result.status == "optimal" or result.exhausted
     assert len(result.solutions) == len(orbits)
     assert all(trace(scaffold, s.labels).components == 1 for s in result.solutions)
@@ -382,7 +385,7 @@ def test_distinct_up_to_symmetry_matches_the_residue_orbits(name, labels, mode):
 
 def test_distinct_up_to_isometries_needs_a_symmetric_label_set():
     with pytest.raises(LabelError):
-        solve(lkspace.load("cube"), 1, labels="0,1", count=2, distinct_up_to="isometries")
+        solve(lkspace.load("cube"), 1, label_set="0,1", count=2, distinct_up_to="isometries")
 
 
 def test_real_time_out_reports_unknown():

@@ -7,9 +7,9 @@ import pytest
 
 import lkspace
 from lkspace.errors import LabelError
-from lkspace.lattice import Lattice
-from lkspace.mesh import Scaffold
-from lkspace.symmetry import check_label_set, symmetry_group
+from lkspace.model.lattice import Lattice
+from lkspace.model.scaffold import Scaffold
+from lkspace.symmetry.group import check_label_set, symmetry_group
 
 
 def square_tiling(n: int = 1) -> Scaffold:
@@ -118,7 +118,7 @@ def test_tracing_is_invariant_under_the_group(name, rng):
 def test_mirror_images_merge_only_under_isometries(rng):
     """Chirality: the mirror image of t (reflected edges, labels negated) is the same
     design under isometries, and usually a different one under rotations."""
-    from lkspace.enumerate import canonical_form, make_space
+    from lkspace.design.space import canonical_form, make_space
 
     sc = lkspace.load("cube")
     g = symmetry_group(sc)
@@ -142,7 +142,7 @@ def test_isometries_need_negation_closed_labels():
 
 @pytest.mark.parametrize("name", ["cube", "tetrahedron", "dihedron:5", "book:4", "truncated-octahedron"])
 def test_geometric_fallback_agrees_with_igraph(name, monkeypatch):
-    import lkspace.symmetry as sym
+    import lkspace.symmetry.motions as sym
 
     normal = symmetry_group(lkspace.load(name))
     monkeypatch.setattr(sym, "MAX_AUTOMORPHISMS", 0)  # force the frame-based search

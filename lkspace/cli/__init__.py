@@ -1,21 +1,47 @@
-"""The ``lkspace`` command line: a thin layer over the public API.
+"""The ``lkspace`` command line: a thin layer over the public API (``docs/cli.md``).
 
-Every :class:`~lkspace.errors.LkspaceError` (and every usage error) becomes one line on
-stderr and exit status 2; nothing else reaches the user as a traceback.
+Commands live in their own modules, imported only when run (or when ``--help`` lists
+them), and import the heavy libraries they need inside the command.  Every
+:class:`~lkspace.errors.LkspaceError` (and every usage error) becomes one line on stderr
+and exit status 2; nothing else reaches the user as a traceback.
 """
 
 from __future__ import annotations
 
+import importlib
 import sys
 
 import click
 
 from .. import __version__
 from ..errors import LkspaceError
-from .core import info_cmd, scaffold_cmd, trace_cmd
+
+COMMANDS = {
+    "scaffold": "core:scaffold_cmd",
+    "info": "core:info_cmd",
+    "trace": "core:trace_cmd",
+    "enumerate": "enumerate:enumerate_cmd",
+    "solve": "solve:solve_cmd",
+    "export": "export:export_cmd",
+    "identify": "identify:identify_cmd",
+}
+"""Command name -> ``module:attribute`` under :mod:`lkspace.cli`."""
 
 
-@click.group(context_settings={"help_option_names": ["-h", "--help"]})
+class LazyGroup(click.Group):
+    """A click group whose commands are imported on first use."""
+
+    def list_commands(self, ctx: click.Context) -> list[str]:
+        return list(COMMANDS)
+
+    def get_command(self, ctx: click.Context, cmd_name: str) -> click.Command | None:
+        if cmd_name not in COMMANDS:
+            return None
+        module, attribute = COMMANDS[cmd_name].split(":")
+        return getattr(importlib.import_module(f"{__name__}.{module}"), attribute)
+
+
+@click.group(cls=LazyGroup, context_settings={"help_option_names": ["-h", "--help"]})
 @click.version_option(__version__, prog_name="lkspace")
 def cli():
     """lkspace: design knots, links and chainmail with twist labels on polygon meshes.
@@ -23,32 +49,6 @@ def cli():
     MESH is a .obj or .json scaffold file or a built-in name (see 'lkspace scaffold
     --help'); left out, commands use the built-in tetrahedron.
     """
-
-
-for command in (scaffold_cmd, info_cmd, trace_cmd):
-    cli.add_command(command)
-
-
-def _register_optional():
-    """Commands living in their own modules (added as the product grows)."""
-    import importlib
-
-    for module, name in (
-        ("enumerate", "enumerate_cmd"),
-        ("solve", "solve_cmd"),
-        ("export", "export_cmd"),
-        ("identify", "identify_cmd"),
-    ):
-        try:
-            mod = importlib.import_module(f"{__name__}.{module}")
-        except ModuleNotFoundError as exc:
-            if exc.name != f"{__name__}.{module}":
-                raise
-            continue
-        cli.add_command(getattr(mod, name))
-
-
-_register_optional()
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -8,10 +8,10 @@ import sys
 import click
 import numpy as np
 
-from .. import load
 from ..errors import LabelError
-from ..labels import parse_label_set, parse_nulls, parse_twists
-from ..mesh import Scaffold
+from ..io.sources import load
+from ..model.scaffold import Scaffold
+from ..model.specs import parse_label_set, parse_labels, parse_nulls
 from ..scaffolds import DEFAULT
 
 
@@ -34,20 +34,22 @@ def load_mesh(ctx: Context, mesh: str | None) -> Scaffold:
     return scaffold
 
 
-def twists_of(scaffold: Scaffold, spec: str | None) -> np.ndarray:
-    """``--twist`` value, else the labels stored in the scaffold file."""
+def labels_of(scaffold: Scaffold, spec: str | None) -> np.ndarray:
+    """The twist labels of ``--twist SPEC``, else the labels stored in the scaffold file."""
     if spec is None:
-        if scaffold.twists is None:
+        if scaffold.labels is None:
             raise LabelError(f"{scaffold.name}: no --twist given and the scaffold carries no twist labels")
-        return scaffold.twists
-    return parse_twists(scaffold, spec)
+        return scaffold.labels
+    return parse_labels(scaffold, spec)
 
 
 def nulls_of(scaffold: Scaffold, spec: str | None):
+    """The null edge-sides of ``--null SPEC``, else the scaffold's own."""
     return scaffold.nulls if spec is None else parse_nulls(scaffold, spec)
 
 
 def label_set(spec: str) -> np.ndarray:
+    """The label set of ``--labels SET`` as a sorted ``(n,) int64`` array."""
     return parse_label_set(spec)
 
 
@@ -74,6 +76,7 @@ json_option = click.option("--json", "as_json", is_flag=True, help="Print one JS
 mesh_argument = click.argument("mesh", required=False, metavar="[MESH]")
 labels_option = click.option(
     "--labels",
+    "--label-set",
     "labels_spec",
     default="-2..2",
     show_default=True,

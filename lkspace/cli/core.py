@@ -6,17 +6,17 @@ import os
 
 import click
 import numpy as np
-from rich.console import Console
-from rich.table import Table
 
 from .. import io
+from ..io.scaffold_json import format_scaffold_json, scaffold_to_dict
 from ..scaffolds import builtin
-from ..symmetry import symmetry_group
-from ..tracing import trace
-from .common import Context, emit, json_option, load_mesh, mesh_argument, nulls_of, twists_of
+from ..strands.tracing import trace
+from .common import Context, emit, json_option, labels_of, load_mesh, mesh_argument, nulls_of
 
 
-def _console() -> Console:
+def _console():
+    from rich.console import Console
+
     return Console(highlight=False, soft_wrap=False, width=max(100, Console().width))
 
 
@@ -38,8 +38,8 @@ def scaffold_cmd(name, output, as_json):
       book:K                              K quads sharing one edge at equal angles
       cube-net, cube-lid                  a cube unfolded flat; an open box with a lid
       cubes:piano, cubes:vertex           two cubes sharing an edge; sharing a vertex
-      figure-eight                        the paper's 4_1 mesh (design as default twists)
-      whitehead                           the paper's L5a1 mesh (design as default twists)
+      figure-eight                        the paper's 4_1 mesh (design as default labels)
+      whitehead                           the paper's L5a1 mesh (design as default labels)
       tiling:square, tiling:hexagonal     the 2D Wigner-Seitz tilings (periodic)
       honeycomb:cP                        cubes; edge classes x, y, z
       honeycomb:hP                        hexagonal prisms
@@ -58,9 +58,9 @@ def scaffold_cmd(name, output, as_json):
     scaffold = builtin(name)
     if output is None:
         if as_json:
-            emit(ctx, {"scaffold": name, "written": None, "data": io.scaffold_json.scaffold_to_dict(scaffold)}, None)
+            emit(ctx, {"scaffold": name, "written": None, "data": scaffold_to_dict(scaffold)}, None)
         else:
-            click.echo(io.format_scaffold_json(scaffold), nl=False)
+            click.echo(format_scaffold_json(scaffold), nl=False)
         return
     io.write(scaffold, output)
     emit(
@@ -103,24 +103,57 @@ def info_dict(scaffold) -> dict:
     return out
 
 
+def edge_list(scaffold) -> list[dict]:
+    """Every edge: index, vertex pair (0-based and 1-based as in OBJ files), degree, name."""
+    out = []
+    for e, ((a, b), k) in enumerate(zip(scaffold.edge_vertices.tolist(), scaffold.edge_degrees.tolist(), strict=True)):
+        entry = {"index": e, "a": a, "b": b, "a_obj": a + 1, "b_obj": b + 1, "degree": k, "name": scaffold.edge_name(e)}
+        if scaffold.periodic:
+            entry["offset"] = scaffold.edge_deltas[e].tolist()
+        out.append(entry)
+    return out
+
+
 @click.command("info")
 @mesh_argument
+@click.option("--edges", "list_edges", is_flag=True, help="List every edge: index, vertex pair (0- and 1-based), degree.")
 @json_option
-def info_cmd(mesh, as_json):
-    """Counts, edge-degree histogram, boundary and non-manifold edges of MESH."""
+def info_cmd(mesh, list_edges, as_json):
+    """Counts, edge-degree histogram, boundary and non-manifold edges, symmetry of MESH.
+
+    \b
+    With --edges, every edge in edge order (the order of --twist lists): its index, its
+    vertex pair 0-based (as in twist files) and 1-based (as in the OBJ file), its degree
+    K (number of faces on it) and its name (periodic: with the offset of its end b).
+    """
+    from ..symmetry.group import symmetry_group
+
     ctx = Context(as_json)
     scaffold = load_mesh(ctx, mesh)
     scaffold.radial  # validates the radial order
     data = info_dict(scaffold)
     group = symmetry_group(scaffold)
     data["symmetry_group_order"] = {"rotations": group.n_rotations, "isometries": group.order}
+    data["n_edges"] = scaffold.n_edges
+    if list_edges:  # the JSON field "edges" then holds the list (n_edges keeps the count)
+        data["edges"] = edge_list(scaffold)
 
     def human():
+        from rich.table import Table
+
         table = Table(title=f"{scaffold.name}", show_header=False, box=None)
         for key, value in data.items():
-            if value is not None:
+            if value is not None and not isinstance(value, list):
                 table.add_row(key.replace("_", " "), str(value))
         _console().print(table)
+        if list_edges:
+            edges = Table("edge", "a-b", "OBJ a-b", "degree", "name", title="edges (edge order)")
+            for row in data["edges"]:
+                edges.add_row(
+                    str(row["index"]), f"{row['a']}-{row['b']}", f"{row['a_obj']}-{row['b_obj']}", str(row["degree"]),
+                    row["name"],
+                )  # fmt: skip
+            _console().print(edges)
 
     emit(ctx, data, human)
 
@@ -136,12 +169,12 @@ def trace_cmd(mesh, twist_spec, null_spec, as_json):
     """Trace the strands of MESH labelled by --twist."""
     ctx = Context(as_json)
     scaffold = load_mesh(ctx, mesh)
-    twists = twists_of(scaffold, twist_spec)
-    result = trace(scaffold, twists, nulls_of(scaffold, null_spec))
+    result = trace(scaffold, labels_of(scaffold, twist_spec), nulls_of(scaffold, null_spec))
     data = result.to_dict()
-    data["twists"] = twists.tolist()
 
     def human():
+        from rich.table import Table
+
         con = _console()
         con.print(
             f"{scaffold.name}: {result.components} component(s), "

@@ -6,13 +6,10 @@ import sys
 import time
 
 import click
-from rich.console import Console
-from rich.table import Table
 
-from ..enumerate import MODES, count, enumerate_designs, make_space
+from ..design.space import WALK_MODES, make_space
 from ..errors import LabelError
-from ..shards import write_catalog
-from ..symmetry import MODES as SYMMETRY_MODES
+from ..symmetry.group import MODES as SYMMETRY_MODES
 from .common import Context, emit, json_option, label_set, labels_option, load_mesh, mesh_argument
 
 
@@ -20,6 +17,7 @@ def _progress_factory(enabled: bool):
     """``progress(total) -> advance(done)`` drawing a rich bar on stderr, or None."""
     if not enabled:
         return None, None
+    from rich.console import Console
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeRemainingColumn
 
     bar = Progress(
@@ -40,16 +38,19 @@ def _progress_factory(enabled: bool):
 
 
 def _count_payload(space, mode, components, max_designs, sample, seed) -> dict:
+    from ..catalog.listing import designs
+    from ..design.counting import count_space
+
     if mode == "designs":
-        totals = count(space, components)
+        totals = count_space(space, components).to_dict()
         if max_designs is not None:
             totals["designs"] = min(totals["designs"], max_designs)
         return totals
-    rows = by = 0
-    by = {}
-    for df in enumerate_designs(
+    rows = 0
+    by: dict[str, int] = {}
+    for df in designs(
         space.scaffold,
-        space.labels,
+        space.label_set,
         space.mode,
         mode=mode,
         components=components,
@@ -81,7 +82,7 @@ def _count_payload(space, mode, components, max_designs, sample, seed) -> dict:
 @click.option("-o", "--output", type=click.Path(), help="Catalog to write (.parquet file, or a folder when sharded).")
 @click.option(
     "--mode",
-    type=click.Choice(MODES),
+    type=click.Choice(WALK_MODES),
     default="designs",
     show_default=True,
     help="One row per design, per residue-class orbit (topology), or per dual spanning tree.",
@@ -132,6 +133,8 @@ def enumerate_cmd(
     The representative of each design is the orbit member smallest in (t mod K per
     edge, then t per edge), lexicographically in edge order.
     """
+    from ..catalog.shards import write_catalog
+
     ctx = Context(as_json)
     scaffold = load_mesh(ctx, mesh)
     labels = label_set(labels_spec)
@@ -144,7 +147,7 @@ def enumerate_cmd(
     if count_only or output is None:
         payload = _count_payload(space, mode, components, max_designs, sample, seed)
         payload.update(
-            group_order=space.group_order, written=None, mode=mode, symmetry=symmetry, labels=labels.tolist()
+            group_order=space.group_order, written=None, mode=mode, symmetry=symmetry, label_set=labels.tolist()
         )
         if output is None and not count_only:
             ctx.notes["note"] = "no -o given: counted, nothing written"
@@ -169,15 +172,18 @@ def enumerate_cmd(
                 bar.stop()
         payload["written"] = payload.pop("output")
         if identify:
-            from ..catalog_identify import identify_catalog
+            from ..catalog.identified import identify_catalog
 
             payload["identified"] = identify_catalog(output, scaffold, processes=jobs)
     payload["seconds"] = round(time.perf_counter() - started, 3)
 
     def human():
+        from rich.console import Console
+        from rich.table import Table
+
         con = Console(highlight=False)
         con.print(
-            f"{scaffold.name}: labels {labels.tolist()}, symmetry {symmetry} (group order {space.group_order}), "
+            f"{scaffold.name}: label set {labels.tolist()}, symmetry {symmetry} (group order {space.group_order}), "
             f"mode {mode}"
         )
         table = Table(show_header=False, box=None)

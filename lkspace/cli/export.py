@@ -2,16 +2,13 @@
 
 from __future__ import annotations
 
-import json
 import os
 
 import click
 import numpy as np
 
-from .. import load
 from ..errors import CatalogError, LabelError, ScaffoldError
-from ..geometry import GeometryParams, realize
-from .common import Context, emit, json_option, load_mesh, nulls_of, twists_of
+from .common import Context, emit, json_option, labels_of, load_mesh, nulls_of
 
 
 def is_catalog(path: str | None) -> bool:
@@ -23,45 +20,15 @@ def is_catalog(path: str | None) -> bool:
     return os.path.isdir(path) and any(n.endswith(".parquet") for n in os.listdir(path))
 
 
-def catalog_scaffold_name(meta: dict, path: str) -> str:
-    """The scaffold a catalog's ``lkspace`` metadata names (tolerant of the exact key)."""
-    for key in ("scaffold", "scaffold_name", "mesh", "name"):
-        value = meta.get(key)
-        if isinstance(value, str) and value:
-            return value
-        if isinstance(value, dict):
-            for sub in ("path", "name", "source"):
-                if isinstance(value.get(sub), str) and value[sub]:
-                    return value[sub]
-    raise CatalogError(f"{path}: the 'lkspace' metadata names no scaffold (keys: {', '.join(sorted(meta)) or 'none'})")
-
-
 def catalog_row(path: str, row: int):
     """``(scaffold, labels (n_edges,) int64)`` of row ``row`` of the catalog at ``path``."""
-    import os
+    from ..catalog.reader import read_catalog
 
-    import pyarrow.parquet as pq
-
-    if not os.path.exists(path):
-        raise CatalogError(f"{path}: no such catalog file or folder")
-    try:
-        dataset = pq.ParquetDataset(path)
-        schema = dataset.schema
-        table = dataset.read(columns=["labels"])
-    except (OSError, ValueError, KeyError) as exc:
-        raise CatalogError(f"{path}: cannot read a catalog: {exc}") from None
-    raw = (schema.metadata or {}).get(b"lkspace")
-    if raw is None:
-        raise CatalogError(f"{path}: no 'lkspace' key-value metadata; not an lkspace catalog")
-    try:
-        meta = json.loads(raw)
-    except json.JSONDecodeError as exc:
-        raise CatalogError(f"{path}: 'lkspace' metadata is not JSON: {exc}") from None
-    if not 0 <= row < table.num_rows:
-        raise CatalogError(f"{path}: row {row} out of range 0..{table.num_rows - 1}")
-    labels = np.asarray(table.column("labels")[row].as_py(), np.int64)
-    name = catalog_scaffold_name(meta, path)
-    scaffold = load(name)
+    catalog = read_catalog(path, columns=[])
+    if not 0 <= row < len(catalog):
+        raise CatalogError(f"{path}: row {row} out of range 0..{len(catalog) - 1}")
+    scaffold = catalog.scaffold
+    labels = catalog.labels[row].astype(np.int64)
     if len(labels) != scaffold.n_edges:
         raise CatalogError(f"{path} row {row}: {len(labels)} labels, but {scaffold.name} has {scaffold.n_edges} edges")
     return scaffold, labels
@@ -90,19 +57,19 @@ def design_options(func):
 
 
 def resolve_design(ctx: Context, mesh, twist_spec, null_spec, row):
-    """``(scaffold, twists, nulls)`` from MESH + labels, or from a catalog row."""
+    """``(scaffold, labels, nulls)`` from MESH + ``--twist``, or from a catalog row."""
     if is_catalog(mesh):
         if row is None:
             raise CatalogError(f"{mesh}: give --row I to pick a design of the catalog")
         if twist_spec is not None:
             raise LabelError("--twist and a catalog --row are exclusive")
-        scaffold, twists = catalog_row(mesh, row)
+        scaffold, labels = catalog_row(mesh, row)
         ctx.notes.update(scaffold=scaffold.name, catalog=os.path.abspath(mesh), row=row)
-        return scaffold, twists, nulls_of(scaffold, null_spec)
+        return scaffold, labels, nulls_of(scaffold, null_spec)
     if row is not None:
         raise LabelError("--row needs a catalog (.parquet) as MESH")
     scaffold = load_mesh(ctx, mesh)
-    return scaffold, twists_of(scaffold, twist_spec), nulls_of(scaffold, null_spec)
+    return scaffold, labels_of(scaffold, twist_spec), nulls_of(scaffold, null_spec)
 
 
 def block_translations(scaffold, spec: str | None):
@@ -121,7 +88,10 @@ def block_translations(scaffold, spec: str | None):
     return np.column_stack([g.reshape(-1) for g in grids])
 
 
-def params_of(radius, normal_offset, tube_radius) -> GeometryParams:
+def params_of(radius, normal_offset, tube_radius):
+    """The :class:`~lkspace.geometry.realization.GeometryParams` of the geometry options."""
+    from ..geometry.realization import GeometryParams
+
     return GeometryParams(radius=radius, normal_offset=normal_offset, tube_radius=tube_radius)
 
 
@@ -154,13 +124,14 @@ def export_cmd(
       lkspace export cube --twist 2 --tubes -o chainmail.obj
       lkspace export designs.parquet --row 7 -o design7.png
     """
-    from ..export import export
+    from ..formats.registry import export
+    from ..geometry.realization import realize
 
     ctx = Context(as_json)
-    scaffold, twists, nulls = resolve_design(ctx, mesh, twist_spec, null_spec, row)
+    scaffold, labels, nulls = resolve_design(ctx, mesh, twist_spec, null_spec, row)
     real = realize(
         scaffold,
-        twists,
+        labels,
         nulls,
         params_of(radius, normal_offset, tube_radius),
         translations=block_translations(scaffold, block),
@@ -169,7 +140,7 @@ def export_cmd(
     data = {
         "written": os.path.abspath(output),
         "format": fmt,
-        "twists": np.asarray(twists).tolist(),
+        "labels": np.asarray(labels).tolist(),
         "components": real.trace.components,
         **real.summary(),
     }

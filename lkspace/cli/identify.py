@@ -26,12 +26,12 @@ def identify_cmd(mesh, twist_spec, null_spec, row, radius, normal_offset, tube_r
       lkspace identify book:4 --twist 3              # 8_19
       lkspace identify tetrahedron --twist 1 --json  # L6a4, the Borromean rings
     """
-    from ..identify import identify
+    from ..knots.recognition import identify
 
     ctx = Context(as_json)
-    scaffold, twists, nulls = resolve_design(ctx, mesh, twist_spec, null_spec, row)
-    result = identify(scaffold, twists, nulls, params_of(radius, normal_offset, tube_radius), seed=seed)
-    result["twists"] = np.asarray(twists).tolist()
+    scaffold, labels, nulls = resolve_design(ctx, mesh, twist_spec, null_spec, row)
+    result = identify(scaffold, labels, nulls, params_of(radius, normal_offset, tube_radius), seed=seed).to_dict()
+    result["labels"] = np.asarray(labels).tolist()
 
     def human():
         name = result["name"] or "unknown"

@@ -1,4 +1,4 @@
-"""``lkspace solve``: inverse design with CP-SAT (SPEC §2)."""
+"""``lkspace solve``: inverse design with CP-SAT."""
 
 from __future__ import annotations
 
@@ -7,12 +7,10 @@ import sys
 from contextlib import nullcontext
 
 import click
-from rich.console import Console
 
 from .. import io
 from ..errors import LabelError
-from ..labels import edge_index
-from ..solve import solve
+from ..model.specs import edge_index
 from .common import Context, emit, json_option, label_set, labels_option, load_mesh, mesh_argument
 
 
@@ -81,7 +79,7 @@ DEFAULT_TIME_LIMIT = 120.0  # seconds: a command should come back; 0 lifts the l
     type=click.Choice(["none", "rotations", "isometries"]),
     default="none",
     show_default=True,
-    help="With --count: no two designs related by a symmetry of this kind (needs lkspace.symmetry).",
+    help="With --count: no two designs related by a symmetry of this kind (uses the scaffold's symmetry group).",
 )
 @click.option(
     "--objective",
@@ -145,6 +143,10 @@ def solve_cmd(
       lkspace solve cube --components 1 --no-zero --count 3
       lkspace solve dodecahedron -n 2 --labels -1,1,2 --fix 0=2 --objective min-abs
     """
+    from rich.console import Console
+
+    from ..inverse.pipeline import solve
+
     ctx = Context(as_json)
     scaffold = load_mesh(ctx, mesh)
     if output is not None and os.path.splitext(output)[1].lower() != ".json":
@@ -162,7 +164,7 @@ def solve_cmd(
         result = solve(
             scaffold,
             components,
-            labels=labels,
+            label_set=labels,
             no_zero=no_zero,
             fixes=fixes,
             parities=parities,

@@ -1,38 +1,11 @@
-"""Readers and writers: OBJ and the lkspace scaffold file (JSON); atomic writes."""
+"""Readers and writers of scaffolds: OBJ and the lkspace scaffold file (JSON); atomic writes.
 
-from __future__ import annotations
+:func:`~lkspace.io.sources.load` takes a scaffold, a path or a built-in name;
+:func:`~lkspace.io.files.read` and :func:`~lkspace.io.files.write` pick the format by
+extension; :mod:`~lkspace.io.atomic` writes every file under a temporary name first.
+"""
 
-import os
+from .files import read, write
+from .sources import load
 
-from ..errors import ScaffoldError
-from ..mesh import Scaffold
-from .atomic import write_text
-from .obj import format_obj, read_obj
-from .scaffold_json import format_scaffold_json, read_scaffold_json
-
-READERS = {".obj": read_obj, ".json": read_scaffold_json}
-
-
-def read(path: str | os.PathLike) -> Scaffold:
-    """Read a scaffold from ``.obj`` or ``.json`` (the lkspace scaffold file)."""
-    ext = os.path.splitext(str(path))[1].lower()
-    if ext not in READERS:
-        raise ScaffoldError(f"{path}: unknown file type {ext!r}; expected .obj or .json")
-    if not os.path.exists(path):
-        raise ScaffoldError(f"{path}: no such file")
-    return READERS[ext](path)
-
-
-def write(scaffold: Scaffold, path: str | os.PathLike, twists=None, nulls=None) -> None:
-    """Write ``scaffold`` to ``.obj`` or ``.json`` atomically."""
-    ext = os.path.splitext(str(path))[1].lower()
-    if ext == ".obj":
-        text = format_obj(scaffold)
-    elif ext == ".json":
-        text = format_scaffold_json(scaffold, twists, nulls)
-    else:
-        raise ScaffoldError(f"{path}: unknown file type {ext!r}; expected .obj or .json")
-    try:
-        write_text(path, text)
-    except OSError as exc:
-        raise ScaffoldError(f"{path}: cannot write: {exc}") from None
+__all__ = ["load", "read", "write"]

@@ -13,7 +13,7 @@ import os
 import numpy as np
 
 from ..errors import ScaffoldError
-from ..mesh import Scaffold
+from ..model.scaffold import Scaffold
 
 IGNORED = {"vt", "vn", "vp", "o", "g", "s", "usemtl", "mtllib", "l", "p", "cstype", "deg", "curv", "parm", "end"}
 

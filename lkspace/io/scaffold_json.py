@@ -12,7 +12,8 @@ Format version 1::
       "radial_orders": [                           # optional explicit radial orders
           {"edge": [a, b], "sides": [[face, k], ...]}, ...],   # periodic: [a, b, [delta]]
       "edges": [[a, b], ...],                      # optional, written for reference; checked
-      "twists": [t_0, t_1, ...],                   # optional: one label per edge, edge order
+      "labels": [t_0, t_1, ...],                   # optional: twist label per edge, edge order
+                                                   # ("twists" is read too: the older key)
       "nulls": [[face, k], ...]                    # optional: null edge-sides
     }
 
@@ -31,8 +32,9 @@ import os
 import numpy as np
 
 from ..errors import ScaffoldError
-from ..lattice import Lattice
-from ..mesh import Scaffold
+from ..model.lattice import Lattice
+from ..model.scaffold import Scaffold
+from ..scaffolds.periodic import voronoi_scaffold
 
 FORMAT = "lkspace-scaffold"
 VORONOI_FORMAT = "lkspace-voronoi"
@@ -47,6 +49,7 @@ KEYS = {
     "offsets",
     "radial_orders",
     "edges",
+    "labels",
     "twists",
     "nulls",
     "comment",
@@ -151,26 +154,27 @@ def scaffold_from_dict(data: dict, name: str = "<json>") -> Scaffold:
         given = [[e[0], e[1], *(e[2] if len(e) > 2 else [])] for e in edges]
         if given != expected:
             raise ScaffoldError(f"{name}: 'edges' does not match the faces' edges in edge order")
-    twists = None
-    if "twists" in data:
-        twists = _list(data["twists"], f"{name}: twists", scaffold.n_edges)
-        for i, t in enumerate(twists):
-            _int(t, f"{name}: twists[{i}]")
+    if "labels" in data and "twists" in data:
+        raise ScaffoldError(f"{name}: give the twist labels once, as 'labels' ('twists' is the older key)")
+    labels = None
+    for key in ("labels", "twists"):
+        if key in data:
+            labels = _list(data[key], f"{name}: {key}", scaffold.n_edges)
+            for i, t in enumerate(labels):
+                _int(t, f"{name}: {key}[{i}]")
     nulls = None
     if "nulls" in data:
         nulls = [
             _side(faces, s, f"{name}: nulls[{j}]", starts) for j, s in enumerate(_list(data["nulls"], f"{name}: nulls"))
         ]
-    if twists is not None or nulls is not None:
-        scaffold = scaffold.with_labels(twists, nulls)
+    if labels is not None or nulls is not None:
+        scaffold = scaffold.with_labels(labels, nulls)
     return scaffold
 
 
 def voronoi_from_dict(data: dict, name: str) -> Scaffold:
     """A generalized Voronoi scaffold from ``{"format": "lkspace-voronoi", "version": 1,
     "lattice": [[...], ...], "points": [[x, y, z], ...], "name": ...}``."""
-    from ..scaffolds.periodic import voronoi_scaffold
-
     unknown = set(data) - {"format", "version", "name", "lattice", "points", "comment"}
     if unknown:
         raise ScaffoldError(f"{name}: unknown key(s) {sorted(unknown)}")
@@ -188,9 +192,9 @@ def voronoi_from_dict(data: dict, name: str) -> Scaffold:
     return voronoi_scaffold(lattice, np.array(points, dtype=float), label)
 
 
-def scaffold_to_dict(scaffold: Scaffold, twists=None, nulls=None) -> dict:
-    """The JSON object of ``scaffold``; ``twists``/``nulls`` default to the scaffold's own."""
-    twists = scaffold.twists if twists is None else np.asarray(twists)
+def scaffold_to_dict(scaffold: Scaffold, labels=None, nulls=None) -> dict:
+    """The JSON object of ``scaffold``; ``labels``/``nulls`` default to the scaffold's own."""
+    labels = scaffold.labels if labels is None else np.asarray(labels)
     nulls = scaffold.nulls if nulls is None else nulls
     starts = scaffold.face_starts
 
@@ -218,8 +222,8 @@ def scaffold_to_dict(scaffold: Scaffold, twists=None, nulls=None) -> dict:
         [int(k[0]), int(k[1]), [int(x) for x in k[2:]]] if scaffold.dim else [int(k[0]), int(k[1])]
         for k in scaffold.edge_keys.tolist()
     ]
-    if twists is not None:
-        out["twists"] = [int(t) for t in np.broadcast_to(twists, (scaffold.n_edges,))]
+    if labels is not None:
+        out["labels"] = [int(t) for t in np.broadcast_to(labels, (scaffold.n_edges,))]
     if nulls is not None:
         mask = np.asarray(nulls)
         sides = np.flatnonzero(mask) if mask.dtype == bool else mask
@@ -241,6 +245,6 @@ def read_scaffold_json(path: str | os.PathLike) -> Scaffold:
     return scaffold_from_dict(data, name)
 
 
-def format_scaffold_json(scaffold: Scaffold, twists=None, nulls=None) -> str:
+def format_scaffold_json(scaffold: Scaffold, labels=None, nulls=None) -> str:
     """Scaffold file text."""
-    return json.dumps(scaffold_to_dict(scaffold, twists, nulls), indent=1) + "\n"
+    return json.dumps(scaffold_to_dict(scaffold, labels, nulls), indent=1) + "\n"

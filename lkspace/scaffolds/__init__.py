@@ -1,4 +1,4 @@
-"""Built-in scaffolds by name (SPEC §4).
+"""Built-in scaffolds by name (listed for users in ``lkspace scaffold --help`` and ``docs/cli.md``).
 
 =========================  ==========================================================
 name                       scaffold
@@ -30,7 +30,7 @@ NAME@AxBxC                 the A x B x C supercell of a periodic NAME (AxB in 2D
 =========================  ==========================================================
 
 Periodic cells and lattice parameters: :mod:`lkspace.scaffolds.periodic`.
-``figure-eight`` and ``whitehead`` carry their paper designs as default twists
+``figure-eight`` and ``whitehead`` carry their paper designs as default labels
 (see :mod:`lkspace.scaffolds.paper`).
 """
 
@@ -39,7 +39,7 @@ from __future__ import annotations
 from collections.abc import Callable
 
 from ..errors import ScaffoldError
-from ..mesh import Scaffold
+from ..model.scaffold import Scaffold
 from . import hinged, paper, periodic, polyhedra, special
 
 SOLIDS: dict[str, Callable[[], Scaffold]] = {

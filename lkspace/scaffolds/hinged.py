@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..mesh import Scaffold
+from ..model.scaffold import Scaffold
 from .polyhedra import cube
 
 

@@ -1,15 +1,15 @@
-"""Scaffolds of the paper's classical examples, each carrying its design as default twists.
+"""Scaffolds of the paper's classical examples, each carrying its design as default labels.
 
 ``figure-eight``
     A square split by its diagonal 0-2 into two triangles on the front, with one
     quadrilateral on the back (the same 4-cycle, reversed): a two-sided polygon whose
     sides are triangulated differently.  5 edges, all of degree 2, in the order
-    ``0-1, 0-2, 0-3, 1-2, 2-3``.  Default twists ``1, 1, 1, 1, 0`` realize the
+    ``0-1, 0-2, 0-3, 1-2, 2-3``.  Default labels ``1, 1, 1, 1, 0`` realize the
     figure-eight knot 4_1.
 ``whitehead``
     A 2-manifold with boundary: the square fanned into four triangles around its
     centre 4, nothing on the back.  8 edges in the order ``0-1, 0-3, 0-4, 1-2, 1-4, 2-3,
-    2-4, 3-4``; the rim edges have degree 1, the spokes degree 2.  Default twists
+    2-4, 3-4``; the rim edges have degree 1, the spokes degree 2.  Default labels
     ``0, 0, -2, 0, -1, 0, -1, 2`` (spokes 0-4, 1-4, 2-4, 3-4: -2, -1, -1, 2) realize the Whitehead link L5a1.
 """
 
@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..mesh import Scaffold
+from ..model.scaffold import Scaffold
 
 _SQUARE = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [-1.0, 0.0, 0.0], [0.0, -1.0, 0.0]]
 
@@ -28,7 +28,7 @@ def figure_eight() -> Scaffold:
     Examples
     --------
     >>> s = figure_eight()
-    >>> s.n_faces, s.edge_degrees.tolist(), s.twists.tolist()
+    >>> s.n_faces, s.edge_degrees.tolist(), s.labels.tolist()
     (3, [2, 2, 2, 2, 2], [1, 1, 1, 1, 0])
     """
     base = Scaffold.from_faces(_SQUARE, [[0, 1, 2], [0, 2, 3], [3, 2, 1, 0]], name="figure-eight")

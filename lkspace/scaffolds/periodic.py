@@ -1,7 +1,7 @@
 """Periodic scaffolds: Wigner–Seitz tilings and honeycombs, Voronoi scaffolds, supercells.
 
 A periodic scaffold is the quotient of an infinite periodic polygon complex by its
-lattice (see :mod:`lkspace.mesh`).  Cells are computed with scipy's Voronoi (Qhull):
+lattice (see :mod:`lkspace.model.scaffold`).  Cells are computed with scipy's Voronoi (Qhull):
 
 * 2D (``tiling:*``): the faces are the Voronoi cells (tiles) of the lattice points in the
   xy plane; every edge is shared by two tiles.
@@ -13,7 +13,7 @@ differ by a lattice vector one vertex class; each class keeps the representative
 lattice coordinates lie in ``[0, 1)``, and every face corner carries the integer offset of
 its actual position.
 
-Lattice parameters of the built-ins (see :class:`~lkspace.lattice.Lattice`):
+Lattice parameters of the built-ins (see :class:`~lkspace.model.lattice.Lattice`):
 ``tiling:square`` a = 1; ``tiling:hexagonal`` a = 1; ``honeycomb:cP`` a = 1 (cubes);
 ``honeycomb:hP`` a = c = 1 (hexagonal prisms); ``honeycomb:oF`` a, b, c = 1, 1.25, 1.5;
 ``honeycomb:cF`` a = 1 (rhombic dodecahedra); ``honeycomb:cI`` a = 1 (truncated octahedra).
@@ -25,11 +25,10 @@ import itertools
 import re
 
 import numpy as np
-from scipy.spatial import ConvexHull, Voronoi
 
 from ..errors import ScaffoldError
-from ..lattice import Lattice
-from ..mesh import Scaffold
+from ..model.lattice import Lattice
+from ..model.scaffold import Scaffold
 from .polyhedra import convex_polyhedron
 
 DECIMALS = 6  # rounding of lattice coordinates when identifying translates
@@ -66,6 +65,8 @@ def voronoi_polygons(lattice: Lattice, generators) -> list[np.ndarray]:
     2D lattices give the tiles of the base generators, 3D lattices the walls of their
     cells (each wall once per cell, so shared walls appear twice: deduplicated later).
     """
+    from scipy.spatial import ConvexHull, Voronoi  # Qhull: loaded only for periodic scaffolds
+
     generators = np.atleast_2d(np.asarray(generators, dtype=np.float64))
     cloud, base = _translates(lattice, generators)
     polygons = []
@@ -188,7 +189,7 @@ def supercell(scaffold: Scaffold, sizes) -> Scaffold:
     Cell ``m = (i, j, k)`` with ``0 <= m < sizes`` gets index ``(i * B + j) * C + k``;
     vertex ``v`` of cell ``m`` becomes ``cell_index * n_vertices + v`` and face ``f`` becomes
     ``cell_index * n_faces + f``.  Edges are then numbered by the usual rule
-    (:mod:`lkspace.mesh`), so per-cell labels are given in that documented edge order.
+    (:mod:`lkspace.model.scaffold`), so per-cell labels are given in that documented edge order.
     """
     if not scaffold.periodic:
         raise ScaffoldError(f"{scaffold.name}: supercells need a periodic scaffold")

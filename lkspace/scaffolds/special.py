@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import ScaffoldError
-from ..mesh import Scaffold
+from ..model.scaffold import Scaffold
 
 
 def dihedron(n: int) -> Scaffold:

@@ -14,7 +14,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import ScaffoldError
-from ..mesh import Scaffold
+from ..model.scaffold import Scaffold
 from .polyhedra import icosahedron
 
 

@@ -1,0 +1,85 @@
+"""Knot and link names for catalog rows: ``lkspace enumerate ... --identify``.
+
+Identification realizes and projects every design (tens of milliseconds each), so it
+runs as a second pass over a written catalog: each Parquet file (or each part of a
+sharded folder) is read, its designs are identified in ``processes`` worker processes
+(:func:`lkspace.knots.recognition.identify_batch`), and the file is rewritten atomically with
+these extra columns:
+
+``knot_name`` (string, null when unknown, split or open), ``crossings`` (int32, the
+simplified diagram's), ``mirror`` (bool, null when the table does not tell),
+``split`` (bool), ``jones`` (string), ``linking_matrix`` (JSON text) and
+``identify_error`` (string, null unless the design could not be identified).
+The ``lkspace`` metadata gains ``"identified": true``.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+
+import numpy as np
+import pyarrow as pa
+import pyarrow.parquet as pq
+
+from ..errors import CatalogError
+from ..io.atomic import atomic_path
+from .reader import catalog_files, read_metadata
+from .schema import METADATA_KEY
+
+COLUMNS = {
+    "knot_name": pa.string(),
+    "crossings": pa.int32(),
+    "mirror": pa.bool_(),
+    "split": pa.bool_(),
+    "jones": pa.string(),
+    "linking_matrix": pa.string(),
+    "identify_error": pa.string(),
+}
+
+
+def _column(values, type_) -> pa.Array:
+    cleaned = [None if v is None or (isinstance(v, float) and np.isnan(v)) else v for v in values]
+    if type_ == pa.int32():
+        cleaned = [None if v is None else int(v) for v in cleaned]
+    if type_ == pa.bool_():
+        cleaned = [None if v is None else bool(v) for v in cleaned]
+    if type_ == pa.string():
+        cleaned = [None if v is None else str(v) for v in cleaned]
+    return pa.array(cleaned, type=type_)
+
+
+def identify_catalog(path: str | os.PathLike, scaffold, processes: int = 1, seed: int = 0) -> dict:
+    """Add knot/link columns to every row of the catalog at ``path``; returns a summary."""
+    from ..knots.recognition import identify_batch  # realization and SnapPy: loaded only here
+
+    path = os.fspath(path)
+    rows = named = 0
+    names: dict[str, int] = {}
+    for file in catalog_files(path):
+        table = pq.read_table(file)
+        if "labels" not in table.column_names:
+            raise CatalogError(f"{file}: no 'labels' column to identify")
+        meta = read_metadata(file)
+        if meta.get("identified"):
+            continue
+        labels = np.array(table.column("labels").to_pylist(), dtype=np.int64).reshape(table.num_rows, -1)
+        found = identify_batch(scaffold, labels, processes=processes, seed=seed)
+        found = found.rename(columns={"error": "identify_error"})
+        for name, type_ in COLUMNS.items():
+            column = _column(found[name].tolist() if name in found else [None] * table.num_rows, type_)
+            if name in table.column_names:
+                table = table.drop_columns([name])
+            table = table.append_column(pa.field(name, type_), column)
+        meta["identified"] = True
+        table = table.replace_schema_metadata(
+            {**(table.schema.metadata or {}), METADATA_KEY: json.dumps(meta).encode()}
+        )
+        with atomic_path(file, suffix=".parquet.tmp") as tmp:
+            pq.write_table(table, tmp, compression="zstd")
+        rows += table.num_rows
+        known = found["knot_name"].dropna()
+        named += len(known)
+        for name, n in known.value_counts().items():
+            names[str(name)] = names.get(str(name), 0) + int(n)
+    return {"rows": rows, "named": named, "names": dict(sorted(names.items(), key=lambda kv: -kv[1]))}

@@ -1,0 +1,169 @@
+"""Reading catalogs: their ``lkspace`` metadata and, efficiently, their rows.
+
+:func:`read_catalog` returns a :class:`Catalog`: the scalar columns as a pandas
+DataFrame with Arrow-backed dtypes (no Python objects per row) and the label vectors as
+one ``(n_designs, n_edges) int8`` array, decoded from the fixed-width ``key`` column
+(``--mode residues`` catalogs, which have none, decode the ``labels`` list column's
+values buffer).  Both are far cheaper than ``pandas.read_parquet``, which turns every
+list cell into a Python object.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+from dataclasses import dataclass
+from functools import cached_property
+
+import numpy as np
+import pandas as pd
+import pyarrow as pa
+import pyarrow.parquet as pq
+
+from ..errors import CatalogError
+from ..io.scaffold_json import scaffold_from_dict
+from ..io.sources import load
+from ..model.scaffold import Scaffold
+from ..strands.tracing import Trace, trace
+from .schema import METADATA_KEY
+
+LABEL_COLUMNS = ("labels", "key")
+"""Columns read into :attr:`Catalog.labels` rather than into the frame."""
+
+
+def catalog_files(path: str | os.PathLike) -> list[str]:
+    """The Parquet file of a catalog, or the parts of a sharded catalog folder, in order."""
+    path = os.fspath(path)
+    if os.path.isdir(path):
+        parts = sorted(p for p in os.listdir(path) if p.endswith(".parquet") and not p.startswith((".", "_")))
+        if not parts:
+            raise CatalogError(f"{path}: no Parquet parts in this folder")
+        return [os.path.join(path, p) for p in parts]
+    if not os.path.exists(path):
+        raise CatalogError(f"{path}: no such catalog")
+    return [path]
+
+
+def read_metadata(path: str | os.PathLike) -> dict:
+    """The ``lkspace`` metadata of a catalog file (or of the first part of a folder).
+
+    It is read from the file footer, which holds the run's totals as well.
+    """
+    file = catalog_files(path)[0]
+    try:
+        meta = pq.read_metadata(file).metadata or {}
+    except (OSError, pa.ArrowInvalid) as exc:
+        raise CatalogError(f"{file}: not a readable Parquet file: {exc}") from None
+    if METADATA_KEY not in meta:
+        raise CatalogError(f"{file}: no 'lkspace' metadata; not an lkspace catalog")
+    return json.loads(meta[METADATA_KEY])
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class Catalog:
+    """The rows of a catalog, column by column.
+
+    Attributes
+    ----------
+    frame : pandas.DataFrame
+        Every column except the label vectors, with Arrow-backed dtypes.
+    labels : (n_designs, n_edges) int8
+        The canonical twist labels of each row, in edge order (row ``i`` of ``frame``).
+    metadata : dict
+        The ``lkspace`` metadata (scaffold, label set, symmetry, group order, ...).
+    path : str
+    """
+
+    frame: pd.DataFrame
+    labels: np.ndarray
+    metadata: dict
+    path: str
+
+    def __len__(self) -> int:
+        return len(self.frame)
+
+    def __repr__(self) -> str:
+        scaffold = self.metadata.get("scaffold", {}).get("name", "?")
+        label_set = self.metadata.get("label_set", self.metadata.get("labels"))
+        return (
+            f"Catalog({scaffold}: {len(self):,} rows, label set {label_set}, "
+            f"symmetry {self.metadata.get('symmetry')}; columns {', '.join(self.frame.columns)})"
+        )
+
+    def __getitem__(self, rows) -> Catalog:
+        """The catalog restricted to ``rows``: a boolean mask, an index array or a slice."""
+        if isinstance(rows, pd.Series):
+            rows = rows.to_numpy(dtype=bool) if rows.dtype == bool or str(rows.dtype) == "bool[pyarrow]" else rows
+        rows = np.asarray(rows) if not isinstance(rows, slice) else rows
+        frame = self.frame.iloc[rows].reset_index(drop=True)
+        return Catalog(frame, self.labels[rows], self.metadata, self.path)
+
+    @cached_property
+    def scaffold(self) -> Scaffold:
+        """The catalog's scaffold: stored in its metadata, else loaded by name; hash checked."""
+        info = self.metadata.get("scaffold", {})
+        data = info.get("data")
+        scaffold = scaffold_from_dict(data, info.get("name", "catalog")) if data else load(info.get("name", ""))
+        if info.get("content_hash") not in (None, scaffold.content_hash()):
+            raise CatalogError(
+                f"{self.path}: the scaffold {scaffold.name!r} differs from the one the catalog was written for"
+            )
+        return scaffold
+
+    def trace(self, row: int) -> Trace:
+        """The :class:`~lkspace.strands.tracing.Trace` of row ``row``."""
+        return trace(self.scaffold, self.labels[row])
+
+
+def _labels_of(table: pa.Table) -> np.ndarray:
+    """``(n_rows, n_edges) int8`` from the ``key`` column, else from the ``labels`` list column."""
+    if "key" in table.column_names:
+        column = table.column("key")
+        width = column.type.byte_width
+        out = np.empty((table.num_rows, width), np.int8)
+        at = 0
+        for chunk in column.chunks:
+            data = np.frombuffer(chunk.buffers()[1], np.int8, count=len(chunk) * width, offset=chunk.offset * width)
+            out[at : at + len(chunk)] = data.reshape(-1, width)
+            at += len(chunk)
+        return out
+    column = table.column("labels")
+    if table.num_rows == 0:
+        return np.zeros((0, 0), np.int8)
+    flat = np.concatenate([np.asarray(chunk.flatten(), np.int8) for chunk in column.chunks])
+    return flat.reshape(table.num_rows, -1)
+
+
+def read_catalog(path: str | os.PathLike, columns: list[str] | None = None) -> Catalog:
+    """Read a catalog (a file or a folder of parts) written by ``lkspace enumerate``.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+    columns : list of str, optional
+        Frame columns to read (default all); the label vectors are always read.
+
+    Examples
+    --------
+    >>> import lkspace, tempfile, os
+    >>> out = os.path.join(tempfile.mkdtemp(), "t.parquet")
+    >>> _ = lkspace.write_catalog("tetrahedron", out, label_set="-2,2")
+    >>> cat = lkspace.read_catalog(out)
+    >>> len(cat), cat.labels.shape, int(cat.frame.orbit_size.sum())
+    (12, (12, 6), 64)
+    """
+    metadata = read_metadata(path)
+    files = catalog_files(path)
+    schema = pq.read_schema(files[0])
+    names = [n for n in schema.names if n not in LABEL_COLUMNS and (columns is None or n in columns)]
+    unknown = sorted(set(columns or []) - set(schema.names))
+    if unknown:
+        raise CatalogError(f"{os.fspath(path)}: no column(s) {unknown}; columns are {schema.names}")
+    label_column = "key" if "key" in schema.names else "labels"
+    try:
+        table = pa.concat_tables(pq.read_table(f, columns=[*names, label_column]) for f in files)
+    except (OSError, pa.ArrowInvalid) as exc:
+        raise CatalogError(f"{os.fspath(path)}: cannot read catalog: {exc}") from None
+    labels = _labels_of(table)
+    frame = table.select(names).to_pandas(types_mapper=pd.ArrowDtype)
+    return Catalog(frame, labels, metadata, os.fspath(path))

@@ -1,0 +1,281 @@
+"""Writing whole catalogs: contiguous shards, parallel jobs (fork), resume.
+
+A run with one shard writes a single Parquet file; with several, a folder of parts
+``part-00000.parquet``, ... plus a manifest ``_lkspace.json`` (pandas and pyarrow skip
+names starting with ``_`` or ``.``).  Each part is written under a temporary name and
+renamed when complete; its footer metadata records its rows and counts, so ``resume``
+keeps finished parts (when their metadata matches the run) and redoes the others.
+Shards are contiguous runs of representative residue classes with about equal numbers
+of designs (exact Burnside counts per class).
+"""
+
+from __future__ import annotations
+
+import json
+import multiprocessing as mp
+import os
+from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
+
+import numpy as np
+
+from ..design.counting import class_weights
+from ..design.space import DesignSpace, make_space
+from ..errors import CatalogError
+from ..io.atomic import write_text
+from ..io.scaffold_json import scaffold_to_dict
+from .batches import space_batches
+from .reader import read_metadata
+from .schema import FORMAT_VERSION, design_schema, residue_schema
+from .writer import CatalogWriter
+
+CANONICAL_RULE = (
+    "orbit member smallest in (t mod K per edge, then t per edge), lexicographic in edge order; see docs/catalog.md"
+)
+_STATE: dict = {}
+
+
+def catalog_metadata(space, mode: str, components, max_designs, sample, seed) -> dict:
+    """The ``lkspace`` metadata common to every part of a catalog (its signature for --resume)."""
+    sc = space.scaffold
+    return {
+        "format_version": FORMAT_VERSION,
+        "scaffold": {
+            "name": sc.name,
+            "content_hash": sc.content_hash(),
+            "edges": sc.n_edges,
+            "faces": sc.n_faces,
+            "periodic": sc.periodic,
+            "data": scaffold_to_dict(sc.with_labels(None, None)),
+        },
+        "label_set": space.label_set.tolist(),
+        "symmetry": space.mode,
+        "group_order": space.group_order,
+        "acting_order": space.n_actions,
+        "assignments": space.assignments,
+        "mode": mode,
+        "filters": {"components": components, "no_zero": space.no_zero, "max_designs": max_designs},
+        "sample": sample,
+        "seed": seed if sample is not None else None,
+        "canonical_rule": CANONICAL_RULE,
+    }
+
+
+def _write_one(path: str, schema, meta: dict, batches, on_rows=None) -> dict:
+    """Write ``batches`` to ``path``; returns the part summary (also stored in its footer)."""
+    writer = CatalogWriter(path, schema, meta)
+    by: dict[str, int] = {}
+    covered = 0
+    try:
+        for batch in batches:
+            writer.write(batch)
+            comps = batch.column("components").to_numpy()
+            for c, n in zip(*np.unique(comps, return_counts=True), strict=True):
+                by[str(int(c))] = by.get(str(int(c)), 0) + int(n)
+            covered += int(batch.column("orbit_size").to_numpy().sum())
+            if on_rows is not None:
+                on_rows(batch.num_rows)
+    except BaseException as exc:
+        writer.abort(exc)
+        raise
+    summary = {"by_components": by, "assignments_covered": covered}
+    writer.close(summary)
+    return {**summary, "rows": writer.rows}
+
+
+def _part_worker(i: int) -> dict:
+    st = _STATE
+    ids = st["ranges"][i]
+    meta = {**st["meta"], "shard": {"index": i, "count": len(st["ranges"])}}
+    counter = st["counter"]
+
+    live = st.get("live")
+
+    def on_rows(n):
+        with counter.get_lock():
+            counter.value += n
+        if live is not None:  # same process (jobs == 1): update the bar as rows arrive
+            live(counter.value + st["base"])
+
+    return _write_one(
+        st["parts"][i],
+        st["schema"],
+        meta,
+        space_batches(st["space"], "designs", ids, st["components"]),
+        on_rows,
+    )
+
+
+def split_classes(weights: np.ndarray, n_shards: int) -> list[list[int]]:
+    """Contiguous runs of representative classes with about equal design counts."""
+    w = np.asarray([int(x) for x in weights], np.float64)
+    cum = np.cumsum(w)
+    total = cum[-1] if len(cum) else 0.0
+    cuts = np.searchsorted(cum, total * np.arange(1, n_shards) / n_shards, side="left")
+    bounds = [0, *cuts.tolist(), len(w)]
+    return [[c for c in range(bounds[i], bounds[i + 1]) if w[c] > 0] for i in range(n_shards)]
+
+
+def write_catalog(
+    space,
+    path: str | os.PathLike,
+    label_set="-2..2",
+    symmetry: str = "rotations",
+    *,
+    no_zero: bool = False,
+    mode: str = "designs",
+    components: int | None = None,
+    max_designs: int | None = None,
+    sample: int | None = None,
+    seed: int = 0,
+    jobs: int = 1,
+    shards: int | None = None,
+    resume: bool = False,
+    progress=None,
+) -> dict:
+    """Walk a design space and write its catalog; returns the totals (the ``enumerate`` JSON).
+
+    ``space`` is a :class:`~lkspace.design.space.DesignSpace`, or a scaffold (a path or a
+    built-in name) whose space is given by ``label_set``, ``symmetry`` and ``no_zero``.
+
+    A single shard writes one Parquet file at ``path``; several shards write a folder
+    ``path/`` with ``part-00000.parquet``, ... and a manifest ``_lkspace.json`` (ignored by
+    pandas and pyarrow, which open the folder as one table).  Every part is written to a
+    temporary name and renamed when complete, so ``resume=True`` skips the parts that exist
+    (after checking their metadata matches this run) and redoes the rest.  ``jobs`` parts
+    are written in parallel processes.  ``progress(total)`` may return a callable taking
+    the rows written so far.
+    """
+    if not isinstance(space, DesignSpace):
+        space = make_space(space, label_set, symmetry, no_zero)
+    path = os.fspath(path)
+    meta = catalog_metadata(space, mode, components, max_designs, sample, seed)
+    periodic = space.scaffold.periodic
+    schema = design_schema(space.scaffold.n_edges, periodic) if mode == "designs" else residue_schema(periodic)
+    if mode == "designs":
+        weights = class_weights(space, components)
+        expected = int(sum(weights))
+        expected = min(expected, max_designs) if max_designs is not None else expected
+    else:
+        weights, expected = None, None
+    if shards is None:  # auto: one file, or ~2M-row parts for big parallel/resumable runs
+        whole = mode == "designs" and max_designs is None
+        big = whole and expected > 4_000_000
+        shards = max(2 * jobs, -(-expected // 2_000_000)) if whole and (jobs > 1 or big) else 1
+    if shards > 1 and (mode != "designs" or max_designs is not None):
+        raise CatalogError("--shards/--jobs apply to full design walks (not with --max-designs or other modes)")
+    advance = progress(expected) if progress is not None else None
+    if shards == 1:
+        if resume and os.path.isfile(path) and _matches(path, meta):
+            done = read_metadata(path)
+            summaries, skipped = [done], 1
+            if advance:
+                advance(done["rows"])
+        else:
+            if os.path.isdir(path):
+                raise CatalogError(f"{path}: is a folder; give a file name or use --shards")
+            summaries = [
+                _write_one(
+                    path,
+                    schema,
+                    {**meta, "shard": {"index": 0, "count": 1}},
+                    space_batches(space, mode, None, components, max_designs, sample, seed),
+                    advance and _accumulate(advance),
+                )
+            ]
+            skipped = 0
+        return _totals(space, meta, summaries, path, 1, skipped)
+    manifest = os.path.join(path, "_lkspace.json")
+    if os.path.exists(path) and not os.path.isdir(path):
+        raise CatalogError(f"{path}: exists and is not a folder; a catalog of {shards} shards is a folder")
+    if os.path.isdir(path) and os.listdir(path):
+        if not os.path.exists(manifest):
+            raise CatalogError(f"{path}: folder is not empty and holds no lkspace catalog; choose another -o")
+        old = json.loads(open(manifest, encoding="utf-8").read())
+        if resume and old != {**meta, "shards": shards}:
+            raise CatalogError(
+                f"{path}: --resume with different settings than the catalog there "
+                f"(scaffold, labels, symmetry, filters or shards differ)"
+            )
+        if not resume:
+            for name in os.listdir(path):
+                if name.startswith("part-") and name.endswith(".parquet"):
+                    os.remove(os.path.join(path, name))
+    os.makedirs(path, exist_ok=True)
+    write_text(manifest, json.dumps({**meta, "shards": shards}, indent=1))
+    parts = [os.path.join(path, f"part-{i:05d}.parquet") for i in range(shards)]
+    ranges = split_classes(weights, shards)
+    summaries: list[dict] = [None] * shards  # type: ignore[list-item]
+    todo = []
+    for i, part in enumerate(parts):
+        if resume and os.path.isfile(part) and _matches(part, meta):
+            summaries[i] = read_metadata(part)
+            if advance:
+                advance(summaries[i]["rows"])
+        else:
+            todo.append(i)
+    ctx = mp.get_context("fork")
+    counter = ctx.Value("q", 0)
+    _STATE.update(
+        space=space, ranges=ranges, meta=meta, schema=schema, parts=parts, components=components, counter=counter
+    )
+    base = sum(s["rows"] for s in summaries if s)
+    _STATE.update(base=base, live=advance if jobs <= 1 else None)
+    try:
+        if jobs <= 1:
+            for i in todo:
+                summaries[i] = _part_worker(i)
+                if advance:
+                    advance(counter.value + base)
+        else:
+            with ProcessPoolExecutor(max_workers=jobs, mp_context=ctx) as pool:
+                futures = {pool.submit(_part_worker, i): i for i in todo}
+                pending = set(futures)
+                while pending:
+                    done, pending = wait(pending, timeout=0.25, return_when=FIRST_COMPLETED)
+                    for f in done:
+                        summaries[futures[f]] = f.result()
+                    if advance:
+                        advance(counter.value + base)
+    finally:
+        _STATE.clear()
+    return _totals(space, meta, summaries, path, shards, shards - len(todo))
+
+
+def _accumulate(advance):
+    state = {"n": 0}
+
+    def on_rows(n):
+        state["n"] += n
+        advance(state["n"])
+
+    return on_rows
+
+
+def _matches(part: str, meta: dict) -> bool:
+    try:
+        old = read_metadata(part)
+    except CatalogError:
+        return False
+    return all(old.get(k) == v for k, v in meta.items())
+
+
+def _totals(space, meta: dict, summaries: list[dict], path: str, shards: int, skipped: int) -> dict:
+    by: dict[str, int] = {}
+    for s in summaries:
+        for k, v in s["by_components"].items():
+            by[k] = by.get(k, 0) + v
+    return {
+        "designs": sum(s["rows"] for s in summaries),
+        "assignments": space.assignments,
+        "assignments_covered": sum(s["assignments_covered"] for s in summaries),
+        "group_order": space.group_order,
+        "acting_order": space.n_actions,
+        "symmetry": space.mode,
+        "label_set": space.label_set.tolist(),
+        "mode": meta["mode"],
+        "by_components": dict(sorted(by.items(), key=lambda kv: int(kv[0]))),
+        "output": os.path.abspath(path),
+        "shards": shards,
+        "shards_resumed": skipped,
+        "format_version": FORMAT_VERSION,
+    }

@@ -1,0 +1,62 @@
+"""Streaming a catalog file: record batches -> one Parquet file, written atomically."""
+
+from __future__ import annotations
+
+import json
+
+import pyarrow as pa
+import pyarrow.parquet as pq
+
+from ..io.atomic import atomic_path
+from .schema import METADATA_KEY, ROW_GROUP
+
+
+class CatalogWriter:
+    """Stream record batches into one Parquet file, written atomically.
+
+    Rows are buffered to ``ROW_GROUP`` and written as zstd row groups; the file appears
+    under its final name only when :meth:`close` succeeds (bounded memory: one row group).
+    The ``lkspace`` metadata is in the Arrow schema (what pyarrow, pandas and Dask show)
+    and, with the run's totals added, in the file footer (what :func:`read_metadata` reads).
+    """
+
+    def __init__(self, path: str, schema: pa.Schema, metadata: dict):
+        self.path = path
+        self.metadata = dict(metadata)
+        self.schema = schema.with_metadata({METADATA_KEY: json.dumps(self.metadata).encode()})
+        self._ctx = atomic_path(path, suffix=".parquet.tmp")
+        self._tmp = self._ctx.__enter__()
+        self._writer = pq.ParquetWriter(self._tmp, self.schema, compression="zstd")
+        self._pending: list[pa.RecordBatch] = []
+        self._n_pending = 0
+        self.rows = 0
+
+    def write(self, batch: pa.RecordBatch) -> None:
+        if batch.num_rows == 0:
+            return
+        self._pending.append(batch)
+        self._n_pending += batch.num_rows
+        self.rows += batch.num_rows
+        if self._n_pending >= ROW_GROUP:
+            self._flush()
+
+    def _flush(self) -> None:
+        if self._pending:
+            table = pa.Table.from_batches([b.replace_schema_metadata(self.schema.metadata) for b in self._pending])
+            self._writer.write_table(table, row_group_size=ROW_GROUP)
+        self._pending, self._n_pending = [], 0
+
+    def close(self, summary: dict | None = None) -> None:
+        """Finish the file; the ``lkspace`` metadata (with ``summary``) goes into its footer."""
+        self._flush()
+        meta = {**self.metadata, **(summary or {}), "rows": self.rows}
+        self._writer.add_key_value_metadata({METADATA_KEY: json.dumps(meta).encode()})
+        self._writer.close()
+        self._ctx.__exit__(None, None, None)
+
+    def abort(self, exc: BaseException) -> None:
+        try:
+            self._writer.close()
+        finally:
+            self._ctx.__exit__(type(exc), exc, exc.__traceback__)
+

@@ -1,0 +1,218 @@
+"""The design-space walk: one row per design up to symmetry.
+
+A **design** is an orbit of label assignments ``t in SET^edges`` under the symmetry group
+``G`` of the mode (:mod:`lkspace.symmetry.group`; a reflection maps ``t`` on ``e`` to ``-t`` on its
+image).  The strands depend only on the **residue class** ``t mod K`` per edge (``K`` the
+edge's degree), so the walk goes class by class:
+
+1. List the residue classes (product over edges of the residues the label set reaches)
+   and let ``G`` act on them.  A class is a **representative class** when its residue
+   vector, written as indices into each edge's sorted residues, is the lexicographically
+   smallest of its ``G``-orbit; its **stabilizer** ``H`` is the set of group elements
+   fixing it.
+2. Trace each representative class once (the compiled walk of :mod:`lkspace.strands.walk` on the
+   residues, no ``Trace`` objects): components, strand lengths, periods.
+3. Expand the class's label assignments (a product set, walked in lexicographic order by
+   a numba kernel) and keep those that are the lexicographically smallest under ``H``.
+
+**Canonical representative.**  Of all assignments in an orbit, the row holds the one
+that is smallest in the order "residue vector ``t mod K`` in edge order first, then the
+labels ``t`` in edge order", both lexicographic.  Because ``G`` maps residue classes to
+residue classes, that minimum lies in the orbit's representative class and is the
+``H``-smallest there, so testing it needs only ``H`` (usually trivial), never the whole
+group.  ``orbit_size = |G| / |Stab(t)|`` with ``Stab(t) = {h in H : h t = t}``, counted
+in the same kernel.  ``|G|`` is the number of distinct signed edge permutations
+(:meth:`~lkspace.symmetry.group.SymmetryGroup.action`).
+
+Null edge-sides stored with a scaffold are not part of a design space: the walk traces
+every strand closed.
+
+Counting without listing is :mod:`lkspace.design.counting`.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterator
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..kernels import kernel
+from ..strands.tracing import trace
+from .space import ClassInfo, DesignSpace
+
+CHUNK = 1 << 20
+
+
+@kernel
+def canonical_block(opts, n_opts, inv_perms, signs, start, stop, out_labels, out_stab):
+    """Walk assignments ``start..stop`` of one class (mixed radix, last edge fastest) and keep
+    those lexicographically smallest under the stabilizer ``(inv_perms, signs)`` (identity
+    excluded); returns the number kept, rows in ``out_labels``, stabilizer sizes in ``out_stab``."""
+    n_e = len(n_opts)
+    n_h = len(signs)
+    digits = np.zeros(n_e, np.int64)
+    cur = np.zeros(n_e, np.int64)
+    rest = start
+    for j in range(n_e - 1, -1, -1):
+        digits[j] = rest % n_opts[j]
+        rest //= n_opts[j]
+        cur[j] = opts[j, digits[j]]
+    m = 0
+    for _ in range(start, stop):
+        canon = True
+        stab = 1
+        for h in range(n_h):
+            cmp = 0
+            s = signs[h]
+            for j in range(n_e):
+                v = s * cur[inv_perms[h, j]]
+                if v != cur[j]:
+                    cmp = -1 if v < cur[j] else 1
+                    break
+            if cmp < 0:
+                canon = False
+                break
+            if cmp == 0:
+                stab += 1
+        if canon:
+            for j in range(n_e):
+                out_labels[m, j] = cur[j]
+            out_stab[m] = stab
+            m += 1
+        j = n_e - 1
+        while j >= 0:
+            digits[j] += 1
+            if digits[j] < n_opts[j]:
+                cur[j] = opts[j, digits[j]]
+                break
+            digits[j] = 0
+            cur[j] = opts[j, 0]
+            j -= 1
+    return m
+
+
+
+@kernel
+def rows_hold_together(labels, edge_ptr, edge_strands, n_strands):
+    """(m,) bool: strands joined by winding at nonzero-label edges form one piece."""
+    m, n_e = labels.shape
+    out = np.ones(m, np.bool_)
+    if n_strands <= 1:
+        return out
+    parent = np.empty(n_strands, np.int64)
+    for i in range(m):
+        for k in range(n_strands):
+            parent[k] = k
+        pieces = n_strands
+        for e in range(n_e):
+            if labels[i, e] == 0:
+                continue
+            a = edge_strands[edge_ptr[e]]
+            while parent[a] != a:
+                a = parent[a]
+            for p in range(edge_ptr[e] + 1, edge_ptr[e + 1]):
+                b = edge_strands[p]
+                while parent[b] != b:
+                    b = parent[b]
+                if a != b:
+                    parent[b] = a
+                    pieces -= 1
+        out[i] = pieces == 1
+    return out
+
+
+
+def holds_together_rows(space: DesignSpace, residues: np.ndarray, info: ClassInfo, labels: np.ndarray) -> np.ndarray:
+    """(m,) bool: whether each design of one residue class holds together.
+
+    Finite scaffolds: a numba union-find over the class's strands.  Periodic ones need
+    the infinite lift (:mod:`lkspace.strands.holding_together`), which depends only on the residues
+    and on which labels are zero: traced once per distinct zero pattern.
+    """
+    if not space.scaffold.periodic:
+        return rows_hold_together(labels, info.edge_ptr, info.edge_strands, info.components)
+    nonzero = labels != 0
+    if len(labels) == 1:
+        patterns, inverse = nonzero, np.zeros(1, np.int64)
+    else:
+        patterns, inverse = np.unique(nonzero, axis=0, return_inverse=True)
+    moduli = space.moduli
+    verdicts = np.empty(len(patterns), bool)
+    for i, pattern in enumerate(patterns):
+        # same residues, same zero pattern: a residue of 0 on a nonzero edge becomes K
+        stand_in = np.where(pattern & (residues == 0), moduli, residues)
+        verdicts[i] = trace(space.scaffold, stand_in).holds_together
+    return verdicts[inverse.reshape(-1)]
+
+
+@dataclass
+class Block:
+    """Designs of one representative class (or a chunk of it)."""
+
+    class_code: int
+    residues: np.ndarray  # (n_edges,)
+    info: ClassInfo
+    labels: np.ndarray  # (m, n_edges) int8
+    orbit_sizes: np.ndarray  # (m,) int64
+    holds_together: np.ndarray  # (m,) bool
+
+
+def walk_blocks(space: DesignSpace, class_ids=None, components: int | None = None) -> Iterator[Block]:
+    """Yield the designs of the representative classes ``class_ids`` (default all), in order."""
+    co = space.classes
+    perms, signs = space.action
+    inv = np.argsort(perms, axis=1)
+    n_res, values, n_opts_t, opts_t, _ = space.residue_table
+    e = np.arange(space.scaffold.n_edges)
+    ids = range(len(co.codes)) if class_ids is None else class_ids
+    for c in ids:
+        info = space.class_info(co.residues[c])
+        if components is not None and info.components != components:
+            continue
+        n_opts = n_opts_t[e, co.indices[c]]
+        opts = np.ascontiguousarray(opts_t[e, co.indices[c]])
+        h = co.stabilizers[c][1:]
+        size = math.prod(n_opts.tolist())
+        for start in range(0, size, CHUNK):
+            stop = min(size, start + CHUNK)
+            out = np.empty((stop - start, len(e)), np.int8)
+            stab = np.empty(stop - start, np.int64)
+            m = canonical_block(
+                opts, n_opts, np.ascontiguousarray(inv[h]), np.ascontiguousarray(signs[h]), start, stop, out, stab
+            )
+            labels = out[:m]
+            holds = holds_together_rows(space, co.residues[c], info, labels)
+            yield Block(int(co.codes[c]), co.residues[c], info, labels, space.n_actions // stab[:m], holds)
+
+
+def residue_row(space: DesignSpace, indices: np.ndarray, stabilizer, info: ClassInfo | None = None) -> dict:
+    """One ``--mode residues`` row for the class orbit of ``indices`` (a representative)."""
+    e = np.arange(len(indices))
+    residues = space.residue_table[1][e, indices]
+    info = info or space.class_info(residues)
+    labels = space.representative_labels(indices)
+    holds = bool(holds_together_rows(space, residues, info, labels[None, :])[0])
+    n_classes = space.n_actions // len(stabilizer)
+    big = 2**63 - 1  # counts past int64 are stored as -1 (possible only for huge spaces)
+    assignments = space.size_of(indices) * n_classes
+    designs = space.design_count(indices, stabilizer)
+    row = {
+        "residues": residues.astype(np.int8).tolist(),
+        "labels": labels.tolist(),
+        "components": info.components,
+        "orbit_size": assignments if assignments <= big else -1,
+        "designs": designs if designs <= big else -1,
+        "classes": n_classes,
+        "holds_together": holds,
+        "n_zero": int(np.sum(labels == 0)),
+        "n_odd": int(np.sum(residues % 2 != 0)),
+        "residue_class": space.class_code(indices),
+        "strand_lengths": info.strand_lengths.tolist(),
+    }
+    if space.scaffold.periodic:
+        row["n_infinite"] = int(np.sum(np.any(info.periods != 0, axis=1)))
+        row["strand_periods"] = info.periods.tolist()
+    return row
+

@@ -1,0 +1,1 @@
+"""Formats: strand geometry written to files, one module per file type (see :mod:`~lkspace.formats.registry`)."""

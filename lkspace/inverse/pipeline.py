@@ -1,0 +1,250 @@
+"""Running a query: fast path first, then CP-SAT (solve-and-exclude), every design re-traced.
+
+:mod:`lkspace.inverse.cpsat_model` builds the model and states why it is exact;
+:mod:`lkspace.inverse.constructive` is the fast path; this module runs them in turn.
+:func:`solve` is ``lkspace.solve``.
+"""
+
+from __future__ import annotations
+
+import os
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..errors import LabelError, SolveVerificationError
+from ..io.sources import load
+from ..model.scaffold import Scaffold
+from ..model.specs import parse_label_set
+from ..strands.tracing import trace
+from ..symmetry.group import symmetry_group
+from .constructive import spanning_designs
+from .cpsat_model import build_model
+from .query import Query
+
+
+@dataclass(frozen=True)
+class Solution:
+    """One design: labels ``(n_edges,) int64`` and its traced component count."""
+
+    labels: np.ndarray
+    components: int
+
+    def __repr__(self) -> str:
+        return f"Solution(components={self.components}, labels={self.labels.tolist()})"
+
+    def to_dict(self) -> dict:
+        """JSON form (``labels``, ``components``)."""
+        return {"labels": self.labels.tolist(), "components": self.components}
+
+
+@dataclass(frozen=True)
+class SolveResult:
+    """The answer to a query: ``status`` and ``solutions`` (JSON fields in ``docs/cli.md``).
+
+    ``status`` is ``"optimal"`` (objective proved optimal), ``"feasible"``, ``"infeasible"``
+    (proved: no design exists) or ``"unknown"`` (time ran out before either).  ``method`` is
+    ``"fast-path"``, ``"cp-sat"`` or ``"presolve"`` (decided before search).
+    """
+
+    status: str
+    solutions: list
+    method: str
+    wall_time: float
+    reason: str = ""
+    exhausted: bool = False
+    stats: dict = field(default_factory=dict)
+
+    def __repr__(self) -> str:
+        return (
+            f"SolveResult({self.status}, {len(self.solutions)} solution(s) by {self.method} in {self.wall_time:.3f}s)"
+        )
+
+    def to_dict(self) -> dict:
+        """JSON form (``status``, ``solutions``, ``method``, ...)."""
+        out = {
+            "status": self.status,
+            "solutions": [s.to_dict() for s in self.solutions],
+            "method": self.method,
+            "wall_time": round(self.wall_time, 6),
+            "exhausted": self.exhausted,
+            **self.stats,
+        }
+        if self.reason:
+            out["reason"] = self.reason
+        return out
+
+
+def verify(scaffold: Scaffold, labels: np.ndarray, components: int) -> Solution:
+    """Trace ``labels``; raise :class:`SolveVerificationError` unless it has ``components``."""
+    got = trace(scaffold, labels, np.zeros(scaffold.n_corners, bool)).components
+    if got != components:
+        raise SolveVerificationError(
+            f"internal error: solver design {labels.tolist()} on {scaffold.name} traces to {got} "
+            f"components, not {components}; please report this bug"
+        )
+    return Solution(np.asarray(labels, np.int64), got)
+
+
+def _orbit(residues: np.ndarray, actions, degrees: np.ndarray) -> list[np.ndarray]:
+    """Images of a residue vector under edge actions ``(perm, sign)``: ``t'[perm[e]] = sign * t[e]``."""
+    images = []
+    for perm, sign in actions:
+        img = np.empty_like(residues)
+        img[perm] = (sign * residues) % degrees[perm]
+        images.append(img)
+    return images
+
+
+def solve(
+    scaffold: Scaffold | str | os.PathLike,
+    components: int,
+    *,
+    label_set="-2..2",
+    no_zero: bool = False,
+    fixes=None,
+    parities=None,
+    count: int = 1,
+    distinct_up_to: str = "none",
+    objective: str | None = None,
+    time_limit: float | None = None,
+    workers: int = 0,
+    seed: int = 0,
+    fast_path: bool = True,
+) -> SolveResult:
+    """Find up to ``count`` designs on ``scaffold`` with exactly ``components`` strands.
+
+    Parameters
+    ----------
+    scaffold : Scaffold, path or built-in name
+    components : int
+        The number N of strand components wanted.
+    label_set : str or sequence of int
+        Labels the designs may use (``"-2..2"``, ``"-1,1"``, or integers).
+    no_zero : bool
+        Forbid label 0.
+    fixes : dict of int -> int, optional
+        Edge index -> label.
+    parities : dict of int -> {0, 1}, optional
+        Edge index -> 0 (even) or 1 (odd).
+    count : int
+        Distinct solutions wanted (different strand connectivity).
+    distinct_up_to : ``"none"``, ``"rotations"`` or ``"isometries"``
+        With a symmetry group, no two solutions lie in one orbit.
+    objective : None, ``"min-abs"`` or ``"min-nonzero"``
+    time_limit : float, optional
+        Seconds for the whole call; running out gives status ``"unknown"`` (or
+        ``"feasible"`` if some solutions were found).
+    workers, seed : int
+        CP-SAT search workers (0: all cores) and random seed.
+    fast_path : bool
+        Try the spanning-tree/forest construction of :mod:`lkspace.inverse.constructive` first (it
+        answers many queries with N <= F in linear time; CP-SAT takes over otherwise).
+
+    Examples
+    --------
+    >>> solve("cube", 1, label_set="-1,1").status
+    'infeasible'
+    >>> r = solve("tetrahedron", 1, no_zero=True)
+    >>> r
+    SolveResult(feasible, 1 solution(s) by fast-path in ...s)
+    >>> r.solutions[0].components
+    1
+    """
+    t0 = time.perf_counter()
+    scaffold = load(scaffold)
+    label_set = parse_label_set(label_set) if isinstance(label_set, str) else np.unique(np.asarray(label_set, np.int64))
+    query = Query(int(components), label_set, bool(no_zero), dict(fixes or {}), dict(parities or {}), objective)
+    if count < 1:
+        raise LabelError(f"--count {count}: need at least 1")
+    actions = symmetry_actions(scaffold, distinct_up_to, label_set)
+    if fast_path and (count == 1 or distinct_up_to == "none"):
+        # the local search behind the fast path gets half of the time limit (30 s without one)
+        budget = 0.5 * time_limit if time_limit else LOCAL_SEARCH_SECONDS
+        found, optimal = spanning_designs(scaffold, query, count, seed, time_budget=budget)
+        if len(found) == count and (objective is None or optimal):
+            sols = [verify(scaffold, t, query.components) for t in found]
+            status = "optimal" if objective is not None else "feasible"
+            return SolveResult(status, sols, "fast-path", time.perf_counter() - t0)
+    else:
+        found = []
+    hint = found[0] % scaffold.edge_degrees if found else None
+    result = solve_cp_sat(scaffold, query, count, actions, time_limit, workers, seed, t0, hint)
+    if found and result.status == "infeasible":
+        raise SolveVerificationError(
+            f"internal error: CP-SAT calls {scaffold.name} infeasible for "
+            f"{query.components} component(s) but {found[0].tolist()} is a design"
+        )
+    if found and not result.solutions:  # time ran out: the constructed designs still stand
+        sols = [verify(scaffold, t, query.components) for t in found]
+        return SolveResult(
+            "feasible",
+            sols,
+            "fast-path",
+            time.perf_counter() - t0,
+            "CP-SAT found no better design in time",
+            False,
+            result.stats,
+        )
+    return result
+
+
+LOCAL_SEARCH_SECONDS = 30.0
+
+
+def symmetry_actions(scaffold: Scaffold, mode: str, label_set: np.ndarray) -> list:
+    """Edge actions ``(perm (n_edges,) int64, sign)`` of the non-identity symmetries for ``mode``."""
+    if mode == "none":
+        return []
+    if mode not in ("rotations", "isometries"):
+        raise LabelError(f"--distinct-up-to {mode!r}: expected rotations, isometries or none")
+    if mode == "isometries" and not np.array_equal(np.sort(-label_set), label_set):
+        raise LabelError("--distinct-up-to isometries: the label set must be closed under negation")
+    perms, signs = symmetry_group(scaffold).action(mode)
+    return [(perm, int(sign)) for perm, sign in zip(perms[1:], signs[1:], strict=True)]  # identity first
+
+
+def solve_cp_sat(scaffold, query, count, actions, time_limit, workers, seed, t0, hint=None) -> SolveResult:
+    from ortools.sat.python import cp_model
+
+    dm = build_model(scaffold, query)
+    stats = {"model_nodes": dm.n_nodes, "fixed_cycles": dm.n_fixed_cycles}
+    if dm.decided:
+        return SolveResult(dm.decided, [], "presolve", time.perf_counter() - t0, dm.reason, True, stats)
+    if hint is not None:
+        dm.hint(hint)
+    solver = cp_model.CpSolver()
+    solver.parameters.num_workers = int(workers)
+    solver.parameters.random_seed = int(seed)
+    degrees = scaffold.edge_degrees
+    solutions: list[Solution] = []
+    status = "unknown"
+    exhausted = False
+    search_time = 0.0
+    while len(solutions) < count:
+        if time_limit is not None:
+            left = time_limit - (time.perf_counter() - t0)
+            if left <= 0:
+                break
+            solver.parameters.max_time_in_seconds = left
+        code = solver.solve(dm.model)
+        search_time += solver.wall_time
+        if code in (cp_model.OPTIMAL, cp_model.FEASIBLE):
+            residues = dm.residues_from(solver.boolean_value)
+            solutions.append(verify(scaffold, dm.labels_of(residues), query.components))
+            if len(solutions) == 1:
+                status = "optimal" if code == cp_model.OPTIMAL and query.objective else "feasible"
+            for res in [residues, *_orbit(residues, actions, degrees)]:
+                dm.exclude(res)
+        elif code == cp_model.INFEASIBLE:
+            exhausted = True
+            if not solutions:
+                status = "infeasible"
+            break
+        elif code == cp_model.MODEL_INVALID:  # pragma: no cover - a bug in build_model
+            raise SolveVerificationError(f"internal error: invalid CP-SAT model: {dm.model.validate()}")
+        else:
+            break
+    stats["search_time"] = round(search_time, 6)
+    return SolveResult(status, solutions, "cp-sat", time.perf_counter() - t0, "", exhausted, stats)

@@ -1,0 +1,42 @@
+"""Where scaffolds come from: :func:`load` takes a scaffold, a path or a built-in name.
+
+Every public function of lkspace that works on a scaffold calls :func:`load` on its
+first argument, so ``lkspace.trace("cube", 1)``, ``lkspace.trace("cube.obj", 1)`` and
+``lkspace.trace(scaffold, 1)`` all work.
+"""
+
+from __future__ import annotations
+
+import os
+
+from .. import scaffolds
+from ..errors import ScaffoldError
+from ..model.scaffold import Scaffold
+from .files import read
+
+
+def load(source: str | os.PathLike | Scaffold) -> Scaffold:
+    """A scaffold from a :class:`Scaffold` (returned as is), a built-in name or a path.
+
+    Parameters
+    ----------
+    source : Scaffold, str or os.PathLike
+        A built-in name (``"cube"``, ``"book:3"``, ``"honeycomb:cP@2x2x2"``; see
+        ``lkspace scaffold --help``) or a ``.obj`` / ``.json`` scaffold file.  A file of
+        that name wins over a built-in name.
+
+    Examples
+    --------
+    >>> load("cube")
+    Scaffold(cube: 8 vertices, 12 edges, 6 faces)
+    """
+    if isinstance(source, Scaffold):
+        return source
+    if not isinstance(source, (str, os.PathLike)):
+        raise ScaffoldError(f"expected a Scaffold, a path or a built-in name, got {type(source).__name__}")
+    text = os.fspath(source)
+    if scaffolds.is_builtin_name(text) and not os.path.exists(text):
+        return scaffolds.builtin(text)
+    if os.path.exists(text) or os.path.splitext(text)[1] or os.sep in text:
+        return read(text)
+    raise ScaffoldError(f"{text!r} is neither a file nor a built-in scaffold name; see 'lkspace scaffold --help'")

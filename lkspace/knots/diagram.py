@@ -1,0 +1,167 @@
+"""Planar diagrams of realized curves: generic projection, crossings, PD code.
+
+The curves are rotated by a random (seeded) rotation and projected along ``z``.  Every
+transverse crossing of two non-adjacent projected segments becomes a crossing; the higher
+segment (larger ``z`` at the crossing) is the over strand.
+
+PD convention (KnotTheory, spherogram, regina): ``X[i, j, k, l]`` lists the four edge
+labels around a crossing counter-clockwise, starting with the incoming under edge ``i``
+(``k`` is the outgoing under edge).  Edges are numbered from 1 along each component in
+its direction, components one after the other.  A crossing is positive (right-handed)
+when the under strand points to the left of the over strand:
+``sign = sign(over x under)``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.spatial import cKDTree
+from scipy.spatial.transform import Rotation
+
+from ..errors import DiagramError
+
+
+@dataclass(frozen=True, eq=False)
+class Diagram:
+    """A link diagram read from closed polylines.
+
+    Attributes
+    ----------
+    pd : list of [int, int, int, int]
+        PD code (empty when there are no crossings).
+    signs : (n_crossings,) int64
+        +1 right-handed, -1 left-handed.
+    crossing_components : (n_crossings, 2) int64
+        Over and under component of each crossing.
+    n_components : int
+    free_components : list of int
+        Components without any crossing (split, unknotted).
+    """
+
+    pd: list
+    signs: np.ndarray
+    crossing_components: np.ndarray
+    n_components: int
+    free_components: list
+
+    @property
+    def n_crossings(self) -> int:
+        return len(self.pd)
+
+    def linking_matrix(self) -> np.ndarray:
+        """(n_components, n_components) int64: linking numbers, zero diagonal."""
+        n = self.n_components
+        out = np.zeros((n, n), np.int64)
+        a, b = self.crossing_components[:, 0], self.crossing_components[:, 1]
+        mixed = a != b
+        np.add.at(out, (a[mixed], b[mixed]), self.signs[mixed])
+        np.add.at(out, (b[mixed], a[mixed]), self.signs[mixed])
+        return out // 2
+
+    def writhe(self) -> int:
+        return int(self.signs.sum())
+
+
+def _segments(curves):
+    starts, ends, owner, index = [], [], [], []
+    for c, pts in enumerate(curves):
+        closed_pts = np.vstack([pts, pts[:1]])
+        starts.append(closed_pts[:-1])
+        ends.append(closed_pts[1:])
+        owner.append(np.full(len(pts), c))
+        index.append(np.arange(len(pts)))
+    return np.vstack(starts), np.vstack(ends), np.concatenate(owner), np.concatenate(index)
+
+
+def project(curves, seed: int = 0, rotation: np.ndarray | None = None) -> Diagram:
+    """The diagram of closed polylines ``curves`` (list of ``(n_k, 3)``) seen along a generic axis.
+
+    Parameters
+    ----------
+    curves : list of (n_k, 3) float64
+        Closed polylines (the last point joins the first).
+    seed : int
+        Seeds the random rotation that makes the projection generic.
+    rotation : (3, 3) float64, optional
+        Use this rotation instead.
+
+    Examples
+    --------
+    >>> t = np.linspace(0, 2 * np.pi, 60, endpoint=False)
+    >>> a = np.column_stack([np.cos(t), np.sin(t), 0 * t])
+    >>> b = np.column_stack([1 + np.cos(t), 0 * t, np.sin(t)])
+    >>> d = project([a, b])
+    >>> d.n_crossings, int(abs(d.linking_matrix()[0, 1]))
+    (2, 1)
+    """
+    rot = Rotation.random(random_state=seed).as_matrix() if rotation is None else np.asarray(rotation)
+    curves = [np.asarray(c, np.float64) @ rot.T for c in curves]
+    p0, p1, owner, index = _segments(curves)
+    lengths = np.array([len(c) for c in curves])
+    first = np.concatenate([[0], np.cumsum(lengths)])
+    a2, b2 = p0[:, :2], p1[:, :2]
+    mid = 0.5 * (a2 + b2)
+    half = 0.5 * np.linalg.norm(b2 - a2, axis=1)
+    pairs = cKDTree(mid).query_pairs(2 * half.max() + 1e-12, output_type="ndarray")
+    if len(pairs):
+        i, j = pairs[:, 0], pairs[:, 1]
+        same = owner[i] == owner[j]
+        n_own = lengths[owner[i]]
+        gap = np.abs(index[i] - index[j])
+        adjacent = same & ((gap == 1) | (gap == n_own - 1))
+        i, j = i[~adjacent], j[~adjacent]
+        near = np.linalg.norm(mid[i] - mid[j], axis=1) <= half[i] + half[j]
+        i, j = i[near], j[near]
+    else:
+        i = j = np.zeros(0, np.int64)
+    r = b2[i] - a2[i]
+    s_ = b2[j] - a2[j]
+    denom = r[:, 0] * s_[:, 1] - r[:, 1] * s_[:, 0]
+    qp = a2[j] - a2[i]
+    ok = np.abs(denom) > 1e-15
+    dsafe = np.where(ok, denom, 1.0)
+    u = (qp[:, 0] * s_[:, 1] - qp[:, 1] * s_[:, 0]) / dsafe
+    v = (qp[:, 0] * r[:, 1] - qp[:, 1] * r[:, 0]) / dsafe
+    hit = ok & (u >= 0) & (u < 1) & (v >= 0) & (v < 1)
+    i, j, u, v = i[hit], j[hit], u[hit], v[hit]
+    zi = p0[i, 2] + u * (p1[i, 2] - p0[i, 2])
+    zj = p0[j, 2] + v * (p1[j, 2] - p0[j, 2])
+    scale = float(np.ptp(np.vstack(curves), axis=0).max()) or 1.0
+    if len(i) and np.min(np.abs(zi - zj)) < 1e-9 * scale:
+        raise DiagramError("two strands meet in the projection at equal height: the curves intersect")
+    i_over = zi > zj
+    over = np.where(i_over, i, j)
+    under = np.where(i_over, j, i)
+    t_over = np.where(i_over, u, v)
+    t_under = np.where(i_over, v, u)
+    d_over = (b2 - a2)[over]
+    d_under = (b2 - a2)[under]
+    signs = np.sign(d_over[:, 0] * d_under[:, 1] - d_over[:, 1] * d_under[:, 0]).astype(np.int64)
+    n_x = len(over)
+    # passages: each crossing is passed twice (over, under); order them along components
+    seg = np.concatenate([over, under])
+    par = np.concatenate([t_over, t_under])
+    comp = owner[seg]
+    position = (seg - first[comp]) + par
+    order = np.lexsort((position, comp))
+    comp_sorted = comp[order]
+    counts = np.bincount(comp_sorted, minlength=len(curves))
+    comp_first = np.concatenate([[0], np.cumsum(counts)])
+    rank = np.arange(2 * n_x) - comp_first[comp_sorted]
+    # passage k of a component enters by edge k - 1 (cyclically) and leaves by edge k
+    label_out = comp_first[comp_sorted] + rank + 1
+    label_in = comp_first[comp_sorted] + (rank - 1) % np.maximum(counts[comp_sorted], 1) + 1
+    lab_in = np.empty(2 * n_x, np.int64)
+    lab_out = np.empty(2 * n_x, np.int64)
+    lab_in[order] = label_in
+    lab_out[order] = label_out
+    o_in, o_out = lab_in[:n_x], lab_out[:n_x]
+    u_in, u_out = lab_in[n_x:], lab_out[n_x:]
+    pd = np.where(
+        (signs > 0)[:, None], np.column_stack([u_in, o_out, u_out, o_in]), np.column_stack([u_in, o_in, u_out, o_out])
+    )
+    # the over strand points 90 degrees clockwise of the under strand for a positive crossing
+    free = [int(c) for c in range(len(curves)) if counts[c] == 0]
+    return Diagram(pd.tolist(), signs, np.column_stack([owner[over], owner[under]]).astype(np.int64), len(curves), free)

@@ -1,0 +1,154 @@
+"""Naming a PD code: simplify (spherogram), then look up Jones, HOMFLY-PT and volume in the tables.
+
+See :mod:`lkspace.knots.recognition` for the whole pipeline and what a name promises.
+"""
+
+from __future__ import annotations
+
+import json
+import re
+
+from .tables import HOMFLY_MAX_CROSSINGS, JONES_POINT, knot_modules, laurent_value, tables
+
+
+def _homfly(regina, pd, mirror=False) -> str:
+    link = regina.Link.fromPD(pd)
+    if mirror:
+        link.changeAll()
+    return str(link.homfly())
+
+
+def _identify_names(link) -> tuple[list[str], float | None]:
+    """SnapPy's names of the exterior (``[]`` if not hyperbolic) and its volume."""
+    try:
+        exterior = link.exterior()
+        hyperbolic = exterior.solution_type() == "all tetrahedra positively oriented"
+        volume = float(exterior.volume()) if hyperbolic else 0.0
+        names = [str(m).split("(")[0] for m in exterior.identify()] if hyperbolic else []
+        return names, volume
+    except Exception:  # noqa: BLE001 - SnapPy may fail on a degenerate exterior
+        return [], None
+
+
+def name_diagram(pd: list, n_components: int) -> dict:
+    """Name one non-split link diagram given by its PD code.
+
+    Returns
+    -------
+    dict
+        ``name`` (or ``None``), ``table_name``, ``mirror``, ``candidates`` and invariants
+        ``crossings`` (simplified diagram), ``jones``, ``homfly``, ``volume``.
+    """
+    spherogram, regina, _ = knot_modules()
+    out = {"name": None, "table_name": None, "mirror": None, "candidates": []}
+    if not pd:
+        out.update(crossings=0, jones="1", homfly=None, volume=0.0)
+        if n_components == 1:
+            out.update(name="0_1", table_name="0_1")
+        return out
+    rl = regina.Link.fromPD(pd)
+    jones = rl.jones()
+    out["crossings"] = len(pd)
+    out["jones"] = str(jones)
+    fp, fp_mirror = laurent_value(jones, JONES_POINT), laurent_value(jones, 1 / JONES_POINT)
+    index = tables()
+    cands = [(e, False) for e in index.get(fp, [])] + [(e, True) for e in index.get(fp_mirror, [])]
+    cands = [(e, m) for e, m in cands if e["components"] == n_components and e["crossings"] <= len(pd)]
+    homfly = str(rl.homfly()) if len(pd) <= HOMFLY_MAX_CROSSINGS else None
+    if homfly is not None and cands:
+        cands = [(e, m) for e, m in cands if e["pd"] and _homfly(regina, json.loads(e["pd"]), m) == homfly]
+    link = spherogram.Link(pd)
+    names, volume = _identify_names(link)
+    out["volume"] = volume
+    if len({e["name"] for e, _ in cands}) > 1 and names:
+        cands = [(e, m) for e, m in cands if e["name"] in names or _knot_alias(e["name"]) in names]
+    out["homfly"] = homfly
+    out["candidates"] = sorted({e["table_name"] + (" (mirror)" if m else "") for e, m in cands})
+    if len({e["name"] for e, _ in cands}) != 1:
+        return out
+    entry = cands[0][0]
+    table_volume = entry["volume"] or 0.0
+    if volume is None or abs(table_volume - volume) > 1e-4 * max(1.0, table_volume):
+        out["note"] = f"volume {volume} differs from {entry['table_name']}'s {table_volume}"
+        return out
+    mirrors = {m for _, m in cands}
+    out.update(name=entry["name"], table_name=entry["table_name"])
+    out["mirror"] = mirrors.pop() if len(mirrors) == 1 else None
+    if out["mirror"] is not None and n_components == 1:
+        out["chiral_name"] = ("m" if out["mirror"] else "") + entry["name"]
+    return out
+
+
+def _knot_alias(name: str) -> str:
+    """KnotInfo ``11a_1`` is SnapPy's ``K11a1``; Rolfsen names are shared."""
+    m = re.fullmatch(r"(\d+)([an])_(\d+)", name)
+    return f"K{m[1]}{m[2]}{m[3]}" if m else name
+
+
+def one_based(pd) -> list:
+    """spherogram numbers PD edges from 0; KnotTheory and regina from 1."""
+    return [[int(v) + 1 for v in x] for x in pd]
+
+
+def name_pd(pd: list, n_components: int) -> dict:
+    """Simplify and name the link of a PD code (1-based, KnotTheory convention).
+
+    Split links are named piece by piece (``name`` stays ``None``, ``pieces`` lists
+    them); a composite whose prime factors are all in the tables gets the name
+    ``"3_1#4_1"`` (``prime: False``, ``factors``).
+    """
+    spherogram, _, _ = knot_modules()
+    if not pd:
+        out = {
+            "name": "0_1" if n_components == 1 else None,
+            "crossings": 0,
+            "split": n_components > 1,
+            "mirror": None,
+            "jones": "1",
+        }
+        if n_components > 1:
+            out["pieces"] = ["0_1"] * n_components
+            out["note"] = f"unlink of {n_components} components"
+        return out
+    link = spherogram.Link(pd)
+    n_free = n_components - len(link.link_components)
+    link.simplify("global")
+    pieces = link.split_link_diagram()
+    n_free += link.unlinked_unknot_components
+    if len(pieces) + n_free > 1:
+        named = [name_pd(one_based(p.PD_code()), len(p.link_components)) for p in pieces]
+        out = {
+            "name": None,
+            "split": True,
+            "crossings": sum(p.get("crossings", 0) for p in named),
+            "pieces": [p["name"] for p in named] + ["0_1"] * n_free,
+            "mirror": None,
+        }
+        out["note"] = "split link: " + " + ".join(str(p) for p in out["pieces"])
+        return out
+    simple = one_based(link.PD_code())
+    out = name_diagram(simple, n_components)
+    out["split"] = False
+    if out["name"] is None and simple:
+        factors = link.copy().deconnect_sum()
+        if len(factors) > 1:
+            named = [name_diagram(one_based(f.PD_code()), len(f.link_components)) for f in factors]
+            out["factors"] = [f.get("chiral_name") or f["name"] for f in named]
+            if all(f["name"] for f in named):
+                out.update(name="#".join(sorted((f["name"] for f in named), key=_name_key)), prime=False, mirror=None)
+                if all(f.get("chiral_name") or f["mirror"] is None for f in named) and n_components == 1:
+                    out["chiral_name"] = "#".join(sorted(out["factors"], key=_name_key))
+    if n_components == 1 and simple:
+        try:
+            hfk = link.knot_floer_homology()
+            out["knot_floer"] = {k: hfk[k] for k in ("seifert_genus", "fibered", "tau", "total_rank", "L_space_knot")}
+        except Exception:  # noqa: BLE001 - optional invariant
+            pass
+    return out
+
+
+def _name_key(name: str):
+    m = re.match(r"m?L?(\d+)", name)
+    return (int(m[1]) if m else 0, name)
+
+

@@ -1,0 +1,135 @@
+"""The KnotInfo / LinkInfo tables (``database_knotinfo``), indexed by Jones value, cached on disk.
+
+Each entry's Jones polynomial is evaluated exactly at ``sqrt(t) = 2/3``; the index maps
+that value to the table entries (and mirrors) sharing it.  Building the index takes a
+few seconds, so it is pickled to ``~/.cache/lkspace`` per table version.
+"""
+
+from __future__ import annotations
+
+import os
+import pickle
+from fractions import Fraction
+from functools import lru_cache
+
+from ..errors import require
+from ..io.atomic import write_bytes
+
+PURPOSE = "knot identification"
+HOMFLY_MAX_CROSSINGS = 40  # HOMFLY-PT (regina) of larger simplified diagrams is skipped
+JONES_POINT = Fraction(2, 3)
+
+
+def knot_modules():
+    """spherogram, regina and database_knotinfo, or :class:`MissingDependencyError` naming ``[knots]``."""
+    spherogram = require("spherogram", "knots", PURPOSE)
+    regina = require("regina", "knots", PURPOSE)
+    require("snappy", "knots", PURPOSE)
+    dki = require("database_knotinfo", "knots", PURPOSE)
+    return spherogram, regina, dki
+
+
+def _eval_table(poly: str, var: str, x: Fraction) -> Fraction | None:
+    value = x * x if var == "t" else x
+    try:
+        return Fraction(eval(poly.replace("^", "**"), {"__builtins__": {}}, {var: value}))  # noqa: S307
+    except Exception:  # noqa: BLE001 - a few table entries are blank
+        return None
+
+
+def laurent_value(laurent, x: Fraction) -> Fraction:
+    """Exact value of a regina ``Laurent`` (in ``sqrt(t)``) at ``x``."""
+    total = Fraction(0)
+    if laurent.isZero():
+        return total
+    for e in range(laurent.minExp(), laurent.maxExp() + 1):
+        c = int(str(laurent[e]))
+        if c:
+            total += c * x**e
+    return total
+
+
+def _cache_path(version: str) -> str:
+
+    root = os.environ.get("LKSPACE_CACHE") or os.path.join(os.path.expanduser("~"), ".cache", "lkspace")
+    return os.path.join(root, f"knot-tables-{version}-v1.pickle")
+
+
+@lru_cache(maxsize=1)
+def tables() -> dict:
+    """Jones fingerprints of the KnotInfo and LinkInfo tables: ``{value: [entry, ...]}``.
+
+    Built once from ``database_knotinfo`` (a few seconds) and kept in a pickle under
+    ``$LKSPACE_CACHE`` (default ``~/.cache/lkspace``), keyed by the database version.
+    """
+
+    _, _, dki = knot_modules()
+    path = _cache_path(str(getattr(dki, "version", lambda: "0")()))
+    if os.path.exists(path):
+        try:
+            with open(path, "rb") as fh:
+                return pickle.load(fh)
+        except Exception:  # noqa: BLE001 - a broken cache is rebuilt
+            pass
+    index = _build_tables(dki)
+    try:
+        os.makedirs(os.path.dirname(path), exist_ok=True)
+        write_bytes(path, pickle.dumps(index, protocol=pickle.HIGHEST_PROTOCOL))
+    except OSError:
+        pass
+    return index
+
+
+def _build_tables(dki) -> dict:
+    index: dict = {}
+
+    def add(entry):
+        index.setdefault(entry["fp"], []).append(entry)
+
+    for row in dki.link_list():
+        name = row.get("name")
+        if not name or name == "Name" or not row.get("jones_polynomial"):
+            continue
+        fp = _eval_table(row["jones_polynomial"], "t", JONES_POINT)
+        if fp is None:
+            continue
+        add(
+            {
+                "name": name,
+                "table_name": name,
+                "components": 1,
+                "pd": row.get("pd_notation"),
+                "fp": fp,
+                "crossings": int(row.get("crossing_number") or 0),
+                "volume": _float(row.get("volume")),
+            }
+        )
+    for row in dki.link_list(proper_links=True):
+        name = row.get("name")
+        if not name or name == "Name" or not row.get("jones_polynomial"):
+            continue
+        fp = _eval_table(row["jones_polynomial"], "x", JONES_POINT)
+        if fp is None:
+            continue
+        pd = row.get("pd_notation_vector")
+        add(
+            {
+                "name": name.split("{")[0],
+                "table_name": name,
+                "components": int(row.get("components") or 0),
+                "pd": pd.replace("{", "[").replace("}", "]") if pd else None,
+                "fp": fp,
+                "crossings": int(row.get("crossing_number") or 0),
+                "volume": _float(row.get("volume")),
+            }
+        )
+    return index
+
+
+def _float(text) -> float | None:
+    try:
+        return float(text)
+    except (TypeError, ValueError):
+        return None
+
+

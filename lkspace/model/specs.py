@@ -1,0 +1,190 @@
+"""Parsing twist labels, label sets and null edge-sides as users type them (``docs/formats.md``).
+
+* twist ``SPEC``: one integer (every edge), a comma list with one integer per edge in
+  edge order, or a path to a file naming edges by vertex pair (see :func:`read_twist_file`).
+* label ``SET``: ``-2..2`` (inclusive range) or a comma list ``-2,-1,1,2``.
+* null ``SPEC``: comma list of face-sides ``F.K`` (side ``K`` of face ``F``).
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import re
+
+import numpy as np
+
+from ..errors import LabelError
+from .scaffold import Scaffold
+
+_INT = re.compile(r"^[+-]?\d+$")
+_EDGE = re.compile(r"^(\d+)\s*[-\s]\s*(\d+)(?:\s*\[([-+\d,\s]*)\])?$")
+
+
+def _to_int(text: str, where: str) -> int:
+    text = text.strip()
+    if not _INT.match(text):
+        raise LabelError(f"{where}: {text!r} is not an integer")
+    return int(text)
+
+
+def parse_label_set(spec: str) -> np.ndarray:
+    """``"-2..2"`` or ``"-2,-1,1,2"`` -> sorted unique ``(n_labels,) int64``.
+
+    Examples
+    --------
+    >>> parse_label_set("-2..2").tolist()
+    [-2, -1, 0, 1, 2]
+    >>> parse_label_set("2,-2").tolist()
+    [-2, 2]
+    """
+    spec = str(spec).strip()
+    if ".." in spec:
+        lo, _, hi = spec.partition("..")
+        lo_i, hi_i = _to_int(lo, "label set"), _to_int(hi, "label set")
+        if lo_i > hi_i:
+            raise LabelError(f"label set {spec!r}: empty range")
+        return np.arange(lo_i, hi_i + 1, dtype=np.int64)
+    values = [_to_int(v, f"label set {spec!r}") for v in spec.split(",") if v.strip()]
+    if not values:
+        raise LabelError("label set is empty")
+    return np.unique(np.array(values, dtype=np.int64))
+
+
+def edge_index(scaffold: Scaffold, name: str) -> int:
+    """Edge named by index (``"5"``) or vertex pair (``"3-7"``, periodic ``"3-7[0,1,0]"``)."""
+    name = name.strip()
+    if _INT.match(name):
+        e = int(name)
+        if not 0 <= e < scaffold.n_edges:
+            raise LabelError(f"edge {e} out of range 0..{scaffold.n_edges - 1}")
+        return e
+    m = _EDGE.match(name)
+    if not m:
+        raise LabelError(f"{name!r} names no edge; write an edge index or a vertex pair like 3-7")
+    a, b = sorted((int(m.group(1)), int(m.group(2))))
+    matches = np.flatnonzero((scaffold.edge_vertices[:, 0] == a) & (scaffold.edge_vertices[:, 1] == b))
+    if m.group(3) is not None:
+        delta = [int(x) for x in m.group(3).split(",") if x.strip()]
+        if int(m.group(1)) > int(m.group(2)):
+            delta = [-x for x in delta]
+        matches = [e for e in matches if scaffold.edge_deltas[e].tolist() == delta]
+    if len(matches) == 0:
+        raise LabelError(f"{scaffold.name}: {name!r} is not an edge")
+    if len(matches) > 1:
+        options = ", ".join(scaffold.edge_name(e) for e in matches)
+        raise LabelError(f"{scaffold.name}: {name!r} names several edge classes ({options}); add the offset")
+    return int(matches[0])
+
+
+def read_twist_file(scaffold: Scaffold, path: str) -> np.ndarray:
+    """Twist labels from a file naming edges.
+
+    Either a JSON object ``{"3-7": 1, ...}`` (or a scaffold file with ``labels``), or text
+    lines ``EDGE T`` where ``EDGE`` is ``a-b``, ``a b``, an edge index or ``*`` (the default
+    for edges not named).  ``#`` starts a comment.  Every edge must get a label.
+    """
+    name = os.path.basename(path)
+    try:
+        with open(path, encoding="utf-8") as fh:
+            text = fh.read()
+    except (OSError, UnicodeDecodeError) as exc:
+        raise LabelError(f"{path}: cannot read twist file: {exc}") from None
+    entries: list[tuple[str, str, str]] = []
+    if text.lstrip().startswith("{"):
+        try:
+            data = json.loads(text)
+        except json.JSONDecodeError as exc:
+            raise LabelError(f"{name} line {exc.lineno}: invalid JSON: {exc.msg}") from None
+        for key in ("labels", "twists"):  # a scaffold file ("twists" is the older spelling)
+            if key in data and isinstance(data[key], list):
+                return labels_from_list(scaffold, data[key], name)
+        entries = [(f"{name} key {k!r}", k, str(v)) for k, v in data.items()]
+    else:
+        for lineno, raw in enumerate(text.splitlines(), start=1):
+            line = raw.split("#", 1)[0].strip()
+            if not line:
+                continue
+            edge, _, value = line.rpartition(" ")
+            if not edge.strip():
+                raise LabelError(f"{name} line {lineno}: expected 'EDGE LABEL', got {raw.strip()!r}")
+            entries.append((f"{name} line {lineno}", edge.strip().rstrip(":"), value))
+    labels = np.zeros(scaffold.n_edges, np.int64)
+    named = np.zeros(scaffold.n_edges, bool)
+    default = None
+    for where, edge, value in entries:
+        t = _to_int(value, where)
+        if edge == "*":
+            default = t
+            continue
+        try:
+            e = edge_index(scaffold, edge)
+        except LabelError as exc:
+            raise LabelError(f"{where}: {exc}") from None
+        if named[e]:
+            raise LabelError(f"{where}: edge {scaffold.edge_name(e)} labelled twice")
+        labels[e], named[e] = t, True
+    if default is not None:
+        labels[~named] = default
+    elif not named.all():
+        missing = ", ".join(scaffold.edge_name(e) for e in np.flatnonzero(~named)[:5])
+        raise LabelError(
+            f"{name}: no label for {int((~named).sum())} edge(s) ({missing}); add them or a '* T' default line"
+        )
+    return labels
+
+
+def labels_from_list(scaffold: Scaffold, values, where: str = "twist labels") -> np.ndarray:
+    """A list of per-edge integers -> ``(n_edges,) int64`` with a clear count error."""
+    if len(values) != scaffold.n_edges:
+        raise LabelError(
+            f"{where}: expected {scaffold.n_edges} twist labels (one per edge of {scaffold.name}), got {len(values)}"
+        )
+    out = []
+    for i, v in enumerate(values):
+        if isinstance(v, bool) or not isinstance(v, (int, np.integer)):
+            raise LabelError(f"{where}: label {i} is {v!r}, not an integer")
+        out.append(int(v))
+    return np.array(out, dtype=np.int64)
+
+
+def parse_labels(scaffold: Scaffold, spec) -> np.ndarray:
+    """Twist ``SPEC`` (int, comma list, or path) -> ``(n_edges,) int64``.
+
+    Examples
+    --------
+    >>> from lkspace import load
+    >>> parse_labels(load("tetrahedron"), "-1").tolist()
+    [-1, -1, -1, -1, -1, -1]
+    """
+    if isinstance(spec, (int, np.integer)):
+        return np.full(scaffold.n_edges, int(spec), np.int64)
+    spec = str(spec).strip()
+    if _INT.match(spec):
+        return np.full(scaffold.n_edges, int(spec), np.int64)
+    if "," in spec and not os.path.exists(spec):
+        parts = spec.split(",")
+        values = [_to_int(p, f"twist label {i}") for i, p in enumerate(parts)]
+        return labels_from_list(scaffold, values, f"--twist {spec!r}")
+    if os.path.exists(spec):
+        return read_twist_file(scaffold, spec)
+    raise LabelError(f"twist spec {spec!r} is neither an integer, a comma list, nor an existing file")
+
+
+def parse_nulls(scaffold: Scaffold, spec: str) -> np.ndarray:
+    """Null ``SPEC`` ``"F.K,F.K"`` (side ``K`` of face ``F``) -> ``(n_corners,) bool``."""
+    mask = np.zeros(scaffold.n_corners, bool)
+    for item in str(spec).split(","):
+        item = item.strip()
+        if not item:
+            continue
+        f_text, dot, k_text = item.partition(".")
+        if not dot:
+            raise LabelError(f"null side {item!r}: write FACE.SIDE, e.g. 0.2 for side 2 of face 0")
+        f, k = _to_int(f_text, f"null side {item!r}"), _to_int(k_text, f"null side {item!r}")
+        if not 0 <= f < scaffold.n_faces:
+            raise LabelError(f"null side {item!r}: face {f} out of range 0..{scaffold.n_faces - 1}")
+        if not 0 <= k < scaffold.face_sizes[f]:
+            raise LabelError(f"null side {item!r}: face {f} has sides 0..{scaffold.face_sizes[f] - 1}")
+        mask[scaffold.face_starts[f] + k] = True
+    return mask

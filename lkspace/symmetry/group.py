@@ -1,0 +1,189 @@
+"""Symmetry group of a scaffold: rigid motions that map it onto itself.
+
+How the group is found
+----------------------
+1. **Combinatorial candidates.**  The incidence structure is a vertex-coloured graph with
+   one node per vertex (colour 0), per edge (colour 1) and per face (colour 2); a vertex
+   node is joined to the edges it bounds, an edge node to the faces it lies on.  Its
+   automorphisms (python-igraph: BLISS generators, closed into the group) give candidate vertex permutations
+   ``sigma`` (duplicates that only permute faces on the same vertex cycle, as in a
+   two-sided polygon, collapse).  When there are too many to list (more than
+   ``MAX_AUTOMORPHISMS``, e.g. a book of many pages), finite scaffolds fall back to a
+   frame search: the images of vertex 0 and two neighbours fix a candidate motion
+   (:func:`geometric_vertex_perms`).
+2. **Rigid-motion check.**  A candidate survives only if a rigid motion
+   ``x -> Q x + tau`` (``Q`` orthogonal) carries every vertex ``v`` onto ``sigma(v)``:
+
+   * finite scaffold: ``Q`` is the orthogonal Procrustes fit about the vertex centroid
+     (which every isometry of the scaffold fixes).  When the vertices are coplanar the
+     fit is unique only up to the reflection in their plane, and both motions are kept
+     (a flat polygon has the in-plane rotations and the half-turns that flip it over);
+   * periodic scaffold: ``Q`` must also map the lattice to itself, ``B Q^T = N B`` for an
+     integer matrix ``N`` (the lattice point group, searched over ``N`` with entries in
+     ``{-1, 0, 1}``, enough for reduced bases); ``tau`` is fixed by one vertex and the
+     others must land on their images up to lattice translations.  The image of every
+     edge class and every face (as a set of lattice-offset corners) must again be one.
+3. **Action on labels.**  Each motion permutes the edges, ``edge_perms[g, e]`` is the
+   image of edge ``e``.  A proper motion (rotation, ``det Q = +1``) keeps twist labels: a
+   right-handed twist stays right-handed and the rule reads the same from either end; an
+   improper one (reflection) maps label ``t`` on ``e`` to ``-t`` on its image edge.
+
+Limitations: an explicit radial order stored in a scaffold file is assumed to agree with
+the geometry (the symmetry check is geometric).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import cached_property
+
+import numpy as np
+
+from ..errors import LabelError, ScaffoldError
+from ..model.scaffold import Scaffold
+from .motions import candidate_vertex_perms, edge_permutation, finite_motions, periodic_motions
+
+#: Modes of ``--symmetry``.
+MODES = ("rotations", "isometries", "none")
+
+
+
+@dataclass(frozen=True, eq=False)
+class SymmetryGroup:
+    """The rigid motions mapping a scaffold onto itself (identity first).
+
+    Attributes
+    ----------
+    matrices : (n_elements, 3, 3) float64
+        Orthogonal part ``Q`` of each motion.
+    translations : (n_elements, 3) float64
+        Translation part ``tau`` (modulo the lattice for periodic scaffolds).
+    vertex_perms : (n_elements, n_vertices) int64
+        Image vertex of each vertex.
+    edge_perms : (n_elements, n_edges) int64
+        Image edge (class) of each edge.
+    proper : (n_elements,) bool
+        ``det Q = +1`` (a rotation) or not (a reflection / improper motion).
+    """
+
+    matrices: np.ndarray
+    translations: np.ndarray
+    vertex_perms: np.ndarray
+    edge_perms: np.ndarray
+    proper: np.ndarray
+
+    @property
+    def order(self) -> int:
+        """Number of isometries (proper and improper)."""
+        return int(len(self.proper))
+
+    @property
+    def n_rotations(self) -> int:
+        """Number of proper motions (the rotation subgroup's order)."""
+        return int(self.proper.sum())
+
+    @cached_property
+    def edge_signs(self) -> np.ndarray:
+        """(n_elements,) int64: +1 for rotations, -1 for reflections (label ``t -> sign * t``)."""
+        return np.where(self.proper, 1, -1).astype(np.int64)
+
+    def mode_order(self, mode: str) -> int:
+        """Order of the group used by ``mode`` (``rotations``, ``isometries``, ``none``)."""
+        check_mode(mode)
+        return {"rotations": self.n_rotations, "isometries": self.order, "none": 1}[mode]
+
+    def action(self, mode: str) -> tuple[np.ndarray, np.ndarray]:
+        """Distinct signed edge permutations of ``mode``'s group, identity first.
+
+        Returns
+        -------
+        perms : (n_actions, n_edges) int64
+            ``perms[g, e]``: the edge that edge ``e`` goes to.
+        signs : (n_actions,) int64
+            Label ``t`` on ``e`` becomes ``signs[g] * t`` on ``perms[g, e]``.
+
+        Motions acting identically on labels (e.g. a half-turn that reverses an edge
+        class of a periodic tiling onto itself) appear once, so ``n_actions`` divides
+        :meth:`mode_order`.
+        """
+        check_mode(mode)
+        n_edges = self.edge_perms.shape[1]
+        if mode == "none":
+            return np.arange(n_edges, dtype=np.int64)[None, :], np.ones(1, np.int64)
+        keep = self.proper if mode == "rotations" else np.ones(self.order, bool)
+        perms = self.edge_perms[keep]
+        signs = self.edge_signs[keep] if mode == "isometries" else np.ones(int(keep.sum()), np.int64)
+        table = np.column_stack([perms, signs])
+        _, first = np.unique(table, axis=0, return_index=True)
+        first = np.sort(first)  # identity (element 0) stays first
+        return np.ascontiguousarray(perms[first]), np.ascontiguousarray(signs[first])
+
+
+def check_mode(mode: str) -> str:
+    if mode not in MODES:
+        raise LabelError(f"unknown symmetry mode {mode!r}; choose one of {', '.join(MODES)}")
+    return mode
+
+
+def check_label_set(labels: np.ndarray, mode: str) -> None:
+    """Isometries need a label set closed under negation (a mirror maps t to -t)."""
+    if mode == "isometries":
+        missing = sorted(set((-np.asarray(labels)).tolist()) - set(np.asarray(labels).tolist()))
+        if missing:
+            raise LabelError(
+                f"--symmetry isometries maps label t to -t under reflections, but the label set "
+                f"{np.asarray(labels).tolist()} lacks {missing}; use a set closed under negation or --symmetry rotations"
+            )
+
+
+def symmetry_group(scaffold: Scaffold) -> SymmetryGroup:
+    """The rigid symmetry group of ``scaffold`` (cached on the scaffold object).
+
+    Examples
+    --------
+    >>> from lkspace import load
+    >>> g = symmetry_group(load("cube"))
+    >>> g.order, g.n_rotations
+    (48, 24)
+    >>> symmetry_group(load("dihedron:5")).order
+    20
+    """
+    cached = scaffold.__dict__.get("_symmetry_group")
+    if cached is None:
+        cached = compute_group(scaffold)
+        object.__setattr__(scaffold, "_symmetry_group", cached)
+    return cached
+
+
+def compute_group(scaffold: Scaffold) -> SymmetryGroup:
+    """Candidates -> rigid motions -> edge permutations; the identity first."""
+    sigmas = candidate_vertex_perms(scaffold)
+    motions = periodic_motions(scaffold, sigmas) if scaffold.periodic else finite_motions(scaffold, sigmas)
+    rows = []
+    seen = set()
+    for sigma, q, tau, lattice_part in motions:
+        key = (sigma.tobytes(), np.round(q, 6).tobytes())
+        if key in seen:
+            continue
+        perm = edge_permutation(scaffold, sigma, lattice_part)
+        if perm is None:
+            continue
+        seen.add(key)
+        rows.append((sigma, q, tau, perm, np.linalg.det(q) > 0))
+    # identity first
+    rows.sort(key=lambda r: not (np.allclose(r[1], np.eye(3)) and np.array_equal(r[0], np.arange(len(r[0])))))
+    if not rows or not np.allclose(rows[0][1], np.eye(3)):
+        raise ScaffoldError(f"{scaffold.name}: symmetry search failed to find the identity")  # pragma: no cover
+    sig, qs, taus, perms, proper = zip(*rows, strict=True)
+    arrays = [
+        np.array(sig, np.int64),
+        np.array(qs, np.float64),
+        np.array(taus, np.float64),
+        np.array(perms, np.int64),
+        np.array(proper, bool),
+    ]
+    for a in arrays:
+        a.setflags(write=False)
+    return SymmetryGroup(
+        matrices=arrays[1], translations=arrays[2], vertex_perms=arrays[0], edge_perms=arrays[3], proper=arrays[4]
+    )

@@ -1,0 +1,267 @@
+"""Candidate symmetries of a scaffold and the rigid motions that realize them.
+
+Candidates come from the automorphisms of the coloured incidence graph (igraph) or, when
+there are too many, from a geometric frame search; a candidate is kept only when a rigid
+motion realizes it (for periodic scaffolds: a lattice point-group element plus a
+translation).  :mod:`lkspace.symmetry.group` assembles the group.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..errors import ScaffoldError
+from ..model.scaffold import Scaffold
+
+MAX_AUTOMORPHISMS = 500_000
+
+
+# ---- combinatorial candidates ---------------------------------------------------------
+def incidence_graph(scaffold: Scaffold):
+    """The coloured vertex/edge/face incidence graph as ``(igraph.Graph, colours)``."""
+    import igraph
+
+    nv, ne = scaffold.n_vertices, scaffold.n_edges
+    ev = scaffold.edge_vertices
+    links = set()
+    for e, (a, b) in enumerate(ev.tolist()):
+        links.add((a, nv + e))
+        links.add((b, nv + e))
+    for side, e in enumerate(scaffold.side_edge.tolist()):
+        links.add((nv + e, nv + ne + int(scaffold.corner_face[side])))
+    graph = igraph.Graph(n=nv + ne + scaffold.n_faces, edges=sorted(links))
+    colours = [0] * nv + [1] * ne + [2] * scaffold.n_faces
+    return graph, colours
+
+
+def candidate_vertex_perms(scaffold: Scaffold) -> np.ndarray:
+    """(n_candidates, n_vertices) int64: vertex parts of the incidence automorphisms.
+
+    BLISS (igraph) gives generators of the automorphism group; the group is their closure,
+    built breadth-first with numpy (much faster than listing automorphisms with VF2).
+    """
+    graph, colours = incidence_graph(scaffold)
+    count = int(graph.count_automorphisms(color=colours))
+    if count > MAX_AUTOMORPHISMS and not scaffold.periodic:
+        return geometric_vertex_perms(scaffold)
+    if count > MAX_AUTOMORPHISMS:
+        raise ScaffoldError(
+            f"{scaffold.name}: the incidence structure has {count} automorphisms (more than "
+            f"{MAX_AUTOMORPHISMS}); use --symmetry none"
+        )
+    n = graph.vcount()
+    gens = np.array(graph.automorphism_group(color=colours), dtype=np.int64).reshape(-1, n)
+    elements = {np.arange(n, dtype=np.int64).tobytes()}
+    frontier = np.arange(n, dtype=np.int64)[None, :]
+    while len(frontier):
+        products = gens[:, frontier].reshape(-1, n)  # g o x for every generator g and element x
+        new = []
+        for row in products:
+            key = row.tobytes()
+            if key not in elements:
+                elements.add(key)
+                new.append(row)
+        frontier = np.array(new, dtype=np.int64).reshape(-1, n)
+    if len(elements) != count:  # pragma: no cover - BLISS and the closure disagree
+        raise ScaffoldError(f"{scaffold.name}: automorphism closure found {len(elements)} of {count} elements")
+    perms = np.frombuffer(b"".join(elements), dtype=np.int64).reshape(-1, n)[:, : scaffold.n_vertices]
+    return np.unique(perms, axis=0)
+
+
+def geometric_vertex_perms(scaffold: Scaffold) -> np.ndarray:
+    """Vertex permutations of rigid motions found from a vertex frame (finite scaffolds).
+
+    Used when the incidence structure has too many automorphisms to list (e.g. a book of
+    many pages): the images of vertex 0 and two of its neighbours fix the motion; every
+    candidate motion maps all vertices by position and is kept when it preserves edges
+    and faces.
+    """
+    from scipy.spatial import cKDTree
+
+    x = scaffold.vertices - scaffold.vertices.mean(axis=0)
+    tol = _tolerance(scaffold)
+    ev = scaffold.edge_vertices
+    nbrs = [set() for _ in range(scaffold.n_vertices)]
+    for a, b in ev.tolist():
+        nbrs[a].add(b)
+        nbrs[b].add(a)
+    v0 = 0
+    ranked = sorted(nbrs[v0])
+    v1 = ranked[0]
+    v2 = max(ranked[1:], key=lambda w: np.linalg.norm(np.cross(x[v1] - x[v0], x[w] - x[v0])), default=None)
+    frame = [v0, v1] + ([v2] if v2 is not None else [])
+    norms = np.linalg.norm(x, axis=1)
+    tree = cKDTree(x)
+    faces = sorted(tuple(sorted(f)) for f in scaffold.faces())
+    edges = {tuple(e) for e in ev.tolist()}
+    found = set()
+
+    def close(a, b):
+        return abs(a - b) <= tol
+
+    for w0 in range(scaffold.n_vertices):
+        if not close(norms[w0], norms[v0]) or len(nbrs[w0]) != len(nbrs[v0]):
+            continue
+        for w1 in nbrs[w0]:
+            if not close(norms[w1], norms[v1]) or not close(
+                np.linalg.norm(x[w1] - x[w0]), np.linalg.norm(x[v1] - x[v0])
+            ):
+                continue
+            for w2 in (nbrs[w0] - {w1}) if v2 is not None else [None]:
+                if w2 is not None and (
+                    not close(norms[w2], norms[v2])
+                    or not close(np.linalg.norm(x[w2] - x[w1]), np.linalg.norm(x[v2] - x[v1]))
+                ):
+                    continue
+                src = x[frame]
+                dst = x[[w0, w1] + ([w2] if w2 is not None else [])]
+                u, _, wt = np.linalg.svd(dst.T @ src)
+                q0 = u @ wt
+                _, sv, vt = np.linalg.svd(src)
+                mirror = np.eye(3) - 2 * np.outer(vt[-1], vt[-1])
+                for q in (q0, q0 @ mirror) if len(sv) < 3 or sv[-1] <= tol else (q0,):
+                    if np.abs(src @ q.T - dst).max() > tol:
+                        continue
+                    dist, sigma = tree.query(x @ q.T)
+                    if dist.max() > tol or len(np.unique(sigma)) != len(sigma):
+                        continue
+                    if {tuple(sorted((sigma[a], sigma[b]))) for a, b in ev.tolist()} != edges:
+                        continue
+                    if sorted(tuple(sorted(sigma[f].tolist())) for f in map(np.array, scaffold.faces())) != faces:
+                        continue
+                    found.add(sigma.astype(np.int64).tobytes())
+    perms = np.frombuffer(b"".join(sorted(found)), dtype=np.int64).reshape(len(found), scaffold.n_vertices)
+    return np.unique(perms, axis=0)
+
+
+# ---- rigid-motion check ---------------------------------------------------------------
+def _tolerance(scaffold: Scaffold) -> float:
+    return 1e-6 * max(1.0, float(np.abs(scaffold.vertices).max()))
+
+
+def finite_motions(scaffold: Scaffold, sigmas: np.ndarray):
+    x = scaffold.vertices - scaffold.vertices.mean(axis=0)
+    tol = _tolerance(scaffold)
+    _, sv, vt = np.linalg.svd(x, full_matrices=True)
+    flat = sv[-1] <= tol if len(sv) == 3 else True
+    normal = vt[-1]
+    mirror = np.eye(3) - 2 * np.outer(normal, normal)
+    for sigma in sigmas:
+        y = x[sigma]
+        u, _, wt = np.linalg.svd(y.T @ x)
+        q0 = u @ wt
+        for q in (q0, q0 @ mirror) if flat else (q0,):
+            if np.abs(x @ q.T - y).max() <= tol:
+                yield sigma, q, scaffold.vertices.mean(axis=0) - q @ scaffold.vertices.mean(axis=0), None
+
+
+def lattice_point_group(scaffold: Scaffold) -> list[tuple[np.ndarray, np.ndarray]]:
+    """Orthogonal ``Q`` with integer ``N`` such that ``B Q^T = N B`` (the lattice's point group)."""
+    basis = scaffold.lattice.basis
+    dim = len(basis)
+    tol = 1e-8
+    grid = np.array(np.meshgrid(*[[-1, 0, 1]] * (dim * dim), indexing="ij")).reshape(dim * dim, -1).T
+    ns = grid.reshape(-1, dim, dim).astype(np.float64)
+    if dim == 3:
+        frame = basis
+        targets = ns @ basis  # (m, 3, 3): rows N B
+        qts = np.linalg.solve(frame, targets)  # Q^T = B^-1 N B
+        out = []
+        for n, qt in zip(ns, qts, strict=True):
+            if np.abs(qt.T @ qt - np.eye(3)).max() < tol:
+                out.append((qt.T, n.astype(np.int64)))
+        return out
+    normal = np.cross(basis[0], basis[1])
+    normal /= np.linalg.norm(normal)
+    frame = np.vstack([basis, normal])
+    out = []
+    for n in ns:
+        for s in (1.0, -1.0):
+            target = np.vstack([n @ basis, s * normal])
+            qt = np.linalg.solve(frame, target)
+            if np.abs(qt.T @ qt - np.eye(3)).max() < tol:
+                out.append((qt.T, n.astype(np.int64)))
+    return out
+
+
+def _face_keys(corner_keys: np.ndarray, face_starts: np.ndarray):
+    """Faces as translation-normalized corner sets, sorted: an exact integer fingerprint.
+
+    Vectorized when all faces have one size and each face's smallest vertex occurs once
+    (anchor: that corner); otherwise every corner is tried as anchor (Python).
+    """
+    sizes = np.diff(face_starts)
+    m = int(sizes[0])
+    if np.all(sizes == m):
+        block = corner_keys.reshape(len(sizes), m, -1)
+        verts = block[:, :, 0]
+        first = np.argmin(verts, axis=1)
+        if np.all(np.sum(verts == verts[np.arange(len(sizes)), first][:, None], axis=1) == 1):
+            moved = block.copy()
+            moved[:, :, 1:] -= block[np.arange(len(sizes)), first][:, None, 1:]
+            flat = moved.reshape(len(sizes) * m, -1)
+            order = np.lexsort(flat.T[::-1])  # sort corners within faces: by face, then key
+            face_of = np.repeat(np.arange(len(sizes)), m)
+            order = order[np.argsort(face_of[order], kind="stable")]
+            rows = flat[order].reshape(len(sizes), -1)
+            return rows[np.lexsort(rows.T[::-1])]
+    out = []
+    for f in range(len(face_starts) - 1):
+        block = corner_keys[face_starts[f] : face_starts[f + 1]]
+        best = None
+        for anchor in block:
+            moved = block.copy()
+            moved[:, 1:] -= anchor[1:]
+            key = tuple(sorted(map(tuple, moved.tolist())))
+            best = key if best is None or key < best else best
+        out.append(best)
+    return tuple(sorted(out))  # faces of mixed sizes: compare as nested tuples
+
+
+def periodic_motions(scaffold: Scaffold, sigmas: np.ndarray):
+    tol = _tolerance(scaffold)
+    pos = scaffold.vertices
+    basis = scaffold.lattice.basis
+    pinv = np.linalg.pinv(basis)  # x = c @ basis  ->  c = x @ pinv
+    faces = _face_keys(scaffold.corner_keys, scaffold.face_starts)
+    for q, n in lattice_point_group(scaffold):
+        taus = pos[sigmas[:, 0]] - q @ pos[0]  # (n_sigma, 3)
+        diffs = (pos @ q.T)[None, :, :] + taus[:, None, :] - pos[sigmas]  # (n_sigma, n_vertices, 3)
+        coords = np.round(diffs @ pinv)
+        ok = np.all(np.abs(coords @ basis - diffs) <= tol, axis=(1, 2))
+        for i in np.flatnonzero(ok):
+            sigma, offsets = sigmas[i], coords[i].astype(np.int64)
+            image = np.column_stack([sigma[scaffold.corners], offsets[scaffold.corners] + scaffold.corner_offsets @ n])
+            image_faces = _face_keys(image, scaffold.face_starts)
+            same = image_faces == faces if isinstance(faces, tuple) else np.array_equal(image_faces, faces)
+            if not same:
+                continue
+            yield sigma, q, taus[i], (offsets, n)
+
+
+def edge_permutation(scaffold: Scaffold, sigma: np.ndarray, lattice_part) -> np.ndarray | None:
+    """(n_edges,) int64: image edge of each edge under the motion, or None if one is no edge."""
+    keys = scaffold.edge_keys
+    a, b = sigma[keys[:, 0]], sigma[keys[:, 1]]
+    if lattice_part is None:
+        image = np.column_stack([np.minimum(a, b), np.maximum(a, b)])
+    else:
+        offsets, n = lattice_part
+        delta = offsets[keys[:, 1]] + keys[:, 2:] @ n - offsets[keys[:, 0]]
+        nz = delta != 0
+        first = delta[np.arange(len(delta)), np.argmax(nz, axis=1)]
+        forward = (a < b) | ((a == b) & (first > 0))
+        image = np.column_stack(
+            [np.where(forward, a, b), np.where(forward, b, a), np.where(forward[:, None], delta, -delta)]
+        )
+    both = np.concatenate([keys, image])
+    _, inverse = np.unique(both, axis=0, return_inverse=True)
+    inverse = inverse.reshape(-1)
+    slot = np.full(len(both), -1, np.int64)
+    slot[inverse[: len(keys)]] = np.arange(len(keys))
+    perm = slot[inverse[len(keys) :]]
+    if np.any(perm < 0) or len(np.unique(perm)) != len(perm):
+        return None
+    return perm
+
+
