@@ -5,6 +5,7 @@ from __future__ import annotations
 import json
 
 import pandas as pd
+import pyarrow.parquet as pq
 import pytest
 
 from lkspace.catalog.reader import read_metadata
@@ -29,7 +30,14 @@ def test_enumerate_identify_dihedron(tmp_path, capsys):
     assert df.set_index(df.labels.map(tuple)).loc[[(-1, -1, -1)], "mirror"].item() is True
     assert names[(0, 1, 1)] == "L2a1"
     assert names[(0, 0, 1)] == "0_1"
-    assert read_metadata(out)["identified"] is True
+    meta = read_metadata(out)
+    assert meta["identified"] is True and meta["label_set"] == [-1, 0, 1] and meta["scaffold"]["name"] == "dihedron:3"
+    assert "rows" in meta and meta["group_order"] == 6  # the part's totals and the space survive the rewrite
+    part = sorted(out.glob("part-*.parquet"))[0]
+    assert json.loads(pq.read_schema(part).metadata[b"lkspace"])["identified"] is True
+    row = int(df.knot_name.notna().to_numpy().argmax())  # a named row of an identified catalog, back to its name
+    assert main(["identify", str(out), "--row", str(row), "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["name"] == df.knot_name.iloc[row]
 
 
 def test_identify_needs_an_output(capsys):

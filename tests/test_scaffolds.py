@@ -69,3 +69,12 @@ def test_vertex_hinged_cubes_always_fall_apart():
 
 def test_piano_hinge_can_hold_together():
     assert trace(lkspace.load("cubes:piano"), 1).holds_together
+
+
+@pytest.mark.parametrize("name", ["tetrahedron", "cube", "octahedron", "dodecahedron", "icosahedron", "truncated-octahedron"])
+def test_built_in_solids_are_their_convex_hulls(name):
+    from lkspace.scaffolds.polyhedra import convex_polyhedron
+
+    solid = lkspace.load(name)
+    hull = convex_polyhedron(solid.vertices, name)
+    assert solid.faces() == hull.faces() and np.array_equal(solid.vertices, hull.vertices)

@@ -1,0 +1,66 @@
+"""Compiled kernels and their plain-Python runs agree (small jobs skip numba entirely)."""
+
+import numpy as np
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+import lkspace
+from lkspace.kernels import SMALL_WORK, Kernel, kernel
+from lkspace.model.specs import parse_label_set
+from lkspace.strands.holding_together import echelon_index, union_with_potentials, winding_links
+from lkspace.strands.ports import edge_partner, port_model
+from lkspace.strands.walk import walk_strands
+
+from .strategies import traceable_scaffolds
+
+
+def _walk_args(scaffold, labels):
+    model = port_model(scaffold)
+    partner = edge_partner(model, scaffold.edge_degrees, labels)
+    translation = scaffold.side_translation if scaffold.periodic else np.zeros((scaffold.n_corners, 0), np.int64)
+    return model.corner_partner, partner, np.ascontiguousarray(translation)
+
+
+def _same(a, b):
+    if isinstance(a, tuple):
+        return len(a) == len(b) and all(_same(x, y) for x, y in zip(a, b, strict=True))
+    return np.array_equal(np.asarray(a), np.asarray(b))
+
+
+@settings(max_examples=60, deadline=None)
+@given(traceable_scaffolds(), st.integers(0, 2**32 - 1))
+def test_walk_and_holding_together_agree_compiled_and_plain(scaffold, seed):
+    labels = np.random.default_rng(seed).integers(-3, 4, scaffold.n_edges)
+    args = _walk_args(scaffold, labels)
+    assert _same(walk_strands.py_func(*args), walk_strands.compiled(*args))
+    trace = lkspace.trace(scaffold, labels)
+    pairs, shifts = winding_links(trace)
+    plain = union_with_potentials.py_func(pairs, shifts, trace.components)
+    assert _same(plain, union_with_potentials.compiled(pairs, shifts, trace.components))
+
+
+def test_periodic_kernels_agree():
+    for name in ("honeycomb:cP@2x2x2", "tiling:hexagonal@3x2", "honeycomb:cI"):
+        scaffold = lkspace.load(name)
+        for t in parse_label_set("-2..3").tolist():
+            labels = np.full(scaffold.n_edges, t)
+            args = _walk_args(scaffold, labels)
+            assert _same(walk_strands.py_func(*args), walk_strands.compiled(*args))
+            trace = lkspace.trace(scaffold, labels)
+            pairs, shifts = winding_links(trace)
+            plain = union_with_potentials.py_func(pairs, shifts, trace.components)
+            compiled = union_with_potentials.compiled(pairs, shifts, trace.components)
+            assert _same(plain, compiled)
+            vectors = np.concatenate([trace.periods, plain[1]])
+            assert echelon_index.py_func(vectors) == echelon_index.compiled(vectors)
+
+
+def test_run_picks_plain_python_for_small_jobs_only():
+    def double(x):
+        return 2 * x
+
+    k = kernel(double)
+    assert isinstance(k, Kernel) and "not compiled" in repr(k)
+    assert k.run(SMALL_WORK - 1, 21) == 42 and "not compiled" in repr(k)  # ran as plain Python
+    assert k.run(SMALL_WORK, 4) == 8 and "(compiled)" in repr(k)
+    assert k(5) == 10 == k.run(1, 5)  # once compiled, always compiled
