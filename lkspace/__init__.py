@@ -103,11 +103,30 @@ __all__ = [
 ]
 
 
+SUBPACKAGES = (
+    "model",
+    "strands",
+    "symmetry",
+    "design",
+    "catalog",
+    "inverse",
+    "geometry",
+    "formats",
+    "knots",
+    "io",
+    "scaffolds",
+    "cli",
+)
+"""Subpackages reachable as attributes (``lkspace.io.write``), imported on first use."""
+
+
 def __getattr__(name: str) -> Any:
-    """Import public names on first use; ``enumerate`` is a deprecated alias of :func:`designs`."""
+    """Import public names and subpackages on first use; ``enumerate`` is a deprecated alias of :func:`designs`."""
     if name == "enumerate":
         warnings.warn("lkspace.enumerate is deprecated; use lkspace.designs", DeprecationWarning, stacklevel=2)
         name = "designs"
+    if name in SUBPACKAGES:
+        return importlib.import_module(f".{name}", __name__)
     if name not in _LAZY:
         raise AttributeError(f"module 'lkspace' has no attribute {name!r}")
     value = getattr(importlib.import_module(f".{_LAZY[name]}", __name__), name)
@@ -116,4 +135,4 @@ def __getattr__(name: str) -> Any:
 
 
 def __dir__() -> list[str]:
-    return sorted(set(globals()) | set(_LAZY))
+    return sorted(set(globals()) | set(_LAZY) | set(SUBPACKAGES))

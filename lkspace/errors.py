@@ -22,6 +22,7 @@ The command line turns any ``LkspaceError`` into one stderr line and exit code 2
 from __future__ import annotations
 
 import importlib
+from types import ModuleType
 
 
 class LkspaceError(Exception):
@@ -63,13 +64,13 @@ class SolveVerificationError(RuntimeError):
 class MissingDependencyError(LkspaceError, ImportError):
     """An optional dependency is missing; the message names the extra to install."""
 
-    def __init__(self, package: str, extra: str, purpose: str):
+    def __init__(self, package: str, extra: str, purpose: str) -> None:
         super().__init__(f"{purpose} needs the optional package {package!r}: pip install 'lkspace[{extra}]'")
         self.package = package
         self.extra = extra
 
 
-def require(module: str, extra: str, purpose: str):
+def require(module: str, extra: str, purpose: str) -> ModuleType:
     """Import and return ``module`` or raise :class:`MissingDependencyError`."""
     try:
         return importlib.import_module(module)

@@ -21,7 +21,7 @@ SMALL_WORK = 4096
 class Kernel:
     """A numba kernel compiled on first use; see the module docstring."""
 
-    def __init__(self, py_func: Callable[..., Any]):
+    def __init__(self, py_func: Callable[..., Any]) -> None:
         self.py_func = py_func
         self.__doc__ = py_func.__doc__
         self.__name__ = py_func.__name__
@@ -37,6 +37,7 @@ class Kernel:
         return self._compiled
 
     def __call__(self, *args: Any) -> Any:
+        """Run the compiled kernel on ``args`` (compiling it first if needed)."""
         return self.compiled(*args)
 
     def run(self, work: int, *args: Any) -> Any:
@@ -51,5 +52,5 @@ class Kernel:
 
 
 def kernel(py_func: Callable[..., Any]) -> Kernel:
-    """Decorator: make ``py_func`` a :class:`Kernel`."""
+    """Wrap ``py_func`` in a :class:`Kernel` (use as a decorator)."""
     return Kernel(py_func)

@@ -74,6 +74,7 @@ def test_enumerate_is_a_deprecated_alias_and_star_import_keeps_the_builtin():
     assert "enumerate" not in namespace and "trace" in namespace
     with pytest.raises(AttributeError):
         lkspace.no_such_name  # noqa: B018
+    assert lkspace.io.read is lkspace.io.files.read and "builtin" in dir(lkspace.scaffolds)
 
 
 def test_import_loads_no_heavy_library():
@@ -133,7 +134,14 @@ def test_info_lists_edges_as_twist_files_name_them(capsys):
     data = json.loads(capsys.readouterr().out)
     assert data["n_edges"] == 12 == len(data["edges"])
     first = data["edges"][0]
-    assert (first["index"], first["a"], first["b"], first["a_obj"], first["b_obj"], first["degree"]) == (0, 0, 1, 1, 2, 2)
+    assert (first["index"], first["a"], first["b"], first["a_obj"], first["b_obj"], first["degree"]) == (
+        0,
+        0,
+        1,
+        1,
+        2,
+        2,
+    )
     assert main(["info", "honeycomb:cP", "--edges", "--json"]) == 0
     edges = json.loads(capsys.readouterr().out)["edges"]
     assert [e["offset"] for e in edges] == [[1, 0, 0], [0, 1, 0], [0, 0, 1]]

@@ -30,7 +30,10 @@ def test_examples_run(page, tmp_path, monkeypatch, capsys):
         assert main(shlex.split(command)) == 0, command
     capsys.readouterr()
     blocks = [m[2] for m in FENCE.finditer(text) if not m[1] and ">>>" in m[2]]
-    parser, runner = doctest.DocTestParser(), doctest.DocTestRunner(optionflags=doctest.ELLIPSIS | doctest.NORMALIZE_WHITESPACE)
+    parser, runner = (
+        doctest.DocTestParser(),
+        doctest.DocTestRunner(optionflags=doctest.ELLIPSIS | doctest.NORMALIZE_WHITESPACE),
+    )
     namespace: dict = {"lkspace": lkspace, "np": np}
     for i, block in enumerate(blocks):
         test = parser.get_doctest(block, namespace, f"{page.name}[{i}]", str(page), 0)

@@ -71,7 +71,9 @@ def test_piano_hinge_can_hold_together():
     assert trace(lkspace.load("cubes:piano"), 1).holds_together
 
 
-@pytest.mark.parametrize("name", ["tetrahedron", "cube", "octahedron", "dodecahedron", "icosahedron", "truncated-octahedron"])
+@pytest.mark.parametrize(
+    "name", ["tetrahedron", "cube", "octahedron", "dodecahedron", "icosahedron", "truncated-octahedron"]
+)
 def test_built_in_solids_are_their_convex_hulls(name):
     from lkspace.scaffolds.polyhedra import convex_polyhedron
 

@@ -7,6 +7,9 @@ knows Arrow.
 
 from __future__ import annotations
 
+from collections.abc import Iterable, Iterator
+from typing import Any
+
 import numpy as np
 import pyarrow as pa
 
@@ -17,7 +20,8 @@ from ..kernels import kernel
 from .schema import ROW_GROUP, design_schema, residue_schema
 
 
-def list_column(values: np.ndarray, counts: np.ndarray, type_) -> pa.Array:
+def list_column(values: np.ndarray, counts: np.ndarray, type_: pa.ListType) -> pa.Array:
+    """Return a list column of Arrow type ``type_``: row ``i`` holds the next ``counts[i]`` of ``values``."""
     offsets = np.zeros(len(counts) + 1, np.int32)
     np.cumsum(counts, out=offsets[1:])
     return pa.ListArray.from_arrays(pa.array(offsets), pa.array(values, type=type_.value_type))
@@ -45,11 +49,16 @@ def periods_column(blocks_periods: list[np.ndarray], repeats: list[int]) -> pa.A
     return pa.ListArray.from_arrays(pa.array(offsets), inner)
 
 
-
 @kernel
-def label_stats_kernel(labels, n_zero, n_odd, abs_sum, abs_max):
+def label_stats_kernel(
+    labels: np.ndarray, n_zero: np.ndarray, n_odd: np.ndarray, abs_sum: np.ndarray, abs_max: np.ndarray
+) -> None:
+    """Fill the per-row counts of zero and odd labels and the sum and maximum of ``|t|`` (see :func:`label_stats`)."""
     for i in range(labels.shape[0]):
-        z = o = s = m = 0
+        z: Any = 0  # integers that become numpy integers as labels are added (numba unifies them)
+        o: Any = 0
+        s: Any = 0
+        m: Any = 0
         for j in range(labels.shape[1]):
             t = np.int32(labels[i, j])
             a = t if t >= 0 else -t
@@ -60,12 +69,11 @@ def label_stats_kernel(labels, n_zero, n_odd, abs_sum, abs_max):
         n_zero[i], n_odd[i], abs_sum[i], abs_max[i] = z, o, s, m
 
 
-
-def label_stats(labels: np.ndarray) -> dict:
+def label_stats(labels: np.ndarray) -> dict[str, np.ndarray]:
     """Per-row summary columns of ``labels (m, n_edges) int8`` (one compiled pass)."""
     labels = np.ascontiguousarray(labels, dtype=np.int8)
     m = len(labels)
-    out = {
+    out: dict[str, np.ndarray] = {
         "n_zero": np.empty(m, np.int16),
         "n_odd": np.empty(m, np.int16),
         "abs_sum": np.empty(m, np.int32),
@@ -76,7 +84,7 @@ def label_stats(labels: np.ndarray) -> dict:
     return out
 
 
-def blocks_to_batch(blocks: list, n_edges: int, periodic: bool) -> pa.RecordBatch:
+def blocks_to_batch(blocks: list[Block], n_edges: int, periodic: bool) -> pa.RecordBatch:
     """One record batch of the designs schema from :class:`~lkspace.design.walk.Block` s."""
     schema = design_schema(n_edges, periodic)
     sizes = np.array([len(b.labels) for b in blocks], np.int64)
@@ -109,21 +117,20 @@ def blocks_to_batch(blocks: list, n_edges: int, periodic: bool) -> pa.RecordBatc
     return pa.RecordBatch.from_arrays([cols[f.name] for f in schema], schema=schema)
 
 
-def residue_rows_to_batch(rows: list[dict], periodic: bool) -> pa.RecordBatch:
+def residue_rows_to_batch(rows: list[dict[str, Any]], periodic: bool) -> pa.RecordBatch:
     """Record batch of the residues schema from row dicts (few rows: one per class orbit)."""
     schema = residue_schema(periodic)
     data = {f.name: [r[f.name] for r in rows] for f in schema}
     return pa.RecordBatch.from_pydict(data, schema=schema)
 
 
-
 def design_batches(
     space: DesignSpace,
-    class_ids=None,
+    class_ids: Iterable[int] | None = None,
     components: int | None = None,
     max_designs: int | None = None,
     batch_rows: int | None = None,
-):
+) -> Iterator[pa.RecordBatch]:
     """Arrow record batches of designs (catalog schema), streamed class by class."""
     batch_rows = batch_rows or ROW_GROUP
     n_edges, periodic = space.scaffold.n_edges, space.scaffold.periodic
@@ -151,14 +158,13 @@ def design_batches(
         yield blocks_to_batch(pending, n_edges, periodic)
 
 
-
 def residue_batches(
     space: DesignSpace,
-    class_ids=None,
+    class_ids: Iterable[int] | None = None,
     components: int | None = None,
     max_designs: int | None = None,
     batch_rows: int | None = None,
-):
+) -> Iterator[pa.RecordBatch]:
     """Record batches of ``--mode residues`` rows: one per residue-class orbit."""
     batch_rows = batch_rows or ROW_GROUP
     co = space.classes
@@ -179,8 +185,15 @@ def residue_batches(
         yield residue_rows_to_batch(rows, space.scaffold.periodic)
 
 
-
-def space_batches(space: DesignSpace, mode: str, class_ids=None, components=None, max_designs=None, sample=None, seed=0):
+def space_batches(
+    space: DesignSpace,
+    mode: str,
+    class_ids: Iterable[int] | None = None,
+    components: int | None = None,
+    max_designs: int | None = None,
+    sample: int | None = None,
+    seed: int = 0,
+) -> Iterator[pa.RecordBatch]:
     """Record batches of ``space`` for ``mode`` (``designs``, ``residues`` or ``spanning-trees``)."""
     if mode == "designs":
         return design_batches(space, class_ids, components, max_designs)

@@ -17,6 +17,8 @@ from __future__ import annotations
 
 import json
 import os
+from collections.abc import Iterable
+from typing import Any
 
 import numpy as np
 import pyarrow as pa
@@ -24,6 +26,7 @@ import pyarrow.parquet as pq
 
 from ..errors import CatalogError
 from ..io.atomic import atomic_path
+from ..model.scaffold import Scaffold
 from .reader import catalog_files, read_metadata
 from .schema import METADATA_KEY
 
@@ -38,7 +41,7 @@ COLUMNS = {
 }
 
 
-def _column(values, type_) -> pa.Array:
+def _column(values: Iterable[Any], type_: pa.DataType) -> pa.Array:
     cleaned = [None if v is None or (isinstance(v, float) and np.isnan(v)) else v for v in values]
     if type_ == pa.int32():
         cleaned = [None if v is None else int(v) for v in cleaned]
@@ -49,7 +52,9 @@ def _column(values, type_) -> pa.Array:
     return pa.array(cleaned, type=type_)
 
 
-def identify_catalog(path: str | os.PathLike, scaffold, processes: int = 1, seed: int = 0) -> dict:
+def identify_catalog(
+    path: str | os.PathLike[str], scaffold: Scaffold, processes: int = 1, seed: int = 0
+) -> dict[str, Any]:
     """Add knot/link columns to every row of the catalog at ``path``; returns a summary."""
     from ..knots.recognition import identify_batch  # realization and SnapPy: loaded only here
 

@@ -2,14 +2,23 @@
 
 from __future__ import annotations
 
+from collections.abc import Iterator
+from typing import TYPE_CHECKING
+
 from ..design.space import WALK_MODES, make_space
 from ..errors import LabelError
+from ..io.sources import ScaffoldSource
+from ..model.specs import LabelSetSpec
 from .batches import design_batches, residue_batches, space_batches
+
+if TYPE_CHECKING:
+    import pandas as pd
+    import pyarrow as pa
 
 
 def designs(
-    scaffold,
-    label_set="-2..2",
+    scaffold: ScaffoldSource,
+    label_set: LabelSetSpec = "-2..2",
     symmetry: str = "rotations",
     *,
     mode: str = "designs",
@@ -20,7 +29,7 @@ def designs(
     seed: int = 0,
     batch_rows: int | None = None,
     as_arrow: bool = False,
-):
+) -> Iterator[pd.DataFrame | pa.RecordBatch]:
     """Walk a design space and yield its catalog rows in batches (no files).
 
     Parameters
@@ -63,4 +72,3 @@ def designs(
         batches = space_batches(space, mode, sample=sample, seed=seed, max_designs=max_designs)
     for batch in batches:
         yield batch if as_arrow else batch.to_pandas()
-

@@ -14,11 +14,13 @@ import json
 import os
 from dataclasses import dataclass
 from functools import cached_property
+from typing import Any
 
 import numpy as np
 import pandas as pd
 import pyarrow as pa
 import pyarrow.parquet as pq
+from numpy.typing import ArrayLike
 
 from ..errors import CatalogError
 from ..io.scaffold_json import scaffold_from_dict
@@ -32,7 +34,7 @@ LABEL_COLUMNS = ("labels", "key")
 
 
 def catalog_files(path: str | os.PathLike) -> list[str]:
-    """The Parquet file of a catalog, or the parts of a sharded catalog folder, in order."""
+    """Return the Parquet file of a catalog, or the parts of a sharded catalog folder, in order."""
     path = os.fspath(path)
     if os.path.isdir(path):
         parts = sorted(p for p in os.listdir(path) if p.endswith(".parquet") and not p.startswith((".", "_")))
@@ -44,8 +46,8 @@ def catalog_files(path: str | os.PathLike) -> list[str]:
     return [path]
 
 
-def read_metadata(path: str | os.PathLike) -> dict:
-    """The ``lkspace`` metadata of a catalog file (or of the first part of a folder).
+def read_metadata(path: str | os.PathLike) -> dict[str, Any]:
+    """Return the ``lkspace`` metadata of a catalog file (or of the first part of a folder).
 
     It is read from the file footer, which holds the run's totals as well.
     """
@@ -76,7 +78,7 @@ class Catalog:
 
     frame: pd.DataFrame
     labels: np.ndarray
-    metadata: dict
+    metadata: dict[str, Any]
     path: str
 
     def __len__(self) -> int:
@@ -90,8 +92,8 @@ class Catalog:
             f"symmetry {self.metadata.get('symmetry')}; columns {', '.join(self.frame.columns)})"
         )
 
-    def __getitem__(self, rows) -> Catalog:
-        """The catalog restricted to ``rows``: a boolean mask, an index array or a slice."""
+    def __getitem__(self, rows: slice | ArrayLike | pd.Series) -> Catalog:
+        """Return the catalog restricted to ``rows``: a boolean mask, an index array or a slice."""
         if isinstance(rows, pd.Series):
             rows = rows.to_numpy(dtype=bool) if rows.dtype == bool or str(rows.dtype) == "bool[pyarrow]" else rows
         rows = np.asarray(rows) if not isinstance(rows, slice) else rows
@@ -111,7 +113,7 @@ class Catalog:
         return scaffold
 
     def trace(self, row: int) -> Trace:
-        """The :class:`~lkspace.strands.tracing.Trace` of row ``row``."""
+        """Trace the design in row ``row``: its :class:`~lkspace.strands.tracing.Trace`."""
         return trace(self.scaffold, self.labels[row])
 
 

@@ -88,4 +88,3 @@ def residue_schema(periodic: bool) -> pa.Schema:
     if periodic:
         fields += [("n_infinite", pa.int16()), ("strand_periods", pa.list_(pa.list_(pa.int64())))]
     return pa.schema(fields)
-

@@ -14,15 +14,20 @@ from __future__ import annotations
 import json
 import multiprocessing as mp
 import os
+from collections.abc import Callable, Iterable
 from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
+from typing import Any, TypeAlias
 
 import numpy as np
+import pyarrow as pa
 
 from ..design.counting import class_weights
 from ..design.space import DesignSpace, make_space
 from ..errors import CatalogError
 from ..io.atomic import write_text
 from ..io.scaffold_json import scaffold_to_dict
+from ..io.sources import ScaffoldSource
+from ..model.specs import LabelSetSpec
 from .batches import space_batches
 from .reader import read_metadata
 from .schema import FORMAT_VERSION, design_schema, residue_schema
@@ -31,11 +36,21 @@ from .writer import CatalogWriter
 CANONICAL_RULE = (
     "orbit member smallest in (t mod K per edge, then t per edge), lexicographic in edge order; see docs/catalog.md"
 )
-_STATE: dict = {}
+_STATE: dict[str, Any] = {}
+
+Progress: TypeAlias = Callable[[int | None], Callable[[int], object] | None]
+"""``progress(total)`` -> ``None`` or ``advance(rows written so far)``; ``total`` is ``None`` when unknown."""
 
 
-def catalog_metadata(space, mode: str, components, max_designs, sample, seed) -> dict:
-    """The ``lkspace`` metadata common to every part of a catalog (its signature for --resume)."""
+def catalog_metadata(
+    space: DesignSpace,
+    mode: str,
+    components: int | None,
+    max_designs: int | None,
+    sample: int | None,
+    seed: int,
+) -> dict[str, Any]:
+    """Return the ``lkspace`` metadata common to every part of a catalog (its signature for --resume)."""
     sc = space.scaffold
     return {
         "format_version": FORMAT_VERSION,
@@ -60,7 +75,13 @@ def catalog_metadata(space, mode: str, components, max_designs, sample, seed) ->
     }
 
 
-def _write_one(path: str, schema, meta: dict, batches, on_rows=None) -> dict:
+def _write_one(
+    path: str,
+    schema: pa.Schema,
+    meta: dict[str, Any],
+    batches: Iterable[pa.RecordBatch],
+    on_rows: Callable[[int], object] | None = None,
+) -> dict[str, Any]:
     """Write ``batches`` to ``path``; returns the part summary (also stored in its footer)."""
     writer = CatalogWriter(path, schema, meta)
     by: dict[str, int] = {}
@@ -82,7 +103,7 @@ def _write_one(path: str, schema, meta: dict, batches, on_rows=None) -> dict:
     return {**summary, "rows": writer.rows}
 
 
-def _part_worker(i: int) -> dict:
+def _part_worker(i: int) -> dict[str, Any]:
     st = _STATE
     ids = st["ranges"][i]
     meta = {**st["meta"], "shard": {"index": i, "count": len(st["ranges"])}}
@@ -90,7 +111,7 @@ def _part_worker(i: int) -> dict:
 
     live = st.get("live")
 
-    def on_rows(n):
+    def on_rows(n: int) -> None:
         with counter.get_lock():
             counter.value += n
         if live is not None:  # same process (jobs == 1): update the bar as rows arrive
@@ -106,7 +127,7 @@ def _part_worker(i: int) -> dict:
 
 
 def split_classes(weights: np.ndarray, n_shards: int) -> list[list[int]]:
-    """Contiguous runs of representative classes with about equal design counts."""
+    """Split the representative classes into contiguous runs with about equal design counts."""
     w = np.asarray([int(x) for x in weights], np.float64)
     cum = np.cumsum(w)
     total = cum[-1] if len(cum) else 0.0
@@ -116,9 +137,9 @@ def split_classes(weights: np.ndarray, n_shards: int) -> list[list[int]]:
 
 
 def write_catalog(
-    space,
-    path: str | os.PathLike,
-    label_set="-2..2",
+    space: DesignSpace | ScaffoldSource,
+    path: str | os.PathLike[str],
+    label_set: LabelSetSpec = "-2..2",
     symmetry: str = "rotations",
     *,
     no_zero: bool = False,
@@ -130,8 +151,8 @@ def write_catalog(
     jobs: int = 1,
     shards: int | None = None,
     resume: bool = False,
-    progress=None,
-) -> dict:
+    progress: Progress | None = None,
+) -> dict[str, Any]:
     """Walk a design space and write its catalog; returns the totals (the ``enumerate`` JSON).
 
     ``space`` is a :class:`~lkspace.design.space.DesignSpace`, or a scaffold (a path or a
@@ -151,46 +172,46 @@ def write_catalog(
     meta = catalog_metadata(space, mode, components, max_designs, sample, seed)
     periodic = space.scaffold.periodic
     schema = design_schema(space.scaffold.n_edges, periodic) if mode == "designs" else residue_schema(periodic)
+    weights: np.ndarray | None = None
+    expected: int | None = None
     if mode == "designs":
         weights = class_weights(space, components)
         expected = int(sum(weights))
         expected = min(expected, max_designs) if max_designs is not None else expected
-    else:
-        weights, expected = None, None
     if shards is None:  # auto: one file, or ~2M-row parts for big parallel/resumable runs
-        whole = mode == "designs" and max_designs is None
-        big = whole and expected > 4_000_000
-        shards = max(2 * jobs, -(-expected // 2_000_000)) if whole and (jobs > 1 or big) else 1
+        if expected is not None and max_designs is None:  # a whole design walk
+            big = expected > 4_000_000
+            shards = max(2 * jobs, -(-expected // 2_000_000)) if jobs > 1 or big else 1
+        else:
+            shards = 1
     if shards > 1 and (mode != "designs" or max_designs is not None):
         raise CatalogError("--shards/--jobs apply to full design walks (not with --max-designs or other modes)")
     advance = progress(expected) if progress is not None else None
     if shards == 1:
         if resume and os.path.isfile(path) and _matches(path, meta):
-            done = read_metadata(path)
-            summaries, skipped = [done], 1
+            single, skipped = read_metadata(path), 1
             if advance:
-                advance(done["rows"])
+                advance(single["rows"])
         else:
             if os.path.isdir(path):
                 raise CatalogError(f"{path}: is a folder; give a file name or use --shards")
-            summaries = [
-                _write_one(
-                    path,
-                    schema,
-                    {**meta, "shard": {"index": 0, "count": 1}},
-                    space_batches(space, mode, None, components, max_designs, sample, seed),
-                    advance and _accumulate(advance),
-                )
-            ]
+            single = _write_one(
+                path,
+                schema,
+                {**meta, "shard": {"index": 0, "count": 1}},
+                space_batches(space, mode, None, components, max_designs, sample, seed),
+                advance and _accumulate(advance),
+            )
             skipped = 0
-        return _totals(space, meta, summaries, path, 1, skipped)
+        return _totals(space, meta, [single], path, 1, skipped)
     manifest = os.path.join(path, "_lkspace.json")
     if os.path.exists(path) and not os.path.isdir(path):
         raise CatalogError(f"{path}: exists and is not a folder; a catalog of {shards} shards is a folder")
     if os.path.isdir(path) and os.listdir(path):
         if not os.path.exists(manifest):
             raise CatalogError(f"{path}: folder is not empty and holds no lkspace catalog; choose another -o")
-        old = json.loads(open(manifest, encoding="utf-8").read())
+        with open(manifest, encoding="utf-8") as fh:
+            old = json.load(fh)
         if resume and old != {**meta, "shards": shards}:
             raise CatalogError(
                 f"{path}: --resume with different settings than the catalog there "
@@ -203,14 +224,15 @@ def write_catalog(
     os.makedirs(path, exist_ok=True)
     write_text(manifest, json.dumps({**meta, "shards": shards}, indent=1))
     parts = [os.path.join(path, f"part-{i:05d}.parquet") for i in range(shards)]
+    assert weights is not None  # several shards: a whole design walk (checked above)
     ranges = split_classes(weights, shards)
-    summaries: list[dict] = [None] * shards  # type: ignore[list-item]
+    summaries: list[dict[str, Any] | None] = [None] * shards
     todo = []
     for i, part in enumerate(parts):
         if resume and os.path.isfile(part) and _matches(part, meta):
-            summaries[i] = read_metadata(part)
+            summaries[i] = resumed = read_metadata(part)
             if advance:
-                advance(summaries[i]["rows"])
+                advance(resumed["rows"])
         else:
             todo.append(i)
     ctx = mp.get_context("fork")
@@ -231,27 +253,29 @@ def write_catalog(
                 futures = {pool.submit(_part_worker, i): i for i in todo}
                 pending = set(futures)
                 while pending:
-                    done, pending = wait(pending, timeout=0.25, return_when=FIRST_COMPLETED)
-                    for f in done:
+                    finished, pending = wait(pending, timeout=0.25, return_when=FIRST_COMPLETED)
+                    for f in finished:
                         summaries[futures[f]] = f.result()
                     if advance:
                         advance(counter.value + base)
     finally:
         _STATE.clear()
-    return _totals(space, meta, summaries, path, shards, shards - len(todo))
+    written = [s for s in summaries if s is not None]
+    assert len(written) == shards  # every part was written or resumed
+    return _totals(space, meta, written, path, shards, shards - len(todo))
 
 
-def _accumulate(advance):
+def _accumulate(advance: Callable[[int], object]) -> Callable[[int], None]:
     state = {"n": 0}
 
-    def on_rows(n):
+    def on_rows(n: int) -> None:
         state["n"] += n
         advance(state["n"])
 
     return on_rows
 
 
-def _matches(part: str, meta: dict) -> bool:
+def _matches(part: str, meta: dict[str, Any]) -> bool:
     try:
         old = read_metadata(part)
     except CatalogError:
@@ -259,7 +283,9 @@ def _matches(part: str, meta: dict) -> bool:
     return all(old.get(k) == v for k, v in meta.items())
 
 
-def _totals(space, meta: dict, summaries: list[dict], path: str, shards: int, skipped: int) -> dict:
+def _totals(
+    space: DesignSpace, meta: dict[str, Any], summaries: list[dict[str, Any]], path: str, shards: int, skipped: int
+) -> dict[str, Any]:
     by: dict[str, int] = {}
     for s in summaries:
         for k, v in s["by_components"].items():

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+from typing import Any
 
 import pyarrow as pa
 import pyarrow.parquet as pq
@@ -20,7 +21,7 @@ class CatalogWriter:
     and, with the run's totals added, in the file footer (what :func:`read_metadata` reads).
     """
 
-    def __init__(self, path: str, schema: pa.Schema, metadata: dict):
+    def __init__(self, path: str, schema: pa.Schema, metadata: dict[str, Any]) -> None:
         self.path = path
         self.metadata = dict(metadata)
         self.schema = schema.with_metadata({METADATA_KEY: json.dumps(self.metadata).encode()})
@@ -32,6 +33,7 @@ class CatalogWriter:
         self.rows = 0
 
     def write(self, batch: pa.RecordBatch) -> None:
+        """Add the rows of ``batch`` (written out a row group at a time)."""
         if batch.num_rows == 0:
             return
         self._pending.append(batch)
@@ -46,7 +48,7 @@ class CatalogWriter:
             self._writer.write_table(table, row_group_size=ROW_GROUP)
         self._pending, self._n_pending = [], 0
 
-    def close(self, summary: dict | None = None) -> None:
+    def close(self, summary: dict[str, Any] | None = None) -> None:
         """Finish the file; the ``lkspace`` metadata (with ``summary``) goes into its footer."""
         self._flush()
         meta = {**self.metadata, **(summary or {}), "rows": self.rows}
@@ -55,8 +57,8 @@ class CatalogWriter:
         self._ctx.__exit__(None, None, None)
 
     def abort(self, exc: BaseException) -> None:
+        """Give up after ``exc``: close the writer and remove the temporary file (``path`` stays untouched)."""
         try:
             self._writer.close()
         finally:
             self._ctx.__exit__(type(exc), exc, exc.__traceback__)
-

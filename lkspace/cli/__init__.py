@@ -32,9 +32,11 @@ class LazyGroup(click.Group):
     """A click group whose commands are imported on first use."""
 
     def list_commands(self, ctx: click.Context) -> list[str]:
+        """Return the command names, in the order of ``COMMANDS`` (without importing them)."""
         return list(COMMANDS)
 
     def get_command(self, ctx: click.Context, cmd_name: str) -> click.Command | None:
+        """Import and return the command ``cmd_name``; ``None`` if there is no such command."""
         if cmd_name not in COMMANDS:
             return None
         module, attribute = COMMANDS[cmd_name].split(":")
@@ -43,7 +45,7 @@ class LazyGroup(click.Group):
 
 @click.group(cls=LazyGroup, context_settings={"help_option_names": ["-h", "--help"]})
 @click.version_option(__version__, prog_name="lkspace")
-def cli():
+def cli() -> None:
     """lkspace: design knots, links and chainmail with twist labels on polygon meshes.
 
     MESH is a .obj or .json scaffold file or a built-in name (see 'lkspace scaffold

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import json
 import sys
+from collections.abc import Callable
+from typing import Any
 
 import click
 import numpy as np
@@ -18,9 +20,9 @@ from ..scaffolds import DEFAULT
 class Context:
     """What a command needs to report: the JSON flag and notes for the JSON object."""
 
-    def __init__(self, as_json: bool):
+    def __init__(self, as_json: bool) -> None:
         self.as_json = as_json
-        self.notes: dict = {}
+        self.notes: dict[str, Any] = {}
 
 
 def load_mesh(ctx: Context, mesh: str | None) -> Scaffold:
@@ -35,7 +37,7 @@ def load_mesh(ctx: Context, mesh: str | None) -> Scaffold:
 
 
 def labels_of(scaffold: Scaffold, spec: str | None) -> np.ndarray:
-    """The twist labels of ``--twist SPEC``, else the labels stored in the scaffold file."""
+    """Return the twist labels of ``--twist SPEC``, else the labels stored in the scaffold file."""
     if spec is None:
         if scaffold.labels is None:
             raise LabelError(f"{scaffold.name}: no --twist given and the scaffold carries no twist labels")
@@ -43,26 +45,27 @@ def labels_of(scaffold: Scaffold, spec: str | None) -> np.ndarray:
     return parse_labels(scaffold, spec)
 
 
-def nulls_of(scaffold: Scaffold, spec: str | None):
-    """The null edge-sides of ``--null SPEC``, else the scaffold's own."""
+def nulls_of(scaffold: Scaffold, spec: str | None) -> np.ndarray | None:
+    """Return the null edge-sides ``(n_corners,) bool`` of ``--null SPEC``, else the scaffold's own (or ``None``)."""
     return scaffold.nulls if spec is None else parse_nulls(scaffold, spec)
 
 
 def label_set(spec: str) -> np.ndarray:
-    """The label set of ``--labels SET`` as a sorted ``(n,) int64`` array."""
+    """Return the label set of ``--labels SET`` as a sorted ``(n,) int64`` array."""
     return parse_label_set(spec)
 
 
-def emit(ctx: Context, payload: dict, human) -> None:
-    """Print ``payload`` as one JSON object (``--json``) or call ``human()``."""
+def emit(ctx: Context, payload: dict[str, Any], human: Callable[[], object] | None) -> None:
+    """Print ``payload`` as one JSON object (``--json``) or call ``human()`` (``None``: JSON only)."""
     if ctx.as_json:
         out = {**ctx.notes, **payload}
         sys.stdout.write(json.dumps(out, default=_jsonable) + "\n")
     else:
+        assert human is not None, "emit: no human-readable output given for a command without --json"
         human()
 
 
-def _jsonable(value):
+def _jsonable(value: object) -> int | float | list[Any]:
     if isinstance(value, np.integer):
         return int(value)
     if isinstance(value, np.floating):

@@ -3,18 +3,23 @@
 from __future__ import annotations
 
 import os
+from typing import TYPE_CHECKING, Any
 
 import click
 import numpy as np
 
 from .. import io
 from ..io.scaffold_json import format_scaffold_json, scaffold_to_dict
+from ..model.scaffold import Scaffold
 from ..scaffolds import builtin
 from ..strands.tracing import trace
 from .common import Context, emit, json_option, labels_of, load_mesh, mesh_argument, nulls_of
 
+if TYPE_CHECKING:
+    from rich.console import Console
 
-def _console():
+
+def _console() -> Console:
     from rich.console import Console
 
     return Console(highlight=False, soft_wrap=False, width=max(100, Console().width))
@@ -26,7 +31,7 @@ def _console():
     "-o", "--output", type=click.Path(dir_okay=False), help="File to write (.obj or .json); default: JSON on stdout."
 )
 @json_option
-def scaffold_cmd(name, output, as_json):
+def scaffold_cmd(name: str, output: str | None, as_json: bool) -> None:
     """Write the built-in scaffold NAME to a file.
 
     \b
@@ -79,12 +84,12 @@ def scaffold_cmd(name, output, as_json):
     )
 
 
-def info_dict(scaffold) -> dict:
-    """Counts and incidence summary of a scaffold (the ``info`` JSON)."""
+def info_dict(scaffold: Scaffold) -> dict[str, Any]:
+    """Return the counts and incidence summary of a scaffold (the ``info`` JSON)."""
     degrees = scaffold.edge_degrees
     hist = np.bincount(degrees)
     sizes = np.bincount(scaffold.face_sizes)
-    out = {
+    out: dict[str, Any] = {
         "name": scaffold.name,
         "vertices": scaffold.n_vertices,
         "edges": scaffold.n_edges,
@@ -95,7 +100,7 @@ def info_dict(scaffold) -> dict:
         "boundary_edges": int(np.sum(degrees == 1)),
         "non_manifold_edges": int(np.sum(degrees >= 3)),
         "periodic": scaffold.periodic,
-        "lattice": scaffold.lattice.basis.tolist() if scaffold.periodic else None,
+        "lattice": scaffold.lattice.basis.tolist() if scaffold.lattice is not None else None,
         "content_hash": scaffold.content_hash(),
     }
     if not scaffold.periodic:
@@ -103,8 +108,8 @@ def info_dict(scaffold) -> dict:
     return out
 
 
-def edge_list(scaffold) -> list[dict]:
-    """Every edge: index, vertex pair (0-based and 1-based as in OBJ files), degree, name."""
+def edge_list(scaffold: Scaffold) -> list[dict[str, Any]]:
+    """Return every edge: index, vertex pair (0-based and 1-based as in OBJ files), degree, name."""
     out = []
     for e, ((a, b), k) in enumerate(zip(scaffold.edge_vertices.tolist(), scaffold.edge_degrees.tolist(), strict=True)):
         entry = {"index": e, "a": a, "b": b, "a_obj": a + 1, "b_obj": b + 1, "degree": k, "name": scaffold.edge_name(e)}
@@ -116,10 +121,12 @@ def edge_list(scaffold) -> list[dict]:
 
 @click.command("info")
 @mesh_argument
-@click.option("--edges", "list_edges", is_flag=True, help="List every edge: index, vertex pair (0- and 1-based), degree.")
+@click.option(
+    "--edges", "list_edges", is_flag=True, help="List every edge: index, vertex pair (0- and 1-based), degree."
+)
 @json_option
-def info_cmd(mesh, list_edges, as_json):
-    """Counts, edge-degree histogram, boundary and non-manifold edges, symmetry of MESH.
+def info_cmd(mesh: str | None, list_edges: bool, as_json: bool) -> None:
+    """Show counts, edge-degree histogram, boundary and non-manifold edges, symmetry of MESH.
 
     \b
     With --edges, every edge in edge order (the order of --twist lists): its index, its
@@ -138,7 +145,7 @@ def info_cmd(mesh, list_edges, as_json):
     if list_edges:  # the JSON field "edges" then holds the list (n_edges keeps the count)
         data["edges"] = edge_list(scaffold)
 
-    def human():
+    def human() -> None:
         from rich.table import Table
 
         table = Table(title=f"{scaffold.name}", show_header=False, box=None)
@@ -165,14 +172,14 @@ def info_cmd(mesh, list_edges, as_json):
 )
 @click.option("--null", "null_spec", metavar="SPEC", help="Null edge-sides as FACE.SIDE, comma separated.")
 @json_option
-def trace_cmd(mesh, twist_spec, null_spec, as_json):
+def trace_cmd(mesh: str | None, twist_spec: str | None, null_spec: str | None, as_json: bool) -> None:
     """Trace the strands of MESH labelled by --twist."""
     ctx = Context(as_json)
     scaffold = load_mesh(ctx, mesh)
     result = trace(scaffold, labels_of(scaffold, twist_spec), nulls_of(scaffold, null_spec))
     data = result.to_dict()
 
-    def human():
+    def human() -> None:
         from rich.table import Table
 
         con = _console()

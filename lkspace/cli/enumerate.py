@@ -4,16 +4,23 @@ from __future__ import annotations
 
 import sys
 import time
+from collections.abc import Callable
+from typing import TYPE_CHECKING, Any
 
 import click
 
-from ..design.space import WALK_MODES, make_space
+from ..design.space import WALK_MODES, DesignSpace, make_space
 from ..errors import LabelError
 from ..symmetry.group import MODES as SYMMETRY_MODES
 from .common import Context, emit, json_option, label_set, labels_option, load_mesh, mesh_argument
 
+if TYPE_CHECKING:
+    import rich.progress
 
-def _progress_factory(enabled: bool):
+    from ..catalog.shards import Progress
+
+
+def _progress_factory(enabled: bool) -> tuple[Progress | None, rich.progress.Progress | None]:
     """``progress(total) -> advance(done)`` drawing a rich bar on stderr, or None."""
     if not enabled:
         return None, None
@@ -29,7 +36,7 @@ def _progress_factory(enabled: bool):
         transient=True,
     )
 
-    def factory(total):
+    def factory(total: int | None) -> Callable[[int], None]:
         task = bar.add_task("walk", total=total)
         bar.start()
         return lambda done: bar.update(task, completed=done)
@@ -37,7 +44,14 @@ def _progress_factory(enabled: bool):
     return factory, bar
 
 
-def _count_payload(space, mode, components, max_designs, sample, seed) -> dict:
+def _count_payload(
+    space: DesignSpace,
+    mode: str,
+    components: int | None,
+    max_designs: int | None,
+    sample: int | None,
+    seed: int,
+) -> dict[str, Any]:
     from ..catalog.listing import designs
     from ..design.counting import count_space
 
@@ -104,23 +118,23 @@ def _count_payload(space, mode, components, max_designs, sample, seed) -> dict:
 @click.option("--identify", is_flag=True, help="Add knot/link names and invariants to every row (extra [knots]; slow).")
 @json_option
 def enumerate_cmd(
-    mesh,
-    labels_spec,
-    symmetry,
-    output,
-    mode,
-    components,
-    no_zero,
-    max_designs,
-    count_only,
-    sample,
-    seed,
-    jobs,
-    shards,
-    resume,
-    identify,
-    as_json,
-):
+    mesh: str | None,
+    labels_spec: str,
+    symmetry: str,
+    output: str | None,
+    mode: str,
+    components: int | None,
+    no_zero: bool,
+    max_designs: int | None,
+    count_only: bool,
+    sample: int | None,
+    seed: int,
+    jobs: int,
+    shards: int | None,
+    resume: bool,
+    identify: bool,
+    as_json: bool,
+) -> None:
     """Walk the design space of MESH: one row per design up to symmetry.
 
     \b
@@ -177,7 +191,7 @@ def enumerate_cmd(
             payload["identified"] = identify_catalog(output, scaffold, processes=jobs)
     payload["seconds"] = round(time.perf_counter() - started, 3)
 
-    def human():
+    def human() -> None:
         from rich.console import Console
         from rich.table import Table
 

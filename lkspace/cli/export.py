@@ -3,15 +3,23 @@
 from __future__ import annotations
 
 import os
+from collections.abc import Callable
+from typing import TYPE_CHECKING, Any, TypeGuard, TypeVar
 
 import click
 import numpy as np
 
 from ..errors import CatalogError, LabelError, ScaffoldError
+from ..model.scaffold import Scaffold
 from .common import Context, emit, json_option, labels_of, load_mesh, nulls_of
 
+if TYPE_CHECKING:
+    from ..geometry.realization import GeometryParams
 
-def is_catalog(path: str | None) -> bool:
+F = TypeVar("F", bound=Callable[..., Any])
+
+
+def is_catalog(path: str | None) -> TypeGuard[str]:
     """Whether MESH names a Parquet catalog (a ``.parquet`` file or a folder of parts)."""
     if path is None:
         return False
@@ -20,8 +28,8 @@ def is_catalog(path: str | None) -> bool:
     return os.path.isdir(path) and any(n.endswith(".parquet") for n in os.listdir(path))
 
 
-def catalog_row(path: str, row: int):
-    """``(scaffold, labels (n_edges,) int64)`` of row ``row`` of the catalog at ``path``."""
+def catalog_row(path: str, row: int) -> tuple[Scaffold, np.ndarray]:
+    """Return ``(scaffold, labels (n_edges,) int64)`` of row ``row`` of the catalog at ``path``."""
     from ..catalog.reader import read_catalog
 
     catalog = read_catalog(path, columns=[])
@@ -34,8 +42,8 @@ def catalog_row(path: str, row: int):
     return scaffold, labels
 
 
-def design_options(func):
-    """MESH, --twist, --null, --row and the geometry options shared by export and identify."""
+def design_options(func: F) -> F:
+    """Add MESH, --twist, --null, --row and the geometry options shared by export and identify."""
     options = [
         click.argument("mesh", required=False, metavar="[MESH|CATALOG.parquet]"),
         click.option(
@@ -56,8 +64,10 @@ def design_options(func):
     return func
 
 
-def resolve_design(ctx: Context, mesh, twist_spec, null_spec, row):
-    """``(scaffold, labels, nulls)`` from MESH + ``--twist``, or from a catalog row."""
+def resolve_design(
+    ctx: Context, mesh: str | None, twist_spec: str | None, null_spec: str | None, row: int | None
+) -> tuple[Scaffold, np.ndarray, np.ndarray | None]:
+    """Return ``(scaffold, labels, nulls)`` from MESH + ``--twist``, or from a catalog row."""
     if is_catalog(mesh):
         if row is None:
             raise CatalogError(f"{mesh}: give --row I to pick a design of the catalog")
@@ -72,8 +82,8 @@ def resolve_design(ctx: Context, mesh, twist_spec, null_spec, row):
     return scaffold, labels_of(scaffold, twist_spec), nulls_of(scaffold, null_spec)
 
 
-def block_translations(scaffold, spec: str | None):
-    """Lattice translations ``(n, dim)`` of an ``AxBxC`` block, or ``None``."""
+def block_translations(scaffold: Scaffold, spec: str | None) -> np.ndarray | None:
+    """Return the lattice translations ``(n, dim)`` of an ``AxBxC`` block, or ``None``."""
     if spec is None:
         return None
     if not scaffold.periodic:
@@ -88,8 +98,8 @@ def block_translations(scaffold, spec: str | None):
     return np.column_stack([g.reshape(-1) for g in grids])
 
 
-def params_of(radius, normal_offset, tube_radius):
-    """The :class:`~lkspace.geometry.realization.GeometryParams` of the geometry options."""
+def params_of(radius: float | None, normal_offset: float | None, tube_radius: float | None) -> GeometryParams:
+    """Return the :class:`~lkspace.geometry.realization.GeometryParams` of the geometry options."""
     from ..geometry.realization import GeometryParams
 
     return GeometryParams(radius=radius, normal_offset=normal_offset, tube_radius=tube_radius)
@@ -113,8 +123,19 @@ def params_of(radius, normal_offset, tube_radius):
 )
 @json_option
 def export_cmd(
-    mesh, twist_spec, null_spec, row, radius, normal_offset, tube_radius, output, tubes, no_mesh, block, as_json
-):
+    mesh: str | None,
+    twist_spec: str | None,
+    null_spec: str | None,
+    row: int | None,
+    radius: float | None,
+    normal_offset: float | None,
+    tube_radius: float | None,
+    output: str,
+    tubes: bool,
+    no_mesh: bool,
+    block: str | None,
+    as_json: bool,
+) -> None:
     """Realize the strands of MESH labelled by --twist and write them to -o FILE.
 
     \b

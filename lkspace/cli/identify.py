@@ -13,7 +13,17 @@ from .export import design_options, params_of, resolve_design
 @design_options
 @click.option("--seed", type=int, default=0, show_default=True, help="Seed of the generic projection.")
 @json_option
-def identify_cmd(mesh, twist_spec, null_spec, row, radius, normal_offset, tube_radius, seed, as_json):
+def identify_cmd(
+    mesh: str | None,
+    twist_spec: str | None,
+    null_spec: str | None,
+    row: int | None,
+    radius: float | None,
+    normal_offset: float | None,
+    tube_radius: float | None,
+    seed: int,
+    as_json: bool,
+) -> None:
     """Name the knot or link that MESH labelled by --twist realizes.
 
     Needs the extra [knots] (snappy, spherogram, regina, database-knotinfo).  Names are
@@ -33,7 +43,7 @@ def identify_cmd(mesh, twist_spec, null_spec, row, radius, normal_offset, tube_r
     result = identify(scaffold, labels, nulls, params_of(radius, normal_offset, tube_radius), seed=seed).to_dict()
     result["labels"] = np.asarray(labels).tolist()
 
-    def human():
+    def human() -> None:
         name = result["name"] or "unknown"
         chir = ""
         if result.get("mirror") is not None:

@@ -4,17 +4,21 @@ from __future__ import annotations
 
 import os
 import sys
+from collections.abc import Callable, Iterable
 from contextlib import nullcontext
 
 import click
 
 from .. import io
 from ..errors import LabelError
+from ..model.scaffold import Scaffold
 from ..model.specs import edge_index
 from .common import Context, emit, json_option, label_set, labels_option, load_mesh, mesh_argument
 
 
-def _edge_values(scaffold, items, option: str, parse) -> dict[int, int]:
+def _edge_values(
+    scaffold: Scaffold, items: Iterable[str], option: str, parse: Callable[[str, str], int]
+) -> dict[int, int]:
     """``EDGE=VALUE`` items -> {edge index: parsed value}; an edge named twice is an error."""
     out: dict[int, int] = {}
     for item in items:
@@ -116,22 +120,22 @@ DEFAULT_TIME_LIMIT = 120.0  # seconds: a command should come back; 0 lifts the l
 )
 @json_option
 def solve_cmd(
-    mesh,
-    components,
-    no_zero,
-    labels_spec,
-    fix_items,
-    parity_items,
-    count,
-    distinct_up_to,
-    objective,
-    time_limit,
-    workers,
-    seed,
-    no_fast_path,
-    output,
-    as_json,
-):
+    mesh: str | None,
+    components: int,
+    no_zero: bool,
+    labels_spec: str,
+    fix_items: tuple[str, ...],
+    parity_items: tuple[str, ...],
+    count: int,
+    distinct_up_to: str,
+    objective: str,
+    time_limit: float,
+    workers: int,
+    seed: int,
+    no_fast_path: bool,
+    output: str | None,
+    as_json: bool,
+) -> None:
     """Find twist labels on MESH giving exactly --components strands, or prove none exist.
 
     Status is optimal (objective proved), feasible, infeasible (proved: no design) or
@@ -188,7 +192,7 @@ def solve_cmd(
         "written": written,
     }
 
-    def human():
+    def human() -> None:
         line = f"{scaffold.name}: {result.status}"
         if result.reason:
             line += f" ({result.reason})"

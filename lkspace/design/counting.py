@@ -11,10 +11,12 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
-from ..io.sources import load
+from ..io.sources import ScaffoldSource, load
+from ..model.specs import LabelSetSpec
 from .space import MAX_CLASSES, DesignSpace, make_space
 
 
@@ -46,10 +48,10 @@ class DesignCount:
         by = "" if self.by_components is None else f"; by components {self.by_components}"
         return f"DesignCount({self.designs:,} designs of {self.assignments:,} assignments{by})"
 
-    def to_dict(self) -> dict:
-        """JSON form (``by_components`` keyed by strings, as in the CLI)."""
+    def to_dict(self) -> dict[str, Any]:
+        """Return the JSON form (``by_components`` keyed by strings, as in the CLI)."""
         by = None if self.by_components is None else {str(k): v for k, v in self.by_components.items()}
-        out = {
+        out: dict[str, Any] = {
             "designs": self.designs,
             "assignments": self.assignments,
             "assignments_covered": self.assignments_covered,
@@ -108,8 +110,8 @@ def count_space(space: DesignSpace, components: int | None = None) -> DesignCoun
 
 
 def count_designs(
-    scaffold,
-    label_set="-2..2",
+    scaffold: ScaffoldSource,
+    label_set: LabelSetSpec = "-2..2",
     symmetry: str = "rotations",
     *,
     components: int | None = None,
@@ -134,4 +136,3 @@ def count_designs(
     DesignCount(22,815 designs of 531,441 assignments; by components {1: 8800, 2: 9837, 3: 3534, 4: 641, 5: 2, 6: 1})
     """
     return count_space(make_space(load(scaffold), label_set, symmetry, no_zero), components)
-

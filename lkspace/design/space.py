@@ -9,15 +9,17 @@ one trace per class (:class:`ClassInfo`), and exact Burnside counts per class.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from functools import cached_property
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ..errors import LabelError
-from ..io.sources import load
+from ..io.sources import ScaffoldSource, load
 from ..model.scaffold import Scaffold
-from ..model.specs import parse_label_set
+from ..model.specs import LabelSetSpec, parse_label_set
 from ..model.validation import validate_labels
 from ..strands.walk import walk
 from ..symmetry.group import check_label_set, check_mode, symmetry_group
@@ -59,7 +61,7 @@ class DesignSpace:
     no_zero: bool = False
     group_order: int = field(init=False)
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         labels = np.unique(np.asarray(self.label_set, dtype=np.int64))
         if labels.size == 0:
             raise LabelError("label set is empty")
@@ -75,6 +77,7 @@ class DesignSpace:
 
     @cached_property
     def walk_labels(self) -> np.ndarray:
+        """(n_walk,) int64: the labels the walk uses (the label set, without 0 under ``no_zero``)."""
         return self.label_set[self.label_set != 0] if self.no_zero else self.label_set
 
     @cached_property
@@ -87,6 +90,7 @@ class DesignSpace:
 
     @property
     def n_actions(self) -> int:
+        """Number of distinct signed edge permutations in :attr:`action` (it divides ``group_order``)."""
         return int(len(self.action[1]))
 
     @property
@@ -101,8 +105,22 @@ class DesignSpace:
         return np.asarray(self.scaffold.edge_degrees, np.int64)
 
     @cached_property
-    def residue_table(self):
-        """Per edge: residues reached (sorted), label options per residue, lookup value -> index."""
+    def residue_table(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """Per edge: residues reached (sorted), label options per residue, lookup value -> index.
+
+        Returns
+        -------
+        n_res : (n_edges,) int64
+            Number of residues ``t mod K`` the walk labels reach on each edge.
+        values : (n_edges, max_r) int64
+            The residues, sorted (zero-padded).
+        n_opts : (n_edges, max_r) int64
+            Number of walk labels in each residue class.
+        opts : (n_edges, max_r, max_o) int64
+            Those labels (zero-padded).
+        lookup : (n_edges, max_K) int64
+            Residue value -> its index in ``values``, -1 where not reached.
+        """
         k = self.moduli
         n_e = len(k)
         per_k = {}
@@ -127,6 +145,7 @@ class DesignSpace:
 
     @property
     def n_classes(self) -> int:
+        """Number of residue classes: the product over edges of the residues reached (exact)."""
         return math.prod(self.residue_table[0].tolist())
 
     @cached_property
@@ -150,7 +169,7 @@ class DesignSpace:
         co = self.classes
         return self.design_count(co.indices[c], co.stabilizers[c])
 
-    def design_count(self, indices: np.ndarray, stabilizer) -> int:
+    def design_count(self, indices: np.ndarray, stabilizer: Sequence[int] | np.ndarray) -> int:
         """Designs in the class with residue ``indices (n_edges,)`` fixed by the actions ``stabilizer``."""
         _, _, n_opts, opts, _ = self.residue_table
         e_range = np.arange(len(indices))
@@ -259,11 +278,11 @@ class ClassOrbits:
     residues: np.ndarray
     codes: np.ndarray
     orbit_sizes: np.ndarray
-    stabilizers: list
+    stabilizers: list[np.ndarray]
 
 
 def class_orbits(space: DesignSpace) -> ClassOrbits:
-    """Representatives (lexicographically smallest residue vector) of the class orbits."""
+    """Find the representatives (lexicographically smallest residue vector) of the class orbits."""
     n_res, values, _, _, lookup = space.residue_table
     n_cls = space.n_classes
     if n_cls > MAX_CLASSES:
@@ -293,7 +312,7 @@ def class_orbits(space: DesignSpace) -> ClassOrbits:
     return ClassOrbits(idx[reps], val[reps], reps, orbit_sizes.astype(np.int64), stabilizers)
 
 
-def canonical_form(space: DesignSpace, labels) -> tuple[np.ndarray, int]:
+def canonical_form(space: DesignSpace, labels: ArrayLike) -> tuple[np.ndarray, int]:
     """Canonical representative of the design of ``labels`` and its orbit size.
 
     The representative is the catalog row's ``labels``: the orbit member smallest in
@@ -321,8 +340,10 @@ def canonical_form(space: DesignSpace, labels) -> tuple[np.ndarray, int]:
     return images[order[0]].astype(np.int8), space.n_actions // stab
 
 
-def make_space(scaffold, label_set="-2..2", symmetry: str = "rotations", no_zero: bool = False) -> DesignSpace:
-    """A :class:`DesignSpace` from user-level arguments (name or Scaffold, label SET or array)."""
+def make_space(
+    scaffold: ScaffoldSource, label_set: LabelSetSpec = "-2..2", symmetry: str = "rotations", no_zero: bool = False
+) -> DesignSpace:
+    """Build a :class:`DesignSpace` from user-level arguments (name or Scaffold, label SET or array)."""
     sc = load(scaffold)
     lab = parse_label_set(label_set) if isinstance(label_set, str) else np.asarray(label_set, np.int64)
     return DesignSpace(sc, lab, symmetry, no_zero)

@@ -15,6 +15,9 @@ class orbit (the schema of ``--mode residues``), with a representative label row
 
 from __future__ import annotations
 
+from collections.abc import Iterator
+from typing import Any
+
 import numpy as np
 
 from ..errors import LabelError
@@ -38,14 +41,14 @@ def dual_edges(space: DesignSpace) -> tuple[np.ndarray, np.ndarray]:
     return np.array(ids, np.int64), np.array(pairs, np.int64).reshape(-1, 2)
 
 
-def _find(parent, x):
+def _find(parent: list[int], x: int) -> int:
     while parent[x] != x:
         parent[x] = parent[parent[x]]
         x = parent[x]
     return x
 
 
-def all_spanning_trees(n_nodes: int, pairs: np.ndarray, limit: int = MAX_TREES):
+def all_spanning_trees(n_nodes: int, pairs: np.ndarray, limit: int = MAX_TREES) -> Iterator[tuple[int, ...]]:
     """Yield every spanning tree of a multigraph as a sorted tuple of edge positions."""
     m = len(pairs)
     chosen: list[int] = []
@@ -61,7 +64,7 @@ def all_spanning_trees(n_nodes: int, pairs: np.ndarray, limit: int = MAX_TREES):
                 comps -= 1
         return comps == 1
 
-    def rec(i: int, parent: list[int]):
+    def rec(i: int, parent: list[int]) -> Iterator[tuple[int, ...]]:
         nonlocal count
         if len(chosen) == n_nodes - 1:
             count += 1
@@ -94,8 +97,8 @@ def spanning_tree_rows(
     sample: int | None = None,
     seed: int = 0,
     max_designs: int | None = None,
-    stats: dict | None = None,
-) -> list[dict]:
+    stats: dict[str, int] | None = None,
+) -> list[dict[str, Any]]:
     """One-component residue-class rows (``--mode residues`` form) seeded from dual spanning trees."""
     sc = space.scaffold
     ids, pairs = dual_edges(space)
@@ -109,13 +112,14 @@ def spanning_tree_rows(
         raise LabelError(f"--mode spanning-trees needs odd labels; {space.walk_labels.tolist()} has none")
     if len(ids) == 0 and sc.n_faces > 1:
         raise LabelError(f"{sc.name}: the dual graph has no edges of degree 2; no spanning trees")
+    trees: Iterator[tuple[int, ...]]
     if sample is not None:
         rng = np.random.default_rng(seed)
         trees = (uniform_spanning_tree(sc.n_faces, pairs, rng) for _ in range(sample))
     else:
         trees = all_spanning_trees(sc.n_faces, pairs)
-    seen: set = set()
-    rows: list[dict] = []
+    seen: set[bytes] = set()
+    rows: list[dict[str, Any]] = []
     stats = stats if stats is not None else {}
     stats.update(trees=0, rejected=0, classes=0)
     for tree in trees:
@@ -138,9 +142,11 @@ def spanning_tree_rows(
     return rows
 
 
-def uniform_spanning_tree(n_nodes: int, pairs: np.ndarray, rng: np.random.Generator) -> tuple:
-    """One uniformly random spanning tree of a multigraph (Wilson's algorithm: loop-erased
-    random walks into the growing tree) as sorted edge positions."""
+def uniform_spanning_tree(n_nodes: int, pairs: np.ndarray, rng: np.random.Generator) -> tuple[int, ...]:
+    """Draw one uniformly random spanning tree of a multigraph as sorted edge positions.
+
+    Wilson's algorithm: loop-erased random walks into the growing tree.
+    """
     incident: list[list[tuple[int, int]]] = [[] for _ in range(n_nodes)]
     for i, (a, b) in enumerate(pairs.tolist()):
         incident[a].append((i, b))

@@ -33,8 +33,9 @@ Counting without listing is :mod:`lkspace.design.counting`.
 from __future__ import annotations
 
 import math
-from collections.abc import Iterator
+from collections.abc import Iterable, Iterator
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -46,10 +47,22 @@ CHUNK = 1 << 20
 
 
 @kernel
-def canonical_block(opts, n_opts, inv_perms, signs, start, stop, out_labels, out_stab):
-    """Walk assignments ``start..stop`` of one class (mixed radix, last edge fastest) and keep
-    those lexicographically smallest under the stabilizer ``(inv_perms, signs)`` (identity
-    excluded); returns the number kept, rows in ``out_labels``, stabilizer sizes in ``out_stab``."""
+def canonical_block(
+    opts: np.ndarray,
+    n_opts: np.ndarray,
+    inv_perms: np.ndarray,
+    signs: np.ndarray,
+    start: int,
+    stop: int,
+    out_labels: np.ndarray,
+    out_stab: np.ndarray,
+) -> int:
+    """Keep the assignments ``start..stop`` of one class that are canonical; return how many.
+
+    Assignments are walked in mixed radix (last edge fastest); those lexicographically
+    smallest under the stabilizer ``(inv_perms, signs)`` (identity excluded) are kept: rows
+    in ``out_labels``, stabilizer sizes in ``out_stab``.
+    """
     n_e = len(n_opts)
     n_h = len(signs)
     digits = np.zeros(n_e, np.int64)
@@ -93,9 +106,10 @@ def canonical_block(opts, n_opts, inv_perms, signs, start, stop, out_labels, out
     return m
 
 
-
 @kernel
-def rows_hold_together(labels, edge_ptr, edge_strands, n_strands):
+def rows_hold_together(
+    labels: np.ndarray, edge_ptr: np.ndarray, edge_strands: np.ndarray, n_strands: int
+) -> np.ndarray:
     """(m,) bool: strands joined by winding at nonzero-label edges form one piece."""
     m, n_e = labels.shape
     out = np.ones(m, np.bool_)
@@ -121,7 +135,6 @@ def rows_hold_together(labels, edge_ptr, edge_strands, n_strands):
                     pieces -= 1
         out[i] = pieces == 1
     return out
-
 
 
 def holds_together_rows(space: DesignSpace, residues: np.ndarray, info: ClassInfo, labels: np.ndarray) -> np.ndarray:
@@ -159,7 +172,9 @@ class Block:
     holds_together: np.ndarray  # (m,) bool
 
 
-def walk_blocks(space: DesignSpace, class_ids=None, components: int | None = None) -> Iterator[Block]:
+def walk_blocks(
+    space: DesignSpace, class_ids: Iterable[int] | None = None, components: int | None = None
+) -> Iterator[Block]:
     """Yield the designs of the representative classes ``class_ids`` (default all), in order."""
     co = space.classes
     perms, signs = space.action
@@ -187,8 +202,10 @@ def walk_blocks(space: DesignSpace, class_ids=None, components: int | None = Non
             yield Block(int(co.codes[c]), co.residues[c], info, labels, space.n_actions // stab[:m], holds)
 
 
-def residue_row(space: DesignSpace, indices: np.ndarray, stabilizer, info: ClassInfo | None = None) -> dict:
-    """One ``--mode residues`` row for the class orbit of ``indices`` (a representative)."""
+def residue_row(
+    space: DesignSpace, indices: np.ndarray, stabilizer: np.ndarray, info: ClassInfo | None = None
+) -> dict[str, Any]:
+    """Return the ``--mode residues`` row of the class orbit of ``indices`` (a representative)."""
     e = np.arange(len(indices))
     residues = space.residue_table[1][e, indices]
     info = info or space.class_info(residues)
@@ -215,4 +232,3 @@ def residue_row(space: DesignSpace, indices: np.ndarray, stabilizer, info: Class
         row["n_infinite"] = int(np.sum(np.any(info.periods != 0, axis=1)))
         row["strand_periods"] = info.periods.tolist()
     return row
-

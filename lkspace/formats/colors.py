@@ -24,7 +24,6 @@ PALETTE = np.array(
 )
 
 
-
 def colors(n: int) -> np.ndarray:
     """(n, 3) float64 distinct colours in ``[0, 1]`` (a fixed palette, then golden-ratio hues)."""
     if n <= len(PALETTE):

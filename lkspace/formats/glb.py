@@ -1,9 +1,12 @@
-"""``.glb`` strands: glTF 2.0 binary written with numpy and struct, one mesh, node and material
-per strand (opens in Blender, three.js, trimesh)."""
+"""``.glb`` strands: glTF 2.0 binary written with numpy and struct.
+
+One mesh, node and material per strand (opens in Blender, three.js, trimesh).
+"""
 
 from __future__ import annotations
 
 import json
+import os
 import struct
 
 import numpy as np
@@ -15,7 +18,7 @@ from .tubes import tube_meshes
 
 
 def glb_bytes(real: Realization, radius: float | None = None, sides: int = 12) -> bytes:
-    """glTF 2.0 binary: one mesh, node and material per strand."""
+    """Return the glTF 2.0 binary of the tubes: one mesh, node and material per strand."""
     blobs, views, accessors, meshes, nodes, materials = [], [], [], [], [], []
     offset = 0
 
@@ -93,6 +96,8 @@ def glb_bytes(real: Realization, radius: float | None = None, sides: int = 12) -
     )
 
 
-def write(real: Realization, path, *, radius: float | None = None, sides: int = 12, **_) -> None:
+def write(
+    real: Realization, path: str | os.PathLike[str], *, radius: float | None = None, sides: int = 12, **ignored: object
+) -> None:
     """Write :func:`glb_bytes` to ``path`` atomically."""
     write_bytes(path, glb_bytes(real, radius, sides))

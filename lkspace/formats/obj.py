@@ -2,13 +2,23 @@
 
 from __future__ import annotations
 
+import os
+
 from ..geometry.realization import Realization
 from ..io.atomic import write_text
 from .tubes import tube_meshes
 
 
-def write(real: Realization, path, *, tubes: bool = False, radius: float | None = None, sides: int = 12, **_) -> None:
-    """Polylines (``l``) or tube meshes, one ``o strand_k`` object per curve."""
+def write(
+    real: Realization,
+    path: str | os.PathLike[str],
+    *,
+    tubes: bool = False,
+    radius: float | None = None,
+    sides: int = 12,
+    **ignored: object,
+) -> None:
+    """Write polylines (``l``) or tube meshes to ``path``, one ``o strand_k`` object per curve."""
     lines = [f"# lkspace strands of {real.scaffold.name}: {real.n_curves} curve(s)"]
     base = 1
     if tubes:

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import os
+
 import numpy as np
 
 from ..geometry.realization import Realization
@@ -10,8 +12,16 @@ from .colors import colors
 from .tubes import tube_meshes
 
 
-def write(real: Realization, path, *, tubes: bool = False, radius: float | None = None, sides: int = 12, **_) -> None:
-    """ASCII PLY, vertex colours per strand; ``edge`` polylines or tube ``face`` triangles."""
+def write(
+    real: Realization,
+    path: str | os.PathLike[str],
+    *,
+    tubes: bool = False,
+    radius: float | None = None,
+    sides: int = 12,
+    **ignored: object,
+) -> None:
+    """Write ASCII PLY to ``path``, vertex colours per strand: ``edge`` polylines or tube ``face`` triangles."""
     cols = (colors(real.n_curves) * 255).round().astype(int)
     verts, vcols, elems = [], [], []
     base = 0

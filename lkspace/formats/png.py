@@ -1,7 +1,11 @@
-"""``.png`` strands: a matplotlib (Agg) picture, shaded tubes with a colour per strand and the
-scaffold drawn faintly behind (extra ``[render]``)."""
+"""``.png`` strands: a matplotlib (Agg) picture (extra ``[render]``).
+
+Shaded tubes with a colour per strand and the scaffold drawn faintly behind.
+"""
 
 from __future__ import annotations
+
+import os
 
 import numpy as np
 
@@ -14,7 +18,7 @@ from .tubes import tube_meshes
 
 def write(
     real: Realization,
-    path,
+    path: str | os.PathLike[str],
     *,
     show_mesh: bool = True,
     radius: float | None = None,
@@ -22,9 +26,9 @@ def write(
     elev: float | None = None,
     azim: float = -58.0,
     title: str | None = None,
-    **_,
+    **ignored: object,
 ) -> None:
-    """A shaded picture of the tubes (one colour per strand), the input mesh faint behind.
+    """Draw a shaded picture of the tubes (one colour per strand), the input mesh faint behind.
 
     Lattice translates of one strand (a periodic block) share its colour.
 
@@ -54,7 +58,7 @@ def write(
         base = [sc.corner_positions[s:t] for s, t in zip(sc.face_starts[:-1], sc.face_starts[1:], strict=True)]
         shifts = (
             sc.lattice.translate(real.translations)
-            if sc.periodic and real.translations is not None
+            if sc.lattice is not None and real.translations is not None
             else np.zeros((1, 3))
         )
         polys = [p + d for d in shifts for p in base]

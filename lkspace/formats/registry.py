@@ -17,20 +17,22 @@ from __future__ import annotations
 import importlib
 import os
 
+from numpy.typing import ArrayLike
+
 from ..errors import ExportError
 from ..geometry.realization import GeometryParams, Realization, realize
+from ..io.sources import ScaffoldSource
 
 WRITERS = {".obj": "obj", ".ply": "ply", ".glb": "glb", ".png": "png"}
 """Extension -> module of :mod:`lkspace.formats` whose ``write`` writes it."""
 FORMATS = tuple(WRITERS)
 
 
-
 def export(
-    design,
-    path: str | os.PathLike,
-    labels=None,
-    nulls=None,
+    design: Realization | ScaffoldSource,
+    path: str | os.PathLike[str],
+    labels: ArrayLike | None = None,
+    nulls: ArrayLike | None = None,
     *,
     params: GeometryParams | None = None,
     tubes: bool = False,

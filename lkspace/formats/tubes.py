@@ -2,10 +2,16 @@
 
 from __future__ import annotations
 
+from typing import TypeAlias
+
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ..geometry.clearance import resample
 from ..geometry.realization import Realization
+
+TubeMesh: TypeAlias = tuple[np.ndarray, np.ndarray, np.ndarray]
+"""``(vertices (n, 3) float64, normals (n, 3) float64, faces (m, 3) int64)`` of one tube."""
 
 
 def rotation_minimizing_frames(points: np.ndarray, closed: bool) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -39,8 +45,8 @@ def rotation_minimizing_frames(points: np.ndarray, closed: bool) -> tuple[np.nda
     return tan, normal, binormal
 
 
-def tube(points: np.ndarray, closed: bool, radius: float, sides: int = 12):
-    """Tube mesh around a polyline.
+def tube(points: ArrayLike, closed: bool, radius: float, sides: int = 12) -> TubeMesh:
+    """Build the tube mesh around a polyline.
 
     Returns
     -------
@@ -75,8 +81,8 @@ def tube(points: np.ndarray, closed: bool, radius: float, sides: int = 12):
     return verts, norms, faces.astype(np.int64)
 
 
-def tube_meshes(real: Realization, radius: float | None, sides: int, spacing: float | None = None) -> list:
-    """One :func:`tube` per curve of ``real`` (optionally resampled at ``spacing`` first)."""
+def tube_meshes(real: Realization, radius: float | None, sides: int, spacing: float | None = None) -> list[TubeMesh]:
+    """Build one :func:`tube` per curve of ``real`` (optionally resampled at ``spacing`` first)."""
     radius = real.tube_radius if radius is None else radius
     out = []
     for curve, closed in zip(real.curves, real.closed, strict=False):

@@ -8,7 +8,11 @@ farther apart along it than an exclusion length; open curves that continue one a
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+from typing import Any
+
 import numpy as np
+from numpy.typing import ArrayLike
 from scipy.spatial import cKDTree
 
 
@@ -24,7 +28,16 @@ def resample(curve: np.ndarray, closed: bool, spacing: float) -> tuple[np.ndarra
     return out, s, length
 
 
-def _pieces_apart(owner, arc, lengths, closed, i, j, exclusion, joins=None):
+def _pieces_apart(
+    owner: np.ndarray,
+    arc: np.ndarray,
+    lengths: np.ndarray,
+    closed: np.ndarray,
+    i: np.ndarray,
+    j: np.ndarray,
+    exclusion: float,
+    joins: list[tuple[int, int]] | None = None,
+) -> np.ndarray:
     """Mask of sample pairs ``(i, j)`` on distinct pieces (other curve, or far along one).
 
     ``joins`` maps ``(curve_a, curve_b)`` to True when ``a``'s end is ``b``'s start (the
@@ -47,7 +60,7 @@ def _pieces_apart(owner, arc, lengths, closed, i, j, exclusion, joins=None):
     return apart
 
 
-def _joins(curves, closed, tol: float) -> list:
+def _joins(curves: Sequence[np.ndarray], closed: np.ndarray, tol: float) -> list[tuple[int, int]]:
     """Pairs ``(a, b)`` of open curves where ``a`` ends at ``b``'s start."""
     open_ids = [k for k, c in enumerate(closed) if not c]
     if len(open_ids) < 2:
@@ -58,7 +71,9 @@ def _joins(curves, closed, tol: float) -> list:
     return [(open_ids[a], open_ids[b]) for b, hits in enumerate(pairs) for a in hits if a != b]
 
 
-def _samples(curves, closed, spacing):
+def _samples(
+    curves: Sequence[np.ndarray], closed: np.ndarray, spacing: float
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     chunks = [resample(c, bool(cl), spacing) for c, cl in zip(curves, closed, strict=False)]
     pts = np.vstack([c[0] for c in chunks])
     arc = np.concatenate([c[1] for c in chunks])
@@ -67,7 +82,9 @@ def _samples(curves, closed, spacing):
     return pts, arc, owner, lengths
 
 
-def check_embedding(curves, closed, min_separation: float, scale: float) -> tuple[float, dict]:
+def check_embedding(
+    curves: Sequence[np.ndarray], closed: ArrayLike, min_separation: float, scale: float
+) -> tuple[float, dict[str, Any]]:
     """Smallest distance between distinct pieces of the polylines (sampled).
 
     Two sample points are on distinct pieces when they lie on different curves, or on one
@@ -86,9 +103,10 @@ def check_embedding(curves, closed, min_separation: float, scale: float) -> tupl
     """
     closed = np.asarray(closed, bool)
     joins = _joins(curves, closed, 1e-9 * max(1.0, scale))
-    best, where = float("inf"), {}
+    best = float("inf")
+    where: dict[str, Any] = {}
 
-    def consider(pts, owner, i, j):
+    def consider(pts: np.ndarray, owner: np.ndarray, i: np.ndarray, j: np.ndarray) -> None:
         nonlocal best, where
         if len(i) == 0:
             return

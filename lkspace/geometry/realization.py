@@ -40,13 +40,14 @@ an open polyline.  ``translations`` realizes a block of lattice translates at on
 
 from __future__ import annotations
 
-import os
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ..errors import GeometryError
-from ..io.sources import load
+from ..io.sources import ScaffoldSource, load
 from ..model.scaffold import Scaffold
 from ..strands.ports import port_model
 from ..strands.tracing import Trace, trace
@@ -116,7 +117,7 @@ class Realization:
 
     scaffold: Scaffold
     trace: Trace
-    curves: list
+    curves: list[np.ndarray]
     closed: np.ndarray
     strand_of: np.ndarray
     copy_of: np.ndarray
@@ -127,7 +128,7 @@ class Realization:
     tube_radius: float
     min_separation: float
     min_distance: float
-    closest: dict = field(default_factory=dict)
+    closest: dict[str, Any] = field(default_factory=dict)
     translations: np.ndarray | None = None
 
     def __repr__(self) -> str:
@@ -142,8 +143,8 @@ class Realization:
         """Number of polylines (strands times copies)."""
         return len(self.curves)
 
-    def summary(self) -> dict:
-        """JSON-ready description of the realization."""
+    def summary(self) -> dict[str, Any]:
+        """Return a JSON-ready description of the realization."""
         return {
             "curves": self.n_curves,
             "points": int(sum(len(c) for c in self.curves)),
@@ -159,11 +160,11 @@ class Realization:
 
 
 def realize(
-    scaffold: Scaffold | str | os.PathLike,
-    labels=None,
-    nulls=None,
+    scaffold: ScaffoldSource,
+    labels: ArrayLike | None = None,
+    nulls: ArrayLike | None = None,
     params: GeometryParams | None = None,
-    translations=None,
+    translations: ArrayLike | None = None,
     check: bool = True,
     result: Trace | None = None,
 ) -> Realization:
@@ -284,7 +285,7 @@ def realize(
     points[corner_index.reshape(-1)] = corner_pts.reshape(-1, 3)
     edge_index = pos[piece] + nc + (np.arange(len(piece)) - offsets[piece])
     points[edge_index] = edge_pts
-    curves, closed, strand_of, copy_of = [], [], [], []
+    curves, closed_flags, strand_of, copy_of = [], [], [], []
     periods = tr.periods if dim else np.zeros((tr.components, 0), np.int64)
     if translations is not None and not dim:
         raise GeometryError(f"{scaffold.name}: translated copies need a periodic scaffold")
@@ -305,10 +306,10 @@ def realize(
                 first = tr.strand_starts[s_i]
                 pts = np.vstack([pts, a_pt[first] + lattice_shift(scaffold, periods[s_i][None])[0]])
             curves.append(pts + shift)
-            closed.append(is_closed)
+            closed_flags.append(is_closed)
             strand_of.append(s_i)
             copy_of.append(c_i)
-    closed = np.array(closed, bool)
+    closed = np.array(closed_flags, bool)
     min_dist, closest = check_embedding(curves, closed, min_sep, scale)
     if closest:
         closest["place"] = place_name(scaffold, closest["point"])
@@ -336,5 +337,3 @@ def realize(
         closest,
         translations,
     )
-
-

@@ -10,6 +10,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ..errors import GeometryError
 from ..model.radial import perpendicular_frames
@@ -38,7 +39,8 @@ def face_normals(scaffold: Scaffold) -> np.ndarray:
 
 
 def lattice_shift(scaffold: Scaffold, offsets: np.ndarray) -> np.ndarray:
-    if not scaffold.periodic:
+    """Return the translations in space ``(n, 3) float64`` of lattice ``offsets (n, dim)`` (zeros if finite)."""
+    if scaffold.lattice is None:
         return np.zeros((len(offsets), 3))
     return scaffold.lattice.translate(offsets)
 
@@ -63,6 +65,12 @@ class Tracks:
 
 
 def side_tracks(scaffold: Scaffold, rho: float, h: float, margin: float) -> Tracks:
+    """Compute the :class:`Tracks` of ``scaffold``: tracks at in-face offset ``rho`` and normal offset ``h``.
+
+    ``margin`` is the least length kept straight at each edge end (more at acute corners).
+    Raises :class:`~lkspace.errors.GeometryError` when a face's centroid lies on an edge's
+    line or the normal offset reorders the strands around an edge.
+    """
     radial = scaffold.radial
     pa, pb = scaffold.edge_points[:, 0], scaffold.edge_points[:, 1]
     vec = pb - pa
@@ -140,8 +148,8 @@ def side_tracks(scaffold: Scaffold, rho: float, h: float, margin: float) -> Trac
     return out
 
 
-def bezier_controls(a, da, c, dc):
-    """Control points where the line ``a + s*da`` meets ``c - u*dc`` (closest approach)."""
+def bezier_controls(a: np.ndarray, da: np.ndarray, c: np.ndarray, dc: np.ndarray) -> np.ndarray:
+    """Return the control points ``(n, 3)`` where the line ``a + s*da`` meets ``c - u*dc`` (closest approach)."""
     w0 = a - c
     b = -np.sum(da * dc, axis=1)
     dd = np.sum(w0 * da, axis=1)
@@ -164,7 +172,7 @@ def default_scale(scaffold: Scaffold) -> float:
     return float(np.linalg.norm(p[:, 1] - p[:, 0], axis=1).min())
 
 
-def place_name(scaffold: Scaffold, point) -> str:
+def place_name(scaffold: Scaffold, point: ArrayLike) -> str:
     """Name the scaffold vertex or edge nearest to ``point``."""
     point = np.asarray(point)
     pa, pb = scaffold.edge_points[:, 0], scaffold.edge_points[:, 1]

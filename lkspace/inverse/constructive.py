@@ -24,6 +24,8 @@ and the caller falls back to CP-SAT.  Every design is re-traced by the caller.
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 import numpy as np
 import scipy.sparse
 import scipy.sparse.csgraph
@@ -33,8 +35,10 @@ from .local_search import local_search
 from .query import Query, allowed_labels, cheapest_label, label_cost
 
 
-def spanning_designs(scaffold: Scaffold, query: Query, count: int = 1, seed: int = 0, time_budget: float = 5.0):
-    """Up to ``count`` distinct designs with ``query.components`` strands, without search.
+def spanning_designs(
+    scaffold: Scaffold, query: Query, count: int = 1, seed: int = 0, time_budget: float = 5.0
+) -> tuple[list[np.ndarray], bool]:
+    """Construct up to ``count`` distinct designs with ``query.components`` strands, without search.
 
     One component on a K <= 2 scaffold: random dual spanning trees; otherwise (any K,
     N <= F components) greedy merging, :func:`_greedy_designs`, and where that gets stuck
@@ -54,7 +58,7 @@ def spanning_designs(scaffold: Scaffold, query: Query, count: int = 1, seed: int
     if scaffold.nulls is not None and np.any(scaffold.nulls):
         return [], False
     if degrees.max() > 2 or query.components > 1:
-        partial: list = []
+        partial: list[tuple[int, np.ndarray]] = []
         designs = _greedy_designs(scaffold, query, count, seed, partial)
         if len(designs) < count and partial:
             designs += local_search(scaffold, query, partial[0][1], count - len(designs), seed, time_budget)
@@ -94,7 +98,7 @@ def spanning_designs(scaffold: Scaffold, query: Query, count: int = 1, seed: int
     delta = costs[two, 1] - costs[two, 0]
     n_faces = scaffold.n_faces
     rng = np.random.default_rng(seed)
-    designs: list[np.ndarray] = []
+    designs = []
     seen: set[bytes] = set()
     for _ in range(4 * count):
         weights = np.where(
@@ -120,8 +124,8 @@ def spanning_designs(scaffold: Scaffold, query: Query, count: int = 1, seed: int
     return designs, _meets_lower_bound(designs[0], costs, can, degrees, delta, forced, two, n_faces, query)
 
 
-def _spanning_tree(n_faces, u, v, weights):
-    """Indices into ``u, v`` of a minimum spanning tree of the dual graph, or None if disconnected."""
+def _spanning_tree(n_faces: int, u: np.ndarray, v: np.ndarray, weights: np.ndarray) -> np.ndarray | None:
+    """Return the indices into ``u, v`` of a minimum spanning tree of the dual graph, or None if disconnected."""
     if n_faces == 1:
         return np.zeros(0, np.int64)
     a, b = np.minimum(u, v), np.maximum(u, v)
@@ -138,7 +142,17 @@ def _spanning_tree(n_faces, u, v, weights):
     )
 
 
-def _meets_lower_bound(labels, costs, can, degrees, delta, forced, two, n_faces, query) -> bool:
+def _meets_lower_bound(
+    labels: np.ndarray,
+    costs: np.ndarray,
+    can: np.ndarray,
+    degrees: np.ndarray,
+    delta: np.ndarray,
+    forced: np.ndarray,
+    two: np.ndarray,
+    n_faces: int,
+    query: Query,
+) -> bool:
     """Whether ``labels`` reaches the bound: >= F - 1 odd degree-2 edges, each edge at its cheapest."""
     if query.objective is None:
         return True
@@ -155,7 +169,7 @@ def _meets_lower_bound(labels, costs, can, degrees, delta, forced, two, n_faces,
     return cost == bound
 
 
-def _finder(parent: np.ndarray):
+def _finder(parent: np.ndarray) -> Callable[[int], int]:
     """Union-find lookup with path halving over ``parent`` (updated in place)."""
 
     def find(x: int) -> int:
@@ -171,7 +185,7 @@ GREEDY_ATTEMPTS = 16
 
 
 def _greedy_designs(
-    scaffold: Scaffold, query: Query, count: int, seed: int, partial: list | None = None
+    scaffold: Scaffold, query: Query, count: int, seed: int, partial: list[tuple[int, np.ndarray]] | None = None
 ) -> list[np.ndarray]:
     """Designs with N <= F components (any K) by greedy merging.
 

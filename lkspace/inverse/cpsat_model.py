@@ -65,7 +65,9 @@ group) is a clause over the residue booleans (solve-and-exclude, never a census)
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, TypeAlias
 
 import numpy as np
 import scipy.sparse
@@ -75,6 +77,14 @@ from ..errors import LabelError
 from ..model.scaffold import Scaffold
 from ..strands.ports import port_model
 from .query import Query, allowed_labels, label_cost, representatives
+
+if TYPE_CHECKING:
+    from ortools.sat.python import cp_model
+
+    RouteVars: TypeAlias = tuple[
+        list[cp_model.IntVar], list[cp_model.IntVar], dict[tuple[int, int], cp_model.IntVar], list[cp_model.IntVar]
+    ]
+    """``(starts, ends, arcs, labels)``: the route and labelling variables of :func:`build_model`."""
 
 
 @dataclass(eq=False)
@@ -101,23 +111,23 @@ class DesignModel:
 
     scaffold: Scaffold
     query: Query
-    model: object
-    residue_literals: dict
-    choices: list
+    model: cp_model.CpModel | None
+    residue_literals: dict[int, list[tuple[int, cp_model.BoolVarT]]]
+    choices: list[dict[int, int]]
     fixed_residues: np.ndarray
     n_fixed_cycles: int
     n_nodes: int
     decided: str | None = None
     reason: str = ""
-    links: list = field(default_factory=list)
-    route_vars: tuple = ((), (), {}, [])
+    links: list[tuple[int, int, int, int]] = field(default_factory=list)
+    route_vars: RouteVars = field(default_factory=lambda: ([], [], {}, []))
 
     def labels_of(self, residues: np.ndarray) -> np.ndarray:
-        """Reported labels ``(n_edges,) int64`` of a residue vector."""
+        """Return the reported labels ``(n_edges,) int64`` of a residue vector."""
         return np.array([self.choices[e][int(r)] for e, r in enumerate(residues)], np.int64)
 
-    def residues_from(self, value) -> np.ndarray:
-        """Residue vector ``(n_edges,) int64`` of a solved model (``value(literal) -> bool``)."""
+    def residues_from(self, value: Callable[[cp_model.BoolVarT], bool]) -> np.ndarray:
+        """Return the residue vector ``(n_edges,) int64`` of a solved model (``value(literal) -> bool``)."""
         res = self.fixed_residues.copy()
         for e, lits in self.residue_literals.items():
             res[e] = next(r for r, lit in lits if value(lit))
@@ -134,6 +144,7 @@ class DesignModel:
             if not match:
                 return
             clause += match
+        assert self.model is not None, "exclude: the query was decided without a model"
         self.model.add_bool_or(clause)  # empty when nothing is free: the model becomes infeasible
 
     def hint(self, residues: np.ndarray) -> None:
@@ -144,6 +155,7 @@ class DesignModel:
         the module docstring.
         """
         model = self.model
+        assert model is not None, "hint: the query was decided without a model"
         model.clear_hints()
         for e, lits in self.residue_literals.items():
             for r, lit in lits:
@@ -180,7 +192,7 @@ class DesignModel:
             model.add_hint(var, int(root_of[u]))
 
 
-def _fixed_structure(scaffold: Scaffold, fixed_residues: np.ndarray):
+def _fixed_structure(scaffold: Scaffold, fixed_residues: np.ndarray) -> tuple[np.ndarray, np.ndarray, int, int]:
     """Contract fixed links: super-node of every corner and the number of closed fixed cycles."""
     pm = port_model(scaffold)
     n = scaffold.n_corners
@@ -203,7 +215,7 @@ def _fixed_structure(scaffold: Scaffold, fixed_residues: np.ndarray):
 
 
 def build_model(scaffold: Scaffold, query: Query) -> DesignModel:
-    """The CP-SAT model of ``query`` on ``scaffold`` (see the module docstring).
+    """Build the CP-SAT model of ``query`` on ``scaffold`` (see the module docstring).
 
     Examples
     --------
@@ -244,13 +256,13 @@ def build_model(scaffold: Scaffold, query: Query) -> DesignModel:
     model = cp_model.CpModel()
     dm.model = model
     pm = port_model(scaffold)
-    pair_lits: dict[tuple[int, int], list] = {}
+    pair_lits: dict[tuple[int, int], list[cp_model.BoolVarT]] = {}
     objective = []
     for e in np.flatnonzero(fixed < 0).tolist():
         opts = choices[e]
         k = int(degrees[e])
         start = int(pm.edge_starts[e])
-        lits = []
+        lits: list[tuple[int, cp_model.BoolVarT]] = []
         for j, r in enumerate(opts):
             if j == 1 and len(opts) == 2:
                 lit = lits[0][1].Not()
@@ -275,13 +287,13 @@ def build_model(scaffold: Scaffold, query: Query) -> DesignModel:
     dm.route_vars = (starts, ends, {}, [])
     for u in range(m):
         arcs += [(0, u + 1, starts[u]), (u + 1, 0, ends[u])]
-    for (a, b), lits in pair_lits.items():
+    for (a, b), joining in pair_lits.items():
         for tail, head in ((a, b), (b, a)):
             arc = dm.route_vars[2][(tail, head)] = model.new_bool_var(f"arc{tail}_{head}")
-            if len(lits) == 1:
-                model.add_implication(arc, lits[0])
+            if len(joining) == 1:
+                model.add_implication(arc, joining[0])
             else:
-                model.add_bool_or(lits).only_enforce_if(arc)
+                model.add_bool_or(joining).only_enforce_if(arc)
             arcs.append((tail + 1, head + 1, arc))
     if m:
         model.add_multiple_circuit(arcs)
@@ -291,8 +303,8 @@ def build_model(scaffold: Scaffold, query: Query) -> DesignModel:
     elif need > 1:
         label = [model.new_int_var(0, u, f"L{u}") for u in range(m)]
         dm.route_vars[3].extend(label)
-        for (a, b), lits in pair_lits.items():
-            for lit in {x.Index(): x for x in lits}.values():
+        for (a, b), joining in pair_lits.items():
+            for lit in {x.Index(): x for x in joining}.values():
                 model.add(label[a] == label[b]).only_enforce_if(lit)
         for u in range(m):
             model.add(label[u] == u).only_enforce_if(starts[u])

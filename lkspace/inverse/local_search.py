@@ -31,18 +31,25 @@ def residue_options(scaffold: Scaffold, query: Query) -> list[np.ndarray]:
     out = []
     for k, labels in zip(scaffold.edge_degrees.tolist(), allowed_labels(scaffold, query), strict=True):
         residues = labels % k
-        out.append(np.array([cheapest_label(labels[residues == r], query.objective)[1] for r in np.unique(residues)]))
+        picks = []
+        for r in np.unique(residues):
+            pick = cheapest_label(labels[residues == r], query.objective)
+            assert pick is not None  # some label has residue r
+            picks.append(pick[1])
+        out.append(np.array(picks))
     return out
 
 
-def local_search(scaffold: Scaffold, query: Query, start: np.ndarray, count: int, seed: int, time_budget: float):
-    """Up to ``count`` distinct designs with ``query.components`` strands, from ``start``."""
+def local_search(
+    scaffold: Scaffold, query: Query, start: np.ndarray, count: int, seed: int, time_budget: float
+) -> list[np.ndarray]:
+    """Search for up to ``count`` distinct designs with ``query.components`` strands, from ``start``."""
     options = residue_options(scaffold, query)
     edge_of_port = np.repeat(scaffold.side_edge, 2)
     target = query.components
     rng = np.random.default_rng(seed)
 
-    def evaluate(labels):
+    def evaluate(labels: np.ndarray) -> tuple[int, np.ndarray]:
         _, (_, starts, _, _, port_strand, _) = walk(scaffold, labels)
         return len(starts) - 1, port_strand
 
@@ -74,18 +81,17 @@ def local_search(scaffold: Scaffold, query: Query, start: np.ndarray, count: int
         if len(pool) == 0:
             break
         e = int(rng.choice(pool))
-        best, best_labels, best_state = None, None, None
+        best: tuple[int, np.ndarray, int, np.ndarray] | None = None  # distance to N, labels, strands, port_strand
         for t in rng.permutation(options[e]):
             if t == labels[e]:
                 continue
             trial = labels.copy()
             trial[e] = t
             m, strands = evaluate(trial)
-            if best is None or abs(m - target) < best:
-                best, best_labels, best_state = abs(m - target), trial, (m, strands)
-        if best is not None and (best <= abs(n - target) or rng.random() < WORSE_MOVE_PROBABILITY):
-            labels = best_labels
-            n, port_strand = best_state
+            if best is None or abs(m - target) < best[0]:
+                best = (abs(m - target), trial, m, strands)
+        if best is not None and (best[0] <= abs(n - target) or rng.random() < WORSE_MOVE_PROBABILITY):
+            _, labels, n, port_strand = best
         if abs(n - target) < closest:
             closest, stale = abs(n - target), 0
         else:

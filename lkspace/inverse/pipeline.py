@@ -7,21 +7,25 @@
 
 from __future__ import annotations
 
-import os
 import time
+from collections.abc import Mapping
 from dataclasses import dataclass, field
+from typing import Any, TypeAlias
 
 import numpy as np
 
 from ..errors import LabelError, SolveVerificationError
-from ..io.sources import load
+from ..io.sources import ScaffoldSource, load
 from ..model.scaffold import Scaffold
-from ..model.specs import parse_label_set
+from ..model.specs import LabelSetSpec, parse_label_set
 from ..strands.tracing import trace
 from ..symmetry.group import symmetry_group
 from .constructive import spanning_designs
 from .cpsat_model import build_model
 from .query import Query
+
+EdgeAction: TypeAlias = tuple[np.ndarray, int]
+"""A signed edge permutation ``(perm (n_edges,) int64, sign)``: label ``t`` on ``e`` becomes ``sign * t`` on ``perm[e]``."""
 
 
 @dataclass(frozen=True)
@@ -34,8 +38,8 @@ class Solution:
     def __repr__(self) -> str:
         return f"Solution(components={self.components}, labels={self.labels.tolist()})"
 
-    def to_dict(self) -> dict:
-        """JSON form (``labels``, ``components``)."""
+    def to_dict(self) -> dict[str, Any]:
+        """Return the JSON form (``labels``, ``components``)."""
         return {"labels": self.labels.tolist(), "components": self.components}
 
 
@@ -49,20 +53,20 @@ class SolveResult:
     """
 
     status: str
-    solutions: list
+    solutions: list[Solution]
     method: str
     wall_time: float
     reason: str = ""
     exhausted: bool = False
-    stats: dict = field(default_factory=dict)
+    stats: dict[str, Any] = field(default_factory=dict)
 
     def __repr__(self) -> str:
         return (
             f"SolveResult({self.status}, {len(self.solutions)} solution(s) by {self.method} in {self.wall_time:.3f}s)"
         )
 
-    def to_dict(self) -> dict:
-        """JSON form (``status``, ``solutions``, ``method``, ...)."""
+    def to_dict(self) -> dict[str, Any]:
+        """Return the JSON form (``status``, ``solutions``, ``method``, ...)."""
         out = {
             "status": self.status,
             "solutions": [s.to_dict() for s in self.solutions],
@@ -87,7 +91,7 @@ def verify(scaffold: Scaffold, labels: np.ndarray, components: int) -> Solution:
     return Solution(np.asarray(labels, np.int64), got)
 
 
-def _orbit(residues: np.ndarray, actions, degrees: np.ndarray) -> list[np.ndarray]:
+def _orbit(residues: np.ndarray, actions: list[EdgeAction], degrees: np.ndarray) -> list[np.ndarray]:
     """Images of a residue vector under edge actions ``(perm, sign)``: ``t'[perm[e]] = sign * t[e]``."""
     images = []
     for perm, sign in actions:
@@ -98,13 +102,13 @@ def _orbit(residues: np.ndarray, actions, degrees: np.ndarray) -> list[np.ndarra
 
 
 def solve(
-    scaffold: Scaffold | str | os.PathLike,
+    scaffold: ScaffoldSource,
     components: int,
     *,
-    label_set="-2..2",
+    label_set: LabelSetSpec = "-2..2",
     no_zero: bool = False,
-    fixes=None,
-    parities=None,
+    fixes: Mapping[int, int] | None = None,
+    parities: Mapping[int, int] | None = None,
     count: int = 1,
     distinct_up_to: str = "none",
     objective: str | None = None,
@@ -193,7 +197,7 @@ def solve(
 LOCAL_SEARCH_SECONDS = 30.0
 
 
-def symmetry_actions(scaffold: Scaffold, mode: str, label_set: np.ndarray) -> list:
+def symmetry_actions(scaffold: Scaffold, mode: str, label_set: np.ndarray) -> list[EdgeAction]:
     """Edge actions ``(perm (n_edges,) int64, sign)`` of the non-identity symmetries for ``mode``."""
     if mode == "none":
         return []
@@ -205,13 +209,29 @@ def symmetry_actions(scaffold: Scaffold, mode: str, label_set: np.ndarray) -> li
     return [(perm, int(sign)) for perm, sign in zip(perms[1:], signs[1:], strict=True)]  # identity first
 
 
-def solve_cp_sat(scaffold, query, count, actions, time_limit, workers, seed, t0, hint=None) -> SolveResult:
+def solve_cp_sat(
+    scaffold: Scaffold,
+    query: Query,
+    count: int,
+    actions: list[EdgeAction],
+    time_limit: float | None,
+    workers: int,
+    seed: int,
+    t0: float,
+    hint: np.ndarray | None = None,
+) -> SolveResult:
+    """Solve ``query`` with CP-SAT, solve-and-exclude, up to ``count`` designs; times count from ``t0``.
+
+    Every solution is re-traced (:func:`verify`) and excluded with its images under
+    ``actions``; ``hint`` (a residue vector of a known design) seeds the search.
+    """
     from ortools.sat.python import cp_model
 
     dm = build_model(scaffold, query)
-    stats = {"model_nodes": dm.n_nodes, "fixed_cycles": dm.n_fixed_cycles}
+    stats: dict[str, Any] = {"model_nodes": dm.n_nodes, "fixed_cycles": dm.n_fixed_cycles}
     if dm.decided:
         return SolveResult(dm.decided, [], "presolve", time.perf_counter() - t0, dm.reason, True, stats)
+    assert dm.model is not None  # built whenever the query is not decided before search
     if hint is not None:
         dm.hint(hint)
     solver = cp_model.CpSolver()

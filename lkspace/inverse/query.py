@@ -13,7 +13,6 @@ OBJECTIVES = (None, "min-abs", "min-nonzero")
 STATUSES = ("optimal", "feasible", "infeasible", "unknown")
 
 
-
 @dataclass(frozen=True)
 class Query:
     """What a design must satisfy.
@@ -36,11 +35,11 @@ class Query:
     components: int
     label_set: np.ndarray = field(default_factory=lambda: np.arange(-2, 3))
     no_zero: bool = False
-    fixes: dict = field(default_factory=dict)
-    parities: dict = field(default_factory=dict)
+    fixes: dict[int, int] = field(default_factory=dict)
+    parities: dict[int, int] = field(default_factory=dict)
     objective: str | None = None
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         if self.objective not in OBJECTIVES:
             raise LabelError(f"objective {self.objective!r}: expected one of min-abs, min-nonzero or none")
         if int(self.components) < 1:
@@ -88,7 +87,7 @@ def allowed_labels(scaffold: Scaffold, query: Query) -> list[np.ndarray]:
 
 def representatives(labels: np.ndarray, k: int, objective: str | None) -> dict[int, int]:
     """Residue ``r`` -> the label reported for it: cheapest, then smallest ``|t|``, then positive."""
-    best: dict[int, tuple] = {}
+    best: dict[int, tuple[tuple[int, int, bool], int]] = {}
     costs = label_cost(labels, objective)
     for t, c in zip(labels.tolist(), costs.tolist(), strict=True):
         key = (c, abs(t), t < 0)
@@ -98,8 +97,8 @@ def representatives(labels: np.ndarray, k: int, objective: str | None) -> dict[i
     return {r: v[1] for r, v in sorted(best.items())}
 
 
-def cheapest_label(labels: np.ndarray, objective) -> tuple[int, int] | None:
-    """(cost, label) of the cheapest label, ties to small |t| then positive; None if empty."""
+def cheapest_label(labels: np.ndarray, objective: str | None) -> tuple[int, int] | None:
+    """Return ``(cost, label)`` of the cheapest label, ties to small ``|t|`` then positive; ``None`` if empty."""
     if len(labels) == 0:
         return None
     cost = label_cost(labels, objective)

@@ -5,10 +5,11 @@ from __future__ import annotations
 import contextlib
 import os
 import tempfile
+from collections.abc import Iterator
 
 
 @contextlib.contextmanager
-def atomic_path(path: str | os.PathLike, suffix: str = ""):
+def atomic_path(path: str | os.PathLike[str], suffix: str = "") -> Iterator[str]:
     """Yield a temporary path beside ``path``; rename it onto ``path`` on success.
 
     On error the temporary file is removed and ``path`` is left untouched.

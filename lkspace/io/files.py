@@ -1,9 +1,10 @@
 """Reading and writing scaffold files by extension: ``.obj`` and ``.json``."""
 
-
 from __future__ import annotations
 
 import os
+
+from numpy.typing import ArrayLike
 
 from ..errors import ScaffoldError
 from ..model.scaffold import Scaffold
@@ -14,7 +15,7 @@ from .scaffold_json import format_scaffold_json, read_scaffold_json
 READERS = {".obj": read_obj, ".json": read_scaffold_json}
 
 
-def read(path: str | os.PathLike) -> Scaffold:
+def read(path: str | os.PathLike[str]) -> Scaffold:
     """Read a scaffold from ``.obj`` or ``.json`` (the lkspace scaffold file)."""
     ext = os.path.splitext(str(path))[1].lower()
     if ext not in READERS:
@@ -24,7 +25,9 @@ def read(path: str | os.PathLike) -> Scaffold:
     return READERS[ext](path)
 
 
-def write(scaffold: Scaffold, path: str | os.PathLike, labels=None, nulls=None) -> None:
+def write(
+    scaffold: Scaffold, path: str | os.PathLike[str], labels: ArrayLike | None = None, nulls: ArrayLike | None = None
+) -> None:
     """Write ``scaffold`` to ``.obj`` or ``.json`` atomically."""
     ext = os.path.splitext(str(path))[1].lower()
     if ext == ".obj":

@@ -28,8 +28,10 @@ from __future__ import annotations
 
 import json
 import os
+from typing import Any
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ..errors import ScaffoldError
 from ..model.lattice import Lattice
@@ -56,13 +58,13 @@ KEYS = {
 }
 
 
-def _int(value, where):
+def _int(value: Any, where: str) -> int:
     if isinstance(value, bool) or not isinstance(value, int):
         raise ScaffoldError(f"{where}: expected an integer, got {value!r}")
     return value
 
 
-def _list(value, where, length=None):
+def _list(value: Any, where: str, length: int | None = None) -> list[Any]:
     if not isinstance(value, list):
         raise ScaffoldError(f"{where}: expected a list, got {type(value).__name__}")
     if length is not None and len(value) != length:
@@ -70,7 +72,7 @@ def _list(value, where, length=None):
     return value
 
 
-def _side(scaffold_faces, value, where, starts):
+def _side(scaffold_faces: list[Any], value: Any, where: str, starts: np.ndarray) -> int:
     pair = _list(value, where, 2)
     f, k = _int(pair[0], where), _int(pair[1], where)
     if not 0 <= f < len(scaffold_faces):
@@ -80,7 +82,7 @@ def _side(scaffold_faces, value, where, starts):
     return int(starts[f] + k)
 
 
-def scaffold_from_dict(data: dict, name: str = "<json>") -> Scaffold:
+def scaffold_from_dict(data: dict[str, Any], name: str = "<json>") -> Scaffold:
     """Build a scaffold (with its labels and nulls, if any) from the parsed JSON."""
     if not isinstance(data, dict):
         raise ScaffoldError(f"{name}: expected a JSON object")
@@ -157,11 +159,11 @@ def scaffold_from_dict(data: dict, name: str = "<json>") -> Scaffold:
     if "labels" in data and "twists" in data:
         raise ScaffoldError(f"{name}: give the twist labels once, as 'labels' ('twists' is the older key)")
     labels = None
-    for key in ("labels", "twists"):
-        if key in data:
-            labels = _list(data[key], f"{name}: {key}", scaffold.n_edges)
+    for label_key in ("labels", "twists"):
+        if label_key in data:
+            labels = _list(data[label_key], f"{name}: {label_key}", scaffold.n_edges)
             for i, t in enumerate(labels):
-                _int(t, f"{name}: {key}[{i}]")
+                _int(t, f"{name}: {label_key}[{i}]")
     nulls = None
     if "nulls" in data:
         nulls = [
@@ -172,9 +174,12 @@ def scaffold_from_dict(data: dict, name: str = "<json>") -> Scaffold:
     return scaffold
 
 
-def voronoi_from_dict(data: dict, name: str) -> Scaffold:
-    """A generalized Voronoi scaffold from ``{"format": "lkspace-voronoi", "version": 1,
-    "lattice": [[...], ...], "points": [[x, y, z], ...], "name": ...}``."""
+def voronoi_from_dict(data: dict[str, Any], name: str) -> Scaffold:
+    """Build a generalized Voronoi scaffold from its parsed JSON.
+
+    The object is ``{"format": "lkspace-voronoi", "version": 1, "lattice": [[...], ...],
+    "points": [[x, y, z], ...], "name": ...}``.
+    """
     unknown = set(data) - {"format", "version", "name", "lattice", "points", "comment"}
     if unknown:
         raise ScaffoldError(f"{name}: unknown key(s) {sorted(unknown)}")
@@ -192,24 +197,26 @@ def voronoi_from_dict(data: dict, name: str) -> Scaffold:
     return voronoi_scaffold(lattice, np.array(points, dtype=float), label)
 
 
-def scaffold_to_dict(scaffold: Scaffold, labels=None, nulls=None) -> dict:
-    """The JSON object of ``scaffold``; ``labels``/``nulls`` default to the scaffold's own."""
+def scaffold_to_dict(
+    scaffold: Scaffold, labels: ArrayLike | None = None, nulls: ArrayLike | None = None
+) -> dict[str, Any]:
+    """Return the JSON object of ``scaffold``; ``labels``/``nulls`` default to the scaffold's own."""
     labels = scaffold.labels if labels is None else np.asarray(labels)
     nulls = scaffold.nulls if nulls is None else nulls
     starts = scaffold.face_starts
 
-    def side_name(s):
+    def side_name(s: int) -> list[int]:
         f = int(np.searchsorted(starts, s, side="right") - 1)
         return [f, int(s - starts[f])]
 
-    out = {
+    out: dict[str, Any] = {
         "format": FORMAT,
         "version": VERSION,
         "name": scaffold.name,
         "vertices": scaffold.vertices.tolist(),
         "faces": scaffold.faces(),
     }
-    if scaffold.periodic:
+    if scaffold.lattice is not None and scaffold.corner_offsets is not None:  # periodic
         out["lattice"] = scaffold.lattice.basis.tolist()
         offs = scaffold.corner_offsets.tolist()
         out["offsets"] = [offs[s:e] for s, e in zip(starts[:-1], starts[1:])]
@@ -245,6 +252,6 @@ def read_scaffold_json(path: str | os.PathLike) -> Scaffold:
     return scaffold_from_dict(data, name)
 
 
-def format_scaffold_json(scaffold: Scaffold, labels=None, nulls=None) -> str:
-    """Scaffold file text."""
+def format_scaffold_json(scaffold: Scaffold, labels: ArrayLike | None = None, nulls: ArrayLike | None = None) -> str:
+    """Return the scaffold file text (JSON) of ``scaffold``."""
     return json.dumps(scaffold_to_dict(scaffold, labels, nulls), indent=1) + "\n"

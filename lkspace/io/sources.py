@@ -8,15 +8,19 @@ first argument, so ``lkspace.trace("cube", 1)``, ``lkspace.trace("cube.obj", 1)`
 from __future__ import annotations
 
 import os
+from typing import TypeAlias
 
 from .. import scaffolds
 from ..errors import ScaffoldError
 from ..model.scaffold import Scaffold
 from .files import read
 
+ScaffoldSource: TypeAlias = Scaffold | str | os.PathLike[str]
+"""What every function that works on a scaffold accepts: a scaffold, a built-in name or a path."""
 
-def load(source: str | os.PathLike | Scaffold) -> Scaffold:
-    """A scaffold from a :class:`Scaffold` (returned as is), a built-in name or a path.
+
+def load(source: ScaffoldSource) -> Scaffold:
+    """Return a scaffold from a :class:`Scaffold` (returned as is), a built-in name or a path.
 
     Parameters
     ----------

@@ -14,9 +14,11 @@ when the under strand points to the left of the over strand:
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike
 from scipy.spatial import cKDTree
 from scipy.spatial.transform import Rotation
 
@@ -40,14 +42,15 @@ class Diagram:
         Components without any crossing (split, unknotted).
     """
 
-    pd: list
+    pd: list[list[int]]
     signs: np.ndarray
     crossing_components: np.ndarray
     n_components: int
-    free_components: list
+    free_components: list[int]
 
     @property
     def n_crossings(self) -> int:
+        """Number of crossings of the diagram."""
         return len(self.pd)
 
     def linking_matrix(self) -> np.ndarray:
@@ -61,10 +64,11 @@ class Diagram:
         return out // 2
 
     def writhe(self) -> int:
+        """Return the writhe: the sum of the crossing signs."""
         return int(self.signs.sum())
 
 
-def _segments(curves):
+def _segments(curves: Sequence[np.ndarray]) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     starts, ends, owner, index = [], [], [], []
     for c, pts in enumerate(curves):
         closed_pts = np.vstack([pts, pts[:1]])
@@ -75,8 +79,8 @@ def _segments(curves):
     return np.vstack(starts), np.vstack(ends), np.concatenate(owner), np.concatenate(index)
 
 
-def project(curves, seed: int = 0, rotation: np.ndarray | None = None) -> Diagram:
-    """The diagram of closed polylines ``curves`` (list of ``(n_k, 3)``) seen along a generic axis.
+def project(curves: Sequence[np.ndarray], seed: int = 0, rotation: ArrayLike | None = None) -> Diagram:
+    """Return the diagram of closed polylines ``curves`` (list of ``(n_k, 3)``) seen along a generic axis.
 
     Parameters
     ----------

@@ -7,18 +7,21 @@ from __future__ import annotations
 
 import json
 import re
+from collections.abc import Iterable
+from types import ModuleType
+from typing import Any
 
 from .tables import HOMFLY_MAX_CROSSINGS, JONES_POINT, knot_modules, laurent_value, tables
 
 
-def _homfly(regina, pd, mirror=False) -> str:
+def _homfly(regina: ModuleType, pd: list[list[int]], mirror: bool = False) -> str:
     link = regina.Link.fromPD(pd)
     if mirror:
         link.changeAll()
     return str(link.homfly())
 
 
-def _identify_names(link) -> tuple[list[str], float | None]:
+def _identify_names(link: Any) -> tuple[list[str], float | None]:
     """SnapPy's names of the exterior (``[]`` if not hyperbolic) and its volume."""
     try:
         exterior = link.exterior()
@@ -30,7 +33,7 @@ def _identify_names(link) -> tuple[list[str], float | None]:
         return [], None
 
 
-def name_diagram(pd: list, n_components: int) -> dict:
+def name_diagram(pd: list[list[int]], n_components: int) -> dict[str, Any]:
     """Name one non-split link diagram given by its PD code.
 
     Returns
@@ -40,7 +43,7 @@ def name_diagram(pd: list, n_components: int) -> dict:
         ``crossings`` (simplified diagram), ``jones``, ``homfly``, ``volume``.
     """
     spherogram, regina, _ = knot_modules()
-    out = {"name": None, "table_name": None, "mirror": None, "candidates": []}
+    out: dict[str, Any] = {"name": None, "table_name": None, "mirror": None, "candidates": []}
     if not pd:
         out.update(crossings=0, jones="1", homfly=None, volume=0.0)
         if n_components == 1:
@@ -85,12 +88,12 @@ def _knot_alias(name: str) -> str:
     return f"K{m[1]}{m[2]}{m[3]}" if m else name
 
 
-def one_based(pd) -> list:
-    """spherogram numbers PD edges from 0; KnotTheory and regina from 1."""
+def one_based(pd: Iterable[Iterable[int]]) -> list[list[int]]:
+    """Renumber PD edges from 1, as KnotTheory and regina do (spherogram numbers them from 0)."""
     return [[int(v) + 1 for v in x] for x in pd]
 
 
-def name_pd(pd: list, n_components: int) -> dict:
+def name_pd(pd: list[list[int]], n_components: int) -> dict[str, Any]:
     """Simplify and name the link of a PD code (1-based, KnotTheory convention).
 
     Split links are named piece by piece (``name`` stays ``None``, ``pieces`` lists
@@ -98,6 +101,7 @@ def name_pd(pd: list, n_components: int) -> dict:
     ``"3_1#4_1"`` (``prime: False``, ``factors``).
     """
     spherogram, _, _ = knot_modules()
+    out: dict[str, Any]
     if not pd:
         out = {
             "name": "0_1" if n_components == 1 else None,
@@ -147,8 +151,6 @@ def name_pd(pd: list, n_components: int) -> dict:
     return out
 
 
-def _name_key(name: str):
+def _name_key(name: str) -> tuple[int, str]:
     m = re.match(r"m?L?(\d+)", name)
     return (int(m[1]) if m else 0, name)
-
-

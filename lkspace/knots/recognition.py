@@ -22,16 +22,18 @@ from __future__ import annotations
 
 import json
 import multiprocessing as mp
-import os
 import sys
+from collections.abc import Iterator, Sequence
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 import pandas as pd
+from numpy.typing import ArrayLike
 
 from ..errors import LkspaceError
 from ..geometry.realization import GeometryParams, realize
-from ..io.sources import load
+from ..io.sources import ScaffoldSource, load
 from ..model.scaffold import Scaffold
 from .diagram import DiagramError, project
 from .naming import name_pd
@@ -59,18 +61,18 @@ class Identification:
 
     components: int
     name: str | None
-    linking_matrix: list
+    linking_matrix: list[list[int]]
     mirror: bool | None = None
     split: bool | None = None
     crossings: int | None = None
-    details: dict = field(default_factory=dict)
+    details: dict[str, Any] = field(default_factory=dict)
 
     def __repr__(self) -> str:
         chirality = {True: ", mirror", False: "", None: ""}[self.mirror]
         return f"Identification({self.name or 'unknown'}{chirality}: {self.components} components, {self.crossings} crossings)"
 
-    def to_dict(self) -> dict:
-        """The JSON form (``components``, ``name``, ``linking_matrix``, and every invariant)."""
+    def to_dict(self) -> dict[str, Any]:
+        """Return the JSON form (``components``, ``name``, ``linking_matrix``, and every invariant)."""
         return {
             "components": self.components,
             "name": self.name,
@@ -82,7 +84,7 @@ class Identification:
         }
 
 
-def identify_curves(curves, seed: int = 0) -> dict:
+def identify_curves(curves: Sequence[np.ndarray], seed: int = 0) -> dict[str, Any]:
     """Identify the link formed by closed polylines ``curves`` (list of ``(n_k, 3)``).
 
     Returns
@@ -102,9 +104,9 @@ def identify_curves(curves, seed: int = 0) -> dict:
 
 
 def identify(
-    scaffold: Scaffold | str | os.PathLike,
-    labels=None,
-    nulls=None,
+    scaffold: ScaffoldSource,
+    labels: ArrayLike | None = None,
+    nulls: ArrayLike | None = None,
     params: GeometryParams | None = None,
     seed: int = 0,
 ) -> Identification:
@@ -142,14 +144,14 @@ def identify(
     return Identification(**main, details=out)
 
 
-_WORKER: dict = {}
+_WORKER: dict[str, Any] = {}
 
 
 def _init_worker(scaffold: Scaffold, seed: int) -> None:
     _WORKER["scaffold"], _WORKER["seed"] = scaffold, seed
 
 
-def _identify_row(labels) -> dict:
+def _identify_row(labels: ArrayLike) -> dict[str, Any]:
     try:
         r = identify(_WORKER["scaffold"], np.asarray(labels, np.int64), seed=_WORKER["seed"]).to_dict()
         return {
@@ -178,7 +180,9 @@ def _identify_row(labels) -> dict:
 COLUMNS = ["knot_name", "components", "split", "mirror", "crossings", "jones", "linking_matrix", "error"]
 
 
-def identify_batch(scaffold: Scaffold, labels_2d, processes: int = 1, seed: int = 0, progress: bool | None = None):
+def identify_batch(
+    scaffold: Scaffold, labels_2d: ArrayLike, processes: int = 1, seed: int = 0, progress: bool | None = None
+) -> pd.DataFrame:
     """Identify many designs of one scaffold: a ``pandas.DataFrame``, one row per design.
 
     Parameters
@@ -213,6 +217,7 @@ def identify_batch(scaffold: Scaffold, labels_2d, processes: int = 1, seed: int 
         progress = sys.stderr.isatty()
     _init_worker(scaffold, seed)
     chunk = max(1, min(64, len(labels_2d) // (4 * max(processes, 1)) or 1))
+    rows_iter: Iterator[dict[str, Any]]
     if processes > 1 and len(labels_2d) > 1:
         pool = mp.get_context("fork").Pool(processes, initializer=_init_worker, initargs=(scaffold, seed))
         rows_iter = pool.imap(_identify_row, labels_2d, chunksize=chunk)

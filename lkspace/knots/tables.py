@@ -11,6 +11,8 @@ import os
 import pickle
 from fractions import Fraction
 from functools import lru_cache
+from types import ModuleType
+from typing import Any
 
 from ..errors import require
 from ..io.atomic import write_bytes
@@ -20,8 +22,11 @@ HOMFLY_MAX_CROSSINGS = 40  # HOMFLY-PT (regina) of larger simplified diagrams is
 JONES_POINT = Fraction(2, 3)
 
 
-def knot_modules():
-    """spherogram, regina and database_knotinfo, or :class:`MissingDependencyError` naming ``[knots]``."""
+def knot_modules() -> tuple[ModuleType, ModuleType, ModuleType]:
+    """Return the modules spherogram, regina and database_knotinfo (after checking snappy too).
+
+    Raises :class:`~lkspace.errors.MissingDependencyError` naming the extra ``[knots]`` when one is missing.
+    """
     spherogram = require("spherogram", "knots", PURPOSE)
     regina = require("regina", "knots", PURPOSE)
     require("snappy", "knots", PURPOSE)
@@ -37,8 +42,8 @@ def _eval_table(poly: str, var: str, x: Fraction) -> Fraction | None:
         return None
 
 
-def laurent_value(laurent, x: Fraction) -> Fraction:
-    """Exact value of a regina ``Laurent`` (in ``sqrt(t)``) at ``x``."""
+def laurent_value(laurent: Any, x: Fraction) -> Fraction:
+    """Return the exact value of a regina ``Laurent`` (in ``sqrt(t)``) at ``x``."""
     total = Fraction(0)
     if laurent.isZero():
         return total
@@ -56,13 +61,12 @@ def _cache_path(version: str) -> str:
 
 
 @lru_cache(maxsize=1)
-def tables() -> dict:
+def tables() -> dict[Fraction, list[dict[str, Any]]]:
     """Jones fingerprints of the KnotInfo and LinkInfo tables: ``{value: [entry, ...]}``.
 
     Built once from ``database_knotinfo`` (a few seconds) and kept in a pickle under
     ``$LKSPACE_CACHE`` (default ``~/.cache/lkspace``), keyed by the database version.
     """
-
     _, _, dki = knot_modules()
     path = _cache_path(str(getattr(dki, "version", lambda: "0")()))
     if os.path.exists(path):
@@ -80,10 +84,10 @@ def tables() -> dict:
     return index
 
 
-def _build_tables(dki) -> dict:
-    index: dict = {}
+def _build_tables(dki: ModuleType) -> dict[Fraction, list[dict[str, Any]]]:
+    index: dict[Fraction, list[dict[str, Any]]] = {}
 
-    def add(entry):
+    def add(entry: dict[str, Any]) -> None:
         index.setdefault(entry["fp"], []).append(entry)
 
     for row in dki.link_list():
@@ -126,10 +130,8 @@ def _build_tables(dki) -> dict:
     return index
 
 
-def _float(text) -> float | None:
+def _float(text: Any) -> float | None:
     try:
         return float(text)
     except (TypeError, ValueError):
         return None
-
-

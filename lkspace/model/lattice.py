@@ -11,6 +11,7 @@ from dataclasses import dataclass
 from functools import cached_property
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ..errors import ScaffoldError
 
@@ -27,7 +28,7 @@ class Lattice:
 
     basis: np.ndarray
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         basis = np.array(self.basis, dtype=np.float64)
         if basis.ndim != 2 or basis.shape[1] != 3 or basis.shape[0] not in (2, 3):
             raise ScaffoldError(f"lattice: expected 2 or 3 basis vectors of length 3, got shape {basis.shape}")
@@ -47,8 +48,8 @@ class Lattice:
         """Number of basis vectors (2 or 3)."""
         return int(self.basis.shape[0])
 
-    def translate(self, offsets: np.ndarray) -> np.ndarray:
-        """Translations in space of integer ``offsets`` ``(..., dim)`` -> ``(..., 3)``."""
+    def translate(self, offsets: ArrayLike) -> np.ndarray:
+        """Return the translations in space ``(..., 3) float64`` of integer ``offsets (..., dim)``."""
         return np.asarray(offsets, dtype=np.float64) @ self.basis
 
     @cached_property
@@ -80,8 +81,10 @@ class Lattice:
 
     @classmethod
     def face_centred_orthorhombic(cls, a: float = 1.0, b: float = 1.25, c: float = 1.5) -> Lattice:
-        """Face-centred orthorhombic (oF), conventional cell ``a x b x c``; primitive
-        vectors ``(0, b, c)/2, (a, 0, c)/2, (a, b, 0)/2``."""
+        """Face-centred orthorhombic (oF), conventional cell ``a x b x c``.
+
+        Primitive vectors ``(0, b, c)/2, (a, 0, c)/2, (a, b, 0)/2``.
+        """
         return cls(np.array([[0, b / 2, c / 2], [a / 2, 0, c / 2], [a / 2, b / 2, 0]]))
 
     @classmethod
@@ -94,15 +97,15 @@ class Lattice:
         """Body-centred cubic (cI), conventional cube ``a``: ``(-1,1,1)a/2, (1,-1,1)a/2, (1,1,-1)a/2``."""
         return cls(a / 2 * np.array([[-1.0, 1, 1], [1, -1, 1], [1, 1, -1]]))
 
-    def fractional(self, points: np.ndarray) -> np.ndarray:
+    def fractional(self, points: ArrayLike) -> np.ndarray:
         """Lattice coordinates ``(..., dim)`` of ``points (..., 3)`` (least squares in 2D)."""
         return np.asarray(points, dtype=np.float64) @ np.linalg.pinv(self.basis)
 
-    def supercell(self, sizes) -> Lattice:
-        """The lattice spanned by ``sizes[i] * basis[i]``."""
+    def supercell(self, sizes: ArrayLike) -> Lattice:
+        """Return the lattice spanned by ``sizes[i] * basis[i]``."""
         return Lattice(self.basis * np.asarray(sizes, dtype=np.float64)[:, None])
 
-    def __eq__(self, other) -> bool:
+    def __eq__(self, other: object) -> bool:
         return isinstance(other, Lattice) and np.array_equal(self.basis, other.basis)
 
     def __hash__(self) -> int:

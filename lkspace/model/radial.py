@@ -15,10 +15,14 @@ edge, unless the scaffold gives that edge's radial order explicitly.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ..errors import RadialOrderError, ScaffoldError
+
+if TYPE_CHECKING:
+    from .scaffold import Scaffold
 
 ANGLE_TOLERANCE = 1e-7  # radians; closer angles count as coincident
 
@@ -53,8 +57,8 @@ def perpendicular_frames(axes: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return u1, u2
 
 
-def side_angles(scaffold, sides: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
-    """Angle of ``sides`` (default all) about their edge axes, and the length of ``r``."""
+def side_angles(scaffold: Scaffold, sides: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """Return the angles ``(n,) float64`` of ``sides`` (default all) about their edge axes and the lengths of ``r``."""
     sides = np.arange(scaffold.n_corners) if sides is None else sides
     e = scaffold.side_edge[sides]
     points = scaffold.edge_points[e]
@@ -70,7 +74,7 @@ def side_angles(scaffold, sides: np.ndarray | None = None) -> tuple[np.ndarray, 
     return np.arctan2(y, x), np.hypot(x, y)
 
 
-def radial_order(scaffold) -> RadialOrder:
+def radial_order(scaffold: Scaffold) -> RadialOrder:
     """Compute the radial order of ``scaffold``; see the module docstring."""
     n_edges = scaffold.n_edges
     degrees = scaffold.edge_degrees

@@ -28,15 +28,21 @@ Conventions (explained for users in ``docs/model.md``)
 from __future__ import annotations
 
 import hashlib
-from dataclasses import dataclass
+from collections.abc import Sequence
+from dataclasses import dataclass, replace
 from functools import cached_property
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
+from numpy.typing import ArrayLike, DTypeLike
 
 from ..errors import ScaffoldError
 from .lattice import Lattice
 from .radial import RadialOrder, radial_order
 from .validation import validate_labels, validate_nulls
+
+if TYPE_CHECKING:
+    import networkx as nx
 
 
 def unique_rows(keys: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -64,7 +70,7 @@ def unique_rows(keys: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return sorted_keys[new], inverse
 
 
-def _frozen(array, dtype) -> np.ndarray:
+def _frozen(array: ArrayLike, dtype: DTypeLike) -> np.ndarray:
     out = np.array(array, dtype=dtype)
     out.setflags(write=False)
     return out
@@ -106,7 +112,7 @@ class Scaffold:
     nulls: np.ndarray | None = None
     name: str = "scaffold"
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         set_ = lambda k, v: object.__setattr__(self, k, v)  # noqa: E731
         vertices = np.asarray(self.vertices, dtype=np.float64)
         if vertices.ndim != 2 or vertices.shape[1] != 3 or len(vertices) == 0:
@@ -153,7 +159,7 @@ class Scaffold:
         if self.nulls is not None:
             set_("nulls", _frozen(validate_nulls(self, self.nulls), bool))
 
-    def _check_faces(self):
+    def _check_faces(self) -> None:
         """Reject repeated corners and zero-length sides."""
         keys = self.corner_keys
         order = np.lexsort(keys.T[::-1])
@@ -177,17 +183,17 @@ class Scaffold:
 
     def __repr__(self) -> str:
         cell = f", periodic in {self.dim}D" if self.periodic else ""
-        return (
-            f"Scaffold({self.name}: {self.n_vertices} vertices, {self.n_edges} edges, {self.n_faces} faces{cell})"
-        )
+        return f"Scaffold({self.name}: {self.n_vertices} vertices, {self.n_edges} edges, {self.n_faces} faces{cell})"
 
     # ---- counts -------------------------------------------------------------
     @property
     def n_vertices(self) -> int:
+        """Number of vertices."""
         return int(len(self.vertices))
 
     @property
     def n_faces(self) -> int:
+        """Number of faces."""
         return int(len(self.face_starts) - 1)
 
     @property
@@ -197,10 +203,12 @@ class Scaffold:
 
     @property
     def n_edges(self) -> int:
+        """Number of edges (edge classes of a periodic scaffold)."""
         return int(len(self.edge_vertices))
 
     @property
     def periodic(self) -> bool:
+        """Whether the scaffold has a lattice (then ``lattice`` and ``corner_offsets`` are set)."""
         return self.lattice is not None
 
     @property
@@ -211,7 +219,7 @@ class Scaffold:
     # ---- corner incidence ---------------------------------------------------
     @cached_property
     def face_sizes(self) -> np.ndarray:
-        """(n_faces,) int64"""
+        """(n_faces,) int64: number of corners (and sides) of each face."""
         return _frozen(np.diff(self.face_starts), np.int64)
 
     @cached_property
@@ -236,7 +244,7 @@ class Scaffold:
     @cached_property
     def corner_keys(self) -> np.ndarray:
         """(n_corners, 1 + dim) int64: vertex and lattice offset of each corner."""
-        if self.lattice is None:
+        if self.corner_offsets is None:
             return _frozen(self.corners[:, None], np.int64)
         return _frozen(np.column_stack([self.corners, self.corner_offsets]), np.int64)
 
@@ -244,7 +252,7 @@ class Scaffold:
     def corner_positions(self) -> np.ndarray:
         """(n_corners, 3) float64: corner positions, unwrapped by their offsets."""
         pos = self.vertices[self.corners]
-        if self.lattice is not None:
+        if self.lattice is not None and self.corner_offsets is not None:
             pos = pos + self.lattice.translate(self.corner_offsets)
         return _frozen(pos, np.float64)
 
@@ -256,7 +264,7 @@ class Scaffold:
 
     # ---- edges ----------------------------------------------------------------
     @cached_property
-    def _edge_table(self):
+    def _edge_table(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         u = self.corner_keys
         w = self.corner_keys[self.corner_next]
         delta = w[:, 1:] - u[:, 1:]
@@ -324,9 +332,11 @@ class Scaffold:
         """The :class:`~lkspace.model.radial.RadialOrder` of every edge."""
         return radial_order(self)
 
-    def dual_graph(self):
-        """The dual graph as a networkx multigraph: a node per face, an edge per scaffold
-        edge of degree 2 joining its two faces (attribute ``edge``: the edge index).
+    def dual_graph(self) -> nx.MultiGraph:
+        """Return the dual graph as a networkx multigraph.
+
+        A node per face, an edge per scaffold edge of degree 2 joining its two faces
+        (attribute ``edge``: the edge index).
 
         Odd labels on a spanning tree of this graph and even labels elsewhere make a
         single strand on a scaffold whose edges all have degree <= 2.
@@ -351,29 +361,20 @@ class Scaffold:
             graph.add_edge(int(f), int(g), key=e, edge=e)
         return graph
 
-    def edge_name(self, e: int) -> str:
+    def edge_name(self, e: int | np.integer) -> str:
         """Human name of edge ``e``: ``"3-7"`` or, periodic, ``"3-7[0,1,0]"``."""
         a, b = self.edge_vertices[e]
         if self.dim:
             return f"{a}-{b}[{','.join(str(x) for x in self.edge_deltas[e])}]"
         return f"{a}-{b}"
 
-    def with_labels(self, labels=None, nulls=None) -> Scaffold:
-        """A copy carrying default twist ``labels`` and ``nulls``."""
-        return Scaffold(
-            self.vertices,
-            self.face_starts,
-            self.corners,
-            self.lattice,
-            self.corner_offsets,
-            self.radial_orders,
-            labels,
-            nulls,
-            self.name,
-        )
+    def with_labels(self, labels: ArrayLike | None = None, nulls: ArrayLike | None = None) -> Scaffold:
+        """Return a copy carrying default twist ``labels`` and ``nulls`` (validated again)."""
+        new_labels, new_nulls = (None if x is None else np.asarray(x) for x in (labels, nulls))
+        return replace(self, labels=new_labels, nulls=new_nulls)
 
     @classmethod
-    def from_faces(cls, vertices, faces, **kwargs) -> Scaffold:
+    def from_faces(cls, vertices: ArrayLike, faces: Sequence[Sequence[int]], **kwargs: Any) -> Scaffold:
         """Build from a list of faces, each a sequence of vertex indices.
 
         Examples

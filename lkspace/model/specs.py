@@ -11,11 +11,16 @@ from __future__ import annotations
 import json
 import os
 import re
+from collections.abc import Sequence
+from typing import TypeAlias
 
 import numpy as np
 
 from ..errors import LabelError
 from .scaffold import Scaffold
+
+LabelSetSpec: TypeAlias = str | Sequence[int] | np.ndarray
+"""A label set as users give it: text (``"-2..2"``, ``"-2,-1,1,2"``) or integers."""
 
 _INT = re.compile(r"^[+-]?\d+$")
 _EDGE = re.compile(r"^(\d+)\s*[-\s]\s*(\d+)(?:\s*\[([-+\d,\s]*)\])?$")
@@ -68,7 +73,7 @@ def edge_index(scaffold: Scaffold, name: str) -> int:
         delta = [int(x) for x in m.group(3).split(",") if x.strip()]
         if int(m.group(1)) > int(m.group(2)):
             delta = [-x for x in delta]
-        matches = [e for e in matches if scaffold.edge_deltas[e].tolist() == delta]
+        matches = np.array([e for e in matches if scaffold.edge_deltas[e].tolist() == delta], np.int64)
     if len(matches) == 0:
         raise LabelError(f"{scaffold.name}: {name!r} is not an edge")
     if len(matches) > 1:
@@ -134,8 +139,8 @@ def read_twist_file(scaffold: Scaffold, path: str) -> np.ndarray:
     return labels
 
 
-def labels_from_list(scaffold: Scaffold, values, where: str = "twist labels") -> np.ndarray:
-    """A list of per-edge integers -> ``(n_edges,) int64`` with a clear count error."""
+def labels_from_list(scaffold: Scaffold, values: Sequence[object], where: str = "twist labels") -> np.ndarray:
+    """Check a list of per-edge integers and return it as ``(n_edges,) int64`` (with a clear count error)."""
     if len(values) != scaffold.n_edges:
         raise LabelError(
             f"{where}: expected {scaffold.n_edges} twist labels (one per edge of {scaffold.name}), got {len(values)}"
@@ -148,7 +153,7 @@ def labels_from_list(scaffold: Scaffold, values, where: str = "twist labels") ->
     return np.array(out, dtype=np.int64)
 
 
-def parse_labels(scaffold: Scaffold, spec) -> np.ndarray:
+def parse_labels(scaffold: Scaffold, spec: int | np.integer | str | os.PathLike[str]) -> np.ndarray:
     """Twist ``SPEC`` (int, comma list, or path) -> ``(n_edges,) int64``.
 
     Examples

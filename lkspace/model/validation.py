@@ -9,6 +9,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ..errors import LabelError
 
@@ -16,7 +17,7 @@ if TYPE_CHECKING:
     from .scaffold import Scaffold
 
 
-def validate_labels(scaffold: Scaffold, labels) -> np.ndarray:
+def validate_labels(scaffold: Scaffold, labels: ArrayLike) -> np.ndarray:
     """Validate twist labels -> ``(n_edges,) int64``; a scalar applies to every edge."""
     arr = np.asarray(labels)
     if arr.ndim == 0:
@@ -31,7 +32,7 @@ def validate_labels(scaffold: Scaffold, labels) -> np.ndarray:
     return arr.astype(np.int64)
 
 
-def validate_nulls(scaffold: Scaffold, nulls) -> np.ndarray:
+def validate_nulls(scaffold: Scaffold, nulls: ArrayLike) -> np.ndarray:
     """Validate null edge-sides -> ``(n_corners,) bool`` mask.
 
     ``nulls`` is a boolean mask over sides or a sequence of side indices.

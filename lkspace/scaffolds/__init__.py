@@ -82,7 +82,7 @@ def is_builtin_name(name: str) -> bool:
 
 
 def builtin(name: str) -> Scaffold:
-    """The built-in scaffold called ``name``.
+    """Return the built-in scaffold called ``name``.
 
     Examples
     --------

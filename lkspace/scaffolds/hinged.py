@@ -11,6 +11,7 @@
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ..model.scaffold import Scaffold
 from .polyhedra import cube
@@ -31,13 +32,13 @@ def _merge(parts: list[tuple[np.ndarray, list[list[int]]]], name: str) -> Scaffo
     return Scaffold.from_faces(points[first[order]], faces, name=name)
 
 
-def _unit_cube(shift) -> tuple[np.ndarray, list[list[int]]]:
+def _unit_cube(shift: ArrayLike) -> tuple[np.ndarray, list[list[int]]]:
     c = cube()
     return (c.vertices + 1) / 2 + np.asarray(shift, dtype=float), c.faces()
 
 
 def cube_net() -> Scaffold:
-    """Six unit squares in a cross: a column of four plus two arms."""
+    """Build six unit squares in a cross: a column of four plus two arms."""
     cells = [(0, 0), (0, 1), (0, 2), (0, 3), (-1, 1), (1, 1)]
     parts = []
     for x, y in cells:
@@ -47,7 +48,7 @@ def cube_net() -> Scaffold:
 
 
 def cube_lid() -> Scaffold:
-    """Unit open box (no top) with its lid opened 90 degrees about the top edge y = 1."""
+    """Build a unit open box (no top) with its lid opened 90 degrees about the top edge y = 1."""
     box = [
         (np.array(q, dtype=float), [[0, 1, 2, 3]])
         for q in (
@@ -63,12 +64,12 @@ def cube_lid() -> Scaffold:
 
 
 def piano_hinged_cubes() -> Scaffold:
-    """Two unit cubes sharing the edge x = y = 1 (degree 4)."""
+    """Build two unit cubes sharing the edge x = y = 1 (degree 4)."""
     return _merge([_unit_cube((0, 0, 0)), _unit_cube((1, 1, 0))], "cubes:piano")
 
 
 def vertex_hinged_cubes() -> Scaffold:
-    """Two unit cubes sharing the vertex (1, 1, 1)."""
+    """Build two unit cubes sharing the vertex (1, 1, 1)."""
     return _merge([_unit_cube((0, 0, 0)), _unit_cube((1, 1, 1))], "cubes:vertex")
 
 

@@ -23,8 +23,10 @@ from __future__ import annotations
 
 import itertools
 import re
+from collections.abc import Iterable
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ..errors import ScaffoldError
 from ..model.lattice import Lattice
@@ -59,7 +61,7 @@ def _planar_frame(lattice: Lattice) -> np.ndarray:
     return q.T
 
 
-def voronoi_polygons(lattice: Lattice, generators) -> list[np.ndarray]:
+def voronoi_polygons(lattice: Lattice, generators: ArrayLike) -> list[np.ndarray]:
     """Polygons ``(m, 3)`` of the Voronoi complex of ``generators`` + lattice.
 
     2D lattices give the tiles of the base generators, 3D lattices the walls of their
@@ -92,11 +94,11 @@ def voronoi_polygons(lattice: Lattice, generators) -> list[np.ndarray]:
     return polygons
 
 
-def quotient_scaffold(lattice: Lattice, polygons, name: str) -> Scaffold:
-    """The periodic scaffold of ``polygons`` (each ``(m, 3)``) modulo ``lattice``."""
+def quotient_scaffold(lattice: Lattice, polygons: Iterable[np.ndarray], name: str) -> Scaffold:
+    """Return the periodic scaffold of ``polygons`` (each ``(m, 3)``) modulo ``lattice``."""
     dim = lattice.dim
     vertex_keys: dict[tuple, int] = {}
-    vertex_positions = []
+    vertex_positions: list[np.ndarray] = []
     face_keys = set()
     faces, offsets = [], []
     for poly in polygons:
@@ -130,14 +132,14 @@ def quotient_scaffold(lattice: Lattice, polygons, name: str) -> Scaffold:
 
 
 def wigner_seitz(name: str) -> Scaffold:
-    """The built-in Wigner–Seitz tiling or honeycomb ``name`` (see the module docstring)."""
+    """Return the built-in Wigner–Seitz tiling or honeycomb ``name`` (see the module docstring)."""
     if name not in LATTICES:
         raise ScaffoldError(f"unknown periodic scaffold {name!r}; known: {', '.join(LATTICES)}")
     lattice = LATTICES[name]()
     return quotient_scaffold(lattice, voronoi_polygons(lattice, np.zeros((1, 3))), name)
 
 
-def voronoi_scaffold(lattice: Lattice, generators, name: str = "voronoi") -> Scaffold:
+def voronoi_scaffold(lattice: Lattice, generators: ArrayLike, name: str = "voronoi") -> Scaffold:
     """Generalized Voronoi scaffold: ``generators (n, 3)`` in the fundamental domain.
 
     Examples
@@ -165,7 +167,7 @@ VORONOI_EXAMPLES = {
 
 
 def voronoi_example(name: str) -> Scaffold:
-    """A built-in generalized Voronoi scaffold (see ``VORONOI_EXAMPLES``)."""
+    """Return the built-in generalized Voronoi scaffold (see ``VORONOI_EXAMPLES``)."""
     make_lattice, points = VORONOI_EXAMPLES[name]
     return voronoi_scaffold(make_lattice(), points, name)
 
@@ -183,15 +185,15 @@ def parse_supercell(text: str, dim: int) -> tuple[int, ...]:
     return sizes
 
 
-def supercell(scaffold: Scaffold, sizes) -> Scaffold:
-    """The ``A x B (x C)`` repeating domain of a periodic scaffold.
+def supercell(scaffold: Scaffold, sizes: ArrayLike) -> Scaffold:
+    """Return the ``A x B (x C)`` repeating domain of a periodic scaffold.
 
     Cell ``m = (i, j, k)`` with ``0 <= m < sizes`` gets index ``(i * B + j) * C + k``;
     vertex ``v`` of cell ``m`` becomes ``cell_index * n_vertices + v`` and face ``f`` becomes
     ``cell_index * n_faces + f``.  Edges are then numbered by the usual rule
     (:mod:`lkspace.model.scaffold`), so per-cell labels are given in that documented edge order.
     """
-    if not scaffold.periodic:
+    if scaffold.lattice is None or scaffold.corner_offsets is None:
         raise ScaffoldError(f"{scaffold.name}: supercells need a periodic scaffold")
     sizes = np.asarray(sizes, dtype=np.int64)
     if sizes.shape != (scaffold.dim,):

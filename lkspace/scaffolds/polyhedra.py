@@ -10,15 +10,17 @@ them against the hull).
 from __future__ import annotations
 
 import itertools
+from collections.abc import Iterable, Sequence
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ..model.scaffold import Scaffold
 
 PHI = (1 + 5**0.5) / 2
 
 
-def convex_polyhedron(points, name: str = "polyhedron", decimals: int = 6) -> Scaffold:
+def convex_polyhedron(points: ArrayLike, name: str = "polyhedron", decimals: int = 6) -> Scaffold:
     """Scaffold of the convex hull of ``points (n, 3)``; vertices keep the input order.
 
     Examples
@@ -57,30 +59,67 @@ SOLID_FACES = {
     "cube": [[1, 0, 4, 5], [2, 0, 1, 3], [4, 0, 2, 6], [3, 1, 5, 7], [6, 2, 3, 7], [5, 4, 6, 7]],
     "octahedron": [[1, 0, 5], [2, 0, 1], [4, 0, 2], [5, 0, 4], [2, 1, 3], [3, 1, 5], [4, 2, 3], [4, 3, 5]],
     "icosahedron": [
-        [1, 0, 6], [2, 0, 1], [4, 0, 8], [6, 0, 4], [8, 0, 2], [2, 1, 7], [5, 1, 6], [7, 1, 5], [3, 2, 7],
-        [8, 2, 3], [8, 3, 10], [9, 3, 7], [10, 3, 9], [6, 4, 11], [10, 4, 8], [11, 4, 10], [7, 5, 9],
-        [9, 5, 11], [11, 5, 6], [10, 9, 11],
+        [1, 0, 6],
+        [2, 0, 1],
+        [4, 0, 8],
+        [6, 0, 4],
+        [8, 0, 2],
+        [2, 1, 7],
+        [5, 1, 6],
+        [7, 1, 5],
+        [3, 2, 7],
+        [8, 2, 3],
+        [8, 3, 10],
+        [9, 3, 7],
+        [10, 3, 9],
+        [6, 4, 11],
+        [10, 4, 8],
+        [11, 4, 10],
+        [7, 5, 9],
+        [9, 5, 11],
+        [11, 5, 6],
+        [10, 9, 11],
     ],  # fmt: skip
     "dodecahedron": [
-        [11, 17, 0, 18, 2], [12, 18, 0, 19, 1], [13, 19, 0, 17, 4], [3, 12, 1, 14, 8], [5, 14, 1, 19, 13],
-        [3, 16, 2, 18, 12], [6, 11, 2, 16, 10], [10, 16, 3, 8, 7], [5, 13, 4, 15, 9], [6, 15, 4, 17, 11],
-        [8, 14, 5, 9, 7], [9, 15, 6, 10, 7],
+        [11, 17, 0, 18, 2],
+        [12, 18, 0, 19, 1],
+        [13, 19, 0, 17, 4],
+        [3, 12, 1, 14, 8],
+        [5, 14, 1, 19, 13],
+        [3, 16, 2, 18, 12],
+        [6, 11, 2, 16, 10],
+        [10, 16, 3, 8, 7],
+        [5, 13, 4, 15, 9],
+        [6, 15, 4, 17, 11],
+        [8, 14, 5, 9, 7],
+        [9, 15, 6, 10, 7],
     ],  # fmt: skip
     "truncated-octahedron": [
-        [2, 0, 1, 3], [5, 1, 0, 4, 8, 10], [9, 4, 0, 2, 6, 11], [7, 3, 1, 5, 12, 14], [13, 6, 2, 3, 7, 15],
-        [8, 4, 9, 16], [12, 5, 10, 17], [11, 6, 13, 18], [15, 7, 14, 19], [17, 10, 8, 16, 20, 21],
-        [20, 16, 9, 11, 18, 22], [19, 14, 12, 17, 21, 23], [22, 18, 13, 15, 19, 23], [21, 20, 22, 23],
+        [2, 0, 1, 3],
+        [5, 1, 0, 4, 8, 10],
+        [9, 4, 0, 2, 6, 11],
+        [7, 3, 1, 5, 12, 14],
+        [13, 6, 2, 3, 7, 15],
+        [8, 4, 9, 16],
+        [12, 5, 10, 17],
+        [11, 6, 13, 18],
+        [15, 7, 14, 19],
+        [17, 10, 8, 16, 20, 21],
+        [20, 16, 9, 11, 18, 22],
+        [19, 14, 12, 17, 21, 23],
+        [22, 18, 13, 15, 19, 23],
+        [21, 20, 22, 23],
     ],  # fmt: skip
 }
 """Faces of the built-in solids, as :func:`convex_polyhedron` gives them for their points."""
 
 
-def solid(name: str, points) -> Scaffold:
-    """The built-in solid ``name`` on ``points`` (every point a vertex, in order)."""
+def solid(name: str, points: ArrayLike) -> Scaffold:
+    """Return the built-in solid ``name`` on ``points`` (every point a vertex, in order)."""
     return Scaffold.from_faces(np.asarray(points, dtype=np.float64), SOLID_FACES[name], name=name)
 
 
-def _cyclic(vectors):
+def _cyclic(vectors: Iterable[ArrayLike]) -> np.ndarray:
     out = []
     for v in vectors:
         for k in range(3):
@@ -88,7 +127,7 @@ def _cyclic(vectors):
     return np.array(out, dtype=np.float64)
 
 
-def _signs(v):
+def _signs(v: Sequence[float]) -> list[tuple[float, ...]]:
     """All sign patterns of ``v`` (zeros kept once)."""
     out = set()
     for signs in itertools.product((1, -1), repeat=len(v)):
@@ -97,32 +136,32 @@ def _signs(v):
 
 
 def tetrahedron() -> Scaffold:
-    """Regular tetrahedron: 4 vertices, 6 edges, 4 triangles."""
+    """Build the regular tetrahedron: 4 vertices, 6 edges, 4 triangles."""
     return solid("tetrahedron", [[1, 1, 1], [1, -1, -1], [-1, 1, -1], [-1, -1, 1]])
 
 
 def cube() -> Scaffold:
-    """Cube [-1, 1]^3: 8 vertices, 12 edges, 6 squares."""
+    """Build the cube [-1, 1]^3: 8 vertices, 12 edges, 6 squares."""
     return solid("cube", list(itertools.product((-1, 1), repeat=3)))
 
 
 def octahedron() -> Scaffold:
-    """Regular octahedron: 6 vertices, 12 edges, 8 triangles."""
+    """Build the regular octahedron: 6 vertices, 12 edges, 8 triangles."""
     return solid("octahedron", np.vstack([np.eye(3), -np.eye(3)]))
 
 
 def icosahedron() -> Scaffold:
-    """Regular icosahedron: 12 vertices, 30 edges, 20 triangles."""
+    """Build the regular icosahedron: 12 vertices, 30 edges, 20 triangles."""
     return solid("icosahedron", _cyclic(_signs((0, 1, PHI))))
 
 
 def dodecahedron() -> Scaffold:
-    """Regular dodecahedron: 20 vertices, 30 edges, 12 pentagons."""
+    """Build the regular dodecahedron: 20 vertices, 30 edges, 12 pentagons."""
     points = np.vstack([list(itertools.product((-1, 1), repeat=3)), _cyclic(_signs((0, 1 / PHI, PHI)))])
     return solid("dodecahedron", points)
 
 
 def truncated_octahedron() -> Scaffold:
-    """Truncated octahedron: 24 vertices, 36 edges, 6 squares and 8 hexagons."""
+    """Build the truncated octahedron: 24 vertices, 36 edges, 6 squares and 8 hexagons."""
     points = sorted({p for v in itertools.permutations((0, 1, 2)) for p in _signs(v)}, reverse=True)
     return solid("truncated-octahedron", points)

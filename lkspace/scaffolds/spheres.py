@@ -19,7 +19,7 @@ from .polyhedra import icosahedron
 
 
 def geodesic_sphere(level: int) -> Scaffold:
-    """The icosahedron with each triangle split into 4, ``level`` times: ``20 * 4**level`` faces."""
+    """Build the icosahedron with each triangle split into 4, ``level`` times: ``20 * 4**level`` faces."""
     if level < 0:
         raise ScaffoldError(f"geodesic sphere level {level}: must be >= 0")
     base = icosahedron()
@@ -44,11 +44,11 @@ def cube_sphere(n: int) -> Scaffold:
     if n < 1:
         raise ScaffoldError(f"cube sphere n={n}: must be >= 1")
     grid = np.linspace(-1.0, 1.0, n + 1)
-    index: dict[tuple[int, int, int], int] = {}
+    index: dict[tuple[int, ...], int] = {}
     vertices: list[np.ndarray] = []
     faces = []
 
-    def vertex(p):
+    def vertex(p: np.ndarray) -> int:
         key = tuple(int(round(x * n)) for x in p)
         if key not in index:
             index[key] = len(vertices)

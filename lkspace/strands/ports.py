@@ -51,7 +51,6 @@ class PortModel:
     corner_partner: np.ndarray
 
 
-
 def build_port_model(scaffold: Scaffold) -> PortModel:
     """Build the :class:`PortModel` of ``scaffold`` (vectorized, O(n_corners))."""
     n = scaffold.n_corners
@@ -83,7 +82,7 @@ def edge_partner(model: PortModel, degrees: np.ndarray, labels: np.ndarray) -> n
 
 
 def port_model(scaffold: Scaffold) -> PortModel:
-    """The scaffold's :class:`PortModel`, built once and kept with the scaffold."""
+    """Return the scaffold's :class:`PortModel`, built once and kept with the scaffold."""
     cached = scaffold.__dict__.get("_port_model")
     if cached is None:
         cached = build_port_model(scaffold)

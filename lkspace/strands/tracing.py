@@ -19,17 +19,21 @@ ones).  ``docs/model.md`` explains all of this for users.
 
 from __future__ import annotations
 
-import os
 from dataclasses import dataclass
 from functools import cached_property
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
+from numpy.typing import ArrayLike
 
-from ..io.sources import load
+from ..io.sources import ScaffoldSource, load
 from ..model.scaffold import Scaffold, validate_labels, validate_nulls
 from .holding_together import HoldingTogether, holding_together
 from .ports import port_model
 from .walk import walk
+
+if TYPE_CHECKING:
+    import networkx as nx
 
 
 @dataclass(frozen=True, eq=False, repr=False)
@@ -106,8 +110,8 @@ class Trace:
         """Whether the structure holds together (for periodic ones: its infinite lift)."""
         return self.holding.holds_together
 
-    def strand_ends(self, k: int) -> list[dict] | None:
-        """The two cut ends of open strand ``k`` (face, side, edge, vertex); ``None`` if closed."""
+    def strand_ends(self, k: int) -> list[dict[str, int]] | None:
+        """Return the two cut ends of open strand ``k`` (face, side, edge, vertex); ``None`` if closed."""
         if self.closed[k]:
             return None
         s, e = self.strand_starts[k], self.strand_starts[k + 1]
@@ -128,9 +132,11 @@ class Trace:
             )
         return out
 
-    def winding_graph(self):
-        """The strands as a networkx graph: an edge joins two strands that wind around each
-        other at a nonzero-label edge (attribute ``edges``: those scaffold edges).
+    def winding_graph(self) -> nx.Graph:
+        """Return the strands as a networkx graph, joining strands that wind around each other.
+
+        An edge joins two strands that wind around each other at a nonzero-label edge
+        (attribute ``edges``: those scaffold edges).
 
         Nodes are strand numbers with attributes ``length``, ``closed`` and ``period``
         (``None`` for a finite scaffold).  The structure holds together in the quotient
@@ -163,8 +169,8 @@ class Trace:
                     graph.edges[a, b]["edges"].append(e)
         return graph
 
-    def to_dict(self) -> dict:
-        """The JSON form (``components``, ``holds_together``, ``strands`` and more; docs/cli.md)."""
+    def to_dict(self) -> dict[str, Any]:
+        """Return the JSON form (``components``, ``holds_together``, ``strands`` and more; docs/cli.md)."""
         sc = self.scaffold
         strands = []
         for k in range(self.components):
@@ -198,8 +204,10 @@ class Trace:
 
 
 def thread_direction(scaffold: Scaffold, period: np.ndarray) -> list[float] | None:
-    """Unit direction in space of a thread with lattice ``period``, sign-normalized
-    (first non-zero coordinate positive); ``None`` for a closed loop."""
+    """Return the unit direction in space of a thread with lattice ``period``; ``None`` for a closed loop.
+
+    The direction is sign-normalized: its first non-zero coordinate is positive.
+    """
     assert scaffold.lattice is not None
     vector = scaffold.lattice.translate(period)
     norm = np.linalg.norm(vector)
@@ -210,7 +218,7 @@ def thread_direction(scaffold: Scaffold, period: np.ndarray) -> list[float] | No
     return np.round(np.sign(first) * vector, 12).tolist()
 
 
-def trace(scaffold: Scaffold | str | os.PathLike, labels=None, nulls=None) -> Trace:
+def trace(scaffold: ScaffoldSource, labels: ArrayLike | None = None, nulls: ArrayLike | None = None) -> Trace:
     """Trace the strands of a scaffold under twist ``labels`` (and optional ``nulls``).
 
     Parameters

@@ -11,14 +11,23 @@ by ``side_translation[s] - side_translation[s']``; the sum around a closed stran
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ..kernels import kernel
 from ..model.scaffold import Scaffold
 from .ports import edge_partner, port_model
 
+WalkArrays = tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]
+"""``(steps, strand_starts, closed, periods, port_strand, port_shift)``: see :class:`~lkspace.strands.tracing.Trace`."""
+
 
 @kernel
-def walk_strands(corner_partner, edge_partner, translation):
+def walk_strands(corner_partner: np.ndarray, edge_partner: np.ndarray, translation: np.ndarray) -> WalkArrays:
+    """Walk every strand and return its :data:`WalkArrays` (open strands first, from their cut ends).
+
+    ``corner_partner`` and ``edge_partner`` are ``(2 * n_corners,) int64`` (-1: a cut edge
+    link), ``translation`` ``(n_corners, dim) int64`` the side translations.
+    """
     n_ports = len(corner_partner)
     dim = translation.shape[1]
     visited = np.zeros(n_ports, np.bool_)
@@ -62,8 +71,9 @@ def walk_strands(corner_partner, edge_partner, translation):
     return steps, starts[: n_strands + 1], closed[:n_strands], periods[:n_strands], port_strand, port_shift
 
 
-
-def walk(scaffold: Scaffold, labels: np.ndarray, null_mask: np.ndarray | None = None, *, compiled: bool = True):
+def walk(
+    scaffold: Scaffold, labels: ArrayLike, null_mask: np.ndarray | None = None, *, compiled: bool = True
+) -> tuple[np.ndarray, WalkArrays]:
     """Run the strand walk for validated ``labels`` (residues suffice) and optional nulls.
 
     Returns the edge-link partners ``(2 * n_corners,) int64`` and the kernel's arrays

@@ -47,7 +47,6 @@ from .motions import candidate_vertex_perms, edge_permutation, finite_motions, p
 MODES = ("rotations", "isometries", "none")
 
 
-
 @dataclass(frozen=True, eq=False)
 class SymmetryGroup:
     """The rigid motions mapping a scaffold onto itself (identity first).
@@ -120,6 +119,7 @@ class SymmetryGroup:
 
 
 def check_mode(mode: str) -> str:
+    """Return ``mode`` if it is one of :data:`MODES`; raise :class:`~lkspace.errors.LabelError` otherwise."""
     if mode not in MODES:
         raise LabelError(f"unknown symmetry mode {mode!r}; choose one of {', '.join(MODES)}")
     return mode
@@ -137,7 +137,7 @@ def check_label_set(labels: np.ndarray, mode: str) -> None:
 
 
 def symmetry_group(scaffold: Scaffold) -> SymmetryGroup:
-    """The rigid symmetry group of ``scaffold`` (cached on the scaffold object).
+    """Return the rigid symmetry group of ``scaffold`` (cached on the scaffold object).
 
     Examples
     --------

@@ -8,17 +8,28 @@ translation).  :mod:`lkspace.symmetry.group` assembles the group.
 
 from __future__ import annotations
 
+from collections.abc import Iterator
+from typing import TYPE_CHECKING, Any, TypeAlias
+
 import numpy as np
 
 from ..errors import ScaffoldError
 from ..model.scaffold import Scaffold
 
+if TYPE_CHECKING:
+    import igraph
+
 MAX_AUTOMORPHISMS = 500_000
+
+LatticePart: TypeAlias = tuple[np.ndarray, np.ndarray]
+"""Lattice part of a periodic motion: vertex offsets ``(n_vertices, dim) int64`` and ``N (dim, dim) int64``."""
+Motion: TypeAlias = tuple[np.ndarray, np.ndarray, np.ndarray, LatticePart | None]
+"""A rigid motion: vertex permutation ``sigma``, orthogonal ``Q (3, 3)``, translation ``tau (3,)``, lattice part."""
 
 
 # ---- combinatorial candidates ---------------------------------------------------------
-def incidence_graph(scaffold: Scaffold):
-    """The coloured vertex/edge/face incidence graph as ``(igraph.Graph, colours)``."""
+def incidence_graph(scaffold: Scaffold) -> tuple[igraph.Graph, list[int]]:
+    """Return the coloured vertex/edge/face incidence graph as ``(igraph.Graph, colours)``."""
     import igraph
 
     nv, ne = scaffold.n_vertices, scaffold.n_edges
@@ -81,7 +92,7 @@ def geometric_vertex_perms(scaffold: Scaffold) -> np.ndarray:
     x = scaffold.vertices - scaffold.vertices.mean(axis=0)
     tol = _tolerance(scaffold)
     ev = scaffold.edge_vertices
-    nbrs = [set() for _ in range(scaffold.n_vertices)]
+    nbrs: list[set[int]] = [set() for _ in range(scaffold.n_vertices)]
     for a, b in ev.tolist():
         nbrs[a].add(b)
         nbrs[b].add(a)
@@ -96,8 +107,8 @@ def geometric_vertex_perms(scaffold: Scaffold) -> np.ndarray:
     edges = {tuple(e) for e in ev.tolist()}
     found = set()
 
-    def close(a, b):
-        return abs(a - b) <= tol
+    def close(a: float | np.floating, b: float | np.floating) -> bool:
+        return abs(float(a) - float(b)) <= tol
 
     for w0 in range(scaffold.n_vertices):
         if not close(norms[w0], norms[v0]) or len(nbrs[w0]) != len(nbrs[v0]):
@@ -139,7 +150,12 @@ def _tolerance(scaffold: Scaffold) -> float:
     return 1e-6 * max(1.0, float(np.abs(scaffold.vertices).max()))
 
 
-def finite_motions(scaffold: Scaffold, sigmas: np.ndarray):
+def finite_motions(scaffold: Scaffold, sigmas: np.ndarray) -> Iterator[Motion]:
+    """Yield the rigid motions of a finite scaffold realizing the candidate vertex permutations ``sigmas``.
+
+    ``Q`` is the orthogonal Procrustes fit about the vertex centroid (and its composition with
+    the mirror in the vertices' plane when they are coplanar); the lattice part is ``None``.
+    """
     x = scaffold.vertices - scaffold.vertices.mean(axis=0)
     tol = _tolerance(scaffold)
     _, sv, vt = np.linalg.svd(x, full_matrices=True)
@@ -157,6 +173,7 @@ def finite_motions(scaffold: Scaffold, sigmas: np.ndarray):
 
 def lattice_point_group(scaffold: Scaffold) -> list[tuple[np.ndarray, np.ndarray]]:
     """Orthogonal ``Q`` with integer ``N`` such that ``B Q^T = N B`` (the lattice's point group)."""
+    assert scaffold.lattice is not None, "the lattice point group needs a periodic scaffold"
     basis = scaffold.lattice.basis
     dim = len(basis)
     tol = 1e-8
@@ -184,7 +201,7 @@ def lattice_point_group(scaffold: Scaffold) -> list[tuple[np.ndarray, np.ndarray
     return out
 
 
-def _face_keys(corner_keys: np.ndarray, face_starts: np.ndarray):
+def _face_keys(corner_keys: np.ndarray, face_starts: np.ndarray) -> np.ndarray | tuple[Any, ...]:
     """Faces as translation-normalized corner sets, sorted: an exact integer fingerprint.
 
     Vectorized when all faces have one size and each face's smallest vertex occurs once
@@ -218,7 +235,13 @@ def _face_keys(corner_keys: np.ndarray, face_starts: np.ndarray):
     return tuple(sorted(out))  # faces of mixed sizes: compare as nested tuples
 
 
-def periodic_motions(scaffold: Scaffold, sigmas: np.ndarray):
+def periodic_motions(scaffold: Scaffold, sigmas: np.ndarray) -> Iterator[Motion]:
+    """Yield the rigid motions of a periodic scaffold realizing the candidate vertex permutations ``sigmas``.
+
+    ``Q`` runs over the lattice point group; ``tau`` is fixed by vertex 0 and every face must
+    map onto a face.  The lattice part holds the vertex offsets and ``N`` (``B Q^T = N B``).
+    """
+    assert scaffold.lattice is not None and scaffold.corner_offsets is not None, "periodic motions need a lattice"
     tol = _tolerance(scaffold)
     pos = scaffold.vertices
     basis = scaffold.lattice.basis
@@ -239,7 +262,7 @@ def periodic_motions(scaffold: Scaffold, sigmas: np.ndarray):
             yield sigma, q, taus[i], (offsets, n)
 
 
-def edge_permutation(scaffold: Scaffold, sigma: np.ndarray, lattice_part) -> np.ndarray | None:
+def edge_permutation(scaffold: Scaffold, sigma: np.ndarray, lattice_part: LatticePart | None) -> np.ndarray | None:
     """(n_edges,) int64: image edge of each edge under the motion, or None if one is no edge."""
     keys = scaffold.edge_keys
     a, b = sigma[keys[:, 0]], sigma[keys[:, 1]]
@@ -263,5 +286,3 @@ def edge_permutation(scaffold: Scaffold, sigma: np.ndarray, lattice_part) -> np.
     if np.any(perm < 0) or len(np.unique(perm)) != len(perm):
         return None
     return perm
-
-
