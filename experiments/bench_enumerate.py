@@ -86,7 +86,7 @@ def main() -> None:
     # warm up: numba compilation and the symmetry group, outside the timing
     write_catalog(make_space("tetrahedron", "-2..2"), os.path.join(tempfile.mkdtemp(), "warm.parquet"))
     t0 = time.perf_counter()
-    totals = count_space(space).to_dict()
+    totals = count_space(space)
     t_count = time.perf_counter() - t0
 
     out_dir = args.keep or tempfile.mkdtemp(prefix="lkspace-bench-")
@@ -106,7 +106,7 @@ def main() -> None:
 
     df = pd.read_parquet(path, columns=["components", "orbit_size", "n_zero"])
     t_read = time.perf_counter() - t0
-    assert len(df) == written["designs"] == 10_194_250
+    assert len(df) == written.designs == 10_194_250
     assert int(df.orbit_size.sum()) == 244_140_625
     if not args.keep:
         shutil.rmtree(out_dir)
@@ -118,15 +118,15 @@ def main() -> None:
         "labels": "-2..2",
         "symmetry": "rotations",
         "assignments": space.assignments,
-        "designs": written["designs"],
-        "by_components": written["by_components"],
+        "designs": written.designs,
+        "by_components": written.by_components,
         "burnside_count_seconds": round(t_count, 3),
-        "burnside_designs": totals["designs"],
+        "burnside_designs": totals.designs,
         "catalog_seconds": round(t_write, 2),
         "jobs": args.jobs,
-        "shards": written["shards"],
+        "shards": written.shards,
         "assignments_per_second": round(space.assignments / t_write),
-        "designs_per_second": round(written["designs"] / t_write),
+        "designs_per_second": round(written.designs / t_write),
         "catalog_bytes": size,
         "read_back_seconds_3_columns": round(t_read, 2),
         "peak_memory": memory,
@@ -150,11 +150,11 @@ def main() -> None:
 | quantity | value |
 |---|---|
 | assignments | {space.assignments:,} |
-| designs (rows written) | {written["designs"]:,} |
+| designs (rows written) | {written.designs:,} |
 | Burnside count (no rows) | {t_count:.2f} s |
-| full catalog to Parquet ({args.jobs} jobs, {written["shards"]} shards) | **{t_write:.1f} s** |
+| full catalog to Parquet ({args.jobs} jobs, {written.shards} shards) | **{t_write:.1f} s** |
 | assignments per second | {space.assignments / t_write:,.0f} |
-| designs (rows) per second | {written["designs"] / t_write:,.0f} |
+| designs (rows) per second | {written.designs / t_write:,.0f} |
 | catalog size | {size / 1e6:.0f} MB |
 | peak RSS, main process / largest worker | {memory["main_mb"]:.0f} MB / {memory["largest_child_mb"]:.0f} MB |
 | per-assignment implementation (sample {args.sample:,}) | {naive["seconds_per_assignment"] * 1e6:.1f} us per assignment |

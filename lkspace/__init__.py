@@ -37,7 +37,7 @@ from .model.scaffold import Scaffold
 if TYPE_CHECKING:
     from .catalog.listing import designs
     from .catalog.reader import Catalog, read_catalog
-    from .catalog.shards import write_catalog
+    from .catalog.shards import CatalogWritten, write_catalog
     from .design.counting import DesignCount, count_designs
     from .formats.registry import export
     from .geometry.realization import GeometryParams, Realization, realize
@@ -59,6 +59,7 @@ _LAZY = {
     "count_designs": "design.counting",
     "DesignCount": "design.counting",
     "write_catalog": "catalog.shards",
+    "CatalogWritten": "catalog.shards",
     "read_catalog": "catalog.reader",
     "Catalog": "catalog.reader",
     "solve": "inverse.pipeline",
@@ -81,6 +82,7 @@ __all__ = [
     "count_designs",
     "DesignCount",
     "write_catalog",
+    "CatalogWritten",
     "read_catalog",
     "Catalog",
     "solve",

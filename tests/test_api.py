@@ -32,7 +32,7 @@ def test_every_function_takes_a_scaffold_a_path_or_a_name(sources, tmp_path):
         assert lkspace.realize(source, 1).n_curves == 3
         assert lkspace.export(source, tmp_path / "t.ply", 1) == "ply"
         written = lkspace.write_catalog(source, tmp_path / "t.parquet", "-2,2")
-        assert written["designs"] == 12 and len(lkspace.read_catalog(tmp_path / "t.parquet")) == 12
+        assert written.designs == 12 and len(lkspace.read_catalog(tmp_path / "t.parquet")) == 12
 
 
 def pd_concat(frames):

@@ -23,8 +23,8 @@ def test_single_file_catalog(tmp_path):
     path = tmp_path / "t.parquet"
     totals = write_catalog(space, path)
     df = pd.read_parquet(path)
-    assert len(df) == totals["designs"] == 1475
-    assert df.orbit_size.sum() == totals["assignments"] == 5**6
+    assert len(df) == totals.designs == 1475
+    assert df.orbit_size.sum() == totals.assignments == 5**6
     for col in ("labels", "components", "orbit_size", "n_zero", "strand_lengths"):
         assert col in df.columns
     assert all(isinstance(int(x), int) for x in df.labels.iloc[0]) and len(df.labels.iloc[0]) == 6
@@ -46,7 +46,7 @@ def test_sharded_catalog_and_resume(tmp_path):
     write_catalog(space, single)
     folder = tmp_path / "many"
     totals = write_catalog(space, folder, shards=3)
-    assert totals["shards"] == 3 and totals["designs"] == 22815
+    assert totals.shards == 3 and totals.designs == 22815
     a = pd.read_parquet(single).sort_values("key").reset_index(drop=True)
     b = pd.read_parquet(folder).sort_values("key").reset_index(drop=True)
     assert a.key.tolist() == b.key.tolist() and a.orbit_size.tolist() == b.orbit_size.tolist()
@@ -55,7 +55,7 @@ def test_sharded_catalog_and_resume(tmp_path):
     kept = os.path.getmtime(folder / parts[0])
     os.remove(folder / parts[1])
     again = write_catalog(space, folder, shards=3, resume=True)
-    assert again["shards_resumed"] == 2 and again["designs"] == 22815
+    assert again.shards_resumed == 2 and again.designs == 22815
     assert os.path.getmtime(folder / parts[0]) == kept
     assert len(read_catalog(folder)) == 22815
     with pytest.raises(CatalogError, match="different settings"):
@@ -67,7 +67,7 @@ def test_parallel_jobs(tmp_path):
     space = make_space("cube", "-1..1", "isometries")
     totals = write_catalog(space, tmp_path / "p", jobs=2, shards=4)
     df = pd.read_parquet(tmp_path / "p")
-    assert len(df) == totals["designs"] and df.orbit_size.sum() == 3**12
+    assert len(df) == totals.designs and df.orbit_size.sum() == 3**12
     assert df.key.is_unique
 
 
@@ -188,5 +188,5 @@ def test_interrupted_run_leaves_no_partial_part_and_resumes(tmp_path, monkeypatc
     assert sorted(os.listdir(folder)) == ["_lkspace.json", "part-00000.parquet"]  # no temporary or partial part
     monkeypatch.setattr(catalog, "space_batches", real)
     totals = write_catalog(space, folder, shards=3, resume=True)
-    assert totals["shards_resumed"] == 1 and totals["designs"] == 22815
+    assert totals.shards_resumed == 1 and totals.designs == 22815
     assert pd.read_parquet(folder).orbit_size.sum() == 3**12

@@ -16,6 +16,7 @@ import multiprocessing as mp
 import os
 from collections.abc import Callable, Iterable
 from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
+from dataclasses import asdict, dataclass
 from typing import Any, TypeAlias
 
 import numpy as np
@@ -40,6 +41,52 @@ _STATE: dict[str, Any] = {}
 
 Progress: TypeAlias = Callable[[int | None], Callable[[int], object] | None]
 """``progress(total)`` -> ``None`` or ``advance(rows written so far)``; ``total`` is ``None`` when unknown."""
+
+
+@dataclass(frozen=True, repr=False)
+class CatalogWritten:
+    """What :func:`write_catalog` wrote: totals of the run and where it went.
+
+    Attributes
+    ----------
+    designs : int
+        Rows written (designs, or residue-class orbits in the other modes).
+    assignments, assignments_covered : int
+        ``|label set| ** n_edges``, and the assignments the rows stand for.
+    by_components : dict of int -> int
+        Rows by number of components.
+    output : str
+        Absolute path of the catalog file or folder.
+    shards, shards_resumed : int
+        Parts written, and parts kept from an earlier run (``resume=True``).
+    group_order, acting_order : int
+        Order of the symmetry group, and number of distinct signed edge permutations.
+    symmetry, mode : str
+    label_set : list of int
+    """
+
+    designs: int
+    assignments: int
+    assignments_covered: int
+    by_components: dict[int, int]
+    output: str
+    shards: int
+    shards_resumed: int
+    group_order: int
+    acting_order: int
+    symmetry: str
+    label_set: list[int]
+    mode: str
+    format_version: int = FORMAT_VERSION
+
+    def __repr__(self) -> str:
+        return f"CatalogWritten({self.designs:,} rows to {self.output} in {self.shards} part(s))"
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON form: the ``lkspace enumerate --json`` fields (``by_components`` keyed by strings)."""
+        out = asdict(self)
+        out["by_components"] = {str(k): v for k, v in self.by_components.items()}
+        return out
 
 
 def catalog_metadata(
@@ -152,8 +199,8 @@ def write_catalog(
     shards: int | None = None,
     resume: bool = False,
     progress: Progress | None = None,
-) -> dict[str, Any]:
-    """Walk a design space and write its catalog; returns the totals (the ``enumerate`` JSON).
+) -> CatalogWritten:
+    """Walk a design space and write its catalog; return its totals (:class:`CatalogWritten`).
 
     ``space`` is a :class:`~lkspace.design.space.DesignSpace`, or a scaffold (a path or a
     built-in name) whose space is given by ``label_set``, ``symmetry`` and ``no_zero``.
@@ -285,23 +332,22 @@ def _matches(part: str, meta: dict[str, Any]) -> bool:
 
 def _totals(
     space: DesignSpace, meta: dict[str, Any], summaries: list[dict[str, Any]], path: str, shards: int, skipped: int
-) -> dict[str, Any]:
-    by: dict[str, int] = {}
+) -> CatalogWritten:
+    by: dict[int, int] = {}
     for s in summaries:
         for k, v in s["by_components"].items():
-            by[k] = by.get(k, 0) + v
-    return {
-        "designs": sum(s["rows"] for s in summaries),
-        "assignments": space.assignments,
-        "assignments_covered": sum(s["assignments_covered"] for s in summaries),
-        "group_order": space.group_order,
-        "acting_order": space.n_actions,
-        "symmetry": space.mode,
-        "label_set": space.label_set.tolist(),
-        "mode": meta["mode"],
-        "by_components": dict(sorted(by.items(), key=lambda kv: int(kv[0]))),
-        "output": os.path.abspath(path),
-        "shards": shards,
-        "shards_resumed": skipped,
-        "format_version": FORMAT_VERSION,
-    }
+            by[int(k)] = by.get(int(k), 0) + v
+    return CatalogWritten(
+        designs=sum(s["rows"] for s in summaries),
+        assignments=space.assignments,
+        assignments_covered=sum(s["assignments_covered"] for s in summaries),
+        by_components=dict(sorted(by.items())),
+        output=os.path.abspath(path),
+        shards=shards,
+        shards_resumed=skipped,
+        group_order=space.group_order,
+        acting_order=space.n_actions,
+        symmetry=space.mode,
+        label_set=space.label_set.tolist(),
+        mode=meta["mode"],
+    )

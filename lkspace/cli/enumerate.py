@@ -180,7 +180,7 @@ def enumerate_cmd(
                 shards=shards,
                 resume=resume,
                 progress=factory,
-            )
+            ).to_dict()
         finally:
             if bar is not None:
                 bar.stop()
