@@ -94,9 +94,10 @@ class Catalog:
 
     def __getitem__(self, rows: slice | ArrayLike | pd.Series) -> Catalog:
         """Return the catalog restricted to ``rows``: a boolean mask, an index array or a slice."""
-        if isinstance(rows, pd.Series):
-            rows = rows.to_numpy(dtype=bool) if rows.dtype == bool or str(rows.dtype) == "bool[pyarrow]" else rows
-        rows = np.asarray(rows) if not isinstance(rows, slice) else rows
+        if isinstance(rows, pd.Series) and pd.api.types.is_bool_dtype(rows.dtype):
+            rows = rows.to_numpy(dtype=bool)  # Arrow-backed masks too
+        elif not isinstance(rows, slice):
+            rows = np.asarray(rows)
         frame = self.frame.iloc[rows].reset_index(drop=True)
         return Catalog(frame, self.labels[rows], self.metadata, self.path)
 

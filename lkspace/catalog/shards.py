@@ -107,7 +107,7 @@ def catalog_metadata(
             "edges": sc.n_edges,
             "faces": sc.n_faces,
             "periodic": sc.periodic,
-            "data": scaffold_to_dict(sc.with_labels(None, None)),
+            "data": {k: v for k, v in scaffold_to_dict(sc).items() if k not in ("labels", "nulls")},  # geometry only
         },
         "label_set": space.label_set.tolist(),
         "symmetry": space.mode,

@@ -44,7 +44,7 @@ class CatalogWriter:
 
     def _flush(self) -> None:
         if self._pending:
-            table = pa.Table.from_batches([b.replace_schema_metadata(self.schema.metadata) for b in self._pending])
+            table = pa.Table.from_batches(self._pending, schema=self.schema)
             self._writer.write_table(table, row_group_size=ROW_GROUP)
         self._pending, self._n_pending = [], 0
 

@@ -15,7 +15,7 @@ from typing import Any
 
 import numpy as np
 
-from ..io.sources import ScaffoldSource, load
+from ..io.sources import ScaffoldSource
 from ..model.specs import LabelSetSpec
 from .space import MAX_CLASSES, DesignSpace, make_space
 
@@ -135,4 +135,4 @@ def count_designs(
     >>> count_designs("cube", "-1..1")
     DesignCount(22,815 designs of 531,441 assignments; by components {1: 8800, 2: 9837, 3: 3534, 4: 641, 5: 2, 6: 1})
     """
-    return count_space(make_space(load(scaffold), label_set, symmetry, no_zero), components)
+    return count_space(make_space(scaffold, label_set, symmetry, no_zero), components)
