@@ -3,20 +3,26 @@
 The tree::
 
     LkspaceError                      base of everything lkspace raises on purpose
+    ├── UsageError(ValueError)        an option or argument that cannot be used (exit 2)
+    │   └── TooLargeError             work past a documented bound (asks for --yes or a smaller input)
     ├── ScaffoldError(ValueError)     a scaffold that cannot be built or read
     │   └── RadialOrderError          two face-sides of an edge (K >= 3) at the same angle
     ├── LabelError(ValueError)        twist labels, label sets, null edge-sides
     ├── CatalogError(ValueError)      a catalog that cannot be read or written
+    │   └── CatalogLockedError        another run is writing the same catalog
     ├── GeometryError(ValueError)     realized strands that would touch, unusable parameters
     ├── DiagramError(ValueError)      a projection that is not generic
-    ├── ExportError(ValueError)       an output path or format that cannot be written
+    ├── ExportError(ValueError)       an output path or format that cannot be written (exit 2)
     └── MissingDependencyError(ImportError)  an optional extra is not installed
 
     SolveVerificationError(RuntimeError)  a solver answer failed the tracer check: a bug
+    LkspaceWarning(UserWarning)       something suspicious but usable (e.g. faces that share no edge)
 
 Messages say what, where and what arrived, e.g.
 ``"tetra.obj line 7: face vertex index 9 out of range 1..4"``.
-The command line turns any ``LkspaceError`` into one stderr line and exit code 2.
+The command line turns any ``LkspaceError`` into one stderr line (and, under ``--json``,
+an ``{"error": {...}}`` object on stdout) with the error's :attr:`~LkspaceError.exit_code`:
+1 for bad data (files, scaffolds, catalogs), 2 for bad usage (options and arguments).
 """
 
 from __future__ import annotations
@@ -26,7 +32,28 @@ from types import ModuleType
 
 
 class LkspaceError(Exception):
-    """Base class of every error lkspace raises on purpose."""
+    """Base class of every error lkspace raises on purpose.
+
+    ``exit_code`` is the command line's exit status for it: 1 (bad data) unless the class
+    or the ``usage=True`` keyword says the error is in how lkspace was called (2).
+    """
+
+    exit_code = 1
+
+    def __init__(self, *args: object, usage: bool | None = None) -> None:
+        super().__init__(*args)
+        if usage is not None:
+            self.exit_code = 2 if usage else 1
+
+
+class UsageError(LkspaceError, ValueError):
+    """An option or argument value that cannot be used (exit status 2)."""
+
+    exit_code = 2
+
+
+class TooLargeError(UsageError):
+    """Work past a documented bound: the message gives the estimate and how to go ahead."""
 
 
 class ScaffoldError(LkspaceError, ValueError):
@@ -45,6 +72,10 @@ class CatalogError(LkspaceError, ValueError):
     """A catalog file is malformed or does not match its scaffold."""
 
 
+class CatalogLockedError(CatalogError):
+    """Another run holds the lock of the catalog being written."""
+
+
 class GeometryError(LkspaceError, ValueError):
     """The realized strands are not an embedding (or parameters are unusable)."""
 
@@ -54,11 +85,17 @@ class DiagramError(LkspaceError, ValueError):
 
 
 class ExportError(LkspaceError, ValueError):
-    """An output path or format that cannot be written."""
+    """An output path or format that cannot be written (a usage error: exit status 2)."""
+
+    exit_code = 2
 
 
 class SolveVerificationError(RuntimeError):
     """A solver answer failed the tracer check: a bug in lkspace, never bad input."""
+
+
+class LkspaceWarning(UserWarning):
+    """Something suspicious in the input that lkspace can still work with."""
 
 
 class MissingDependencyError(LkspaceError, ImportError):

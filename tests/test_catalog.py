@@ -159,7 +159,7 @@ def test_cli_count_only_matches_walk(capsys, tmp_path):
 )
 def test_cli_errors_are_one_line(capsys, args, message):
     code, out, err = run(capsys, "enumerate", *args, "--json")
-    assert code == 2 and out == ""
+    assert code == 2 and json.loads(out)["error"]["exit_code"] == 2
     assert message in err and len(err.strip().splitlines()) == 1
 
 

@@ -130,7 +130,7 @@ def test_cli_export_json(tmp_path, capsys):
 
 def test_cli_export_errors_are_one_line(tmp_path, capsys):
     code, _, err = run(capsys, "export", "book:6", "--twist", "1", "--radius", "0.6", "-o", str(tmp_path / "x.obj"))
-    assert code == 2 and err.count("\n") == 1 and "self-intersect" in err
+    assert code == 1 and err.count("\n") == 1 and "self-intersect" in err
     assert not (tmp_path / "x.obj").exists()
     code, _, err = run(capsys, "export", "cube", "--twist", "1,2", "-o", str(tmp_path / "x.obj"))
     assert code == 2 and err.count("\n") == 1
@@ -191,7 +191,7 @@ def test_cli_catalog_without_metadata(tmp_path, capsys):
     cat = tmp_path / "plain.parquet"
     pq.write_table(pa.table({"labels": [[1, 1, 1]]}), cat)
     code, _, err = run(capsys, "export", str(cat), "--row", "0", "-o", str(tmp_path / "x.obj"))
-    assert code == 2 and "not an lkspace catalog" in err
+    assert code == 1 and "not an lkspace catalog" in err
 
 
 def test_cli_export_periodic_block(tmp_path, capsys):

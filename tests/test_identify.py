@@ -154,7 +154,7 @@ def test_cli_identify_human_and_errors(capsys):
     assert main(["identify", "tetrahedron", "--twist", "1"]) == 0
     out, _ = capsys.readouterr()
     assert "L6a4" in out
-    assert main(["identify", "tetrahedron", "--twist", "1", "--null", "0.0"]) == 2
+    assert main(["identify", "tetrahedron", "--twist", "1", "--null", "0.0"]) == 1
     _, err = capsys.readouterr()
     assert err.count("\n") == 1 and "open strands" in err
 
@@ -166,7 +166,7 @@ def test_missing_extra_names_the_install_hint(monkeypatch, tetra):
     with pytest.raises(MissingDependencyError, match=r"pip install 'lkspace\[knots\]'"):
         identify(tetra, 1)
     code = main(["identify", "tetrahedron", "--twist", "1"])
-    assert code == 2
+    assert code == 1
 
 
 TORUS_2 = {1: "0_1", 2: "L2a1", 3: "3_1", 4: "L4a1", 5: "5_1", 6: "L6a3", 7: "7_1", 8: "L8a14", 9: "9_1"}

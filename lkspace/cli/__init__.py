@@ -3,18 +3,22 @@
 Commands live in their own modules, imported only when run (or when ``--help`` lists
 them), and import the heavy libraries they need inside the command.  Every
 :class:`~lkspace.errors.LkspaceError` (and every usage error) becomes one line on stderr
-and exit status 2; nothing else reaches the user as a traceback.
+and its exit status (1 bad data, 2 bad usage); nothing reaches the user as a traceback.
 """
 
 from __future__ import annotations
 
 import importlib
+import json
+import os
 import sys
+import warnings
 
 import click
 
 from .. import __version__
 from ..errors import LkspaceError
+from ..progress import install, stderr_reporter
 
 COMMANDS = {
     "scaffold": "core:scaffold_cmd",
@@ -54,26 +58,57 @@ def cli() -> None:
 
 
 def main(argv: list[str] | None = None) -> int:
-    """Run the command line; return the exit status."""
-    try:
-        cli.main(args=argv, prog_name="lkspace", standalone_mode=False)
-    except LkspaceError as exc:
-        click.echo(f"lkspace: error: {exc}", err=True)
-        return 2
-    except click.exceptions.Abort:
-        click.echo("lkspace: aborted", err=True)
-        return 130
-    except click.ClickException as exc:
-        click.echo(f"lkspace: error: {exc.format_message()}", err=True)
-        return exc.exit_code if exc.exit_code else 2
-    except click.exceptions.Exit as exc:
-        return exc.exit_code
-    except KeyboardInterrupt:
-        click.echo("lkspace: interrupted", err=True)
-        return 130
-    except BrokenPipeError:
-        return 1
+    """Run the command line; return the exit status.
+
+    Errors never reach Python's default handler: each becomes one line on stderr (and,
+    under ``--json``, an ``{"error": {...}}`` object on stdout) and an exit status of 1
+    (bad data), 2 (bad usage), 130 (interrupted) or 70 (a bug in lkspace; set
+    ``LKSPACE_DEBUG=1`` for the traceback).
+    """
+    args = sys.argv[1:] if argv is None else list(argv)
+    as_json = "--json" in args[: args.index("--")] if "--" in args else "--json" in args
+    install(stderr_reporter())
+    with warnings.catch_warnings():
+        warnings.showwarning = _show_warning
+        try:
+            cli.main(args=args, prog_name="lkspace", standalone_mode=False)
+        except LkspaceError as exc:
+            return _fail(as_json, type(exc).__name__, str(exc), exc.exit_code)
+        except (click.exceptions.Abort, KeyboardInterrupt):
+            return _fail(as_json, "Interrupted", "interrupted", 130)
+        except click.ClickException as exc:
+            return _fail(as_json, "UsageError", exc.format_message(), exc.exit_code or 2)
+        except click.exceptions.Exit as exc:
+            return exc.exit_code
+        except BrokenPipeError:
+            return 1
+        except OSError as exc:  # a full disk, a lost mount: the system's words, the file named
+            where = f"{exc.filename}: " if exc.filename else ""
+            return _fail(as_json, "OSError", f"{where}{exc.strerror or exc}", 1)
+        except MemoryError:
+            return _fail(as_json, "MemoryError", "out of memory; try a smaller input or label set", 1)
+        except Exception as exc:
+            if os.environ.get("LKSPACE_DEBUG"):
+                raise
+            message = f"internal error ({type(exc).__name__}: {exc}); please report it (LKSPACE_DEBUG=1 shows where)"
+            return _fail(as_json, "InternalError", message, 70)
+        finally:
+            install(None)
     return 0
+
+
+def _fail(as_json: bool, kind: str, message: str, code: int) -> int:
+    """Report an error as one stderr line (and a JSON object under ``--json``); return ``code``."""
+    line = " ".join(message.split())
+    click.echo(f"lkspace: error: {line}", err=True)
+    if as_json:
+        sys.stdout.write(json.dumps({"error": {"type": kind, "message": line, "exit_code": code}}) + "\n")
+    return code
+
+
+def _show_warning(message: Warning | str, category: type[Warning], *_args: object, **_kwargs: object) -> None:
+    """Show a warning as one ``lkspace: warning:`` line on stderr."""
+    click.echo(f"lkspace: warning: {' '.join(str(message).split())}", err=True)
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -2,15 +2,17 @@
 
 from __future__ import annotations
 
+import contextlib
 import json
+import os
 import sys
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from typing import Any
 
 import click
 import numpy as np
 
-from ..errors import LabelError
+from ..errors import LabelError, LkspaceError
 from ..io.sources import load
 from ..model.scaffold import Scaffold
 from ..model.specs import parse_label_set, parse_labels, parse_nulls
@@ -25,13 +27,33 @@ class Context:
         self.notes: dict[str, Any] = {}
 
 
+@contextlib.contextmanager
+def usage_errors(usage: bool = True) -> Iterator[None]:
+    """Mark the lkspace errors raised inside as usage errors (exit 2): the input was an option value."""
+    try:
+        yield
+    except LkspaceError as exc:
+        if usage:
+            exc.exit_code = 2
+        raise
+
+
+def names_file(text: str) -> bool:
+    """Return whether the option or argument value ``text`` names an existing path (data, not usage)."""
+    return os.path.lexists(text)
+
+
 def load_mesh(ctx: Context, mesh: str | None) -> Scaffold:
-    """Load MESH, or the default built-in (said on stderr and in the JSON)."""
+    """Load MESH, or the default built-in (said on stderr and in the JSON).
+
+    Errors in a file are bad data (exit 1); a bad built-in name or missing path is bad usage (2).
+    """
     if mesh is None:
         click.echo(f"lkspace: no MESH given; using the built-in {DEFAULT!r}", err=True)
         ctx.notes["default_scaffold"] = True
         mesh = DEFAULT
-    scaffold = load(mesh)
+    with usage_errors(not names_file(mesh)):
+        scaffold = load(mesh)
     ctx.notes["scaffold"] = scaffold.name
     return scaffold
 
@@ -40,19 +62,24 @@ def labels_of(scaffold: Scaffold, spec: str | None) -> np.ndarray:
     """Return the twist labels of ``--twist SPEC``, else the labels stored in the scaffold file."""
     if spec is None:
         if scaffold.labels is None:
-            raise LabelError(f"{scaffold.name}: no --twist given and the scaffold carries no twist labels")
+            raise LabelError(f"{scaffold.name}: no --twist given and the scaffold carries no twist labels", usage=True)
         return scaffold.labels
-    return parse_labels(scaffold, spec)
+    with usage_errors(not names_file(spec)):
+        return parse_labels(scaffold, spec)
 
 
 def nulls_of(scaffold: Scaffold, spec: str | None) -> np.ndarray | None:
     """Return the null edge-sides ``(n_corners,) bool`` of ``--null SPEC``, else the scaffold's own (or ``None``)."""
-    return scaffold.nulls if spec is None else parse_nulls(scaffold, spec)
+    if spec is None:
+        return scaffold.nulls
+    with usage_errors(not names_file(spec)):
+        return parse_nulls(scaffold, spec)
 
 
 def label_set(spec: str) -> np.ndarray:
     """Return the label set of ``--labels SET`` as a sorted ``(n,) int64`` array."""
-    return parse_label_set(spec)
+    with usage_errors():
+        return parse_label_set(spec)
 
 
 def emit(ctx: Context, payload: dict[str, Any], human: Callable[[], object] | None) -> None:

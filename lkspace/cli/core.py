@@ -13,7 +13,7 @@ from ..io.scaffold_json import format_scaffold_json, scaffold_to_dict
 from ..model.scaffold import Scaffold
 from ..scaffolds import builtin
 from ..strands.tracing import trace
-from .common import Context, emit, json_option, labels_of, load_mesh, mesh_argument, nulls_of
+from .common import Context, emit, json_option, labels_of, load_mesh, mesh_argument, nulls_of, usage_errors
 
 if TYPE_CHECKING:
     from rich.console import Console
@@ -60,7 +60,8 @@ def scaffold_cmd(name: str, output: str | None, as_json: bool) -> None:
     gives a Voronoi scaffold of your own generator points.
     """
     ctx = Context(as_json)
-    scaffold = builtin(name)
+    with usage_errors():
+        scaffold = builtin(name)
     if output is None:
         if as_json:
             emit(ctx, {"scaffold": name, "written": None, "data": scaffold_to_dict(scaffold)}, None)

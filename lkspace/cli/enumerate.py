@@ -10,7 +10,7 @@ from typing import TYPE_CHECKING, Any
 import click
 
 from ..design.space import WALK_MODES, DesignSpace, make_space
-from ..errors import LabelError
+from ..errors import UsageError
 from ..symmetry.group import MODES as SYMMETRY_MODES
 from .common import Context, emit, json_option, label_set, labels_option, load_mesh, mesh_argument
 
@@ -153,9 +153,9 @@ def enumerate_cmd(
     scaffold = load_mesh(ctx, mesh)
     labels = label_set(labels_spec)
     if sample is not None and mode != "spanning-trees":
-        raise LabelError("--sample applies to --mode spanning-trees only")
+        raise UsageError("--sample applies to --mode spanning-trees only")
     if identify and (output is None or count_only):
-        raise LabelError("--identify names the rows of a written catalog: give -o CATALOG.parquet")
+        raise UsageError("--identify names the rows of a written catalog: give -o CATALOG.parquet")
     space = make_space(scaffold, labels, symmetry, no_zero)
     started = time.perf_counter()
     if count_only or output is None:

@@ -9,7 +9,7 @@ from typing import TYPE_CHECKING, Any, TypeGuard, TypeVar
 import click
 import numpy as np
 
-from ..errors import CatalogError, LabelError, ScaffoldError
+from ..errors import CatalogError, UsageError
 from ..model.scaffold import Scaffold
 from .common import Context, emit, json_option, labels_of, load_mesh, nulls_of
 
@@ -34,7 +34,7 @@ def catalog_row(path: str, row: int) -> tuple[Scaffold, np.ndarray]:
 
     catalog = read_catalog(path, columns=[])
     if not 0 <= row < len(catalog):
-        raise CatalogError(f"{path}: row {row} out of range 0..{len(catalog) - 1}")
+        raise UsageError(f"{path}: row {row} out of range 0..{len(catalog) - 1}")
     scaffold = catalog.scaffold
     labels = catalog.labels[row].astype(np.int64)
     if len(labels) != scaffold.n_edges:
@@ -70,14 +70,14 @@ def resolve_design(
     """Return ``(scaffold, labels, nulls)`` from MESH + ``--twist``, or from a catalog row."""
     if is_catalog(mesh):
         if row is None:
-            raise CatalogError(f"{mesh}: give --row I to pick a design of the catalog")
+            raise UsageError(f"{mesh}: give --row I to pick a design of the catalog")
         if twist_spec is not None:
-            raise LabelError("--twist and a catalog --row are exclusive")
+            raise UsageError("--twist and a catalog --row are exclusive")
         scaffold, labels = catalog_row(mesh, row)
         ctx.notes.update(scaffold=scaffold.name, catalog=os.path.abspath(mesh), row=row)
         return scaffold, labels, nulls_of(scaffold, null_spec)
     if row is not None:
-        raise LabelError("--row needs a catalog (.parquet) as MESH")
+        raise UsageError("--row needs a catalog (.parquet) as MESH")
     scaffold = load_mesh(ctx, mesh)
     return scaffold, labels_of(scaffold, twist_spec), nulls_of(scaffold, null_spec)
 
@@ -87,13 +87,13 @@ def block_translations(scaffold: Scaffold, spec: str | None) -> np.ndarray | Non
     if spec is None:
         return None
     if not scaffold.periodic:
-        raise ScaffoldError(f"--block {spec}: {scaffold.name} is not periodic")
+        raise UsageError(f"--block {spec}: {scaffold.name} is not periodic")
     try:
         sizes = [int(x) for x in spec.lower().split("x")]
     except ValueError:
-        raise LabelError(f"--block {spec!r}: expected sizes like 3x3 or 2x2x2") from None
+        raise UsageError(f"--block {spec!r}: expected sizes like 3x3 or 2x2x2") from None
     if len(sizes) != scaffold.dim or min(sizes) < 1:
-        raise LabelError(f"--block {spec!r}: give {scaffold.dim} positive sizes for a {scaffold.dim}D lattice")
+        raise UsageError(f"--block {spec!r}: give {scaffold.dim} positive sizes for a {scaffold.dim}D lattice")
     grids = np.meshgrid(*[np.arange(n) for n in sizes], indexing="ij")
     return np.column_stack([g.reshape(-1) for g in grids])
 

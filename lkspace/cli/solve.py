@@ -10,10 +10,10 @@ from contextlib import nullcontext
 import click
 
 from .. import io
-from ..errors import LabelError
+from ..errors import UsageError
 from ..model.scaffold import Scaffold
 from ..model.specs import edge_index
-from .common import Context, emit, json_option, label_set, labels_option, load_mesh, mesh_argument
+from .common import Context, emit, json_option, label_set, labels_option, load_mesh, mesh_argument, usage_errors
 
 
 def _edge_values(
@@ -24,12 +24,12 @@ def _edge_values(
     for item in items:
         name, eq, value = item.rpartition("=")
         if not eq or not name.strip():
-            raise LabelError(
+            raise UsageError(
                 f"{option} {item!r}: write EDGE=VALUE, e.g. {option} 3-7={'odd' if 'parity' in option else '2'}"
             )
         e = edge_index(scaffold, name)
         if e in out:
-            raise LabelError(f"{option}: edge {scaffold.edge_name(e)} given twice")
+            raise UsageError(f"{option}: edge {scaffold.edge_name(e)} given twice")
         out[e] = parse(value.strip(), item)
     return out
 
@@ -38,12 +38,12 @@ def _label(value: str, item: str) -> int:
     try:
         return int(value)
     except ValueError:
-        raise LabelError(f"--fix {item!r}: {value!r} is not an integer label") from None
+        raise UsageError(f"--fix {item!r}: {value!r} is not an integer label") from None
 
 
 def _parity(value: str, item: str) -> int:
     if value.lower() not in ("odd", "even"):
-        raise LabelError(f"--parity {item!r}: expected odd or even, got {value!r}")
+        raise UsageError(f"--parity {item!r}: expected odd or even, got {value!r}")
     return int(value.lower() == "odd")
 
 
@@ -154,10 +154,11 @@ def solve_cmd(
     ctx = Context(as_json)
     scaffold = load_mesh(ctx, mesh)
     if output is not None and os.path.splitext(output)[1].lower() != ".json":
-        raise LabelError(f"-o {output}: designs are written as lkspace scaffold files; use a .json name")
+        raise UsageError(f"-o {output}: designs are written as lkspace scaffold files; use a .json name")
     labels = label_set(labels_spec)
-    fixes = _edge_values(scaffold, fix_items, "--fix", _label)
-    parities = _edge_values(scaffold, parity_items, "--parity", _parity)
+    with usage_errors():
+        fixes = _edge_values(scaffold, fix_items, "--fix", _label)
+        parities = _edge_values(scaffold, parity_items, "--parity", _parity)
     console = Console(stderr=True)
     spinner = (
         console.status(f"solving {scaffold.name} for {components} component(s)…")

@@ -202,9 +202,9 @@ def symmetry_actions(scaffold: Scaffold, mode: str, label_set: np.ndarray) -> li
     if mode == "none":
         return []
     if mode not in ("rotations", "isometries"):
-        raise LabelError(f"--distinct-up-to {mode!r}: expected rotations, isometries or none")
+        raise LabelError(f"--distinct-up-to {mode!r}: expected rotations, isometries or none", usage=True)
     if mode == "isometries" and not np.array_equal(np.sort(-label_set), label_set):
-        raise LabelError("--distinct-up-to isometries: the label set must be closed under negation")
+        raise LabelError("--distinct-up-to isometries: the label set must be closed under negation", usage=True)
     perms, signs = symmetry_group(scaffold).action(mode)
     return [(perm, int(sign)) for perm, sign in zip(perms[1:], signs[1:], strict=True)]  # identity first
 

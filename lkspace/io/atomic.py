@@ -12,9 +12,10 @@ from collections.abc import Iterator
 def atomic_path(path: str | os.PathLike[str], suffix: str = "") -> Iterator[str]:
     """Yield a temporary path beside ``path``; rename it onto ``path`` on success.
 
-    On error the temporary file is removed and ``path`` is left untouched.
+    On error the temporary file is removed and ``path`` is left untouched.  A symlink
+    at ``path`` is followed: the file it points to is replaced and the link kept.
     """
-    path = os.fspath(path)
+    path = os.path.realpath(os.fspath(path))
     directory = os.path.dirname(os.path.abspath(path))
     fd, tmp = tempfile.mkstemp(prefix="." + os.path.basename(path) + ".", suffix=suffix or ".tmp", dir=directory)
     os.close(fd)

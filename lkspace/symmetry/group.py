@@ -121,7 +121,7 @@ class SymmetryGroup:
 def check_mode(mode: str) -> str:
     """Return ``mode`` if it is one of :data:`MODES`; raise :class:`~lkspace.errors.LabelError` otherwise."""
     if mode not in MODES:
-        raise LabelError(f"unknown symmetry mode {mode!r}; choose one of {', '.join(MODES)}")
+        raise LabelError(f"unknown symmetry mode {mode!r}; choose one of {', '.join(MODES)}", usage=True)
     return mode
 
 
@@ -132,7 +132,8 @@ def check_label_set(labels: np.ndarray, mode: str) -> None:
         if missing:
             raise LabelError(
                 f"--symmetry isometries maps label t to -t under reflections, but the label set "
-                f"{np.asarray(labels).tolist()} lacks {missing}; use a set closed under negation or --symmetry rotations"
+                f"{np.asarray(labels).tolist()} lacks {missing}; use a set closed under negation or --symmetry rotations",
+                usage=True,
             )
 
 

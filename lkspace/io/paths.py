@@ -1,0 +1,70 @@
+"""Checks on the files lkspace reads and writes, made before any work is done.
+
+Inputs must be regular files (a FIFO or a device would block or never end); outputs
+must be writable files in an existing folder, never a device or a folder, and a symlink
+is followed (the file it points to is replaced, the link kept).
+"""
+
+from __future__ import annotations
+
+import os
+import stat
+
+from ..errors import ExportError, ScaffoldError
+
+
+def input_file(path: str | os.PathLike[str], what: str = "input") -> str:
+    """Return ``path`` if it names a readable regular file; raise a one-line error otherwise."""
+    text = os.fspath(path)
+    try:
+        mode = os.stat(text).st_mode
+    except FileNotFoundError:
+        raise ScaffoldError(f"{text}: no such {what} file") from None
+    except OSError as exc:
+        raise ScaffoldError(f"{text}: cannot read {what}: {exc.strerror}") from None
+    if stat.S_ISDIR(mode):
+        raise ScaffoldError(f"{text}: is a folder, not a {what} file")
+    if not stat.S_ISREG(mode):
+        raise ScaffoldError(f"{text}: not a regular file (a FIFO, socket or device); give a {what} file")
+    if not os.access(text, os.R_OK):
+        raise ScaffoldError(f"{text}: cannot read {what}: permission denied")
+    return text
+
+
+def output_file(path: str | os.PathLike[str], extensions: tuple[str, ...] = ()) -> str:
+    """Return the file to write for output ``path``: checked, with a symlink resolved.
+
+    ``extensions`` (lower case, with the dot) are the ones the format may have; another
+    extension is an error naming them.  The folder must exist and be writable; an
+    existing target must be a regular file.
+    """
+    text = os.fspath(path)
+    if not text.strip():
+        raise ExportError("output path is empty")
+    if text.endswith(("/", os.sep)):
+        raise ExportError(f"{text}: output path names a folder; give a file name")
+    ext = os.path.splitext(text)[1].lower()
+    if extensions and ext not in extensions:
+        raise ExportError(
+            f"{text}: extension {ext or '(none)'!r} does not match the format; use {', '.join(extensions)}"
+        )
+    target = os.path.realpath(text)
+    if os.path.lexists(target):
+        mode = os.stat(target).st_mode
+        if stat.S_ISDIR(mode):
+            raise ExportError(f"{text}: is a folder; give a file name")
+        if not stat.S_ISREG(mode):
+            raise ExportError(f"{text}: is a device, FIFO or socket, not a file lkspace may replace")
+    output_folder(os.path.dirname(target) or ".", text)
+    return target
+
+
+def output_folder(folder: str, shown: str | None = None) -> None:
+    """Raise unless ``folder`` exists, is a folder and is writable (``shown``: the path to name)."""
+    name = shown or folder
+    if not os.path.exists(folder):
+        raise ExportError(f"{name}: folder {folder} does not exist")
+    if not os.path.isdir(folder):
+        raise ExportError(f"{name}: {folder} is not a folder")
+    if not os.access(folder, os.W_OK | os.X_OK):
+        raise ExportError(f"{name}: cannot write in folder {folder} (permission denied)")
