@@ -41,7 +41,8 @@ import numpy as np
 
 from ..errors import LabelError, ScaffoldError
 from ..model.scaffold import Scaffold
-from .motions import candidate_vertex_perms, edge_permutation, finite_motions, periodic_motions
+from .finite import finite_lifts
+from .motions import candidate_vertex_perms, edge_permutation, periodic_motions
 
 #: Modes of ``--symmetry``.
 MODES = ("rotations", "isometries", "none")
@@ -157,20 +158,8 @@ def symmetry_group(scaffold: Scaffold) -> SymmetryGroup:
 
 
 def compute_group(scaffold: Scaffold) -> SymmetryGroup:
-    """Candidates -> rigid motions -> edge permutations; the identity first."""
-    sigmas = candidate_vertex_perms(scaffold)
-    motions = periodic_motions(scaffold, sigmas) if scaffold.periodic else finite_motions(scaffold, sigmas)
-    rows = []
-    seen = set()
-    for sigma, q, tau, lattice_part in motions:
-        key = (sigma.tobytes(), np.round(q, 6).tobytes())
-        if key in seen:
-            continue
-        perm = edge_permutation(scaffold, sigma, lattice_part)
-        if perm is None:
-            continue
-        seen.add(key)
-        rows.append((sigma, q, tau, perm, np.linalg.det(q) > 0))
+    """Finite: isometries lifted to automorphisms; periodic: candidates -> rigid motions.  The identity first."""
+    rows = finite_rows(scaffold) if not scaffold.periodic else periodic_rows(scaffold)
     # identity first
     rows.sort(key=lambda r: not (np.allclose(r[1], np.eye(3)) and np.array_equal(r[0], np.arange(len(r[0])))))
     if not rows or not np.allclose(rows[0][1], np.eye(3)):
@@ -188,3 +177,34 @@ def compute_group(scaffold: Scaffold) -> SymmetryGroup:
     return SymmetryGroup(
         matrices=arrays[1], translations=arrays[2], vertex_perms=arrays[0], edge_perms=arrays[3], proper=arrays[4]
     )
+
+
+Row = tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, bool]
+
+
+def finite_rows(scaffold: Scaffold) -> list[Row]:
+    """Rows ``(sigma, Q, tau, edge_perm, proper)`` of a finite scaffold (the centroid is fixed)."""
+    v = scaffold.vertices
+    scale = max(float(np.abs(v).max()), 1e-300)
+    centroid = (v / scale).mean(axis=0)
+    rows = []
+    with np.errstate(over="ignore", invalid="ignore"):  # translations of motions of a mesh near 1e308
+        for sigma, q, perm in finite_lifts(scaffold):
+            rows.append((sigma, q, scale * (centroid - q @ centroid), perm, bool(np.linalg.det(q) > 0)))
+    return rows
+
+
+def periodic_rows(scaffold: Scaffold) -> list[Row]:
+    """Rows ``(sigma, Q, tau, edge_perm, proper)`` of a periodic scaffold."""
+    rows = []
+    seen = set()
+    for sigma, q, tau, lattice_part in periodic_motions(scaffold, candidate_vertex_perms(scaffold)):
+        key = (sigma.tobytes(), np.round(q, 6).tobytes())
+        if key in seen:
+            continue
+        perm = edge_permutation(scaffold, sigma, lattice_part)
+        if perm is None:
+            continue
+        seen.add(key)
+        rows.append((sigma, q, tau, perm, bool(np.linalg.det(q) > 0)))
+    return rows
