@@ -23,7 +23,8 @@ import numpy as np
 
 from ..errors import LkspaceWarning, TooLargeError
 from ..model.scaffold import Scaffold
-from .pointset import Sites, find_sites, site_isometries, standard_position
+from ..progress import task
+from .pointset import Sites, SiteSearch, find_sites, standard_position
 
 MAX_GROUP_ENTRIES = 50_000_000
 """Most entries the group's tables (order x (vertices + edges)) may hold, about 400 MB.
@@ -178,33 +179,85 @@ def vertex_invariants(scaffold: Scaffold) -> list[np.ndarray]:
     return [degree, corners, sides]
 
 
-def finite_lifts(scaffold: Scaffold) -> Iterator[Lift]:
-    """Yield ``(sigma, Q, edge_perm)`` for every symmetry of a finite scaffold, the identity first.
+class Elements:
+    """The group found so far, closed under composition: each new generator is multiplied in.
+
+    Products of symmetries are symmetries, so only generators are verified (a few full
+    matches, about log2 of the order); the rest of the group costs one composition
+    (``O(vertices + edges)``) per element.
+    """
+
+    def __init__(self, search: SiteSearch, n_vertices: int, n_edges: int, name: str) -> None:
+        self.search = search
+        self.size = n_vertices + n_edges
+        self.name = name
+        identity = np.arange(search.sites.n_sites, dtype=np.int64)
+        self.rows: list[tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]] = [
+            (np.arange(n_vertices, dtype=np.int64), np.eye(3), np.arange(n_edges, dtype=np.int64), identity)
+        ]
+        self.keys = {search.key(identity, True)}
+        self.generators: list[tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]] = []
+
+    def add_generator(self, row: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]) -> None:
+        """Add ``(sigma, Q, edge_perm, pi)`` and every product it makes with the elements found."""
+        self.generators.append(row)
+        frontier = list(self.rows)
+        while frontier:
+            new = []
+            for h in frontier:
+                for g in self.generators:
+                    sigma, q, perm, pi = h[0][g[0]], h[1] @ g[1], h[2][g[2]], h[3][g[3]]
+                    key = self.search.key(pi, bool(np.linalg.det(q) > 0))
+                    if key in self.keys:
+                        continue
+                    self.keys.add(key)
+                    self.rows.append((sigma, q, perm, pi))
+                    new.append(self.rows[-1])
+                    if len(self.rows) * self.size > MAX_GROUP_ENTRIES:
+                        raise TooLargeError(
+                            f"{self.name}: the symmetry group has more than {len(self.rows) - 1} elements on "
+                            f"{self.size} vertices and edges: its tables would pass {MAX_GROUP_ENTRIES} "
+                            "entries; use --symmetry none"
+                        )
+            frontier = new
+
+
+def finite_lifts(scaffold: Scaffold) -> list[Lift]:
+    """Return ``(sigma, Q, edge_perm)`` for every symmetry of a finite scaffold, the identity first.
 
     Raises :class:`~lkspace.errors.TooLargeError` when the group's tables would pass
-    :data:`MAX_GROUP_ENTRIES`.
+    :data:`MAX_GROUP_ENTRIES` or the candidates :data:`~lkspace.symmetry.pointset.MAX_FRAME_CANDIDATES`.
     """
     x = standard_position(scaffold.vertices)
     sites = find_sites(x, vertex_invariants(scaffold))
     structure = Structure(scaffold)
     lifter = Lifter(scaffold, sites)
-    size = scaffold.n_vertices + scaffold.n_edges
     if lifter.ambiguous:
-        yield from ambiguous_lifts(scaffold, structure, size)
-        return
-    count = 0
-    for q, pi in site_isometries(sites):
-        sigma = lifter.lift(pi)
-        perm = None if sigma is None else structure.automorphism(sigma)
-        if sigma is None or perm is None:
-            continue
-        count += 1
-        if count * size > MAX_GROUP_ENTRIES:
-            raise TooLargeError(
-                f"{scaffold.name}: the symmetry group has more than {count - 1} elements on "
-                f"{size} vertices and edges: its tables would pass {MAX_GROUP_ENTRIES} entries; use --symmetry none"
-            )
-        yield sigma, q, perm
+        return list(ambiguous_lifts(scaffold, structure, scaffold.n_vertices + scaffold.n_edges))
+    search = SiteSearch(sites)
+    found = Elements(search, scaffold.n_vertices, scaffold.n_edges, scaffold.name)
+    with task("symmetry search (motions)", total=None) as step:
+        for keys, qs in search.batches():
+            if keys is not None:
+                fresh = ~np.isin(keys, np.fromiter(found.keys, np.int64, len(found.keys)))
+                keys, qs = keys[fresh], qs[fresh]
+                ok = search.probe(qs)
+                keys, qs = keys[ok], qs[ok]
+            for i, q in enumerate(qs):
+                if keys is not None and int(keys[i]) in found.keys:
+                    continue
+                verified = search.verify(q)
+                if verified is None:
+                    continue
+                q, pi = verified
+                if search.key(pi, bool(np.linalg.det(q) > 0)) in found.keys:
+                    continue
+                sigma = lifter.lift(pi)
+                perm = None if sigma is None else structure.automorphism(sigma)
+                if sigma is not None and perm is not None:
+                    found.add_generator((sigma, q, perm, pi))
+                    step.note(f"{len(found.rows)} motions found")
+    return [(sigma, q, perm) for sigma, q, perm, _ in found.rows]
 
 
 def ambiguous_lifts(scaffold: Scaffold, structure: Structure, size: int) -> Iterator[Lift]:
@@ -214,9 +267,12 @@ def ambiguous_lifts(scaffold: Scaffold, structure: Structure, size: int) -> Iter
     identity = np.arange(scaffold.n_vertices, dtype=np.int64)
     count = automorphism_count(scaffold)
     if count <= MAX_AUTOMORPHISMS and count * (size + scaffold.n_faces) <= MAX_GROUP_ENTRIES:
+        seen = set()
         for sigma, q, _, _ in finite_motions(scaffold, candidate_vertex_perms(scaffold)):
             perm = structure.edge_permutation(sigma)
-            if perm is not None:
+            key = (sigma.tobytes(), bool(np.linalg.det(q) > 0))
+            if perm is not None and key not in seen:
+                seen.add(key)
                 yield sigma, q, perm
         return
     warnings.warn(
