@@ -179,6 +179,30 @@ def vertex_invariants(scaffold: Scaffold) -> list[np.ndarray]:
     return [degree, corners, sides]
 
 
+Tables = tuple[np.ndarray, np.ndarray, np.ndarray]
+"""Group tables: ``sigmas (m, n_vertices) int64``, ``Qs (m, 3, 3) float64``, ``edge_perms (m, n_edges) int64``."""
+
+
+def stack(lifts: list) -> Tables:
+    """Stack rows ``(sigma, Q, edge_perm, ...)`` into :data:`Tables`, one table at a time.
+
+    Each row's arrays are released once copied (``lifts`` is emptied), so the peak is the
+    rows plus one table, not the rows plus all tables.
+    """
+    m = len(lifts)
+    qs = np.array([row[1] for row in lifts], np.float64).reshape(m, 3, 3)
+    sigmas = np.empty((m, len(lifts[0][0])), np.int64)
+    for i, row in enumerate(lifts):
+        sigmas[i] = row[0]
+        lifts[i] = (None, None, row[2])
+    perms = np.empty((m, len(lifts[0][2])), np.int64)
+    for i, row in enumerate(lifts):
+        perms[i] = row[2]
+        lifts[i] = None
+    lifts.clear()
+    return sigmas, qs, perms
+
+
 class Elements:
     """The group found so far, closed under composition: each new generator is multiplied in.
 
@@ -197,21 +221,30 @@ class Elements:
         ]
         self.keys = {search.key(identity, True)}
         self.generators: list[tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]] = []
+        self.same = bool(np.array_equal(search.sites.of_vertex, np.arange(n_vertices)))
+
+    def tables(self) -> Tables:
+        """The elements as arrays ``(sigmas, Qs, edge_perms)``, built row by row (no second copy of the rows)."""
+        return stack(self.rows)
 
     def add_generator(self, row: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]) -> None:
         """Add ``(sigma, Q, edge_perm, pi)`` and every product it makes with the elements found."""
-        self.generators.append(row)
+        if self.same:
+            row = (row[0], row[1], row[2], row[0])
+        self.generators = self.generators + [row]
         frontier = list(self.rows)
         while frontier:
             new = []
             for h in frontier:
                 for g in self.generators:
-                    sigma, q, perm, pi = h[0][g[0]], h[1] @ g[1], h[2][g[2]], h[3][g[3]]
-                    key = self.search.key(pi, bool(np.linalg.det(q) > 0))
+                    pi_ab = h[3][g[3][[self.search.a, self.search.b_or_a]]]
+                    key = self.search.key_of(pi_ab, bool(np.linalg.det(h[1]) * np.linalg.det(g[1]) > 0))
                     if key in self.keys:
                         continue
                     self.keys.add(key)
-                    self.rows.append((sigma, q, perm, pi))
+                    sigma = h[0][g[0]]
+                    pi = sigma if self.same else h[3][g[3]]  # one vertex per site, numbered alike: pi is sigma
+                    self.rows.append((sigma, h[1] @ g[1], h[2][g[2]], pi))
                     new.append(self.rows[-1])
                     if len(self.rows) * self.size > MAX_GROUP_ENTRIES:
                         raise TooLargeError(
@@ -222,7 +255,7 @@ class Elements:
             frontier = new
 
 
-def finite_lifts(scaffold: Scaffold) -> list[Lift]:
+def finite_lifts(scaffold: Scaffold) -> Tables:
     """Return ``(sigma, Q, edge_perm)`` for every symmetry of a finite scaffold, the identity first.
 
     Raises :class:`~lkspace.errors.TooLargeError` when the group's tables would pass
@@ -233,7 +266,7 @@ def finite_lifts(scaffold: Scaffold) -> list[Lift]:
     structure = Structure(scaffold)
     lifter = Lifter(scaffold, sites)
     if lifter.ambiguous:
-        return list(ambiguous_lifts(scaffold, structure, scaffold.n_vertices + scaffold.n_edges))
+        return stack(list(ambiguous_lifts(scaffold, structure, scaffold.n_vertices + scaffold.n_edges)))
     search = SiteSearch(sites)
     found = Elements(search, scaffold.n_vertices, scaffold.n_edges, scaffold.name)
     with task("symmetry search (motions)", total=None) as step:
@@ -257,7 +290,7 @@ def finite_lifts(scaffold: Scaffold) -> list[Lift]:
                 if sigma is not None and perm is not None:
                     found.add_generator((sigma, q, perm, pi))
                     step.note(f"{len(found.rows)} motions found")
-    return [(sigma, q, perm) for sigma, q, perm, _ in found.rows]
+    return found.tables()
 
 
 def ambiguous_lifts(scaffold: Scaffold, structure: Structure, size: int) -> Iterator[Lift]:

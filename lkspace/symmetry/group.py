@@ -159,43 +159,31 @@ def symmetry_group(scaffold: Scaffold) -> SymmetryGroup:
 
 def compute_group(scaffold: Scaffold) -> SymmetryGroup:
     """Finite: isometries lifted to automorphisms; periodic: candidates -> rigid motions.  The identity first."""
-    rows = finite_rows(scaffold) if not scaffold.periodic else periodic_rows(scaffold)
-    # identity first
-    rows.sort(key=lambda r: not (np.allclose(r[1], np.eye(3)) and np.array_equal(r[0], np.arange(len(r[0])))))
-    if not rows or not np.allclose(rows[0][1], np.eye(3)):
+    sigmas, qs, taus, perms = finite_tables(scaffold) if not scaffold.periodic else periodic_tables(scaffold)
+    proper = np.linalg.det(qs) > 0
+    if not len(qs) or not (np.allclose(qs[0], np.eye(3)) and np.array_equal(sigmas[0], np.arange(sigmas.shape[1]))):
         raise ScaffoldError(f"{scaffold.name}: symmetry search failed to find the identity")  # pragma: no cover
-    sig, qs, taus, perms, proper = zip(*rows, strict=True)
-    arrays = [
-        np.array(sig, np.int64),
-        np.array(qs, np.float64),
-        np.array(taus, np.float64),
-        np.array(perms, np.int64),
-        np.array(proper, bool),
-    ]
-    for a in arrays:
+    for a in (sigmas, qs, taus, perms, proper):
         a.setflags(write=False)
-    return SymmetryGroup(
-        matrices=arrays[1], translations=arrays[2], vertex_perms=arrays[0], edge_perms=arrays[3], proper=arrays[4]
-    )
+    return SymmetryGroup(matrices=qs, translations=taus, vertex_perms=sigmas, edge_perms=perms, proper=proper)
 
 
-Row = tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, bool]
+Tables4 = tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]
 
 
-def finite_rows(scaffold: Scaffold) -> list[Row]:
-    """Rows ``(sigma, Q, tau, edge_perm, proper)`` of a finite scaffold (the centroid is fixed)."""
+def finite_tables(scaffold: Scaffold) -> Tables4:
+    """``(sigmas, Qs, taus, edge_perms)`` of a finite scaffold (every motion fixes the vertex centroid)."""
     v = scaffold.vertices
     scale = max(float(np.abs(v).max()), 1e-300)
     centroid = (v / scale).mean(axis=0)
-    rows = []
-    with np.errstate(over="ignore", invalid="ignore"):  # translations of motions of a mesh near 1e308
-        for sigma, q, perm in finite_lifts(scaffold):
-            rows.append((sigma, q, scale * (centroid - q @ centroid), perm, bool(np.linalg.det(q) > 0)))
-    return rows
+    sigmas, qs, perms = finite_lifts(scaffold)
+    with np.errstate(over="ignore", invalid="ignore"):  # translations of a mesh near 1e308 may overflow
+        taus = scale * (centroid[None, :] - qs @ centroid)
+    return sigmas, qs, taus, perms
 
 
-def periodic_rows(scaffold: Scaffold) -> list[Row]:
-    """Rows ``(sigma, Q, tau, edge_perm, proper)`` of a periodic scaffold."""
+def periodic_tables(scaffold: Scaffold) -> Tables4:
+    """``(sigmas, Qs, taus, edge_perms)`` of a periodic scaffold, the identity first."""
     rows = []
     seen = set()
     for sigma, q, tau, lattice_part in periodic_motions(scaffold, candidate_vertex_perms(scaffold)):
@@ -206,5 +194,7 @@ def periodic_rows(scaffold: Scaffold) -> list[Row]:
         if perm is None:
             continue
         seen.add(key)
-        rows.append((sigma, q, tau, perm, bool(np.linalg.det(q) > 0)))
-    return rows
+        rows.append((sigma, q, tau, perm))
+    rows.sort(key=lambda r: not (np.allclose(r[1], np.eye(3)) and np.array_equal(r[0], np.arange(len(r[0])))))
+    sig, qs, taus, perms = zip(*rows, strict=True)
+    return np.array(sig, np.int64), np.array(qs, np.float64), np.array(taus, np.float64), np.array(perms, np.int64)

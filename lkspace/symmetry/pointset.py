@@ -26,6 +26,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import TooLargeError
+from ..model.scaffold import unique_rows
 from ..progress import task
 
 TOLERANCE = 1e-6
@@ -119,8 +120,8 @@ def find_sites(x: np.ndarray, invariants: list[np.ndarray]) -> Sites:
     columns = [gap_clusters(np.sqrt(np.einsum("ij,ij->i", points, points)), 10 * TOLERANCE), copies]
     for inv in invariants:
         columns.append(gap_clusters(np.bincount(of_vertex, weights=inv, minlength=n_sites), 10 * TOLERANCE))
-    _, classes = np.unique(np.column_stack(columns), axis=0, return_inverse=True)
-    return Sites(points=points, of_vertex=of_vertex, classes=classes.reshape(-1).astype(np.int64))
+    _, classes = unique_rows(np.column_stack(columns).astype(np.int64))
+    return Sites(points=points, of_vertex=of_vertex, classes=classes)
 
 
 def frame(a: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -232,10 +233,18 @@ class SiteSearch:
         self.probes = order[np.linspace(0, n - 1, min(n, N_PROBES)).astype(np.int64)]
         self.normal = np.linalg.eigh(pts.T @ pts)[1][:, 0]  # the plane's normal when the sites are coplanar
 
+    @property
+    def b_or_a(self) -> int:
+        """The second anchor (``a`` again for collinear sites)."""
+        return self.a if self.b is None else self.b
+
     def key(self, pi: np.ndarray, proper: bool) -> int:
         """Exact key of the motion inducing site permutation ``pi``."""
-        b = self.a if self.b is None else self.b
-        return (int(pi[self.a]) * self.sites.n_sites + int(pi[b])) * 2 + int(proper)
+        return self.key_of(pi[[self.a, self.b_or_a]], proper)
+
+    def key_of(self, images: np.ndarray, proper: bool) -> int:
+        """Exact key of the motion sending the anchors to ``images`` (2,)."""
+        return (int(images[0]) * self.sites.n_sites + int(images[1])) * 2 + int(proper)
 
     def batches(self) -> Iterator[tuple[np.ndarray | None, np.ndarray]]:
         """Yield ``(keys or None, qs (m, 3, 3))``: every motion of the sites is among the candidates."""
