@@ -54,7 +54,7 @@ def segment_hashes(values: np.ndarray, starts: np.ndarray) -> np.ndarray:
 
 
 def gather(starts: np.ndarray, order: np.ndarray) -> np.ndarray:
-    """Indices of the segments ``starts[i]:starts[i+1]`` for ``i`` in ``order``, concatenated."""
+    """Return the indices of the segments ``starts[i]:starts[i+1]`` for ``i`` in ``order``, concatenated."""
     sizes = np.diff(starts)[order]
     begin = np.repeat(starts[:-1][order], sizes)
     offset = np.arange(int(sizes.sum())) - np.repeat(np.cumsum(sizes) - sizes, sizes)
@@ -224,7 +224,7 @@ class Elements:
         self.same = bool(np.array_equal(search.sites.of_vertex, np.arange(n_vertices)))
 
     def tables(self) -> Tables:
-        """The elements as arrays ``(sigmas, Qs, edge_perms)``, built row by row (no second copy of the rows)."""
+        """Return the elements as arrays ``(sigmas, Qs, edge_perms)``, built row by row (no second copy of the rows)."""
         return stack(self.rows)
 
     def add_generator(self, row: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]) -> None:

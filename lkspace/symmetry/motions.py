@@ -49,7 +49,7 @@ def incidence_graph(scaffold: Scaffold) -> tuple[igraph.Graph, list[int]]:
 
 
 def automorphism_count(scaffold: Scaffold) -> int:
-    """Number of automorphisms of the coloured incidence graph (BLISS, without listing them)."""
+    """Count the automorphisms of the coloured incidence graph (BLISS, without listing them)."""
     graph, colours = incidence_graph(scaffold)
     return int(graph.count_automorphisms(color=colours))
 
@@ -95,7 +95,7 @@ def _tolerance(scaffold: Scaffold) -> float:
 
 
 def plane_normal(x: np.ndarray) -> tuple[np.ndarray, float]:
-    """Unit direction of least spread of centred points ``x (n, 3)`` and the spread along it (RMS).
+    """Return the unit direction of least spread of centred points ``x (n, 3)`` and the spread along it (RMS).
 
     From the 3 x 3 second-moment matrix (``eigh``): O(n) time and memory.
     """

@@ -153,7 +153,7 @@ def refit(x: np.ndarray, pi: np.ndarray, q: np.ndarray, normal: np.ndarray) -> n
 
 
 def line_motions(direction: np.ndarray) -> list[np.ndarray]:
-    """The four motions of a line through 0 with unit ``direction``: keep it, or flip it, each proper and improper."""
+    """Return the four motions of a line through 0 along unit ``direction``: keep or flip it, proper or not."""
     helper = np.eye(3)[int(np.argmin(np.abs(direction)))]
     normal = np.cross(direction, helper)
     normal /= np.linalg.norm(normal)
