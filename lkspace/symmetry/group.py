@@ -2,27 +2,23 @@
 
 How the group is found
 ----------------------
-1. **Combinatorial candidates.**  The incidence structure is a vertex-coloured graph with
-   one node per vertex (colour 0), per edge (colour 1) and per face (colour 2); a vertex
-   node is joined to the edges it bounds, an edge node to the faces it lies on.  Its
-   automorphisms (python-igraph: BLISS generators, closed into the group) give candidate vertex permutations
-   ``sigma`` (duplicates that only permute faces on the same vertex cycle, as in a
-   two-sided polygon, collapse).  When there are too many to list (more than
-   ``MAX_AUTOMORPHISMS``, e.g. a book of many pages), finite scaffolds fall back to a
-   frame search: the images of vertex 0 and two neighbours fix a candidate motion
-   (:func:`geometric_vertex_perms`).
-2. **Rigid-motion check.**  A candidate survives only if a rigid motion
-   ``x -> Q x + tau`` (``Q`` orthogonal) carries every vertex ``v`` onto ``sigma(v)``:
-
-   * finite scaffold: ``Q`` is the orthogonal Procrustes fit about the vertex centroid
-     (which every isometry of the scaffold fixes).  When the vertices are coplanar the
-     fit is unique only up to the reflection in their plane, and both motions are kept
-     (a flat polygon has the in-plane rotations and the half-turns that flip it over);
-   * periodic scaffold: ``Q`` must also map the lattice to itself, ``B Q^T = N B`` for an
-     integer matrix ``N`` (the lattice point group, searched over ``N`` with entries in
-     ``{-1, 0, 1}``, enough for reduced bases); ``tau`` is fixed by one vertex and the
-     others must land on their images up to lattice translations.  The image of every
-     edge class and every face (as a set of lattice-offset corners) must again be one.
+1. **Finite scaffolds** (:mod:`~lkspace.symmetry.pointset`, :mod:`~lkspace.symmetry.finite`):
+   the vertices in standard position (centroid at 0, RMS radius 1) are welded into
+   sites; two anchor sites fix each candidate motion, which is matched on all sites with
+   a KD-tree and lifted to a vertex permutation ``sigma`` that must carry edges to edges
+   and faces to faces (an automorphism of the coloured incidence graph).  Only generators
+   are matched; the group is their closure under composition.  Time and memory are
+   linear in the mesh (times the group order for the tables).  When the vertices are
+   coplanar both motions of each in-plane map are kept (a flat polygon has the in-plane
+   rotations and the half-turns that flip it over).
+2. **Periodic scaffolds** (:mod:`~lkspace.symmetry.motions`): the automorphisms of the
+   incidence structure (python-igraph: BLISS generators, closed into the group) give
+   candidate vertex permutations ``sigma``; ``Q`` must map the lattice to itself,
+   ``B Q^T = N B`` for an integer matrix ``N`` (the lattice point group, searched over
+   ``N`` with entries in ``{-1, 0, 1}``, enough for reduced bases); ``tau`` is fixed by one
+   vertex and the others must land on their images up to lattice translations.  The
+   image of every edge class and every face (as a set of lattice-offset corners) must
+   again be one.
 3. **Action on labels.**  Each motion permutes the edges, ``edge_perms[g, e]`` is the
    image of edge ``e``.  A proper motion (rotation, ``det Q = +1``) keeps twist labels: a
    right-handed twist stays right-handed and the rule reads the same from either end; an
