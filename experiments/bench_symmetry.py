@@ -1,7 +1,7 @@
 """Time and peak memory of ``lkspace info`` (symmetry search) on sphere meshes of 10^3..10^5 vertices.
 
 Each mesh is written as an OBJ and ``python -m lkspace info MESH --json`` runs in its own
-process (peak RSS from ``os.wait4``).  ``--tree`` picks the lkspace source tree (PYTHONPATH),
+process (peak RSS: its VmHWM).  ``--tree`` picks the lkspace source tree (PYTHONPATH),
 so the same script measures the code before a change (a ``git worktree`` of the old commit)
 and after; ``--label`` names the run in ``results/bench_symmetry.json``, which keeps the
 other labels, and ``results/bench_symmetry.md`` is rewritten from all of them.
@@ -31,6 +31,13 @@ MESHES = {  # name -> (generator, argument)
 }
 
 
+PEAK = (
+    "import sys; from lkspace.cli import main; code = main(sys.argv[1:]); "
+    "print(open('/proc/self/status').read().split('VmHWM:')[1].split()[0], file=sys.stderr); sys.exit(code)"
+)
+"""Runs the command line, then prints its peak RSS in kB (VmHWM: starts afresh at exec, unlike ru_maxrss)."""
+
+
 def write_meshes(folder: Path) -> dict[str, Path]:
     """Write every mesh of :data:`MESHES` as an OBJ (with this repository's code)."""
     sys.path.insert(0, str(ROOT))
@@ -46,16 +53,16 @@ def write_meshes(folder: Path) -> dict[str, Path]:
 
 
 def run_info(tree: Path, mesh: Path, timeout: float) -> dict:
-    """Run ``lkspace info`` on ``mesh`` with the code in ``tree``: seconds, the child's peak RSS (``os.wait4``), result."""
+    """Run ``lkspace info`` on ``mesh`` with the code in ``tree``: seconds, peak RSS (VmHWM), result."""
     env = dict(os.environ, PYTHONPATH=str(tree), LKSPACE_PROGRESS="0")
     with tempfile.TemporaryFile("w+") as out, tempfile.TemporaryFile("w+") as err:
         start = time.monotonic()
         proc = subprocess.Popen(
-            [sys.executable, "-m", "lkspace", "info", str(mesh), "--json"], stdout=out, stderr=err, env=env, cwd=tree
+            [sys.executable, "-c", PEAK, "info", str(mesh), "--json"], stdout=out, stderr=err, env=env, cwd=tree
         )
         deadline = start + timeout
         while True:
-            pid, status, usage = os.wait4(proc.pid, os.WNOHANG)
+            pid, status, _ = os.wait4(proc.pid, os.WNOHANG)
             if pid:
                 break
             if time.monotonic() > deadline:
@@ -67,12 +74,13 @@ def run_info(tree: Path, mesh: Path, timeout: float) -> dict:
         code = os.waitstatus_to_exitcode(status)
         out.seek(0)
         err.seek(0)
-        row: dict = {"seconds": round(seconds, 2), "peak_mb": round(usage.ru_maxrss / 1024, 1)}
+        lines = err.read().strip().splitlines()
+        peak = int(lines.pop()) / 1024 if lines and lines[-1].isdigit() else None
+        row: dict = {"seconds": round(seconds, 2), "peak_mb": None if peak is None else round(peak, 1)}
         if code == 0:
             data = json.loads(out.read())
             row.update(status="ok", vertices=data["vertices"], order=data["symmetry_group_order"])
         else:
-            lines = err.read().strip().splitlines()
             row.update(status=f"exit {code}", error=lines[-1] if lines else "")
         return row
 

@@ -176,6 +176,14 @@ def test_progress_is_reported(monkeypatch, capsys):
     assert "symmetry search" in capsys.readouterr().err
 
 
+# runs the command line and prints its peak RSS (kB) last on stderr; VmHWM, unlike ru_maxrss,
+# starts afresh at exec and so does not count the forked copy of the test process
+PEAK = (
+    "import sys; from lkspace.cli import main; code = main(sys.argv[1:]); "
+    "print(open('/proc/self/status').read().split('VmHWM:')[1].split()[0], file=sys.stderr); sys.exit(code)"
+)
+
+
 def test_a_hundred_thousand_vertices_in_bounded_time_and_memory(tmp_path):
     """``lkspace info`` on a 99,848-vertex cube sphere: seconds and a few hundred MB (main: MemoryError)."""
     sc = cube_sphere(129)
