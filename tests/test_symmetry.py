@@ -140,12 +140,70 @@ def test_isometries_need_negation_closed_labels():
     check_label_set(np.array([-1, 0, 1, 2]), "rotations")
 
 
+#: (isometries, rotations) of built-ins, computed on main (2e37b23) before the symmetry search was rewritten
+BUILTIN_ORDERS = {
+    "tetrahedron": (24, 12),
+    "cube": (48, 24),
+    "octahedron": (48, 24),
+    "dodecahedron": (120, 60),
+    "icosahedron": (120, 60),
+    "truncated-octahedron": (48, 24),
+    "figure-eight": (8, 4),
+    "whitehead": (16, 8),
+    "cube-net": (4, 2),
+    "cube-lid": (2, 1),
+    "cubes:piano": (8, 4),
+    "cubes:vertex": (12, 6),
+    "dihedron:3": (12, 6),
+    "dihedron:4": (16, 8),
+    "dihedron:5": (20, 10),
+    "dihedron:6": (24, 12),
+    "dihedron:7": (28, 14),
+    "dihedron:8": (32, 16),
+    "dihedron:9": (36, 18),
+    "book:1": (16, 8),
+    "book:2": (8, 4),
+    "book:3": (12, 6),
+    "book:4": (16, 8),
+    "book:5": (20, 10),
+    "book:6": (24, 12),
+    "book:7": (28, 14),
+    "book:8": (32, 16),
+    "book:9": (36, 18),
+    "tiling:square": (16, 8),
+    "tiling:hexagonal": (24, 12),
+    "honeycomb:cP": (48, 24),
+    "honeycomb:hP": (24, 12),
+    "honeycomb:oF": (8, 4),
+    "honeycomb:cF": (48, 24),
+    "honeycomb:cI": (48, 24),
+    "voronoi:cube-faces": (48, 24),
+    "tiling:square@2x2": (64, 32),
+    "tiling:hexagonal@2x2": (96, 48),
+    "honeycomb:cP@2x2x2": (384, 192),
+    "tiling:square@3x2": (48, 24),
+    "honeycomb:hP@2x1x1": (8, 4),
+}
+
+
+@pytest.mark.parametrize("name", sorted(BUILTIN_ORDERS))
+def test_builtin_orders_are_pinned(name):
+    g = symmetry_group(lkspace.load(name))
+    assert (g.order, g.n_rotations) == BUILTIN_ORDERS[name]
+
+
+def test_every_builtin_is_pinned():
+    from lkspace.scaffolds import SOLIDS, periodic
+
+    assert set(SOLIDS) | set(periodic.LATTICES) | set(periodic.VORONOI_EXAMPLES) <= set(BUILTIN_ORDERS)
+
+
 @pytest.mark.parametrize("name", ["cube", "tetrahedron", "dihedron:5", "book:4", "truncated-octahedron"])
-def test_geometric_fallback_agrees_with_igraph(name, monkeypatch):
+def test_finite_search_needs_no_automorphism_listing(name, monkeypatch):
     import lkspace.symmetry.motions as sym
 
     normal = symmetry_group(lkspace.load(name))
-    monkeypatch.setattr(sym, "MAX_AUTOMORPHISMS", 0)  # force the frame-based search
+    monkeypatch.setattr(sym, "MAX_AUTOMORPHISMS", 0)  # igraph may list nothing: finite scaffolds never need it
     forced = symmetry_group(lkspace.load(name))
     assert (forced.order, forced.n_rotations) == (normal.order, normal.n_rotations)
     assert set(map(bytes, forced.edge_perms)) == set(map(bytes, normal.edge_perms))

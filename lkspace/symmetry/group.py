@@ -2,27 +2,23 @@
 
 How the group is found
 ----------------------
-1. **Combinatorial candidates.**  The incidence structure is a vertex-coloured graph with
-   one node per vertex (colour 0), per edge (colour 1) and per face (colour 2); a vertex
-   node is joined to the edges it bounds, an edge node to the faces it lies on.  Its
-   automorphisms (python-igraph: BLISS generators, closed into the group) give candidate vertex permutations
-   ``sigma`` (duplicates that only permute faces on the same vertex cycle, as in a
-   two-sided polygon, collapse).  When there are too many to list (more than
-   ``MAX_AUTOMORPHISMS``, e.g. a book of many pages), finite scaffolds fall back to a
-   frame search: the images of vertex 0 and two neighbours fix a candidate motion
-   (:func:`geometric_vertex_perms`).
-2. **Rigid-motion check.**  A candidate survives only if a rigid motion
-   ``x -> Q x + tau`` (``Q`` orthogonal) carries every vertex ``v`` onto ``sigma(v)``:
-
-   * finite scaffold: ``Q`` is the orthogonal Procrustes fit about the vertex centroid
-     (which every isometry of the scaffold fixes).  When the vertices are coplanar the
-     fit is unique only up to the reflection in their plane, and both motions are kept
-     (a flat polygon has the in-plane rotations and the half-turns that flip it over);
-   * periodic scaffold: ``Q`` must also map the lattice to itself, ``B Q^T = N B`` for an
-     integer matrix ``N`` (the lattice point group, searched over ``N`` with entries in
-     ``{-1, 0, 1}``, enough for reduced bases); ``tau`` is fixed by one vertex and the
-     others must land on their images up to lattice translations.  The image of every
-     edge class and every face (as a set of lattice-offset corners) must again be one.
+1. **Finite scaffolds** (:mod:`~lkspace.symmetry.pointset`, :mod:`~lkspace.symmetry.finite`):
+   the vertices in standard position (centroid at 0, RMS radius 1) are welded into
+   sites; two anchor sites fix each candidate motion, which is matched on all sites with
+   a KD-tree and lifted to a vertex permutation ``sigma`` that must carry edges to edges
+   and faces to faces (an automorphism of the coloured incidence graph).  Only generators
+   are matched; the group is their closure under composition.  Time and memory are
+   linear in the mesh (times the group order for the tables).  When the vertices are
+   coplanar both motions of each in-plane map are kept (a flat polygon has the in-plane
+   rotations and the half-turns that flip it over).
+2. **Periodic scaffolds** (:mod:`~lkspace.symmetry.motions`): the automorphisms of the
+   incidence structure (python-igraph: BLISS generators, closed into the group) give
+   candidate vertex permutations ``sigma``; ``Q`` must map the lattice to itself,
+   ``B Q^T = N B`` for an integer matrix ``N`` (the lattice point group, searched over
+   ``N`` with entries in ``{-1, 0, 1}``, enough for reduced bases); ``tau`` is fixed by one
+   vertex and the others must land on their images up to lattice translations.  The
+   image of every edge class and every face (as a set of lattice-offset corners) must
+   again be one.
 3. **Action on labels.**  Each motion permutes the edges, ``edge_perms[g, e]`` is the
    image of edge ``e``.  A proper motion (rotation, ``det Q = +1``) keeps twist labels: a
    right-handed twist stays right-handed and the rule reads the same from either end; an
@@ -41,7 +37,8 @@ import numpy as np
 
 from ..errors import LabelError, ScaffoldError
 from ..model.scaffold import Scaffold
-from .motions import candidate_vertex_perms, edge_permutation, finite_motions, periodic_motions
+from .finite import finite_lifts
+from .motions import candidate_vertex_perms, edge_permutation, periodic_motions
 
 #: Modes of ``--symmetry``.
 MODES = ("rotations", "isometries", "none")
@@ -157,12 +154,35 @@ def symmetry_group(scaffold: Scaffold) -> SymmetryGroup:
 
 
 def compute_group(scaffold: Scaffold) -> SymmetryGroup:
-    """Candidates -> rigid motions -> edge permutations; the identity first."""
-    sigmas = candidate_vertex_perms(scaffold)
-    motions = periodic_motions(scaffold, sigmas) if scaffold.periodic else finite_motions(scaffold, sigmas)
+    """Finite: isometries lifted to automorphisms; periodic: candidates -> rigid motions.  The identity first."""
+    sigmas, qs, taus, perms = finite_tables(scaffold) if not scaffold.periodic else periodic_tables(scaffold)
+    proper = np.linalg.det(qs) > 0
+    if not len(qs) or not (np.allclose(qs[0], np.eye(3)) and np.array_equal(sigmas[0], np.arange(sigmas.shape[1]))):
+        raise ScaffoldError(f"{scaffold.name}: symmetry search failed to find the identity")  # pragma: no cover
+    for a in (sigmas, qs, taus, perms, proper):
+        a.setflags(write=False)
+    return SymmetryGroup(matrices=qs, translations=taus, vertex_perms=sigmas, edge_perms=perms, proper=proper)
+
+
+Tables4 = tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]
+
+
+def finite_tables(scaffold: Scaffold) -> Tables4:
+    """``(sigmas, Qs, taus, edge_perms)`` of a finite scaffold (every motion fixes the vertex centroid)."""
+    v = scaffold.vertices
+    scale = max(float(np.abs(v).max()), 1e-300)
+    centroid = (v / scale).mean(axis=0)
+    sigmas, qs, perms = finite_lifts(scaffold)
+    with np.errstate(over="ignore", invalid="ignore"):  # translations of a mesh near 1e308 may overflow
+        taus = scale * (centroid[None, :] - qs @ centroid)
+    return sigmas, qs, taus, perms
+
+
+def periodic_tables(scaffold: Scaffold) -> Tables4:
+    """``(sigmas, Qs, taus, edge_perms)`` of a periodic scaffold, the identity first."""
     rows = []
     seen = set()
-    for sigma, q, tau, lattice_part in motions:
+    for sigma, q, tau, lattice_part in periodic_motions(scaffold, candidate_vertex_perms(scaffold)):
         key = (sigma.tobytes(), np.round(q, 6).tobytes())
         if key in seen:
             continue
@@ -170,21 +190,7 @@ def compute_group(scaffold: Scaffold) -> SymmetryGroup:
         if perm is None:
             continue
         seen.add(key)
-        rows.append((sigma, q, tau, perm, np.linalg.det(q) > 0))
-    # identity first
+        rows.append((sigma, q, tau, perm))
     rows.sort(key=lambda r: not (np.allclose(r[1], np.eye(3)) and np.array_equal(r[0], np.arange(len(r[0])))))
-    if not rows or not np.allclose(rows[0][1], np.eye(3)):
-        raise ScaffoldError(f"{scaffold.name}: symmetry search failed to find the identity")  # pragma: no cover
-    sig, qs, taus, perms, proper = zip(*rows, strict=True)
-    arrays = [
-        np.array(sig, np.int64),
-        np.array(qs, np.float64),
-        np.array(taus, np.float64),
-        np.array(perms, np.int64),
-        np.array(proper, bool),
-    ]
-    for a in arrays:
-        a.setflags(write=False)
-    return SymmetryGroup(
-        matrices=arrays[1], translations=arrays[2], vertex_perms=arrays[0], edge_perms=arrays[3], proper=arrays[4]
-    )
+    sig, qs, taus, perms = zip(*rows, strict=True)
+    return np.array(sig, np.int64), np.array(qs, np.float64), np.array(taus, np.float64), np.array(perms, np.int64)

@@ -1,9 +1,10 @@
 """Candidate symmetries of a scaffold and the rigid motions that realize them.
 
-Candidates come from the automorphisms of the coloured incidence graph (igraph) or, when
-there are too many, from a geometric frame search; a candidate is kept only when a rigid
-motion realizes it (for periodic scaffolds: a lattice point-group element plus a
-translation).  :mod:`lkspace.symmetry.group` assembles the group.
+Candidates come from the automorphisms of the coloured incidence graph (igraph); a
+candidate is kept only when a rigid motion realizes it (for periodic scaffolds: a lattice
+point-group element plus a translation).  Periodic scaffolds always take this path;
+finite ones only when coincident vertices leave the faster search of
+:mod:`lkspace.symmetry.finite` ambiguous.  :mod:`lkspace.symmetry.group` assembles the group.
 """
 
 from __future__ import annotations
@@ -13,13 +14,15 @@ from typing import TYPE_CHECKING, Any, TypeAlias
 
 import numpy as np
 
-from ..errors import ScaffoldError
+from ..errors import ScaffoldError, TooLargeError
 from ..model.scaffold import Scaffold
+from ..progress import task
 
 if TYPE_CHECKING:
     import igraph
 
 MAX_AUTOMORPHISMS = 500_000
+"""Most incidence automorphisms listed (their closure is held in memory); past it, :class:`~lkspace.errors.TooLargeError`."""
 
 LatticePart: TypeAlias = tuple[np.ndarray, np.ndarray]
 """Lattice part of a periodic motion: vertex offsets ``(n_vertices, dim) int64`` and ``N (dim, dim) int64``."""
@@ -45,18 +48,23 @@ def incidence_graph(scaffold: Scaffold) -> tuple[igraph.Graph, list[int]]:
     return graph, colours
 
 
+def automorphism_count(scaffold: Scaffold) -> int:
+    """Count the automorphisms of the coloured incidence graph (BLISS, without listing them)."""
+    graph, colours = incidence_graph(scaffold)
+    return int(graph.count_automorphisms(color=colours))
+
+
 def candidate_vertex_perms(scaffold: Scaffold) -> np.ndarray:
     """(n_candidates, n_vertices) int64: vertex parts of the incidence automorphisms.
 
     BLISS (igraph) gives generators of the automorphism group; the group is their closure,
     built breadth-first with numpy (much faster than listing automorphisms with VF2).
+    Raises :class:`~lkspace.errors.TooLargeError` past :data:`MAX_AUTOMORPHISMS`.
     """
     graph, colours = incidence_graph(scaffold)
     count = int(graph.count_automorphisms(color=colours))
-    if count > MAX_AUTOMORPHISMS and not scaffold.periodic:
-        return geometric_vertex_perms(scaffold)
     if count > MAX_AUTOMORPHISMS:
-        raise ScaffoldError(
+        raise TooLargeError(
             f"{scaffold.name}: the incidence structure has {count} automorphisms (more than "
             f"{MAX_AUTOMORPHISMS}); use --symmetry none"
         )
@@ -64,90 +72,35 @@ def candidate_vertex_perms(scaffold: Scaffold) -> np.ndarray:
     gens = np.array(graph.automorphism_group(color=colours), dtype=np.int64).reshape(-1, n)
     elements = {np.arange(n, dtype=np.int64).tobytes()}
     frontier = np.arange(n, dtype=np.int64)[None, :]
-    while len(frontier):
-        products = gens[:, frontier].reshape(-1, n)  # g o x for every generator g and element x
-        new = []
-        for row in products:
-            key = row.tobytes()
-            if key not in elements:
-                elements.add(key)
-                new.append(row)
-        frontier = np.array(new, dtype=np.int64).reshape(-1, n)
+    with task("symmetry search", total=count) as step:
+        while len(frontier):
+            products = gens[:, frontier].reshape(-1, n)  # g o x for every generator g and element x
+            new = []
+            for row in products:
+                key = row.tobytes()
+                if key not in elements:
+                    elements.add(key)
+                    new.append(row)
+            frontier = np.array(new, dtype=np.int64).reshape(-1, n)
+            step.update(len(elements))
     if len(elements) != count:  # pragma: no cover - BLISS and the closure disagree
         raise ScaffoldError(f"{scaffold.name}: automorphism closure found {len(elements)} of {count} elements")
     perms = np.frombuffer(b"".join(elements), dtype=np.int64).reshape(-1, n)[:, : scaffold.n_vertices]
     return np.unique(perms, axis=0)
 
 
-def geometric_vertex_perms(scaffold: Scaffold) -> np.ndarray:
-    """Vertex permutations of rigid motions found from a vertex frame (finite scaffolds).
-
-    Used when the incidence structure has too many automorphisms to list (e.g. a book of
-    many pages): the images of vertex 0 and two of its neighbours fix the motion; every
-    candidate motion maps all vertices by position and is kept when it preserves edges
-    and faces.
-    """
-    from scipy.spatial import cKDTree
-
-    x = scaffold.vertices - scaffold.vertices.mean(axis=0)
-    tol = _tolerance(scaffold)
-    ev = scaffold.edge_vertices
-    nbrs: list[set[int]] = [set() for _ in range(scaffold.n_vertices)]
-    for a, b in ev.tolist():
-        nbrs[a].add(b)
-        nbrs[b].add(a)
-    v0 = 0
-    ranked = sorted(nbrs[v0])
-    v1 = ranked[0]
-    v2 = max(ranked[1:], key=lambda w: np.linalg.norm(np.cross(x[v1] - x[v0], x[w] - x[v0])), default=None)
-    frame = [v0, v1] + ([v2] if v2 is not None else [])
-    norms = np.linalg.norm(x, axis=1)
-    tree = cKDTree(x)
-    faces = sorted(tuple(sorted(f)) for f in scaffold.faces())
-    edges = {tuple(e) for e in ev.tolist()}
-    found = set()
-
-    def close(a: float | np.floating, b: float | np.floating) -> bool:
-        return abs(float(a) - float(b)) <= tol
-
-    for w0 in range(scaffold.n_vertices):
-        if not close(norms[w0], norms[v0]) or len(nbrs[w0]) != len(nbrs[v0]):
-            continue
-        for w1 in nbrs[w0]:
-            if not close(norms[w1], norms[v1]) or not close(
-                np.linalg.norm(x[w1] - x[w0]), np.linalg.norm(x[v1] - x[v0])
-            ):
-                continue
-            for w2 in (nbrs[w0] - {w1}) if v2 is not None else [None]:
-                if w2 is not None and (
-                    not close(norms[w2], norms[v2])
-                    or not close(np.linalg.norm(x[w2] - x[w1]), np.linalg.norm(x[v2] - x[v1]))
-                ):
-                    continue
-                src = x[frame]
-                dst = x[[w0, w1] + ([w2] if w2 is not None else [])]
-                u, _, wt = np.linalg.svd(dst.T @ src)
-                q0 = u @ wt
-                _, sv, vt = np.linalg.svd(src)
-                mirror = np.eye(3) - 2 * np.outer(vt[-1], vt[-1])
-                for q in (q0, q0 @ mirror) if len(sv) < 3 or sv[-1] <= tol else (q0,):
-                    if np.abs(src @ q.T - dst).max() > tol:
-                        continue
-                    dist, sigma = tree.query(x @ q.T)
-                    if dist.max() > tol or len(np.unique(sigma)) != len(sigma):
-                        continue
-                    if {tuple(sorted((sigma[a], sigma[b]))) for a, b in ev.tolist()} != edges:
-                        continue
-                    if sorted(tuple(sorted(sigma[f].tolist())) for f in map(np.array, scaffold.faces())) != faces:
-                        continue
-                    found.add(sigma.astype(np.int64).tobytes())
-    perms = np.frombuffer(b"".join(sorted(found)), dtype=np.int64).reshape(len(found), scaffold.n_vertices)
-    return np.unique(perms, axis=0)
-
-
 # ---- rigid-motion check ---------------------------------------------------------------
 def _tolerance(scaffold: Scaffold) -> float:
     return 1e-6 * max(1.0, float(np.abs(scaffold.vertices).max()))
+
+
+def plane_normal(x: np.ndarray) -> tuple[np.ndarray, float]:
+    """Return the unit direction of least spread of centred points ``x (n, 3)`` and the spread along it (RMS).
+
+    From the 3 x 3 second-moment matrix (``eigh``): O(n) time and memory.
+    """
+    values, vectors = np.linalg.eigh(x.T @ x)
+    return vectors[:, 0], float(np.sqrt(max(values[0], 0.0) / max(len(x), 1)))
 
 
 def finite_motions(scaffold: Scaffold, sigmas: np.ndarray) -> Iterator[Motion]:
@@ -158,9 +111,8 @@ def finite_motions(scaffold: Scaffold, sigmas: np.ndarray) -> Iterator[Motion]:
     """
     x = scaffold.vertices - scaffold.vertices.mean(axis=0)
     tol = _tolerance(scaffold)
-    _, sv, vt = np.linalg.svd(x, full_matrices=True)
-    flat = sv[-1] <= tol if len(sv) == 3 else True
-    normal = vt[-1]
+    normal, spread = plane_normal(x)
+    flat = spread <= tol
     mirror = np.eye(3) - 2 * np.outer(normal, normal)
     for sigma in sigmas:
         y = x[sigma]

@@ -1,0 +1,317 @@
+"""Symmetries of a finite scaffold: isometries of its sites lifted to incidence automorphisms.
+
+:mod:`lkspace.symmetry.pointset` finds the isometries of the vertex positions (sites).
+Each one is **lifted** to a vertex permutation ``sigma``: with one vertex per site it is
+the site permutation itself; with coincident vertices (an OBJ with one vertex copy per
+face) each face goes to the face on the image sites and its corners follow.  A lift is
+kept only when it is an automorphism of the incidence structure: ``sigma`` is a
+bijection, every edge goes to an edge and every face (as its set of edges) to a face.
+Checks use integer keys and sorting: O(size log size) per motion, no dense matrices.
+
+When coincident vertices make the lift ambiguous (two faces on the same sites, a face
+through one site twice), the exact but slower automorphism search of
+:mod:`lkspace.symmetry.motions` is used if the incidence structure is small enough,
+otherwise only the identity is kept, with a :class:`~lkspace.errors.LkspaceWarning`.
+"""
+
+from __future__ import annotations
+
+import warnings
+from collections.abc import Iterator
+
+import numpy as np
+
+from ..errors import LkspaceWarning, TooLargeError
+from ..model.scaffold import Scaffold
+from ..progress import task
+from .pointset import Sites, SiteSearch, find_sites, standard_position
+
+MAX_GROUP_ENTRIES = 50_000_000
+"""Most entries the group's tables (order x (vertices + edges)) may hold, about 400 MB.
+
+Past it, :class:`~lkspace.errors.TooLargeError` (e.g. a two-sided 5,000-gon: 20,000 motions
+on 5,000 vertices); use ``--symmetry none``."""
+
+Lift = tuple[np.ndarray, np.ndarray, np.ndarray]
+"""A lifted motion: ``sigma (n_vertices,)``, ``Q (3, 3)``, edge permutation ``(n_edges,)``."""
+
+_MIX = np.uint64(0x9E3779B97F4A7C15)
+
+
+def mix(values: np.ndarray) -> np.ndarray:
+    """(n,) uint64: a fixed pseudo-random 64-bit code of each int64 value (splitmix64 finalizer)."""
+    z = values.astype(np.uint64) * _MIX
+    z ^= z >> np.uint64(31)
+    z *= np.uint64(0xBF58476D1CE4E5B9)
+    z ^= z >> np.uint64(29)
+    return z
+
+
+def segment_hashes(values: np.ndarray, starts: np.ndarray) -> np.ndarray:
+    """(n_segments,) uint64: an order-free hash of each segment ``values[starts[i]:starts[i+1]]``."""
+    with np.errstate(over="ignore"):
+        return np.add.reduceat(mix(values), starts[:-1]).astype(np.uint64)
+
+
+def gather(starts: np.ndarray, order: np.ndarray) -> np.ndarray:
+    """Return the indices of the segments ``starts[i]:starts[i+1]`` for ``i`` in ``order``, concatenated."""
+    sizes = np.diff(starts)[order]
+    begin = np.repeat(starts[:-1][order], sizes)
+    offset = np.arange(int(sizes.sum())) - np.repeat(np.cumsum(sizes) - sizes, sizes)
+    return begin + offset
+
+
+class Structure:
+    """The incidence structure of a finite scaffold, keyed for fast automorphism checks."""
+
+    def __init__(self, scaffold: Scaffold) -> None:
+        self.scaffold = scaffold
+        self.n_vertices = scaffold.n_vertices
+        ev = scaffold.edge_vertices
+        self.edge_codes = ev[:, 0] * self.n_vertices + ev[:, 1]
+        self.edge_order = np.argsort(self.edge_codes)
+        self.sorted_codes = self.edge_codes[self.edge_order]
+        self.starts = scaffold.face_starts
+        self.sizes = np.diff(self.starts)
+        self.face_of_side = np.repeat(np.arange(scaffold.n_faces), self.sizes)
+        self.faces = self.sorted_faces(scaffold.side_edge)
+
+    def sorted_faces(self, side_edges: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Faces as edge multisets in a canonical order: ``((2, n_faces) sizes and hashes, sorted edges)``."""
+        hashes = segment_hashes(side_edges, self.starts)
+        order = np.lexsort((hashes, self.sizes))
+        sorted_sides = side_edges[np.lexsort((side_edges, self.face_of_side))]
+        edges = sorted_sides[gather(self.starts, order)]
+        return np.stack([self.sizes[order], hashes[order].view(np.int64)]), edges
+
+    def edge_permutation(self, sigma: np.ndarray) -> np.ndarray | None:
+        """(n_edges,) int64 image edge of each edge under ``sigma``, or ``None`` if one is no edge."""
+        ev = self.scaffold.edge_vertices
+        a, b = sigma[ev[:, 0]], sigma[ev[:, 1]]
+        codes = np.minimum(a, b) * self.n_vertices + np.maximum(a, b)
+        at = np.minimum(np.searchsorted(self.sorted_codes, codes), len(codes) - 1)
+        if not np.array_equal(self.sorted_codes[at], codes):
+            return None
+        perm = self.edge_order[at]
+        if np.any(np.bincount(perm, minlength=len(perm)) != 1):
+            return None
+        return perm.astype(np.int64)
+
+    def automorphism(self, sigma: np.ndarray) -> np.ndarray | None:
+        """Edge permutation of ``sigma`` if it is an incidence automorphism (edges and faces kept), else ``None``."""
+        if np.any(np.bincount(sigma, minlength=self.n_vertices) != 1):
+            return None
+        perm = self.edge_permutation(sigma)
+        if perm is None:
+            return None
+        keys, edges = self.sorted_faces(perm[self.scaffold.side_edge])
+        if not (np.array_equal(keys, self.faces[0]) and np.array_equal(edges, self.faces[1])):
+            return None
+        return perm
+
+
+class Lifter:
+    """Lift site permutations to vertex permutations (one vertex per site, or by faces)."""
+
+    def __init__(self, scaffold: Scaffold, sites: Sites) -> None:
+        self.sites = sites
+        self.of_vertex = sites.of_vertex
+        self.simple = sites.n_sites == scaffold.n_vertices
+        self.vertex_at = np.empty(sites.n_sites, np.int64)
+        self.vertex_at[self.of_vertex] = np.arange(scaffold.n_vertices)
+        starts, corners = scaffold.face_starts, scaffold.corners
+        self.starts = starts
+        self.corners = corners
+        self.face_of_corner = scaffold.corner_face
+        corner_sites = self.of_vertex[corners]
+        self.face_sites_hash = segment_hashes(corner_sites, starts)
+        self.by_site = np.lexsort((corner_sites, self.face_of_corner))
+        sorted_sites = corner_sites[self.by_site]
+        same_face = self.face_of_corner[self.by_site][1:] == self.face_of_corner[self.by_site][:-1]
+        repeated_site = bool(np.any(same_face & (sorted_sites[1:] == sorted_sites[:-1])))
+        hashes = np.sort(self.face_sites_hash)
+        repeated_face = bool(np.any(hashes[1:] == hashes[:-1]))
+        in_face = np.zeros(scaffold.n_vertices, bool)
+        in_face[corners] = True
+        loose = np.bincount(self.of_vertex[~in_face], minlength=sites.n_sites)
+        self.ambiguous = not self.simple and (repeated_site or repeated_face or bool(np.any(loose > 1)))
+        self.face_order = np.argsort(self.face_sites_hash)
+
+    def lift(self, pi: np.ndarray) -> np.ndarray | None:
+        """Vertex permutation over the site permutation ``pi``, or ``None`` if faces do not match up."""
+        if self.simple:
+            return self.vertex_at[pi[self.of_vertex]]
+        image_sites = pi[self.of_vertex[self.corners]]
+        image_hash = segment_hashes(image_sites, self.starts)
+        order = np.argsort(image_hash)
+        if not np.array_equal(image_hash[order], self.face_sites_hash[self.face_order]):
+            return None
+        target = np.empty(len(order), np.int64)
+        target[order] = self.face_order  # face f goes to face target[f]
+        sizes = np.diff(self.starts)
+        if not np.array_equal(sizes[target], sizes):
+            return None
+        src = np.lexsort((image_sites, self.face_of_corner))  # corners of f by image site
+        # corners of target faces, laid out in the order of the source faces
+        tgt_face_corners = np.repeat(self.starts[:-1][target], sizes) + (
+            np.arange(len(self.corners)) - np.repeat(self.starts[:-1], sizes)
+        )
+        tgt_sites = self.of_vertex[self.corners[tgt_face_corners]]
+        dst = tgt_face_corners[np.lexsort((tgt_sites, self.face_of_corner))]
+        if not np.array_equal(image_sites[src], self.of_vertex[self.corners[dst]]):
+            return None
+        sigma = np.full(len(self.of_vertex), -1, np.int64)
+        sigma[self.corners[src]] = self.corners[dst]
+        if not np.array_equal(sigma[self.corners[src]], self.corners[dst]):
+            return None  # a vertex shared by faces would go two ways
+        loose = np.flatnonzero(sigma < 0)
+        sigma[loose] = self.vertex_at[pi[self.of_vertex[loose]]]
+        return sigma
+
+
+def vertex_invariants(scaffold: Scaffold) -> list[np.ndarray]:
+    """Per-vertex values every symmetry keeps: degree, number of corners, summed edge-degree."""
+    ev = scaffold.edge_vertices.reshape(-1)
+    n = scaffold.n_vertices
+    degree = np.bincount(ev, minlength=n).astype(np.float64)
+    corners = np.bincount(scaffold.corners, minlength=n).astype(np.float64)
+    sides = np.bincount(ev, weights=np.repeat(scaffold.edge_degrees, 2), minlength=n)
+    return [degree, corners, sides]
+
+
+Tables = tuple[np.ndarray, np.ndarray, np.ndarray]
+"""Group tables: ``sigmas (m, n_vertices) int64``, ``Qs (m, 3, 3) float64``, ``edge_perms (m, n_edges) int64``."""
+
+
+def stack(lifts: list) -> Tables:
+    """Stack rows ``(sigma, Q, edge_perm, ...)`` into :data:`Tables`, one table at a time.
+
+    Each row's arrays are released once copied (``lifts`` is emptied), so the peak is the
+    rows plus one table, not the rows plus all tables.
+    """
+    m = len(lifts)
+    qs = np.array([row[1] for row in lifts], np.float64).reshape(m, 3, 3)
+    sigmas = np.empty((m, len(lifts[0][0])), np.int64)
+    for i, row in enumerate(lifts):
+        sigmas[i] = row[0]
+        lifts[i] = (None, None, row[2])
+    perms = np.empty((m, len(lifts[0][2])), np.int64)
+    for i, row in enumerate(lifts):
+        perms[i] = row[2]
+        lifts[i] = None
+    lifts.clear()
+    return sigmas, qs, perms
+
+
+class Elements:
+    """The group found so far, closed under composition: each new generator is multiplied in.
+
+    Products of symmetries are symmetries, so only generators are verified (a few full
+    matches, about log2 of the order); the rest of the group costs one composition
+    (``O(vertices + edges)``) per element.
+    """
+
+    def __init__(self, search: SiteSearch, n_vertices: int, n_edges: int, name: str) -> None:
+        self.search = search
+        self.size = n_vertices + n_edges
+        self.name = name
+        identity = np.arange(search.sites.n_sites, dtype=np.int64)
+        self.rows: list[tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]] = [
+            (np.arange(n_vertices, dtype=np.int64), np.eye(3), np.arange(n_edges, dtype=np.int64), identity)
+        ]
+        self.keys = {search.key(identity, True)}
+        self.generators: list[tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]] = []
+        self.same = bool(np.array_equal(search.sites.of_vertex, np.arange(n_vertices)))
+
+    def tables(self) -> Tables:
+        """Return the elements as arrays ``(sigmas, Qs, edge_perms)``, built row by row (no second copy of the rows)."""
+        return stack(self.rows)
+
+    def add_generator(self, row: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]) -> None:
+        """Add ``(sigma, Q, edge_perm, pi)`` and every product it makes with the elements found."""
+        if self.same:
+            row = (row[0], row[1], row[2], row[0])
+        self.generators = self.generators + [row]
+        frontier = list(self.rows)
+        while frontier:
+            new = []
+            for h in frontier:
+                for g in self.generators:
+                    pi_ab = h[3][g[3][[self.search.a, self.search.b_or_a]]]
+                    key = self.search.key_of(pi_ab, bool(np.linalg.det(h[1]) * np.linalg.det(g[1]) > 0))
+                    if key in self.keys:
+                        continue
+                    self.keys.add(key)
+                    sigma = h[0][g[0]]
+                    pi = sigma if self.same else h[3][g[3]]  # one vertex per site, numbered alike: pi is sigma
+                    self.rows.append((sigma, h[1] @ g[1], h[2][g[2]], pi))
+                    new.append(self.rows[-1])
+                    if len(self.rows) * self.size > MAX_GROUP_ENTRIES:
+                        raise TooLargeError(
+                            f"{self.name}: the symmetry group has more than {len(self.rows) - 1} elements on "
+                            f"{self.size} vertices and edges: its tables would pass {MAX_GROUP_ENTRIES} "
+                            "entries; use --symmetry none"
+                        )
+            frontier = new
+
+
+def finite_lifts(scaffold: Scaffold) -> Tables:
+    """Return ``(sigma, Q, edge_perm)`` for every symmetry of a finite scaffold, the identity first.
+
+    Raises :class:`~lkspace.errors.TooLargeError` when the group's tables would pass
+    :data:`MAX_GROUP_ENTRIES` or the candidates :data:`~lkspace.symmetry.pointset.MAX_FRAME_CANDIDATES`.
+    """
+    x = standard_position(scaffold.vertices)
+    sites = find_sites(x, vertex_invariants(scaffold))
+    structure = Structure(scaffold)
+    lifter = Lifter(scaffold, sites)
+    if lifter.ambiguous:
+        return stack(list(ambiguous_lifts(scaffold, structure, scaffold.n_vertices + scaffold.n_edges)))
+    search = SiteSearch(sites)
+    found = Elements(search, scaffold.n_vertices, scaffold.n_edges, scaffold.name)
+    with task("symmetry search (motions)", total=None) as step:
+        for keys, qs in search.batches():
+            if keys is not None:
+                fresh = ~np.isin(keys, np.fromiter(found.keys, np.int64, len(found.keys)))
+                keys, qs = keys[fresh], qs[fresh]
+                ok = search.probe(qs)
+                keys, qs = keys[ok], qs[ok]
+            for i, q in enumerate(qs):
+                if keys is not None and int(keys[i]) in found.keys:
+                    continue
+                verified = search.verify(q)
+                if verified is None:
+                    continue
+                q, pi = verified
+                if search.key(pi, bool(np.linalg.det(q) > 0)) in found.keys:
+                    continue
+                sigma = lifter.lift(pi)
+                perm = None if sigma is None else structure.automorphism(sigma)
+                if sigma is not None and perm is not None:
+                    found.add_generator((sigma, q, perm, pi))
+                    step.note(f"{len(found.rows)} motions found")
+    return found.tables()
+
+
+def ambiguous_lifts(scaffold: Scaffold, structure: Structure, size: int) -> Iterator[Lift]:
+    """Lifts when coincident vertices leave faces ambiguous: the exact igraph search if small, else the identity."""
+    from .motions import MAX_AUTOMORPHISMS, automorphism_count, candidate_vertex_perms, finite_motions
+
+    identity = np.arange(scaffold.n_vertices, dtype=np.int64)
+    count = automorphism_count(scaffold)
+    if count <= MAX_AUTOMORPHISMS and count * (size + scaffold.n_faces) <= MAX_GROUP_ENTRIES:
+        seen = set()
+        for sigma, q, _, _ in finite_motions(scaffold, candidate_vertex_perms(scaffold)):
+            perm = structure.edge_permutation(sigma)
+            key = (sigma.tobytes(), bool(np.linalg.det(q) > 0))
+            if perm is not None and key not in seen:
+                seen.add(key)
+                yield sigma, q, perm
+        return
+    warnings.warn(
+        f"{scaffold.name}: coincident vertices and faces leave the symmetry search ambiguous "
+        f"({count} incidence automorphisms); using the identity only (weld the mesh to find its symmetries)",
+        LkspaceWarning,
+        stacklevel=2,
+    )
+    yield identity, np.eye(3), np.arange(scaffold.n_edges, dtype=np.int64)
