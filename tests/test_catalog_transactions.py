@@ -13,6 +13,7 @@ import pytest
 
 import lkspace
 import lkspace.catalog.jobs as jobs
+import lkspace.catalog.shards as shards
 from lkspace.cli import main
 
 CUBE = ["enumerate", "cube", "--labels", "-1..1", "--shards", "3"]
@@ -40,8 +41,9 @@ def interrupt_part(monkeypatch, n):
             return broken()
         return real(*args, **kwargs)
 
-    monkeypatch.setattr(jobs, "space_batches", flaky)
-    return lambda: monkeypatch.setattr(jobs, "space_batches", real)
+    for module in (jobs, shards):
+        monkeypatch.setattr(module, "space_batches", flaky)
+    return lambda: [monkeypatch.setattr(module, "space_batches", real) for module in (jobs, shards)]
 
 
 def rows(path):
