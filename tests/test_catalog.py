@@ -10,9 +10,9 @@ import pandas as pd
 import pyarrow.parquet as pq
 import pytest
 
+from lkspace.catalog.plan import split_classes
 from lkspace.catalog.reader import read_catalog, read_metadata
 from lkspace.catalog.schema import FORMAT_VERSION
-from lkspace.catalog.plan import split_classes
 from lkspace.catalog.shards import write_catalog
 from lkspace.cli import main
 from lkspace.design.space import make_space
