@@ -61,10 +61,9 @@ def test_stop_at_random_points_then_resume(tmp_path, capsys, reference, signum):
         proc.send_signal(signum)
         _, err = proc.communicate(timeout=30)
         waited = time.monotonic() - sent
-        if proc.returncode == 0:  # finished before the signal
+        if out.exists():  # finished before the signal: complete (or else absent)
             assert sorted_keys(out) == reference
             continue
-        assert not out.exists()  # nothing at the final name
         if signum != signal.SIGKILL:
             assert waited < 2.0, f"stopped {waited:.2f} s after the signal"
             assert proc.returncode == 128 + signum, err
