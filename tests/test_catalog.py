@@ -10,12 +10,13 @@ import pandas as pd
 import pyarrow.parquet as pq
 import pytest
 
+from lkspace.catalog.plan import split_classes
 from lkspace.catalog.reader import read_catalog, read_metadata
 from lkspace.catalog.schema import FORMAT_VERSION
-from lkspace.catalog.shards import split_classes, write_catalog
+from lkspace.catalog.shards import write_catalog
 from lkspace.cli import main
 from lkspace.design.space import make_space
-from lkspace.errors import CatalogError
+from lkspace.errors import CatalogError, ExportError
 
 
 def test_single_file_catalog(tmp_path):
@@ -52,14 +53,12 @@ def test_sharded_catalog_and_resume(tmp_path):
     assert a.key.tolist() == b.key.tolist() and a.orbit_size.tolist() == b.orbit_size.tolist()
     parts = sorted(p for p in os.listdir(folder) if p.startswith("part-"))
     assert len(parts) == 3
-    kept = os.path.getmtime(folder / parts[0])
-    os.remove(folder / parts[1])
+    os.remove(folder / parts[1])  # a damaged finished catalog: --resume keeps the two good parts
     again = write_catalog(space, folder, shards=3, resume=True)
     assert again.shards_resumed == 2 and again.designs == 22815
-    assert os.path.getmtime(folder / parts[0]) == kept
     assert len(read_catalog(folder)) == 22815
-    with pytest.raises(CatalogError, match="different settings"):
-        write_catalog(make_space("cube", "-1..1", "isometries"), folder, shards=3, resume=True)
+    other = write_catalog(make_space("cube", "-1..1", "isometries"), folder, shards=3, resume=True)
+    assert other.shards_resumed == 0 and read_metadata(folder)["symmetry"] == "isometries"
     assert read_metadata(folder)["shard"]["count"] == 3
 
 
@@ -84,8 +83,9 @@ def test_not_a_catalog(tmp_path):
         read_metadata(path)
     (tmp_path / "junk").mkdir()
     (tmp_path / "junk" / "f.txt").write_text("x")
-    with pytest.raises(CatalogError, match="not empty"):
+    with pytest.raises(ExportError, match="holds no lkspace catalog"):
         write_catalog(make_space("tetrahedron", "-1..1"), tmp_path / "junk", shards=2)
+    assert os.listdir(tmp_path / "junk") == ["f.txt"]
 
 
 # ---- the command line ----------------------------------------------------------------------
@@ -164,11 +164,12 @@ def test_cli_errors_are_one_line(capsys, args, message):
 
 
 def test_interrupted_run_leaves_no_partial_part_and_resumes(tmp_path, monkeypatch):
-    import lkspace.catalog.shards as catalog
+    import lkspace.catalog.jobs as jobs
+    from lkspace.catalog.transaction import CatalogInterrupted
 
     space = make_space("cube", "-1..1", "rotations")
     folder = tmp_path / "run"
-    real = catalog.space_batches
+    real = jobs.space_batches
     calls = {"n": 0}
 
     def flaky(*args, **kwargs):
@@ -182,11 +183,14 @@ def test_interrupted_run_leaves_no_partial_part_and_resumes(tmp_path, monkeypatc
             return broken()
         return real(*args, **kwargs)
 
-    monkeypatch.setattr(catalog, "space_batches", flaky)
-    with pytest.raises(KeyboardInterrupt):
+    monkeypatch.setattr(jobs, "space_batches", flaky)
+    with pytest.raises(CatalogInterrupted, match="1 of 3 parts are finished"):
         write_catalog(space, folder, shards=3)
-    assert sorted(os.listdir(folder)) == ["_lkspace.json", "part-00000.parquet"]  # no temporary or partial part
-    monkeypatch.setattr(catalog, "space_batches", real)
+    assert not folder.exists()  # nothing at the final name
+    build = tmp_path / ".run.lkspace-build"
+    assert sorted(p.split("-")[0] for p in os.listdir(build)) == ["_lkspace.json", "part"]  # no temporary part
+    monkeypatch.setattr(jobs, "space_batches", real)
     totals = write_catalog(space, folder, shards=3, resume=True)
     assert totals.shards_resumed == 1 and totals.designs == 22815
     assert pd.read_parquet(folder).orbit_size.sum() == 3**12
+    assert sorted(os.listdir(tmp_path)) == ["run"]

@@ -17,7 +17,10 @@ pytest.importorskip("snappy")
 def test_enumerate_identify_dihedron(tmp_path, capsys):
     out = tmp_path / "d3.parquet"
     assert (
-        main(["enumerate", "dihedron:3", "--labels", "-1..1", "-o", str(out), "--identify", "--jobs", "2", "--json"])
+        main(
+            ["enumerate", "dihedron:3", "--labels", "-1..1", "-o", str(out), "--identify", "--shards", "2"]
+            + ["--jobs", "2", "--json"]
+        )
         == 0
     )
     payload = json.loads(capsys.readouterr().out)
@@ -33,11 +36,26 @@ def test_enumerate_identify_dihedron(tmp_path, capsys):
     meta = read_metadata(out)
     assert meta["identified"] is True and meta["label_set"] == [-1, 0, 1] and meta["scaffold"]["name"] == "dihedron:3"
     assert "rows" in meta and meta["group_order"] == 6  # the part's totals and the space survive the rewrite
-    part = sorted(out.glob("part-*.parquet"))[0]
-    assert json.loads(pq.read_schema(part).metadata[b"lkspace"])["identified"] is True
+    for part in sorted(out.glob("part-*.parquet")):  # every part keeps the catalog's metadata
+        schema_meta = json.loads(pq.read_schema(part).metadata[b"lkspace"])
+        assert schema_meta["identified"] is True and schema_meta["symmetry"] == "rotations"
+        assert schema_meta["scaffold"]["content_hash"] == meta["scaffold"]["content_hash"]
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["d3.parquet"]  # built beside, put in place whole
+    again = ["enumerate", "dihedron:3", "--labels", "-1..1", "-o", str(out), "--identify", "--shards", "2"]
+    assert main([*again, "--resume", "--json"]) == 0  # the checksums cover the identified parts
+    assert json.loads(capsys.readouterr().out)["shards_resumed"] == 2
     row = int(df.knot_name.notna().to_numpy().argmax())  # a named row of an identified catalog, back to its name
     assert main(["identify", str(out), "--row", str(row), "--json"]) == 0
     assert json.loads(capsys.readouterr().out)["name"] == df.knot_name.iloc[row]
+
+
+def test_identify_single_file_keeps_metadata(tmp_path, capsys):
+    out = tmp_path / "t.parquet"
+    assert main(["enumerate", "tetrahedron", "--labels", "-1,1", "-o", str(out), "--identify", "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["identified"]["rows"] == 12
+    meta = read_metadata(out)
+    assert meta["identified"] is True and meta["label_set"] == [-1, 1] and meta["symmetry"] == "rotations"
+    assert meta["scaffold"]["name"] == "tetrahedron" and meta["rows"] == 12 and meta["group_order"] == 12
 
 
 def test_identify_needs_an_output(capsys):

@@ -19,6 +19,9 @@ from ..design.walk import Block, residue_row, walk_blocks
 from ..kernels import kernel
 from .schema import ROW_GROUP, design_schema, residue_schema
 
+INT64_MAX = 2**63 - 1
+"""Largest ``residue_class`` code stored; a larger one (a class of a big scaffold) is stored as null."""
+
 
 def list_column(values: np.ndarray, counts: np.ndarray, type_: pa.ListType) -> pa.Array:
     """Return a list column of Arrow type ``type_``: row ``i`` holds the next ``counts[i]`` of ``values``."""
@@ -121,6 +124,7 @@ def residue_rows_to_batch(rows: list[dict[str, Any]], periodic: bool) -> pa.Reco
     """Record batch of the residues schema from row dicts (few rows: one per class orbit)."""
     schema = residue_schema(periodic)
     data = {f.name: [r[f.name] for r in rows] for f in schema}
+    data["residue_class"] = [c if c <= INT64_MAX else None for c in data["residue_class"]]
     return pa.RecordBatch.from_pydict(data, schema=schema)
 
 

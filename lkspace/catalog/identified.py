@@ -18,7 +18,7 @@ from __future__ import annotations
 import json
 import os
 from collections.abc import Iterable
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import pyarrow as pa
@@ -27,8 +27,15 @@ import pyarrow.parquet as pq
 from ..errors import CatalogError
 from ..io.atomic import atomic_path
 from ..model.scaffold import Scaffold
+from ..progress import Step, task
 from .reader import catalog_files, read_metadata
 from .schema import METADATA_KEY
+
+if TYPE_CHECKING:
+    import pandas as pd
+
+IDENTIFY_CHUNK = 64
+"""Rows identified per call and process between progress updates (a few seconds of work)."""
 
 COLUMNS = {
     "knot_name": pa.string(),
@@ -55,36 +62,57 @@ def _column(values: Iterable[Any], type_: pa.DataType) -> pa.Array:
 def identify_catalog(
     path: str | os.PathLike[str], scaffold: Scaffold, processes: int = 1, seed: int = 0
 ) -> dict[str, Any]:
-    """Add knot/link columns to every row of the catalog at ``path``; returns a summary."""
-    from ..knots.recognition import identify_batch  # realization and SnapPy: loaded only here
+    """Add knot/link columns to every row of the catalog at ``path``; returns a summary.
 
+    Progress (rows identified) is reported through :func:`lkspace.progress.task`.
+    """
     path = os.fspath(path)
     rows = named = 0
     names: dict[str, int] = {}
-    for file in catalog_files(path):
-        table = pq.read_table(file)
-        if "labels" not in table.column_names:
-            raise CatalogError(f"{file}: no 'labels' column to identify")
-        meta = read_metadata(file)
-        if meta.get("identified"):
-            continue
-        labels = np.array(table.column("labels").to_pylist(), dtype=np.int64).reshape(table.num_rows, -1)
-        found = identify_batch(scaffold, labels, processes=processes, seed=seed)
-        found = found.rename(columns={"error": "identify_error"})
-        for name, type_ in COLUMNS.items():
-            column = _column(found[name].tolist() if name in found else [None] * table.num_rows, type_)
-            if name in table.column_names:
-                table = table.drop_columns([name])
-            table = table.append_column(pa.field(name, type_), column)
-        meta["identified"] = True
-        table = table.replace_schema_metadata(
-            {**(table.schema.metadata or {}), METADATA_KEY: json.dumps(meta).encode()}
-        )
-        with atomic_path(file, suffix=".parquet.tmp") as tmp:
-            pq.write_table(table, tmp, compression="zstd")
-        rows += table.num_rows
-        known = found["knot_name"].dropna()
-        named += len(known)
-        for name, n in known.value_counts().items():
-            names[str(name)] = names.get(str(name), 0) + int(n)
+    files = catalog_files(path)
+    total = sum(pq.read_metadata(f).num_rows for f in files)
+    with task("identifying designs", total) as step:
+        for file in files:
+            found = _identify_file(file, scaffold, processes, seed, step)
+            if found is None:
+                continue
+            rows += len(found)
+            known = found["knot_name"].dropna()
+            named += len(known)
+            for name, n in known.value_counts().items():
+                names[str(name)] = names.get(str(name), 0) + int(n)
     return {"rows": rows, "named": named, "names": dict(sorted(names.items(), key=lambda kv: -kv[1]))}
+
+
+def _identify_file(file: str, scaffold: Scaffold, processes: int, seed: int, step: Step) -> pd.DataFrame | None:
+    """Identify the rows of one catalog file and rewrite it with the columns; ``None`` if it already has them."""
+    from ..knots.recognition import identify_batch
+
+    table = pq.read_table(file)
+    if "labels" not in table.column_names:
+        raise CatalogError(f"{file}: no 'labels' column to identify")
+    meta = read_metadata(file)
+    if meta.get("identified"):
+        step.advance(table.num_rows)
+        return None
+    labels = np.array(table.column("labels").to_pylist(), dtype=np.int64).reshape(table.num_rows, -1)
+    chunk = IDENTIFY_CHUNK * max(1, processes)
+    pieces = []
+    for start in range(0, len(labels), chunk):
+        piece = labels[start : start + chunk]
+        pieces.append(identify_batch(scaffold, piece, processes=processes, seed=seed, progress=False))
+        step.advance(len(piece))
+    import pandas as pd
+
+    found = pd.concat(pieces, ignore_index=True) if pieces else identify_batch(scaffold, labels, progress=False)
+    found = found.rename(columns={"error": "identify_error"})
+    for name, type_ in COLUMNS.items():
+        column = _column(found[name].tolist() if name in found else [None] * table.num_rows, type_)
+        if name in table.column_names:
+            table = table.drop_columns([name])
+        table = table.append_column(pa.field(name, type_), column)
+    meta["identified"] = True
+    table = table.replace_schema_metadata({**(table.schema.metadata or {}), METADATA_KEY: json.dumps(meta).encode()})
+    with atomic_path(file, suffix=".parquet.tmp") as tmp:
+        pq.write_table(table, tmp, compression="zstd")
+    return found

@@ -33,17 +33,45 @@ LABEL_COLUMNS = ("labels", "key")
 """Columns read into :attr:`Catalog.labels` rather than into the frame."""
 
 
+MANIFEST = "_lkspace.json"
+"""The manifest of a sharded catalog: its settings and its parts (with their SHA-256)."""
+
+READ_ATTEMPTS = 3
+"""Times :func:`read_catalog` reads a folder again when it was replaced by a new run while being read."""
+
+
 def catalog_files(path: str | os.PathLike) -> list[str]:
-    """Return the Parquet file of a catalog, or the parts of a sharded catalog folder, in order."""
+    """Return the Parquet file of a catalog, or the parts of a sharded catalog folder, in order.
+
+    A folder's parts are the ones its manifest lists (when it lists them), else every
+    ``*.parquet`` not starting with ``.`` or ``_``.
+    """
     path = os.fspath(path)
     if os.path.isdir(path):
-        parts = sorted(p for p in os.listdir(path) if p.endswith(".parquet") and not p.startswith((".", "_")))
+        parts = _manifest_parts(path)
+        if parts is None:
+            parts = sorted(p for p in os.listdir(path) if p.endswith(".parquet") and not p.startswith((".", "_")))
         if not parts:
             raise CatalogError(f"{path}: no Parquet parts in this folder")
         return [os.path.join(path, p) for p in parts]
     if not os.path.exists(path):
         raise CatalogError(f"{path}: no such catalog")
     return [path]
+
+
+def _manifest_parts(folder: str) -> list[str] | None:
+    """Return the part names the manifest of `folder` lists, in order; ``None`` when it lists none."""
+    try:
+        with open(os.path.join(folder, MANIFEST), encoding="utf-8") as fh:
+            manifest = json.load(fh)
+    except (OSError, ValueError):
+        return None
+    parts = manifest.get("parts") if isinstance(manifest, dict) else None
+    if not isinstance(parts, dict):
+        return None
+    if not manifest.get("complete") or len(parts) != manifest.get("shards"):
+        raise CatalogError(f"{folder}: an unfinished catalog ({len(parts)} of {manifest.get('shards')} parts)")
+    return [str(parts[k]["file"]) for k in sorted(parts, key=int)]
 
 
 def read_metadata(path: str | os.PathLike) -> dict[str, Any]:
@@ -54,6 +82,8 @@ def read_metadata(path: str | os.PathLike) -> dict[str, Any]:
     file = catalog_files(path)[0]
     try:
         meta = pq.read_metadata(file).metadata or {}
+    except FileNotFoundError:
+        raise
     except (OSError, pa.ArrowInvalid) as exc:
         raise CatalogError(f"{file}: not a readable Parquet file: {exc}") from None
     if METADATA_KEY not in meta:
@@ -155,18 +185,38 @@ def read_catalog(path: str | os.PathLike, columns: list[str] | None = None) -> C
     >>> len(cat), cat.labels.shape, int(cat.frame.orbit_size.sum())
     (12, (12, 6), 64)
     """
+    for attempt in range(READ_ATTEMPTS):
+        try:
+            return _read(os.fspath(path), columns)
+        except FileNotFoundError:  # a part vanished: a new run replaced the folder while we read it
+            if attempt == READ_ATTEMPTS - 1 or not os.path.exists(path):
+                raise
+    raise AssertionError("unreachable")  # pragma: no cover
+
+
+SIGNATURE = ("format_version", "scaffold", "label_set", "symmetry", "mode", "filters", "sample", "seed")
+"""Metadata every part of one catalog shares (parts that differ come from different runs)."""
+
+
+def _read(path: str, columns: list[str] | None) -> Catalog:
     metadata = read_metadata(path)
     files = catalog_files(path)
+    for file in files[1:]:
+        other = read_metadata(file)
+        if any(other.get(k) != metadata.get(k) for k in SIGNATURE):
+            raise CatalogError(f"{file}: a part of another catalog (scaffold, label set or settings differ)")
     schema = pq.read_schema(files[0])
     names = [n for n in schema.names if n not in LABEL_COLUMNS and (columns is None or n in columns)]
     unknown = sorted(set(columns or []) - set(schema.names))
     if unknown:
-        raise CatalogError(f"{os.fspath(path)}: no column(s) {unknown}; columns are {schema.names}")
+        raise CatalogError(f"{path}: no column(s) {unknown}; columns are {schema.names}")
     label_column = "key" if "key" in schema.names else "labels"
     try:
         table = pa.concat_tables(pq.read_table(f, columns=[*names, label_column]) for f in files)
+    except FileNotFoundError:
+        raise
     except (OSError, pa.ArrowInvalid) as exc:
-        raise CatalogError(f"{os.fspath(path)}: cannot read catalog: {exc}") from None
+        raise CatalogError(f"{path}: cannot read catalog: {exc}") from None
     labels = _labels_of(table)
     frame = table.select(names).to_pandas(types_mapper=pd.ArrowDtype)
-    return Catalog(frame, labels, metadata, os.fspath(path))
+    return Catalog(frame, labels, metadata, path)

@@ -1,44 +1,58 @@
-"""Writing whole catalogs: contiguous shards, parallel jobs (fork), resume.
+"""Writing whole catalogs: plan, lock, build, parts in parallel, resume, swap into place.
 
-A run with one shard writes a single Parquet file; with several, a folder of parts
-``part-00000.parquet``, ... plus a manifest ``_lkspace.json`` (pandas and pyarrow skip
-names starting with ``_`` or ``.``).  Each part is written under a temporary name and
-renamed when complete; its footer metadata records its rows and counts, so ``resume``
-keeps finished parts (when their metadata matches the run) and redoes the others.
-Shards are contiguous runs of representative residue classes with about equal numbers
-of designs (exact Burnside counts per class).
+A run checks its output (:func:`~lkspace.catalog.transaction.catalog_target`), plans
+its size and parts (:mod:`~lkspace.catalog.plan`, refused past the bounds), takes the
+target's lock (:mod:`~lkspace.catalog.lock`), builds the catalog beside the target
+(:mod:`~lkspace.catalog.transaction`: one Parquet file, or a folder of parts
+``part-00000-RUN.parquet``, ... with a manifest ``_lkspace.json`` that records each
+finished part's SHA-256), writes the parts in worker processes
+(:mod:`~lkspace.catalog.jobs`) and, when every part is there, puts the build in place of
+the target.  ``resume`` keeps the verified parts of an interrupted build and redoes the
+rest.
 """
 
 from __future__ import annotations
 
-import json
-import multiprocessing as mp
+import contextlib
 import os
-from collections.abc import Callable, Iterable
-from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
-from dataclasses import asdict, dataclass
+import secrets
+from collections.abc import Callable
+from dataclasses import asdict, dataclass, replace
 from typing import Any, TypeAlias
 
-import numpy as np
 import pyarrow as pa
+import pyarrow.parquet as pq
 
-from ..design.counting import class_weights
 from ..design.space import DesignSpace, make_space
 from ..errors import CatalogError
-from ..io.atomic import write_text
+from ..io.atomic import remove_path, replace_path
 from ..io.scaffold_json import scaffold_to_dict
 from ..io.sources import ScaffoldSource
 from ..model.specs import LabelSetSpec
+from ..progress import task
 from .batches import space_batches
+from .jobs import ignored_signals, interrupt_signals, run_parts, write_batches
+from .lock import catalog_lock
+from .plan import Plan, check_jobs, make_plan
 from .reader import read_metadata
 from .schema import FORMAT_VERSION, design_schema, residue_schema
-from .writer import CatalogWriter
+from .transaction import (
+    CatalogInterrupted,
+    Target,
+    catalog_target,
+    file_sha256,
+    load_manifest,
+    part_name,
+    prune_build,
+    remove_temporaries,
+    save_manifest,
+    seed_build,
+    verified_parts,
+)
 
 CANONICAL_RULE = (
     "orbit member smallest in (t mod K per edge, then t per edge), lexicographic in edge order; see docs/catalog.md"
 )
-_STATE: dict[str, Any] = {}
-
 Progress: TypeAlias = Callable[[int | None], Callable[[int], object] | None]
 """``progress(total)`` -> ``None`` or ``advance(rows written so far)``; ``total`` is ``None`` when unknown."""
 
@@ -63,6 +77,8 @@ class CatalogWritten:
         Order of the symmetry group, and number of distinct signed edge permutations.
     symmetry, mode : str
     label_set : list of int
+    identified : dict, optional
+        With ``identify=True``: ``{rows, named, names: {name: count}}``.
     """
 
     designs: int
@@ -78,6 +94,7 @@ class CatalogWritten:
     label_set: list[int]
     mode: str
     format_version: int = FORMAT_VERSION
+    identified: dict[str, Any] | None = None
 
     def __repr__(self) -> str:
         return f"CatalogWritten({self.designs:,} rows to {self.output} in {self.shards} part(s))"
@@ -86,6 +103,8 @@ class CatalogWritten:
         """JSON form: the ``lkspace enumerate --json`` fields (``by_components`` keyed by strings)."""
         out = asdict(self)
         out["by_components"] = {str(k): v for k, v in self.by_components.items()}
+        if self.identified is None:
+            del out["identified"]
         return out
 
 
@@ -122,67 +141,6 @@ def catalog_metadata(
     }
 
 
-def _write_one(
-    path: str,
-    schema: pa.Schema,
-    meta: dict[str, Any],
-    batches: Iterable[pa.RecordBatch],
-    on_rows: Callable[[int], object] | None = None,
-) -> dict[str, Any]:
-    """Write ``batches`` to ``path``; returns the part summary (also stored in its footer)."""
-    writer = CatalogWriter(path, schema, meta)
-    by: dict[str, int] = {}
-    covered = 0
-    try:
-        for batch in batches:
-            writer.write(batch)
-            comps = batch.column("components").to_numpy()
-            for c, n in zip(*np.unique(comps, return_counts=True), strict=True):
-                by[str(int(c))] = by.get(str(int(c)), 0) + int(n)
-            covered += int(batch.column("orbit_size").to_numpy().sum())
-            if on_rows is not None:
-                on_rows(batch.num_rows)
-    except BaseException as exc:
-        writer.abort(exc)
-        raise
-    summary = {"by_components": by, "assignments_covered": covered}
-    writer.close(summary)
-    return {**summary, "rows": writer.rows}
-
-
-def _part_worker(i: int) -> dict[str, Any]:
-    st = _STATE
-    ids = st["ranges"][i]
-    meta = {**st["meta"], "shard": {"index": i, "count": len(st["ranges"])}}
-    counter = st["counter"]
-
-    live = st.get("live")
-
-    def on_rows(n: int) -> None:
-        with counter.get_lock():
-            counter.value += n
-        if live is not None:  # same process (jobs == 1): update the bar as rows arrive
-            live(counter.value + st["base"])
-
-    return _write_one(
-        st["parts"][i],
-        st["schema"],
-        meta,
-        space_batches(st["space"], "designs", ids, st["components"]),
-        on_rows,
-    )
-
-
-def split_classes(weights: np.ndarray, n_shards: int) -> list[list[int]]:
-    """Split the representative classes into contiguous runs with about equal design counts."""
-    w = np.asarray([int(x) for x in weights], np.float64)
-    cum = np.cumsum(w)
-    total = cum[-1] if len(cum) else 0.0
-    cuts = np.searchsorted(cum, total * np.arange(1, n_shards) / n_shards, side="left")
-    bounds = [0, *cuts.tolist(), len(w)]
-    return [[c for c in range(bounds[i], bounds[i + 1]) if w[c] > 0] for i in range(n_shards)]
-
-
 def write_catalog(
     space: DesignSpace | ScaffoldSource,
     path: str | os.PathLike[str],
@@ -198,6 +156,8 @@ def write_catalog(
     jobs: int = 1,
     shards: int | None = None,
     resume: bool = False,
+    identify: bool = False,
+    yes: bool = False,
     progress: Progress | None = None,
 ) -> CatalogWritten:
     """Walk a design space and write its catalog; return its totals (:class:`CatalogWritten`).
@@ -205,142 +165,192 @@ def write_catalog(
     ``space`` is a :class:`~lkspace.design.space.DesignSpace`, or a scaffold (a path or a
     built-in name) whose space is given by ``label_set``, ``symmetry`` and ``no_zero``.
 
-    A single shard writes one Parquet file at ``path``; several shards write a folder
-    ``path/`` with ``part-00000.parquet``, ... and a manifest ``_lkspace.json`` (ignored by
-    pandas and pyarrow, which open the folder as one table).  Every part is written to a
-    temporary name and renamed when complete, so ``resume=True`` skips the parts that exist
-    (after checking their metadata matches this run) and redoes the rest.  ``jobs`` parts
-    are written in parallel processes.  ``progress(total)`` may return a callable taking
-    the rows written so far.
+    The catalog is a transaction: it is built beside ``path`` and put there only when
+    complete (an old catalog at ``path`` stays readable until then), and a lock file stops
+    a second run writing the same ``path``.  Up to :data:`~lkspace.catalog.plan.PART_ROWS`
+    rows it is one Parquet file; larger design walks (or ``shards`` > 1) make a folder of
+    parts with a manifest ``_lkspace.json`` that pandas and pyarrow open as one table.
+    ``jobs`` worker processes write the parts; ``resume=True`` keeps the parts of an
+    interrupted run whose checksums still match and redoes the rest.  ``identify=True``
+    adds knot/link columns before the catalog is put in place.  Runs estimated past
+    :data:`~lkspace.catalog.plan.ROW_LIMIT` rows need ``yes=True``.  ``progress(total)``
+    may return a callable taking the rows written so far.
+
+    Raises
+    ------
+    CatalogLockedError
+        Another run is writing ``path``.
+    TooLargeError
+        The run is past a documented bound (:mod:`lkspace.catalog.plan`).
+    CatalogInterrupted
+        Ctrl-C or SIGTERM: workers stopped, temporaries removed, finished parts kept.
     """
     if not isinstance(space, DesignSpace):
         space = make_space(space, label_set, symmetry, no_zero)
-    path = os.fspath(path)
+    check_jobs(jobs)
+    target = catalog_target(path)
+    plan = make_plan(space, mode, components, max_designs, sample, shards, yes)
     meta = catalog_metadata(space, mode, components, max_designs, sample, seed)
     periodic = space.scaffold.periodic
     schema = design_schema(space.scaffold.n_edges, periodic) if mode == "designs" else residue_schema(periodic)
-    weights: np.ndarray | None = None
-    expected: int | None = None
-    if mode == "designs":
-        weights = class_weights(space, components)
-        expected = int(sum(weights))
-        expected = min(expected, max_designs) if max_designs is not None else expected
-    if shards is None:  # auto: one file, or ~2M-row parts for big parallel/resumable runs
-        if expected is not None and max_designs is None:  # a whole design walk
-            big = expected > 4_000_000
-            shards = max(2 * jobs, -(-expected // 2_000_000)) if jobs > 1 or big else 1
-        else:
-            shards = 1
-    if shards > 1 and (mode != "designs" or max_designs is not None):
-        raise CatalogError("--shards/--jobs apply to full design walks (not with --max-designs or other modes)")
-    advance = progress(expected) if progress is not None else None
-    if shards == 1:
-        if resume and os.path.isfile(path) and _matches(path, meta):
-            single, skipped = read_metadata(path), 1
-            if advance:
-                advance(single["rows"])
-        else:
-            if os.path.isdir(path):
-                raise CatalogError(f"{path}: is a folder; give a file name or use --shards")
-            single = _write_one(
-                path,
-                schema,
-                {**meta, "shard": {"index": 0, "count": 1}},
-                space_batches(space, mode, None, components, max_designs, sample, seed),
-                advance and _accumulate(advance),
-            )
-            skipped = 0
-        return _totals(space, meta, [single], path, 1, skipped)
-    manifest = os.path.join(path, "_lkspace.json")
-    if os.path.exists(path) and not os.path.isdir(path):
-        raise CatalogError(f"{path}: exists and is not a folder; a catalog of {shards} shards is a folder")
-    if os.path.isdir(path) and os.listdir(path):
-        if not os.path.exists(manifest):
-            raise CatalogError(f"{path}: folder is not empty and holds no lkspace catalog; choose another -o")
-        with open(manifest, encoding="utf-8") as fh:
-            old = json.load(fh)
-        if resume and old != {**meta, "shards": shards}:
-            raise CatalogError(
-                f"{path}: --resume with different settings than the catalog there "
-                f"(scaffold, labels, symmetry, filters or shards differ)"
-            )
-        if not resume:
-            for name in os.listdir(path):
-                if name.startswith("part-") and name.endswith(".parquet"):
-                    os.remove(os.path.join(path, name))
-    os.makedirs(path, exist_ok=True)
-    write_text(manifest, json.dumps({**meta, "shards": shards}, indent=1))
-    parts = [os.path.join(path, f"part-{i:05d}.parquet") for i in range(shards)]
-    assert weights is not None  # several shards: a whole design walk (checked above)
-    ranges = split_classes(weights, shards)
-    summaries: list[dict[str, Any] | None] = [None] * shards
-    todo = []
-    for i, part in enumerate(parts):
-        if resume and os.path.isfile(part) and _matches(part, meta):
-            summaries[i] = resumed = read_metadata(part)
-            if advance:
-                advance(resumed["rows"])
-        else:
-            todo.append(i)
-    ctx = mp.get_context("fork")
-    counter = ctx.Value("q", 0)
-    _STATE.update(
-        space=space, ranges=ranges, meta=meta, schema=schema, parts=parts, components=components, counter=counter
-    )
-    base = sum(s["rows"] for s in summaries if s)
-    _STATE.update(base=base, live=advance if jobs <= 1 else None)
-    try:
-        if jobs <= 1:
-            for i in todo:
-                summaries[i] = _part_worker(i)
-                if advance:
-                    advance(counter.value + base)
-        else:
-            with ProcessPoolExecutor(max_workers=jobs, mp_context=ctx) as pool:
-                futures = {pool.submit(_part_worker, i): i for i in todo}
-                pending = set(futures)
-                while pending:
-                    finished, pending = wait(pending, timeout=0.25, return_when=FIRST_COMPLETED)
-                    for f in finished:
-                        summaries[futures[f]] = f.result()
-                    if advance:
-                        advance(counter.value + base)
-    finally:
-        _STATE.clear()
-    written = [s for s in summaries if s is not None]
-    assert len(written) == shards  # every part was written or resumed
-    return _totals(space, meta, written, path, shards, shards - len(todo))
+    run = _Run(space, target, plan, meta, schema, mode, (components, max_designs, sample, seed), identify)
+    with catalog_lock(target.lock, target.shown), interrupt_signals(), task("writing catalog", plan.rows) as step:
+        advance = progress(plan.rows) if progress is not None else None
+
+        def tick(rows: int) -> None:
+            step.update(completed=rows)
+            if plan.parts > 1:
+                step.note(f"{len(run.parts)}/{plan.parts} parts")
+            if advance is not None:
+                advance(rows)
+
+        remove_temporaries(target, keep_build=resume)
+        try:
+            summaries, kept = run.single(resume, jobs, tick) if plan.parts == 1 else run.sharded(resume, jobs, tick)
+        except KeyboardInterrupt as exc:
+            with ignored_signals():
+                remove_temporaries(target, keep_build=plan.parts > 1)
+            raise CatalogInterrupted(run.interrupted(), 128 + getattr(exc, "signum", 2)) from None
+    totals = _totals(space, meta, summaries, os.fspath(path), plan.parts, kept)
+    return replace(totals, identified=run.identified) if identify else totals
 
 
-def _accumulate(advance: Callable[[int], object]) -> Callable[[int], None]:
-    state = {"n": 0}
+class _Run:
+    """One catalog run: what :func:`write_catalog` planned, and the parts finished so far."""
 
-    def on_rows(n: int) -> None:
-        state["n"] += n
-        advance(state["n"])
+    def __init__(
+        self,
+        space: DesignSpace,
+        target: Target,
+        plan: Plan,
+        meta: dict[str, Any],
+        schema: pa.Schema,
+        mode: str,
+        walk: tuple[Any, ...],
+        identify: bool,
+    ) -> None:
+        self.space, self.target, self.plan, self.meta, self.schema = space, target, plan, meta, schema
+        self.mode, self.walk, self.identify = mode, walk, identify
+        self.signature = {**meta, "shards": plan.parts, "plan": plan.fingerprint, "identify": identify}
+        self.parts: dict[str, dict[str, Any]] = {}
+        self.identified: dict[str, Any] | None = None
+        self.jobs = 1
 
-    return on_rows
+    def single(self, resume: bool, jobs: int, tick: Callable[[int], object]) -> tuple[list[dict[str, Any]], int]:
+        """Write (or, resuming, keep) a one-file catalog."""
+        self.jobs = jobs
+        target, build = self.target, self.target.build
+        part_meta = {**self.meta, "shard": {"index": 0, "count": 1, "plan": self.plan.fingerprint}}
+        for candidate in (build, target.path) if resume else ():
+            if os.path.isfile(candidate) and _matches(candidate, part_meta):
+                summary = read_metadata(candidate)
+                tick(summary["rows"])
+                if self.identify and not summary.get("identified"):
+                    self._identify(candidate)
+                if candidate == build:
+                    with ignored_signals():
+                        replace_path(build, target.path, target.aside)
+                return [summary], 1
+        remove_path(build)
+        rows = [0]
+
+        def on_rows(n: int) -> None:
+            rows[0] += n
+            tick(rows[0])
+
+        batches = space_batches(self.space, self.mode, None, *self.walk)
+        summary = write_batches(build, self.schema, part_meta, batches, on_rows)
+        if self.identify:
+            self._identify(build)
+        with ignored_signals():
+            replace_path(build, target.path, target.aside)
+        return [summary], 0
+
+    def sharded(self, resume: bool, jobs: int, tick: Callable[[int], object]) -> tuple[list[dict[str, Any]], int]:
+        """Write a folder of parts in the build, then put it in place."""
+        build, n = self.target.build, self.plan.parts
+        self.jobs = jobs
+        old = load_manifest(build) if resume and os.path.isdir(build) else None
+        if old is not None and {k: old.get(k) for k in self.signature} == self.signature:
+            run_id = str(old["run"])
+            self.parts = verified_parts(build, old)
+        else:
+            remove_path(build)
+            os.mkdir(build)
+            run_id = secrets.token_hex(4)
+            self.parts = seed_build(self.target, build, self.signature, run_id) if resume else {}
+        prune_build(build, self.parts)
+        manifest = {**self.signature, "run": run_id, "parts": self.parts}
+        save_manifest(build, manifest)
+        kept = len(self.parts)
+        base = sum(int(p["rows"]) for p in self.parts.values())
+        tick(base)
+        state = {
+            "space": self.space,
+            "mode": self.mode,
+            "walk": self.walk,
+            "folder": build,
+            "files": [part_name(i, run_id) for i in range(n)],
+            "meta": self.meta,
+            "plan": self.plan.fingerprint,
+            "ranges": self.plan.ranges,
+            "schema": self.schema,
+        }
+        todo = [i for i in range(n) if str(i) not in self.parts]
+        with contextlib.closing(run_parts(state, todo, jobs, lambda rows: tick(base + rows))) as finished:
+            for i, summary in finished:
+                self.parts[str(i)] = summary
+                save_manifest(build, manifest)
+        manifest["complete"] = True  # every part is there
+        save_manifest(build, manifest)
+        if self.identify:
+            self._identify(build)
+            for entry in self.parts.values():
+                entry["sha256"] = file_sha256(os.path.join(build, str(entry["file"])))
+            save_manifest(build, manifest)
+        with ignored_signals():
+            replace_path(build, self.target.path, self.target.aside)
+        return [self.parts[str(i)] for i in range(n)], kept
+
+    def _identify(self, path: str) -> None:
+        from .identified import identify_catalog
+
+        self.identified = identify_catalog(path, self.space.scaffold, processes=self.jobs)
+
+    def interrupted(self) -> str:
+        """Return the line that says what an interrupt left and how to go on."""
+        if self.plan.parts == 1:
+            return f"interrupted; nothing was written to {self.target.shown} (an old catalog there is unchanged)"
+        return (
+            f"interrupted; {len(self.parts)} of {self.plan.parts} parts are finished in {self.target.build}: "
+            "run the same command with --resume to finish"
+        )
 
 
 def _matches(part: str, meta: dict[str, Any]) -> bool:
+    """Whether the catalog file ``part`` has the metadata ``meta`` and reads to the end."""
     try:
         old = read_metadata(part)
-    except CatalogError:
+        if any(old.get(k) != v for k, v in meta.items()):
+            return False
+        pq.ParquetFile(part).read()
+    except (CatalogError, OSError, pa.ArrowException):
         return False
-    return all(old.get(k) == v for k, v in meta.items())
+    return True
 
 
 def _totals(
     space: DesignSpace, meta: dict[str, Any], summaries: list[dict[str, Any]], path: str, shards: int, skipped: int
 ) -> CatalogWritten:
     by: dict[int, int] = {}
+    covered = [int(s["assignments_covered"]) for s in summaries] or [0]
     for s in summaries:
         for k, v in s["by_components"].items():
             by[int(k)] = by.get(int(k), 0) + v
     return CatalogWritten(
         designs=sum(s["rows"] for s in summaries),
         assignments=space.assignments,
-        assignments_covered=sum(s["assignments_covered"] for s in summaries),
+        assignments_covered=-1 if min(covered) < 0 else sum(covered),
         by_components=dict(sorted(by.items())),
         output=os.path.abspath(path),
         shards=shards,

@@ -2,46 +2,17 @@
 
 from __future__ import annotations
 
-import sys
 import time
-from collections.abc import Callable
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import click
 
+from ..catalog.plan import MAX_JOBS, MAX_SHARDS
+from ..catalog.transaction import CatalogInterrupted
 from ..design.space import WALK_MODES, DesignSpace, make_space
-from ..errors import UsageError
+from ..errors import LkspaceError, UsageError
 from ..symmetry.group import MODES as SYMMETRY_MODES
 from .common import Context, emit, json_option, label_set, labels_option, load_mesh, mesh_argument
-
-if TYPE_CHECKING:
-    import rich.progress
-
-    from ..catalog.shards import Progress
-
-
-def _progress_factory(enabled: bool) -> tuple[Progress | None, rich.progress.Progress | None]:
-    """``progress(total) -> advance(done)`` drawing a rich bar on stderr, or None."""
-    if not enabled:
-        return None, None
-    from rich.console import Console
-    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeRemainingColumn
-
-    bar = Progress(
-        TextColumn("designs"),
-        BarColumn(),
-        MofNCompleteColumn(),
-        TimeRemainingColumn(),
-        console=Console(stderr=True),
-        transient=True,
-    )
-
-    def factory(total: int | None) -> Callable[[int], None]:
-        task = bar.add_task("walk", total=total)
-        bar.start()
-        return lambda done: bar.update(task, completed=done)
-
-    return factory, bar
 
 
 def _count_payload(
@@ -112,9 +83,16 @@ def _count_payload(
     help="spanning-trees mode: sample N uniform spanning trees instead of listing all.",
 )
 @click.option("--seed", type=int, default=0, show_default=True, help="Random seed for --sample.")
-@click.option("--jobs", type=click.IntRange(min=1), default=1, show_default=True, help="Parallel processes.")
-@click.option("--shards", type=click.IntRange(min=1), help="Parts of the catalog (default: 1, or more for big runs).")
-@click.option("--resume", is_flag=True, help="Keep the finished parts of an interrupted run and do the rest.")
+@click.option(
+    "--jobs", type=click.IntRange(1, MAX_JOBS), default=1, show_default=True, help="Parallel worker processes."
+)
+@click.option(
+    "--shards",
+    type=click.IntRange(1, MAX_SHARDS),
+    help="Parts of the catalog (default: one per million designs; one file up to a million).",
+)
+@click.option("--resume", is_flag=True, help="Keep the verified parts of an interrupted run and do the rest.")
+@click.option("--yes", is_flag=True, help="Go ahead with a catalog estimated past 10^8 rows or 2 GB.")
 @click.option("--identify", is_flag=True, help="Add knot/link names and invariants to every row (extra [knots]; slow).")
 @json_option
 def enumerate_cmd(
@@ -132,6 +110,7 @@ def enumerate_cmd(
     jobs: int,
     shards: int | None,
     resume: bool,
+    yes: bool,
     identify: bool,
     as_json: bool,
 ) -> None:
@@ -143,13 +122,53 @@ def enumerate_cmd(
       lkspace enumerate cube --labels -2..2 -o cube.parquet --jobs 2
       lkspace enumerate cube --count-only --components 1 --no-zero
       lkspace enumerate cube --mode residues -o cube-topology.parquet
+      lkspace enumerate cube --labels -2..2 -o cube.parquet --jobs 2 --resume   # after Ctrl-C
 
     The representative of each design is the orbit member smallest in (t mod K per
     edge, then t per edge), lexicographically in edge order.
     """
+    args = dict(locals())
+    from ..catalog.jobs import interrupt_signals
+
+    with interrupt_signals():  # SIGTERM stops the command as Ctrl-C does, with exit status 143
+        try:
+            _enumerate(**args)
+        except KeyboardInterrupt as exc:  # before or after the catalog run (which says more itself)
+            code = 128 + getattr(exc, "signum", 2)
+            if isinstance(exc, CatalogInterrupted):
+                code, message = exc.exit_code, str(exc)
+            else:
+                message = "interrupted; nothing was written"
+            stopped = LkspaceError(message)
+            stopped.exit_code = code
+            raise stopped from None
+
+
+def _enumerate(
+    mesh: str | None,
+    labels_spec: str,
+    symmetry: str,
+    output: str | None,
+    mode: str,
+    components: int | None,
+    no_zero: bool,
+    max_designs: int | None,
+    count_only: bool,
+    sample: int | None,
+    seed: int,
+    jobs: int,
+    shards: int | None,
+    resume: bool,
+    yes: bool,
+    identify: bool,
+    as_json: bool,
+) -> None:
     from ..catalog.shards import write_catalog
+    from ..catalog.transaction import catalog_target
 
     ctx = Context(as_json)
+    if output is not None and not count_only:
+        catalog_target(output)  # a bad -o fails before any work
     scaffold = load_mesh(ctx, mesh)
     labels = label_set(labels_spec)
     if sample is not None and mode != "spanning-trees":
@@ -166,29 +185,22 @@ def enumerate_cmd(
         if output is None and not count_only:
             ctx.notes["note"] = "no -o given: counted, nothing written"
     else:
-        factory, bar = _progress_factory(sys.stderr.isatty())
-        try:
-            payload = write_catalog(
-                space,
-                output,
-                mode=mode,
-                components=components,
-                max_designs=max_designs,
-                sample=sample,
-                seed=seed,
-                jobs=jobs,
-                shards=shards,
-                resume=resume,
-                progress=factory,
-            ).to_dict()
-        finally:
-            if bar is not None:
-                bar.stop()
+        written = write_catalog(
+            space,
+            output,
+            mode=mode,
+            components=components,
+            max_designs=max_designs,
+            sample=sample,
+            seed=seed,
+            jobs=jobs,
+            shards=shards,
+            resume=resume,
+            identify=identify,
+            yes=yes,
+        )
+        payload = written.to_dict()
         payload["written"] = payload.pop("output")
-        if identify:
-            from ..catalog.identified import identify_catalog
-
-            payload["identified"] = identify_catalog(output, scaffold, processes=jobs)
     payload["seconds"] = round(time.perf_counter() - started, 3)
 
     def human() -> None:

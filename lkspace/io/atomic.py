@@ -3,7 +3,10 @@
 from __future__ import annotations
 
 import contextlib
+import errno
 import os
+import shutil
+import sys
 import tempfile
 from collections.abc import Iterator
 
@@ -44,3 +47,55 @@ def write_bytes(path: str | os.PathLike, data: bytes) -> None:
     with atomic_path(path) as tmp:
         with open(tmp, "wb") as fh:
             fh.write(data)
+
+
+def remove_path(path: str) -> None:
+    """Remove the file or folder ``path`` if it exists."""
+    if os.path.isdir(path) and not os.path.islink(path):
+        shutil.rmtree(path, ignore_errors=True)
+    else:
+        with contextlib.suppress(FileNotFoundError):
+            os.remove(path)
+
+
+def _exchange(src: str, dst: str) -> bool:
+    """Swap ``src`` and ``dst`` in one step (Linux ``renameat2(RENAME_EXCHANGE)``); ``False`` if unsupported."""
+    if not sys.platform.startswith("linux"):
+        return False
+    import ctypes
+
+    try:
+        renameat2 = ctypes.CDLL(None, use_errno=True).renameat2
+    except (OSError, AttributeError):  # an old C library
+        return False
+    at_fdcwd, rename_exchange = -100, 2
+    if renameat2(at_fdcwd, os.fsencode(src), at_fdcwd, os.fsencode(dst), rename_exchange) == 0:
+        return True
+    err = ctypes.get_errno()
+    if err in (errno.EINVAL, errno.ENOSYS, errno.EOPNOTSUPP, errno.EPERM):  # file system or kernel without it
+        return False
+    raise OSError(err, os.strerror(err), dst)
+
+
+def replace_path(src: str, dst: str, aside: str) -> None:
+    """Put the file or folder ``src`` at ``dst``, then remove what was at ``dst`` before.
+
+    Readers of ``dst`` see the old content or the new, never a mix: files are replaced
+    with one rename; a folder (or a file replaced by a folder, or the reverse) is
+    swapped with one ``renameat2(RENAME_EXCHANGE)`` on Linux.  Elsewhere the old content
+    is first renamed to ``aside`` (a name in the same folder), which leaves ``dst``
+    absent for the moment between two renames.
+    """
+    if not os.path.lexists(dst):
+        os.rename(src, dst)
+        return
+    if os.path.isfile(src) and os.path.isfile(dst):
+        os.replace(src, dst)
+        return
+    if _exchange(src, dst):
+        remove_path(src)  # now the old content
+        return
+    remove_path(aside)
+    os.rename(dst, aside)
+    os.rename(src, dst)
+    remove_path(aside)

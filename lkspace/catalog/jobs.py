@@ -1,0 +1,204 @@
+"""Writing the parts of a catalog, in this process or in a pool of worker processes.
+
+Workers are started with the ``forkserver`` method where there is one (Linux, macOS)
+and ``spawn`` elsewhere (Windows), never by forking a running program: each worker
+imports lkspace afresh, receives the run's state once (:func:`init_worker`) and writes
+whole parts (:func:`write_part`).  Workers ignore SIGINT and leave the decisions to the
+main process, which on Ctrl-C or SIGTERM terminates them at once (queued parts never
+start) and removes their temporary files; a worker whose main process has died exits
+within :data:`ORPHAN_POLL` seconds.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import multiprocessing as mp
+import os
+import pickle
+import signal
+import threading
+import time
+from collections.abc import Callable, Generator, Iterable, Iterator
+from typing import Any
+
+import numpy as np
+import pyarrow as pa
+
+from .batches import space_batches
+from .lock import pid_alive
+from .transaction import file_sha256
+from .writer import CatalogWriter
+
+ORPHAN_POLL = 0.5
+"""Seconds between a worker's checks that the main process still runs."""
+
+_STATE: dict[str, Any] = {}
+
+
+def write_batches(
+    path: str,
+    schema: pa.Schema,
+    meta: dict[str, Any],
+    batches: Iterable[pa.RecordBatch],
+    on_rows: Callable[[int], object] | None = None,
+) -> dict[str, Any]:
+    """Write ``batches`` to ``path`` atomically; return the part summary (also stored in its footer)."""
+    writer = CatalogWriter(path, schema, meta)
+    by: dict[str, int] = {}
+    covered = 0
+    try:
+        for batch in batches:
+            writer.write(batch)
+            comps = batch.column("components").to_numpy()
+            for c, n in zip(*np.unique(comps, return_counts=True), strict=True):
+                by[str(int(c))] = by.get(str(int(c)), 0) + int(n)
+            sizes = batch.column("orbit_size").to_numpy()
+            covered = -1 if covered < 0 or (sizes < 0).any() else covered + int(sizes.sum())  # -1: past 64 bits
+            if on_rows is not None:
+                on_rows(batch.num_rows)
+    except BaseException as exc:
+        writer.abort(exc)
+        raise
+    summary = {"by_components": by, "assignments_covered": covered}
+    writer.close(summary)
+    return {**summary, "rows": writer.rows}
+
+
+def init_worker(state: bytes, main_pid: int) -> None:
+    """Worker start: ignore SIGINT, take the run's state, exit when the main process is gone.
+
+    The arguments are plain bytes and an int, so a worker started just before its main
+    process stopped still starts cleanly (and then exits).
+    """
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    threading.Thread(target=_exit_with, args=(main_pid,), daemon=True).start()
+    _STATE.clear()
+    _STATE.update(pickle.loads(state))
+
+
+def _exit_with(main_pid: int) -> None:
+    while pid_alive(main_pid) and os.getppid() != 1:
+        time.sleep(ORPHAN_POLL)
+    os._exit(1)  # an orphan: nobody will use what it writes
+
+
+def write_part(i: int) -> tuple[int, dict[str, Any]]:
+    """Write part ``i`` of the run in ``_STATE``; return ``(i, summary with file and sha256)``."""
+    st = _STATE
+    path = os.path.join(st["folder"], st["files"][i])
+    meta = {**st["meta"], "shard": {"index": i, "count": len(st["files"]), "plan": st["plan"]}}
+    ids = st["ranges"][i] if st["ranges"] is not None else None
+    batches = space_batches(st["space"], st["mode"], ids, *st["walk"])
+    summary = write_batches(path, st["schema"], meta, batches, st.get("on_rows"))
+    return i, {**summary, "file": st["files"][i], "sha256": file_sha256(path)}
+
+
+def context() -> mp.context.BaseContext:
+    """Return the multiprocessing start method: ``forkserver`` where available, else ``spawn``."""
+    return mp.get_context("forkserver" if "forkserver" in mp.get_all_start_methods() else "spawn")
+
+
+def run_parts(
+    state: dict[str, Any], todo: list[int], jobs: int, tick: Callable[[int], object]
+) -> Generator[tuple[int, dict[str, Any]], None, None]:
+    """Write the parts ``todo`` with ``jobs`` processes; yield ``(i, summary)`` as each finishes.
+
+    ``tick(rows written so far)`` is called as rows are written (in this process) or at
+    least every quarter second (rows of the finished parts, with workers).  An exception
+    (KeyboardInterrupt included) terminates the workers before it propagates.
+    """
+    if jobs <= 1 or len(todo) <= 1:  # in this process: rows counted as they are written
+        rows = [0]
+
+        def on_rows(n: int) -> None:
+            rows[0] += n
+            tick(rows[0])
+
+        _STATE.clear()
+        _STATE.update(state, on_rows=on_rows)
+        try:
+            for i in todo:
+                yield write_part(i)
+        finally:
+            _STATE.clear()
+        return
+    rows_done = 0
+    payload = pickle.dumps(state)
+    with deferred_signals():  # a pool half made cannot be stopped: finish making it, then stop
+        pool = context().Pool(min(jobs, len(todo)), initializer=init_worker, initargs=(payload, os.getpid()))
+    try:
+        results = pool.imap_unordered(write_part, todo)
+        for _ in todo:
+            while True:
+                try:
+                    done = results.next(timeout=0.25)
+                    break
+                except mp.TimeoutError:
+                    tick(rows_done)
+            rows_done += int(done[1]["rows"])
+            yield done
+            tick(rows_done)
+        pool.close()
+    except BaseException:
+        pool.terminate()
+        raise
+    finally:
+        pool.join()
+
+
+class Terminated(KeyboardInterrupt):
+    """SIGTERM, raised in the main thread like Ctrl-C's KeyboardInterrupt (``signum`` 15)."""
+
+    signum = int(signal.SIGTERM)
+
+
+def _raise_terminated(signum: int, frame: object) -> None:
+    raise Terminated()
+
+
+def _in_main_thread() -> bool:
+    return threading.current_thread() is threading.main_thread()
+
+
+@contextlib.contextmanager
+def interrupt_signals() -> Iterator[None]:
+    """Within the body, SIGTERM stops the run like Ctrl-C does (main thread only)."""
+    if not _in_main_thread():
+        yield
+        return
+    old = signal.signal(signal.SIGTERM, _raise_terminated)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGTERM, old)
+
+
+@contextlib.contextmanager
+def ignored_signals() -> Iterator[None]:
+    """Within the body (a cleanup or a rename, milliseconds), SIGINT and SIGTERM are ignored."""
+    if not _in_main_thread():
+        yield
+        return
+    old = {s: signal.signal(s, signal.SIG_IGN) for s in (signal.SIGINT, signal.SIGTERM)}
+    try:
+        yield
+    finally:
+        for s, handler in old.items():
+            signal.signal(s, handler)
+
+
+@contextlib.contextmanager
+def deferred_signals() -> Iterator[None]:
+    """Within the body, SIGINT and SIGTERM wait; one that came is raised when the body ends."""
+    if not _in_main_thread():
+        yield
+        return
+    caught: list[int] = []
+    old = {s: signal.signal(s, lambda signum, frame: caught.append(signum)) for s in (signal.SIGINT, signal.SIGTERM)}
+    try:
+        yield
+    finally:
+        for s, handler in old.items():
+            signal.signal(s, handler)
+    if caught:
+        raise Terminated() if caught[0] == signal.SIGTERM else KeyboardInterrupt()

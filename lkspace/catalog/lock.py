@@ -1,0 +1,99 @@
+"""One writer per catalog: a lock file beside the target.
+
+``.NAME.lkspace-lock`` is created with ``O_CREAT | O_EXCL`` (atomic on every local file
+system) and holds the writer's pid, host and start time as JSON.  A second run finds it
+and stops with :class:`~lkspace.errors.CatalogLockedError` naming the first.  A lock
+left by a run that was killed (its pid no longer runs on this host) is stale and taken
+over; a lock from another host is never guessed at: the message says which file to
+delete once that run is known to be gone.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import json
+import os
+import socket
+import sys
+import time
+from collections.abc import Iterator
+
+from ..errors import CatalogLockedError
+
+TORN_LOCK_SECONDS = 10.0
+"""A lock file still empty or unreadable after this many seconds is stale (its writer died while creating it)."""
+
+
+def pid_alive(pid: int) -> bool:
+    """Return whether process ``pid`` runs on this machine (``True`` when it cannot be told)."""
+    if pid <= 0:
+        return False
+    if sys.platform == "win32":  # os.kill(pid, 0) would terminate it there
+        try:
+            import psutil  # type: ignore[import-untyped]
+        except ImportError:
+            return True
+        return bool(psutil.pid_exists(pid))
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:  # it exists, owned by someone else
+        return True
+    return True
+
+
+def _holder(lock: str) -> dict[str, object] | None:
+    """Return the lock's JSON, or ``None`` when it is empty or torn."""
+    try:
+        with open(lock, encoding="utf-8") as fh:
+            data = json.load(fh)
+    except (OSError, ValueError):
+        return None
+    return data if isinstance(data, dict) else None
+
+
+def _is_stale(lock: str, holder: dict[str, object] | None) -> bool:
+    if holder is None:
+        try:
+            return time.time() - os.stat(lock).st_mtime > TORN_LOCK_SECONDS
+        except FileNotFoundError:
+            return True
+    pid = holder.get("pid")
+    return holder.get("host") == socket.gethostname() and isinstance(pid, int) and not pid_alive(pid)
+
+
+@contextlib.contextmanager
+def catalog_lock(lock: str, target: str) -> Iterator[None]:
+    """Hold the lock file ``lock`` of catalog ``target`` for the body; remove it afterwards."""
+    record = json.dumps(
+        {"pid": os.getpid(), "host": socket.gethostname(), "started": time.strftime("%Y-%m-%d %H:%M:%S")}
+    )
+    for _ in range(3):
+        try:
+            fd = os.open(lock, os.O_CREAT | os.O_EXCL | os.O_WRONLY, 0o644)
+        except FileExistsError:
+            holder = _holder(lock)
+            if _is_stale(lock, holder):
+                with contextlib.suppress(FileNotFoundError):
+                    os.remove(lock)
+                continue
+            who = (
+                f"pid {holder.get('pid')} on {holder.get('host')}, started {holder.get('started')}"
+                if holder
+                else "a run that is starting"
+            )
+            raise CatalogLockedError(
+                f"{target}: another lkspace run is writing this catalog ({who}); wait for it to finish, "
+                f"or delete {lock} if that run is gone"
+            ) from None
+        with os.fdopen(fd, "w", encoding="utf-8") as fh:
+            fh.write(record)
+        break
+    else:  # pragma: no cover - three stale locks in a row: a race with other writers
+        raise CatalogLockedError(f"{target}: could not take the lock {lock}; try again")
+    try:
+        yield
+    finally:
+        with contextlib.suppress(FileNotFoundError):
+            os.remove(lock)

@@ -1,0 +1,184 @@
+"""A catalog run as a transaction: built beside its target, put in place when complete.
+
+For a target ``DIR/NAME`` (a ``.parquet`` file or a folder of parts) a run uses, in
+``DIR``:
+
+- ``.NAME.lkspace-lock``: the writer's lock (:mod:`lkspace.catalog.lock`);
+- ``.NAME.lkspace-build``: the catalog being built (a file, or a folder of parts with
+  the manifest ``_lkspace.json``, which records each finished part's rows and SHA-256);
+- ``.NAME.lkspace-old``: where the old catalog goes for a moment when it cannot be
+  swapped with the new one in one step (not on Linux).
+
+When the build is complete it replaces the target (:func:`lkspace.io.atomic.replace_path`):
+readers see the old catalog or the new one.  An interrupted run leaves the build folder
+with its finished parts; ``--resume`` checks them against their checksums and redoes the
+rest.  Every other temporary name of the target starts with ``.NAME.lkspace-`` or
+``..NAME.lkspace-build.`` and is removed by the next run.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import os
+import stat
+from dataclasses import dataclass
+from typing import Any
+
+from ..errors import ExportError
+from ..io.atomic import remove_path, write_text
+from ..io.paths import output_folder
+
+MANIFEST = "_lkspace.json"
+"""The manifest of a sharded catalog (pandas and pyarrow skip names starting with ``_``)."""
+
+EXTENSIONS = (".parquet", "")
+"""Names a catalog may have: ``x.parquet`` (a file or a folder), or no extension (a folder of parts)."""
+
+
+class CatalogInterrupted(KeyboardInterrupt):
+    """A run stopped by Ctrl-C (SIGINT) or SIGTERM after cleaning up; ``exit_code`` is 128 + the signal."""
+
+    def __init__(self, message: str, exit_code: int = 130) -> None:
+        super().__init__(message)
+        self.exit_code = exit_code
+
+
+@dataclass(frozen=True)
+class Target:
+    """Where a catalog goes: ``path`` (symlinks resolved), and the names of its run's files beside it."""
+
+    path: str
+    shown: str
+
+    @property
+    def folder(self) -> str:
+        """The folder holding the catalog."""
+        return os.path.dirname(self.path)
+
+    def _beside(self, what: str) -> str:
+        return os.path.join(self.folder, f".{os.path.basename(self.path)}.lkspace-{what}")
+
+    @property
+    def build(self) -> str:
+        """The catalog being built (a file or a folder)."""
+        return self._beside("build")
+
+    @property
+    def lock(self) -> str:
+        """The writer's lock file."""
+        return self._beside("lock")
+
+    @property
+    def aside(self) -> str:
+        """Where the old catalog waits while it is swapped out (not on Linux)."""
+        return self._beside("old")
+
+
+def catalog_target(output: str | os.PathLike[str]) -> Target:
+    """Check ``-o`` for a catalog before any work: return its :class:`Target`.
+
+    A symlink is followed (its target is replaced, the link kept).  Refused, each with one
+    line: an empty name, an extension other than ``.parquet``, a device, FIFO or socket,
+    a folder that holds no lkspace catalog, a missing or read-only folder.
+    """
+    text = os.fspath(output)
+    if not text.strip():
+        raise ExportError("-o: the catalog name is empty")
+    bare = text.rstrip("/" + os.sep) or text
+    ext = os.path.splitext(os.path.basename(bare))[1].lower()
+    if ext not in EXTENSIONS:
+        raise ExportError(
+            f"{text}: a catalog is written as Parquet; give a name ending in .parquet (not {ext!r}); "
+            "pandas converts it to CSV or JSON afterwards"
+        )
+    path = os.path.realpath(bare)
+    if os.path.lexists(path):
+        mode = os.stat(path).st_mode
+        if stat.S_ISDIR(mode) and os.listdir(path) and not os.path.isfile(os.path.join(path, MANIFEST)):
+            raise ExportError(f"{text}: is a folder that holds no lkspace catalog; choose another -o")
+        if not stat.S_ISDIR(mode) and not stat.S_ISREG(mode):
+            raise ExportError(f"{text}: is a device, FIFO or socket, not a file lkspace may replace")
+    output_folder(os.path.dirname(path), text)
+    return Target(path, text)
+
+
+def remove_temporaries(target: Target, keep_build: bool) -> None:
+    """Remove this target's leftover temporary files (and the build unless ``keep_build``)."""
+    name = os.path.basename(target.path)
+    prefixes = (f".{name}.lkspace-", f"..{name}.lkspace-build.")
+    keep = {os.path.basename(target.lock)} | ({os.path.basename(target.build)} if keep_build else set())
+    for entry in os.listdir(target.folder):
+        if entry.startswith(prefixes) and entry not in keep:
+            remove_path(os.path.join(target.folder, entry))
+    if keep_build and os.path.isdir(target.build):
+        for entry in os.listdir(target.build):
+            if entry.endswith(".tmp"):
+                remove_path(os.path.join(target.build, entry))
+
+
+def file_sha256(path: str) -> str:
+    """Hex SHA-256 of the bytes of ``path``."""
+    with open(path, "rb") as fh:
+        return hashlib.file_digest(fh, "sha256").hexdigest()
+
+
+def part_name(index: int, run: str) -> str:
+    """File name of part ``index`` of run ``run`` (names differ between runs, so readers never mix two)."""
+    return f"part-{index:05d}-{run}.parquet"
+
+
+def load_manifest(folder: str) -> dict[str, Any] | None:
+    """Return the manifest of a catalog or build folder, or ``None`` if missing or unreadable."""
+    try:
+        with open(os.path.join(folder, MANIFEST), encoding="utf-8") as fh:
+            data = json.load(fh)
+    except (OSError, ValueError):
+        return None
+    return data if isinstance(data, dict) else None
+
+
+def save_manifest(folder: str, manifest: dict[str, Any]) -> None:
+    """Write the manifest atomically."""
+    write_text(os.path.join(folder, MANIFEST), json.dumps(manifest, indent=1))
+
+
+def verified_parts(folder: str, manifest: dict[str, Any]) -> dict[str, dict[str, Any]]:
+    """Return the finished parts recorded in ``manifest`` whose file in ``folder`` still has its SHA-256."""
+    good = {}
+    for index, entry in (manifest.get("parts") or {}).items():
+        file = os.path.join(folder, str(entry.get("file", "")))
+        if os.path.isfile(file) and file_sha256(file) == entry.get("sha256"):
+            good[index] = entry
+    return good
+
+
+def prune_build(folder: str, parts: dict[str, dict[str, Any]]) -> None:
+    """Remove from the build ``folder`` every file that is not the manifest or a part in ``parts``."""
+    keep = {MANIFEST} | {str(entry["file"]) for entry in parts.values()}
+    for entry in os.listdir(folder):
+        if entry not in keep:
+            remove_path(os.path.join(folder, entry))
+
+
+def seed_build(target: Target, build: str, signature: dict[str, Any], run: str) -> dict[str, dict[str, Any]]:
+    """Start a build from the finished catalog at the target, if it is of the same run settings.
+
+    Its parts are linked (or copied) into ``build`` under this run's names after their
+    checksums are verified; returns them as manifest entries.
+    """
+    old = load_manifest(target.path) if os.path.isdir(target.path) else None
+    if old is None or {k: old.get(k) for k in signature} != signature:
+        return {}
+    import shutil
+
+    seeded = {}
+    for index, entry in verified_parts(target.path, old).items():
+        name = part_name(int(index), run)
+        src, dst = os.path.join(target.path, str(entry["file"])), os.path.join(build, name)
+        try:
+            os.link(src, dst)
+        except OSError:
+            shutil.copy2(src, dst)
+        seeded[index] = {**entry, "file": name}
+    return seeded
