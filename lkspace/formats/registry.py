@@ -8,24 +8,39 @@
 ======  =======================================================================
 
 Each format is a module of :mod:`lkspace.formats` with a ``write(real, path, **options)``
-function, imported only when used.  Every file is written to a temporary name and renamed
-when complete.
+function, imported only when used.  The output path is checked before any work
+(:func:`lkspace.io.paths.output_file`: an existing folder, not a device, an extension of
+:data:`FORMATS`); every file is written to a temporary name and renamed when complete,
+replacing the file a symlink points to.  Tubes are bounded by :data:`MAX_TUBE_VERTICES`.
 """
 
 from __future__ import annotations
 
 import importlib
+import math
 import os
 
 from numpy.typing import ArrayLike
 
-from ..errors import ExportError
+from ..errors import ExportError, TooLargeError
 from ..geometry.realization import GeometryParams, Realization, realize
+from ..io.paths import output_file
 from ..io.sources import ScaffoldSource
+from ..progress import task
 
 WRITERS = {".obj": "obj", ".ply": "ply", ".glb": "glb", ".png": "png"}
 """Extension -> module of :mod:`lkspace.formats` whose ``write`` writes it."""
 FORMATS = tuple(WRITERS)
+
+TUBE_SIDES = 12
+"""Vertices around a tube's circle (the writers' default ``sides``)."""
+
+MAX_TUBE_VERTICES = 6_000_000
+"""Most tube vertices an export writes (curve points times :data:`TUBE_SIDES`).
+
+A vertex is about 60 bytes of ``.obj``/``.ply`` text or 24 of ``.glb``, and the tube frames
+are built point by point: past this bound a file runs into gigabytes and minutes.
+"""
 
 
 def export(
@@ -67,13 +82,21 @@ def export(
     >>> export("tetrahedron", os.path.join(tempfile.mkdtemp(), "t.obj"), 1)
     'obj'
     """
+    if radius is not None and not (math.isfinite(radius) and radius > 0):
+        raise ExportError(f"tube radius must be a finite number > 0, got {radius}")
+    target = output_file(path, FORMATS)  # checked before any work: folder, device, extension
     ext = os.path.splitext(os.fspath(path))[1].lower()
-    if ext not in WRITERS:
-        raise ExportError(f"{path}: unknown output format {ext or '(none)'!r}; use one of {', '.join(FORMATS)}")
-    directory = os.path.dirname(os.path.abspath(path))
-    if not os.path.isdir(directory):
-        raise ExportError(f"{path}: directory {directory} does not exist")
-    real = design if isinstance(design, Realization) else realize(design, labels, nulls, params)
-    writer = importlib.import_module(f"{__package__}.{WRITERS[ext]}")
-    writer.write(real, path, tubes=tubes, radius=radius, show_mesh=show_mesh, title=title)
+    with task(f"export {os.path.basename(os.fspath(path))}") as step:
+        if not isinstance(design, Realization):
+            step.note("realizing")
+        real = design if isinstance(design, Realization) else realize(design, labels, nulls, params)
+        points = sum(len(c) for c in real.curves)
+        if (tubes or ext in (".glb", ".png")) and points * TUBE_SIDES > MAX_TUBE_VERTICES:
+            raise TooLargeError(
+                f"{path}: tubes of {points:,} curve points need {points * TUBE_SIDES:,} vertices "
+                f"> {MAX_TUBE_VERTICES:,} (MAX_TUBE_VERTICES); write polylines (.obj or .ply without --tubes)"
+            )
+        step.note(f"writing {points:,} points")
+        writer = importlib.import_module(f"{__package__}.{WRITERS[ext]}")
+        writer.write(real, target, tubes=tubes, radius=radius, show_mesh=show_mesh, title=title)
     return ext[1:]

@@ -46,13 +46,26 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ..errors import GeometryError
+from ..errors import GeometryError, TooLargeError
 from ..io.sources import ScaffoldSource, load
 from ..model.scaffold import Scaffold
 from ..strands.ports import port_model
 from ..strands.tracing import Trace, trace
 from .clearance import check_embedding
 from .tracks import bezier_controls, default_scale, lattice_shift, place_name, side_tracks, smoothstep
+
+
+MAX_POINTS = 4_000_000
+"""Most polyline points :func:`realize` builds (all curves and copies together).
+
+Every point costs about 1 kB in the intermediate arrays and the embedding check, so the
+bound keeps a realization under a few GB.  The estimate is made from the trace before
+any geometry: ``edge_samples + samples_per_turn * |t| / K`` per edge piece plus
+``corner_samples`` per corner turn, times the copies of ``translations``.
+"""
+
+MAX_SAMPLES = 1000
+"""Largest ``samples_per_turn``, ``edge_samples`` and ``corner_samples``."""
 
 
 @dataclass(frozen=True)
@@ -89,6 +102,26 @@ class GeometryParams:
     samples_per_turn: int = 32
     edge_samples: int = 10
     corner_samples: int = 8
+
+    def check(self) -> None:
+        """Raise :class:`GeometryError` (a usage error) naming a parameter that is not usable.
+
+        Lengths must be finite; ``radius``, ``margin``, ``tube_radius`` and
+        ``min_separation`` positive, ``normal_offset`` at least 0; the sample counts
+        integers in ``1..MAX_SAMPLES`` (``corner_samples`` from 2).
+        """
+        for name in ("radius", "normal_offset", "margin", "tube_radius", "min_separation"):
+            value = getattr(self, name)
+            if value is None:
+                continue
+            low = 0.0 if name == "normal_offset" else None
+            if not np.isfinite(value) or (value < 0 if low is not None else value <= 0):
+                wanted = "a finite number >= 0" if low is not None else "a finite number > 0"
+                raise GeometryError(f"geometry parameter {name} must be {wanted}, got {value}", usage=True)
+        for name, least in (("samples_per_turn", 1), ("edge_samples", 1), ("corner_samples", 2)):
+            value = getattr(self, name)
+            if not isinstance(value, int | np.integer) or not least <= value <= MAX_SAMPLES:
+                raise GeometryError(f"geometry parameter {name} must be an integer in {least}..{MAX_SAMPLES}", usage=True)
 
 
 @dataclass(frozen=True, eq=False, repr=False)
@@ -167,6 +200,7 @@ def realize(
     translations: ArrayLike | None = None,
     check: bool = True,
     result: Trace | None = None,
+    max_points: int = MAX_POINTS,
 ) -> Realization:
     """Realize the strands of ``scaffold`` under twist ``labels`` as 3D polylines.
 
@@ -182,6 +216,9 @@ def realize(
         when distinct pieces come closer than ``min_separation``.
     result : Trace, optional
         A trace already computed for these labels.
+    max_points : int
+        Refuse (:class:`~lkspace.errors.TooLargeError`, before building anything) when
+        the curves would have more points (default :data:`MAX_POINTS`).
 
     Returns
     -------
@@ -195,6 +232,7 @@ def realize(
     """
     scaffold = load(scaffold)
     params = params or GeometryParams()
+    params.check()
     tr = result if result is not None else trace(scaffold, labels, nulls)
     scale = default_scale(scaffold)
     rho = params.radius if params.radius is not None else 0.12 * scale
@@ -205,6 +243,8 @@ def realize(
         if not np.isfinite(value) or value <= 0:
             raise GeometryError(f"geometry parameter {name} must be positive, got {value}")
     fr = side_tracks(scaffold, rho, h, margin)
+    if check:
+        _check_winding(scaffold, fr.pa, fr.pb, fr.margin, tr.labels, min_sep)
     model = port_model(scaffold)
     cp = model.corner_partner
     twist = tr.labels
@@ -247,7 +287,15 @@ def realize(
     t = np.where(k > 1, twist[e], 0)  # a lone strand's full turns about an empty axis are a curl: drawn straight
     has_edge = z >= 0
     turns = np.abs(t) / k
-    n_edge = np.where(has_edge, params.edge_samples + np.ceil(params.samples_per_turn * turns).astype(np.int64), 0)
+    n_edge = np.where(has_edge, params.edge_samples + np.ceil(params.samples_per_turn * turns), 0)
+    n_copies = 1 if translations is None else max(1, np.size(translations) // max(dim, 1))
+    estimate = (float(n_edge.sum()) + n_steps * nc) * n_copies
+    if estimate > max_points:
+        raise TooLargeError(
+            f"{scaffold.name}: the curves would have about {estimate:,.0f} points > {max_points:,} (MAX_POINTS); "
+            "use smaller twists (or a smaller block)"
+        )
+    n_edge = n_edge.astype(np.int64)
     piece = np.repeat(np.arange(n_steps), n_edge)
     offsets = np.concatenate([[0], np.cumsum(n_edge)])
     sig = (np.arange(len(piece)) - offsets[piece]) / np.maximum(n_edge[piece], 1)
@@ -337,3 +385,27 @@ def realize(
         closest,
         translations,
     )
+
+
+def _check_winding(
+    scaffold: Scaffold, pa: np.ndarray, pb: np.ndarray, margins: np.ndarray, labels: np.ndarray, min_sep: float
+) -> None:
+    """Refuse, before any geometry, twists that wind the strands of an edge too tightly to embed.
+
+    On an edge of degree K >= 2 with twist t the strands advance ``1.5 |t|`` slots over the
+    helix span at the steepest point of the smoothstep, so neighbouring passes lie about
+    ``span / (1.5 |t|)`` apart along the axis.  Below half of ``min_separation`` the
+    embedding check would fail anyway (after building and sampling every turn, at great
+    cost for huge twists); the factor 2 keeps this test from refusing any embeddable design.
+    """
+    k = scaffold.edge_degrees
+    twist = np.abs(np.where(k > 1, labels, 0)).astype(np.float64)
+    span = (1 - margins[:, 0] - margins[:, 1]) * np.linalg.norm(pb - pa, axis=1)
+    gap = span / np.maximum(1.5 * twist, 1e-300)
+    bad = np.flatnonzero((twist > 0) & (gap < 0.5 * min_sep))
+    if len(bad):
+        e = int(bad[np.argmin(gap[bad])])
+        raise GeometryError(
+            f"{scaffold.name}: twist {int(labels[e])} on edge {scaffold.edge_name(e)} winds its strands about "
+            f"{gap[e]:.3g} apart (< min_separation {min_sep:.3g}); the geometry would self-intersect (use smaller twists)"
+        )
