@@ -80,9 +80,7 @@ def design_options(func: F) -> F:
             "--twist", "twist_spec", metavar="SPEC", help="One integer, a comma list per edge, or a file naming edges."
         ),
         click.option("--null", "null_spec", metavar="SPEC", help="Null edge-sides as FACE.SIDE, comma separated."),
-        click.option(
-            "--row", type=click.IntRange(min=0), help="Row of CATALOG.parquet to use (instead of --twist)."
-        ),
+        click.option("--row", type=click.IntRange(min=0), help="Row of CATALOG.parquet to use (instead of --twist)."),
         click.option(
             "--radius",
             type=Finite(0, low_open=True),
@@ -188,12 +186,11 @@ def export_cmd(
       lkspace export cube --twist 2 --tubes -o chainmail.obj
       lkspace export designs.parquet --row 7 -o design7.png
     """
-    from ..formats.registry import FORMATS, export
+    from ..formats.registry import export, output_target
     from ..geometry.realization import realize
-    from ..io.paths import output_file
 
     ctx = Context(as_json)
-    output_file(output, FORMATS)  # checked before any work (export checks it again)
+    output_target(output)  # checked before any work (export checks it again)
     scaffold, labels, nulls = resolve_design(ctx, mesh, twist_spec, null_spec, row)
     real = realize(
         scaffold,

@@ -34,8 +34,3 @@ class Finite(click.ParamType):
         if not math.isfinite(number) or below or number > self.high:
             self.fail(f"{value} is out of range; expected {self.describe()}", param, ctx)
         return number
-
-
-def bounded_int(low: int, high: int) -> click.IntRange:
-    """An integer option in ``low..high`` (click names the option and the range on failure)."""
-    return click.IntRange(min=low, max=high)

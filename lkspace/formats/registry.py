@@ -43,6 +43,22 @@ are built point by point: past this bound a file runs into gigabytes and minutes
 """
 
 
+def output_target(path: str | os.PathLike[str]) -> str:
+    """Check the output ``path`` before any work; return the file to write (a symlink resolved).
+
+    The extension picks the format (one of :data:`FORMATS`); the checks of
+    :func:`lkspace.io.paths.output_file` follow (folder exists and is writable, not a
+    device, a folder or a FIFO).
+    """
+    text = os.fspath(path)
+    ext = os.path.splitext(text)[1].lower()
+    if text.strip() and ext not in WRITERS:
+        raise ExportError(
+            f"{text}: unknown output format {ext or '(no extension)'!r}; the extension picks one of {', '.join(FORMATS)}"
+        )
+    return output_file(text, FORMATS)
+
+
 def export(
     design: Realization | ScaffoldSource,
     path: str | os.PathLike[str],
@@ -84,7 +100,7 @@ def export(
     """
     if radius is not None and not (math.isfinite(radius) and radius > 0):
         raise ExportError(f"tube radius must be a finite number > 0, got {radius}")
-    target = output_file(path, FORMATS)  # checked before any work: folder, device, extension
+    target = output_target(path)  # checked before any work: extension, folder, device
     ext = os.path.splitext(os.fspath(path))[1].lower()
     with task(f"export {os.path.basename(os.fspath(path))}") as step:
         if not isinstance(design, Realization):

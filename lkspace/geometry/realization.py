@@ -54,7 +54,6 @@ from ..strands.tracing import Trace, trace
 from .clearance import check_embedding
 from .tracks import bezier_controls, default_scale, lattice_shift, place_name, side_tracks, smoothstep
 
-
 MAX_POINTS = 4_000_000
 """Most polyline points :func:`realize` builds (all curves and copies together).
 
@@ -121,7 +120,9 @@ class GeometryParams:
         for name, least in (("samples_per_turn", 1), ("edge_samples", 1), ("corner_samples", 2)):
             value = getattr(self, name)
             if not isinstance(value, int | np.integer) or not least <= value <= MAX_SAMPLES:
-                raise GeometryError(f"geometry parameter {name} must be an integer in {least}..{MAX_SAMPLES}", usage=True)
+                raise GeometryError(
+                    f"geometry parameter {name} must be an integer in {least}..{MAX_SAMPLES}", usage=True
+                )
 
 
 @dataclass(frozen=True, eq=False, repr=False)

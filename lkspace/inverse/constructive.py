@@ -117,7 +117,9 @@ def spanning_designs(
     for _ in range(4 * count):
         if deadline is not None and designs and time.perf_counter() > deadline:
             break
-        weights = np.where(forced, 1e-3 * (1 + rng.random(len(two))), 1 + (delta - lightest) + 0.5 * rng.random(len(two)))
+        weights = np.where(
+            forced, 1e-3 * (1 + rng.random(len(two))), 1 + (delta - lightest) + 0.5 * rng.random(len(two))
+        )
         tree = _spanning_tree(n_faces, f0[candidate], f1[candidate], weights[candidate])
         if tree is None:
             break

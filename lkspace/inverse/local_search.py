@@ -53,7 +53,9 @@ def local_search(
     """Search for up to ``count`` distinct designs with ``query.components`` strands, from ``start``.
 
     ``step`` (a :func:`lkspace.progress.task` step) is told the closest count so far.
+    ``time_budget`` counts from the call (the set-up included).
     """
+    deadline = time.perf_counter() + time_budget
     options = residue_options(scaffold, query)
     edge_of_port = np.repeat(scaffold.side_edge, 2)
     target = query.components
@@ -67,7 +69,6 @@ def local_search(
     n, port_strand = evaluate(labels)
     designs, seen = [], set()
     movable = np.flatnonzero([len(o) > 1 for o in options])
-    deadline = time.perf_counter() + time_budget
     patience = max(PATIENCE, 2 * scaffold.n_edges)
     closest, stale = abs(n - target), 0
     while len(movable) and time.perf_counter() < deadline and stale < patience:

@@ -109,7 +109,7 @@ def run_in_time(func: Callable[[Callable[[str], None]], T], time_limit: float | 
                 stage = value
                 note(stage)
             elif kind == "done":
-                return value  # type: ignore[no-any-return]
+                return value
             else:
                 _reraise(*value)
     finally:
