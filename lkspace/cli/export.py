@@ -186,11 +186,12 @@ def export_cmd(
       lkspace export cube --twist 2 --tubes -o chainmail.obj
       lkspace export designs.parquet --row 7 -o design7.png
     """
-    from ..formats.registry import export, output_target
+    from ..formats.registry import export, output_target, point_budget
     from ..geometry.realization import realize
 
     ctx = Context(as_json)
     output_target(output)  # checked before any work (export checks it again)
+    max_points, bound = point_budget(output, tubes)
     scaffold, labels, nulls = resolve_design(ctx, mesh, twist_spec, null_spec, row)
     real = realize(
         scaffold,
@@ -198,6 +199,8 @@ def export_cmd(
         nulls,
         params_of(radius, normal_offset, tube_radius),
         translations=block_translations(scaffold, block),
+        max_points=max_points,
+        bound=bound,
     )
     fmt = export(real, output, tubes=tubes, show_mesh=not no_mesh)
     data = {

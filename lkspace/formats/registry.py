@@ -23,7 +23,7 @@ import os
 from numpy.typing import ArrayLike
 
 from ..errors import ExportError, TooLargeError
-from ..geometry.realization import GeometryParams, Realization, realize
+from ..geometry.realization import MAX_POINTS, GeometryParams, Realization, realize
 from ..io.paths import output_file
 from ..io.sources import ScaffoldSource
 from ..progress import task
@@ -57,6 +57,19 @@ def output_target(path: str | os.PathLike[str]) -> str:
             f"{text}: unknown output format {ext or '(no extension)'!r}; the extension picks one of {', '.join(FORMATS)}"
         )
     return output_file(text, FORMATS)
+
+
+def point_budget(path: str | os.PathLike[str], tubes: bool) -> tuple[int, str]:
+    """Most curve points worth realizing for an export to ``path``, and the bound's name.
+
+    Tubes (``tubes``, ``.glb``, ``.png``) allow :data:`MAX_TUBE_VERTICES` / :data:`TUBE_SIDES`.
+    """
+    ext = os.path.splitext(os.fspath(path))[1].lower()
+    if tubes or ext in (".glb", ".png"):
+        return min(
+            MAX_POINTS, MAX_TUBE_VERTICES // TUBE_SIDES
+        ), "MAX_TUBE_VERTICES / 12 for tubes; polylines allow more"
+    return MAX_POINTS, "MAX_POINTS"
 
 
 def export(
@@ -105,9 +118,12 @@ def export(
     with task(f"export {os.path.basename(os.fspath(path))}") as step:
         if not isinstance(design, Realization):
             step.note("realizing")
-        real = design if isinstance(design, Realization) else realize(design, labels, nulls, params)
+        budget, bound = point_budget(path, tubes)
+        if not isinstance(design, Realization):
+            design = realize(design, labels, nulls, params, max_points=budget, bound=bound)
+        real = design
         points = sum(len(c) for c in real.curves)
-        if (tubes or ext in (".glb", ".png")) and points * TUBE_SIDES > MAX_TUBE_VERTICES:
+        if budget < MAX_POINTS and points * TUBE_SIDES > MAX_TUBE_VERTICES:
             raise TooLargeError(
                 f"{path}: tubes of {points:,} curve points need {points * TUBE_SIDES:,} vertices "
                 f"> {MAX_TUBE_VERTICES:,} (MAX_TUBE_VERTICES); write polylines (.obj or .ply without --tubes)"

@@ -202,6 +202,7 @@ def realize(
     check: bool = True,
     result: Trace | None = None,
     max_points: int = MAX_POINTS,
+    bound: str = "MAX_POINTS",
 ) -> Realization:
     """Realize the strands of ``scaffold`` under twist ``labels`` as 3D polylines.
 
@@ -219,7 +220,8 @@ def realize(
         A trace already computed for these labels.
     max_points : int
         Refuse (:class:`~lkspace.errors.TooLargeError`, before building anything) when
-        the curves would have more points (default :data:`MAX_POINTS`).
+        the curves would have more points (default :data:`MAX_POINTS`); ``bound`` names
+        the limit in the message.
 
     Returns
     -------
@@ -293,7 +295,7 @@ def realize(
     estimate = (float(n_edge.sum()) + n_steps * nc) * n_copies
     if estimate > max_points:
         raise TooLargeError(
-            f"{scaffold.name}: the curves would have about {estimate:,.0f} points > {max_points:,} (MAX_POINTS); "
+            f"{scaffold.name}: the curves would have about {estimate:,.0f} points > {max_points:,} ({bound}); "
             "use smaller twists (or a smaller block)"
         )
     n_edge = n_edge.astype(np.int64)
