@@ -90,6 +90,9 @@ def test_solve_without_two_face_edges(tmp_path, capsys, mesh, n, status):
         (["--count", "0"], ["--count"]),
         (["-n", "0"], ["--components"]),
         (["--workers", "-1"], ["--workers"]),
+        (["--seed", "-1"], ["--seed"]),
+        (["--seed", str(2**31)], ["--seed"]),
+        (["--fix", f"0={10**21}"], ["--fix", "-1,000,000..1,000,000"]),
         (["-o", ""], ["empty"]),
         (["-o", "design.txt"], [".json"]),
         (["-o", "/no/such/folder/d.json"], ["does not exist"]),
@@ -219,6 +222,7 @@ def test_identify_periodic_scaffold_is_refused(capsys):
         (["--normal-offset", "nan"], ["--normal-offset"]),
         (["--tube-radius", "-inf"], ["--tube-radius"]),
         (["--row", "-1"], ["--row"]),
+        (["--seed", "-5"], ["--seed"]),
     ],
 )
 def test_identify_bad_numbers(capsys, args, words):
@@ -319,6 +323,18 @@ def test_export_huge_twist_and_block_are_refused_quickly(capsys, tmp_path):
     assert time.monotonic() - t0 < 10
 
 
+@pytest.mark.parametrize("command", ["export", "identify"])
+def test_extreme_int64_twists_are_refused(tmp_path, capsys, command):
+    if command == "identify":
+        pytest.importorskip("spherogram")
+    output = ["-o", str(tmp_path / "x.obj")] if command == "export" else []
+    for twist in (str(-(2**63)), str(2**62)):
+        code, _, err = run(capsys, command, "dihedron:3", f"--twist={twist}", *output)
+        assert code in (1, 2)  # export: the geometry cannot embed (1); identify: too large (2)
+        one_line_error(err, "twist")
+    assert list(tmp_path.iterdir()) == []
+
+
 def test_realize_and_export_library_bounds(tmp_path):
     from lkspace.errors import ExportError, GeometryError, TooLargeError
     from lkspace.formats.registry import export
@@ -326,6 +342,8 @@ def test_realize_and_export_library_bounds(tmp_path):
 
     with pytest.raises(TooLargeError, match="MAX_POINTS"):
         realize("cube", 1, max_points=100)
+    with pytest.raises(TooLargeError, match="MAX_POINTS"):
+        realize("dihedron:3", -(2**63), check=False)
     with pytest.raises(GeometryError, match="radius") as info:
         realize("cube", 1, params=GeometryParams(radius=float("nan")))
     assert info.value.exit_code == 2
@@ -371,3 +389,14 @@ def test_export_row_reads_one_row_group(catalogs, kind, capsys, tmp_path, monkey
     code, _, err = run(capsys, "export", str(path), "--row", str(len(catalog)), "-o", str(tmp_path / "r.obj"))
     assert code == 2
     one_line_error(err, f"out of range 0..{len(catalog) - 1}")
+
+
+def test_identify_catalog_row(catalogs, capsys):
+    pytest.importorskip("spherogram")
+    catalog = lkspace.read_catalog(catalogs["sharded"])
+    row = len(catalog) - 1
+    code, out, err = run(capsys, "identify", str(catalogs["sharded"]), "--row", str(row), "--json")
+    assert code == 0, err
+    data = json.loads(out)
+    assert data["labels"] == catalog.labels[row].tolist() and data["status"].startswith(("identified", "unknown: "))
+    assert data["components"] == catalog.frame["components"][row]

@@ -15,7 +15,13 @@ TIME_LIMIT = 60.0
 
 @click.command("identify")
 @design_options
-@click.option("--seed", type=int, default=0, show_default=True, help="Seed of the generic projection.")
+@click.option(
+    "--seed",
+    type=click.IntRange(0, 2**31 - 1),
+    default=0,
+    show_default=True,
+    help="Seed of the generic projection (the next two are tried if it is not generic).",
+)
 @click.option(
     "--time-limit",
     type=Finite(0),

@@ -35,11 +35,21 @@ def _edge_values(
     return out
 
 
+MAX_LABEL = 1_000_000
+"""Largest ``|t|`` a ``--fix`` label may have (costs and labels stay far inside 64-bit integers)."""
+
+MAX_SEED = 2**31 - 1
+"""Largest ``--seed`` (CP-SAT takes a 32-bit signed seed)."""
+
+
 def _label(value: str, item: str) -> int:
     try:
-        return int(value)
+        label = int(value)
     except ValueError:
         raise UsageError(f"--fix {item!r}: {value!r} is not an integer label") from None
+    if abs(label) > MAX_LABEL:
+        raise UsageError(f"--fix {item!r}: labels must lie in -{MAX_LABEL:,}..{MAX_LABEL:,}")
+    return label
 
 
 def _parity(value: str, item: str) -> int:
@@ -116,7 +126,13 @@ MAX_COUNT = 10_000
     show_default=True,
     help="CP-SAT search workers (0: one per core).",
 )
-@click.option("--seed", type=int, default=0, show_default=True, help="Random seed (search and spanning trees).")
+@click.option(
+    "--seed",
+    type=click.IntRange(0, MAX_SEED),
+    default=0,
+    show_default=True,
+    help="Random seed (search and spanning trees).",
+)
 @click.option(
     "--no-fast-path", is_flag=True, help="Always use CP-SAT, even where the spanning-tree construction applies."
 )

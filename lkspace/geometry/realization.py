@@ -289,7 +289,7 @@ def realize(
     k = degrees[e]
     t = np.where(k > 1, twist[e], 0)  # a lone strand's full turns about an empty axis are a curl: drawn straight
     has_edge = z >= 0
-    turns = np.abs(t) / k
+    turns = np.abs(t.astype(np.float64)) / k  # floats: -2**63 has no int64 abs
     n_edge = np.where(has_edge, params.edge_samples + np.ceil(params.samples_per_turn * turns), 0)
     n_copies = 1 if translations is None else max(1, np.size(translations) // max(dim, 1))
     estimate = (float(n_edge.sum()) + n_steps * nc) * n_copies
@@ -402,7 +402,7 @@ def _check_winding(
     cost for huge twists); the factor 2 keeps this test from refusing any embeddable design.
     """
     k = scaffold.edge_degrees
-    twist = np.abs(np.where(k > 1, labels, 0)).astype(np.float64)
+    twist = np.abs(np.where(k > 1, np.asarray(labels, np.float64), 0.0))  # floats: -2**63 has no int64 abs
     span = (1 - margins[:, 0] - margins[:, 1]) * np.linalg.norm(pb - pa, axis=1)
     gap = span / np.maximum(1.5 * twist, 1e-300)
     bad = np.flatnonzero((twist > 0) & (gap < 0.5 * min_sep))

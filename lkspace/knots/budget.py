@@ -60,9 +60,9 @@ def twist_crossings(degrees: np.ndarray, labels: np.ndarray) -> int:
     An edge of degree K with twist t turns its K strands by ``2 pi t / K``: every pair of
     the K strands crosses about twice per full turn in a generic projection.
     """
-    k = np.asarray(degrees, np.int64)
-    t = np.abs(np.asarray(labels, np.int64))
-    return int(np.sum(np.where(k > 1, t * (k - 1), 0)))
+    k = np.asarray(degrees, np.float64)
+    t = np.abs(np.asarray(labels, np.float64))  # floats: no overflow for labels near 2**63
+    return int(np.sum(np.where(k > 1, t * (k - 1), 0.0)))
 
 
 def run_in_time(func: Callable[[Callable[[str], None]], T], time_limit: float | None, step: Step | None = None) -> T:
