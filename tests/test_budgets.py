@@ -179,6 +179,22 @@ def test_identify_time_limit_ends_in_a_status(tmp_path):
     assert time.monotonic() - t0 < 30
 
 
+def test_identify_shows_its_stage_in_logs():
+    """The installed command, stderr not a terminal: a plain progress line names the stage."""
+    pytest.importorskip("spherogram")
+    proc = subprocess.run(
+        [*lkspace_command(), "identify", "truncated-octahedron", "--twist", "-2", "--json"],
+        capture_output=True,
+        text=True,
+        env={**os.environ, "LKSPACE_PROGRESS": "1"},
+        timeout=120,
+    )
+    assert proc.returncode == 0, proc.stderr
+    assert json.loads(proc.stdout)["status"].startswith("unknown: not in the tables")
+    assert "lkspace: identifying truncated-octahedron: " in proc.stderr
+    assert any(stage in proc.stderr for stage in ("simplification", "table lookup"))
+
+
 def test_identify_big_knot_is_answered_within_the_default_limit(capsys):
     pytest.importorskip("spherogram")
     code, out, err = run(capsys, "identify", "truncated-octahedron", "--twist", BIG_KNOT, "--json")
