@@ -179,20 +179,19 @@ def test_identify_time_limit_ends_in_a_status(tmp_path):
     assert time.monotonic() - t0 < 30
 
 
-def test_identify_shows_its_stage_in_logs():
-    """The installed command, stderr not a terminal: a plain progress line names the stage."""
+def test_identify_reports_its_stages(capsys, monkeypatch):
+    """Plain progress lines (as in logs) name each stage, those of the naming child included."""
     pytest.importorskip("spherogram")
-    proc = subprocess.run(
-        [*lkspace_command(), "identify", "truncated-octahedron", "--twist", "-2", "--json"],
-        capture_output=True,
-        text=True,
-        env={**os.environ, "LKSPACE_PROGRESS": "1"},
-        timeout=120,
-    )
-    assert proc.returncode == 0, proc.stderr
-    assert json.loads(proc.stdout)["status"].startswith("unknown: not in the tables")
-    assert "lkspace: identifying truncated-octahedron: " in proc.stderr
-    assert any(stage in proc.stderr for stage in ("simplification", "table lookup"))
+    from lkspace import progress
+
+    monkeypatch.setenv("LKSPACE_PROGRESS", "1")
+    monkeypatch.setattr(progress, "DELAY", 0.0)  # show every step at once, every note
+    monkeypatch.setattr(progress, "PLAIN_EVERY", 0.0)
+    code, out, err = run(capsys, "identify", "truncated-octahedron", "--twist", BIG_KNOT, "--json")
+    assert code == 0, err
+    assert json.loads(out)["status"].startswith("unknown: not in the tables")
+    for stage in ("tracing", "realizing", "diagram", "simplification (189 crossings)", "table lookup"):
+        assert f"lkspace: identifying truncated-octahedron: 0, {stage}" in err, err
 
 
 def test_identify_big_knot_is_answered_within_the_default_limit(capsys):
