@@ -415,3 +415,13 @@ def test_identify_catalog_row(catalogs, capsys):
     data = json.loads(out)
     assert data["labels"] == catalog.labels[row].tolist() and data["status"].startswith(("identified", "unknown: "))
     assert data["components"] == catalog.frame["components"][row]
+
+
+def test_export_row_of_an_empty_catalog(tmp_path, capsys):
+    path = tmp_path / "empty.parquet"
+    code, _, err = run(capsys, "enumerate", "cube", "--labels", "0,1", "--components", "7", "-o", str(path), "--json")
+    assert code == 0, err
+    code, _, err = run(capsys, "export", str(path), "--row", "0", "-o", str(tmp_path / "x.obj"))
+    assert code == 2
+    one_line_error(err, "no rows")
+    assert not (tmp_path / "x.obj").exists()

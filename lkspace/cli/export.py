@@ -69,6 +69,8 @@ def catalog_row(path: str, row: int) -> tuple[Scaffold, np.ndarray]:
                     )
                 return scaffold, labels
             first += size
+    if first == 0:
+        raise UsageError(f"{path}: the catalog has no rows")
     raise UsageError(f"{path}: row {row} out of range 0..{first - 1}")
 
 
