@@ -272,6 +272,9 @@ def test_identify_batch_budget_per_design():
         (["--normal-offset", "-0.1"], ["--normal-offset", ">= 0"]),
         (["--radius", "inf"], ["--radius"]),
         (["--radius", "abc"], ["--radius", "not a number"]),
+        (["--radius", "1e300"], ["radius", "shortest edge"]),
+        (["--normal-offset", "1e300"], ["normal_offset", "shortest edge"]),
+        (["--tube-radius", "1e300", "--tubes"], ["tube_radius", "shortest edge"]),
     ],
 )
 def test_export_float_options_are_checked(tmp_path, capsys, args, words):
@@ -366,6 +369,8 @@ def test_realize_and_export_library_bounds(tmp_path):
         realize("cube", 1, params=GeometryParams(samples_per_turn=0))
     with pytest.raises(ExportError, match="tube radius"):
         export("cube", tmp_path / "c.obj", 1, tubes=True, radius=float("nan"))
+    with pytest.raises(ExportError, match="shortest edge"):
+        export("cube", tmp_path / "c.obj", 1, tubes=True, radius=1e300)
     assert list(tmp_path.iterdir()) == []
 
 

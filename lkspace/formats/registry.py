@@ -23,7 +23,7 @@ import os
 from numpy.typing import ArrayLike
 
 from ..errors import ExportError, TooLargeError
-from ..geometry.realization import MAX_POINTS, GeometryParams, Realization, realize
+from ..geometry.realization import MAX_POINTS, MAX_RELATIVE, GeometryParams, Realization, realize
 from ..io.paths import output_file
 from ..io.sources import ScaffoldSource
 from ..progress import task
@@ -122,6 +122,8 @@ def export(
         if not isinstance(design, Realization):
             design = realize(design, labels, nulls, params, max_points=budget, bound=bound)
         real = design
+        if radius is not None and radius > MAX_RELATIVE * real.scale:
+            raise ExportError(f"tube radius {radius:g} exceeds {MAX_RELATIVE:g} x the shortest edge ({real.scale:.4g})")
         points = sum(len(c) for c in real.curves)
         if budget < MAX_POINTS and points * TUBE_SIDES > MAX_TUBE_VERTICES:
             raise TooLargeError(

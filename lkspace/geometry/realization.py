@@ -63,6 +63,9 @@ any geometry: ``edge_samples + samples_per_turn * |t| / K`` per edge piece plus
 ``corner_samples`` per corner turn, times the copies of ``translations``.
 """
 
+MAX_RELATIVE = 1.0
+"""Largest ``radius``, ``normal_offset``, ``margin`` and ``tube_radius``, in shortest edge lengths."""
+
 MAX_SAMPLES = 1000
 """Largest ``samples_per_turn``, ``edge_samples`` and ``corner_samples``."""
 
@@ -245,6 +248,14 @@ def realize(
     for name, value in (("radius", rho), ("margin", margin), ("min_separation", min_sep)):
         if not np.isfinite(value) or value <= 0:
             raise GeometryError(f"geometry parameter {name} must be positive, got {value}")
+    lengths = {"radius": rho, "normal_offset": h, "margin": margin, "tube_radius": params.tube_radius or 0.0}
+    for name, value in lengths.items():
+        if value > MAX_RELATIVE * scale:
+            raise GeometryError(
+                f"geometry parameter {name} {value:g} exceeds {MAX_RELATIVE:g} x the shortest edge of "
+                f"{scaffold.name} ({MAX_RELATIVE * scale:.4g}); strands that far from their edge leave the scaffold",
+                usage=True,
+            )
     fr = side_tracks(scaffold, rho, h, margin)
     if check:
         _check_winding(scaffold, fr.pa, fr.pb, fr.margin, tr.labels, min_sep)
