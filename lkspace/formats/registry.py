@@ -23,7 +23,8 @@ import os
 from numpy.typing import ArrayLike
 
 from ..errors import ExportError, TooLargeError
-from ..geometry.realization import MAX_POINTS, MAX_RELATIVE, GeometryParams, Realization, realize
+from ..geometry.limits import MAX_POINTS, MAX_RELATIVE
+from ..geometry.realization import GeometryParams, Realization, realize
 from ..io.paths import output_file
 from ..io.sources import ScaffoldSource
 from ..progress import task
