@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 import os
+import time
 
 import numpy as np
 import pytest
@@ -210,3 +211,181 @@ def test_cli_export_periodic_block(tmp_path, capsys):
     assert code == 2 and "not periodic" in err
     code, _, err = run(capsys, "export", str(mesh), "--twist", "1", "--block", "3x3x3", "-o", str(tmp_path / "c.glb"))
     assert code == 2 and "2 positive sizes" in err
+
+
+# --- bounds, numbers and output paths (the budgets issue) ----------------------------------
+
+
+def one_line_error(err: str, *words: str) -> None:
+    assert err.count("\n") == 1 and err.startswith("lkspace: error: "), err
+    for word in words:
+        assert word in err, err
+
+
+@pytest.mark.parametrize(
+    "args, words",
+    [
+        (["--tube-radius", "nan", "--tubes"], ["--tube-radius", "finite"]),
+        (["--tube-radius", "-1", "--tubes"], ["--tube-radius", "> 0"]),
+        (["--normal-offset", "nan"], ["--normal-offset"]),
+        (["--normal-offset", "-0.1"], ["--normal-offset", ">= 0"]),
+        (["--radius", "inf"], ["--radius"]),
+        (["--radius", "abc"], ["--radius", "not a number"]),
+        (["--radius", "1e300"], ["radius", "shortest edge"]),
+        (["--normal-offset", "1e300"], ["normal_offset", "shortest edge"]),
+        (["--tube-radius", "1e300", "--tubes"], ["tube_radius", "shortest edge"]),
+    ],
+)
+def test_export_float_options_are_checked(tmp_path, capsys, args, words):
+    out_path = tmp_path / "x.obj"
+    code, _, err = run(capsys, "export", "dihedron:3", "--twist", "1", *args, "-o", str(out_path))
+    assert code == 2
+    one_line_error(err, *words)
+    assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize(
+    "name, words",
+    [
+        ("x.stl", ["unknown output format '.stl'", ".obj"]),
+        ("noext", ["unknown output format"]),
+        ("", ["empty"]),
+        ("missing/x.obj", ["does not exist"]),
+        ("folder.obj/", ["folder"]),
+    ],
+)
+def test_export_output_paths(tmp_path, capsys, name, words):
+    target = f"{tmp_path}/{name}" if name else ""
+    code, _, err = run(capsys, "export", "dihedron:3", "--twist", "1", "-o", target)
+    assert code == 2
+    one_line_error(err, *words)
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_export_refuses_devices_and_fifos(tmp_path, capsys):
+    code, _, err = run(capsys, "export", "dihedron:3", "--twist", "1", "-o", "/dev/null")
+    assert code == 2
+    one_line_error(err, "/dev/null")
+    fifo = tmp_path / "pipe.obj"
+    os.mkfifo(fifo)
+    code, _, err = run(capsys, "export", "dihedron:3", "--twist", "1", "-o", str(fifo))
+    assert code == 2
+    one_line_error(err, "FIFO")
+
+
+def test_export_keeps_the_symlink_and_leaves_nothing_on_failure(tmp_path, capsys):
+    real = tmp_path / "real.obj"
+    link = tmp_path / "link.obj"
+    link.symlink_to(real)
+    code, _, err = run(capsys, "export", "dihedron:3", "--twist", "1", "-o", str(link))
+    assert code == 0, err
+    assert link.is_symlink() and real.read_text().startswith("# lkspace strands")
+    before = real.read_text()
+    code, _, err = run(capsys, "export", "dihedron:3", "--twist", "3000", "-o", str(link))
+    assert code == 1
+    one_line_error(err, "twist 3000", "self-intersect")
+    assert real.read_text() == before and sorted(p.name for p in tmp_path.iterdir()) == ["link.obj", "real.obj"]
+
+
+def test_export_huge_twist_and_block_are_refused_quickly(capsys, tmp_path):
+    t0 = time.monotonic()
+    code, _, err = run(capsys, "export", "dihedron:3", "--twist", "100000", "-o", str(tmp_path / "x.obj"))
+    assert code == 1
+    one_line_error(err, "winds its strands")
+    code, _, err = run(
+        capsys, "export", "honeycomb:cP", "--twist", "1", "--block", "100x100x100", "-o", str(tmp_path / "x.obj")
+    )
+    assert code == 2
+    one_line_error(err, "1,000,000 copies", "MAX_BLOCK_COPIES")
+    assert time.monotonic() - t0 < 10
+
+
+@pytest.mark.parametrize("command", ["export", "identify"])
+def test_extreme_int64_twists_are_refused(tmp_path, capsys, command):
+    if command == "identify":
+        pytest.importorskip("spherogram")
+    output = ["-o", str(tmp_path / "x.obj")] if command == "export" else []
+    for twist in (str(-(2**63)), str(2**62)):
+        code, _, err = run(capsys, command, "dihedron:3", f"--twist={twist}", *output)
+        assert code in (1, 2)  # export: the geometry cannot embed (1); identify: too large (2)
+        one_line_error(err, "twist")
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_realize_and_export_library_bounds(tmp_path):
+    from lkspace.errors import ExportError, GeometryError, TooLargeError
+    from lkspace.formats.registry import export
+    from lkspace.geometry.realization import GeometryParams, realize
+
+    with pytest.raises(TooLargeError, match="MAX_POINTS"):
+        realize("cube", 1, max_points=100)
+    with pytest.raises(TooLargeError, match="MAX_POINTS"):
+        realize("dihedron:3", -(2**63), check=False)
+    with pytest.raises(GeometryError, match="radius") as info:
+        realize("cube", 1, params=GeometryParams(radius=float("nan")))
+    assert info.value.exit_code == 2
+    with pytest.raises(GeometryError, match="samples_per_turn"):
+        realize("cube", 1, params=GeometryParams(samples_per_turn=0))
+    with pytest.raises(ExportError, match="tube radius"):
+        export("cube", tmp_path / "c.obj", 1, tubes=True, radius=float("nan"))
+    with pytest.raises(ExportError, match="shortest edge"):
+        export("cube", tmp_path / "c.obj", 1, tubes=True, radius=1e300)
+    assert list(tmp_path.iterdir()) == []
+
+
+@pytest.fixture(scope="module")
+def catalogs(tmp_path_factory):
+    """The same catalog written by the real ``enumerate``: one Parquet file and a sharded folder."""
+    root = tmp_path_factory.mktemp("catalogs")
+    paths = {}
+    for kind, extra in (("single", ["--shards", "1"]), ("sharded", ["--shards", "3", "--jobs", "2"])):
+        path = root / ("cube.parquet" if kind == "single" else "cube-parts")
+        code = main(["enumerate", "cube", "--labels", "-1..1", "-o", str(path), *extra, "--json"])
+        assert code == 0
+        paths[kind] = path
+    return paths
+
+
+@pytest.mark.parametrize("kind", ["single", "sharded"])
+def test_export_row_reads_one_row_group(catalogs, kind, capsys, tmp_path, monkeypatch):
+    from lkspace.catalog import reader
+
+    path = catalogs[kind]
+    catalog = lkspace.read_catalog(path)
+    if kind == "sharded":
+        assert path.is_dir() and len(list(path.glob("*.parquet"))) == 3
+    capsys.readouterr()
+
+    def whole_catalog(*args, **kwargs):
+        raise AssertionError("export --row must not read the whole catalog")
+
+    monkeypatch.setattr(reader, "read_catalog", whole_catalog)
+    for row in (0, len(catalog) // 2, len(catalog) - 1):
+        code, out, err = run(capsys, "export", str(path), "--row", str(row), "-o", str(tmp_path / "r.obj"), "--json")
+        assert code == 0, err
+        data = json.loads(out)
+        assert data["labels"] == catalog.labels[row].tolist() and data["row"] == row
+    code, _, err = run(capsys, "export", str(path), "--row", str(len(catalog)), "-o", str(tmp_path / "r.obj"))
+    assert code == 2
+    one_line_error(err, f"out of range 0..{len(catalog) - 1}")
+
+
+def test_identify_catalog_row(catalogs, capsys):
+    pytest.importorskip("spherogram")
+    catalog = lkspace.read_catalog(catalogs["sharded"])
+    row = len(catalog) - 1
+    code, out, err = run(capsys, "identify", str(catalogs["sharded"]), "--row", str(row), "--json")
+    assert code == 0, err
+    data = json.loads(out)
+    assert data["labels"] == catalog.labels[row].tolist() and data["status"].startswith(("identified", "unknown: "))
+    assert data["components"] == catalog.frame["components"][row]
+
+
+def test_export_row_of_an_empty_catalog(tmp_path, capsys):
+    path = tmp_path / "empty.parquet"
+    code, _, err = run(capsys, "enumerate", "cube", "--labels", "0,1", "--components", "7", "-o", str(path), "--json")
+    assert code == 0, err
+    code, _, err = run(capsys, "export", str(path), "--row", "0", "-o", str(tmp_path / "x.obj"))
+    assert code == 2
+    one_line_error(err, "no rows")
+    assert not (tmp_path / "x.obj").exists()

@@ -9,14 +9,18 @@ from typing import TYPE_CHECKING, Any, TypeGuard, TypeVar
 import click
 import numpy as np
 
-from ..errors import CatalogError, UsageError
+from ..errors import CatalogError, TooLargeError, UsageError
 from ..model.scaffold import Scaffold
 from .common import Context, emit, json_option, labels_of, load_mesh, nulls_of
+from .numbers import Finite
 
 if TYPE_CHECKING:
     from ..geometry.realization import GeometryParams
 
 F = TypeVar("F", bound=Callable[..., Any])
+
+MAX_BLOCK_COPIES = 1000
+"""Most lattice translates ``--block`` may ask for (the product of its sizes)."""
 
 
 def is_catalog(path: str | None) -> TypeGuard[str]:
@@ -29,17 +33,45 @@ def is_catalog(path: str | None) -> TypeGuard[str]:
 
 
 def catalog_row(path: str, row: int) -> tuple[Scaffold, np.ndarray]:
-    """Return ``(scaffold, labels (n_edges,) int64)`` of row ``row`` of the catalog at ``path``."""
-    from ..catalog.reader import read_catalog
+    """Return ``(scaffold, labels (n_edges,) int64)`` of row ``row`` of the catalog at ``path``.
 
-    catalog = read_catalog(path, columns=[])
-    if not 0 <= row < len(catalog):
-        raise UsageError(f"{path}: row {row} out of range 0..{len(catalog) - 1}")
-    scaffold = catalog.scaffold
-    labels = catalog.labels[row].astype(np.int64)
-    if len(labels) != scaffold.n_edges:
-        raise CatalogError(f"{path} row {row}: {len(labels)} labels, but {scaffold.name} has {scaffold.n_edges} edges")
-    return scaffold, labels
+    Only the Parquet footers and the one row group holding the row are read (not the
+    whole label column), for a single file and a sharded folder alike.
+    """
+    import pandas as pd
+    import pyarrow as pa
+    import pyarrow.parquet as pq
+
+    from ..catalog.reader import Catalog, catalog_files, read_metadata
+
+    meta = read_metadata(path)
+    first = 0
+    for file in catalog_files(path):
+        try:
+            parquet = pq.ParquetFile(file)
+        except (OSError, pa.ArrowInvalid) as exc:
+            raise CatalogError(f"{file}: not a readable Parquet file: {exc}") from None
+        info = parquet.metadata
+        for group in range(info.num_row_groups):
+            size = info.row_group(group).num_rows
+            if first <= row < first + size:
+                names = parquet.schema_arrow.names
+                column = "key" if "key" in names else "labels"
+                if column not in names:
+                    raise CatalogError(f"{file}: no 'key' or 'labels' column")
+                cell = parquet.read_row_group(group, columns=[column]).column(0)[row - first].as_py()
+                values = np.frombuffer(cell, np.int8) if column == "key" else np.array(cell)
+                labels = values.astype(np.int64)
+                scaffold = Catalog(pd.DataFrame(index=[0]), labels[None], meta, path).scaffold
+                if len(labels) != scaffold.n_edges:
+                    raise CatalogError(
+                        f"{path} row {row}: {len(labels)} labels, but {scaffold.name} has {scaffold.n_edges} edges"
+                    )
+                return scaffold, labels
+            first += size
+    if first == 0:
+        raise UsageError(f"{path}: the catalog has no rows")
+    raise UsageError(f"{path}: row {row} out of range 0..{first - 1}")
 
 
 def design_options(func: F) -> F:
@@ -50,14 +82,22 @@ def design_options(func: F) -> F:
             "--twist", "twist_spec", metavar="SPEC", help="One integer, a comma list per edge, or a file naming edges."
         ),
         click.option("--null", "null_spec", metavar="SPEC", help="Null edge-sides as FACE.SIDE, comma separated."),
-        click.option("--row", type=int, help="Row of CATALOG.parquet to use (instead of --twist)."),
+        click.option("--row", type=click.IntRange(min=0), help="Row of CATALOG.parquet to use (instead of --twist)."),
         click.option(
-            "--radius", type=float, help="Distance of the strands from their edge (default 0.12 x shortest edge)."
+            "--radius",
+            type=Finite(0, low_open=True),
+            help="Distance of the strands from their edge, > 0 (default 0.12 x shortest edge).",
         ),
         click.option(
-            "--normal-offset", type=float, help="Offset of the strands along the face normal (default 0.35 x radius)."
+            "--normal-offset",
+            type=Finite(0),
+            help="Offset of the strands along the face normal, >= 0 (default 0.35 x radius).",
         ),
-        click.option("--tube-radius", type=float, help="Tube radius (default from the mesh and the strand spacing)."),
+        click.option(
+            "--tube-radius",
+            type=Finite(0, low_open=True),
+            help="Tube radius, > 0 (default from the mesh and the strand spacing).",
+        ),
     ]
     for option in reversed(options):
         func = option(func)
@@ -94,6 +134,9 @@ def block_translations(scaffold: Scaffold, spec: str | None) -> np.ndarray | Non
         raise UsageError(f"--block {spec!r}: expected sizes like 3x3 or 2x2x2") from None
     if len(sizes) != scaffold.dim or min(sizes) < 1:
         raise UsageError(f"--block {spec!r}: give {scaffold.dim} positive sizes for a {scaffold.dim}D lattice")
+    copies = int(np.prod(sizes, dtype=object))
+    if copies > MAX_BLOCK_COPIES:
+        raise TooLargeError(f"--block {spec}: {copies:,} copies > {MAX_BLOCK_COPIES:,} (MAX_BLOCK_COPIES)")
     grids = np.meshgrid(*[np.arange(n) for n in sizes], indexing="ij")
     return np.column_stack([g.reshape(-1) for g in grids])
 
@@ -145,10 +188,12 @@ def export_cmd(
       lkspace export cube --twist 2 --tubes -o chainmail.obj
       lkspace export designs.parquet --row 7 -o design7.png
     """
-    from ..formats.registry import export
+    from ..formats.registry import export, output_target, point_budget
     from ..geometry.realization import realize
 
     ctx = Context(as_json)
+    output_target(output)  # checked before any work (export checks it again)
+    max_points, bound = point_budget(output, tubes)
     scaffold, labels, nulls = resolve_design(ctx, mesh, twist_spec, null_spec, row)
     real = realize(
         scaffold,
@@ -156,6 +201,8 @@ def export_cmd(
         nulls,
         params_of(radius, normal_offset, tube_radius),
         translations=block_translations(scaffold, block),
+        max_points=max_points,
+        bound=bound,
     )
     fmt = export(real, output, tubes=tubes, show_mesh=not no_mesh)
     data = {

@@ -5,15 +5,16 @@ from __future__ import annotations
 import os
 import sys
 from collections.abc import Callable, Iterable
-from contextlib import nullcontext
 
 import click
 
 from .. import io
 from ..errors import UsageError
+from ..io.paths import output_file
 from ..model.scaffold import Scaffold
 from ..model.specs import edge_index
 from .common import Context, emit, json_option, label_set, labels_option, load_mesh, mesh_argument, usage_errors
+from .numbers import Finite
 
 
 def _edge_values(
@@ -34,11 +35,21 @@ def _edge_values(
     return out
 
 
+MAX_LABEL = 1_000_000
+"""Largest ``|t|`` a ``--fix`` label may have (costs and labels stay far inside 64-bit integers)."""
+
+MAX_SEED = 2**31 - 1
+"""Largest ``--seed`` (CP-SAT takes a 32-bit signed seed)."""
+
+
 def _label(value: str, item: str) -> int:
     try:
-        return int(value)
+        label = int(value)
     except ValueError:
         raise UsageError(f"--fix {item!r}: {value!r} is not an integer label") from None
+    if abs(label) > MAX_LABEL:
+        raise UsageError(f"--fix {item!r}: labels must lie in -{MAX_LABEL:,}..{MAX_LABEL:,}")
+    return label
 
 
 def _parity(value: str, item: str) -> int:
@@ -47,13 +58,21 @@ def _parity(value: str, item: str) -> int:
     return int(value.lower() == "odd")
 
 
-DEFAULT_TIME_LIMIT = 120.0  # seconds: a command should come back; 0 lifts the limit
+DEFAULT_TIME_LIMIT = 120.0
+"""Seconds ``solve`` may take by default (all stages: fast path, model building, search); 0 lifts it."""
+
+MAX_COUNT = 10_000
+"""Most designs ``--count`` may ask for (the library's :data:`lkspace.inverse.pipeline.MAX_COUNT`)."""
 
 
 @click.command("solve")
 @mesh_argument
 @click.option(
-    "--components", "-n", type=click.IntRange(min=1), required=True, help="Exact number of strand components N."
+    "--components",
+    "-n",
+    type=click.IntRange(min=1),
+    required=True,
+    help="Exact number of strand components N (more than the mesh can have: infeasible).",
 )
 @click.option("--no-zero", is_flag=True, help="Forbid twist label 0.")
 @labels_option
@@ -73,7 +92,7 @@ DEFAULT_TIME_LIMIT = 120.0  # seconds: a command should come back; 0 lifts the l
 )
 @click.option(
     "--count",
-    type=click.IntRange(min=1),
+    type=click.IntRange(min=1, max=MAX_COUNT),
     default=1,
     show_default=True,
     help="Distinct designs wanted (they differ in how the strands connect).",
@@ -94,7 +113,7 @@ DEFAULT_TIME_LIMIT = 120.0  # seconds: a command should come back; 0 lifts the l
 )
 @click.option(
     "--time-limit",
-    type=click.FloatRange(min=0),
+    type=Finite(0),
     default=DEFAULT_TIME_LIMIT,
     show_default=True,
     metavar="S",
@@ -102,12 +121,18 @@ DEFAULT_TIME_LIMIT = 120.0  # seconds: a command should come back; 0 lifts the l
 )
 @click.option(
     "--workers",
-    type=click.IntRange(min=0),
+    type=click.IntRange(min=0, max=256),
     default=0,
     show_default=True,
     help="CP-SAT search workers (0: one per core).",
 )
-@click.option("--seed", type=int, default=0, show_default=True, help="Random seed (search and spanning trees).")
+@click.option(
+    "--seed",
+    type=click.IntRange(0, MAX_SEED),
+    default=0,
+    show_default=True,
+    help="Random seed (search and spanning trees).",
+)
 @click.option(
     "--no-fast-path", is_flag=True, help="Always use CP-SAT, even where the spanning-tree construction applies."
 )
@@ -147,43 +172,33 @@ def solve_cmd(
       lkspace solve cube --components 1 --no-zero --count 3
       lkspace solve dodecahedron -n 2 --labels -1,1,2 --fix 0=2 --objective min-abs
     """
-    from rich.console import Console
-
     from ..inverse.pipeline import solve
 
     ctx = Context(as_json)
+    target = None if output is None else output_file(output, (".json",))  # checked before any work
     scaffold = load_mesh(ctx, mesh)
-    if output is not None and os.path.splitext(output)[1].lower() != ".json":
-        raise UsageError(f"-o {output}: designs are written as lkspace scaffold files; use a .json name")
     labels = label_set(labels_spec)
     with usage_errors():
         fixes = _edge_values(scaffold, fix_items, "--fix", _label)
         parities = _edge_values(scaffold, parity_items, "--parity", _parity)
-    console = Console(stderr=True)
-    spinner = (
-        console.status(f"solving {scaffold.name} for {components} component(s)…")
-        if console.is_terminal and not as_json
-        else nullcontext()
+    result = solve(
+        scaffold,
+        components,
+        label_set=labels,
+        no_zero=no_zero,
+        fixes=fixes,
+        parities=parities,
+        count=count,
+        distinct_up_to=distinct_up_to,
+        objective=None if objective == "none" else objective,
+        time_limit=time_limit or None,
+        workers=workers,
+        seed=seed,
+        fast_path=not no_fast_path,
     )
-    with spinner:
-        result = solve(
-            scaffold,
-            components,
-            label_set=labels,
-            no_zero=no_zero,
-            fixes=fixes,
-            parities=parities,
-            count=count,
-            distinct_up_to=distinct_up_to,
-            objective=None if objective == "none" else objective,
-            time_limit=time_limit or None,
-            workers=workers,
-            seed=seed,
-            fast_path=not no_fast_path,
-        )
     written = None
-    if output is not None and result.solutions:
-        io.write(scaffold, output, result.solutions[0].labels)
+    if target is not None and output is not None and result.solutions:
+        io.write(scaffold, target, result.solutions[0].labels)
         written = os.path.abspath(output)
     data = {
         "components": components,

@@ -15,6 +15,9 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.spatial import cKDTree
 
+CHUNK = 50_000
+"""Samples whose neighbours the coarse pass of :func:`check_embedding` examines at once (bounds its memory)."""
+
 
 def resample(curve: np.ndarray, closed: bool, spacing: float) -> tuple[np.ndarray, np.ndarray, float]:
     """Points every ``spacing`` along a polyline: ``(points (m, 3), arclength (m,), length)``."""
@@ -127,11 +130,14 @@ def check_embedding(
     spacing = max(min_separation / 2.0, 0.02 * scale)
     pts, arc, owner, lengths = _samples(curves, closed, spacing)
     k = min(48, len(pts))
-    dist, nb = cKDTree(pts).query(pts, k=k, distance_upper_bound=0.3 * scale)
-    i = np.repeat(np.arange(len(pts)), k)
-    j = nb.reshape(-1)
-    found = j < len(pts)
-    i, j = i[found], j[found]
-    keep = _pieces_apart(owner, arc, lengths, closed, i, j, 0.3 * scale, joins)
-    consider(pts, owner, i[keep], j[keep])
+    tree = cKDTree(pts)
+    for lo in range(0, len(pts), CHUNK):  # in chunks: k neighbours per sample take ~3 kB each
+        hi = min(lo + CHUNK, len(pts))
+        _, nb = tree.query(pts[lo:hi], k=k, distance_upper_bound=0.3 * scale)
+        i = np.repeat(np.arange(lo, hi), k)
+        j = nb.reshape(-1)
+        found = j < len(pts)
+        i, j = i[found], j[found]
+        keep = _pieces_apart(owner, arc, lengths, closed, i, j, 0.3 * scale, joins)
+        consider(pts, owner, i[keep], j[keep])
     return best, where

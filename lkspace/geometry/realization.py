@@ -46,12 +46,13 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ..errors import GeometryError
+from ..errors import GeometryError, TooLargeError
 from ..io.sources import ScaffoldSource, load
 from ..model.scaffold import Scaffold
 from ..strands.ports import port_model
 from ..strands.tracing import Trace, trace
 from .clearance import check_embedding
+from .limits import MAX_POINTS, MAX_SAMPLES, check_lengths, check_winding
 from .tracks import bezier_controls, default_scale, lattice_shift, place_name, side_tracks, smoothstep
 
 
@@ -89,6 +90,28 @@ class GeometryParams:
     samples_per_turn: int = 32
     edge_samples: int = 10
     corner_samples: int = 8
+
+    def check(self) -> None:
+        """Raise :class:`GeometryError` (a usage error) naming a parameter that is not usable.
+
+        Lengths must be finite; ``radius``, ``margin``, ``tube_radius`` and
+        ``min_separation`` positive, ``normal_offset`` at least 0; the sample counts
+        integers in ``1..MAX_SAMPLES`` (``corner_samples`` from 2).
+        """
+        for name in ("radius", "normal_offset", "margin", "tube_radius", "min_separation"):
+            value = getattr(self, name)
+            if value is None:
+                continue
+            low = 0.0 if name == "normal_offset" else None
+            if not np.isfinite(value) or (value < 0 if low is not None else value <= 0):
+                wanted = "a finite number >= 0" if low is not None else "a finite number > 0"
+                raise GeometryError(f"geometry parameter {name} must be {wanted}, got {value}", usage=True)
+        for name, least in (("samples_per_turn", 1), ("edge_samples", 1), ("corner_samples", 2)):
+            value = getattr(self, name)
+            if not isinstance(value, int | np.integer) or not least <= value <= MAX_SAMPLES:
+                raise GeometryError(
+                    f"geometry parameter {name} must be an integer in {least}..{MAX_SAMPLES}", usage=True
+                )
 
 
 @dataclass(frozen=True, eq=False, repr=False)
@@ -167,6 +190,8 @@ def realize(
     translations: ArrayLike | None = None,
     check: bool = True,
     result: Trace | None = None,
+    max_points: int = MAX_POINTS,
+    bound: str = "MAX_POINTS",
 ) -> Realization:
     """Realize the strands of ``scaffold`` under twist ``labels`` as 3D polylines.
 
@@ -182,6 +207,10 @@ def realize(
         when distinct pieces come closer than ``min_separation``.
     result : Trace, optional
         A trace already computed for these labels.
+    max_points : int
+        Refuse (:class:`~lkspace.errors.TooLargeError`, before building anything) when
+        the curves would have more points (default :data:`MAX_POINTS`); ``bound`` names
+        the limit in the message.
 
     Returns
     -------
@@ -195,6 +224,7 @@ def realize(
     """
     scaffold = load(scaffold)
     params = params or GeometryParams()
+    params.check()
     tr = result if result is not None else trace(scaffold, labels, nulls)
     scale = default_scale(scaffold)
     rho = params.radius if params.radius is not None else 0.12 * scale
@@ -204,7 +234,11 @@ def realize(
     for name, value in (("radius", rho), ("margin", margin), ("min_separation", min_sep)):
         if not np.isfinite(value) or value <= 0:
             raise GeometryError(f"geometry parameter {name} must be positive, got {value}")
+    lengths = {"radius": rho, "normal_offset": h, "margin": margin, "tube_radius": params.tube_radius or 0.0}
+    check_lengths(scaffold.name, lengths, scale)
     fr = side_tracks(scaffold, rho, h, margin)
+    if check:
+        check_winding(scaffold, fr.pa, fr.pb, fr.margin, tr.labels, min_sep)
     model = port_model(scaffold)
     cp = model.corner_partner
     twist = tr.labels
@@ -246,8 +280,16 @@ def realize(
     k = degrees[e]
     t = np.where(k > 1, twist[e], 0)  # a lone strand's full turns about an empty axis are a curl: drawn straight
     has_edge = z >= 0
-    turns = np.abs(t) / k
-    n_edge = np.where(has_edge, params.edge_samples + np.ceil(params.samples_per_turn * turns).astype(np.int64), 0)
+    turns = np.abs(t.astype(np.float64)) / k  # floats: -2**63 has no int64 abs
+    n_edge = np.where(has_edge, params.edge_samples + np.ceil(params.samples_per_turn * turns), 0)
+    n_copies = 1 if translations is None else max(1, np.size(translations) // max(dim, 1))
+    estimate = (float(n_edge.sum()) + n_steps * nc) * n_copies
+    if estimate > max_points:
+        raise TooLargeError(
+            f"{scaffold.name}: the curves would have about {estimate:,.0f} points > {max_points:,} ({bound}); "
+            "use smaller twists (or a smaller block)"
+        )
+    n_edge = n_edge.astype(np.int64)
     piece = np.repeat(np.arange(n_steps), n_edge)
     offsets = np.concatenate([[0], np.cumsum(n_edge)])
     sig = (np.arange(len(piece)) - offsets[piece]) / np.maximum(n_edge[piece], 1)

@@ -24,6 +24,7 @@ and the caller falls back to CP-SAT.  Every design is re-traced by the caller.
 
 from __future__ import annotations
 
+import time
 from collections.abc import Callable
 
 import numpy as np
@@ -31,19 +32,29 @@ import scipy.sparse
 import scipy.sparse.csgraph
 
 from ..model.scaffold import Scaffold
+from ..progress import Step
 from .local_search import local_search
 from .query import Query, allowed_labels, cheapest_label, label_cost
 
 
 def spanning_designs(
-    scaffold: Scaffold, query: Query, count: int = 1, seed: int = 0, time_budget: float = 5.0
+    scaffold: Scaffold,
+    query: Query,
+    count: int = 1,
+    seed: int = 0,
+    time_budget: float = 5.0,
+    deadline: float | None = None,
+    step: Step | None = None,
 ) -> tuple[list[np.ndarray], bool]:
     """Construct up to ``count`` distinct designs with ``query.components`` strands, without search.
 
     One component on a K <= 2 scaffold: random dual spanning trees; otherwise (any K,
     N <= F components) greedy merging, :func:`_greedy_designs`, and where that gets stuck
     a local search from its closest attempt (:mod:`lkspace.inverse.local_search`, at most
-    ``time_budget`` seconds).
+    ``time_budget`` seconds).  Nothing runs past ``deadline`` (a ``time.perf_counter()``
+    value); ``step`` (a :func:`lkspace.progress.task` step) gets the closest count so far.
+    A mesh without two-face edges (one face, unwelded faces) has one strand per face
+    whatever the labels: the answer is any allowed labelling when N = F, none otherwise.
 
     Returns
     -------
@@ -59,9 +70,11 @@ def spanning_designs(
         return [], False
     if degrees.max() > 2 or query.components > 1:
         partial: list[tuple[int, np.ndarray]] = []
-        designs = _greedy_designs(scaffold, query, count, seed, partial)
-        if len(designs) < count and partial:
-            designs += local_search(scaffold, query, partial[0][1], count - len(designs), seed, time_budget)
+        designs = _greedy_designs(scaffold, query, count, seed, partial, deadline, step)
+        if deadline is not None:
+            time_budget = min(time_budget, deadline - time.perf_counter())
+        if len(designs) < count and partial and time_budget > 0:
+            designs += local_search(scaffold, query, partial[0][1], count - len(designs), seed, time_budget, step)
         return designs, False
     allowed = allowed_labels(scaffold, query)
     n_edges = scaffold.n_edges
@@ -100,9 +113,12 @@ def spanning_designs(
     rng = np.random.default_rng(seed)
     designs = []
     seen: set[bytes] = set()
+    lightest = delta.min(initial=0)  # no two-face edge at all: one strand per face, any labels
     for _ in range(4 * count):
+        if deadline is not None and designs and time.perf_counter() > deadline:
+            break
         weights = np.where(
-            forced, 1e-3 * (1 + rng.random(len(two))), 1 + (delta - delta.min()) + 0.5 * rng.random(len(two))
+            forced, 1e-3 * (1 + rng.random(len(two))), 1 + (delta - lightest) + 0.5 * rng.random(len(two))
         )
         tree = _spanning_tree(n_faces, f0[candidate], f1[candidate], weights[candidate])
         if tree is None:
@@ -185,7 +201,13 @@ GREEDY_ATTEMPTS = 16
 
 
 def _greedy_designs(
-    scaffold: Scaffold, query: Query, count: int, seed: int, partial: list[tuple[int, np.ndarray]] | None = None
+    scaffold: Scaffold,
+    query: Query,
+    count: int,
+    seed: int,
+    partial: list[tuple[int, np.ndarray]] | None = None,
+    deadline: float | None = None,
+    step: Step | None = None,
 ) -> list[np.ndarray]:
     """Designs with N <= F components (any K) by greedy merging.
 
@@ -197,6 +219,7 @@ def _greedy_designs(
     count is thus known exactly at every step.  Returns no design if some edge cannot follow
     the rule or the count does not end at N; then ``partial`` (a list, if given) receives
     the attempt that came closest, as a start for :mod:`lkspace.inverse.local_search`.
+    Attempts stop at ``deadline`` (``time.perf_counter()``); ``step`` gets the closest count.
     """
     degrees = scaffold.edge_degrees
     allowed = allowed_labels(scaffold, query)
@@ -214,6 +237,8 @@ def _greedy_designs(
     rng = np.random.default_rng(seed)
     designs, seen = [], set()
     for _ in range(GREEDY_ATTEMPTS * count):  # a greedy order can get stuck: try others
+        if deadline is not None and time.perf_counter() > deadline:
+            break
         must_merge = np.array([a is None for a in stay])
         order = np.lexsort((rng.random(scaffold.n_edges), -degrees, ~must_merge))
         parent = np.arange(scaffold.n_faces)
@@ -239,6 +264,8 @@ def _greedy_designs(
         if stuck or n_strands != query.components:
             if partial is not None and (not partial or n_strands < partial[0][0]):
                 partial[:] = [(n_strands, labels)]
+                if step is not None:
+                    step.note(f"greedy merging: closest {n_strands} component(s)")
             continue
         key = labels.tobytes()
         if key not in seen:

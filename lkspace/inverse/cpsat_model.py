@@ -65,6 +65,7 @@ group) is a clause over the residue booleans (solve-and-exclude, never a census)
 from __future__ import annotations
 
 import math
+import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, TypeAlias
@@ -214,8 +215,11 @@ def _fixed_structure(scaffold: Scaffold, fixed_residues: np.ndarray) -> tuple[np
     return node_of_port, super_id[comp], int(closed.sum()), int((~closed).sum())
 
 
-def build_model(scaffold: Scaffold, query: Query) -> DesignModel:
+def build_model(scaffold: Scaffold, query: Query, deadline: float | None = None) -> DesignModel:
     """Build the CP-SAT model of ``query`` on ``scaffold`` (see the module docstring).
+
+    Past ``deadline`` (a ``time.perf_counter()`` value) building stops: ``decided`` is
+    then ``"unknown"`` and ``model`` is ``None``.
 
     Examples
     --------
@@ -258,7 +262,9 @@ def build_model(scaffold: Scaffold, query: Query) -> DesignModel:
     pm = port_model(scaffold)
     pair_lits: dict[tuple[int, int], list[cp_model.BoolVarT]] = {}
     objective = []
-    for e in np.flatnonzero(fixed < 0).tolist():
+    for done, e in enumerate(np.flatnonzero(fixed < 0).tolist()):
+        if done % 256 == 0 and _late(dm, deadline):
+            return dm
         opts = choices[e]
         k = int(degrees[e])
         start = int(pm.edge_starts[e])
@@ -295,6 +301,8 @@ def build_model(scaffold: Scaffold, query: Query) -> DesignModel:
             else:
                 model.add_bool_or(joining).only_enforce_if(arc)
             arcs.append((tail + 1, head + 1, arc))
+    if _late(dm, deadline):
+        return dm
     if m:
         model.add_multiple_circuit(arcs)
         model.add(sum(starts) == need)
@@ -328,3 +336,11 @@ def build_model(scaffold: Scaffold, query: Query) -> DesignModel:
     if objective:
         model.minimize(sum(objective))
     return dm
+
+
+def _late(dm: DesignModel, deadline: float | None) -> bool:
+    """Mark ``dm`` undecided for lack of time (``decided = "unknown"``) once ``deadline`` has passed."""
+    if deadline is None or time.perf_counter() <= deadline:
+        return False
+    dm.model, dm.decided, dm.reason = None, "unknown", "the time limit ran out while the CP-SAT model was built"
+    return True

@@ -19,6 +19,7 @@ import time
 import numpy as np
 
 from ..model.scaffold import Scaffold
+from ..progress import Step
 from ..strands.walk import walk
 from .query import Query, allowed_labels, cheapest_label
 
@@ -41,9 +42,20 @@ def residue_options(scaffold: Scaffold, query: Query) -> list[np.ndarray]:
 
 
 def local_search(
-    scaffold: Scaffold, query: Query, start: np.ndarray, count: int, seed: int, time_budget: float
+    scaffold: Scaffold,
+    query: Query,
+    start: np.ndarray,
+    count: int,
+    seed: int,
+    time_budget: float,
+    step: Step | None = None,
 ) -> list[np.ndarray]:
-    """Search for up to ``count`` distinct designs with ``query.components`` strands, from ``start``."""
+    """Search for up to ``count`` distinct designs with ``query.components`` strands, from ``start``.
+
+    ``step`` (a :func:`lkspace.progress.task` step) is told the closest count so far.
+    ``time_budget`` counts from the call (the set-up included).
+    """
+    deadline = time.perf_counter() + time_budget
     options = residue_options(scaffold, query)
     edge_of_port = np.repeat(scaffold.side_edge, 2)
     target = query.components
@@ -57,7 +69,6 @@ def local_search(
     n, port_strand = evaluate(labels)
     designs, seen = [], set()
     movable = np.flatnonzero([len(o) > 1 for o in options])
-    deadline = time.perf_counter() + time_budget
     patience = max(PATIENCE, 2 * scaffold.n_edges)
     closest, stale = abs(n - target), 0
     while len(movable) and time.perf_counter() < deadline and stale < patience:
@@ -81,6 +92,8 @@ def local_search(
         if len(pool) == 0:
             break
         e = int(rng.choice(pool))
+        if step is not None:
+            step.advance()
         best: tuple[int, np.ndarray, int, np.ndarray] | None = None  # distance to N, labels, strands, port_strand
         for t in rng.permutation(options[e]):
             if t == labels[e]:
@@ -94,6 +107,8 @@ def local_search(
             _, labels, n, port_strand = best
         if abs(n - target) < closest:
             closest, stale = abs(n - target), 0
+            if step is not None:
+                step.note(f"local search: closest {n} component(s), want {target}")
         else:
             stale += 1
     return designs

@@ -7,22 +7,29 @@
 
 from __future__ import annotations
 
+import contextlib
+import math
+import threading
 import time
-from collections.abc import Mapping
+from collections.abc import Iterator, Mapping
 from dataclasses import dataclass, field
 from typing import Any, TypeAlias
 
 import numpy as np
 
-from ..errors import LabelError, SolveVerificationError
+from ..errors import LabelError, SolveVerificationError, TooLargeError, UsageError
 from ..io.sources import ScaffoldSource, load
 from ..model.scaffold import Scaffold
 from ..model.specs import LabelSetSpec, parse_label_set
+from ..progress import Step, task
 from ..strands.tracing import trace
 from ..symmetry.group import symmetry_group
 from .constructive import spanning_designs
 from .cpsat_model import build_model
 from .query import Query
+
+MAX_COUNT = 10_000
+"""Most designs one :func:`solve` call may ask for (``--count``): each is a solve-and-exclude round."""
 
 EdgeAction: TypeAlias = tuple[np.ndarray, int]
 """A signed edge permutation ``(perm (n_edges,) int64, sign)``: label ``t`` on ``e`` becomes ``sign * t`` on ``perm[e]``."""
@@ -157,24 +164,27 @@ def solve(
     1
     """
     t0 = time.perf_counter()
+    check_budget(count, time_limit)
     scaffold = load(scaffold)
     label_set = parse_label_set(label_set) if isinstance(label_set, str) else np.unique(np.asarray(label_set, np.int64))
     query = Query(int(components), label_set, bool(no_zero), dict(fixes or {}), dict(parities or {}), objective)
-    if count < 1:
-        raise LabelError(f"--count {count}: need at least 1")
-    actions = symmetry_actions(scaffold, distinct_up_to, label_set)
-    if fast_path and (count == 1 or distinct_up_to == "none"):
-        # the local search behind the fast path gets half of the time limit (30 s without one)
-        budget = 0.5 * time_limit if time_limit else LOCAL_SEARCH_SECONDS
-        found, optimal = spanning_designs(scaffold, query, count, seed, time_budget=budget)
-        if len(found) == count and (objective is None or optimal):
-            sols = [verify(scaffold, t, query.components) for t in found]
-            status = "optimal" if objective is not None else "feasible"
-            return SolveResult(status, sols, "fast-path", time.perf_counter() - t0)
-    else:
-        found = []
-    hint = found[0] % scaffold.edge_degrees if found else None
-    result = solve_cp_sat(scaffold, query, count, actions, time_limit, workers, seed, t0, hint)
+    deadline = None if not time_limit else t0 + time_limit
+    with task(f"solving {scaffold.name} for {query.components} component(s)") as step:
+        step.note("symmetry" if distinct_up_to != "none" else "fast path")
+        actions = symmetry_actions(scaffold, distinct_up_to, label_set)
+        if fast_path and (count == 1 or distinct_up_to == "none"):
+            step.note("fast path")
+            # the local search behind the fast path gets half of the time left (30 s without a limit)
+            budget = 0.5 * (time_limit - (time.perf_counter() - t0)) if time_limit else LOCAL_SEARCH_SECONDS
+            found, optimal = spanning_designs(scaffold, query, count, seed, budget, deadline, step)
+            if len(found) == count and (objective is None or optimal):
+                sols = [verify(scaffold, t, query.components) for t in found]
+                status = "optimal" if objective is not None else "feasible"
+                return SolveResult(status, sols, "fast-path", time.perf_counter() - t0)
+        else:
+            found = []
+        hint = found[0] % scaffold.edge_degrees if found else None
+        result = solve_cp_sat(scaffold, query, count, actions, time_limit, workers, seed, t0, hint, step)
     if found and result.status == "infeasible":
         raise SolveVerificationError(
             f"internal error: CP-SAT calls {scaffold.name} infeasible for "
@@ -192,6 +202,33 @@ def solve(
             result.stats,
         )
     return result
+
+
+def check_budget(count: int, time_limit: float | None) -> None:
+    """Refuse a ``count`` outside ``1..MAX_COUNT`` or a time limit that is not a finite number >= 0."""
+    if not 1 <= count <= MAX_COUNT:
+        error = UsageError if count < 1 else TooLargeError
+        raise error(f"--count {count}: ask for 1..{MAX_COUNT:,} designs per call (MAX_COUNT)")
+    if time_limit is not None and not (math.isfinite(time_limit) and time_limit >= 0):
+        raise UsageError(f"--time-limit {time_limit}: expected a finite number of seconds >= 0 (0: no limit)")
+
+
+@contextlib.contextmanager
+def heartbeat(step: Step, every: float = 1.0) -> Iterator[None]:
+    """Refresh ``step`` every ``every`` seconds from a thread while a long native call runs."""
+    stop = threading.Event()
+
+    def beat() -> None:
+        while not stop.wait(every):
+            step.note(step.text)
+
+    thread = threading.Thread(target=beat, name="lkspace-progress", daemon=True)
+    thread.start()
+    try:
+        yield
+    finally:
+        stop.set()
+        thread.join()
 
 
 LOCAL_SEARCH_SECONDS = 30.0
@@ -219,16 +256,22 @@ def solve_cp_sat(
     seed: int,
     t0: float,
     hint: np.ndarray | None = None,
+    step: Step | None = None,
 ) -> SolveResult:
     """Solve ``query`` with CP-SAT, solve-and-exclude, up to ``count`` designs; times count from ``t0``.
 
     Every solution is re-traced (:func:`verify`) and excluded with its images under
-    ``actions``; ``hint`` (a residue vector of a known design) seeds the search.
+    ``actions``; ``hint`` (a residue vector of a known design) seeds the search.  The time
+    limit covers building the model too: if it is spent by then, the status is ``unknown``.
     """
     from ortools.sat.python import cp_model
 
-    dm = build_model(scaffold, query)
+    if step is not None:
+        step.note("building the CP-SAT model")
+    dm = build_model(scaffold, query, None if time_limit is None else t0 + time_limit)
     stats: dict[str, Any] = {"model_nodes": dm.n_nodes, "fixed_cycles": dm.n_fixed_cycles}
+    if dm.decided == "unknown":
+        return SolveResult("unknown", [], "cp-sat", time.perf_counter() - t0, dm.reason, False, stats)
     if dm.decided:
         return SolveResult(dm.decided, [], "presolve", time.perf_counter() - t0, dm.reason, True, stats)
     assert dm.model is not None  # built whenever the query is not decided before search
@@ -248,7 +291,10 @@ def solve_cp_sat(
             if left <= 0:
                 break
             solver.parameters.max_time_in_seconds = left
-        code = solver.solve(dm.model)
+        if step is not None:
+            step.note(f"CP-SAT search: {len(solutions)}/{count} design(s) so far")
+        with heartbeat(step) if step is not None else contextlib.nullcontext():
+            code = solver.solve(dm.model)
         search_time += solver.wall_time
         if code in (cp_model.OPTIMAL, cp_model.FEASIBLE):
             residues = dm.residues_from(solver.boolean_value)

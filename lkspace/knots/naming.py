@@ -7,11 +7,18 @@ from __future__ import annotations
 
 import json
 import re
-from collections.abc import Iterable
+from collections.abc import Callable, Iterable
 from types import ModuleType
 from typing import Any
 
 from .tables import HOMFLY_MAX_CROSSINGS, JONES_POINT, knot_modules, laurent_value, tables
+
+KNOT_FLOER_MAX_CROSSINGS = 40
+"""Most crossings of a simplified knot diagram whose knot Floer homology is computed.
+
+Its cost grows steeply with the crossings (minutes past about 60); it is an extra
+invariant for knots beyond the tables, so bigger diagrams go without it.
+"""
 
 
 def _homfly(regina: ModuleType, pd: list[list[int]], mirror: bool = False) -> str:
@@ -93,12 +100,17 @@ def one_based(pd: Iterable[Iterable[int]]) -> list[list[int]]:
     return [[int(v) + 1 for v in x] for x in pd]
 
 
-def name_pd(pd: list[list[int]], n_components: int) -> dict[str, Any]:
+def _quiet(text: str) -> None:
+    """Ignore a stage name (no progress wanted)."""
+
+
+def name_pd(pd: list[list[int]], n_components: int, stage: Callable[[str], None] = _quiet) -> dict[str, Any]:
     """Simplify and name the link of a PD code (1-based, KnotTheory convention).
 
     Split links are named piece by piece (``name`` stays ``None``, ``pieces`` lists
     them); a composite whose prime factors are all in the tables gets the name
-    ``"3_1#4_1"`` (``prime: False``, ``factors``).
+    ``"3_1#4_1"`` (``prime: False``, ``factors``).  ``stage`` is told each stage as it
+    starts (``"simplification"``, ``"table lookup"``, ``"knot Floer homology"``).
     """
     spherogram, _, _ = knot_modules()
     out: dict[str, Any]
@@ -114,13 +126,15 @@ def name_pd(pd: list[list[int]], n_components: int) -> dict[str, Any]:
             out["pieces"] = ["0_1"] * n_components
             out["note"] = f"unlink of {n_components} components"
         return out
+    stage(f"simplification ({len(pd)} crossings)")
     link = spherogram.Link(pd)
     n_free = n_components - len(link.link_components)
     link.simplify("global")
+    stage(f"table lookup ({len(link.crossings)} crossings)")
     pieces = link.split_link_diagram()
     n_free += link.unlinked_unknot_components
     if len(pieces) + n_free > 1:
-        named = [name_pd(one_based(p.PD_code()), len(p.link_components)) for p in pieces]
+        named = [name_pd(one_based(p.PD_code()), len(p.link_components), stage) for p in pieces]
         out = {
             "name": None,
             "split": True,
@@ -142,7 +156,8 @@ def name_pd(pd: list[list[int]], n_components: int) -> dict[str, Any]:
                 out.update(name="#".join(sorted((f["name"] for f in named), key=_name_key)), prime=False, mirror=None)
                 if all(f.get("chiral_name") or f["mirror"] is None for f in named) and n_components == 1:
                     out["chiral_name"] = "#".join(sorted(out["factors"], key=_name_key))
-    if n_components == 1 and simple:
+    if n_components == 1 and simple and len(simple) <= KNOT_FLOER_MAX_CROSSINGS:
+        stage("knot Floer homology")
         try:
             hfk = link.knot_floer_homology()
             out["knot_floer"] = {k: hfk[k] for k in ("seifert_genus", "fibered", "tau", "total_rank", "L_space_knot")}

@@ -22,8 +22,8 @@ from __future__ import annotations
 
 import json
 import multiprocessing as mp
-import sys
-from collections.abc import Iterator, Sequence
+import time
+from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -31,11 +31,14 @@ import numpy as np
 import pandas as pd
 from numpy.typing import ArrayLike
 
-from ..errors import LkspaceError
+from ..errors import LkspaceError, TooLargeError, UsageError
 from ..geometry.realization import GeometryParams, realize
 from ..io.sources import ScaffoldSource, load
 from ..model.scaffold import Scaffold
-from .diagram import DiagramError, project
+from ..progress import Step, task
+from ..strands.tracing import trace
+from .budget import INLINE_CROSSINGS, MAX_CROSSINGS, TIME_LIMIT, TimeLimitReached, run_in_time, twist_crossings
+from .diagram import Diagram, DiagramError, project
 from .naming import name_pd
 from .tables import knot_modules, tables
 
@@ -57,6 +60,10 @@ class Identification:
         Crossings of the simplified diagram.
     details : dict
         Everything else: ``jones``, ``homfly``, ``volume``, ``candidates``, ``pieces``, ...
+    status : str
+        ``"identified"`` (named, or a split link with every piece named) or
+        ``"unknown: <why>"``: not in the tables, several entries match, ``diagram too
+        large: N crossings > 2000`` or ``time limit 60 s reached (during ...)``.
     """
 
     components: int
@@ -66,14 +73,16 @@ class Identification:
     split: bool | None = None
     crossings: int | None = None
     details: dict[str, Any] = field(default_factory=dict)
+    status: str = "identified"
 
     def __repr__(self) -> str:
         chirality = {True: ", mirror", False: "", None: ""}[self.mirror]
         return f"Identification({self.name or 'unknown'}{chirality}: {self.components} components, {self.crossings} crossings)"
 
     def to_dict(self) -> dict[str, Any]:
-        """Return the JSON form (``components``, ``name``, ``linking_matrix``, and every invariant)."""
+        """Return the JSON form (``status``, ``components``, ``name``, ``linking_matrix``, and every invariant)."""
         return {
+            "status": self.status,
             "components": self.components,
             "name": self.name,
             "linking_matrix": self.linking_matrix,
@@ -84,8 +93,25 @@ class Identification:
         }
 
 
+def status_of(named: dict[str, Any]) -> str:
+    """Return the status of a :func:`~lkspace.knots.naming.name_pd` result: identified or why not."""
+    if named.get("name") is not None:
+        return "identified"
+    pieces = named.get("pieces")
+    if named.get("split") and pieces and all(p is not None for p in pieces):
+        return "identified"
+    if named.get("split"):
+        return "unknown: a piece of the split link is not in the tables"
+    candidates = named.get("candidates") or []
+    if len(candidates) > 1:
+        return f"unknown: {len(candidates)} table entries match ({', '.join(candidates[:4])})"
+    if named.get("note"):
+        return f"unknown: {named['note']}"
+    return "unknown: not in the tables (knots up to 13 crossings, links up to 11)"
+
+
 def identify_curves(curves: Sequence[np.ndarray], seed: int = 0) -> dict[str, Any]:
-    """Identify the link formed by closed polylines ``curves`` (list of ``(n_k, 3)``).
+    """Identify the link formed by closed polylines ``curves`` (list of ``(n_k, 3)``), without a time limit.
 
     Returns
     -------
@@ -103,91 +129,171 @@ def identify_curves(curves: Sequence[np.ndarray], seed: int = 0) -> dict[str, An
     return out
 
 
+def check_identifiable(scaffold: Scaffold) -> None:
+    """Refuse a periodic scaffold: its strands are infinite structures, not knots or links.
+
+    The loops of one module are not the structure (they link their neighbours), so naming
+    them would mislead; ``export --block`` shows a block of the structure instead.
+    """
+    if scaffold.periodic:
+        raise UsageError(
+            f"{scaffold.name}: a periodic scaffold; identify names knots and links of finite "
+            "scaffolds only (its loops link their lattice translates; use export --block to look at a block)"
+        )
+
+
 def identify(
     scaffold: ScaffoldSource,
     labels: ArrayLike | None = None,
     nulls: ArrayLike | None = None,
     params: GeometryParams | None = None,
     seed: int = 0,
+    *,
+    time_limit: float | None = TIME_LIMIT,
 ) -> Identification:
     """Knot or link type of a scaffold labelled by twist ``labels`` (extra ``[knots]``).
 
     Parameters
     ----------
     scaffold : Scaffold, path or built-in name
+        A finite scaffold (periodic ones are refused, :func:`check_identifiable`).
     labels, nulls : as for :func:`lkspace.trace`
     params : GeometryParams, optional
         Realization parameters.
     seed : int
         Seed of the generic projection.
+    time_limit : float or None
+        Seconds for the whole identification (default
+        :data:`~lkspace.knots.budget.TIME_LIMIT`); past it the status is ``unknown: time
+        limit ... reached`` with the invariants known so far.  ``None`` or 0: no limit.
+
+    Raises
+    ------
+    TooLargeError
+        When the twists alone would make more than
+        :data:`~lkspace.knots.budget.MAX_CROSSINGS` crossings (checked before realizing).
 
     Examples
     --------
     >>> identify("dihedron:3", 1)
     Identification(3_1: 1 components, 3 crossings)
     """
+    t0 = time.monotonic()
     scaffold = load(scaffold)
-    real = realize(scaffold, labels, nulls, params)
-    if not real.closed.all():
-        tr = real.trace
-        reason = "open strands (null edge-sides)" if not tr.closed.all() else "infinite periodic threads"
-        raise LkspaceError(f"{scaffold.name}: cannot identify a structure with {reason}")
-    for attempt in range(3):  # a rare non-generic projection: turn again
+    check_identifiable(scaffold)
+    with task(f"identifying {scaffold.name}") as step:
+        step.note("tracing")
+        tr = trace(scaffold, labels, nulls)
+        if not tr.closed.all():
+            raise LkspaceError(f"{scaffold.name}: cannot identify a structure with open strands (null edge-sides)")
+        estimate = twist_crossings(scaffold.edge_degrees, tr.labels)
+        if estimate > MAX_CROSSINGS:
+            raise TooLargeError(
+                f"{scaffold.name}: the twists make about {estimate:,} crossings (sum of |t|(K-1) over the edges) "
+                f"> {MAX_CROSSINGS:,} (MAX_CROSSINGS): too large to identify; use smaller twists"
+            )
+        step.note("realizing")
+        real = realize(scaffold, tr.labels, nulls, params, result=tr)
+        step.note("diagram")
+        diagram = _diagram(real.curves, seed)
+        head = {
+            "components": len(real.curves),
+            "linking_matrix": diagram.linking_matrix().tolist(),
+            "projected_crossings": diagram.n_crossings,
+        }
+        out: dict[str, Any]
+        if diagram.n_crossings > MAX_CROSSINGS:
+            status = f"unknown: diagram too large: {diagram.n_crossings:,} crossings > {MAX_CROSSINGS:,}"
+            out = {**head, "name": None}
+        else:
+            left = None if not time_limit else max(time_limit - (time.monotonic() - t0), 1e-3)
+            try:
+                out = {**head, **_name_in_time(diagram, left, step)}
+                status = status_of(out)
+            except TimeLimitReached as exc:
+                status = f"unknown: time limit {time_limit:g} s reached (during {exc.stage})"
+                out = {**head, "name": None}
+    out["min_distance"] = real.min_distance
+    main = {k: out.pop(k, None) for k in ("components", "name", "linking_matrix", "mirror", "split", "crossings")}
+    return Identification(**main, details=out, status=status)
+
+
+def _diagram(curves: Sequence[np.ndarray], seed: int) -> Diagram:
+    """Project ``curves``; a rare non-generic projection is turned again (three tries)."""
+    for attempt in range(3):
         try:
-            out = identify_curves(real.curves, seed=seed + attempt)
-            break
+            return project(curves, seed=seed + attempt)
         except DiagramError:
             if attempt == 2:
                 raise
-    out["min_distance"] = real.min_distance
-    main = {k: out.pop(k, None) for k in ("components", "name", "linking_matrix", "mirror", "split", "crossings")}
-    return Identification(**main, details=out)
+    raise AssertionError("unreachable")  # pragma: no cover
+
+
+def _name_in_time(diagram: Diagram, time_limit: float | None, step: Step) -> dict[str, Any]:
+    """Name ``diagram`` within ``time_limit`` seconds (:func:`~lkspace.knots.budget.run_in_time`).
+
+    Diagrams of at most :data:`~lkspace.knots.budget.INLINE_CROSSINGS` crossings are
+    named in this process: they take milliseconds.
+    """
+    knot_modules()
+    tables()  # loaded here, shared with the forked child
+
+    def work(stage: Callable[[str], None]) -> dict[str, Any]:
+        return name_pd(diagram.pd, diagram.n_components, stage)
+
+    return run_in_time(work, None if diagram.n_crossings <= INLINE_CROSSINGS else time_limit, step)
 
 
 _WORKER: dict[str, Any] = {}
 
 
-def _init_worker(scaffold: Scaffold, seed: int) -> None:
-    _WORKER["scaffold"], _WORKER["seed"] = scaffold, seed
+def _init_worker(scaffold: Scaffold, seed: int, time_limit: float | None = TIME_LIMIT) -> None:
+    _WORKER.update(scaffold=scaffold, seed=seed, time_limit=time_limit)
 
 
 def _identify_row(labels: ArrayLike) -> dict[str, Any]:
+    row: dict[str, Any] = dict.fromkeys(COLUMNS)
     try:
-        r = identify(_WORKER["scaffold"], np.asarray(labels, np.int64), seed=_WORKER["seed"]).to_dict()
-        return {
-            "knot_name": r["name"],
-            "components": r["components"],
-            "split": r.get("split"),
-            "mirror": r.get("mirror"),
-            "crossings": r.get("crossings"),
-            "jones": r.get("jones"),
-            "linking_matrix": json.dumps(r["linking_matrix"]),
-            "error": None,
-        }
-    except LkspaceError as exc:
-        return {
-            "knot_name": None,
-            "components": None,
-            "split": None,
-            "mirror": None,
-            "crossings": None,
-            "jones": None,
-            "linking_matrix": None,
-            "error": str(exc),
-        }
+        r = identify(
+            _WORKER["scaffold"], np.asarray(labels, np.int64), seed=_WORKER["seed"], time_limit=_WORKER["time_limit"]
+        ).to_dict()
+    except (LkspaceError, MemoryError) as exc:
+        reason = str(exc) if isinstance(exc, LkspaceError) else "out of memory"
+        row.update(status=f"unknown: {reason}", error=reason)
+        return row
+    row.update(
+        knot_name=r["name"],
+        components=r["components"],
+        split=r.get("split"),
+        mirror=r.get("mirror"),
+        crossings=r.get("crossings"),
+        jones=r.get("jones"),
+        linking_matrix=json.dumps(r["linking_matrix"]),
+        status=r["status"],
+    )
+    if r["status"].startswith(("unknown: time limit", "unknown: diagram too large")):
+        row["error"] = r["status"].removeprefix("unknown: ")  # the budget, not the tables, stopped it
+    return row
 
 
-COLUMNS = ["knot_name", "components", "split", "mirror", "crossings", "jones", "linking_matrix", "error"]
+COLUMNS = ["knot_name", "components", "split", "mirror", "crossings", "jones", "linking_matrix", "status", "error"]
 
 
 def identify_batch(
-    scaffold: Scaffold, labels_2d: ArrayLike, processes: int = 1, seed: int = 0, progress: bool | None = None
+    scaffold: Scaffold,
+    labels_2d: ArrayLike,
+    processes: int = 1,
+    seed: int = 0,
+    progress: bool | None = None,
+    *,
+    time_limit: float | None = TIME_LIMIT,
 ) -> pd.DataFrame:
     """Identify many designs of one scaffold: a ``pandas.DataFrame``, one row per design.
 
     Parameters
     ----------
     scaffold : Scaffold
+        A finite scaffold (periodic ones are refused before any work).
     labels_2d : (n_designs, n_edges) int
     processes : int
         Worker processes (``1``: in this process).  Workers are forked and receive the
@@ -195,51 +301,45 @@ def identify_batch(
     seed : int
         Seed of the generic projection.
     progress : bool, optional
-        Show a progress bar on stderr (default: when stderr is a terminal).
+        Count the designs on the progress display (:mod:`lkspace.progress`; default on).
+    time_limit : float or None
+        Seconds per design, as for :func:`identify` (default 60); a design that runs out
+        gets the status ``unknown: time limit ...`` and the same text in ``error``.
 
     Returns
     -------
     pandas.DataFrame
         Columns ``knot_name`` (missing when unknown or split), ``components``, ``split``,
         ``mirror``, ``crossings`` (simplified diagram), ``jones``, ``linking_matrix`` (JSON
-        text) and ``error`` (missing unless the design could not be identified, e.g.
-        open strands), in the order of ``labels_2d``.
+        text), ``status`` (as :attr:`Identification.status`) and ``error`` (missing unless
+        the design could not be identified: open strands, twists too large, time limit,
+        diagram too large), in the order of ``labels_2d``.
 
     Examples
     --------
     >>> identify_batch(load("dihedron:3"), [[1, 1, 1], [1, 0, 0]])["knot_name"].tolist()
     ['3_1', '0_1']
     """
+    check_identifiable(scaffold)
     knot_modules()
     tables()  # loaded once, shared by forked workers
     labels_2d = np.asarray(labels_2d, np.int64).reshape(-1, scaffold.n_edges)
-    if progress is None:
-        progress = sys.stderr.isatty()
-    _init_worker(scaffold, seed)
+    _init_worker(scaffold, seed, time_limit)
     chunk = max(1, min(64, len(labels_2d) // (4 * max(processes, 1)) or 1))
     rows_iter: Iterator[dict[str, Any]]
     if processes > 1 and len(labels_2d) > 1:
-        pool = mp.get_context("fork").Pool(processes, initializer=_init_worker, initargs=(scaffold, seed))
+        pool = mp.get_context("fork").Pool(processes, initializer=_init_worker, initargs=(scaffold, seed, time_limit))
         rows_iter = pool.imap(_identify_row, labels_2d, chunksize=chunk)
     else:
         pool = None
         rows_iter = map(_identify_row, labels_2d)
+    rows = []
     try:
-        if progress:
-            from rich.console import Console
-            from rich.progress import track
-
-            rows = list(
-                track(
-                    rows_iter,
-                    total=len(labels_2d),
-                    description="identifying",
-                    transient=True,
-                    console=Console(stderr=True),
-                )
-            )
-        else:
-            rows = list(rows_iter)
+        with task("identifying", total=len(labels_2d)) as step:
+            for row in rows_iter:
+                rows.append(row)
+                if progress is not False:
+                    step.advance()
     finally:
         if pool is not None:
             pool.close()

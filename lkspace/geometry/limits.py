@@ -1,0 +1,65 @@
+"""Bounds of a realization, checked before any geometry is built.
+
+:func:`~lkspace.geometry.realization.realize` refuses parameters that cannot give a
+sensible picture (lengths beyond the mesh, twists too tight to embed) and realizations
+too large to build, each with one message naming the value and the bound.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..errors import GeometryError
+from ..model.scaffold import Scaffold
+
+__all__ = ["MAX_POINTS", "MAX_RELATIVE", "MAX_SAMPLES", "check_lengths", "check_winding"]
+
+MAX_POINTS = 4_000_000
+"""Most polyline points :func:`~lkspace.geometry.realization.realize` builds (all curves and copies together).
+
+Every point costs about 1 kB in the intermediate arrays and the embedding check, so the
+bound keeps a realization under a few GB.  The estimate is made from the trace before
+any geometry: ``edge_samples + samples_per_turn * |t| / K`` per edge piece plus
+``corner_samples`` per corner turn, times the copies of ``translations``.
+"""
+
+MAX_RELATIVE = 1.0
+"""Largest ``radius``, ``normal_offset``, ``margin`` and ``tube_radius``, in shortest edge lengths."""
+
+MAX_SAMPLES = 1000
+"""Largest ``samples_per_turn``, ``edge_samples`` and ``corner_samples``."""
+
+
+def check_lengths(name: str, lengths: dict[str, float], scale: float) -> None:
+    """Refuse (a usage error) any of ``lengths`` beyond :data:`MAX_RELATIVE` x ``scale`` on scaffold ``name``."""
+    for what, value in lengths.items():
+        if value > MAX_RELATIVE * scale:
+            raise GeometryError(
+                f"geometry parameter {what} {value:g} exceeds {MAX_RELATIVE:g} x the shortest edge of "
+                f"{name} ({MAX_RELATIVE * scale:.4g}); strands that far from their edge leave the scaffold",
+                usage=True,
+            )
+
+
+def check_winding(
+    scaffold: Scaffold, pa: np.ndarray, pb: np.ndarray, margins: np.ndarray, labels: np.ndarray, min_sep: float
+) -> None:
+    """Refuse, before any geometry, twists that wind the strands of an edge too tightly to embed.
+
+    On an edge of degree K >= 2 with twist t the strands advance ``1.5 |t|`` slots over the
+    helix span at the steepest point of the smoothstep, so neighbouring passes lie about
+    ``span / (1.5 |t|)`` apart along the axis.  Below half of ``min_separation`` the
+    embedding check would fail anyway (after building and sampling every turn, at great
+    cost for huge twists); the factor 2 keeps this test from refusing any embeddable design.
+    """
+    k = scaffold.edge_degrees
+    twist = np.abs(np.where(k > 1, np.asarray(labels, np.float64), 0.0))  # floats: -2**63 has no int64 abs
+    span = (1 - margins[:, 0] - margins[:, 1]) * np.linalg.norm(pb - pa, axis=1)
+    gap = span / np.maximum(1.5 * twist, 1e-300)
+    bad = np.flatnonzero((twist > 0) & (gap < 0.5 * min_sep))
+    if len(bad):
+        e = int(bad[np.argmin(gap[bad])])
+        raise GeometryError(
+            f"{scaffold.name}: twist {int(labels[e])} on edge {scaffold.edge_name(e)} winds its strands about "
+            f"{gap[e]:.3g} apart (< min_separation {min_sep:.3g}); the geometry would self-intersect (use smaller twists)"
+        )

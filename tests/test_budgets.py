@@ -1,0 +1,260 @@
+"""solve and identify never crash and never run unbounded: bounds, time limits, statuses (export: test_export.py).
+
+Every test goes through the real command line (``main``) or the installed ``lkspace``
+command, with catalogs written by the real ``enumerate``.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import shutil
+import subprocess
+import sys
+import time
+
+import numpy as np
+import pytest
+
+import lkspace
+from lkspace.cli import main
+
+BIG_KNOT = "2,2,2,2,2,1,2,2,1,2,1,2,1,2,2,1,2,1,2,1,2,2,1,1,2,1,1,2,2,2,1,2,2,1,2,2"
+"""A one-component design of the truncated octahedron: a 189-crossing projection, 81 after simplification."""
+
+
+def run(capsys, *args):
+    code = main(list(args))
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+def one_line_error(err: str, *words: str) -> None:
+    assert err.count("\n") == 1 and err.startswith("lkspace: error: "), err
+    for word in words:
+        assert word in err, err
+
+
+def lkspace_command() -> list[str]:
+    """The installed ``lkspace`` console script of this interpreter."""
+    script = shutil.which("lkspace", path=os.path.dirname(sys.executable)) or shutil.which("lkspace")
+    assert script, "the lkspace console script is not installed"
+    return [script]
+
+
+def quad_obj(tmp_path):
+    path = tmp_path / "quad.obj"
+    path.write_text("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n")
+    return path
+
+
+def unwelded_cube(tmp_path):
+    """A cube whose six faces share no vertex: every edge is a boundary edge."""
+    corners = [(x, y, z) for x in (0, 1) for y in (0, 1) for z in (0, 1)]
+    faces = [[0, 1, 3, 2], [4, 6, 7, 5], [0, 4, 5, 1], [2, 3, 7, 6], [0, 2, 6, 4], [1, 5, 7, 3]]
+    lines = []
+    for face in faces:
+        lines += ["v {} {} {}".format(*corners[v]) for v in face]
+    lines += ["f " + " ".join(str(4 * i + j + 1) for j in range(4)) for i in range(6)]
+    path = tmp_path / "unwelded.obj"
+    path.write_text("\n".join(lines) + "\n")
+    return path
+
+
+# --- solve -------------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize(
+    "mesh, n, status",
+    [("quad", 1, "feasible"), ("quad", 2, "infeasible"), ("cube", 1, "infeasible"), ("cube", 6, "feasible")],
+)
+def test_solve_without_two_face_edges(tmp_path, capsys, mesh, n, status):
+    path = quad_obj(tmp_path) if mesh == "quad" else unwelded_cube(tmp_path)
+    code, out, err = run(capsys, "solve", str(path), "-n", str(n), "--json")
+    assert code == 0, err
+    data = json.loads(out)
+    assert data["status"] == status
+    for sol in data["solutions"]:
+        assert lkspace.trace(lkspace.load(str(path)), sol["labels"]).components == n
+    if status == "infeasible":
+        assert "component" in data["reason"]
+
+
+@pytest.mark.parametrize(
+    "args, words",
+    [
+        (["--time-limit", "nan"], ["--time-limit", "finite"]),
+        (["--time-limit", "-5"], ["--time-limit", ">= 0"]),
+        (["--time-limit", "inf"], ["--time-limit"]),
+        (["--count", str(10**30)], ["--count", "10000"]),
+        (["--count", "0"], ["--count"]),
+        (["-n", "0"], ["--components"]),
+        (["--workers", "-1"], ["--workers"]),
+        (["--seed", "-1"], ["--seed"]),
+        (["--seed", str(2**31)], ["--seed"]),
+        (["--fix", f"0={10**21}"], ["--fix", "-1,000,000..1,000,000"]),
+        (["-o", ""], ["empty"]),
+        (["-o", "design.txt"], [".json"]),
+        (["-o", "/no/such/folder/d.json"], ["does not exist"]),
+    ],
+)
+def test_solve_bad_numbers_and_paths_are_one_line(capsys, args, words):
+    code, out, err = run(capsys, "solve", "cube", "-n", "1", *args)
+    assert code == 2 and out == ""
+    one_line_error(err, *words)
+
+
+def test_solve_huge_component_count_is_infeasible(capsys):
+    code, out, err = run(capsys, "solve", "cube", "-n", str(10**30), "--json")
+    assert code == 0, err
+    assert json.loads(out)["status"] == "infeasible"
+
+
+def test_solve_output_follows_a_symlink(tmp_path, capsys):
+    real = tmp_path / "real.json"
+    link = tmp_path / "link.json"
+    link.symlink_to(real)
+    code, _, err = run(capsys, "solve", "cube", "-n", "1", "-o", str(link))
+    assert code == 0, err
+    assert link.is_symlink() and real.exists()
+    assert lkspace.trace(lkspace.load(str(real))).components == 1
+
+
+def test_solve_library_bounds():
+    from lkspace.errors import TooLargeError, UsageError
+
+    with pytest.raises(TooLargeError, match="MAX_COUNT"):
+        lkspace.solve("cube", 1, count=10**30)
+    with pytest.raises(UsageError, match="time-limit"):
+        lkspace.solve("cube", 1, time_limit=float("nan"))
+
+
+def test_solve_time_limit_covers_every_stage_and_shows_progress(tmp_path):
+    """The installed command on a 5,103-face mesh: back within the limit (plus start-up), with progress lines."""
+    limit = 3.0
+    env = {**os.environ, "LKSPACE_PROGRESS": "1"}
+    t0 = time.monotonic()
+    proc = subprocess.run(
+        [*lkspace_command(), "solve", "honeycomb:cI@9x9x9", "-n", "7", "--time-limit", str(limit), "--json"],
+        capture_output=True,
+        text=True,
+        env=env,
+        timeout=120,
+    )
+    wall = time.monotonic() - t0
+    assert proc.returncode == 0, proc.stderr
+    data = json.loads(proc.stdout)
+    assert data["status"] in ("unknown", "feasible") and data["wall_time"] < limit + 1.5
+    assert wall < limit + 6.0  # interpreter start-up and loading the mesh come on top
+    assert "lkspace: solving honeycomb:cI@9x9x9 for 7 component(s)" in proc.stderr
+
+
+# --- identify ----------------------------------------------------------------------------
+
+
+def test_identify_huge_twist_is_refused_before_any_work(capsys):
+    pytest.importorskip("spherogram")
+    t0 = time.monotonic()
+    code, out, err = run(capsys, "identify", "dihedron:3", "--twist", "100000", "--json")
+    assert time.monotonic() - t0 < 5
+    assert code == 2
+    one_line_error(err, "300,000 crossings", "MAX_CROSSINGS")
+    assert json.loads(out)["error"]["type"] == "TooLargeError"
+
+
+def test_identify_time_limit_ends_in_a_status(tmp_path):
+    """The installed command: the naming child is killed at the limit; the status says so."""
+    pytest.importorskip("spherogram")
+    t0 = time.monotonic()
+    proc = subprocess.run(
+        [*lkspace_command(), "identify", "truncated-octahedron", "--twist", BIG_KNOT, "--time-limit", "0.3", "--json"],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
+    assert proc.returncode == 0, proc.stderr
+    data = json.loads(proc.stdout)
+    assert data["status"].startswith("unknown: time limit 0.3 s reached (during ")
+    assert data["name"] is None and data["projected_crossings"] > 30 and data["linking_matrix"] == [[0]]
+    assert time.monotonic() - t0 < 30
+
+
+def test_identify_reports_its_stages(capsys, monkeypatch):
+    """Plain progress lines (as in logs) name each stage, those of the naming child included."""
+    pytest.importorskip("spherogram")
+    from lkspace import progress
+
+    monkeypatch.setenv("LKSPACE_PROGRESS", "1")
+    monkeypatch.setattr(progress, "DELAY", 0.0)  # show every step at once, every note
+    monkeypatch.setattr(progress, "PLAIN_EVERY", 0.0)
+    code, out, err = run(capsys, "identify", "truncated-octahedron", "--twist", BIG_KNOT, "--json")
+    assert code == 0, err
+    assert json.loads(out)["status"].startswith("unknown: not in the tables")
+    for stage in ("tracing", "realizing", "diagram", "simplification (189 crossings)", "table lookup"):
+        assert f"lkspace: identifying truncated-octahedron: 0, {stage}" in err, err
+
+
+def test_identify_big_knot_is_answered_within_the_default_limit(capsys):
+    pytest.importorskip("spherogram")
+    code, out, err = run(capsys, "identify", "truncated-octahedron", "--twist", BIG_KNOT, "--json")
+    assert code == 0, err
+    data = json.loads(out)
+    assert data["status"].startswith("unknown: not in the tables") and data["crossings"] > 13
+
+
+def test_identify_diagram_too_large(capsys, monkeypatch):
+    pytest.importorskip("spherogram")
+    from lkspace.knots import recognition
+
+    monkeypatch.setattr(recognition, "MAX_CROSSINGS", 100)
+    code, out, err = run(capsys, "identify", "truncated-octahedron", "--twist", BIG_KNOT, "--json")
+    assert code == 0, err
+    data = json.loads(out)
+    assert data["status"] == f"unknown: diagram too large: {data['projected_crossings']} crossings > 100"
+    code, out, err = run(capsys, "identify", "truncated-octahedron", "--twist", BIG_KNOT)
+    assert "unknown: diagram too large" in out and "crossings of the projection" in out
+
+
+def test_identify_status_identified(capsys):
+    pytest.importorskip("spherogram")
+    code, out, err = run(capsys, "identify", "dihedron:3", "--twist", "1", "--json")
+    assert code == 0, err
+    assert json.loads(out)["status"] == "identified"
+
+
+def test_identify_periodic_scaffold_is_refused(capsys):
+    code, _, err = run(capsys, "identify", "honeycomb:cP", "--twist", "1")
+    assert code == 2
+    one_line_error(err, "periodic", "export --block")
+
+
+@pytest.mark.parametrize(
+    "args, words",
+    [
+        (["--time-limit", "nan"], ["--time-limit"]),
+        (["--time-limit", "-1"], ["--time-limit"]),
+        (["--radius", "0"], ["--radius", "> 0"]),
+        (["--normal-offset", "nan"], ["--normal-offset"]),
+        (["--tube-radius", "-inf"], ["--tube-radius"]),
+        (["--row", "-1"], ["--row"]),
+        (["--seed", "-5"], ["--seed"]),
+    ],
+)
+def test_identify_bad_numbers(capsys, args, words):
+    code, _, err = run(capsys, "identify", "dihedron:3", "--twist", "1", *args)
+    assert code == 2
+    one_line_error(err, *words)
+
+
+def test_identify_batch_budget_per_design():
+    pytest.importorskip("spherogram")
+    from lkspace.knots.recognition import identify_batch
+
+    scaffold = lkspace.load("truncated-octahedron")
+    big = np.array(BIG_KNOT.split(","), np.int64)
+    frame = identify_batch(scaffold, [big, np.zeros_like(big), np.full_like(big, 500)], time_limit=0.3)
+    assert frame["status"][0].startswith("unknown: time limit 0.3 s") and frame["error"][0].startswith("time limit")
+    assert frame["status"][1] == "identified" and frame["error"].isna()[1]  # an unlink of 14 circles
+    assert "MAX_CROSSINGS" in frame["error"][2] and frame["status"][2].startswith("unknown: ")
+    with pytest.raises(lkspace.errors.UsageError, match="periodic"):
+        identify_batch(lkspace.load("honeycomb:cP"), [[1] * 3])
