@@ -113,13 +113,13 @@ GOOD = {"vertices": [[0, 0, 0], [1, 0, 0], [0, 1, 0]], "faces": [[0, 1, 2]]}
     "patch, match",
     [
         ({"vertices": [[0, 0], [1, 0, 0], [0, 1, 0]]}, "vertices\\[0\\]: expected 3 entries"),
-        ({"faces": [[0, 1, 5]]}, "face 0: vertex index 5 out of range"),
-        ({"faces": [[0, 1, "x"]]}, "faces\\[0\\]\\[2\\]: expected an integer"),
+        ({"faces": [[0, 1, 5]]}, "faces\\[0\\]\\[2\\] \\(vertex\\): 5 out of range 0..2"),
+        ({"faces": [[0, 1, "x"]]}, "faces\\[0\\]\\[2\\] \\(vertex\\): expected an integer"),
         ({"twists": [1, 2]}, "twists: expected 3 entries"),
         ({"twists": [1, 2, 1.5]}, "twists\\[2\\]: expected an integer"),
         ({"version": 99}, "version 99 is not supported"),
         ({"colour": 1}, "unknown key"),
-        ({"nulls": [[0, 7]]}, "face 0 has no side 7"),
+        ({"nulls": [[0, 7]]}, "nulls\\[0\\]\\[1\\] \\(side\\): 7 out of range 0..2"),
         ({"offsets": [[[0, 0, 0]] * 3]}, "offsets given without a lattice"),
     ],
 )
