@@ -82,8 +82,10 @@ f -4 -2 -1   # negative indices: 1 3 4
     [
         ("v 0 0\n", "line 1: vertex needs 3 coordinates"),
         ("v 0 0 x\n", "line 1: vertex coordinates must be numbers"),
-        ("v 0 0 nan\n", "line 1: vertex 0 has a non-finite"),
-        ("v 0 0 inf\n", "non-finite"),
+        ("v 0 0 nan\n", "line 1: vertex 1 coordinate is not a finite number"),
+        ("v 0 0 inf\n", "not a finite number"),
+        ("v 0 0 1e13\n", "within \\+-1e\\+12"),
+        ("\ufeffv 0 0 0\nv 1 0 0\nf 1 2 x\n", "line 3: face vertex 'x'"),
         ("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n", "line 4: face vertex index 9 out of range 1..3"),
         ("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2\n", "line 4: face 0 has 2 vertices"),
         ("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 2\n", "line 4: face 0 repeats a vertex"),
