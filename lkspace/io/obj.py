@@ -36,7 +36,7 @@ def parse_obj(text: str, name: str = "<obj>", tol: float | bool | None = None) -
     """
     vertices: list[list[float]] = []
     faces: list[list[int]] = []
-    lines = text.splitlines()
+    lines = text.removeprefix("\ufeff").splitlines()  # a byte-order mark is no statement
     with task(f"reading {name}", total=len(lines)) as step:
         for start in range(0, len(lines), CHUNK):
             for lineno, raw in enumerate(lines[start : start + CHUNK], start=start + 1):
