@@ -39,8 +39,11 @@ def usage_errors(usage: bool = True) -> Iterator[None]:
 
 
 def names_file(text: str) -> bool:
-    """Return whether the option or argument value ``text`` names an existing path (data, not usage)."""
-    return os.path.lexists(text)
+    """Return whether the option or argument value ``text`` names an existing regular file (data, not usage).
+
+    A folder, FIFO or device named where a file belongs is bad usage, like a missing file.
+    """
+    return os.path.isfile(text)
 
 
 def load_mesh(ctx: Context, mesh: str | None) -> Scaffold:
@@ -78,7 +81,7 @@ def nulls_of(scaffold: Scaffold, spec: str | None) -> np.ndarray | None:
     """Return the null edge-sides ``(n_corners,) bool`` of ``--null SPEC``, else the scaffold's own (or ``None``)."""
     if spec is None:
         return scaffold.nulls
-    with usage_errors(not names_file(spec)):
+    with usage_errors():  # null edge-sides are always typed on the command line
         return parse_nulls(scaffold, spec)
 
 

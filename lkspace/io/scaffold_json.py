@@ -173,7 +173,7 @@ def scaffold_from_dict(data: dict[str, Any], name: str = "<json>") -> Scaffold:
 
 def _version(data: dict[str, Any], name: str) -> None:
     version = data.get("version", VERSION)
-    if isinstance(version, bool) or version != VERSION:
+    if isinstance(version, bool) or not isinstance(version, int) or version != VERSION:
         raise ScaffoldError(f"{name}: file version {shown(version)} is not supported (expected {VERSION})")
 
 

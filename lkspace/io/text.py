@@ -26,7 +26,10 @@ _BRACKETS = re.compile(r'"(?:[^"\\]|\\.)*"|[\[\]{}]')
 
 def read_text(path: str | os.PathLike[str], what: str = "input", error: type[LkspaceError] = ScaffoldError) -> str:
     """Return the text of input file ``path`` (``what`` names it in messages); see the module docstring."""
-    text = input_file(path, what)
+    try:
+        text = input_file(path, what)
+    except ScaffoldError as exc:
+        raise error(str(exc)) from None
     try:
         with open(text, "rb") as fh:
             data = fh.read()
