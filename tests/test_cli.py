@@ -172,3 +172,38 @@ def test_trace_json_matches_reference_on_random_meshes(capsys, tmp_path):
         assert mine == theirs
         checked += 1
     assert checked >= 100
+
+
+def test_installed_command_never_dies_on_huge_labels_or_fifos(tmp_path):
+    """The journeys that crashed or hung: a label at the int64 limit, a FIFO as input (real processes)."""
+    import os
+
+    fifo = tmp_path / "pipe.obj"
+    os.mkfifo(fifo)
+    cases = [
+        (["trace", "book:3", "--twist", "9223372036854775807"], 2, "out of range"),
+        (["trace", "book:3", "--twist", "4611686018427387904", "--json"], 0, '"components": 1'),
+        (["info", str(fifo)], 2, "not a regular file"),
+        (["trace", "cube", "--twist", str(fifo)], 2, "not a regular file"),
+        (["info", "book:999999999999"], 2, "book:K is limited to K <= 1000"),
+    ]
+    for args, code, text in cases:
+        proc = subprocess.run(["lkspace", *args], capture_output=True, text=True, timeout=60)
+        assert proc.returncode == code, (args, proc.stderr)
+        assert text in (proc.stdout if code == 0 else proc.stderr)
+        if code:
+            assert proc.stderr.count("\n") == 1 and "Traceback" not in proc.stderr
+
+
+def test_scaffold_converts_files_and_checks_the_output_first(capsys, tmp_path):
+    src = tmp_path / "c.obj"
+    assert main(["scaffold", "cube", "-o", str(src)]) == 0
+    out = tmp_path / "c.json"
+    code, _, err = run(capsys, "scaffold", str(src), "-o", str(out))
+    assert code == 0 and json.loads(out.read_text())["name"] == "c.obj"
+    for bad, message in [(tmp_path / "x.stl", "extension '.stl'"), (tmp_path / "no" / "x.json", "does not exist")]:
+        code, _, err = run(capsys, "scaffold", "cube", "-o", str(bad))
+        assert code == 2 and message in err
+    code, _, err = run(capsys, "scaffold", "honeycomb:cP", "-o", str(tmp_path / "p.obj"))
+    assert code == 2 and "OBJ cannot hold a periodic scaffold" in err
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["c.json", "c.obj"]

@@ -162,3 +162,61 @@ def test_written_files_get_the_usual_permissions(tmp_path):
     umask = os.umask(0)
     os.umask(umask)
     assert (os.stat(tmp_path / "c.obj").st_mode & 0o777) == (0o666 & ~umask)
+
+
+def test_bom_and_bad_bytes(tmp_path):
+    path = tmp_path / "bom.json"
+    path.write_bytes(b"\xef\xbb\xbf" + json.dumps(GOOD).encode())
+    assert lkspace.load(str(path)).n_faces == 1
+    path = tmp_path / "bom.obj"
+    path.write_bytes(b"\xef\xbb\xbfv 0 0 0\r\nv 1 0 0\r\nv 0 1 0\r\nf 1 2 3\r\n")
+    assert lkspace.load(str(path)).n_faces == 1
+    path = tmp_path / "latin.obj"
+    path.write_bytes(b"# caf\xe9\nv 0 0 0\n")
+    with pytest.raises(ScaffoldError, match=r"latin.obj line 1: byte 5 \(0xe9\) is not UTF-8"):
+        lkspace.load(str(path))
+
+
+@pytest.mark.parametrize(
+    "patch, match",
+    [
+        ({"version": True}, "version True is not supported"),
+        ({"version": 1.0}, "version 1.0 is not supported"),
+        ({"name": 5}, "name: expected a string"),
+        ({"vertices": [[10**400, 0, 0], [1, 0, 0], [0, 1, 0]]}, "past the bound"),
+        ({"vertices": [[True, 0, 0], [1, 0, 0], [0, 1, 0]]}, "expected a number, got True"),
+        ({"faces": [[0, 1, 10**30]]}, "out of range 0..2"),
+        ({"faces": [[0, 1, True]]}, "expected an integer, got True"),
+        ({"labels": [2**63, 0, 0]}, "labels\\[0\\]: 9223372036854775808 out of range"),
+        ({"labels": [True, 0, 0]}, "labels\\[0\\]: expected an integer"),
+        ({"edges": 5}, "'edges' does not match"),
+        ({"edges": [[0, 1, [5]], 3, [1]]}, "'edges' does not match"),
+        ({"edges": [[True, 1], [0, 2], [1, 2]]}, "'edges' does not match"),
+        ({"radial_orders": [{"edge": [0], "sides": []}]}, "radial_orders\\[0\\].edge: expected \\[a, b\\]"),
+        ({"radial_orders": [{"edge": [0, "x"], "sides": 3}]}, "edge\\[1\\]: expected an integer"),
+        ({"radial_orders": [{"edge": [0, 1], "sides": 3}]}, "sides: expected a list"),
+        ({"radial_orders": [5]}, "expected \\{'edge'"),
+        ({"lattice": [[1, 0], "x"]}, "lattice\\[0\\]: expected 3 entries"),
+        ({"lattice": 3}, "lattice: expected a list"),
+        ({"lattice": [[1, 0, 0], [0, 1, 0]]}, "offsets: expected a list"),
+    ],
+)
+def test_json_fields_are_checked_strictly(tmp_path, patch, match):
+    with pytest.raises(ScaffoldError, match=match):
+        lkspace.load(_write(tmp_path, {**GOOD, **patch}))
+
+
+def test_deep_and_huge_json(tmp_path):
+    with pytest.raises(ScaffoldError, match="nested deeper than 64"):
+        lkspace.load(_write(tmp_path, "[" * 100000 + "]" * 100000))
+    with pytest.raises(ScaffoldError, match="invalid JSON"):
+        lkspace.load(_write(tmp_path, '{"vertices": [[' + "9" * 5000 + ", 0, 0]]}"))
+
+
+def test_fifo_is_refused(tmp_path):
+    import os
+
+    fifo = tmp_path / "pipe.obj"
+    os.mkfifo(fifo)
+    with pytest.raises(ScaffoldError, match="not a regular file"):
+        lkspace.load(str(fifo))

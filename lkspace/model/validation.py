@@ -55,7 +55,7 @@ def validate_labels(scaffold: Scaffold, labels: ArrayLike) -> np.ndarray:
         if not np.all(np.isfinite(arr)) or np.any(arr != np.round(arr)):
             raise LabelError("twist labels must be integers")
         if arr.size and np.abs(arr).max() > MAX_LABEL:
-            raise LabelError(f"{scaffold.name}: twist labels must lie within +-2**62")
+            raise LabelError(f"{scaffold.name}: a twist label is out of range; labels must lie within -2**62..2**62")
     elif arr.dtype.kind not in "iub":
         raise LabelError(f"twist labels must be integers, got {arr.dtype}")
     if arr.shape != (scaffold.n_edges,):
