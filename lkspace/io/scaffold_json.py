@@ -37,6 +37,7 @@ from ..errors import ScaffoldError
 from ..model.lattice import Lattice
 from ..model.scaffold import Scaffold
 from ..model.validation import MAX_LABEL
+from ..progress import task
 from ..scaffolds.periodic import voronoi_scaffold
 from .json_fields import array, integer, point, shown, text, vectors
 from .text import parse_json, read_text
@@ -133,10 +134,14 @@ def scaffold_from_dict(data: dict[str, Any], name: str = "<json>") -> Scaffold:
         raise ScaffoldError(f"{name}: format {shown(data.get('format'))} is not {FORMAT!r}")
     _version(data, name)
     label = text(data.get("name", name), f"{name}: name")
-    rows = [point(v, f"{name}: vertices[{i}]") for i, v in enumerate(array(data.get("vertices"), f"{name}: vertices"))]
-    if not rows:
-        raise ScaffoldError(f"{name}: no vertices")
-    faces = _faces(data, name, len(rows))
+    with task(f"reading {name}", total=2) as step:  # shown only for big files (> 2 s)
+        raw = array(data.get("vertices"), f"{name}: vertices")
+        rows = [point(v, f"{name}: vertices[{i}]") for i, v in enumerate(raw)]
+        if not rows:
+            raise ScaffoldError(f"{name}: no vertices")
+        step.advance()
+        faces = _faces(data, name, len(rows))
+        step.advance()
     lattice = Lattice(np.array(vectors(data["lattice"], f"{name}: lattice"))) if "lattice" in data else None
     dim = 0 if lattice is None else lattice.dim
     if lattice is None and "offsets" in data:

@@ -21,7 +21,7 @@ BOM = b"\xef\xbb\xbf"
 MAX_JSON_DEPTH = 64
 """Deepest nesting of ``[`` and ``{`` accepted in an input JSON file (lkspace files need 4)."""
 
-_BRACKETS = re.compile(r'"(?:[^"\\]|\\.)*"|[\[\]{}]')
+_STRINGS = re.compile(r'"(?:[^"\\]|\\.)*"')
 
 
 def read_text(path: str | os.PathLike[str], what: str = "input", error: type[LkspaceError] = ScaffoldError) -> str:
@@ -46,20 +46,21 @@ def read_text(path: str | os.PathLike[str], what: str = "input", error: type[Lks
         ) from None
 
 
+def json_depth(text: str) -> int:
+    """Return the deepest nesting of ``[`` and ``{`` in JSON ``text`` (brackets inside strings not counted)."""
+    import numpy as np
+
+    bare = _STRINGS.sub("", text).encode("utf-8", "replace")
+    codes = np.frombuffer(bare, np.uint8)
+    codes = codes[(codes | 0x20) >= ord("{")]  # "[", "]", "{", "}" (and a few others, dropped next)
+    steps = (np.isin(codes, (ord("["), ord("{"))).astype(np.int64)) - np.isin(codes, (ord("]"), ord("}")))
+    return int(np.cumsum(steps).max(initial=0))
+
+
 def parse_json(text: str, name: str, error: type[LkspaceError] = ScaffoldError) -> Any:
     """Parse JSON ``text`` of file ``name``; syntax errors name the line, deep nesting is refused."""
-    depth = deepest = 0
-    if text.count("[") + text.count("{") > MAX_JSON_DEPTH:  # cheap test first: few brackets, no scan
-        for m in _BRACKETS.finditer(text):
-            token = m.group()
-            if token in "[{":
-                depth += 1
-                deepest = max(deepest, depth)
-                if deepest > MAX_JSON_DEPTH:
-                    line = text.count("\n", 0, m.start()) + 1
-                    raise error(f"{name} line {line}: JSON nested deeper than {MAX_JSON_DEPTH} levels")
-            elif token in "]}":
-                depth -= 1
+    if text.count("[") + text.count("{") > MAX_JSON_DEPTH and json_depth(text) > MAX_JSON_DEPTH:
+        raise error(f"{name}: JSON nested deeper than {MAX_JSON_DEPTH} levels")
     try:
         return json.loads(text)
     except json.JSONDecodeError as exc:
