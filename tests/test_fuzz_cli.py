@@ -7,7 +7,9 @@ stderr, under ``--json`` one ``{"error": ...}`` object on stdout, and no new fil
 output folder (not even a temporary one).  A case that runs past ``CASE_SECONDS`` is a hang.
 
 ``LKSPACE_FUZZ_CENSUS=FILE`` records every case's outcome in FILE (one JSON line each)
-instead of failing, to count tracebacks, hangs and silent successes of a version.
+instead of failing, to count tracebacks, hangs and silent successes of a version; with
+``LKSPACE_FUZZ_ISOLATE=1`` too, each case runs in its own process (an old version may
+block in C code, where the alarm cannot stop it, or die of a signal).
 """
 
 from __future__ import annotations
@@ -35,6 +37,7 @@ from .strategies import (
 
 CASE_SECONDS = 20
 CENSUS = os.environ.get("LKSPACE_FUZZ_CENSUS")
+ISOLATE = bool(CENSUS and os.environ.get("LKSPACE_FUZZ_ISOLATE"))  # census only: every case in its own process
 if CENSUS:  # an old version may try to build a huge scaffold: fail its allocation instead of the machine
     import resource
 
@@ -84,23 +87,47 @@ def outcome(code: int | None, out: str, err: str, before: set[str], after: set[s
     return "ok"
 
 
+def run_in_process(capsys: pytest.CaptureFixture[str], args: list[str]) -> tuple[int | None, str, str]:
+    """Run ``lkspace args`` in this process; exit status ``None`` for a hang."""
+    old = signal.signal(signal.SIGALRM, _alarm)
+    signal.alarm(CASE_SECONDS)
+    code: int | None
+    try:
+        code = main(args)
+    except Hang:
+        code = None
+    finally:
+        signal.alarm(0)
+        signal.signal(signal.SIGALRM, old)
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+def run_isolated(args: list[str]) -> tuple[int | None, str, str]:
+    """Run ``python -m lkspace args`` in a child process (census of old versions that block in C code)."""
+    import subprocess
+    import sys
+
+    try:
+        proc = subprocess.run(
+            [sys.executable, "-m", "lkspace", *args], capture_output=True, text=True, timeout=CASE_SECONDS
+        )
+    except subprocess.TimeoutExpired:
+        return None, "", ""
+    code = 70 if proc.returncode < 0 else proc.returncode  # killed by a signal: a crash
+    return code, proc.stdout, proc.stderr
+
+
 def check(capsys: pytest.CaptureFixture[str], folder: str, argv: list[str], codes: tuple[int, ...] = (1, 2)) -> None:
     """Run ``lkspace argv`` (twice: plain and ``--json``) and check it fails cleanly with one of ``codes``."""
     for as_json in (False, True):
         args = argv + (["--json"] if as_json else [])
         before = set(os.listdir(folder))
         capsys.readouterr()
-        old = signal.signal(signal.SIGALRM, _alarm)
-        signal.alarm(CASE_SECONDS)
-        code: int | None
-        try:
-            code = main(args)
-        except Hang:
-            code = None
-        finally:
-            signal.alarm(0)
-            signal.signal(signal.SIGALRM, old)
-        out, err = capsys.readouterr()
+        if ISOLATE:
+            code, out, err = run_isolated(args)
+        else:
+            code, out, err = run_in_process(capsys, args)
         result = outcome(code, out, err, before, set(os.listdir(folder)), as_json)
         if result == "ok" and code not in codes:
             result = f"exit {code}, expected {codes}: {err.strip()}"
