@@ -42,3 +42,186 @@ def _traceable(scaffold) -> bool:
 def traceable_scaffolds(**kwargs):
     """Random scaffolds whose radial order is unambiguous."""
     return scaffolds(**kwargs).filter(_traceable)
+
+
+# ---- bad input for the command line (tests/test_fuzz_cli.py) ------------------------------
+# Each strategy below makes input that is certainly bad: a valid base with one defect.
+
+JUNK = st.one_of(
+    st.booleans(),
+    st.none(),
+    st.text(max_size=4),
+    st.floats(allow_nan=True, allow_infinity=True),
+    st.sampled_from([10**30, -(2**63), 2**63, 2**64 + 1, 10**400]),
+    st.dictionaries(st.text(max_size=2), st.integers(), max_size=2),
+)
+"""Values of the wrong type or far out of range (never a list, never a small integer)."""
+
+NOT_INDEX = st.one_of(JUNK, st.integers(max_value=-1), st.integers(min_value=4, max_value=2**70))
+"""Never a valid vertex index of a 4-vertex mesh."""
+
+BAD_NUMBER_TOKENS = ["nan", "inf", "-inf", "1e400", "1" + "0" * 400, "x", "0x1", "1,5", "--1", "1e13", "NaN", "²"]
+BAD_INDEX_TOKENS = ["0", "5", "-5", "1" + "0" * 30, "1.5", "a", "1e3", "9223372036854775808", "-0", "½", "+-1"]
+
+TETRA_V = ["v 1 1 1", "v 1 -1 -1", "v -1 1 -1", "v -1 -1 1"]
+TETRA_F = ["f 1 2 3", "f 1 4 2", "f 1 3 4", "f 2 4 3"]
+
+
+@st.composite
+def bad_obj_files(draw) -> bytes:
+    """A tetrahedron OBJ with one defect (bad coordinate, index, statement, byte, or nothing at all)."""
+    lines = TETRA_V + TETRA_F
+    kind = draw(
+        st.sampled_from(
+            ["coordinate", "count", "index", "short-face", "repeat", "statement", "bytes", "empty", "no-faces", "zero"]
+        )
+    )
+    if kind == "coordinate":
+        row = draw(st.integers(0, 3))
+        parts = lines[row].split()
+        parts[draw(st.integers(1, 3))] = draw(st.sampled_from(BAD_NUMBER_TOKENS))
+        lines[row] = " ".join(parts)
+    elif kind == "count":
+        lines[draw(st.integers(0, 3))] = "v" + " 0.5" * draw(st.sampled_from([0, 1, 2, 5, 9]))
+    elif kind == "index":
+        row = draw(st.integers(4, 7))
+        parts = lines[row].split()
+        token = draw(st.sampled_from(BAD_INDEX_TOKENS))
+        parts[draw(st.integers(1, 3))] = token + draw(st.sampled_from(["", "/1", "//2", "/1/1"]))
+        lines[row] = " ".join(parts)
+    elif kind == "short-face":
+        lines[draw(st.integers(4, 7))] = draw(st.sampled_from(["f", "f 1", "f 1 2", "f 1/1 2/2"]))
+    elif kind == "repeat":
+        lines[draw(st.integers(4, 7))] = draw(st.sampled_from(["f 1 2 1", "f 2 2 3 4", "f 1 2 3 -4 1"]))
+    elif kind == "statement":
+        lines.insert(draw(st.integers(0, 8)), draw(st.sampled_from(["vv 1 2 3", "face 1 2 3", "x", "F 1 2 3", "3"])))
+    elif kind == "empty":
+        lines = draw(st.sampled_from([[], ["# only a comment"], ["", "   "]]))
+    elif kind == "no-faces":
+        lines = draw(st.sampled_from([TETRA_V, TETRA_F, TETRA_V + ["vt 0 0", "vn 0 0 1"]]))
+    elif kind == "zero":
+        lines = TETRA_V + ["v 1 1 1"] + ["f 1 5 2"] + TETRA_F
+    newline = draw(st.sampled_from(["\n", "\r\n"]))
+    data = newline.join(lines).encode() + newline.encode()
+    if kind == "bytes":
+        at = draw(st.integers(0, len(data)))
+        data = (
+            data[:at] + draw(st.sampled_from([b"\xff", b"\xfe\xfe", b"\xc3", b"\xed\xa0\x80", b"\x80abc"])) + data[at:]
+        )
+    if draw(st.booleans()):
+        data = b"\xef\xbb\xbf" + data
+    return data
+
+
+TETRA_JSON = {
+    "format": "lkspace-scaffold",
+    "version": 1,
+    "vertices": [[1, 1, 1], [1, -1, -1], [-1, 1, -1], [-1, -1, 1]],
+    "faces": [[0, 1, 2], [0, 3, 1], [0, 2, 3], [1, 3, 2]],
+}
+"""A good scaffold file (the tetrahedron, six edges) that the strategies below break."""
+
+
+@st.composite
+def bad_scaffold_json(draw) -> bytes:
+    """A scaffold file with one defect in one field, or malformed as a whole."""
+    import copy
+    import json
+
+    data = copy.deepcopy(TETRA_JSON)
+    field = draw(
+        st.sampled_from(
+            ["format", "version", "name", "vertices", "vertex", "coordinate", "faces", "face", "index", "lattice",
+             "offsets", "radial_orders", "edges", "labels", "label", "nulls", "unknown", "missing", "whole"]
+        )
+    )  # fmt: skip
+    if field in ("format", "version", "name"):
+        data[field] = draw(JUNK.filter(lambda v: not isinstance(v, str) or field != "name"))
+    elif field in ("vertices", "faces", "lattice", "offsets", "radial_orders", "labels", "nulls"):
+        data[field] = draw(st.one_of(JUNK, st.lists(JUNK, min_size=1, max_size=3)))
+    elif field == "vertex":
+        data["vertices"][draw(st.integers(0, 3))] = draw(st.one_of(JUNK, st.lists(st.integers(), max_size=2)))
+    elif field == "coordinate":
+        data["vertices"][draw(st.integers(0, 3))][draw(st.integers(0, 2))] = draw(JUNK)
+    elif field == "face":
+        data["faces"][draw(st.integers(0, 3))] = draw(st.one_of(JUNK, st.lists(st.integers(0, 3), max_size=2)))
+    elif field == "index":
+        data["faces"][draw(st.integers(0, 3))][draw(st.integers(0, 2))] = draw(NOT_INDEX)
+    elif field == "edges":
+        data["edges"] = draw(st.one_of(JUNK, st.lists(st.lists(NOT_INDEX, max_size=3), min_size=1, max_size=6)))
+    elif field == "label":
+        data["labels"] = [0] * 6
+        data["labels"][draw(st.integers(0, 5))] = draw(
+            JUNK.filter(lambda v: not isinstance(v, int) or v is True or v is False or abs(v) > 2**62)
+        )
+    elif field == "unknown":
+        data[draw(st.sampled_from(["colour", "twist", "Vertices", ""]))] = 1
+    elif field == "missing":
+        del data[draw(st.sampled_from(["vertices", "faces"]))]
+    else:
+        return draw(
+            st.sampled_from(
+                [b"", b"[1, 2]", b"5", b'"text"', b"{", b"[" * 5000 + b"]" * 5000, b'{"vertices": [[1e999, 0, 0]]}',
+                 b"\xff\xfe{}", b'{"vertices": ' + b"[" * 100000 + b"]" * 100000 + b"}", b"\xef\xbb\xbf[]"]
+            )
+        )  # fmt: skip
+    return json.dumps(data).encode()
+
+
+@st.composite
+def bad_twist_files(draw) -> tuple[str, bytes]:
+    """``(extension, contents)`` of a twist file for the cube (12 edges) with one defect."""
+    import json
+
+    form = draw(st.sampled_from(["json-key", "json-list", "json-value", "json-labels", "text", "text-edge", "raw"]))
+    if form == "json-key":
+        return ".json", json.dumps({"twists": draw(JUNK)}).encode()
+    if form == "json-labels":
+        n = draw(st.sampled_from([0, 1, 11, 13]))
+        return ".json", json.dumps({"labels": [1] * n}).encode()
+    if form == "json-list":
+        return ".json", json.dumps([1] * 11 + [draw(JUNK)]).encode()
+    if form == "json-value":
+        return ".json", json.dumps({"*": 0, "0-1": draw(JUNK)}).encode()
+    if form == "text":
+        value = draw(st.sampled_from(["x", "1.5", str(2**62 + 1), "-" + "9" * 50, "", "1 2"]))
+        return ".txt", f"* 0\n0-1 {value}\n".encode()
+    if form == "text-edge":
+        edge = draw(st.sampled_from(["0-0", "0-8", "7-7", "9-1", "1" + "0" * 30 + "-2", "a-b", "12", "-1", "0-1[1]"]))
+        return ".txt", f"* 0\n{edge} 1\n".encode()
+    return ".txt", draw(st.sampled_from([b"", b"# nothing\n", b"0-1 1\n", b"\xff 1\n", b"* 1\n* 1\n0-1 1\n0-1 2\n"]))
+
+
+HUGE = ["9223372036854775807", "9223372036854775808", str(2**62 + 1), "-" + str(2**63), "1" + "0" * 30, "9" * 5000]
+BAD_TWISTS = st.one_of(
+    st.sampled_from(HUGE + ["1.5", "x", "", " ", "1,,2", "--1", "1e3", "0x10", "½", ","]),
+    st.lists(st.integers(-3, 3).map(str), min_size=1, max_size=30)
+    .filter(lambda v: len(v) not in (1, 12))
+    .map(",".join),
+    st.integers(0, 11).map(lambda i: ",".join(["1"] * i + [HUGE[i % len(HUGE)]] + ["1"] * (11 - i))),
+)
+"""``--twist`` values that are bad for the cube (12 edges)."""
+
+BAD_NULLS = st.sampled_from(
+    ["x", "1", "6.0", "0.4", "-1.0", "0.-1", "1" + "0" * 30 + ".0", "0." + "9" * 50, "0.0,x", "."]
+)
+"""``--null`` values that are bad for the cube (6 quads)."""
+
+BAD_LABEL_SETS = st.sampled_from(
+    ["", ",", "x", "2..-2", "1..", "..1", "1.5", "-2..2..3", f"0..{2**62 + 1}", f"-{2**62}..{2**62}", "9" * 5000,
+     "0..1000000", "1,,x", "--2..2"]
+)  # fmt: skip
+"""``--labels`` values that are bad."""
+
+BAD_NAMES = st.one_of(
+    st.sampled_from(["book", "book:", "book:x", "book:0", "book:-3", "book:1001", "book:999999999999", "book:3.5",
+                     "book:" + "9" * 5000, "dihedron:2", "dihedron:999999999999", "dihedron:1_000", "honeycomb:cP@0x1x1",
+                     "honeycomb:cP@2x2", "honeycomb:cP@1000x1000x1000", "honeycomb:cP@" + "9" * 400 + "x1x1",
+                     "tiling:square@2x2x2", "cube@2x2x2", "honeycomb:xx", "tiling:", "voronoi:", "prism", "", "@",
+                     "honeycomb:cI@100x100x100", "book:3@2x2", "dihedron:+5 "]),
+    st.integers(1001, 10**15).map(lambda n: f"book:{n}"),
+    st.tuples(st.integers(60, 10**6), st.integers(60, 10**6), st.integers(60, 100)).map(
+        lambda t: f"honeycomb:cP@{t[0]}x{t[1]}x{t[2]}"
+    ),
+)  # fmt: skip
+"""MESH values that are neither files nor good built-in names."""

@@ -82,8 +82,10 @@ f -4 -2 -1   # negative indices: 1 3 4
     [
         ("v 0 0\n", "line 1: vertex needs 3 coordinates"),
         ("v 0 0 x\n", "line 1: vertex coordinates must be numbers"),
-        ("v 0 0 nan\n", "line 1: vertex 0 has a non-finite"),
-        ("v 0 0 inf\n", "non-finite"),
+        ("v 0 0 nan\n", "line 1: vertex 1 coordinate is not a finite number"),
+        ("v 0 0 inf\n", "not a finite number"),
+        ("v 0 0 1e13\n", "within \\+-1e\\+12"),
+        ("\ufeffv 0 0 0\nv 1 0 0\nf 1 2 x\n", "line 3: face vertex 'x'"),
         ("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n", "line 4: face vertex index 9 out of range 1..3"),
         ("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2\n", "line 4: face 0 has 2 vertices"),
         ("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 2\n", "line 4: face 0 repeats a vertex"),
@@ -113,13 +115,13 @@ GOOD = {"vertices": [[0, 0, 0], [1, 0, 0], [0, 1, 0]], "faces": [[0, 1, 2]]}
     "patch, match",
     [
         ({"vertices": [[0, 0], [1, 0, 0], [0, 1, 0]]}, "vertices\\[0\\]: expected 3 entries"),
-        ({"faces": [[0, 1, 5]]}, "face 0: vertex index 5 out of range"),
-        ({"faces": [[0, 1, "x"]]}, "faces\\[0\\]\\[2\\]: expected an integer"),
+        ({"faces": [[0, 1, 5]]}, "faces\\[0\\]\\[2\\] \\(vertex\\): 5 out of range 0..2"),
+        ({"faces": [[0, 1, "x"]]}, "faces\\[0\\]\\[2\\] \\(vertex\\): expected an integer"),
         ({"twists": [1, 2]}, "twists: expected 3 entries"),
         ({"twists": [1, 2, 1.5]}, "twists\\[2\\]: expected an integer"),
         ({"version": 99}, "version 99 is not supported"),
         ({"colour": 1}, "unknown key"),
-        ({"nulls": [[0, 7]]}, "face 0 has no side 7"),
+        ({"nulls": [[0, 7]]}, "nulls\\[0\\]\\[1\\] \\(side\\): 7 out of range 0..2"),
         ({"offsets": [[[0, 0, 0]] * 3]}, "offsets given without a lattice"),
     ],
 )
@@ -160,3 +162,61 @@ def test_written_files_get_the_usual_permissions(tmp_path):
     umask = os.umask(0)
     os.umask(umask)
     assert (os.stat(tmp_path / "c.obj").st_mode & 0o777) == (0o666 & ~umask)
+
+
+def test_bom_and_bad_bytes(tmp_path):
+    path = tmp_path / "bom.json"
+    path.write_bytes(b"\xef\xbb\xbf" + json.dumps(GOOD).encode())
+    assert lkspace.load(str(path)).n_faces == 1
+    path = tmp_path / "bom.obj"
+    path.write_bytes(b"\xef\xbb\xbfv 0 0 0\r\nv 1 0 0\r\nv 0 1 0\r\nf 1 2 3\r\n")
+    assert lkspace.load(str(path)).n_faces == 1
+    path = tmp_path / "latin.obj"
+    path.write_bytes(b"# caf\xe9\nv 0 0 0\n")
+    with pytest.raises(ScaffoldError, match=r"latin.obj line 1: byte 5 \(0xe9\) is not UTF-8"):
+        lkspace.load(str(path))
+
+
+@pytest.mark.parametrize(
+    "patch, match",
+    [
+        ({"version": True}, "version True is not supported"),
+        ({"version": 1.0}, "version 1.0 is not supported"),
+        ({"name": 5}, "name: expected a string"),
+        ({"vertices": [[10**400, 0, 0], [1, 0, 0], [0, 1, 0]]}, "past the bound"),
+        ({"vertices": [[True, 0, 0], [1, 0, 0], [0, 1, 0]]}, "expected a number, got True"),
+        ({"faces": [[0, 1, 10**30]]}, "out of range 0..2"),
+        ({"faces": [[0, 1, True]]}, "expected an integer, got True"),
+        ({"labels": [2**63, 0, 0]}, "labels\\[0\\]: 9223372036854775808 out of range"),
+        ({"labels": [True, 0, 0]}, "labels\\[0\\]: expected an integer"),
+        ({"edges": 5}, "'edges' does not match"),
+        ({"edges": [[0, 1, [5]], 3, [1]]}, "'edges' does not match"),
+        ({"edges": [[True, 1], [0, 2], [1, 2]]}, "'edges' does not match"),
+        ({"radial_orders": [{"edge": [0], "sides": []}]}, "radial_orders\\[0\\].edge: expected \\[a, b\\]"),
+        ({"radial_orders": [{"edge": [0, "x"], "sides": 3}]}, "edge\\[1\\]: expected an integer"),
+        ({"radial_orders": [{"edge": [0, 1], "sides": 3}]}, "sides: expected a list"),
+        ({"radial_orders": [5]}, "expected \\{'edge'"),
+        ({"lattice": [[1, 0], "x"]}, "lattice\\[0\\]: expected 3 entries"),
+        ({"lattice": 3}, "lattice: expected a list"),
+        ({"lattice": [[1, 0, 0], [0, 1, 0]]}, "offsets: expected a list"),
+    ],
+)
+def test_json_fields_are_checked_strictly(tmp_path, patch, match):
+    with pytest.raises(ScaffoldError, match=match):
+        lkspace.load(_write(tmp_path, {**GOOD, **patch}))
+
+
+def test_deep_and_huge_json(tmp_path):
+    with pytest.raises(ScaffoldError, match="nested deeper than 64"):
+        lkspace.load(_write(tmp_path, "[" * 100000 + "]" * 100000))
+    with pytest.raises(ScaffoldError, match="invalid JSON"):
+        lkspace.load(_write(tmp_path, '{"vertices": [[' + "9" * 5000 + ", 0, 0]]}"))
+
+
+def test_fifo_is_refused(tmp_path):
+    import os
+
+    fifo = tmp_path / "pipe.obj"
+    os.mkfifo(fifo)
+    with pytest.raises(ScaffoldError, match="not a regular file"):
+        lkspace.load(str(fifo))

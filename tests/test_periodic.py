@@ -226,3 +226,56 @@ def test_periodic_symmetry_orders():
         "honeycomb:cI": (48, 24),
         "honeycomb:cP@2x2x2": (384, 192),
     }
+
+
+def test_infinite_threads_are_not_closed(capsys):
+    from lkspace.cli import main
+
+    d = trace(lkspace.load("honeycomb:cP"), 1).to_dict()
+    assert {s["kind"] for s in d["strands"]} == {"thread"}
+    assert all(s["closed"] is False and s["infinite"] and s["period"] != [0, 0, 0] for s in d["strands"])
+    loops = trace(lkspace.load("honeycomb:cP"), 4).to_dict()
+    assert all(s["kind"] == "loop" and s["closed"] and s["period"] == [0, 0, 0] for s in loops["strands"])
+    assert main(["trace", "tiling:square", "--twist", "1"]) == 0
+    out = capsys.readouterr().out
+    assert "0 closed loops, 2 infinite threads" in out
+    assert out.count("infinite thread ") == 2 and "closed loop " not in out and " yes " not in out
+    assert main(["trace", "tiling:square", "--twist", "2"]) == 0
+    assert capsys.readouterr().out.count("closed loop ") == 1
+
+
+def test_radial_order_of_a_reversed_periodic_edge(tmp_path):
+    import json
+
+    from lkspace.io.scaffold_json import scaffold_to_dict
+
+    cp = lkspace.load("honeycomb:cP")
+    data = scaffold_to_dict(cp)
+    e = 0
+    (a, b, *delta) = cp.edge_keys[e].tolist()
+    sides = cp.radial.edge_sides[cp.radial.edge_starts[e] : cp.radial.edge_starts[e + 1]].tolist()
+    starts = cp.face_starts
+    named = [
+        [
+            int(np.searchsorted(starts, s, side="right") - 1),
+            int(s - starts[np.searchsorted(starts, s, side="right") - 1]),
+        ]
+        for s in sides
+    ]
+    for edge in ([a, b, delta], [b, a, [-x for x in delta]]):  # the same edge, named from either end
+        data["radial_orders"] = [{"edge": edge, "sides": named[::-1]}]
+        path = tmp_path / "r.json"
+        path.write_text(json.dumps(data))
+        back = lkspace.load(str(path))
+        assert back.radial_orders == {(a, b, tuple(delta)): tuple(sides[::-1])}
+        assert back.radial.edge_sides[:4].tolist() == sides[::-1]
+
+
+def test_supercell_bound():
+    from lkspace.errors import UsageError
+    from lkspace.scaffolds.periodic import MAX_SUPERCELL_FACES
+
+    with pytest.raises(UsageError, match=f"at most {MAX_SUPERCELL_FACES} faces"):
+        lkspace.load("honeycomb:cP@1000x1000x1000")
+    with pytest.raises(ScaffoldError, match="expected AxBxC"):
+        lkspace.load("honeycomb:cP@" + "9" * 400 + "x1x1")

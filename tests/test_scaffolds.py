@@ -80,3 +80,13 @@ def test_built_in_solids_are_their_convex_hulls(name):
     solid = lkspace.load(name)
     hull = convex_polyhedron(solid.vertices, name)
     assert solid.faces() == hull.faces() and np.array_equal(solid.vertices, hull.vertices)
+
+
+@pytest.mark.parametrize("name", ["book:1001", "dihedron:999999999999", "book:999999999999"])
+def test_family_parameters_are_bounded(name):
+    from lkspace.errors import UsageError
+    from lkspace.scaffolds import MAX_FAMILY_PARAMETER
+
+    with pytest.raises(UsageError, match=f"limited to . <= {MAX_FAMILY_PARAMETER}"):
+        lkspace.load(name)
+    assert lkspace.load(f"book:{MAX_FAMILY_PARAMETER}").edge_degrees.max() == MAX_FAMILY_PARAMETER

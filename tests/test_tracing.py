@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import json
 import math
 from collections import Counter
 
@@ -239,3 +240,44 @@ def test_json_fields(tetra):
     assert d["components"] == 3 and d["holds_together"] is True
     assert sum(len(s["faces"]) for s in d["strands"]) == tetra.n_corners
     assert all(s["period"] is None for s in d["strands"])
+
+
+# ---- labels near the int64 limit: the answer of t mod K, or a clean error -------------------
+
+
+@pytest.mark.parametrize("name", ["book:3", "book:5", "book:6", "book:7", "tetrahedron"])
+@pytest.mark.parametrize("t", [2**62, -(2**62), 2**62 - 1, 2**62 - 3])
+def test_huge_labels_trace_as_their_residue(name, t):
+    s = lkspace.load(name)
+    big = trace(s, t)
+    small = trace(s, np.mod(np.full(s.n_edges, t), np.maximum(s.edge_degrees, 1)))
+    assert big.components == small.components
+    assert big.strand_lengths.tolist() == small.strand_lengths.tolist()
+    assert big.labels.tolist() == [t] * s.n_edges  # the labels traced are kept as given
+
+
+def test_huge_labels_on_the_compiled_walk():
+    s = lkspace.load("honeycomb:cP@6x6x6")  # large enough for the compiled kernel
+    rng = np.random.default_rng(3)
+    residues = rng.integers(0, 4, s.n_edges)
+    big = residues + 4 * (2**60 - 1)  # within the bound, congruent mod 4 (every edge has degree 4)
+    assert trace(s, big).components == trace(s, residues).components
+
+
+@pytest.mark.parametrize("labels", [2**62 + 1, -(2**62) - 1, 2**63 - 1, 2**63, 10**30])
+def test_labels_past_the_bound_are_an_error(labels):
+    with pytest.raises(LabelError, match="out of range"):
+        trace("book:3", labels)
+    with pytest.raises(LabelError, match="out of range"):
+        trace("book:3", [labels] + [0] * 9)
+
+
+@pytest.mark.parametrize("t", ["9223372036854775807", "9223372036854775808", "4611686018427387905", "1" + "0" * 5000])
+def test_cli_twist_past_the_bound(capsys, t):
+    from lkspace.cli import main
+
+    code = main(["trace", "book:3", "--twist", t, "--json"])
+    out, err = capsys.readouterr()
+    assert code == 2 and err.startswith("lkspace: error: --twist") and err.count("\n") == 1
+    assert "out of range" in err and "2**62" in err
+    assert json.loads(out)["error"]["type"] == "LabelError"

@@ -17,7 +17,7 @@ import warnings
 import click
 
 from .. import __version__
-from ..errors import LkspaceError
+from ..errors import LkspaceError, LkspaceWarning
 from ..progress import install, stderr_reporter
 
 COMMANDS = {
@@ -69,6 +69,7 @@ def main(argv: list[str] | None = None) -> int:
     as_json = "--json" in args[: args.index("--")] if "--" in args else "--json" in args
     install(stderr_reporter())
     with warnings.catch_warnings():
+        warnings.simplefilter("always", LkspaceWarning)  # shown as a line even where warnings are errors
         warnings.showwarning = _show_warning
         try:
             cli.main(args=args, prog_name="lkspace", standalone_mode=False)

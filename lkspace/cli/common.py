@@ -12,7 +12,7 @@ from typing import Any
 import click
 import numpy as np
 
-from ..errors import LabelError, LkspaceError
+from ..errors import LabelError, LkspaceError, UsageError
 from ..io.sources import load
 from ..model.scaffold import Scaffold
 from ..model.specs import parse_label_set, parse_labels, parse_nulls
@@ -39,8 +39,11 @@ def usage_errors(usage: bool = True) -> Iterator[None]:
 
 
 def names_file(text: str) -> bool:
-    """Return whether the option or argument value ``text`` names an existing path (data, not usage)."""
-    return os.path.lexists(text)
+    """Return whether the option or argument value ``text`` names an existing regular file (data, not usage).
+
+    A folder, FIFO or device named where a file belongs is bad usage, like a missing file.
+    """
+    return os.path.isfile(text)
 
 
 def load_mesh(ctx: Context, mesh: str | None) -> Scaffold:
@@ -52,9 +55,15 @@ def load_mesh(ctx: Context, mesh: str | None) -> Scaffold:
         click.echo(f"lkspace: no MESH given; using the built-in {DEFAULT!r}", err=True)
         ctx.notes["default_scaffold"] = True
         mesh = DEFAULT
+    weld = click.get_current_context(silent=True)
+    tol = None if weld is None else weld.meta.get(WELD_KEY)
     with usage_errors(not names_file(mesh)):
-        scaffold = load(mesh)
+        if tol is not None and not names_file(mesh):
+            raise UsageError(f"--weld: {mesh!r} is a built-in scaffold, not a file; welding applies to files")
+        scaffold = load(mesh, weld=tol)
     ctx.notes["scaffold"] = scaffold.name
+    if tol is not None:
+        ctx.notes["welded"] = {"tolerance": None if tol is True else tol, "vertices": scaffold.n_vertices}
     return scaffold
 
 
@@ -72,7 +81,7 @@ def nulls_of(scaffold: Scaffold, spec: str | None) -> np.ndarray | None:
     """Return the null edge-sides ``(n_corners,) bool`` of ``--null SPEC``, else the scaffold's own (or ``None``)."""
     if spec is None:
         return scaffold.nulls
-    with usage_errors(not names_file(spec)):
+    with usage_errors():  # null edge-sides are always typed on the command line
         return parse_nulls(scaffold, spec)
 
 
@@ -103,7 +112,45 @@ def _jsonable(value: object) -> int | float | list[Any]:
 
 
 json_option = click.option("--json", "as_json", is_flag=True, help="Print one JSON object on stdout and nothing else.")
-mesh_argument = click.argument("mesh", required=False, metavar="[MESH]")
+WELD_KEY = "lkspace.weld"
+"""Key of the ``--weld`` tolerance in ``click.Context.meta`` (``True``: the default tolerance)."""
+
+
+def _store_weld(ctx: click.Context, _param: click.Parameter, value: str | None) -> None:
+    """Check ``--weld [TOL]`` and keep it in the context for :func:`load_mesh`."""
+    if value is None:
+        return
+    if value == "default":
+        ctx.meta[WELD_KEY] = True
+        return
+    try:
+        tol = float(value)
+    except ValueError:
+        raise UsageError(
+            f"--weld {value[:40]!r}: TOL must be a number; write --weld after MESH, or --weld=TOL"
+        ) from None
+    if not 0 <= tol <= 1e12:  # NaN fails too
+        raise UsageError(f"--weld {value!r}: TOL must be a finite number >= 0")
+    ctx.meta[WELD_KEY] = tol
+
+
+weld_option = click.option(
+    "--weld",
+    is_flag=False,
+    flag_value="default",
+    default=None,
+    expose_value=False,
+    callback=_store_weld,
+    metavar="[TOL]",
+    help="Merge vertices of MESH closer than TOL (default 1e-6 x bounding-box diagonal); put it after MESH.",
+)
+
+
+def mesh_argument(func: Callable[..., Any]) -> Callable[..., Any]:
+    """Add the ``[MESH]`` argument and its ``--weld [TOL]`` option (read by :func:`load_mesh`)."""
+    return click.argument("mesh", required=False, metavar="[MESH]")(weld_option(func))
+
+
 labels_option = click.option(
     "--labels",
     "--label-set",

@@ -9,11 +9,22 @@ import click
 import numpy as np
 
 from .. import io
+from ..errors import UsageError
+from ..io.paths import output_file
 from ..io.scaffold_json import format_scaffold_json, scaffold_to_dict
 from ..model.scaffold import Scaffold
-from ..scaffolds import builtin
 from ..strands.tracing import trace
-from .common import Context, emit, json_option, labels_of, load_mesh, mesh_argument, nulls_of, usage_errors
+from .common import (
+    Context,
+    emit,
+    json_option,
+    labels_of,
+    load_mesh,
+    mesh_argument,
+    nulls_of,
+    usage_errors,
+    weld_option,
+)
 
 if TYPE_CHECKING:
     from rich.console import Console
@@ -26,21 +37,22 @@ def _console() -> Console:
 
 
 @click.command("scaffold")
-@click.argument("name")
+@click.argument("name", metavar="NAME|FILE")
 @click.option(
     "-o", "--output", type=click.Path(dir_okay=False), help="File to write (.obj or .json); default: JSON on stdout."
 )
+@weld_option
 @json_option
 def scaffold_cmd(name: str, output: str | None, as_json: bool) -> None:
-    """Write the built-in scaffold NAME to a file.
+    """Write the built-in scaffold NAME (or convert FILE, .obj or .json) to a file.
 
     \b
     Built-in names:
       tetrahedron, cube, octahedron,      the Platonic solids
       dodecahedron, icosahedron
       truncated-octahedron                6 squares + 8 hexagons
-      dihedron:N                          two-sided regular N-gon (two faces, one N-cycle)
-      book:K                              K quads sharing one edge at equal angles
+      dihedron:N                          two-sided regular N-gon (two faces, one N-cycle), N <= 1000
+      book:K                              K quads sharing one edge at equal angles, K <= 1000
       cube-net, cube-lid                  a cube unfolded flat; an open box with a lid
       cubes:piano, cubes:vertex           two cubes sharing an edge; sharing a vertex
       figure-eight                        the paper's 4_1 mesh (design as default labels)
@@ -53,33 +65,41 @@ def scaffold_cmd(name: str, output: str | None, as_json: bool) -> None:
       honeycomb:cI                        truncated octahedra
       voronoi:cube-faces                  Voronoi cells of a cubic lattice with points at
                                           the cube's face centres (the paper's figure)
-      NAME@AxBxC                          A x B x C supercell of a periodic NAME (AxB in 2D)
+      NAME@AxBxC                          A x B x C supercell of a periodic NAME (AxB in 2D),
+                                          at most 200000 faces
 
     \b
+    A FILE is converted: 'lkspace scaffold mesh.obj --weld -o mesh.json' welds an OBJ
+    with one vertex copy per face and writes the scaffold file.
     A .json file {"format": "lkspace-voronoi", "lattice": [...], "points": [...]}
     gives a Voronoi scaffold of your own generator points.
     """
     ctx = Context(as_json)
-    with usage_errors():
-        scaffold = builtin(name)
-    if output is None:
+    target = None
+    if output is not None:
+        with usage_errors():
+            target = output_file(output, (".obj", ".json"))
+    scaffold = load_mesh(ctx, name)
+    if output is None or target is None:
         if as_json:
-            emit(ctx, {"scaffold": name, "written": None, "data": scaffold_to_dict(scaffold)}, None)
+            emit(ctx, {"scaffold": scaffold.name, "written": None, "data": scaffold_to_dict(scaffold)}, None)
         else:
             click.echo(format_scaffold_json(scaffold), nl=False)
         return
+    if scaffold.periodic and target.lower().endswith(".obj"):
+        raise UsageError(f"{scaffold.name}: OBJ cannot hold a periodic scaffold; write a .json scaffold file")
     io.write(scaffold, output)
     emit(
         ctx,
         {
-            "scaffold": name,
+            "scaffold": scaffold.name,
             "written": os.path.abspath(output),
             "vertices": scaffold.n_vertices,
             "edges": scaffold.n_edges,
             "faces": scaffold.n_faces,
         },
         lambda: click.echo(
-            f"wrote {name} to {output} ({scaffold.n_vertices} vertices, "
+            f"wrote {scaffold.name} to {output} ({scaffold.n_vertices} vertices, "
             f"{scaffold.n_edges} edges, {scaffold.n_faces} faces)"
         ),
     )
@@ -166,6 +186,10 @@ def info_cmd(mesh: str | None, list_edges: bool, as_json: bool) -> None:
     emit(ctx, data, human)
 
 
+KINDS = {"loop": "closed loop", "thread": "infinite thread", "open": "open"}
+"""What the trace table shows for each strand kind of :attr:`~lkspace.strands.tracing.Trace.strand_kinds`."""
+
+
 @click.command("trace")
 @mesh_argument
 @click.option(
@@ -193,12 +217,12 @@ def trace_cmd(mesh: str | None, twist_spec: str | None, null_spec: str | None, a
                 f"threads per module: {data['threads_per_module']} "
                 f"({data['closed_loops']} closed loops, {data['infinite_threads']} infinite threads)"
             )
-        table = Table("strand", "closed", "length", "period", "faces")
+        table = Table("strand", "kind", "length", "period", "faces")
         for k, s in enumerate(data["strands"]):
             faces = " ".join(map(str, s["faces"][:24])) + (" …" if len(s["faces"]) > 24 else "")
             table.add_row(
                 str(k),
-                "yes" if s["closed"] else "no",
+                KINDS[s["kind"]],
                 str(s["length"]),
                 "-" if s["period"] is None else str(s["period"]),
                 faces,

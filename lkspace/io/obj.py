@@ -3,80 +3,104 @@
 Read: ``v x y z [w]`` and ``f a b c ...`` lines, face entries ``a``, ``a/b``, ``a//c`` or
 ``a/b/c`` with 1-based or negative (relative) indices; ``#`` comments; ``vt``, ``vn``,
 ``vp``, ``o``, ``g``, ``s``, ``usemtl``, ``mtllib`` and ``l`` lines are ignored.  Any other
-malformed line is an error naming the file and line.
+malformed line is an error naming the file and line.  A UTF-8 byte-order mark is fine;
+coordinates must be finite and within ``MAX_COORDINATE``.  ``weld`` merges vertices closer
+than a tolerance (:mod:`lkspace.io.weld`) before the scaffold is built.
 """
 
 from __future__ import annotations
 
 import os
-
-import numpy as np
+import re
 
 from ..errors import ScaffoldError
 from ..model.scaffold import Scaffold
+from ..model.validation import MAX_COORDINATE
+from ..progress import task
+from .text import read_text
+from .weld import default_tolerance, weld
+
+_INDEX = re.compile(r"^[+-]?[0-9]{1,18}$")
+
+CHUNK = 65536
+"""Lines parsed between two progress updates."""
 
 IGNORED = {"vt", "vn", "vp", "o", "g", "s", "usemtl", "mtllib", "l", "p", "cstype", "deg", "curv", "parm", "end"}
 
 
-def parse_obj(text: str, name: str = "<obj>") -> Scaffold:
-    """Parse OBJ ``text``; ``name`` is used in error messages."""
+def parse_obj(text: str, name: str = "<obj>", tol: float | bool | None = None) -> Scaffold:
+    """Parse OBJ ``text``; ``name`` is used in error messages.
+
+    ``tol``: weld vertices closer than ``tol`` (``True``: the default tolerance of
+    :func:`~lkspace.io.weld.default_tolerance`; ``None`` or ``False``: no welding).
+    """
     vertices: list[list[float]] = []
     faces: list[list[int]] = []
-    for lineno, raw in enumerate(text.splitlines(), start=1):
-        line = raw.split("#", 1)[0].strip()
-        if not line:
-            continue
-        tag, *parts = line.split()
-        where = f"{name} line {lineno}"
-        if tag == "v":
-            if len(parts) not in (3, 4):
-                raise ScaffoldError(f"{where}: vertex needs 3 coordinates, got {len(parts)}: {raw.strip()!r}")
-            try:
-                xyz = [float(p) for p in parts[:3]]
-            except ValueError:
-                raise ScaffoldError(f"{where}: vertex coordinates must be numbers: {raw.strip()!r}") from None
-            if not all(np.isfinite(xyz)):
-                raise ScaffoldError(f"{where}: vertex {len(vertices)} has a non-finite coordinate: {raw.strip()!r}")
-            vertices.append(xyz)
-        elif tag == "f":
-            if len(parts) < 3:
-                raise ScaffoldError(f"{where}: face {len(faces)} has {len(parts)} vertices; a face needs at least 3")
-            face = []
-            for part in parts:
-                token = part.split("/", 1)[0]
-                try:
-                    index = int(token)
-                except ValueError:
-                    raise ScaffoldError(f"{where}: face vertex {part!r} is not an integer index") from None
-                n = len(vertices)
-                if index > 0 and index <= n:
-                    face.append(index - 1)
-                elif index < 0 and -index <= n:
-                    face.append(n + index)
-                else:
-                    raise ScaffoldError(f"{where}: face vertex index {index} out of range 1..{n} (or -{n}..-1)")
-            if len(set(face)) != len(face):
-                raise ScaffoldError(f"{where}: face {len(faces)} repeats a vertex: {parts}")
-            faces.append(face)
-        elif tag in IGNORED:
-            continue
-        else:
-            raise ScaffoldError(f"{where}: unknown OBJ statement {tag!r}")
+    lines = text.removeprefix("\ufeff").splitlines()  # a byte-order mark is no statement
+    with task(f"reading {name}", total=len(lines)) as step:
+        for start in range(0, len(lines), CHUNK):
+            for lineno, raw in enumerate(lines[start : start + CHUNK], start=start + 1):
+                _parse_line(raw, f"{name} line {lineno}", vertices, faces)
+            step.advance(min(CHUNK, len(lines) - start))
     if not vertices:
         raise ScaffoldError(f"{name}: no vertices ('v' lines) found")
     if not faces:
         raise ScaffoldError(f"{name}: no faces ('f' lines) found")
+    if tol is not None and tol is not False:
+        try:
+            points, faces = weld((vertices, faces), default_tolerance(vertices) if tol is True else float(tol))
+        except ScaffoldError as exc:
+            raise ScaffoldError(f"{name}: {exc}", usage=exc.exit_code == 2) from None
+        return Scaffold.from_faces(points, faces, name=name)
     return Scaffold.from_faces(vertices, faces, name=name)
 
 
-def read_obj(path: str | os.PathLike) -> Scaffold:
-    """Read an OBJ file."""
-    try:
-        with open(path, encoding="utf-8") as fh:
-            text = fh.read()
-    except (OSError, UnicodeDecodeError) as exc:
-        raise ScaffoldError(f"{path}: cannot read: {exc}") from None
-    return parse_obj(text, name=os.path.basename(str(path)))
+def _parse_line(raw: str, where: str, vertices: list[list[float]], faces: list[list[int]]) -> None:
+    """Parse one OBJ line into ``vertices`` or ``faces``; ``where`` names it in messages."""
+    line = raw.split("#", 1)[0].strip()
+    if not line:
+        return
+    tag, *parts = line.split()
+    shown = raw.strip() if len(raw.strip()) <= 60 else raw.strip()[:57] + "..."
+    if tag == "v":
+        if len(parts) not in (3, 4):
+            raise ScaffoldError(f"{where}: vertex needs 3 coordinates, got {len(parts)}: {shown!r}")
+        try:
+            xyz = [float(p) for p in parts[:3]]
+        except ValueError:
+            raise ScaffoldError(f"{where}: vertex coordinates must be numbers: {shown!r}") from None
+        if not all(abs(x) <= MAX_COORDINATE for x in xyz):  # NaN fails too
+            raise ScaffoldError(
+                f"{where}: vertex {len(vertices) + 1} coordinate is not a finite number within "
+                f"+-{MAX_COORDINATE:g}: {shown!r}"
+            )
+        vertices.append(xyz)
+    elif tag == "f":
+        if len(parts) < 3:
+            raise ScaffoldError(f"{where}: face {len(faces)} has {len(parts)} vertices; a face needs at least 3")
+        n = len(vertices)
+        face = []
+        for part in parts:
+            token = part.split("/", 1)[0]
+            if not _INDEX.match(token):
+                raise ScaffoldError(f"{where}: face vertex {part[:30]!r} is not an integer index in range")
+            index = int(token)
+            if 0 < index <= n:
+                face.append(index - 1)
+            elif index < 0 and -index <= n:
+                face.append(n + index)
+            else:
+                raise ScaffoldError(f"{where}: face vertex index {index} out of range 1..{n} (or -{n}..-1)")
+        if len(set(face)) != len(face):
+            raise ScaffoldError(f"{where}: face {len(faces)} repeats a vertex: {shown!r}")
+        faces.append(face)
+    elif tag not in IGNORED:
+        raise ScaffoldError(f"{where}: unknown OBJ statement {tag[:30]!r}")
+
+
+def read_obj(path: str | os.PathLike, tol: float | bool | None = None) -> Scaffold:
+    """Read an OBJ file (welded with tolerance ``tol``, see :func:`parse_obj`)."""
+    return parse_obj(read_text(path, "OBJ"), name=os.path.basename(str(path)), tol=tol)
 
 
 def format_obj(scaffold: Scaffold) -> str:

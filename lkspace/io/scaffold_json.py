@@ -36,7 +36,11 @@ from numpy.typing import ArrayLike
 from ..errors import ScaffoldError
 from ..model.lattice import Lattice
 from ..model.scaffold import Scaffold
+from ..model.validation import MAX_LABEL
+from ..progress import task
 from ..scaffolds.periodic import voronoi_scaffold
+from .json_fields import array, integer, point, shown, text, vectors
+from .text import parse_json, read_text
 
 FORMAT = "lkspace-scaffold"
 VORONOI_FORMAT = "lkspace-voronoi"
@@ -58,120 +62,128 @@ KEYS = {
 }
 
 
-def _int(value: Any, where: str) -> int:
-    if isinstance(value, bool) or not isinstance(value, int):
-        raise ScaffoldError(f"{where}: expected an integer, got {value!r}")
-    return value
-
-
-def _list(value: Any, where: str, length: int | None = None) -> list[Any]:
-    if not isinstance(value, list):
-        raise ScaffoldError(f"{where}: expected a list, got {type(value).__name__}")
-    if length is not None and len(value) != length:
-        raise ScaffoldError(f"{where}: expected {length} entries, got {len(value)}")
-    return value
-
-
-def _side(scaffold_faces: list[Any], value: Any, where: str, starts: np.ndarray) -> int:
-    pair = _list(value, where, 2)
-    f, k = _int(pair[0], where), _int(pair[1], where)
-    if not 0 <= f < len(scaffold_faces):
-        raise ScaffoldError(f"{where}: face {f} out of range 0..{len(scaffold_faces) - 1}")
-    if not 0 <= k < len(scaffold_faces[f]):
-        raise ScaffoldError(f"{where}: face {f} has no side {k} (it has {len(scaffold_faces[f])})")
+def _side(faces: list[list[int]], value: Any, where: str, starts: np.ndarray) -> int:
+    """Return the global side number of a face-side ``[face, k]``."""
+    pair = array(value, where, 2)
+    f = integer(pair[0], f"{where}[0] (face)", 0, len(faces) - 1)
+    k = integer(pair[1], f"{where}[1] (side)", 0, len(faces[f]) - 1)
     return int(starts[f] + k)
+
+
+def _faces(data: dict[str, Any], name: str, n_vertices: int) -> list[list[int]]:
+    faces = array(data.get("faces"), f"{name}: faces")
+    for i, face in enumerate(faces):
+        for j, v in enumerate(array(face, f"{name}: faces[{i}]")):
+            integer(v, f"{name}: faces[{i}][{j}] (vertex)", 0, n_vertices - 1)
+    return faces
+
+
+def _offsets(data: dict[str, Any], name: str, faces: list[list[int]], dim: int) -> list[list[list[int]]]:
+    raw = array(data.get("offsets"), f"{name}: offsets", len(faces))
+    for i, (face, offs) in enumerate(zip(faces, raw)):
+        for j, o in enumerate(array(offs, f"{name}: offsets[{i}]", len(face))):
+            for x in array(o, f"{name}: offsets[{i}][{j}]", dim):
+                integer(x, f"{name}: offsets[{i}][{j}]")
+    return raw
+
+
+def _edge_key(value: Any, where: str, dim: int) -> tuple[int, int, tuple[int, ...]]:
+    """Return the edge key ``(a, b, delta)`` of ``[a, b]`` or ``[a, b, [delta]]``, in either direction.
+
+    ``delta`` is the lattice offset of the second vertex relative to the first, so
+    ``[b, a, delta]`` names the same edge as ``[a, b, -delta]``.
+    """
+    edge = array(value, where)
+    if len(edge) not in ((2, 3) if dim else (2,)):
+        raise ScaffoldError(
+            f"{where}: expected [a, b]" + (" or [a, b, [offset]]" if dim else "") + f", got {shown(edge)}"
+        )
+    a, b = integer(edge[0], f"{where}[0]", 0), integer(edge[1], f"{where}[1]", 0)
+    delta = [integer(x, f"{where}[2]") for x in array(edge[2], f"{where}[2]", dim)] if len(edge) == 3 else [0] * dim
+    flip = a > b or (a == b and next((x < 0 for x in delta if x), False))
+    if flip:
+        a, b, delta = b, a, [-x for x in delta]
+    return a, b, tuple(delta)
+
+
+def _radial_orders(data: dict[str, Any], name: str, faces: list[list[int]], dim: int) -> dict[tuple, tuple[int, ...]]:
+    starts = np.concatenate([[0], np.cumsum([len(f) for f in faces])]).astype(np.int64)
+    radial: dict[tuple, tuple[int, ...]] = {}
+    for i, entry in enumerate(array(data["radial_orders"], f"{name}: radial_orders")):
+        where = f"{name}: radial_orders[{i}]"
+        if not isinstance(entry, dict) or set(entry) != {"edge", "sides"}:
+            raise ScaffoldError(f"{where}: expected {{'edge': [a, b], 'sides': [[face, k], ...]}}")
+        key = _edge_key(entry["edge"], f"{where}.edge", dim)
+        if key in radial:
+            raise ScaffoldError(f"{where}: edge {key[0]}-{key[1]} given twice")
+        sides = array(entry["sides"], f"{where}.sides")
+        radial[key] = tuple(_side(faces, s, f"{where}.sides[{j}]", starts) for j, s in enumerate(sides))
+    return radial
 
 
 def scaffold_from_dict(data: dict[str, Any], name: str = "<json>") -> Scaffold:
     """Build a scaffold (with its labels and nulls, if any) from the parsed JSON."""
     if not isinstance(data, dict):
-        raise ScaffoldError(f"{name}: expected a JSON object")
+        raise ScaffoldError(f"{name}: expected a JSON object, got {type(data).__name__}")
     if data.get("format") == VORONOI_FORMAT:
         return voronoi_from_dict(data, name)
     unknown = set(data) - KEYS
     if unknown:
-        raise ScaffoldError(f"{name}: unknown key(s) {sorted(unknown)}")
-    if data.get("format", FORMAT) != FORMAT:
-        raise ScaffoldError(f"{name}: format {data.get('format')!r} is not {FORMAT!r}")
-    version = data.get("version", VERSION)
-    if version != VERSION:
-        raise ScaffoldError(f"{name}: scaffold file version {version!r} is not supported (expected {VERSION})")
-    vertices = _list(data.get("vertices"), f"{name}: vertices")
-    rows = []
-    for i, v in enumerate(vertices):
-        v = _list(v, f"{name}: vertices[{i}]", 3)
-        if not all(isinstance(x, (int, float)) and not isinstance(x, bool) for x in v):
-            raise ScaffoldError(f"{name}: vertices[{i}]: coordinates must be numbers, got {v}")
-        if not all(np.isfinite(v)):
-            raise ScaffoldError(f"{name}: vertices[{i}]: non-finite coordinate {v}")
-        rows.append(v)
-    faces = _list(data.get("faces"), f"{name}: faces")
-    for i, face in enumerate(faces):
-        _list(face, f"{name}: faces[{i}]")
-        for j, v in enumerate(face):
-            _int(v, f"{name}: faces[{i}][{j}]")
-    lattice = None
-    offsets = None
-    if "lattice" in data:
-        lattice = Lattice(np.array(_list(data["lattice"], f"{name}: lattice"), dtype=float))
-        raw = _list(data.get("offsets"), f"{name}: offsets", len(faces))
-        offsets = []
-        for i, (face, offs) in enumerate(zip(faces, raw)):
-            _list(offs, f"{name}: offsets[{i}]", len(face))
-            for j, o in enumerate(offs):
-                for x in _list(o, f"{name}: offsets[{i}][{j}]", lattice.dim):
-                    _int(x, f"{name}: offsets[{i}][{j}]")
-            offsets.append(offs)
-    elif "offsets" in data:
+        raise ScaffoldError(f"{name}: unknown key(s) {shown(sorted(unknown))}")
+    if text(data.get("format", FORMAT), f"{name}: format") != FORMAT:
+        raise ScaffoldError(f"{name}: format {shown(data.get('format'))} is not {FORMAT!r}")
+    _version(data, name)
+    label = text(data.get("name", name), f"{name}: name")
+    with task(f"reading {name}", total=2) as step:  # shown only for big files (> 2 s)
+        raw = array(data.get("vertices"), f"{name}: vertices")
+        rows = [point(v, f"{name}: vertices[{i}]") for i, v in enumerate(raw)]
+        if not rows:
+            raise ScaffoldError(f"{name}: no vertices")
+        step.advance()
+        faces = _faces(data, name, len(rows))
+        step.advance()
+    lattice = Lattice(np.array(vectors(data["lattice"], f"{name}: lattice"))) if "lattice" in data else None
+    dim = 0 if lattice is None else lattice.dim
+    if lattice is None and "offsets" in data:
         raise ScaffoldError(f"{name}: offsets given without a lattice")
-    starts = np.concatenate([[0], np.cumsum([len(f) for f in faces])]).astype(int)
-    radial = None
-    if "radial_orders" in data:
-        radial = {}
-        for i, entry in enumerate(_list(data["radial_orders"], f"{name}: radial_orders")):
-            where = f"{name}: radial_orders[{i}]"
-            if not isinstance(entry, dict) or set(entry) != {"edge", "sides"}:
-                raise ScaffoldError(f"{where}: expected {{'edge': [a, b], 'sides': [[face, k], ...]}}")
-            edge = _list(entry["edge"], f"{where}.edge")
-            delta = tuple(edge[2]) if len(edge) == 3 else ()
-            key = (min(edge[0], edge[1]), max(edge[0], edge[1]), delta)
-            radial[key] = tuple(
-                _side(faces, s, f"{where}.sides[{j}]", starts)
-                for j, s in enumerate(_list(entry["sides"], f"{where}.sides"))
-            )
+    offsets = _offsets(data, name, faces, dim) if lattice is not None else None
+    radial = _radial_orders(data, name, faces, dim) if "radial_orders" in data else None
     try:
-        scaffold = Scaffold.from_faces(
-            rows,
-            faces,
-            lattice=lattice,
-            offsets=offsets,
-            radial_orders=radial,
-            name=data.get("name", name) if isinstance(data.get("name"), str) else name,
-        )
+        scaffold = Scaffold.from_faces(rows, faces, lattice=lattice, offsets=offsets, radial_orders=radial, name=label)
     except ScaffoldError as exc:
         raise ScaffoldError(f"{name}: {exc}") from None
     if "edges" in data:
-        edges = _list(data["edges"], f"{name}: edges")
-        expected = scaffold.edge_keys.tolist()
-        given = [[e[0], e[1], *(e[2] if len(e) > 2 else [])] for e in edges]
-        if given != expected:
+        expected = scaffold_to_dict(scaffold)["edges"]
+        if json.dumps(data["edges"]) != json.dumps(expected):
             raise ScaffoldError(f"{name}: 'edges' does not match the faces' edges in edge order")
     if "labels" in data and "twists" in data:
         raise ScaffoldError(f"{name}: give the twist labels once, as 'labels' ('twists' is the older key)")
     labels = None
-    for label_key in ("labels", "twists"):
-        if label_key in data:
-            labels = _list(data[label_key], f"{name}: {label_key}", scaffold.n_edges)
-            for i, t in enumerate(labels):
-                _int(t, f"{name}: {label_key}[{i}]")
+    for key in ("labels", "twists"):
+        if key in data:
+            labels = [
+                integer(t, f"{name}: {key}[{i}]", -MAX_LABEL, MAX_LABEL)
+                for i, t in enumerate(array(data[key], f"{name}: {key}", scaffold.n_edges))
+            ]
     nulls = None
     if "nulls" in data:
+        starts = scaffold.face_starts
         nulls = [
-            _side(faces, s, f"{name}: nulls[{j}]", starts) for j, s in enumerate(_list(data["nulls"], f"{name}: nulls"))
+            _side(faces, s, f"{name}: nulls[{j}]", starts) for j, s in enumerate(array(data["nulls"], f"{name}: nulls"))
         ]
     if labels is not None or nulls is not None:
         scaffold = scaffold.with_labels(labels, nulls)
     return scaffold
+
+
+def _version(data: dict[str, Any], name: str) -> None:
+    version = data.get("version", VERSION)
+    if isinstance(version, bool) or not isinstance(version, int) or version != VERSION:
+        raise ScaffoldError(f"{name}: file version {shown(version)} is not supported (expected {VERSION})")
+
+
+MAX_VORONOI_POINTS = 200
+"""Most generator points of a Voronoi file: Qhull works on 125 lattice translates of each."""
 
 
 def voronoi_from_dict(data: dict[str, Any], name: str) -> Scaffold:
@@ -182,18 +194,13 @@ def voronoi_from_dict(data: dict[str, Any], name: str) -> Scaffold:
     """
     unknown = set(data) - {"format", "version", "name", "lattice", "points", "comment"}
     if unknown:
-        raise ScaffoldError(f"{name}: unknown key(s) {sorted(unknown)}")
-    if data.get("version", VERSION) != VERSION:
-        raise ScaffoldError(
-            f"{name}: voronoi file version {data.get('version')!r} is not supported (expected {VERSION})"
-        )
-    lattice = Lattice(np.array(_list(data.get("lattice"), f"{name}: lattice"), dtype=float))
-    points = _list(data.get("points"), f"{name}: points")
-    for i, p in enumerate(points):
-        p = _list(p, f"{name}: points[{i}]", 3)
-        if not all(isinstance(x, (int, float)) and not isinstance(x, bool) and np.isfinite(x) for x in p):
-            raise ScaffoldError(f"{name}: points[{i}]: coordinates must be finite numbers, got {p}")
-    label = data.get("name", name) if isinstance(data.get("name"), str) else name
+        raise ScaffoldError(f"{name}: unknown key(s) {shown(sorted(unknown))}")
+    _version(data, name)
+    lattice = Lattice(np.array(vectors(data.get("lattice"), f"{name}: lattice")))
+    points = [point(p, f"{name}: points[{i}]") for i, p in enumerate(array(data.get("points"), f"{name}: points"))]
+    if not 1 <= len(points) <= MAX_VORONOI_POINTS:
+        raise ScaffoldError(f"{name}: points: give 1 to {MAX_VORONOI_POINTS} generator points, got {len(points)}")
+    label = text(data.get("name", name), f"{name}: name")
     return voronoi_scaffold(lattice, np.array(points, dtype=float), label)
 
 
@@ -242,14 +249,7 @@ def scaffold_to_dict(
 def read_scaffold_json(path: str | os.PathLike) -> Scaffold:
     """Read a scaffold file."""
     name = os.path.basename(str(path))
-    try:
-        with open(path, encoding="utf-8") as fh:
-            data = json.load(fh)
-    except json.JSONDecodeError as exc:
-        raise ScaffoldError(f"{name} line {exc.lineno}: invalid JSON: {exc.msg}") from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise ScaffoldError(f"{path}: cannot read: {exc}") from None
-    return scaffold_from_dict(data, name)
+    return scaffold_from_dict(parse_json(read_text(path, "scaffold"), name), name)
 
 
 def format_scaffold_json(scaffold: Scaffold, labels: ArrayLike | None = None, nulls: ArrayLike | None = None) -> str:

@@ -19,7 +19,7 @@ ScaffoldSource: TypeAlias = Scaffold | str | os.PathLike[str]
 """What every function that works on a scaffold accepts: a scaffold, a built-in name or a path."""
 
 
-def load(source: ScaffoldSource) -> Scaffold:
+def load(source: ScaffoldSource, *, weld: float | bool | None = None) -> Scaffold:
     """Return a scaffold from a :class:`Scaffold` (returned as is), a built-in name or a path.
 
     Parameters
@@ -28,6 +28,9 @@ def load(source: ScaffoldSource) -> Scaffold:
         A built-in name (``"cube"``, ``"book:3"``, ``"honeycomb:cP@2x2x2"``; see
         ``lkspace scaffold --help``) or a ``.obj`` / ``.json`` scaffold file.  A file of
         that name wins over a built-in name.
+    weld : float or bool, optional
+        Merge vertices of a file closer than this tolerance (``True``: ``1e-6`` times the
+        bounding-box diagonal); see :mod:`lkspace.io.weld`.
 
     Examples
     --------
@@ -39,8 +42,10 @@ def load(source: ScaffoldSource) -> Scaffold:
     if not isinstance(source, (str, os.PathLike)):
         raise ScaffoldError(f"expected a Scaffold, a path or a built-in name, got {type(source).__name__}")
     text = os.fspath(source)
-    if scaffolds.is_builtin_name(text) and not os.path.exists(text):
+    if scaffolds.is_builtin_name(text) and not os.path.lexists(text):
+        if weld is not None and weld is not False:
+            raise ScaffoldError(f"{text!r}: --weld applies to files, not to built-in scaffolds", usage=True)
         return scaffolds.builtin(text)
-    if os.path.exists(text) or os.path.splitext(text)[1] or os.sep in text:
-        return read(text)
+    if os.path.lexists(text) or os.path.splitext(text)[1] or os.sep in text:
+        return read(text, weld)
     raise ScaffoldError(f"{text!r} is neither a file nor a built-in scaffold name; see 'lkspace scaffold --help'")

@@ -14,6 +14,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ..errors import ScaffoldError
+from .validation import MAX_COORDINATE
 
 
 @dataclass(frozen=True, eq=False, repr=False)
@@ -29,11 +30,14 @@ class Lattice:
     basis: np.ndarray
 
     def __post_init__(self) -> None:
-        basis = np.array(self.basis, dtype=np.float64)
+        try:
+            basis = np.array(self.basis, dtype=np.float64)
+        except (TypeError, ValueError, OverflowError):
+            raise ScaffoldError("lattice: expected 2 or 3 basis vectors of 3 numbers each") from None
         if basis.ndim != 2 or basis.shape[1] != 3 or basis.shape[0] not in (2, 3):
             raise ScaffoldError(f"lattice: expected 2 or 3 basis vectors of length 3, got shape {basis.shape}")
-        if not np.all(np.isfinite(basis)):
-            raise ScaffoldError("lattice: basis vectors must be finite numbers")
+        if not np.all(np.abs(basis) <= MAX_COORDINATE):
+            raise ScaffoldError(f"lattice: basis vectors must be finite numbers within +-{MAX_COORDINATE:g}")
         if np.linalg.matrix_rank(basis, tol=1e-9 * max(1.0, np.abs(basis).max())) < len(basis):
             raise ScaffoldError("lattice: basis vectors are linearly dependent")
         basis.setflags(write=False)

@@ -39,7 +39,7 @@ from numpy.typing import ArrayLike, DTypeLike
 from ..errors import ScaffoldError
 from .lattice import Lattice
 from .radial import RadialOrder, radial_order
-from .validation import validate_labels, validate_nulls
+from .validation import MAX_COORDINATE, validate_labels, validate_nulls
 
 if TYPE_CHECKING:
     import networkx as nx
@@ -117,9 +117,12 @@ class Scaffold:
         vertices = np.asarray(self.vertices, dtype=np.float64)
         if vertices.ndim != 2 or vertices.shape[1] != 3 or len(vertices) == 0:
             raise ScaffoldError(f"{self.name}: vertices must be a non-empty (n, 3) array, got shape {vertices.shape}")
-        bad = np.flatnonzero(~np.all(np.isfinite(vertices), axis=1))
+        bad = np.flatnonzero(~np.all(np.abs(vertices) <= MAX_COORDINATE, axis=1))  # NaN fails too
         if len(bad):
-            raise ScaffoldError(f"{self.name}: vertex {bad[0]} has a non-finite coordinate {vertices[bad[0]].tolist()}")
+            raise ScaffoldError(
+                f"{self.name}: vertex {bad[0]} coordinate {vertices[bad[0]].tolist()} is not a finite number "
+                f"within +-{MAX_COORDINATE:g}"
+            )
         set_("vertices", _frozen(vertices, np.float64))
         starts = _frozen(self.face_starts, np.int64)
         corners = _frozen(self.corners, np.int64)

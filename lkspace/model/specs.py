@@ -8,7 +8,6 @@
 
 from __future__ import annotations
 
-import json
 import os
 import re
 from collections.abc import Sequence
@@ -17,7 +16,9 @@ from typing import TypeAlias
 import numpy as np
 
 from ..errors import LabelError
+from ..io.text import parse_json, read_text
 from .scaffold import Scaffold
+from .validation import MAX_LABEL_SET_SIZE, check_label
 
 LabelSetSpec: TypeAlias = str | Sequence[int] | np.ndarray
 """A label set as users give it: text (``"-2..2"``, ``"-2,-1,1,2"``) or integers."""
@@ -29,8 +30,20 @@ _EDGE = re.compile(r"^(\d+)\s*[-\s]\s*(\d+)(?:\s*\[([-+\d,\s]*)\])?$")
 def _to_int(text: str, where: str) -> int:
     text = text.strip()
     if not _INT.match(text):
-        raise LabelError(f"{where}: {text!r} is not an integer")
+        shown = repr(text) if len(text) <= 40 else repr(text[:40] + "...")
+        raise LabelError(f"{where}: {shown} is not an integer")
+    if len(text) > 40:  # far past any bound; int() of thousands of digits is refused by Python
+        raise LabelError(f"{where}: an integer of {len(text.lstrip('+-'))} digits is out of range")
     return int(text)
+
+
+def _to_label(text: str, where: str) -> int:
+    digits = text.strip().lstrip("+-")
+    if len(digits) > 40 and digits.isdigit():
+        raise LabelError(
+            f"{where}: an integer of {len(digits)} digits is out of range; labels must lie within -2**62..2**62"
+        )
+    return check_label(_to_int(text, where), where)
 
 
 def parse_label_set(spec: str) -> np.ndarray:
@@ -44,13 +57,19 @@ def parse_label_set(spec: str) -> np.ndarray:
     [-2, 2]
     """
     spec = str(spec).strip()
+    where = f"label set {spec!r}" if len(spec) <= 40 else "label set"
     if ".." in spec:
         lo, _, hi = spec.partition("..")
-        lo_i, hi_i = _to_int(lo, "label set"), _to_int(hi, "label set")
+        lo_i, hi_i = _to_label(lo, where), _to_label(hi, where)
         if lo_i > hi_i:
-            raise LabelError(f"label set {spec!r}: empty range")
+            raise LabelError(f"{where}: empty range")
+        if hi_i - lo_i + 1 > MAX_LABEL_SET_SIZE:
+            raise LabelError(f"{where}: {hi_i - lo_i + 1} labels; a label set holds at most {MAX_LABEL_SET_SIZE}")
         return np.arange(lo_i, hi_i + 1, dtype=np.int64)
-    values = [_to_int(v, f"label set {spec!r}") for v in spec.split(",") if v.strip()]
+    items = [v for v in spec.split(",") if v.strip()]
+    if len(items) > MAX_LABEL_SET_SIZE:
+        raise LabelError(f"{where}: {len(items)} labels; a label set holds at most {MAX_LABEL_SET_SIZE}")
+    values = [_to_label(v, where) for v in items]
     if not values:
         raise LabelError("label set is empty")
     return np.unique(np.array(values, dtype=np.int64))
@@ -60,17 +79,17 @@ def edge_index(scaffold: Scaffold, name: str) -> int:
     """Edge named by index (``"5"``) or vertex pair (``"3-7"``, periodic ``"3-7[0,1,0]"``)."""
     name = name.strip()
     if _INT.match(name):
-        e = int(name)
+        e = _to_int(name, "edge")
         if not 0 <= e < scaffold.n_edges:
             raise LabelError(f"edge {e} out of range 0..{scaffold.n_edges - 1}")
         return e
     m = _EDGE.match(name)
     if not m:
         raise LabelError(f"{name!r} names no edge; write an edge index or a vertex pair like 3-7")
-    a, b = sorted((int(m.group(1)), int(m.group(2))))
+    a, b = sorted((_to_int(m.group(1), "edge"), _to_int(m.group(2), "edge")))
     matches = np.flatnonzero((scaffold.edge_vertices[:, 0] == a) & (scaffold.edge_vertices[:, 1] == b))
     if m.group(3) is not None:
-        delta = [int(x) for x in m.group(3).split(",") if x.strip()]
+        delta = [_to_int(x, f"edge {name!r}") for x in m.group(3).split(",") if x.strip()]
         if int(m.group(1)) > int(m.group(2)):
             delta = [-x for x in delta]
         matches = np.array([e for e in matches if scaffold.edge_deltas[e].tolist() == delta], np.int64)
@@ -90,21 +109,23 @@ def read_twist_file(scaffold: Scaffold, path: str) -> np.ndarray:
     for edges not named).  ``#`` starts a comment.  Every edge must get a label.
     """
     name = os.path.basename(path)
-    try:
-        with open(path, encoding="utf-8") as fh:
-            text = fh.read()
-    except (OSError, UnicodeDecodeError) as exc:
-        raise LabelError(f"{path}: cannot read twist file: {exc}") from None
+    text = read_text(path, "twist", LabelError)
     entries: list[tuple[str, str, str]] = []
-    if text.lstrip().startswith("{"):
-        try:
-            data = json.loads(text)
-        except json.JSONDecodeError as exc:
-            raise LabelError(f"{name} line {exc.lineno}: invalid JSON: {exc.msg}") from None
+    if text.lstrip().startswith(("{", "[")):
+        data = parse_json(text, name, LabelError)
+        if isinstance(data, list):
+            return labels_from_list(scaffold, data, name)
+        if not isinstance(data, dict):
+            raise LabelError(f"{name}: expected a JSON object {{EDGE: LABEL, ...}} or a list of labels")
         for key in ("labels", "twists"):  # a scaffold file ("twists" is the older spelling)
-            if key in data and isinstance(data[key], list):
-                return labels_from_list(scaffold, data[key], name)
-        entries = [(f"{name} key {k!r}", k, str(v)) for k, v in data.items()]
+            if key in data:
+                if not isinstance(data[key], list):
+                    raise LabelError(f"{name}: {key!r} must be a list of labels, got {type(data[key]).__name__}")
+                return labels_from_list(scaffold, data[key], f"{name} {key!r}")
+        for k, v in data.items():
+            if isinstance(v, bool) or not isinstance(v, int):
+                raise LabelError(f"{name} key {k!r}: label {str(v)[:40]!r} is not an integer")
+            entries.append((f"{name} key {k!r}", k, str(v)))
     else:
         for lineno, raw in enumerate(text.splitlines(), start=1):
             line = raw.split("#", 1)[0].strip()
@@ -118,7 +139,7 @@ def read_twist_file(scaffold: Scaffold, path: str) -> np.ndarray:
     named = np.zeros(scaffold.n_edges, bool)
     default = None
     for where, edge, value in entries:
-        t = _to_int(value, where)
+        t = _to_label(value, where)
         if edge == "*":
             default = t
             continue
@@ -148,8 +169,8 @@ def labels_from_list(scaffold: Scaffold, values: Sequence[object], where: str = 
     out = []
     for i, v in enumerate(values):
         if isinstance(v, bool) or not isinstance(v, (int, np.integer)):
-            raise LabelError(f"{where}: label {i} is {v!r}, not an integer")
-        out.append(int(v))
+            raise LabelError(f"{where}: label {i} is {str(v)[:40]!r}, not an integer")
+        out.append(check_label(int(v), f"{where}: label {i} (edge {scaffold.edge_name(i)})"))
     return np.array(out, dtype=np.int64)
 
 
@@ -162,18 +183,21 @@ def parse_labels(scaffold: Scaffold, spec: int | np.integer | str | os.PathLike[
     >>> parse_labels(load("tetrahedron"), "-1").tolist()
     [-1, -1, -1, -1, -1, -1]
     """
-    if isinstance(spec, (int, np.integer)):
-        return np.full(scaffold.n_edges, int(spec), np.int64)
+    if isinstance(spec, (int, np.integer)) and not isinstance(spec, bool):
+        return np.full(scaffold.n_edges, check_label(int(spec), "twist label"), np.int64)
     spec = str(spec).strip()
+    shown = repr(spec) if len(spec) <= 60 else repr(spec[:60] + "...")
     if _INT.match(spec):
-        return np.full(scaffold.n_edges, int(spec), np.int64)
-    if "," in spec and not os.path.exists(spec):
-        parts = spec.split(",")
-        values = [_to_int(p, f"twist label {i}") for i, p in enumerate(parts)]
-        return labels_from_list(scaffold, values, f"--twist {spec!r}")
-    if os.path.exists(spec):
+        return np.full(scaffold.n_edges, _to_label(spec, f"--twist {shown}"), np.int64)
+    if os.path.lexists(spec):
         return read_twist_file(scaffold, spec)
-    raise LabelError(f"twist spec {spec!r} is neither an integer, a comma list, nor an existing file")
+    if "," in spec:
+        parts = spec.split(",")
+        if len(parts) != scaffold.n_edges:
+            return labels_from_list(scaffold, parts, f"--twist {shown}")  # the count error
+        values = [_to_label(p, f"--twist {shown}: label {i}") for i, p in enumerate(parts)]
+        return labels_from_list(scaffold, values, f"--twist {shown}")
+    raise LabelError(f"twist spec {shown} is neither an integer, a comma list, nor an existing file")
 
 
 def parse_nulls(scaffold: Scaffold, spec: str) -> np.ndarray:
@@ -186,10 +210,11 @@ def parse_nulls(scaffold: Scaffold, spec: str) -> np.ndarray:
         f_text, dot, k_text = item.partition(".")
         if not dot:
             raise LabelError(f"null side {item!r}: write FACE.SIDE, e.g. 0.2 for side 2 of face 0")
-        f, k = _to_int(f_text, f"null side {item!r}"), _to_int(k_text, f"null side {item!r}")
+        shown = repr(item) if len(item) <= 40 else repr(item[:40] + "...")
+        f, k = _to_int(f_text, f"null side {shown}"), _to_int(k_text, f"null side {shown}")
         if not 0 <= f < scaffold.n_faces:
-            raise LabelError(f"null side {item!r}: face {f} out of range 0..{scaffold.n_faces - 1}")
+            raise LabelError(f"null side {shown}: face {f} out of range 0..{scaffold.n_faces - 1}")
         if not 0 <= k < scaffold.face_sizes[f]:
-            raise LabelError(f"null side {item!r}: face {f} has sides 0..{scaffold.face_sizes[f] - 1}")
+            raise LabelError(f"null side {shown}: face {f} has sides 0..{scaffold.face_sizes[f] - 1}")
         mask[scaffold.face_starts[f] + k] = True
     return mask

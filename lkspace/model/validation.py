@@ -16,20 +16,55 @@ from ..errors import LabelError
 if TYPE_CHECKING:
     from .scaffold import Scaffold
 
+MAX_LABEL = 2**62
+"""Largest twist label magnitude accepted anywhere (``|t| <= 2**62``).
+
+Only ``t mod K`` decides the strands, but labels are stored as int64 and kernels add a
+slot number to them: the bound keeps every such sum inside int64.  Larger values are
+an error naming the value and where it came from, never a silent wrap-around.
+"""
+
+MAX_LABEL_SET_SIZE = 100_000
+"""Most labels a label set (``--labels``) may hold; a range like ``-2..2`` counts its members."""
+
+
+MAX_COORDINATE = 1e12
+"""Largest vertex coordinate magnitude accepted (and lattice vector entry): past it angles and lengths lose all precision."""
+
+
+def check_label(value: int, where: str) -> int:
+    """Return the integer ``value`` if ``|value| <= MAX_LABEL``; raise :class:`LabelError` naming ``where``."""
+    if not -MAX_LABEL <= value <= MAX_LABEL:
+        shown = str(value) if abs(value) < 10**30 else f"an integer of {len(str(abs(value)))} digits"
+        raise LabelError(f"{where}: {shown} is out of range; twist labels must lie within -2**62..2**62")
+    return value
+
 
 def validate_labels(scaffold: Scaffold, labels: ArrayLike) -> np.ndarray:
     """Validate twist labels -> ``(n_edges,) int64``; a scalar applies to every edge."""
-    arr = np.asarray(labels)
+    try:
+        arr = np.asarray(labels)
+    except (OverflowError, ValueError) as exc:
+        raise LabelError(f"{scaffold.name}: twist labels must be integers ({exc})") from None
     if arr.ndim == 0:
         arr = np.full(scaffold.n_edges, arr)
+    if arr.dtype.kind == "O" and all(isinstance(v, int) and not isinstance(v, bool) for v in arr.reshape(-1)):
+        for i, v in enumerate(arr.reshape(-1).tolist()):  # Python ints past int64
+            check_label(v, f"{scaffold.name}: label {i}")
     if arr.dtype.kind == "f":
         if not np.all(np.isfinite(arr)) or np.any(arr != np.round(arr)):
             raise LabelError("twist labels must be integers")
+        if arr.size and np.abs(arr).max() > MAX_LABEL:
+            raise LabelError(f"{scaffold.name}: a twist label is out of range; labels must lie within -2**62..2**62")
     elif arr.dtype.kind not in "iub":
         raise LabelError(f"twist labels must be integers, got {arr.dtype}")
     if arr.shape != (scaffold.n_edges,):
         raise LabelError(f"{scaffold.name}: expected {scaffold.n_edges} twist labels (one per edge), got {arr.size}")
-    return arr.astype(np.int64)
+    out = arr.astype(np.int64)
+    bad = np.flatnonzero((out > MAX_LABEL) | (out < -MAX_LABEL) | (arr.dtype.kind == "u") & (out < 0))
+    if len(bad):
+        check_label(int(arr[bad[0]]), f"{scaffold.name}: edge {scaffold.edge_name(bad[0])} (label {bad[0]})")
+    return out
 
 
 def validate_nulls(scaffold: Scaffold, nulls: ArrayLike) -> np.ndarray:

@@ -29,6 +29,9 @@ voronoi:cube-faces         Voronoi scaffold of a cubic lattice with points at th
 NAME@AxBxC                 the A x B x C supercell of a periodic NAME (AxB in 2D)
 =========================  ==========================================================
 
+Bounds, checked before building: ``N, K <= MAX_FAMILY_PARAMETER`` (1000); a supercell
+holds at most :data:`~lkspace.scaffolds.periodic.MAX_SUPERCELL_FACES` faces.
+
 Periodic cells and lattice parameters: :mod:`lkspace.scaffolds.periodic`.
 ``figure-eight`` and ``whitehead`` carry their paper designs as default labels
 (see :mod:`lkspace.scaffolds.paper`).
@@ -36,9 +39,10 @@ Periodic cells and lattice parameters: :mod:`lkspace.scaffolds.periodic`.
 
 from __future__ import annotations
 
+import re
 from collections.abc import Callable
 
-from ..errors import ScaffoldError
+from ..errors import ScaffoldError, UsageError
 from ..model.scaffold import Scaffold
 from . import hinged, paper, periodic, polyhedra, special
 
@@ -61,6 +65,9 @@ FAMILIES: dict[str, Callable[[int], Scaffold]] = {
 }
 
 DEFAULT = "tetrahedron"
+
+MAX_FAMILY_PARAMETER = 1000
+"""Largest N of ``dihedron:N`` and K of ``book:K`` (checked before anything is built)."""
 
 
 def builtin_names() -> list[str]:
@@ -94,7 +101,7 @@ def builtin(name: str) -> Scaffold:
         base = builtin(base_name)
         if not base.periodic:
             raise ScaffoldError(f"{name!r}: supercells need a periodic scaffold, {base_name!r} is finite")
-        return periodic.supercell(base, periodic.parse_supercell(sizes, base.dim))
+        return periodic.supercell(base, periodic.parse_supercell(sizes, base.dim, base.n_faces))
     if name in periodic.LATTICES:
         return periodic.wigner_seitz(name)
     if name in periodic.VORONOI_EXAMPLES:
@@ -103,9 +110,11 @@ def builtin(name: str) -> Scaffold:
         return SOLIDS[name]()
     head, _, arg = name.partition(":")
     if head in FAMILIES:
-        try:
-            n = int(arg)
-        except ValueError:
-            raise ScaffoldError(f"built-in {name!r}: expected {head}:N with an integer N") from None
+        if not re.fullmatch(r"-?[0-9]{1,12}", arg):
+            raise ScaffoldError(f"built-in {name[:40]!r}: expected {head}:N with an integer N")
+        n = int(arg)
+        if n > MAX_FAMILY_PARAMETER:
+            letter = "N" if head == "dihedron" else "K"
+            raise UsageError(f"built-in {name!r}: {head}:{letter} is limited to {letter} <= {MAX_FAMILY_PARAMETER}")
         return FAMILIES[head](n)
-    raise ScaffoldError(f"unknown scaffold name {name!r}; built-in names: {', '.join(builtin_names())}")
+    raise ScaffoldError(f"unknown scaffold name {name[:60]!r}; built-in names: {', '.join(builtin_names())}")

@@ -28,7 +28,7 @@ from collections.abc import Iterable
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ..errors import ScaffoldError
+from ..errors import ScaffoldError, UsageError
 from ..model.lattice import Lattice
 from ..model.scaffold import Scaffold
 from .polyhedra import convex_polyhedron
@@ -172,16 +172,29 @@ def voronoi_example(name: str) -> Scaffold:
     return voronoi_scaffold(make_lattice(), points, name)
 
 
-_SUPERCELL = re.compile(r"^(\d+)x(\d+)(?:x(\d+))?$")
+_SUPERCELL = re.compile(r"^([0-9]{1,9})x([0-9]{1,9})(?:x([0-9]{1,9}))?$")
+
+MAX_SUPERCELL_FACES = 200_000
+"""Most faces a supercell ``NAME@AxBxC`` may have (cells times the faces of one cell)."""
 
 
-def parse_supercell(text: str, dim: int) -> tuple[int, ...]:
-    """``"2x2x1"`` -> ``(2, 2, 1)``; the number of factors must match ``dim``."""
+def parse_supercell(text: str, dim: int, faces_per_cell: int = 1) -> tuple[int, ...]:
+    """``"2x2x1"`` -> ``(2, 2, 1)``; the number of factors must match ``dim``.
+
+    The supercell may hold at most :data:`MAX_SUPERCELL_FACES` faces, ``faces_per_cell``
+    per cell; a larger one is a :class:`~lkspace.errors.UsageError` naming the bound.
+    """
     m = _SUPERCELL.match(text)
     sizes = tuple(int(g) for g in m.groups() if g is not None) if m else ()
     if len(sizes) != dim or min(sizes, default=0) < 1:
         want = "AxB" if dim == 2 else "AxBxC"
-        raise ScaffoldError(f"supercell {text!r}: expected {want} with positive integers")
+        raise ScaffoldError(f"supercell {text[:40]!r}: expected {want} with positive integers")
+    faces = int(np.prod(sizes, dtype=object)) * faces_per_cell
+    if faces > MAX_SUPERCELL_FACES:
+        raise UsageError(
+            f"supercell {text!r}: {faces} faces ({faces_per_cell} per cell); a supercell may have at most "
+            f"{MAX_SUPERCELL_FACES} faces"
+        )
     return sizes
 
 

@@ -72,9 +72,14 @@ def build_port_model(scaffold: Scaffold) -> PortModel:
 
 
 def edge_partner(model: PortModel, degrees: np.ndarray, labels: np.ndarray) -> np.ndarray:
-    """Edge-link partner of every port ``(2 * n_corners,) int64`` for ``labels``."""
+    """Edge-link partner of every port ``(2 * n_corners,) int64`` for ``labels``.
+
+    Labels are reduced mod K per edge first (``np.mod`` never overflows), so a label near
+    the int64 limit gives the partner of its residue instead of wrapping around.
+    """
     k = degrees[model.slot_edge]
-    target = model.edge_starts[model.slot_edge] + (model.slot_index + labels[model.slot_edge]) % k
+    residues = np.mod(np.asarray(labels, np.int64), np.maximum(degrees, 1))
+    target = model.edge_starts[model.slot_edge] + (model.slot_index + residues[model.slot_edge]) % k
     partner = np.empty(2 * len(model.port_a), np.int64)
     partner[model.port_a] = model.port_b[target]
     partner[model.port_b[target]] = model.port_a

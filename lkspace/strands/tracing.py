@@ -9,7 +9,9 @@ port, so the strand through it becomes open, with those two ports as its ends.
 
 For a periodic scaffold, passing an edge link from side ``s`` to side ``s'`` moves the
 current face copy by ``side_translation[s] - side_translation[s']``; the sum around a
-closed strand is its **period** (0: a closed loop; otherwise an infinite thread).
+closed strand is its **period** (0: a closed loop; otherwise an infinite thread).  In the
+JSON (:meth:`Trace.to_dict`) every strand has a ``kind``: ``"loop"``, ``"thread"`` or
+``"open"``; ``closed`` is true for loops only.
 
 Two strands **wind around each other** at an edge with ``t != 0`` that both run through
 (own a port of).  The structure **holds together** when that relation connects all strands
@@ -28,6 +30,7 @@ from numpy.typing import ArrayLike
 
 from ..io.sources import ScaffoldSource, load
 from ..model.scaffold import Scaffold, validate_labels, validate_nulls
+from ..progress import task
 from .holding_together import HoldingTogether, holding_together
 from .ports import port_model
 from .walk import walk
@@ -89,6 +92,16 @@ class Trace:
     def strand_lengths(self) -> np.ndarray:
         """(n_strands,) int64: corners per strand; they add up to ``n_corners``."""
         return np.diff(self.strand_starts)
+
+    @cached_property
+    def strand_kinds(self) -> list[str]:
+        """Kind of each strand: ``"loop"`` (a closed curve), ``"thread"`` (infinite, periodic only) or ``"open"``.
+
+        A periodic strand that closes up in the quotient with a non-zero period is an
+        infinite thread in space, not a closed curve.
+        """
+        infinite = np.any(self.periods != 0, axis=1) if self.periods.shape[1] else np.zeros(len(self.closed), bool)
+        return ["open" if not c else "thread" if t else "loop" for c, t in zip(self.closed.tolist(), infinite.tolist())]
 
     def strand_faces(self, k: int) -> np.ndarray:
         """Face of each corner of strand ``k`` in traversal order."""
@@ -173,15 +186,17 @@ class Trace:
         """Return the JSON form (``components``, ``holds_together``, ``strands`` and more; docs/cli.md)."""
         sc = self.scaffold
         strands = []
+        kinds = self.strand_kinds
         for k in range(self.components):
             entry = {
-                "closed": bool(self.closed[k]),
+                "closed": kinds[k] == "loop",
+                "kind": kinds[k],
                 "faces": self.strand_faces(k).tolist(),
                 "length": int(self.strand_lengths[k]),
                 "period": self.periods[k].tolist() if sc.periodic and self.closed[k] else None,
             }
             if sc.periodic and self.closed[k]:
-                entry["infinite"] = bool(np.any(self.periods[k] != 0))
+                entry["infinite"] = kinds[k] == "thread"
                 entry["direction"] = thread_direction(sc, self.periods[k])
             if not self.closed[k]:
                 entry["ends"] = self.strand_ends(k)
@@ -243,10 +258,20 @@ def trace(scaffold: ScaffoldSource, labels: ArrayLike | None = None, nulls: Arra
     if nulls is None:
         nulls = scaffold.nulls
     null_mask = np.zeros(scaffold.n_corners, bool) if nulls is None else validate_nulls(scaffold, nulls)
-    partner, (steps, starts, closed, periods, port_strand, port_shift) = walk(
-        scaffold, labels, null_mask, compiled=False
-    )
-    even = np.where(steps % 2 == 0, steps, port_model(scaffold).corner_partner[steps])
-    return Trace(
-        scaffold, labels, null_mask, steps, even // 2, starts, closed, periods, port_strand, port_shift, partner
-    )
+    with task(f"tracing {scaffold.name}", total=3) as step:  # shown only for large scaffolds (> 2 s)
+        step.note("radial order")
+        port_model(scaffold)
+        step.advance()
+        step.note("strand walk")
+        partner, (steps, starts, closed, periods, port_strand, port_shift) = walk(
+            scaffold, labels, null_mask, compiled=False
+        )
+        step.advance()
+        even = np.where(steps % 2 == 0, steps, port_model(scaffold).corner_partner[steps])
+        result = Trace(
+            scaffold, labels, null_mask, steps, even // 2, starts, closed, periods, port_strand, port_shift, partner
+        )
+        step.note("holding together")
+        result.holding
+        step.advance()
+    return result
