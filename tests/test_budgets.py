@@ -68,6 +68,7 @@ def unwelded_cube(tmp_path):
     "mesh, n, status",
     [("quad", 1, "feasible"), ("quad", 2, "infeasible"), ("cube", 1, "infeasible"), ("cube", 6, "feasible")],
 )
+@pytest.mark.filterwarnings("ignore:.*share no edge:lkspace.errors.LkspaceWarning")
 def test_solve_without_two_face_edges(tmp_path, capsys, mesh, n, status):
     path = quad_obj(tmp_path) if mesh == "quad" else unwelded_cube(tmp_path)
     code, out, err = run(capsys, "solve", str(path), "-n", str(n), "--json")
