@@ -313,13 +313,15 @@ def test_extreme_int64_twists_are_refused(tmp_path, capsys, command):
 
 
 def test_realize_and_export_library_bounds(tmp_path):
-    from lkspace.errors import ExportError, GeometryError, TooLargeError
+    from lkspace.errors import ExportError, GeometryError, LabelError, TooLargeError
     from lkspace.formats.registry import export
     from lkspace.geometry.realization import GeometryParams, realize
 
     with pytest.raises(TooLargeError, match="MAX_POINTS"):
         realize("cube", 1, max_points=100)
     with pytest.raises(TooLargeError, match="MAX_POINTS"):
+        realize("dihedron:3", -(2**62), check=False)
+    with pytest.raises(LabelError, match="2\\*\\*62"):
         realize("dihedron:3", -(2**63), check=False)
     with pytest.raises(GeometryError, match="radius") as info:
         realize("cube", 1, params=GeometryParams(radius=float("nan")))

@@ -73,3 +73,19 @@ def test_stop_at_random_points_then_resume(tmp_path, capsys, reference, signum):
         keys = sorted_keys(out)
         assert len(keys) == len(set(keys)) == len(reference) and keys == reference  # none lost, none twice
         assert sorted(os.listdir(tmp_path)) == ["cube.parquet"]  # no temporaries, no lock
+
+
+@pytest.mark.parametrize(
+    "signum, code, word", [(signal.SIGINT, 130, "interrupted"), (signal.SIGTERM, 143, "terminated")]
+)
+def test_any_command_stops_on_a_signal(signum, code, word):
+    """Not only enumerate: a long solve stops at once, one line, 130 for Ctrl-C and 143 for SIGTERM."""
+    argv = [*lkspace_command(), "solve", "honeycomb:cI@9x9x9", "-n", "7", "--time-limit", "60"]
+    proc = subprocess.Popen(argv, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    time.sleep(3)
+    sent = time.monotonic()
+    proc.send_signal(signum)
+    _, err = proc.communicate(timeout=30)
+    assert proc.returncode == code and time.monotonic() - sent < 2
+    errors = [line for line in err.splitlines() if line.startswith("lkspace: error:")]
+    assert errors == [f"lkspace: error: {word}"] and "Traceback" not in err

@@ -35,6 +35,7 @@ def test_roundtrip_builtin(tmp_path, name, ext):
 
 @settings(max_examples=60, deadline=None)
 @given(scaffolds())
+@pytest.mark.filterwarnings("ignore:.*share no edge:lkspace.errors.LkspaceWarning")
 def test_roundtrip_random_json_with_labels(tmp_path_factory, s):
     rng = np.random.default_rng(s.n_corners)
     twists = rng.integers(-3, 4, s.n_edges)

@@ -24,6 +24,7 @@ from typing import Any
 import numpy as np
 import pyarrow as pa
 
+from ..workers import Terminated, context, ignore_interrupts, in_main_thread
 from .batches import space_batches
 from .lock import pid_alive
 from .transaction import file_sha256
@@ -70,7 +71,7 @@ def init_worker(state: bytes, main_pid: int) -> None:
     The arguments are plain bytes and an int, so a worker started just before its main
     process stopped still starts cleanly (and then exits).
     """
-    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    ignore_interrupts()
     threading.Thread(target=_exit_with, args=(main_pid,), daemon=True).start()
     _STATE.clear()
     _STATE.update(pickle.loads(state))
@@ -91,11 +92,6 @@ def write_part(i: int) -> tuple[int, dict[str, Any]]:
     batches = space_batches(st["space"], st["mode"], ids, *st["walk"])
     summary = write_batches(path, st["schema"], meta, batches, st.get("on_rows"))
     return i, {**summary, "file": st["files"][i], "sha256": file_sha256(path)}
-
-
-def context() -> mp.context.BaseContext:
-    """Return the multiprocessing start method: ``forkserver`` where available, else ``spawn``."""
-    return mp.get_context("forkserver" if "forkserver" in mp.get_all_start_methods() else "spawn")
 
 
 def run_parts(
@@ -146,37 +142,10 @@ def run_parts(
         pool.join()
 
 
-class Terminated(KeyboardInterrupt):
-    """SIGTERM, raised in the main thread like Ctrl-C's KeyboardInterrupt (``signum`` 15)."""
-
-    signum = int(signal.SIGTERM)
-
-
-def _raise_terminated(signum: int, frame: object) -> None:
-    raise Terminated()
-
-
-def _in_main_thread() -> bool:
-    return threading.current_thread() is threading.main_thread()
-
-
-@contextlib.contextmanager
-def interrupt_signals() -> Iterator[None]:
-    """Within the body, SIGTERM stops the run like Ctrl-C does (main thread only)."""
-    if not _in_main_thread():
-        yield
-        return
-    old = signal.signal(signal.SIGTERM, _raise_terminated)
-    try:
-        yield
-    finally:
-        signal.signal(signal.SIGTERM, old)
-
-
 @contextlib.contextmanager
 def ignored_signals() -> Iterator[None]:
     """Within the body (a cleanup or a rename, milliseconds), SIGINT and SIGTERM are ignored."""
-    if not _in_main_thread():
+    if not in_main_thread():
         yield
         return
     old = {s: signal.signal(s, signal.SIG_IGN) for s in (signal.SIGINT, signal.SIGTERM)}
@@ -190,7 +159,7 @@ def ignored_signals() -> Iterator[None]:
 @contextlib.contextmanager
 def deferred_signals() -> Iterator[None]:
     """Within the body, SIGINT and SIGTERM wait; one that came is raised when the body ends."""
-    if not _in_main_thread():
+    if not in_main_thread():
         yield
         return
     caught: list[int] = []

@@ -30,8 +30,9 @@ from ..io.scaffold_json import scaffold_to_dict
 from ..io.sources import ScaffoldSource
 from ..model.specs import LabelSetSpec
 from ..progress import task
+from ..workers import interrupt_signals
 from .batches import space_batches
-from .jobs import ignored_signals, interrupt_signals, run_parts, write_batches
+from .jobs import ignored_signals, run_parts, write_batches
 from .lock import catalog_lock
 from .plan import Plan, check_jobs, make_plan
 from .reader import read_metadata

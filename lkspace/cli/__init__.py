@@ -19,6 +19,7 @@ import click
 from .. import __version__
 from ..errors import LkspaceError, LkspaceWarning
 from ..progress import install, stderr_reporter
+from ..workers import Terminated, interrupt_signals
 
 COMMANDS = {
     "scaffold": "core:scaffold_cmd",
@@ -62,20 +63,22 @@ def main(argv: list[str] | None = None) -> int:
 
     Errors never reach Python's default handler: each becomes one line on stderr (and,
     under ``--json``, an ``{"error": {...}}`` object on stdout) and an exit status of 1
-    (bad data), 2 (bad usage), 130 (interrupted) or 70 (a bug in lkspace; set
+    (bad data), 2 (bad usage), 130 (Ctrl-C), 143 (SIGTERM) or 70 (a bug in lkspace; set
     ``LKSPACE_DEBUG=1`` for the traceback).
     """
     args = sys.argv[1:] if argv is None else list(argv)
     as_json = "--json" in args[: args.index("--")] if "--" in args else "--json" in args
     install(stderr_reporter())
-    with warnings.catch_warnings():
+    with warnings.catch_warnings(), interrupt_signals():  # SIGTERM stops a command as Ctrl-C does
         warnings.simplefilter("always", LkspaceWarning)  # shown as a line even where warnings are errors
         warnings.showwarning = _show_warning
         try:
             cli.main(args=args, prog_name="lkspace", standalone_mode=False)
         except LkspaceError as exc:
             return _fail(as_json, type(exc).__name__, str(exc), exc.exit_code)
-        except (click.exceptions.Abort, KeyboardInterrupt):
+        except (click.exceptions.Abort, KeyboardInterrupt) as exc:  # click turns KeyboardInterrupt into Abort
+            if isinstance(exc, Terminated) or isinstance(exc.__cause__, Terminated):
+                return _fail(as_json, "Interrupted", "terminated", 143)
             return _fail(as_json, "Interrupted", "interrupted", 130)
         except click.ClickException as exc:
             return _fail(as_json, "UsageError", exc.format_message(), exc.exit_code or 2)

@@ -128,7 +128,7 @@ def enumerate_cmd(
     edge, then t per edge), lexicographically in edge order.
     """
     args = dict(locals())
-    from ..catalog.jobs import interrupt_signals
+    from ..workers import interrupt_signals
 
     with interrupt_signals():  # SIGTERM stops the command as Ctrl-C does, with exit status 143
         try:

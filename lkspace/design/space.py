@@ -66,7 +66,9 @@ class DesignSpace:
         if labels.size == 0:
             raise LabelError("label set is empty")
         if np.abs(labels).max() > 127:
-            raise LabelError(f"labels must lie in -127..127 for a catalog, got {labels.min()}..{labels.max()}")
+            raise LabelError(
+                f"labels must lie in -127..127 for a catalog, got {labels.min()}..{labels.max()}", usage=True
+            )
         object.__setattr__(self, "label_set", labels)
         check_mode(self.mode)
         check_label_set(labels, self.mode)

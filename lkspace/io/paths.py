@@ -43,11 +43,6 @@ def output_file(path: str | os.PathLike[str], extensions: tuple[str, ...] = ()) 
         raise ExportError("output path is empty")
     if text.endswith(("/", os.sep)):
         raise ExportError(f"{text}: output path names a folder; give a file name")
-    ext = os.path.splitext(text)[1].lower()
-    if extensions and ext not in extensions:
-        raise ExportError(
-            f"{text}: extension {ext or '(none)'!r} does not match the format; use {', '.join(extensions)}"
-        )
     target = os.path.realpath(text)
     if os.path.lexists(target):
         mode = os.stat(target).st_mode
@@ -56,6 +51,11 @@ def output_file(path: str | os.PathLike[str], extensions: tuple[str, ...] = ()) 
         if not stat.S_ISREG(mode):
             raise ExportError(f"{text}: is a device, FIFO or socket, not a file lkspace may replace")
     output_folder(os.path.dirname(target) or ".", text)
+    ext = os.path.splitext(text)[1].lower()
+    if extensions and ext not in extensions:
+        raise ExportError(
+            f"{text}: extension {ext or '(none)'!r} does not match the format; use {', '.join(extensions)}"
+        )
     return target
 
 

@@ -21,7 +21,6 @@ KnotInfo's ``3_1`` is the right-handed (positive) trefoil.
 from __future__ import annotations
 
 import json
-import multiprocessing as mp
 import time
 from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass, field
@@ -37,6 +36,7 @@ from ..io.sources import ScaffoldSource, load
 from ..model.scaffold import Scaffold
 from ..progress import Step, task
 from ..strands.tracing import trace
+from ..workers import context, ignore_interrupts
 from .budget import INLINE_CROSSINGS, MAX_CROSSINGS, TIME_LIMIT, TimeLimitReached, run_in_time, twist_crossings
 from .diagram import Diagram, DiagramError, project
 from .naming import name_pd
@@ -247,7 +247,9 @@ def _name_in_time(diagram: Diagram, time_limit: float | None, step: Step) -> dic
 _WORKER: dict[str, Any] = {}
 
 
-def _init_worker(scaffold: Scaffold, seed: int, time_limit: float | None = TIME_LIMIT) -> None:
+def _init_worker(scaffold: Scaffold, seed: int, time_limit: float | None = TIME_LIMIT, worker: bool = False) -> None:
+    if worker:
+        ignore_interrupts()
     _WORKER.update(scaffold=scaffold, seed=seed, time_limit=time_limit)
 
 
@@ -296,7 +298,8 @@ def identify_batch(
         A finite scaffold (periodic ones are refused before any work).
     labels_2d : (n_designs, n_edges) int
     processes : int
-        Worker processes (``1``: in this process).  Workers are forked and receive the
+        Worker processes (``1``: in this process).  Workers are started by
+        :func:`lkspace.workers.context` (never a fork of this program) and receive the
         scaffold once; rows travel in chunks.
     seed : int
         Seed of the generic projection.
@@ -322,13 +325,13 @@ def identify_batch(
     """
     check_identifiable(scaffold)
     knot_modules()
-    tables()  # loaded once, shared by forked workers
+    tables()  # loaded here (workers load their own)
     labels_2d = np.asarray(labels_2d, np.int64).reshape(-1, scaffold.n_edges)
     _init_worker(scaffold, seed, time_limit)
     chunk = max(1, min(64, len(labels_2d) // (4 * max(processes, 1)) or 1))
     rows_iter: Iterator[dict[str, Any]]
     if processes > 1 and len(labels_2d) > 1:
-        pool = mp.get_context("fork").Pool(processes, initializer=_init_worker, initargs=(scaffold, seed, time_limit))
+        pool = context().Pool(processes, initializer=_init_worker, initargs=(scaffold, seed, time_limit, True))
         rows_iter = pool.imap(_identify_row, labels_2d, chunksize=chunk)
     else:
         pool = None
@@ -340,6 +343,10 @@ def identify_batch(
                 rows.append(row)
                 if progress is not False:
                     step.advance()
+    except BaseException:
+        if pool is not None:  # Ctrl-C or an error: stop the workers now, not after their queue
+            pool.terminate()
+        raise
     finally:
         if pool is not None:
             pool.close()
