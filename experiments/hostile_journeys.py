@@ -125,7 +125,7 @@ def cases() -> list[Case]:
         Case(
             "OBJ with 1e308 coordinates",
             ["info", "h.obj"],
-            "ok",
+            "error",
             {"h.obj": CUBE_OBJ.replace("v 1", "v 1e308").replace("v 0", "v -1e308")},
         ),  # fmt: skip
         Case("OBJ with inf", ["info", "i.obj"], files={"i.obj": CUBE_OBJ.replace("v 1 1 1", "v inf 1 1")}),

@@ -181,7 +181,8 @@ def test_installed_command_never_dies_on_huge_labels_or_fifos(tmp_path):
     fifo = tmp_path / "pipe.obj"
     os.mkfifo(fifo)
     cases = [
-        (["trace", "book:3", "--twist", "9223372036854775807"], 2, "out of range"),
+        (["trace", "book:3", "--twist", "9223372036854775808"], 2, "out of range"),
+        (["trace", "book:3", "--twist", "9223372036854775807", "--json"], 0, '"components"'),
         (["trace", "book:3", "--twist", "4611686018427387904", "--json"], 0, '"components": 1'),
         (["info", str(fifo)], 2, "not a regular file"),
         (["trace", "cube", "--twist", str(fifo)], 2, "not a regular file"),

@@ -305,7 +305,7 @@ def test_extreme_int64_twists_are_refused(tmp_path, capsys, command):
     if command == "identify":
         pytest.importorskip("spherogram")
     output = ["-o", str(tmp_path / "x.obj")] if command == "export" else []
-    for twist in (str(-(2**63)), str(2**62)):
+    for twist in (str(-(2**63)), str(2**62), str(2**63 - 1)):
         code, _, err = run(capsys, command, "dihedron:3", f"--twist={twist}", *output)
         assert code in (1, 2)  # export: the geometry cannot embed (1); identify: too large (2)
         one_line_error(err, "twist")
@@ -321,7 +321,7 @@ def test_realize_and_export_library_bounds(tmp_path):
         realize("cube", 1, max_points=100)
     with pytest.raises(TooLargeError, match="MAX_POINTS"):
         realize("dihedron:3", -(2**62), check=False)
-    with pytest.raises(LabelError, match="2\\*\\*62"):
+    with pytest.raises(LabelError, match="2\\*\\*63 - 1"):
         realize("dihedron:3", -(2**63), check=False)
     with pytest.raises(GeometryError, match="radius") as info:
         realize("cube", 1, params=GeometryParams(radius=float("nan")))

@@ -92,6 +92,10 @@ def main(argv: list[str] | None = None) -> int:
         except MemoryError:
             return _fail(as_json, "MemoryError", "out of memory; try a smaller input or label set", 1)
         except Exception as exc:
+            interrupt = _interrupt_behind(exc)  # e.g. a compiled kernel reports Ctrl-C as a SystemError
+            if interrupt is not None:
+                code = 143 if isinstance(interrupt, Terminated) else 130
+                return _fail(as_json, "Interrupted", "terminated" if code == 143 else "interrupted", code)
             if os.environ.get("LKSPACE_DEBUG"):
                 raise
             message = f"internal error ({type(exc).__name__}: {exc}); please report it (LKSPACE_DEBUG=1 shows where)"
@@ -99,6 +103,18 @@ def main(argv: list[str] | None = None) -> int:
         finally:
             install(None)
     return 0
+
+
+def _interrupt_behind(exc: BaseException) -> KeyboardInterrupt | None:
+    """Return the KeyboardInterrupt (or SIGTERM's :class:`Terminated`) that caused ``exc``, if any."""
+    seen: set[int] = set()
+    cause: BaseException | None = exc
+    while cause is not None and id(cause) not in seen:
+        if isinstance(cause, KeyboardInterrupt):
+            return cause
+        seen.add(id(cause))
+        cause = cause.__cause__ or cause.__context__
+    return None
 
 
 def _fail(as_json: bool, kind: str, message: str, code: int) -> int:

@@ -41,7 +41,7 @@ def _to_label(text: str, where: str) -> int:
     digits = text.strip().lstrip("+-")
     if len(digits) > 40 and digits.isdigit():
         raise LabelError(
-            f"{where}: an integer of {len(digits)} digits is out of range; labels must lie within -2**62..2**62"
+            f"{where}: an integer of {len(digits)} digits is out of range; labels must lie within -(2**63 - 1)..2**63 - 1"
         )
     return check_label(_to_int(text, where), where)
 

@@ -16,12 +16,13 @@ from ..errors import LabelError
 if TYPE_CHECKING:
     from .scaffold import Scaffold
 
-MAX_LABEL = 2**62
-"""Largest twist label magnitude accepted anywhere (``|t| <= 2**62``).
+MAX_LABEL = 2**63 - 1
+"""Largest twist label magnitude accepted anywhere (``|t| <= 2**63 - 1``, the int64 range).
 
-Only ``t mod K`` decides the strands, but labels are stored as int64 and kernels add a
-slot number to them: the bound keeps every such sum inside int64.  Larger values are
-an error naming the value and where it came from, never a silent wrap-around.
+Only ``t mod K`` decides the strands: labels are reduced mod K per edge before any kernel
+adds a slot number to them, so a label near the limit traces as its residue.  Larger
+values (and ``-2**63``, whose magnitude does not fit) are an error naming the value and
+where it came from, never a silent wrap-around.
 """
 
 MAX_LABEL_SET_SIZE = 100_000
@@ -36,7 +37,7 @@ def check_label(value: int, where: str) -> int:
     """Return the integer ``value`` if ``|value| <= MAX_LABEL``; raise :class:`LabelError` naming ``where``."""
     if not -MAX_LABEL <= value <= MAX_LABEL:
         shown = str(value) if abs(value) < 10**30 else f"an integer of {len(str(abs(value)))} digits"
-        raise LabelError(f"{where}: {shown} is out of range; twist labels must lie within -2**62..2**62")
+        raise LabelError(f"{where}: {shown} is out of range; twist labels must lie within -(2**63 - 1)..2**63 - 1")
     return value
 
 
@@ -54,8 +55,10 @@ def validate_labels(scaffold: Scaffold, labels: ArrayLike) -> np.ndarray:
     if arr.dtype.kind == "f":
         if not np.all(np.isfinite(arr)) or np.any(arr != np.round(arr)):
             raise LabelError("twist labels must be integers")
-        if arr.size and np.abs(arr).max() > MAX_LABEL:
-            raise LabelError(f"{scaffold.name}: a twist label is out of range; labels must lie within -2**62..2**62")
+        if arr.size and np.abs(arr).max() >= 2.0**63:  # float(MAX_LABEL) rounds up to 2**63
+            raise LabelError(
+                f"{scaffold.name}: a twist label is out of range; labels must lie within -(2**63 - 1)..2**63 - 1"
+            )
     elif arr.dtype.kind not in "iub":
         raise LabelError(f"twist labels must be integers, got {arr.dtype}")
     if arr.shape != (scaffold.n_edges,):
