@@ -135,12 +135,7 @@ def cases() -> list[Case]:
         Case("twist 10^30", ["trace", "cube", "--twist", str(10**30)]),
         Case("twist 2^63", ["trace", "cube", "--twist", big]),
         Case("twist 2^63-1 on book:3", ["trace", "book:3", "--twist", str(2**63 - 1)], "ok"),
-        Case(
-            "export twist 2^63-1 on book:3",
-            ["export", "book:3", "--twist", str(2**63 - 1), "-o", "b.obj"],
-            "ok",
-            keep=("b.obj",),
-        ),  # fmt: skip
+        Case("export twist 2^63-1 on book:3", ["export", "book:3", "--twist", str(2**63 - 1), "-o", "b.obj"]),
         Case("label set up to 10^30", ["enumerate", "cube", "--labels", f"0..{10**30}", "-o", "c.parquet"]),
         Case("label set -100..100 on the cube", ["enumerate", "cube", "--labels", "-100..100", "-o", "c.parquet"]),
         Case("twist file {'twists': 5}", ["trace", "cube", "--twist", "t.json"], files={"t.json": '{"twists": 5}'}),

@@ -112,3 +112,19 @@ def test_weld_errors(capsys, tmp_path, args, code, message):
     got, out, err = run(capsys, *[a.format(obj=path) for a in args], "--json")
     assert got == code and err.count("\n") == 1 and message in err
     assert json.loads(out)["error"]["exit_code"] == code
+
+
+def test_weld_on_export_and_identify(tmp_path, capsys):
+    """Every command that takes MESH takes --weld, export and identify included."""
+    from lkspace.cli import main
+
+    src = tmp_path / "u.obj"
+    corners = [(x, y, z) for x in (0, 1) for y in (0, 1) for z in (0, 1)]
+    faces = [(0, 2, 3, 1), (4, 5, 7, 6), (0, 1, 5, 4), (2, 6, 7, 3), (0, 4, 6, 2), (1, 3, 7, 5)]
+    lines = [f"v {' '.join(map(str, corners[i]))}" for f in faces for i in f]
+    lines += ["f " + " ".join(str(4 * k + j + 1) for j in range(4)) for k in range(6)]
+    src.write_text("\n".join(lines) + "\n")
+    out = tmp_path / "w.obj"
+    assert main(["export", str(src), "--weld", "--twist", "1", "-o", str(out), "--json"]) == 0
+    assert json.loads(capsys.readouterr()[0])["components"] == 4
+    assert out.exists()

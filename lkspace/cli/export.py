@@ -11,7 +11,7 @@ import numpy as np
 
 from ..errors import CatalogError, TooLargeError, UsageError
 from ..model.scaffold import Scaffold
-from .common import Context, emit, json_option, labels_of, load_mesh, nulls_of
+from .common import Context, emit, json_option, labels_of, load_mesh, nulls_of, weld_option
 from .numbers import Finite
 
 if TYPE_CHECKING:
@@ -78,6 +78,7 @@ def design_options(func: F) -> F:
     """Add MESH, --twist, --null, --row and the geometry options shared by export and identify."""
     options = [
         click.argument("mesh", required=False, metavar="[MESH|CATALOG.parquet]"),
+        weld_option,
         click.option(
             "--twist", "twist_spec", metavar="SPEC", help="One integer, a comma list per edge, or a file naming edges."
         ),
