@@ -54,6 +54,11 @@ class Step:
         """Seconds since the step began."""
         return time.monotonic() - self.started
 
+    @property
+    def done(self) -> str:
+        """Work done so far as text: ``"1,200"`` or ``"1,200/5,000"``."""
+        return f"{self.completed:,.0f}" + (f"/{self.total:,.0f}" if self.total else "")
+
     def advance(self, amount: float = 1) -> None:
         """Count ``amount`` more units of work done."""
         self.completed += amount
@@ -110,9 +115,8 @@ class PlainReporter:
         if now - self._last.get(id(step), 0.0) < PLAIN_EVERY:
             return
         self._last[id(step)] = now
-        done = f"{step.completed:,.0f}" + (f"/{step.total:,.0f}" if step.total else "")
         note = f", {step.text}" if step.text else ""
-        self._write(f"lkspace: {step.description}: {done}{note} ({step.elapsed:.0f} s)\n")
+        self._write(f"lkspace: {step.description}: {step.done}{note} ({step.elapsed:.0f} s)\n")
 
     def close(self, step: Step) -> None:
         """Forget ``step``."""
@@ -139,7 +143,7 @@ class RichReporter:
 
     def show(self, step: Step) -> None:
         """Draw or refresh the bar of ``step``."""
-        done = f"{step.completed:,.0f}" + (f"/{step.total:,.0f}" if step.total else "")
+        done = step.done
         if id(step) not in self._ids:
             if not self._ids:
                 self._progress.start()

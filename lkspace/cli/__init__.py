@@ -77,9 +77,7 @@ def main(argv: list[str] | None = None) -> int:
         except LkspaceError as exc:
             return _fail(as_json, type(exc).__name__, str(exc), exc.exit_code)
         except (click.exceptions.Abort, KeyboardInterrupt) as exc:  # click turns KeyboardInterrupt into Abort
-            if isinstance(exc, Terminated) or isinstance(exc.__cause__, Terminated):
-                return _fail(as_json, "Interrupted", "terminated", 143)
-            return _fail(as_json, "Interrupted", "interrupted", 130)
+            return _interrupted(as_json, _interrupt_behind(exc))
         except click.ClickException as exc:
             return _fail(as_json, "UsageError", exc.format_message(), exc.exit_code or 2)
         except click.exceptions.Exit as exc:
@@ -94,8 +92,7 @@ def main(argv: list[str] | None = None) -> int:
         except Exception as exc:
             interrupt = _interrupt_behind(exc)  # e.g. a compiled kernel reports Ctrl-C as a SystemError
             if interrupt is not None:
-                code = 143 if isinstance(interrupt, Terminated) else 130
-                return _fail(as_json, "Interrupted", "terminated" if code == 143 else "interrupted", code)
+                return _interrupted(as_json, interrupt)
             if os.environ.get("LKSPACE_DEBUG"):
                 raise
             message = f"internal error ({type(exc).__name__}: {exc}); please report it (LKSPACE_DEBUG=1 shows where)"
@@ -115,6 +112,18 @@ def _interrupt_behind(exc: BaseException) -> KeyboardInterrupt | None:
         seen.add(id(cause))
         cause = cause.__cause__ or cause.__context__
     return None
+
+
+def _interrupted(as_json: bool, interrupt: KeyboardInterrupt | None) -> int:
+    """Report an interrupt and return its exit status.
+
+    A catalog run's interrupt carries its own line (how to resume) and ``exit_code``;
+    otherwise ``interrupted`` with 130 (Ctrl-C) or ``terminated`` with 143 (SIGTERM).
+    """
+    terminated = isinstance(interrupt, Terminated)
+    code = getattr(interrupt, "exit_code", 143 if terminated else 130)
+    message = str(interrupt) or ("terminated" if terminated else "interrupted")
+    return _fail(as_json, "Interrupted", message, code)
 
 
 def _fail(as_json: bool, kind: str, message: str, code: int) -> int:

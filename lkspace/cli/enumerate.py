@@ -8,9 +8,8 @@ from typing import Any
 import click
 
 from ..catalog.plan import MAX_JOBS, MAX_SHARDS
-from ..catalog.transaction import CatalogInterrupted
 from ..design.space import WALK_MODES, DesignSpace, make_space
-from ..errors import LkspaceError, UsageError
+from ..errors import UsageError
 from ..symmetry.group import MODES as SYMMETRY_MODES
 from .common import Context, emit, json_option, label_set, labels_option, load_mesh, mesh_argument
 
@@ -127,42 +126,6 @@ def enumerate_cmd(
     The representative of each design is the orbit member smallest in (t mod K per
     edge, then t per edge), lexicographically in edge order.
     """
-    args = dict(locals())
-    from ..workers import interrupt_signals
-
-    with interrupt_signals():  # SIGTERM stops the command as Ctrl-C does, with exit status 143
-        try:
-            _enumerate(**args)
-        except KeyboardInterrupt as exc:  # before or after the catalog run (which says more itself)
-            code = 128 + getattr(exc, "signum", 2)
-            if isinstance(exc, CatalogInterrupted):
-                code, message = exc.exit_code, str(exc)
-            else:
-                message = "interrupted; nothing was written"
-            stopped = LkspaceError(message)
-            stopped.exit_code = code
-            raise stopped from None
-
-
-def _enumerate(
-    mesh: str | None,
-    labels_spec: str,
-    symmetry: str,
-    output: str | None,
-    mode: str,
-    components: int | None,
-    no_zero: bool,
-    max_designs: int | None,
-    count_only: bool,
-    sample: int | None,
-    seed: int,
-    jobs: int,
-    shards: int | None,
-    resume: bool,
-    yes: bool,
-    identify: bool,
-    as_json: bool,
-) -> None:
     from ..catalog.shards import write_catalog
     from ..catalog.transaction import catalog_target
 

@@ -35,7 +35,7 @@ def _edge_values(
     return out
 
 
-MAX_LABEL = 1_000_000
+MAX_FIX_LABEL = 1_000_000
 """Largest ``|t|`` a ``--fix`` label may have (costs and labels stay far inside 64-bit integers)."""
 
 MAX_SEED = 2**31 - 1
@@ -47,8 +47,8 @@ def _label(value: str, item: str) -> int:
         label = int(value)
     except ValueError:
         raise UsageError(f"--fix {item!r}: {value!r} is not an integer label") from None
-    if abs(label) > MAX_LABEL:
-        raise UsageError(f"--fix {item!r}: labels must lie in -{MAX_LABEL:,}..{MAX_LABEL:,}")
+    if abs(label) > MAX_FIX_LABEL:
+        raise UsageError(f"--fix {item!r}: labels must lie in -{MAX_FIX_LABEL:,}..{MAX_FIX_LABEL:,}")
     return label
 
 
