@@ -82,8 +82,9 @@ async def body_of(request: Request, limit: int) -> bytes:
 
 async def json_of(request: Request) -> dict[str, Any]:
     """Return the JSON object of the request body."""
+    raw = await body_of(request, MAX_JSON)
     try:
-        data = json.loads(await body_of(request, MAX_JSON) or b"{}", parse_constant=lambda c: None)
+        data = json.loads(raw or b"{}", parse_constant=lambda c: None)
     except (ValueError, RecursionError):
         raise BadRequest("request body: not valid JSON") from None
     if not isinstance(data, dict):

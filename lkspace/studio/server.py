@@ -61,3 +61,26 @@ def serve(studio: Studio, host: str = LOCAL, port: int = 8765, on_ready: Callabl
     finally:
         studio.jobs.shutdown()
         sock.close()
+
+
+def start_in_thread(studio: Studio, host: str = LOCAL, port: int = 0) -> tuple[str, Callable[[], None]]:
+    """Serve ``studio`` from a background thread (tests, benchmarks); return ``(url, stop)``."""
+    import uvicorn
+
+    sock = bind(host, port)
+    config = uvicorn.Config(create_app(studio), log_level="warning", lifespan="off", timeout_graceful_shutdown=1)
+    server = uvicorn.Server(config)
+    thread = threading.Thread(target=server.run, kwargs={"sockets": [sock]}, name="studio", daemon=True)
+    thread.start()
+    while not server.started:
+        if not thread.is_alive():
+            raise RuntimeError("the studio server did not start")
+        threading.Event().wait(0.02)
+
+    def stop() -> None:
+        server.should_exit = True
+        thread.join(timeout=5)
+        studio.jobs.shutdown()
+        sock.close()
+
+    return url_of(sock), stop

@@ -1,0 +1,216 @@
+"""The studio's HTTP endpoints: known answers against the public API, and hostile input answered as JSON errors."""
+
+import base64
+import io
+import json
+import os
+import time
+
+import numpy as np
+import pytest
+
+import lkspace
+
+pytest.importorskip("starlette")
+pytest.importorskip("uvicorn")
+httpx = pytest.importorskip("httpx")
+
+from lkspace.io.scaffold_json import scaffold_from_dict  # noqa: E402
+from lkspace.studio.app import Studio  # noqa: E402
+from lkspace.studio.browse import Browser  # noqa: E402
+from lkspace.studio.server import start_in_thread  # noqa: E402
+
+
+@pytest.fixture(scope="module")
+def catalog(tmp_path_factory):
+    path = str(tmp_path_factory.mktemp("cat") / "tetra.parquet")
+    lkspace.write_catalog("tetrahedron", path, label_set="-2..2")
+    return path
+
+
+@pytest.fixture(scope="module")
+def client(catalog):
+    studio = Studio(browser=Browser(catalog))
+    studio.browser.wait(30)
+    url, stop = start_in_thread(studio)
+    with httpx.Client(base_url=url, timeout=60) as c:
+        c.studio = studio
+        yield c
+    stop()
+
+
+def post(client, path, body):
+    return client.post(f"/api/{path}", json=body)
+
+
+def wait_job(client, job, timeout=60):
+    end = time.monotonic() + timeout
+    while time.monotonic() < end:
+        state = client.get(f"/api/job/{job}").json()
+        if state["state"] != "running":
+            return state
+        time.sleep(0.1)
+    raise AssertionError(f"job {job} still running after {timeout} s")
+
+
+def test_scaffold_view_and_design_match_the_api(client):
+    view = post(client, "scaffold", {"key": "cube"}).json()
+    assert (view["n_edges"], view["n_faces"], len(view["edge_points"])) == (12, 6, 12 * 6)
+    assert view["orbits"] == [list(range(12))]  # the rotations move every edge of the cube onto every other
+    for labels in ([1] * 12, [1] * 11 + [2], [-1, 0, 1, 1, 1, 1, 2, 0, 1, 1, 1, 1]):
+        d = post(client, "design", {"key": "cube", "labels": labels}).json()
+        tr = lkspace.trace("cube", labels)
+        assert d["components"] == tr.components
+        assert d["holds_together"] == tr.holds_together
+        assert [s["length"] for s in d["strands"]] == tr.strand_lengths.tolist()
+        real = lkspace.realize("cube", labels)
+        points = np.frombuffer(base64.b64decode(d["curves"]["points"]), "<f4").reshape(-1, 3)
+        assert d["curves"]["counts"] == [len(c) for c in real.curves]
+        assert np.allclose(points, np.vstack(real.curves), atol=1e-5)
+        assert d["curves"]["strand"] == real.strand_of.tolist()
+        check = post(client, "clearance", {"key": "cube", "labels": labels}).json()
+        assert check["ok"] and check["min_distance"] == pytest.approx(real.min_distance)
+
+
+def test_periodic_block_and_realization_failure_on_its_edge(client):
+    d = post(client, "design", {"key": "honeycomb:cP", "labels": [1, 1, 1], "block": [2, 2, 2]}).json()
+    assert d["components"] == lkspace.trace("honeycomb:cP", 1).components == 4
+    assert len(d["curves"]["counts"]) == 4 * 8 and sorted(set(d["curves"]["copy"])) == list(range(8))
+    labels = [1] * 12
+    labels[7] = 10**18  # too many turns to embed: named on edge 7, not a blank view
+    d = post(client, "design", {"key": "cube", "labels": labels}).json()
+    assert "curves" not in d and d["error"]["edge"] == 7 and "self-intersect" in d["error"]["message"]
+    assert d["components"] == lkspace.trace("cube", labels).components
+
+
+def test_identify_and_solve_run_in_workers(client):
+    job = post(client, "identify", {"key": "dihedron:3", "labels": [1] * 3})
+    state = wait_job(client, job.json()["job"])
+    assert state["state"] == "done" and state["result"]["name"] == "3_1"
+    body = {"key": "cube", "components": 1, "no_zero": True, "label_set": "-2..2", "count": 3, "fixes": {"0": 2}}
+    state = wait_job(client, post(client, "solve", body).json()["job"])
+    assert state["state"] == "done" and state["result"]["solutions"]
+    for sol in state["result"]["solutions"]:
+        assert lkspace.trace("cube", sol["labels"]).components == 1
+        assert sol["labels"][0] == 2 and 0 not in sol["labels"]
+    long = post(
+        client, "solve", {"key": "honeycomb:cP@3x3x3", "components": 40, "time_limit": 300, "label_set": "-3..3"}
+    )
+    job = long.json()["job"]
+    state = client.post(f"/api/job/{job}/cancel").json()
+    assert state["state"] == "cancelled"
+    assert not client.studio.jobs.get(job).process.is_alive()
+
+
+def test_exports_read_back(client):
+    labels = [1, -1, 2, 1, 0, 1]
+    r = post(client, "export", {"key": "tetrahedron", "labels": labels, "format": "json"})
+    back = scaffold_from_dict(r.json(), "t")
+    assert back.labels.tolist() == labels
+    trimesh = pytest.importorskip("trimesh")
+    r = post(client, "export", {"key": "tetrahedron", "labels": labels, "format": "glb"})
+    assert r.headers["content-type"] == "model/gltf-binary"
+    scene = trimesh.load(io.BytesIO(r.content), file_type="glb")
+    assert len(scene.geometry) == lkspace.trace("tetrahedron", labels).components
+    assert post(client, "export", {"key": "tetrahedron", "labels": labels, "format": "obj"}).content.count(b"\no ") >= 1
+
+
+def test_catalog_filter_sort_page_match_pandas(client, catalog):
+    cat = lkspace.read_catalog(catalog)
+    frame = cat.frame
+    body = {"filters": [["components", "==", 1], ["n_zero", "<=", 1]], "sort": "abs_sum", "offset": 5, "limit": 7}
+    r = post(client, "catalog", body).json()
+    mask = ((frame.components == 1) & (frame.n_zero <= 1)).to_numpy(bool)
+    assert r["total"] == int(mask.sum())
+    rows = np.flatnonzero(mask)
+    order = rows[np.lexsort((rows, frame.abs_sum.to_numpy()[rows]))][5:12]
+    assert [row[0] for row in r["rows"]] == order.tolist()
+    assert r["labels"] == cat.labels[order].tolist()
+    r = post(client, "catalog", {"sort": "components", "descending": True, "limit": 3}).json()
+    assert [row[r["columns"].index("components")] for row in r["rows"]] == [int(frame.components.max())] * 3
+
+
+HOSTILE = [
+    ("design", {"key": "cube", "labels": [1] * 11}),
+    ("design", {"key": "cube", "labels": [1.5] * 12}),
+    ("design", {"key": "cube", "labels": [True] * 12}),
+    ("design", {"key": "cube", "labels": ["abc"] * 12}),
+    ("design", {"key": "cube", "labels": [[1]] * 12}),
+    ("design", {"key": "cube", "labels": [10**30] * 12}),
+    ("design", {"key": "cube", "labels": "1,1,1"}),
+    ("design", {"key": "cube", "labels": [1] * 12, "nulls": [999]}),
+    ("design", {"key": "cube", "labels": [1] * 12, "nulls": "all"}),
+    ("design", {"key": "../../etc/passwd"}),
+    ("design", {"key": "/etc/passwd"}),
+    ("design", {"key": "cube.obj"}),
+    ("design", {"key": "id:0123456789abcdef"}),
+    ("design", {"key": 12}),
+    ("design", {"key": "x" * 5000}),
+    ("design", {"key": "honeycomb:cP@100x100x100"}),
+    ("design", {"key": "book:100000"}),
+    ("design", {"key": "honeycomb:cP", "block": [1000, 1, 1]}),
+    ("design", {"key": "honeycomb:cP", "block": "2x2x2"}),
+    ("scaffold", {"key": "no-such-thing"}),
+    ("solve", {"key": "cube", "components": 0}),
+    ("solve", {"key": "cube", "components": 1, "label_set": "1..1000000000"}),
+    ("solve", {"key": "cube", "components": 1, "fixes": {"99": 1}}),
+    ("solve", {"key": "cube", "components": 1, "time_limit": 1e9}),
+    ("catalog", {"filters": [["nope", "==", 1]]}),
+    ("catalog", {"filters": [["components", "drop table", 1]]}),
+    ("catalog", {"filters": [["components", "==", "1; rm -rf /"]]}),
+    ("catalog", {"limit": 10**9}),
+    ("catalog", {"sort": "__class__"}),
+    ("export", {"key": "cube", "labels": [1] * 12, "format": "../../x.png"}),
+    ("export", {"key": "cube", "labels": [10**17] * 12, "format": "glb"}),
+]
+
+
+@pytest.mark.parametrize(("path", "body"), HOSTILE, ids=[f"{p}-{i}" for i, (p, _) in enumerate(HOSTILE)])
+def test_hostile_input_gets_a_json_error(client, path, body):
+    r = post(client, path, body)
+    assert 400 <= r.status_code < 500, r.text
+    assert set(r.json()["error"]) == {"type", "message"} and r.json()["error"]["message"]
+
+
+def test_malformed_requests_and_uploads(client, tmp_path):
+    target = tmp_path / "secret.json"
+    target.write_text(lkspace.io.scaffold_json.format_scaffold_json(lkspace.load("cube")))
+    assert post(client, "scaffold", {"key": str(target)}).status_code == 400  # a real file: still never opened
+    assert client.post("/api/design", content=b"{not json").status_code == 400
+    assert client.post("/api/design", content=b"[1, 2]").status_code == 400
+    assert client.post("/api/design", content=b"[" * 100000 + b"]" * 100000).status_code in (400, 413)
+    assert client.post("/api/design", content=b" " * 3_000_000).status_code == 413
+    assert (
+        client.post("/api/upload", content=b"v 0 0 0\n" * 1_100_000, headers={"X-Filename": "big.obj"}).status_code
+        == 413
+    )
+    assert (
+        client.post("/api/upload", content=b"\xff\xfe", headers={"X-Filename": "../../etc/x.json"}).status_code == 422
+    )
+    bad = client.post("/api/upload", content=b"v 0 0 0\nf 1 2 3\n", headers={"X-Filename": "bad.obj"})
+    assert bad.status_code in (400, 422) and "error" in bad.json()
+    assert client.get("/api/nowhere").json()["error"]["type"] == "HTTPError"
+    assert client.get("/api/design").status_code == 405
+    assert client.get("/api/job/999999").status_code == 400
+    obj = lkspace.io.obj.format_obj(lkspace.load("tetrahedron"))
+    up = client.post("/api/upload", content=obj.encode(), headers={"X-Filename": "t.obj"}).json()
+    d = post(client, "design", {"key": up["key"], "labels": [1] * 6}).json()
+    assert d["components"] == 3  # the uploaded tetrahedron, after all the hostile requests
+    assert client.get("/api/info").json()["exports"][:2] == ["json", "obj"]
+
+
+def test_page_and_vendored_three_are_served(client):
+    page = client.get("/")
+    assert page.status_code == 200 and "importmap" in page.text
+    for asset in ("app.js", "view.js", "style.css", "vendor/three.module.min.js", "vendor/OrbitControls.js"):
+        assert client.get(f"/static/{asset}").status_code == 200
+    assert client.get("/static/../app.py").status_code == 404
+    assert (
+        os.path.getsize(os.path.join(os.path.dirname(lkspace.studio.app.__file__), "static/vendor/three.module.min.js"))
+        < 1_500_000
+    )
+
+
+def test_json_error_bodies_are_one_line(client):
+    r = post(client, "design", {"key": "cube", "labels": [1] * 5})
+    assert "\n" not in json.dumps(r.json()["error"]["message"])
