@@ -284,7 +284,12 @@ function catalogControls(info) {
   $('cat-desc').onchange = () => { S.catalog.desc = $('cat-desc').checked; S.catalog.offset = 0; queryCatalog(); };
   $('cat-prev').onclick = () => { S.catalog.offset = Math.max(0, S.catalog.offset - S.catalog.limit); queryCatalog(); };
   $('cat-next').onclick = () => { if (S.catalog.offset + S.catalog.limit < S.catalog.total) { S.catalog.offset += S.catalog.limit; queryCatalog(); } };
-  $('cat-table').onclick = (ev) => { const tr = ev.target.closest('tr[data-i]'); if (tr) { const labels = S.catalog.rows[+tr.dataset.i]; edit(() => { S.labels = labels.map(norm); }); } };
+  $('cat-table').onclick = (ev) => {
+    const tr = ev.target.closest('tr[data-i]'); if (!tr) return;
+    const labels = S.catalog.rows[+tr.dataset.i];
+    if (S.key !== S.catalog.key) loadScaffold(S.catalog.key, labels); // the catalog's own scaffold
+    else edit(() => { S.labels = labels.map(norm); });
+  };
   queryCatalog();
 }
 function drawFilters() {
@@ -298,7 +303,7 @@ $('cat-filters').onclick = (ev) => { const x = ev.target.closest('.filter'); if 
   $('builtin').innerHTML = info.builtins.map((n) => `<option>${esc(n)}</option>`).join('');
   $('exports').innerHTML = info.exports.map((f) => `<button data-format="${f}">${f.toUpperCase()}</button>`).join('');
   $('exports').onclick = (ev) => { const f = ev.target.dataset.format; if (f) download(f); };
-  if (info.catalog) catalogControls(info.catalog);
+  if (info.catalog) { S.catalog.key = info.initial; catalogControls(info.catalog); }
   const h = readHash();
   if (h) await loadScaffold(h.key, h.labels, h.nulls, h.block); else await loadScaffold(info.initial);
   if (h && !S.sc) await loadScaffold(info.initial);
