@@ -56,7 +56,14 @@ def wait_job(client, job, timeout=60):
 def test_scaffold_view_and_design_match_the_api(client):
     view = post(client, "scaffold", {"key": "cube"}).json()
     assert (view["n_edges"], view["n_faces"], len(view["edge_points"])) == (12, 6, 12 * 6)
-    assert view["orbits"] == [list(range(12))]  # the rotations move every edge of the cube onto every other
+    assert post(client, "orbits", {"key": "cube"}).json()["orbits"] == [list(range(12))]  # one orbit of rotations
+    sc = lkspace.load("truncated-octahedron")  # edges between two hexagons, and between a square and a hexagon
+    hexes = np.zeros(sc.n_edges, int)
+    np.add.at(hexes, sc.side_edge, sc.face_sizes[sc.corner_face] == 6)
+    orbits = post(client, "orbits", {"key": "truncated-octahedron"}).json()["orbits"]
+    assert sorted(map(sorted, orbits)) == sorted(
+        [np.flatnonzero(hexes == 2).tolist(), np.flatnonzero(hexes == 1).tolist()]
+    )
     for labels in ([1] * 12, [1] * 11 + [2], [-1, 0, 1, 1, 1, 1, 2, 0, 1, 1, 1, 1]):
         d = post(client, "design", {"key": "cube", "labels": labels}).json()
         tr = lkspace.trace("cube", labels)
@@ -151,6 +158,7 @@ HOSTILE = [
     ("design", {"key": "honeycomb:cP", "block": [1000, 1, 1]}),
     ("design", {"key": "honeycomb:cP", "block": "2x2x2"}),
     ("scaffold", {"key": "no-such-thing"}),
+    ("orbits", {"key": "honeycomb:cP@7x7x7"}),
     ("solve", {"key": "cube", "components": 0}),
     ("solve", {"key": "cube", "components": 1, "label_set": "1..1000000000"}),
     ("solve", {"key": "cube", "components": 1, "fixes": {"99": 1}}),

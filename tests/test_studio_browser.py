@@ -123,6 +123,15 @@ def test_edit_solve_browse_export_reload(studio, browser, tmp_path):
     page.click("#undo")
     wait_redraw(page, n)
     assert labels_of(page)[edge] == 2
+    # a whole edge orbit at once (the cube's rotations make all 12 edges one orbit)
+    page.check("#orbit")
+    page.wait_for_function("window.studio.state.orbits !== null", timeout=20000)
+    n = redraws(page)
+    page.keyboard.press("+")
+    wait_redraw(page, n)
+    assert labels_of(page) == [3] * 12
+    assert page.inner_text("#components") == str(lkspace.trace("cube", 3).components)
+    page.uncheck("#orbit")
     # hostile typing: a message in the page, the design unchanged
     page.fill("#label", "12abc")
     page.press("#label", "Enter")
@@ -150,7 +159,10 @@ def test_edit_solve_browse_export_reload(studio, browser, tmp_path):
     page.select_option("#cat-col", "components")
     page.fill("#cat-val", "1")
     page.click("#cat-add")
-    page.wait_for_function("document.querySelectorAll('#cat-table tr[data-i]').length > 0", timeout=20000)
+    shown = "JSON.stringify([c.filters, c.sort, c.desc, c.offset])"
+    page.wait_for_function(
+        f"(c => c.shown === {shown} && c.rows.length > 0)(window.studio.state.catalog)", timeout=20000
+    )
     row = page.evaluate("window.studio.state.catalog.rows[0]")
     n = redraws(page)
     page.click("#cat-table tr[data-i='0']")

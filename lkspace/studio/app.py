@@ -142,6 +142,11 @@ def scaffold(studio: Studio, body: dict[str, Any]) -> dict[str, Any]:
     return studio.registry.get(body.get("key")).view()
 
 
+def orbits(studio: Studio, body: dict[str, Any]) -> dict[str, Any]:
+    """Return the edge orbits of scaffold ``key`` under its rotations."""
+    return studio.registry.get(body.get("key")).orbit_view()
+
+
 def redraw(studio: Studio, body: dict[str, Any]) -> dict[str, Any]:
     """Trace and realize a design (no clearance measurement)."""
     held, labels, nulls, block = design_args(studio, body)
@@ -287,6 +292,7 @@ def create_app(studio: Studio | None = None) -> Starlette:
     posts = {
         "scaffold": scaffold,
         "design": redraw,
+        "orbits": orbits,
         "clearance": measure,
         "identify": identify,
         "solve": solve,

@@ -31,6 +31,12 @@ MAX_UPLOAD = 8_000_000
 MAX_FACES = 20_000
 """Most faces of a scaffold the studio opens (a supercell past it is refused before it is built)."""
 
+MAX_ORBIT_EDGES = 400
+"""Most edges of a scaffold whose edge orbits the studio computes (the symmetry search grows fast)."""
+
+MAX_CELLS = 4096
+"""Most unit cells of a supercell name accepted from the page."""
+
 MAX_HELD = 32
 """Uploaded scaffolds kept at once (the oldest is forgotten first)."""
 
@@ -61,12 +67,21 @@ class Held:
             seen.setdefault(rep, []).append(e)
         return sorted((sorted(v) for v in seen.values()), key=lambda v: v[0])
 
-    def view(self) -> dict[str, Any]:
-        """Return what the page draws and edits: geometry, edges, orbits, default labels (JSON-ready)."""
-        sc = self.scaffold
-        orbit_of = np.zeros(sc.n_edges, np.int64)
+    def orbit_view(self) -> dict[str, Any]:
+        """Return the edge orbits and each edge's orbit (asked for when the page first edits an orbit)."""
+        if self.scaffold.n_edges > MAX_ORBIT_EDGES:
+            raise TooLargeError(
+                f"{self.scaffold.name}: {self.scaffold.n_edges:,} edges > {MAX_ORBIT_EDGES} for orbit editing "
+                "(the symmetry search would take minutes)"
+            )
+        orbit_of = np.zeros(self.scaffold.n_edges, np.int64)
         for i, orbit in enumerate(self.orbits):
             orbit_of[orbit] = i
+        return {"orbits": self.orbits, "orbit_of": orbit_of.tolist()}
+
+    def view(self) -> dict[str, Any]:
+        """Return what the page draws and edits: geometry, edges, default labels (JSON-ready)."""
+        sc = self.scaffold
         out: dict[str, Any] = {
             "key": self.key,
             "name": sc.name,
@@ -85,8 +100,6 @@ class Held:
             "edge_points": np.round(sc.edge_points, 6).reshape(-1).tolist(),
             "edge_names": [sc.edge_name(e) for e in range(sc.n_edges)],
             "edge_degrees": sc.edge_degrees.tolist(),
-            "orbits": self.orbits,
-            "orbit_of": orbit_of.tolist(),
             "labels": None if sc.labels is None else [int(t) for t in sc.labels],
             "nulls": None if sc.nulls is None else np.flatnonzero(sc.nulls).tolist(),
         }
@@ -107,8 +120,8 @@ def check_builtin_name(name: object) -> str:
             copies = int(np.prod([int(s) for s in sizes], dtype=object))
         except ValueError:
             raise UsageError(f"{name!r}: supercell sizes like @2x2x2 expected") from None
-        if copies > 1000:
-            raise TooLargeError(f"{name!r}: {copies:,} cells > 1,000 for the studio")
+        if copies > MAX_CELLS:
+            raise TooLargeError(f"{name!r}: {copies:,} cells > {MAX_CELLS:,} for the studio")
     return name
 
 
@@ -174,7 +187,7 @@ class Registry:
 def builtin_choices() -> list[str]:
     """Built-in names offered in the page's menu (families with a small parameter)."""
     names = [n.replace(":N", ":3").replace(":K", ":3") for n in builtins.builtin_names()]
-    return names + ["honeycomb:cP@3x3x3", "tiling:square@10x10", "honeycomb:cP@6x6x6"]
+    return names + ["honeycomb:cP@3x3x3", "tiling:square@10x10", "honeycomb:cP@7x7x7", "tiling:square@32x32"]
 
 
 def dumps(payload: Any) -> str:

@@ -46,7 +46,7 @@ function restore(from, to) {
 async function loadScaffold(key, labels, nulls, block) {
   try {
     const sc = await api('scaffold', { key });
-    S.key = sc.key; S.sc = sc; S.selected = null; S.pins = new Map(); S.undo = []; S.redo = [];
+    S.key = sc.key; S.sc = sc; S.selected = null; S.orbits = null; $('orbit').checked = false; S.pins = new Map(); S.undo = []; S.redo = [];
     S.labels = labels && labels.length === sc.n_edges ? labels.map(norm) : sc.labels ? sc.labels.map(norm) : new Array(sc.n_edges).fill(1);
     S.nulls = new Set(nulls || sc.nulls || []);
     $('block-row').hidden = !sc.dim;
@@ -133,15 +133,15 @@ function panelRead(d) {
 function panelEdge() {
   const e = S.selected, sc = S.sc;
   if (e === null || !sc) { $('edge-info').textContent = 'click an edge'; $('sides').innerHTML = ''; return; }
-  const orbit = sc.orbits[sc.orbit_of[e]];
-  $('edge-info').innerHTML = `edge <b id="edge-index">${e}</b> (${esc(sc.edge_names[e])}), degree ${sc.edge_degrees[e]}, orbit of ${orbit.length}; label <b id="edge-label">${S.labels[e]}</b>`;
+  const orbit = S.orbits ? `, orbit of ${S.orbits.orbits[S.orbits.orbit_of[e]].length}` : '';
+  $('edge-info').innerHTML = `edge <b id="edge-index">${e}</b> (${esc(sc.edge_names[e])}), degree ${sc.edge_degrees[e]}${orbit}; label <b id="edge-label">${S.labels[e]}</b>`;
   if (document.activeElement !== $('label')) $('label').value = S.labels[e];
   const sides = []; sc.side_edge.forEach((x, c) => { if (x === e) sides.push(c); });
   $('sides').innerHTML = sides.map((c) => `<label title="null edge-side: cut the strand of face ${sc.corner_face[c]} here"><input type="checkbox" data-side="${c}" ${S.nulls.has(c) ? 'checked' : ''}> null side of face ${sc.corner_face[c]}</label>`).join('<br>');
 }
 function setLabel(value, t0) {
   const e = S.selected; if (e === null) return;
-  const edges = $('orbit').checked ? S.sc.orbits[S.sc.orbit_of[e]] : [e];
+  const edges = $('orbit').checked && S.orbits ? S.orbits.orbits[S.orbits.orbit_of[e]] : [e];
   edit(() => { for (const x of edges) S.labels[x] = value; }, t0);
 }
 
@@ -202,6 +202,13 @@ $('set-all').onclick = () => {
 $('randomize').onclick = () => {
   let set; try { set = parseSet($('rand-set').value); } catch (err) { message(err.message); return; }
   edit(() => { S.labels = S.labels.map(() => set[Math.floor(Math.random() * set.length)]); });
+};
+$('orbit').onchange = async () => { // edge orbits: a symmetry search, asked for on first use
+  if (!$('orbit').checked || S.orbits) return;
+  $('edge-info').textContent = 'computing edge orbits…';
+  try { const key = S.key; const o = await api('orbits', { key }); if (key === S.key) S.orbits = o; }
+  catch (err) { $('orbit').checked = false; message(err.message); }
+  panelEdge();
 };
 $('undo').onclick = () => restore(S.undo, S.redo);
 $('redo').onclick = () => restore(S.redo, S.undo);
@@ -264,7 +271,7 @@ async function queryCatalog() {
   try {
     const r = await api('catalog', { filters: c.filters, sort: c.sort, descending: c.desc, offset: c.offset, limit: c.limit });
     if (!r.ready) { $('cat-page').textContent = 'reading catalog…'; setTimeout(queryCatalog, 500); return; }
-    c.total = r.total; c.rows = r.labels;
+    c.total = r.total; c.rows = r.labels; c.shown = JSON.stringify([c.filters, c.sort, c.desc, c.offset]);
     $('cat-page').textContent = ` ${r.total ? c.offset + 1 : 0}–${c.offset + r.rows.length} of ${r.total.toLocaleString()} (${(r.seconds * 1000).toFixed(0)} ms) `;
     $('cat-table').innerHTML = '<tr>' + r.columns.map((x) => `<th>${x}</th>`).join('') + '<th>labels</th></tr>' + r.rows.map((row, i) =>
       `<tr data-i="${i}">` + row.map((v) => `<td>${esc(v)}</td>`).join('') + `<td>${r.labels[i].join(' ')}</td></tr>`).join('');
