@@ -55,3 +55,20 @@ def test_bad_usage_is_one_line(args, code, text):
         [sys.executable, "-m", "lkspace", "studio", *args, "--no-browser"], capture_output=True, text=True, timeout=60
     )
     assert out.returncode == code and text in out.stderr and "Traceback" not in out.stderr
+
+
+def test_a_port_in_use_is_one_line():
+    import socket
+
+    with socket.socket() as taken:
+        taken.bind(("127.0.0.1", 0))
+        taken.listen(1)
+        port = taken.getsockname()[1]
+        out = subprocess.run(
+            [sys.executable, "-m", "lkspace", "studio", "cube", "--no-browser", "--port", str(port)],
+            capture_output=True,
+            text=True,
+            timeout=60,
+        )
+    assert out.returncode == 2 and f"cannot listen on 127.0.0.1:{port}" in out.stderr
+    assert out.stderr.count("\n") == 1
