@@ -104,7 +104,7 @@ def test_identify_and_solve_run_in_workers(client):
         client, "solve", {"key": "honeycomb:cP@3x3x3", "components": 40, "time_limit": 300, "label_set": "-3..3"}
     )
     job = long.json()["job"]
-    state = client.post(f"/api/job/{job}/cancel").json()
+    state = client.post(f"/api/job/{job}/cancel", json={}).json()
     assert state["state"] == "cancelled"
     assert not client.studio.jobs.get(job).process.is_alive()
 
@@ -184,10 +184,17 @@ def test_malformed_requests_and_uploads(client, tmp_path):
     target = tmp_path / "secret.json"
     target.write_text(lkspace.io.scaffold_json.format_scaffold_json(lkspace.load("cube")))
     assert post(client, "scaffold", {"key": str(target)}).status_code == 400  # a real file: still never opened
-    assert client.post("/api/design", content=b"{not json").status_code == 400
-    assert client.post("/api/design", content=b"[1, 2]").status_code == 400
-    assert client.post("/api/design", content=b"[" * 100000 + b"]" * 100000).status_code in (400, 413)
-    assert client.post("/api/design", content=b" " * 3_000_000).status_code == 413
+    as_json = {"Content-Type": "application/json"}
+    assert client.post("/api/design", content=b"{not json", headers=as_json).status_code == 400
+    assert client.post("/api/design", content=b"[1, 2]", headers=as_json).status_code == 400
+    assert client.post("/api/design", content=b"[" * 100000 + b"]" * 100000, headers=as_json).status_code in (400, 413)
+    assert client.post("/api/design", content=b" " * 3_000_000, headers=as_json).status_code == 413
+    form = client.post(
+        "/api/solve", content=b'{"key": "cube", "components": 1}', headers={"Content-Type": "text/plain"}
+    )
+    assert form.status_code == 415  # a cross-site form post cannot start work
+    rebound = client.get("/api/info", headers={"Host": "evil.example:8765"})
+    assert rebound.status_code == 403 and "refused" in rebound.json()["error"]["message"]
     assert (
         client.post("/api/upload", content=b"v 0 0 0\n" * 1_100_000, headers={"X-Filename": "big.obj"}).status_code
         == 413

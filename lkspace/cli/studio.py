@@ -55,6 +55,7 @@ def studio_cmd(mesh: str | None, port: int, host: str, no_browser: bool) -> None
         scaffold = load_mesh(Context(False), mesh)
         studio.initial = studio.registry.hold(scaffold, "built-in", scaffold.name).key
     if host != LOCAL:
+        studio.local_only = False
         click.echo(f"lkspace: warning: listening on {host}: anyone who can reach it can use this studio", err=True)
 
     def ready(url: str) -> None:

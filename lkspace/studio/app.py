@@ -48,16 +48,51 @@ class Studio:
     cache: Cache = field(default_factory=Cache)
     jobs: Jobs = field(default_factory=Jobs)
     browser: Browser | None = None
+    local_only: bool = True
 
 
 class BadRequest(UsageError):
     """A request the endpoints cannot read (not JSON, too large, fields missing)."""
 
+    status = 400
+
+
+class NotJson(BadRequest):
+    """A POST without ``Content-Type: application/json`` (a cross-site form cannot send one without asking)."""
+
+    status = 415
+
+
+LOCAL_NAMES = ("127.0.0.1", "localhost", "::1")
+
+
+class LocalHostOnly:
+    """ASGI middleware: answer only requests addressed to this machine by name (DNS rebinding defence)."""
+
+    def __init__(self, app: Any) -> None:
+        self.app = app
+
+    async def __call__(self, scope: Any, receive: Any, send: Any) -> None:
+        """Refuse (403, JSON) an HTTP request whose Host header is not a local name."""
+        if scope["type"] == "http":
+            host = dict(scope.get("headers") or []).get(b"host", b"").decode("latin-1")
+            name = host[1:].split("]")[0] if host.startswith("[") else host.split(":")[0]
+            if name not in LOCAL_NAMES:
+                error = {
+                    "error": {
+                        "type": "HTTPError",
+                        "message": f"host {name[:60]!r} refused: the studio answers 127.0.0.1",
+                    }
+                }
+                await JSONResponse(error, status_code=403)(scope, receive, send)
+                return
+        await self.app(scope, receive, send)
+
 
 def fail(exc: Exception) -> JSONResponse:
     """Return the JSON error answer to ``exc``."""
     if isinstance(exc, LkspaceError):
-        status = 413 if isinstance(exc, TooLargeError) else 400 if exc.exit_code == 2 else 422
+        status = getattr(exc, "status", 413 if isinstance(exc, TooLargeError) else 400 if exc.exit_code == 2 else 422)
         kind = type(exc).__name__
         message = " ".join(str(exc).split())
     else:
@@ -81,7 +116,9 @@ async def body_of(request: Request, limit: int) -> bytes:
 
 
 async def json_of(request: Request) -> dict[str, Any]:
-    """Return the JSON object of the request body."""
+    """Return the JSON object of the request body (``Content-Type: application/json`` required)."""
+    if request.headers.get("content-type", "").split(";")[0].strip().lower() != "application/json":
+        raise NotJson("send the request body as application/json")
     raw = await body_of(request, MAX_JSON)
     try:
         data = json.loads(raw or b"{}", parse_constant=lambda c: None)
@@ -287,8 +324,8 @@ async def page(request: Request) -> Response:
     return FileResponse(os.path.join(STATIC, "index.html"), headers={"Cache-Control": "no-store"})
 
 
-def create_app(studio: Studio | None = None) -> Starlette:
-    """Return the Starlette app serving ``studio`` (a fresh one by default)."""
+def create_app(studio: Studio | None = None) -> Any:
+    """Return the ASGI app serving ``studio`` (a fresh one by default); local names only unless ``studio.local_only`` is off."""
     posts = {
         "scaffold": scaffold,
         "design": redraw,
@@ -310,5 +347,5 @@ def create_app(studio: Studio | None = None) -> Starlette:
         Mount("/static", StaticFiles(directory=STATIC), name="static"),
     ]
     app = Starlette(routes=routes, exception_handlers={HTTPException: http_error})
-    app.state.studio = studio or Studio()
-    return app
+    app.state.studio = studio = studio or Studio()
+    return LocalHostOnly(app) if studio.local_only else app

@@ -78,7 +78,8 @@ async function update(t0) {
   $('timing').textContent = `redraw ${ms.toFixed(0)} ms (trace ${(d.timing.trace * 1000).toFixed(0)}, realize ${(d.timing.realize * 1000).toFixed(0)} ms on the server)`;
   panelRead(d); panelEdge(); writeHash();
   S.ready = true;
-  if (!d.error) measure(seq, body);
+  clearTimeout(S.measureTimer); // measured once the edits pause: a stale measurement would only take CPU
+  if (!d.error) S.measureTimer = setTimeout(() => measure(seq, body), 200);
   scheduleIdentify(body);
 }
 
