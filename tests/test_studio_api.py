@@ -86,7 +86,7 @@ def test_periodic_block_and_realization_failure_on_its_edge(client):
     labels = [1] * 12
     labels[7] = 10**18  # too many turns to embed: named on edge 7, not a blank view
     d = post(client, "design", {"key": "cube", "labels": labels}).json()
-    assert "curves" not in d and d["error"]["edge"] == 7 and "self-intersect" in d["error"]["message"]
+    assert "curves" not in d and d["failure"]["edge"] == 7 and "self-intersect" in d["failure"]["message"]
     assert d["components"] == lkspace.trace("cube", labels).components
 
 

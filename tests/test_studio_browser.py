@@ -11,6 +11,7 @@ import signal
 import subprocess
 import sys
 
+import numpy as np
 import pytest
 
 import lkspace
@@ -123,6 +124,30 @@ def test_edit_solve_browse_export_reload(studio, browser, tmp_path):
     page.click("#undo")
     wait_redraw(page, n)
     assert labels_of(page)[edge] == 2
+    # a twist too large to embed: the message names it and the edge is marked, the view is not blank
+    n = redraws(page)
+    page.fill("#label", "1000000000000000000")
+    page.press("#label", "Enter")
+    wait_redraw(page, n)
+    assert page.evaluate("window.studio.state.design.failure.edge") == edge
+    assert "self-intersect" in page.inner_text("#message")
+    n = redraws(page)
+    page.keyboard.press("Control+z")
+    wait_redraw(page, n)
+    assert labels_of(page)[edge] == 2 and page.is_hidden("#message")
+    # a null face-side cuts a strand open
+    side = int(page.get_attribute("#sides input >> nth=0", "data-side"))
+    n = redraws(page)
+    page.check("#sides input >> nth=0")
+    wait_redraw(page, n)
+    nulls = np.zeros(lkspace.load("cube").n_corners, bool)
+    nulls[side] = True
+    expected = lkspace.trace("cube", labels_of(page), nulls)
+    assert page.inner_text("#components") == str(expected.components)
+    assert page.evaluate("window.studio.state.design.strands.map(s => s.kind)") == expected.strand_kinds
+    n = redraws(page)
+    page.click("#undo")
+    wait_redraw(page, n)
     # a whole edge orbit at once (the cube's rotations make all 12 edges one orbit)
     page.check("#orbit")
     page.wait_for_function("window.studio.state.orbits !== null", timeout=20000)
@@ -179,4 +204,21 @@ def test_edit_solve_browse_export_reload(studio, browser, tmp_path):
     scene = trimesh.load(path)
     assert len(scene.geometry) == 1
     assert errors == []
+    page.close()
+
+
+def test_periodic_block(studio, browser):
+    url, _, _ = studio
+    page = browser.new_page(viewport={"width": 900, "height": 700})
+    page.goto(url + "#s=honeycomb:cP&t=1,1,1&b=2x2x2")
+    ready(page)
+    assert page.inner_text("#components") == str(lkspace.trace("honeycomb:cP", 1).components) == "4"
+    assert len(page.evaluate("window.studio.state.design.curves.counts")) == 4 * 8  # 4 threads x 8 cells
+    assert "loops / threads" in page.inner_text("#summary")
+    n = redraws(page)
+    page.fill("#block", "3x1x1")
+    page.press("#block", "Enter")
+    page.dispatch_event("#block", "change")
+    wait_redraw(page, n)
+    assert len(page.evaluate("window.studio.state.design.curves.copy")) == 4 * 3
     page.close()

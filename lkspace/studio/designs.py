@@ -167,7 +167,7 @@ def design(
     try:
         real = realize(scaffold, tr.labels, nulls, None, block, True, tr, MAX_STUDIO_POINTS, "the studio's", False)
     except (GeometryError, TooLargeError) as exc:
-        out["error"] = {"message": str(exc), "edge": edge_named(scaffold, str(exc))}
+        out["failure"] = {"message": str(exc), "edge": edge_named(scaffold, str(exc))}
         out["timing"] = {"trace": t1 - t0, "realize": time.perf_counter() - t1}
         return out
     cache.put(Cache.key(key, tr.labels, nulls, block), real)

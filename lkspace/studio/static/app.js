@@ -70,8 +70,8 @@ async function update(t0) {
   S.design = d; S.labels = d.labels.map(norm);
   view.setStrands(d.curves || null);
   view.markError(null);
-  message(d.error ? d.error.message : '');
-  view.setEdgeColors(S.labels, S.selected, S.pins, d.error ? d.error.edge : null);
+  message(d.failure ? d.failure.message : '');
+  view.setEdgeColors(S.labels, S.selected, S.pins, d.failure ? d.failure.edge : null);
   view.render();
   const ms = performance.now() - t0; S.latencies.push(ms);
   $('busy').hidden = true;
@@ -79,7 +79,7 @@ async function update(t0) {
   panelRead(d); panelEdge(); writeHash();
   S.ready = true;
   clearTimeout(S.measureTimer); // measured once the edits pause: a stale measurement would only take CPU
-  if (!d.error) S.measureTimer = setTimeout(() => measure(seq, body), 200);
+  if (!d.failure) S.measureTimer = setTimeout(() => measure(seq, body), 200);
   scheduleIdentify(body);
 }
 
@@ -99,7 +99,7 @@ function scheduleIdentify(body) {
   const key = JSON.stringify([body.key, body.labels, body.nulls]); S.identifyKey = key;
   $('identify').textContent = S.sc.dim ? 'periodic: an infinite structure (no knot name)' : 'identify: waiting…';
   $('linking').innerHTML = '';
-  if (S.sc.dim || (S.design && S.design.error)) return;
+  if (S.sc.dim || (S.design && S.design.failure)) return;
   S.identifyTimer = setTimeout(async () => {
     try {
       const { job } = await api('identify', body);
@@ -219,7 +219,7 @@ $('builtin').onchange = () => loadScaffold($('builtin').value);
 $('block').addEventListener('change', () => {
   const parts = $('block').value.trim().toLowerCase().split('x').map(Number);
   if (parts.length !== S.sc.dim || parts.some((n) => !Number.isInteger(n) || n < 1)) { message(`block: ${S.sc.dim} sizes like ${S.sc.dim === 3 ? '2x2x2' : '3x3'}`); return; }
-  S.block = parts; update(performance.now()).then(() => view.fit());
+  S.block = parts; view.setScaffold(S.sc, S.block); update(performance.now()).then(() => view.fit());
 });
 $('upload').onchange = async () => {
   const file = $('upload').files[0]; if (!file) return;

@@ -127,10 +127,23 @@ export class View {
     eg.setAttribute('color', new THREE.BufferAttribute(this.edgeColors, 3));
     this.edgeLines = new THREE.LineSegments(eg, new THREE.LineBasicMaterial({ vertexColors: true }));
     this.groups.edges.add(this.edgeLines);
-    if (sc.lattice) this.outlineCell(sc.lattice);
+    if (sc.lattice) { this.outlineCell(sc.lattice); this.blockCopies(sc, block); }
     const box = new THREE.Box3().setFromBufferAttribute(eg.getAttribute('position'));
     this.scale = box.getSize(new THREE.Vector3()).length() || 1;
     this.raycaster.params.Line.threshold = this.scale * 0.012;
+  }
+  blockCopies(sc, block) { // the other cells of the block: their edges, faint and not pickable
+    if (!block) return;
+    const sizes = [...block, 1, 1].slice(0, 3), basis = sc.lattice, pts = [];
+    for (let i = 0; i < sizes[0]; i++) for (let j = 0; j < sizes[1]; j++) for (let k = 0; k < sizes[2]; k++) {
+      if (!i && !j && !k) continue;
+      const t = [0, 1, 2].map((a) => i * basis[0][a] + j * (basis[1] ? basis[1][a] : 0) + k * (basis[2] ? basis[2][a] : 0));
+      for (let x = 0; x < sc.edge_points.length; x++) pts.push(sc.edge_points[x] + t[x % 3]);
+      if (pts.length > 3e6) break;
+    }
+    if (!pts.length) return;
+    const g = new THREE.BufferGeometry(); g.setAttribute('position', new THREE.Float32BufferAttribute(pts, 3));
+    this.groups.faces.add(new THREE.LineSegments(g, new THREE.LineBasicMaterial({ color: '#b8c4d8', transparent: true, opacity: 0.5 })));
   }
   outlineCell(basis) {
     const v = basis.map((b) => new THREE.Vector3(b[0], b[1], b[2]));
