@@ -147,22 +147,24 @@ def design(
     """Return the page's view of a design: the trace's summary and the strand curves (or the error, on its edge)."""
     t0 = time.perf_counter()
     tr = trace(scaffold, labels, nulls)
-    summary = tr.to_dict()
+    kinds, lengths = tr.strand_kinds, tr.strand_lengths.tolist()
+    periods = tr.periods.tolist() if scaffold.periodic else [None] * tr.components
     out: dict[str, Any] = {
-        "components": summary["components"],
-        "holds_together": summary["holds_together"],
-        "pieces": summary["pieces"],
+        "components": tr.components,
+        "holds_together": tr.holds_together,
+        "pieces": tr.n_pieces,
         "strands": [
-            {"kind": s["kind"], "length": s["length"], "period": s["period"], "closed": s["closed"]}
-            for s in summary["strands"]
+            {"kind": kind, "length": length, "period": period if kind != "open" else None, "closed": kind == "loop"}
+            for kind, length, period in zip(kinds, lengths, periods, strict=True)
         ],
         "labels": [str(int(t)) if abs(int(t)) > 2**53 else int(t) for t in tr.labels],
         "nulls": [] if tr.nulls is None else np.flatnonzero(tr.nulls).tolist(),
         "periodic": scaffold.periodic,
     }
-    for extra in ("threads_per_module", "closed_loops", "infinite_threads", "lift_index"):
-        if extra in summary:
-            out[extra] = summary[extra]
+    if scaffold.periodic:
+        out["closed_loops"] = kinds.count("loop")
+        out["infinite_threads"] = kinds.count("thread")
+        out["lift_index"] = tr.holding.lift_index
     t1 = time.perf_counter()
     try:
         real = realize(scaffold, tr.labels, nulls, None, block, True, tr, MAX_STUDIO_POINTS, "the studio's", False)

@@ -68,14 +68,17 @@ async function update(t0) {
   try { d = await api('design', body); } catch (err) { if (seq === S.seq) { message(err.message); $('busy').hidden = true; } return; }
   if (seq !== S.seq) return; // a newer edit is on its way: this answer is stale
   S.design = d; S.labels = d.labels.map(norm);
+  const t1 = performance.now();
   view.setStrands(d.curves || null);
+  const t2 = performance.now();
   view.markError(null);
   message(d.failure ? d.failure.message : '');
   view.setEdgeColors(S.labels, S.selected, S.pins, d.failure ? d.failure.edge : null);
   view.render();
   const ms = performance.now() - t0; S.latencies.push(ms);
+  S.breakdown = { answer: t1 - t0, tubes: t2 - t1, render: performance.now() - t2 };
   $('busy').hidden = true;
-  $('timing').textContent = `redraw ${ms.toFixed(0)} ms (trace ${(d.timing.trace * 1000).toFixed(0)}, realize ${(d.timing.realize * 1000).toFixed(0)} ms on the server)`;
+  $('timing').textContent = `redraw ${ms.toFixed(0)} ms: answer ${S.breakdown.answer.toFixed(0)} (trace ${(d.timing.trace * 1000).toFixed(0)}, realize ${(d.timing.realize * 1000).toFixed(0)} on the server), tubes ${S.breakdown.tubes.toFixed(0)}, draw ${S.breakdown.render.toFixed(0)} ms`;
   panelRead(d); panelEdge(); writeHash();
   S.ready = true;
   clearTimeout(S.measureTimer); // measured once the edits pause: a stale measurement would only take CPU
