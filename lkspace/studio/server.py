@@ -1,7 +1,9 @@
 """Serving the studio: a socket bound before uvicorn starts (so port 0 names its real port), the URL printed.
 
-uvicorn stops on Ctrl-C or SIGTERM after answering what is in flight, then re-raises the
-signal: the command line turns it into exit status 130 (143), as for every command.
+uvicorn stops on Ctrl-C or SIGTERM after answering what is in flight (at most 2 s), then
+re-raises the signal: the command line turns it into exit status 130 (143), as for every
+command.  uvicorn logs only critical events: every endpoint answers its own errors as
+JSON, and a measurement cut short by Ctrl-C is no error worth a traceback.
 """
 
 from __future__ import annotations
@@ -45,7 +47,7 @@ def serve(studio: Studio, host: str = LOCAL, port: int = 8765, on_ready: Callabl
 
     sock = bind(host, port)
     url = url_of(sock)
-    config = uvicorn.Config(create_app(studio), log_level="warning", lifespan="off", timeout_graceful_shutdown=2)
+    config = uvicorn.Config(create_app(studio), log_level="critical", lifespan="off", timeout_graceful_shutdown=2)
     server = uvicorn.Server(config)
     if on_ready is not None:
 
@@ -68,7 +70,7 @@ def start_in_thread(studio: Studio, host: str = LOCAL, port: int = 0) -> tuple[s
     import uvicorn
 
     sock = bind(host, port)
-    config = uvicorn.Config(create_app(studio), log_level="warning", lifespan="off", timeout_graceful_shutdown=1)
+    config = uvicorn.Config(create_app(studio), log_level="critical", lifespan="off", timeout_graceful_shutdown=1)
     server = uvicorn.Server(config)
     thread = threading.Thread(target=server.run, kwargs={"sockets": [sock]}, name="studio", daemon=True)
     thread.start()
