@@ -91,7 +91,10 @@ def test_periodic_block_and_realization_failure_on_its_edge(client):
 
 
 def test_identify_and_solve_run_in_workers(client):
-    job = post(client, "identify", {"key": "dihedron:3", "labels": [1] * 3})
+    stale = post(client, "identify", {"key": "dodecahedron", "labels": [2] * 30}).json()["job"]
+    job = post(client, "identify", {"key": "dihedron:3", "labels": [1] * 3})  # a newer design: the stale job stops
+    assert client.get(f"/api/job/{stale}").json()["state"] in ("cancelled", "done")
+    assert not client.studio.jobs.get(stale).process.is_alive()
     state = wait_job(client, job.json()["job"])
     assert state["state"] == "done" and state["result"]["name"] == "3_1"
     body = {"key": "cube", "components": 1, "no_zero": True, "label_set": "-2..2", "count": 3, "fixes": {"0": 2}}
