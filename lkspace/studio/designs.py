@@ -29,8 +29,8 @@ from ..model.scaffold import Scaffold
 from ..model.validation import validate_labels, validate_nulls
 from ..strands.tracing import trace
 
-MAX_STUDIO_POINTS = 1_500_000
-"""Most curve points a redraw realizes (block copies included)."""
+MAX_STUDIO_POINTS = 600_000
+"""Most curve points a redraw realizes, block copies included (as tubes, about 3 million vertices in the browser)."""
 
 MAX_BLOCK = 64
 """Most lattice copies of a periodic block the page may ask for."""
