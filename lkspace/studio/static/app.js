@@ -63,6 +63,7 @@ async function loadScaffold(key, labels, nulls, block) {
 // ---- the redraw: trace + realize on the server, tubes here
 async function update(t0) {
   const seq = ++S.seq; $('busy').hidden = false;
+  clearTimeout(S.measureTimer); // an edit is on its way: the last design's clearance would only compete with it
   const body = { key: S.key, labels: S.labels, nulls: [...S.nulls], block: S.block };
   let d;
   try { d = await api('design', body); } catch (err) { if (seq === S.seq) { message(err.message); $('busy').hidden = true; } return; }
@@ -81,7 +82,6 @@ async function update(t0) {
   $('timing').textContent = `redraw ${ms.toFixed(0)} ms: answer ${S.breakdown.answer.toFixed(0)} (trace ${(d.timing.trace * 1000).toFixed(0)}, realize ${(d.timing.realize * 1000).toFixed(0)} on the server), tubes ${S.breakdown.tubes.toFixed(0)}, draw ${S.breakdown.render.toFixed(0)} ms`;
   panelRead(d); panelEdge(); writeHash();
   S.ready = true;
-  clearTimeout(S.measureTimer); // measured once the edits pause: a stale measurement would only take CPU
   if (!d.failure) S.measureTimer = setTimeout(() => measure(seq, body), 200);
   scheduleIdentify(body);
 }
