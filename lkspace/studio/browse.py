@@ -3,8 +3,9 @@
 The scalar columns and the packed labels (``key``) are read once into an Arrow table
 (about 45 bytes a row: 450 MB for the 10-million-row cube catalog); every query is
 vectorized Arrow compute: a filter expression, a top-k selection
-(``select_k_unstable``: ``offset + limit`` rows, not a full sort) and a take.  The last
-filter's rows are kept, so paging does not filter again.
+(``select_k_unstable``: ``offset + limit`` rows, not a full sort) and a take.  Only row
+numbers and the sort column are carried through a query, never whole rows; the last
+filter's row numbers and sorted selection are kept, so paging does not filter again.
 """
 
 from __future__ import annotations
@@ -53,7 +54,7 @@ class Browser:
             schema = dataset.schema
             scalars = [f.name for f in schema if not pa.types.is_nested(f.type) and f.name != "key"]
             extra = ["key"] if "key" in schema.names else ["labels"]
-            table = dataset.to_table(columns=scalars + extra)
+            table = dataset.to_table(columns=scalars + extra).combine_chunks()  # one chunk: a take is O(rows taken)
             self._table = table.append_column("row", pa.array(np.arange(table.num_rows, dtype=np.int64)))
             self.columns = ["row", *scalars]
         except (OSError, pa.ArrowInvalid) as exc:
@@ -143,6 +144,7 @@ class Browser:
         limit: object = 50,
     ) -> dict[str, Any]:
         """One page of rows: ``{"total", "offset", "columns", "rows": [[...]], "labels": [[...]], "seconds"}``."""
+        import pyarrow as pa
         import pyarrow.compute as pc
 
         if not self._ready.is_set():
@@ -159,31 +161,35 @@ class Browser:
         fkey = repr(filters)
         with self._lock:
             if self._filtered is not None and self._filtered[0] == fkey:
-                table = self._filtered[1]
+                rows_in = self._filtered[1]
             else:
-                expr = self._expression(filters)
-                table = self._table if expr is None else self._table.filter(expr)
-                self._filtered = (fkey, table)
-        total = table.num_rows
+                rows_in = self._matching(filters)
+                self._filtered = (fkey, rows_in)
+        total = self._table.num_rows if rows_in is None else len(rows_in)
         end = min(total, offset + limit)
         if offset >= total:
-            page = table.slice(0, 0)
+            chosen = pa.array([], pa.int64())
         elif sort is None or sort == "row" and not descending:
-            page = table.slice(offset, end - offset)
+            chosen = pa.array(np.arange(offset, end)) if rows_in is None else rows_in[offset:end]
         else:
             order = "descending" if descending else "ascending"
             skey = (fkey, sort, order)
             with self._lock:
                 top = self._sorted[1] if self._sorted is not None and self._sorted[0] == skey else None
-            if top is None or top.num_rows < end:
+            if top is None or len(top) < end:
                 keys = [(sort, order), ("row", "ascending")]
                 k = min(total, max(2 * end, 1000))  # the next pages come from the same selection
-                idx = pc.select_k_unstable(table.select([sort, "row"]), k=k, sort_keys=keys)
-                top = table.take(idx)
-                top = top.take(pc.sort_indices(top, sort_keys=keys))
+                both = self._table.select([sort, "row"])
+                both = both if rows_in is None else both.take(rows_in)  # two columns, not the whole rows
+                best = both.take(pc.select_k_unstable(both, k=k, sort_keys=keys))
+                top = best.take(pc.sort_indices(best, sort_keys=keys)).column("row").combine_chunks()
                 with self._lock:
                     self._sorted = (skey, top)
-            page = top.slice(offset, end - offset)
+            chosen = top[offset:end]
+        if rows_in is None and (sort is None or sort == "row" and not descending):
+            page = self._table.slice(offset, max(0, end - offset))  # no filter, table order: no take at all
+        else:
+            page = self._table.take(chosen)
         rows = [[_plain(v) for v in r.values()] for r in page.select(self.columns).to_pylist()]
         return {
             "ready": True,
@@ -194,6 +200,15 @@ class Browser:
             "labels": self._labels(page),
             "seconds": round(time.perf_counter() - t0, 4),
         }
+
+    def _matching(self, filters: object) -> Any:
+        """Row numbers ``(n,) int64`` (Arrow) matching ``filters``; ``None`` for every row."""
+        import pyarrow.dataset as ds
+
+        expr = self._expression(filters)
+        if expr is None:
+            return None
+        return ds.dataset(self._table).to_table(filter=expr, columns=["row"]).column("row").combine_chunks()
 
     @staticmethod
     def _labels(page: Any) -> list[list[int]]:
