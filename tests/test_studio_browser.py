@@ -204,6 +204,19 @@ def test_edit_solve_browse_export_reload(studio, browser, tmp_path):
     scene = trimesh.load(path)
     assert len(scene.geometry) == 1
     assert errors == []
+    # uploads: a broken file gets a message in the page, a good one opens
+    page.set_input_files(
+        "#upload", files=[{"name": "broken.obj", "mimeType": "text/plain", "buffer": b"v 0 0\nf 1 9 3\n"}]
+    )
+    page.wait_for_function("!document.querySelector('#message').hidden", timeout=20000)
+    assert "broken.obj" in page.inner_text("#message")
+    obj = lkspace.io.obj.format_obj(lkspace.load("octahedron")).encode()
+    n = redraws(page)
+    page.set_input_files("#upload", files=[{"name": "octa.obj", "mimeType": "text/plain", "buffer": obj}])
+    wait_redraw(page, n)
+    assert page.evaluate("window.studio.state.sc.origin") == "upload octa.obj"
+    assert page.inner_text("#components") == str(lkspace.trace("octahedron", 1).components)
+    assert errors == []
     page.close()
 
 
