@@ -102,10 +102,12 @@ function scheduleIdentify(body) {
   const key = JSON.stringify([body.key, body.labels, body.nulls]); S.identifyKey = key;
   $('identify').textContent = S.sc.dim ? 'periodic: an infinite structure (no knot name)' : 'identify: waiting…';
   $('linking').innerHTML = '';
+  if (S.design && S.design.failure && !S.sc.dim) $('identify').textContent = 'identify: no embedding to identify';
   if (S.sc.dim || (S.design && S.design.failure)) return;
   S.identifyTimer = setTimeout(async () => {
     try {
       const { job } = await api('identify', body);
+      if (S.identifyKey !== key) return; // stale: the design changed (the server stops the job)
       $('identify').textContent = 'identify: running…';
       for (;;) {
         await new Promise((r) => setTimeout(r, 250));

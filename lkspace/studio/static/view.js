@@ -187,7 +187,7 @@ export class View {
     const box = new THREE.Box3().setFromObject(this.groups.strands.children.length ? this.groups.strands : this.groups.edges);
     if (box.isEmpty()) box.setFromObject(this.groups.edges);
     const center = box.getCenter(new THREE.Vector3()), r = box.getSize(new THREE.Vector3()).length() / 2 || 1;
-    const dist = r / Math.sin((this.camera.fov * Math.PI) / 360) * 0.85;
+    const dist = r / Math.sin((this.camera.fov * Math.PI) / 360);
     const dir = new THREE.Vector3(0.55, 0.45, 0.7).normalize();
     this.camera.position.copy(center).addScaledVector(dir, dist); this.camera.near = dist / 100; this.camera.far = dist * 10;
     this.camera.updateProjectionMatrix(); this.controls.target.copy(center); this.controls.update(); this.render();
