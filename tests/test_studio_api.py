@@ -103,10 +103,13 @@ def test_identify_and_solve_run_in_workers(client):
     for sol in state["result"]["solutions"]:
         assert lkspace.trace("cube", sol["labels"]).components == 1
         assert sol["labels"][0] == 2 and 0 not in sol["labels"]
-    long = post(
-        client, "solve", {"key": "honeycomb:cP@3x3x3", "components": 40, "time_limit": 300, "label_set": "-3..3"}
-    )
-    job = long.json()["job"]
+    body = {"key": "honeycomb:cP@4x4x4", "components": 7, "count": 50, "objective": "min-abs", "time_limit": 60}
+    job = post(client, "solve", body).json()["job"]
+    end = time.monotonic() + 30
+    while not client.get(f"/api/job/{job}").json()["progress"] and time.monotonic() < end:
+        time.sleep(0.2)  # the library's progress shows after its 2 s delay
+    state = client.get(f"/api/job/{job}").json()
+    assert state["state"] == "running" and "solving honeycomb:cP@4x4x4" in state["progress"]["step"]
     state = client.post(f"/api/job/{job}/cancel", json={}).json()
     assert state["state"] == "cancelled"
     assert not client.studio.jobs.get(job).process.is_alive()

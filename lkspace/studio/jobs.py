@@ -100,6 +100,7 @@ class Job:
     process: Any
     channel: Any
     started: float = field(default_factory=time.monotonic)
+    ended: float | None = None
     state: str = "running"
     progress: dict[str, Any] = field(default_factory=dict)
     result: Any = None
@@ -123,12 +124,13 @@ class Job:
             else:
                 self.state, self.error = "error", value
         if self.state != "running":
+            self.ended = self.ended or time.monotonic()
             self.process.join(timeout=0.5)
         return {
             "id": self.id,
             "kind": self.kind,
             "state": self.state,
-            "elapsed": round(time.monotonic() - self.started, 2),
+            "elapsed": round((self.ended or time.monotonic()) - self.started, 2),
             "progress": self.progress,
             "result": self.result,
             "error": self.error,
