@@ -235,3 +235,30 @@ def test_page_and_vendored_three_are_served(client):
 def test_json_error_bodies_are_one_line(client):
     r = post(client, "design", {"key": "cube", "labels": [1] * 5})
     assert "\n" not in json.dumps(r.json()["error"]["message"])
+
+
+hypothesis = pytest.importorskip("hypothesis")
+st = hypothesis.strategies
+
+
+@hypothesis.settings(max_examples=25, deadline=None)
+@hypothesis.given(name=st.sampled_from(["cube", "tetrahedron", "book:3", "tiling:hexagonal"]), data=st.data())
+def test_the_page_sees_what_trace_and_realize_say(name, data):
+    """Any labels and nulls: the studio's design view is the public API's answer, point for point."""
+    from lkspace.studio.designs import Cache, design
+
+    sc = lkspace.load(name)
+    labels = np.array(data.draw(st.lists(st.integers(-3, 3), min_size=sc.n_edges, max_size=sc.n_edges)))
+    nulls = np.array(data.draw(st.lists(st.booleans(), min_size=sc.n_corners, max_size=sc.n_corners)))
+    view = design(sc, labels, nulls, None, Cache(), name)
+    tr = lkspace.trace(sc, labels, nulls)
+    assert (view["components"], view["holds_together"]) == (tr.components, tr.holds_together)
+    assert [s["length"] for s in view["strands"]] == tr.strand_lengths.tolist()
+    assert [s["kind"] for s in view["strands"]] == tr.strand_kinds
+    if "curves" in view:
+        real = lkspace.realize(sc, labels, nulls, check=False)
+        points = np.frombuffer(base64.b64decode(view["curves"]["points"]), "<f4").reshape(-1, 3)
+        assert np.allclose(points, np.vstack(real.curves), atol=1e-5)
+    else:
+        with pytest.raises(lkspace.LkspaceError):
+            lkspace.realize(sc, labels, nulls)
