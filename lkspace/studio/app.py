@@ -141,7 +141,7 @@ def endpoint(handler: Handler) -> Callable[[Request], Awaitable[Response]]:
             body = await json_of(request) if request.method == "POST" else dict(request.query_params)
             body.update(request.path_params)
             result = await run_in_threadpool(handler, request.app.state.studio, body)
-        except (LkspaceError, Exception) as exc:  # noqa: BLE001 - every failure is an answer; the server runs on
+        except Exception as exc:  # noqa: BLE001 - every failure is an answer; the server runs on
             return fail(exc)
         if isinstance(result, Response):
             return result

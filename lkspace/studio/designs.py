@@ -20,7 +20,7 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import GeometryError, LabelError, LkspaceError, TooLargeError, UsageError
+from ..errors import GeometryError, LabelError, TooLargeError, UsageError
 from ..formats.registry import FORMATS, export
 from ..geometry.clearance import check_embedding
 from ..geometry.realization import Realization, realize
@@ -221,10 +221,7 @@ def export_bytes(scaffold: Scaffold, labels: np.ndarray, nulls: np.ndarray | Non
         return format_scaffold_json(scaffold, labels, nulls).encode(), name
     with tempfile.TemporaryDirectory(prefix="lkspace-studio-") as folder:
         path = os.path.join(folder, name)
-        try:
-            real = realize(scaffold, labels, nulls, max_points=MAX_EXPORT_POINTS, bound="the studio's download bound")
-            export(real, path, title=scaffold.name if fmt == "png" else None)
-        except LkspaceError:
-            raise
+        real = realize(scaffold, labels, nulls, max_points=MAX_EXPORT_POINTS, bound="the studio's download bound")
+        export(real, path, title=scaffold.name if fmt == "png" else None)
         with open(path, "rb") as handle:
             return handle.read(), name
