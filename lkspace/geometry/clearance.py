@@ -31,7 +31,7 @@ def resample(curve: np.ndarray, closed: bool, spacing: float) -> tuple[np.ndarra
     return out, s, length
 
 
-def _pieces_apart(
+def pieces_apart(
     owner: np.ndarray,
     arc: np.ndarray,
     lengths: np.ndarray,
@@ -74,9 +74,10 @@ def _joins(curves: Sequence[np.ndarray], closed: np.ndarray, tol: float) -> list
     return [(open_ids[a], open_ids[b]) for b, hits in enumerate(pairs) for a in hits if a != b]
 
 
-def _samples(
+def samples(
     curves: Sequence[np.ndarray], closed: np.ndarray, spacing: float
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Resample every curve at ``spacing``: ``(points, arclength, owner curve, curve lengths)``."""
     chunks = [resample(c, bool(cl), spacing) for c, cl in zip(curves, closed, strict=False)]
     pts = np.vstack([c[0] for c in chunks])
     arc = np.concatenate([c[1] for c in chunks])
@@ -122,13 +123,13 @@ def check_embedding(
                 "point": (0.5 * (pts[i[b]] + pts[j[b]])).tolist(),
             }
 
-    pts, arc, owner, lengths = _samples(curves, closed, min_separation / 2.0)
+    pts, arc, owner, lengths = samples(curves, closed, min_separation / 2.0)
     pairs = cKDTree(pts).query_pairs(min_separation, output_type="ndarray")
     if len(pairs):
-        keep = _pieces_apart(owner, arc, lengths, closed, pairs[:, 0], pairs[:, 1], 4 * min_separation, joins)
+        keep = pieces_apart(owner, arc, lengths, closed, pairs[:, 0], pairs[:, 1], 4 * min_separation, joins)
         consider(pts, owner, pairs[keep, 0], pairs[keep, 1])
     spacing = max(min_separation / 2.0, 0.02 * scale)
-    pts, arc, owner, lengths = _samples(curves, closed, spacing)
+    pts, arc, owner, lengths = samples(curves, closed, spacing)
     k = min(48, len(pts))
     tree = cKDTree(pts)
     for lo in range(0, len(pts), CHUNK):  # in chunks: k neighbours per sample take ~3 kB each
@@ -138,6 +139,6 @@ def check_embedding(
         j = nb.reshape(-1)
         found = j < len(pts)
         i, j = i[found], j[found]
-        keep = _pieces_apart(owner, arc, lengths, closed, i, j, 0.3 * scale, joins)
+        keep = pieces_apart(owner, arc, lengths, closed, i, j, 0.3 * scale, joins)
         consider(pts, owner, i[keep], j[keep])
     return best, where

@@ -41,7 +41,7 @@ an open polyline.  ``translations`` realizes a block of lattice translates at on
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -54,6 +54,9 @@ from ..strands.tracing import Trace, trace
 from .clearance import check_embedding
 from .limits import MAX_POINTS, MAX_SAMPLES, check_lengths, check_winding
 from .tracks import bezier_controls, default_scale, lattice_shift, place_name, side_tracks, smoothstep
+
+if TYPE_CHECKING:
+    from .block import Block
 
 
 @dataclass(frozen=True)
@@ -136,6 +139,9 @@ class Realization:
         Where it occurs: the two curves and the nearest scaffold element.
     translations : (n_copies, dim) int64
         Lattice translations of the copies (one zero row for a single copy).
+    block : Block or None
+        Set by :func:`lkspace.geometry.block.realize_block`: the block of cells the
+        curves were cut to (threads end on its faces; closed loops are whole).
     """
 
     scaffold: Scaffold
@@ -153,6 +159,7 @@ class Realization:
     min_distance: float
     closest: dict[str, Any] = field(default_factory=dict)
     translations: np.ndarray | None = None
+    block: Block | None = None
 
     def __repr__(self) -> str:
         points = sum(len(c) for c in self.curves)

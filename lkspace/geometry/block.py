@@ -1,0 +1,269 @@
+"""Periodic blocks: an A x B (x C) block of cells, its threads cut at the block's faces.
+
+The block is the parallelepiped ``{centre + sum_i f_i a_i : |f_i| <= n_i / 2}`` of the
+lattice vectors ``a_i`` around the lattice points of the translations ``0..n_i - 1``
+(for ``honeycomb:cP``, whose cubes are centred on the lattice points, a 2x2x2 block is
+exactly eight cubes).
+:func:`realize_block` realizes one more layer of translates all round, joins the periods
+of every infinite thread into one polyline (:func:`join_curves`), cuts the polylines
+where they leave the block widened by a small ``margin`` (so that the braid about an edge
+on the block's surface stays whole) and keeps every closed loop whose centre lies in the
+block whole.  :func:`block_faces` lists the faces (cells) to draw.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+import numpy as np
+from numpy.typing import ArrayLike
+from scipy.spatial import cKDTree
+
+from ..errors import GeometryError
+from ..io.sources import ScaffoldSource, load
+from ..model.scaffold import Scaffold
+from .limits import MAX_POINTS
+from .realization import GeometryParams, Realization, realize
+
+__all__ = ["Block", "block_faces", "block_of", "clip_curves", "join_curves", "realize_block"]
+
+
+@dataclass(frozen=True, eq=False)
+class Block:
+    """A block of lattice cells.
+
+    Attributes
+    ----------
+    sizes : (dim,) int64
+        Cells along each lattice vector.
+    centre : (3,) float64
+        Centre of the block.
+    basis : (dim, 3) float64
+        The lattice vectors.
+    margin : float
+        Length by which threads may leave the block before they are cut.
+    """
+
+    sizes: np.ndarray
+    centre: np.ndarray
+    basis: np.ndarray
+    margin: float
+
+    def fractional(self, points: ArrayLike) -> np.ndarray:
+        """Block coordinates ``(..., dim)`` of ``points``: 0 at the centre, ``+-sizes/2`` on the faces."""
+        return (np.asarray(points, np.float64) - self.centre) @ np.linalg.pinv(self.basis)
+
+    def slack(self) -> np.ndarray:
+        """(dim,) the margin in block coordinates along each lattice vector."""
+        inv = np.linalg.pinv(self.basis)  # (3, dim); the face i lies at a distance 1/|inv[:, i]| per unit
+        return self.margin * np.linalg.norm(inv, axis=0)
+
+    def inside(self, points: ArrayLike, widen: bool = True) -> np.ndarray:
+        """(n,) bool: points within the block (widened by ``margin`` when ``widen``)."""
+        f = self.fractional(points)
+        half = self.sizes / 2 + (self.slack() if widen else 1e-9)
+        return np.all(np.abs(f) <= half, axis=-1)
+
+    def corners(self) -> np.ndarray:
+        """(2**dim, 3) the corners of the block."""
+        dim = len(self.sizes)
+        signs = np.array(np.meshgrid(*[[-0.5, 0.5]] * dim, indexing="ij")).reshape(dim, -1).T
+        return self.centre + (signs * self.sizes) @ self.basis
+
+    def frame(self) -> list[np.ndarray]:
+        """Return the block's edges as (2, 3) segments (12 in 3D, 4 in 2D)."""
+        dim = len(self.sizes)
+        c = self.corners()
+        out = []
+        for i in range(len(c)):
+            for k in range(dim):
+                j = i | (1 << (dim - 1 - k))
+                if j != i:
+                    out.append(np.array([c[i], c[j]]))
+        return out
+
+
+def block_of(scaffold: Scaffold, sizes: ArrayLike, margin: float) -> Block:
+    """Return the :class:`Block` of ``sizes`` cells of periodic ``scaffold``."""
+    if scaffold.lattice is None:
+        raise GeometryError(f"{scaffold.name}: a block needs a periodic scaffold", usage=True)
+    sizes = np.asarray(sizes, np.int64)
+    basis = scaffold.lattice.basis
+    # the cell of translate 0 is centred on the lattice point nearest to its faces' middle
+    first = np.round(scaffold.lattice.fractional(scaffold.corner_positions.mean(axis=0))) @ basis
+    return Block(sizes, first + 0.5 * (sizes - 1) @ basis, basis, float(margin))
+
+
+def block_translations(sizes: ArrayLike, extra: int = 1) -> np.ndarray:
+    """(n, dim) int64: the translations ``-extra .. size - 1 + extra`` along each lattice vector."""
+    sizes = np.asarray(sizes, np.int64)
+    grids = np.meshgrid(*[np.arange(-extra, n + extra) for n in sizes], indexing="ij")
+    return np.column_stack([g.reshape(-1) for g in grids])
+
+
+def join_curves(
+    curves: list[np.ndarray], closed: np.ndarray, tol: float
+) -> tuple[list[np.ndarray], np.ndarray, list[list[int]]]:
+    """Join open polylines whose end is another's start (the periods of one thread).
+
+    Returns the joined polylines, their closed flags (a chain that comes back to its
+    start is closed) and, for each, the indices of the input curves it joins.
+    """
+    open_ids = [k for k, c in enumerate(closed) if not c]
+    nxt: dict[int, int] = {}
+    if len(open_ids) > 1:
+        starts = np.array([curves[k][0] for k in open_ids])
+        ends = np.array([curves[k][-1] for k in open_ids])
+        dist, idx = cKDTree(starts).query(ends)
+        for a, (d, b) in enumerate(zip(dist, idx, strict=True)):
+            if d <= tol and a != b:
+                nxt[open_ids[a]] = open_ids[int(b)]
+    has_prev = set(nxt.values())
+    out: list[np.ndarray] = []
+    flags: list[bool] = []
+    members: list[list[int]] = []
+    seen: set[int] = set()
+    order = [k for k in open_ids if k not in has_prev] + [k for k in open_ids if k in has_prev]
+    for k in range(len(curves)):
+        if closed[k]:
+            out.append(curves[k])
+            flags.append(True)
+            members.append([k])
+            seen.add(k)
+    for k in order:
+        if k in seen:
+            continue
+        chain = [k]
+        seen.add(k)
+        while chain[-1] in nxt and nxt[chain[-1]] not in seen:
+            chain.append(nxt[chain[-1]])
+            seen.add(chain[-1])
+        ring = chain[-1] in nxt and nxt[chain[-1]] == chain[0]
+        pts = np.vstack([curves[chain[0]]] + [curves[c][1:] for c in chain[1:]])
+        if ring:
+            pts = pts[:-1]
+        out.append(pts)
+        flags.append(bool(ring))
+        members.append(chain)
+    return out, np.array(flags, bool), members
+
+
+def clip_curves(
+    curves: list[np.ndarray], closed: np.ndarray, block: Block
+) -> tuple[list[np.ndarray], np.ndarray, np.ndarray]:
+    """Cut polylines where they leave ``block`` (widened by its margin).
+
+    Closed loops are kept whole when their centre lies in the block and dropped
+    otherwise; open polylines are split into the runs inside, each ended exactly on the
+    widened block's surface; a run that never enters the block itself (a stub in the
+    margin) is dropped.  Returns ``(pieces, closed flags, source curve per piece)``.
+    """
+    pieces: list[np.ndarray] = []
+    flags: list[bool] = []
+    source: list[int] = []
+    half = block.sizes / 2 + block.slack()
+    for k, (c, cl) in enumerate(zip(curves, closed, strict=True)):
+        if cl:
+            if block.inside(c.mean(axis=0)[None])[0]:
+                pieces.append(c)
+                flags.append(True)
+                source.append(k)
+            continue
+        f = block.fractional(c)
+        ins = np.all(np.abs(f) <= half, axis=1)
+        if not ins.any():
+            continue
+        edges = np.diff(np.concatenate([[0], ins.astype(np.int8), [0]]))
+        for lo, hi in zip(np.flatnonzero(edges == 1), np.flatnonzero(edges == -1), strict=True):
+            run = [c[lo:hi]]
+            if lo > 0:  # the way in: from the last point outside to the surface
+                run.insert(0, cut_point(c[lo - 1], c[lo], f[lo - 1], f[lo], half)[None])
+            if hi < len(c):
+                run.append(cut_point(c[hi], c[hi - 1], f[hi], f[hi - 1], half)[None])
+            pts = np.vstack(run)
+            if len(pts) >= 3 and block.inside(c[lo:hi], widen=False).any():  # not a stub in the margin
+                pieces.append(pts)
+                flags.append(False)
+                source.append(k)
+    return pieces, np.array(flags, bool), np.array(source, np.int64)
+
+
+def cut_point(out_p: np.ndarray, in_p: np.ndarray, out_f: np.ndarray, in_f: np.ndarray, half: np.ndarray) -> np.ndarray:
+    """Return the point where the segment from ``in_p`` to ``out_p`` crosses the box ``|f| <= half``."""
+    s = 1.0
+    d = out_f - in_f
+    for i in range(len(half)):
+        for bound in (half[i], -half[i]):
+            if d[i] != 0:
+                u = (bound - in_f[i]) / d[i]
+                if 0 <= u < s:
+                    s = u
+    return np.asarray(in_p + s * (out_p - in_p))
+
+
+def block_faces(scaffold: Scaffold, block: Block) -> list[np.ndarray]:
+    """Polygons (each ``(m, 3)``) of the faces of the translates whose centre lies in the block."""
+    base = [
+        scaffold.corner_positions[s:t] for s, t in zip(scaffold.face_starts[:-1], scaffold.face_starts[1:], strict=True)
+    ]
+    assert scaffold.lattice is not None
+    shifts = scaffold.lattice.translate(block_translations(block.sizes, 2))
+    polys: list[np.ndarray] = []
+    narrow = replace(block, margin=1e-6 * float(np.abs(block.basis).max()))
+    centres = np.array([p.mean(axis=0) for p in base])
+    for d in shifts:
+        keep = narrow.inside(centres + d)
+        polys.extend(base[i] + d for i in np.flatnonzero(keep))
+    return polys
+
+
+def realize_block(
+    scaffold: ScaffoldSource,
+    labels: ArrayLike | None,
+    nulls: ArrayLike | None,
+    params: GeometryParams | None,
+    sizes: ArrayLike,
+    *,
+    max_points: int = MAX_POINTS,
+    bound: str = "MAX_POINTS",
+) -> Realization:
+    """Realize an ``sizes`` block of a periodic scaffold, cut to the block.
+
+    The translates ``-1 .. n_i`` are realized (and checked) with
+    :func:`~lkspace.geometry.realization.realize`, the periods of each thread joined,
+    and the result cut by :func:`clip_curves`; the margin is the strands' distance from
+    their edge plus two tube radii.  ``copy_of`` and ``strand_of`` of a piece are those of
+    its first period.
+
+    Examples
+    --------
+    >>> r = realize_block("honeycomb:cP", [2, 1, 1], None, None, (2, 2, 2))
+    >>> bool(r.block is not None and all(r.block.inside(c).all() for c in r.curves))
+    True
+    """
+    scaffold = load(scaffold)
+    if not scaffold.periodic:
+        raise GeometryError(f"{scaffold.name}: a block needs a periodic scaffold", usage=True)
+    sizes = np.asarray(sizes, np.int64)
+    real = realize(
+        scaffold,
+        labels,
+        nulls,
+        params,
+        translations=block_translations(sizes, 1),
+        max_points=max_points,
+        bound=bound,
+    )
+    margin = real.radius + real.normal_offset + 2 * real.tube_radius
+    block = block_of(scaffold, sizes, margin)
+    joined, joined_closed, members = join_curves(real.curves, real.closed, 1e-6 * real.scale)
+    pieces, closed, source = clip_curves(joined, joined_closed, block)
+    first = np.array([members[s][0] for s in source], np.int64)
+    return replace(
+        real,
+        curves=pieces,
+        closed=closed,
+        strand_of=real.strand_of[first] if len(first) else np.zeros(0, np.int64),
+        copy_of=real.copy_of[first] if len(first) else np.zeros(0, np.int64),
+        block=block,
+    )
