@@ -86,8 +86,10 @@ def design_options(func: F) -> F:
         click.option("--row", type=click.IntRange(min=0), help="Row of CATALOG.parquet to use (instead of --twist)."),
         click.option(
             "--radius",
+            "--inset",
+            "radius",
             type=Finite(0, low_open=True),
-            help="Distance of the strands from their edge, > 0 (default 0.12 x shortest edge).",
+            help="Inset: distance of the strands from their edge inside the face, > 0 (default 0.12 x shortest edge).",
         ),
         click.option(
             "--normal-offset",
@@ -141,11 +143,19 @@ def block_sizes(scaffold: Scaffold, spec: str | None) -> np.ndarray | None:
     return np.array(sizes, np.int64)
 
 
-def params_of(radius: float | None, normal_offset: float | None, tube_radius: float | None) -> GeometryParams:
+def params_of(
+    radius: float | None,
+    normal_offset: float | None,
+    tube_radius: float | None,
+    helix_radius: float | None = None,
+    pitch: float | None = None,
+) -> GeometryParams:
     """Return the :class:`~lkspace.geometry.realization.GeometryParams` of the geometry options."""
     from ..geometry.realization import GeometryParams
 
-    return GeometryParams(radius=radius, normal_offset=normal_offset, tube_radius=tube_radius)
+    return GeometryParams(
+        radius=radius, normal_offset=normal_offset, tube_radius=tube_radius, helix_radius=helix_radius, pitch=pitch
+    )
 
 
 FORMAT_HELP = "Output file: .obj, .ply, .glb, .stl, .3mf, .png or .svg (the format follows the extension)."
@@ -216,6 +226,16 @@ def fabrication_options(func: F) -> F:
     metavar="AxB[xC]",
     help="Periodic scaffolds: an A x B (x C) block of cells, threads cut at its faces.",
 )
+@click.option(
+    "--helix-radius",
+    type=Finite(0, low_open=True),
+    help="Distance of the evenly spaced strands from the edge axis, > 0 (default about the inset).",
+)
+@click.option(
+    "--pitch",
+    type=Finite(0, low_open=True),
+    help="Axial length of one full helix turn, > 0 (default: the twist spreads over the whole edge).",
+)
 @fabrication_options
 @picture_options
 @json_option
@@ -231,6 +251,8 @@ def export_cmd(
     tubes: bool,
     no_mesh: bool,
     block: str | None,
+    helix_radius: float | None,
+    pitch: float | None,
     thickness: float | None,
     clearance: float | None,
     units: str | None,
@@ -273,7 +295,7 @@ def export_cmd(
         raise UsageError("--thickness (a diameter in output units) and --tube-radius are exclusive")
     max_points, bound = point_budget(output, tubes)
     scaffold, labels, nulls = resolve_design(ctx, mesh, twist_spec, null_spec, row)
-    params = params_of(radius, normal_offset, tube_radius)
+    params = params_of(radius, normal_offset, tube_radius, helix_radius, pitch)
     sizes = block_sizes(scaffold, block)
     if sizes is not None:
         from ..geometry.block import realize_block
