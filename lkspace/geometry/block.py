@@ -6,9 +6,9 @@ lattice vectors ``a_i`` around the lattice points of the translations ``0..n_i -
 exactly eight cubes).
 :func:`realize_block` realizes one more layer of translates all round, joins the periods
 of every infinite thread into one polyline (:func:`join_curves`), cuts the polylines
-where they leave the block widened by a small ``margin`` (so that the braid about an edge
-on the block's surface stays whole) and keeps every closed loop whose centre lies in the
-block whole.  :func:`block_faces` lists the faces (cells) to draw.
+where they leave the block widened by a small ``margin`` (so that threads running in
+the block's surface stay whole), drops stubs, and keeps every closed loop whose centre
+lies in the block whole.  :func:`block_faces` lists the faces (cells) to draw.
 """
 
 from __future__ import annotations
@@ -24,6 +24,9 @@ from ..io.sources import ScaffoldSource, load
 from ..model.scaffold import Scaffold
 from .limits import MAX_POINTS
 from .realization import GeometryParams, Realization, realize
+
+STUB = 0.5
+"""Runs of a thread inside a block shorter than this many shortest edges are left out."""
 
 __all__ = ["Block", "block_faces", "block_of", "clip_curves", "join_curves", "realize_block"]
 
@@ -42,12 +45,15 @@ class Block:
         The lattice vectors.
     margin : float
         Length by which threads may leave the block before they are cut.
+    shortest : float
+        Runs of a thread inside the block shorter than this are dropped (stubs).
     """
 
     sizes: np.ndarray
     centre: np.ndarray
     basis: np.ndarray
     margin: float
+    shortest: float = 0.0
 
     def fractional(self, points: ArrayLike) -> np.ndarray:
         """Block coordinates ``(..., dim)`` of ``points``: 0 at the centre, ``+-sizes/2`` on the faces."""
@@ -83,7 +89,7 @@ class Block:
         return out
 
 
-def block_of(scaffold: Scaffold, sizes: ArrayLike, margin: float) -> Block:
+def block_of(scaffold: Scaffold, sizes: ArrayLike, margin: float, shortest: float = 0.0) -> Block:
     """Return the :class:`Block` of ``sizes`` cells of periodic ``scaffold``."""
     if scaffold.lattice is None:
         raise GeometryError(f"{scaffold.name}: a block needs a periodic scaffold", usage=True)
@@ -91,7 +97,7 @@ def block_of(scaffold: Scaffold, sizes: ArrayLike, margin: float) -> Block:
     basis = scaffold.lattice.basis
     # the cell of translate 0 is centred on the lattice point nearest to its faces' middle
     first = np.round(scaffold.lattice.fractional(scaffold.corner_positions.mean(axis=0))) @ basis
-    return Block(sizes, first + 0.5 * (sizes - 1) @ basis, basis, float(margin))
+    return Block(sizes, first + 0.5 * (sizes - 1) @ basis, basis, float(margin), float(shortest))
 
 
 def block_translations(sizes: ArrayLike, extra: int = 1) -> np.ndarray:
@@ -181,11 +187,16 @@ def clip_curves(
             if hi < len(c):
                 run.append(cut_point(c[hi], c[hi - 1], f[hi], f[hi - 1], half)[None])
             pts = np.vstack(run)
-            if len(pts) >= 3 and block.inside(c[lo:hi], widen=False).any():  # not a stub in the margin
+            if len(pts) >= 3 and arc_length(pts) >= block.shortest:  # not a stub
                 pieces.append(pts)
                 flags.append(False)
                 source.append(k)
     return pieces, np.array(flags, bool), np.array(source, np.int64)
+
+
+def arc_length(points: np.ndarray) -> float:
+    """Length of the polyline ``points``."""
+    return float(np.linalg.norm(np.diff(points, axis=0), axis=1).sum())
 
 
 def cut_point(out_p: np.ndarray, in_p: np.ndarray, out_f: np.ndarray, in_f: np.ndarray, half: np.ndarray) -> np.ndarray:
@@ -231,9 +242,10 @@ def realize_block(
 
     The translates ``-1 .. n_i`` are realized (and checked) with
     :func:`~lkspace.geometry.realization.realize`, the periods of each thread joined,
-    and the result cut by :func:`clip_curves`; the margin is the strands' distance from
-    their edge plus two tube radii.  ``copy_of`` and ``strand_of`` of a piece are those of
-    its first period.
+    and the result cut by :func:`clip_curves`; the margin is the normal offset plus two
+    tube radii, so that threads running in the block's surface stay whole; runs shorter
+    than :data:`STUB` shortest edges are left out.  ``copy_of`` and ``strand_of`` of a
+    piece are those of its first period.
 
     Examples
     --------
@@ -254,8 +266,8 @@ def realize_block(
         max_points=max_points,
         bound=bound,
     )
-    margin = real.radius + real.normal_offset + 2 * real.tube_radius
-    block = block_of(scaffold, sizes, margin)
+    margin = real.normal_offset + 2 * real.tube_radius
+    block = block_of(scaffold, sizes, margin, STUB * real.scale)
     joined, joined_closed, members = join_curves(real.curves, real.closed, 1e-6 * real.scale)
     pieces, closed, source = clip_curves(joined, joined_closed, block)
     first = np.array([members[s][0] for s in source], np.int64)
