@@ -1,10 +1,11 @@
 """Periodic blocks: an A x B (x C) block of cells, its threads cut at the block's faces.
 
 The block is the parallelepiped ``{centre + sum_i f_i a_i : |f_i| <= n_i / 2}`` of the
-lattice vectors ``a_i`` around the lattice points of the translations ``0..n_i - 1``
-(for ``honeycomb:cP``, whose cubes are centred on the lattice points, a 2x2x2 block is
-exactly eight cubes).
-:func:`realize_block` realizes one more layer of translates all round, joins the periods
+cell vectors ``a_i`` (:func:`cell_vectors`: the conventional cubic or orthorhombic cell
+when the lattice has one, else the lattice basis) around lattice points (for
+``honeycomb:cP``, whose cubes are centred on the lattice points, a 2x2x2 block is
+exactly eight cubes; for ``honeycomb:cI`` it is eight conventional cubes, 16 cells).
+:func:`realize_block` realizes every translate reaching into the block, joins the periods
 of every infinite thread into one polyline (:func:`join_curves`), cuts the polylines
 where they leave the block widened by a small ``margin`` (so that threads running in
 the block's surface stay whole), drops stubs, and keeps every closed loop whose centre
@@ -24,6 +25,7 @@ from ..io.sources import ScaffoldSource, load
 from ..model.scaffold import Scaffold
 from .limits import MAX_POINTS
 from .realization import GeometryParams, Realization, realize
+from .tracks import default_scale
 
 STUB = 0.5
 """Runs of a thread inside a block shorter than this many shortest edges are left out."""
@@ -89,22 +91,64 @@ class Block:
         return out
 
 
+def cell_vectors(basis: np.ndarray) -> np.ndarray:
+    """(dim, 3) the block's cell: the conventional axis-aligned cell when the lattice has one.
+
+    In 3D, the shortest lattice vectors along x, y and z (integer combinations of the
+    basis with entries in -2..2) span the conventional cubic or orthorhombic cell of
+    ``cP``, ``cI``, ``cF``, ``oF`` and ``hP``; otherwise (and in 2D) the basis itself.
+    """
+    dim = len(basis)
+    if dim != 3:
+        return basis
+    grid = np.array(np.meshgrid(*[np.arange(-2, 3)] * 3, indexing="ij")).reshape(3, -1).T
+    vectors = grid @ basis
+    scale = float(np.abs(basis).max())
+    cells = []
+    for axis in np.eye(3):
+        along = vectors @ axis
+        off = np.linalg.norm(vectors - along[:, None] * axis, axis=1)
+        ok = (off < 1e-9 * scale) & (along > 1e-9 * scale)
+        if not ok.any():
+            return basis
+        cells.append(vectors[ok][np.argmin(along[ok])])
+    cell = np.array(cells)
+    if abs(np.linalg.det(cell)) > 4.5 * abs(np.linalg.det(basis)):
+        return basis
+    return cell
+
+
 def block_of(scaffold: Scaffold, sizes: ArrayLike, margin: float, shortest: float = 0.0) -> Block:
-    """Return the :class:`Block` of ``sizes`` cells of periodic ``scaffold``."""
+    """Return the :class:`Block` of ``sizes`` cells of periodic ``scaffold`` (cells of :func:`cell_vectors`)."""
     if scaffold.lattice is None:
         raise GeometryError(f"{scaffold.name}: a block needs a periodic scaffold", usage=True)
     sizes = np.asarray(sizes, np.int64)
     basis = scaffold.lattice.basis
+    cell = cell_vectors(basis)
     # the cell of translate 0 is centred on the lattice point nearest to its faces' middle
     first = np.round(scaffold.lattice.fractional(scaffold.corner_positions.mean(axis=0))) @ basis
-    return Block(sizes, first + 0.5 * (sizes - 1) @ basis, basis, float(margin), float(shortest))
+    return Block(sizes, first + 0.5 * (sizes - 1) @ cell, cell, float(margin), float(shortest))
 
 
-def block_translations(sizes: ArrayLike, extra: int = 1) -> np.ndarray:
-    """(n, dim) int64: the translations ``-extra .. size - 1 + extra`` along each lattice vector."""
-    sizes = np.asarray(sizes, np.int64)
-    grids = np.meshgrid(*[np.arange(-extra, n + extra) for n in sizes], indexing="ij")
-    return np.column_stack([g.reshape(-1) for g in grids])
+def covering_translations(scaffold: Scaffold, block: Block, offset: float) -> np.ndarray:
+    """(n, dim) int64: every lattice translation whose copy of the scaffold can reach into ``block``.
+
+    A copy's strands stay within ``offset`` of its faces, whose corners lie within a
+    known distance of the copy's lattice point.
+    """
+    assert scaffold.lattice is not None
+    lattice = scaffold.lattice
+    origin = np.round(lattice.fractional(scaffold.corner_positions.mean(axis=0))) @ lattice.basis
+    reach = float(np.linalg.norm(scaffold.corner_positions - origin, axis=1).max()) + block.margin + offset
+    corners = block.corners()
+    lo = lattice.fractional(corners - origin).min(axis=0)
+    hi = lattice.fractional(corners - origin).max(axis=0)
+    pad = reach * np.linalg.norm(np.linalg.pinv(lattice.basis), axis=0)
+    grids = np.meshgrid(*[np.arange(np.floor(a - b), np.ceil(c + b) + 1) for a, b, c in zip(lo, pad, hi, strict=True)],
+                        indexing="ij")  # fmt: skip
+    cand = np.column_stack([g.reshape(-1) for g in grids]).astype(np.int64)
+    wide = replace(block, margin=reach)
+    return cand[wide.inside(origin + cand @ lattice.basis)]
 
 
 def join_curves(
@@ -213,19 +257,16 @@ def cut_point(out_p: np.ndarray, in_p: np.ndarray, out_f: np.ndarray, in_f: np.n
 
 
 def block_faces(scaffold: Scaffold, block: Block) -> list[np.ndarray]:
-    """Polygons (each ``(m, 3)``) of the faces of the translates whose centre lies in the block."""
-    base = [
-        scaffold.corner_positions[s:t] for s, t in zip(scaffold.face_starts[:-1], scaffold.face_starts[1:], strict=True)
-    ]
+    """Polygons (each ``(m, 3)``) of the faces of the translates lying wholly in the block (its cells)."""
     assert scaffold.lattice is not None
-    shifts = scaffold.lattice.translate(block_translations(block.sizes, 2))
-    polys: list[np.ndarray] = []
+    corners = scaffold.corner_positions
+    shifts = scaffold.lattice.translate(covering_translations(scaffold, block, 0.0))
     narrow = replace(block, margin=1e-6 * float(np.abs(block.basis).max()))
-    centres = np.array([p.mean(axis=0) for p in base])
-    for d in shifts:
-        keep = narrow.inside(centres + d)
-        polys.extend(base[i] + d for i in np.flatnonzero(keep))
-    return polys
+    moved = corners[None] + shifts[:, None]  # (n_shifts, n_corners, 3)
+    inside = narrow.inside(moved.reshape(-1, 3)).reshape(len(shifts), -1)
+    face_in = np.logical_and.reduceat(inside, scaffold.face_starts[:-1], axis=1)  # (n_shifts, n_faces)
+    starts = scaffold.face_starts
+    return [moved[t, starts[f] : starts[f + 1]] for t, f in zip(*np.nonzero(face_in), strict=True)]
 
 
 def realize_block(
@@ -240,8 +281,8 @@ def realize_block(
 ) -> Realization:
     """Realize an ``sizes`` block of a periodic scaffold, cut to the block.
 
-    The translates ``-1 .. n_i`` are realized (and checked) with
-    :func:`~lkspace.geometry.realization.realize`, the periods of each thread joined,
+    Every translate that can reach into the block (:func:`covering_translations`) is
+    realized (and checked) with :func:`~lkspace.geometry.realization.realize`, the periods of each thread joined,
     and the result cut by :func:`clip_curves`; the margin is the normal offset plus two
     tube radii, so that threads running in the block's surface stay whole; runs shorter
     than :data:`STUB` shortest edges are left out.  ``copy_of`` and ``strand_of`` of a
@@ -257,12 +298,16 @@ def realize_block(
     if not scaffold.periodic:
         raise GeometryError(f"{scaffold.name}: a block needs a periodic scaffold", usage=True)
     sizes = np.asarray(sizes, np.int64)
+    scale = default_scale(scaffold)
+    guess = params or GeometryParams()
+    margin = 2 * (guess.tube_radius or 0.03 * scale) + (guess.normal_offset or 0.05 * scale)
+    offset = 1.5 * max(guess.radius or 0.12 * scale, guess.helix_radius or 0.0, guess.normal_offset or 0.0)
     real = realize(
         scaffold,
         labels,
         nulls,
         params,
-        translations=block_translations(sizes, 1),
+        translations=covering_translations(scaffold, block_of(scaffold, sizes, margin), offset),
         max_points=max_points,
         bound=bound,
     )

@@ -53,13 +53,13 @@ def pieces_apart(
     cyc = closed[oi]
     along = np.where(same & cyc, np.minimum(along, lengths[oi] - along), along)
     apart = ~same | (along > exclusion)
-    if joins:
-        for a, b in joins:
-            for x, y in ((i, j), (j, i)):
-                m = (owner[x] == a) & (owner[y] == b)
-                if m.any():
-                    gap = (lengths[a] - arc[x[m]]) + arc[y[m]]
-                    apart[m] &= gap > exclusion
+    if joins:  # vectorized over the pairs: one table lookup per orientation
+        pair_keys = np.array([a * len(lengths) + b for a, b in joins], np.int64)
+        for x, y in ((i, j), (j, i)):
+            m = np.isin(owner[x].astype(np.int64) * len(lengths) + owner[y], pair_keys)
+            if m.any():
+                gap = (lengths[owner[x[m]]] - arc[x[m]]) + arc[y[m]]
+                apart[m] &= gap > exclusion
     return apart
 
 
