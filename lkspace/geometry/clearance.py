@@ -142,3 +142,26 @@ def check_embedding(
         keep = pieces_apart(owner, arc, lengths, closed, i, j, 0.3 * scale, joins)
         consider(pts, owner, i[keep], j[keep])
     return best, where
+
+
+def tightest_bend(curves: list[np.ndarray], closed: np.ndarray) -> tuple[float, int, np.ndarray]:
+    """Return the smallest bend radius of the centrelines, its piece and point.
+
+    At a polyline point where the direction turns by ``theta`` between segments of
+    lengths ``a`` and ``b``, the bend radius is ``min(a, b) / 2 / tan(theta / 2)`` (the
+    circle tangent to both segments at the nearer midpoint distance).
+    """
+    best, piece, where = np.inf, -1, np.zeros(3)
+    for k, (c, cl) in enumerate(zip(curves, closed, strict=True)):
+        pts = np.vstack([c[-1:], c, c[:1]]) if cl else c
+        seg = np.diff(pts, axis=0)
+        a, b = seg[:-1], seg[1:]
+        la, lb = np.linalg.norm(a, axis=1), np.linalg.norm(b, axis=1)
+        ok = (la > 0) & (lb > 0)
+        cosang = np.einsum("ij,ij->i", a, b) / np.where(ok, la * lb, 1.0)
+        turn = np.arccos(np.clip(cosang, -1.0, 1.0))
+        bend = np.where(ok & (turn > 1e-9), 0.5 * np.minimum(la, lb) / np.tan(0.5 * np.maximum(turn, 1e-9)), np.inf)
+        if len(bend) and bend.min() < best:
+            i = int(np.argmin(bend))
+            best, piece, where = float(bend[i]), k, pts[i + 1]
+    return best, piece, where

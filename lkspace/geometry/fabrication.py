@@ -28,7 +28,7 @@ from scipy.spatial import cKDTree
 
 from ..errors import GeometryError
 from .block import join_curves
-from .clearance import pieces_apart, samples
+from .clearance import pieces_apart, samples, tightest_bend
 from .realization import Realization
 from .tracks import place_name
 
@@ -43,7 +43,9 @@ UNITS: dict[str, tuple[str, float]] = {
 """``--units`` choices: the 3MF unit name and the length in metres of one unit."""
 
 MAX_GAP_SAMPLES = 3_000_000
-"""Most centreline samples the clearance check takes (it refuses finer work)."""
+"""Most centreline samples the clearance check takes (coarser sampling beyond)."""
+MAX_GAP_PAIRS = 5_000_000
+"""The search for the smallest gap (to report it) stops widening past this many sample pairs."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -144,29 +146,6 @@ def printable(
     return Printable(scaled, closed, np.asarray(strand_of, np.int64), radius, clearance, min_gap, units, scale)
 
 
-def tightest_bend(curves: list[np.ndarray], closed: np.ndarray) -> tuple[float, int, np.ndarray]:
-    """Return the smallest bend radius of the centrelines, its piece and point.
-
-    At a polyline point where the direction turns by ``theta`` between segments of
-    lengths ``a`` and ``b``, the bend radius is ``min(a, b) / 2 / tan(theta / 2)`` (the
-    circle tangent to both segments at the nearer midpoint distance).
-    """
-    best, piece, where = np.inf, -1, np.zeros(3)
-    for k, (c, cl) in enumerate(zip(curves, closed, strict=True)):
-        pts = np.vstack([c[-1:], c, c[:1]]) if cl else c
-        seg = np.diff(pts, axis=0)
-        a, b = seg[:-1], seg[1:]
-        la, lb = np.linalg.norm(a, axis=1), np.linalg.norm(b, axis=1)
-        ok = (la > 0) & (lb > 0)
-        cosang = np.einsum("ij,ij->i", a, b) / np.where(ok, la * lb, 1.0)
-        turn = np.arccos(np.clip(cosang, -1.0, 1.0))
-        bend = np.where(ok & (turn > 1e-9), 0.5 * np.minimum(la, lb) / np.tan(0.5 * np.maximum(turn, 1e-9)), np.inf)
-        if len(bend) and bend.min() < best:
-            i = int(np.argmin(bend))
-            best, piece, where = float(bend[i]), k, pts[i + 1]
-    return best, piece, where
-
-
 def check_gaps(
     real: Realization, curves: list[np.ndarray], closed: np.ndarray, radius: float, clearance: float, scale: float
 ) -> float | None:
@@ -178,15 +157,20 @@ def check_gaps(
                 for c, cl in zip(curves, closed, strict=True))  # fmt: skip
     spacing = max(min(radius, clearance if clearance > 0 else radius) / 3, total / MAX_GAP_SAMPLES)
     pts, arc, owner, lengths = samples(curves, closed, spacing)
+    tree = cKDTree(pts)
     reach = want + spacing + radius
-    pairs = cKDTree(pts).query_pairs(reach, output_type="ndarray")
-    if not len(pairs):
+    exclusion = max(4 * want, np.pi * (radius + spacing))
+    while True:  # widen the search until a gap is found (a number to report), within bounds
+        pairs = tree.query_pairs(reach, output_type="ndarray")
+        keep = np.zeros(0, bool)
+        if len(pairs):
+            keep = pieces_apart(owner, arc, lengths, closed, pairs[:, 0], pairs[:, 1], exclusion)
+        if np.any(keep) or reach > 0.5 * max(lengths.max(), want) or len(pairs) > MAX_GAP_PAIRS:
+            break
+        reach *= 2
+    if not np.any(keep):
         return None
-    i, j = pairs[:, 0], pairs[:, 1]
-    keep = pieces_apart(owner, arc, lengths, closed, i, j, max(4 * want, np.pi * (radius + spacing)))
-    if not keep.any():
-        return None
-    i, j = i[keep], j[keep]
+    i, j = pairs[keep, 0], pairs[keep, 1]
     d = np.linalg.norm(pts[i] - pts[j], axis=1)
     b = int(np.argmin(d))
     gap = float(d[b] - spacing - 2 * radius)

@@ -33,7 +33,7 @@ from ..errors import GeometryError
 from ..model.scaffold import Scaffold
 from .tracks import Tracks
 
-RAMP = 0.3
+RAMP = 0.4
 """Fraction of an edge's helix span at each end over which the strands move between their
 face angles and the even spacing (and the twist rate eases in or out)."""
 

@@ -52,7 +52,7 @@ from ..io.sources import ScaffoldSource, load
 from ..model.scaffold import Scaffold
 from ..strands.ports import port_model
 from ..strands.tracing import Trace, trace
-from .clearance import check_embedding
+from .clearance import check_embedding, tightest_bend
 from .helix import edge_angles, even_offsets, helix_windows, twist_profile
 from .limits import MAX_POINTS, MAX_SAMPLES, check_lengths, check_winding
 from .tracks import bezier_controls, default_scale, lattice_shift, place_name, side_tracks
@@ -83,7 +83,7 @@ class GeometryParams:
         ``0.28 * scale``; longer at acute corners, at most ``0.42`` of the edge).
     tube_radius : float or None
         Radius of exported tubes (default ``0.03 * scale``, shrunk to ``0.45`` of the
-        minimum separation found).
+        minimum separation found and to ``0.9`` of the tightest bend of a curve).
     min_separation : float or None
         Refuse geometry whose distinct pieces come closer (default ``0.01 * scale``).
     helix_radius : float or None
@@ -386,7 +386,10 @@ def realize(
             f"{min_dist:.3g} (< min_separation {min_sep:.3g}) near {closest['place']}; the geometry would "
             "self-intersect (try a smaller --radius or --normal-offset)"
         )
-    tube = params.tube_radius if params.tube_radius is not None else min(0.03 * scale, 0.45 * min_dist)
+    if params.tube_radius is not None:
+        tube = params.tube_radius
+    else:  # thin enough to stay clear of the other strands and not to fold where a curve bends
+        tube = min(0.03 * scale, 0.45 * min_dist, 0.9 * tightest_bend(curves, closed)[0])
     return Realization(
         scaffold,
         tr,
