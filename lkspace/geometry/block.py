@@ -25,7 +25,6 @@ from ..io.sources import ScaffoldSource, load
 from ..model.scaffold import Scaffold
 from .limits import MAX_POINTS
 from .realization import GeometryParams, Realization, realize
-from .tracks import default_scale
 
 STUB = 0.5
 """Runs of a thread inside a block shorter than this many shortest edges are left out."""
@@ -126,29 +125,41 @@ def block_of(scaffold: Scaffold, sizes: ArrayLike, margin: float, shortest: floa
     basis = scaffold.lattice.basis
     cell = cell_vectors(basis)
     # the cell of translate 0 is centred on the lattice point nearest to its faces' middle
-    first = np.round(scaffold.lattice.fractional(scaffold.corner_positions.mean(axis=0))) @ basis
-    return Block(sizes, first + 0.5 * (sizes - 1) @ cell, cell, float(margin), float(shortest))
+    return Block(sizes, lattice_origin(scaffold) + 0.5 * (sizes - 1) @ cell, cell, float(margin), float(shortest))
 
 
-def covering_translations(scaffold: Scaffold, block: Block, offset: float) -> np.ndarray:
-    """(n, dim) int64: every lattice translation whose copy of the scaffold can reach into ``block``.
+def lattice_origin(scaffold: Scaffold) -> np.ndarray:
+    """(3,) the lattice point nearest to the middle of the scaffold's corners (translate 0's cell)."""
+    assert scaffold.lattice is not None
+    lattice = scaffold.lattice
+    return np.asarray(np.round(lattice.fractional(scaffold.corner_positions.mean(axis=0))) @ lattice.basis)
 
-    A copy's strands stay within ``offset`` of its faces, whose corners lie within a
-    known distance of the copy's lattice point.
+
+def covering_translations(scaffold: Scaffold, block: Block, content: np.ndarray) -> np.ndarray:
+    """(n, dim) int64: every lattice translation whose copy of ``content`` (points, ``(m, 3)``) can reach into ``block``.
+
+    A copy is kept when the bounding box of its content, in block coordinates, meets the
+    block widened by its margin (one period of an infinite thread may span several cells
+    along its period and none across it: the box test keeps only what is needed).
     """
     assert scaffold.lattice is not None
     lattice = scaffold.lattice
-    origin = np.round(lattice.fractional(scaffold.corner_positions.mean(axis=0))) @ lattice.basis
-    reach = float(np.linalg.norm(scaffold.corner_positions - origin, axis=1).max()) + block.margin + offset
+    inv = np.linalg.pinv(block.basis)
+    f = (np.asarray(content, np.float64) - block.centre) @ inv
+    lo, hi = f.min(axis=0), f.max(axis=0)
+    half = block.sizes / 2 + block.slack()
+    # candidates: translations whose shift lies within the block's box minus the content's
     corners = block.corners()
-    lo = lattice.fractional(corners - origin).min(axis=0)
-    hi = lattice.fractional(corners - origin).max(axis=0)
-    pad = reach * np.linalg.norm(np.linalg.pinv(lattice.basis), axis=0)
-    grids = np.meshgrid(*[np.arange(np.floor(a - b), np.ceil(c + b) + 1) for a, b, c in zip(lo, pad, hi, strict=True)],
-                        indexing="ij")  # fmt: skip
-    cand = np.column_stack([g.reshape(-1) for g in grids]).astype(np.int64)
-    wide = replace(block, margin=reach)
-    return cand[wide.inside(origin + cand @ lattice.basis)]
+    span = np.abs(np.vstack([lo, hi])).max(axis=0) @ np.abs(block.basis)  # (3,) generous extent of the content
+    far = np.vstack([corners - span, corners + span, corners])
+    frac = lattice.fractional(far)
+    ranges = [
+        np.arange(np.floor(a) - 1, np.ceil(b) + 2) for a, b in zip(frac.min(axis=0), frac.max(axis=0), strict=True)
+    ]
+    cand = np.column_stack([g.reshape(-1) for g in np.meshgrid(*ranges, indexing="ij")]).astype(np.int64)
+    shift = lattice.translate(cand) @ inv
+    keep = np.all((shift + hi >= -half - 1e-9) & (shift + lo <= half + 1e-9), axis=1)
+    return cand[keep]
 
 
 def join_curves(
@@ -260,7 +271,7 @@ def block_faces(scaffold: Scaffold, block: Block) -> list[np.ndarray]:
     """Polygons (each ``(m, 3)``) of the faces of the translates lying wholly in the block (its cells)."""
     assert scaffold.lattice is not None
     corners = scaffold.corner_positions
-    shifts = scaffold.lattice.translate(covering_translations(scaffold, block, 0.0))
+    shifts = scaffold.lattice.translate(covering_translations(scaffold, block, corners))
     narrow = replace(block, margin=1e-6 * float(np.abs(block.basis).max()))
     moved = corners[None] + shifts[:, None]  # (n_shifts, n_corners, 3)
     inside = narrow.inside(moved.reshape(-1, 3)).reshape(len(shifts), -1)
@@ -298,20 +309,18 @@ def realize_block(
     if not scaffold.periodic:
         raise GeometryError(f"{scaffold.name}: a block needs a periodic scaffold", usage=True)
     sizes = np.asarray(sizes, np.int64)
-    scale = default_scale(scaffold)
-    guess = params or GeometryParams()
-    margin = 2 * (guess.tube_radius or 0.03 * scale) + (guess.normal_offset or 0.05 * scale)
-    offset = 1.5 * max(guess.radius or 0.12 * scale, guess.helix_radius or 0.0, guess.normal_offset or 0.0)
+    one = realize(scaffold, labels, nulls, params, max_points=max_points, bound=bound)  # one copy: how far it reaches
+    margin = one.normal_offset + 2 * one.tube_radius
     real = realize(
         scaffold,
         labels,
         nulls,
         params,
-        translations=covering_translations(scaffold, block_of(scaffold, sizes, margin), offset),
+        result=one.trace,
+        translations=covering_translations(scaffold, block_of(scaffold, sizes, margin), np.vstack(one.curves)),
         max_points=max_points,
         bound=bound,
     )
-    margin = real.normal_offset + 2 * real.tube_radius
     block = block_of(scaffold, sizes, margin, STUB * real.scale)
     joined, joined_closed, members = join_curves(real.curves, real.closed, 1e-6 * real.scale)
     pieces, closed, source = clip_curves(joined, joined_closed, block)
