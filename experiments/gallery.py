@@ -42,57 +42,66 @@ def entries() -> list[Entry]:
     """The gallery, in the paper's order."""
     e = Entry
     return [
-        e("cube-chainmail.png", "cube", "2", "Fig. 1(a): positive even twists on a cube give a chainmail-like link "
+        e("cube-chainmail.png", "cube", "2", "fig:teaser (a): positive even twists on a cube give a chainmail-like link "
           "(6 face loops, interlinked).", expect="6 components, holds together"),
-        e("cube-one-even.png", "cube", "2,1,1,1,1,1,1,1,1,1,1,1", "Fig. 1(b): 'one even-twisted edge and all others "
+        e("cube-one-even.png", "cube", "2,1,1,1,1,1,1,1,1,1,1,1", "fig:teaser (b): 'one even-twisted edge and all others "
           "odd' gives a single unicursal knot.", expect="1 component"),
-        e("cube-knot.png", "cube", "1,1,1,1,1,1,1,1,1,2,2,2", "Fig. 1(b), as a parity count shows it: a cube knot "
+        e("cube-knot.png", "cube", "1,1,1,1,1,1,1,1,1,2,2,2", "fig:teaser (b), as a parity count shows it: a cube knot "
           "needs 3 to 7 even edges (the odd edges a spanning tree of the dual octahedron).", expect="1 component"),
-        e("cube-net.png", "cube-net", "1", "Fig. 1(c), Sec. 5.3: an unfolded cube (a disk) with odd twists on "
+        e("cube-net.png", "cube-net", "1", "fig:teaser (c): an unfolded cube (a disk) with odd twists on "
           "its folds is one articulated knot.", expect="1 component", draw=["--view", "-60,60"]),
-        e("cube-lid.png", "cube-lid", "2", "Fig. 1(d), Fig. 13: a cube with a lid; even twists keep the six face "
+        e("cube-lid.png", "cube-lid", "2", "fig:teaser (d), fig:lidexample: a cube with a lid; even twists keep the six face "
           "loops, linked across the hinge.", expect="6 components, holds together"),
-        e("cubes-piano.png", "cubes:piano", "1", "Fig. 1(e), Fig. 17(b): two cubes joined by a piano hinge (an edge "
+        e("cubes-piano.png", "cubes:piano", "1", "fig:teaser (e), fig:hinge_types (b): two cubes joined by a piano hinge (an edge "
           "of degree 4) give one connected structure.", expect="holds together"),
-        e("cubes-vertex.png", "cubes:vertex", "1", "Fig. 17(a): cubes joined only at a vertex cannot hang together.",
+        e("cubes-vertex.png", "cubes:vertex", "1", "fig:hinge_types (a): cubes joined only at a vertex cannot hang together.",
           expect="falls apart"),
-        e("trefoil.png", "dihedron:3", "1", "Fig. 18(a): a two-sided triangle gives the trefoil 3_1.",
+        e("trefoil.png", "dihedron:3", "1", "fig:prime_knots (a): a two-sided triangle gives the trefoil 3_1.",
           check="identify", expect="3_1", draw=["--view", "-90,50"]),
-        e("trefoil-diagram.png", "dihedron:3", "1", "The same trefoil as a knot diagram (3 crossings).",
-          check="identify", expect="3_1", draw=["--diagram"]),
-        e("knot-5-1.png", "dihedron:5", "1", "Fig. 18(c): a two-sided pentagon gives 5_1.", check="identify",
+        e("knot-5-1.png", "dihedron:5", "1", "fig:prime_knots (c): a two-sided pentagon gives 5_1.", check="identify",
           expect="5_1", draw=["--diagram"]),
-        e("knot-7-1.png", "dihedron:7", "1", "Fig. 18(d): a two-sided heptagon gives 7_1.", check="identify",
+        e("knot-7-1.png", "dihedron:7", "1", "fig:prime_knots (d): a two-sided heptagon gives 7_1.", check="identify",
           expect="7_1", draw=["--diagram"]),
-        e("figure-eight.png", "figure-eight", None, "Fig. 18(b): two triangles in front, a quadrilateral behind: "
+        e("figure-eight.png", "figure-eight", None, "fig:prime_knots (b): two triangles in front, a quadrilateral behind: "
           "the figure-eight knot 4_1.", check="identify", expect="4_1", draw=["--view", "-90,60"]),
-        e("borromean.png", "tetrahedron", "1", "Fig. 19(a): every edge of a tetrahedron twisted once gives the "
+        e("borromean.png", "tetrahedron", "1", "fig:prime_links (a): every edge of a tetrahedron twisted once gives the "
           "Borromean rings.", check="identify", expect="L6a4"),
         e("borromean-diagram.png", "tetrahedron", "1", "The Borromean rings as a link diagram, components coloured.",
           check="identify", expect="L6a4", draw=["--diagram"]),
-        e("whitehead.png", "whitehead", None, "Fig. 19(b): a square fanned into four triangles, no back: the "
+        e("whitehead.png", "whitehead", None, "fig:prime_links (b): a square fanned into four triangles, no back: the "
           "Whitehead link.", check="identify", expect="L5a1", draw=["--view", "-90,60"]),
-        e("solomon.png", "dihedron:4", "1", "Fig. 19(c): a two-sided square gives the Solomon link T(2,4).",
+        e("solomon.png", "dihedron:4", "1", "fig:prime_links (c): a two-sided square gives the Solomon link T(2,4).",
           check="identify", expect="L4a1", draw=["--diagram"]),
-        e("torus-2-8.png", "dihedron:8", "1", "Fig. 19(d): the (2,8) torus link from a two-sided polygon "
+        e("torus-2-8.png", "dihedron:8", "1", "fig:prime_links (d): the (2,8) torus link from a two-sided polygon "
           "(here the octagon, twist 1 on every edge).", check="identify", expect="L8a14", draw=["--diagram"]),
-        e("truncated-octahedron.png", "truncated-octahedron", "1", "Fig. 2: LK structures from a truncated "
+        e("truncated-octahedron.png", "truncated-octahedron", "1", "fig:teaser2: LK structures from a truncated "
           "octahedron; twist 1 everywhere: 6 loops of 12 corners.", expect="6 components"),
-        e("square-weave.png", "tiling:square", "1", "Fig. 11(a): one twist on the square tiling gives the biaxial "
+        e("square-weave.png", "tiling:square", "1", "fig:bravais2D_repeated (a): one twist on the square tiling gives the biaxial "
           "weave (2 threads per module).", expect="2 components", draw=["--block", "4x4"]),
-        e("square-chainmail.png", "tiling:square", "2", "Fig. 11(a): two twists give square chainmail (one loop "
+        e("square-chainmail.png", "tiling:square", "2", "fig:bravais2D_repeated (a): two twists give square chainmail (one loop "
           "per square, interlinked).", expect="1 component, holds together", draw=["--block", "4x4"]),
-        e("hexagonal-weave.png", "tiling:hexagonal", "1", "Fig. 11(b): one twist on the hexagonal tiling gives the "
+        e("hexagonal-weave.png", "tiling:hexagonal", "1", "fig:bravais2D_repeated (b): one twist on the hexagonal tiling gives the "
           "triaxial weave (3 threads per module).", expect="3 components", draw=["--block", "4x4"]),
-        e("hexagonal-chainmail.png", "tiling:hexagonal", "2", "Fig. 11(b): two twists give hexagonal chainmail.",
+        e("hexagonal-chainmail.png", "tiling:hexagonal", "2", "fig:bravais2D_repeated (b): two twists give hexagonal chainmail.",
           expect="1 component, holds together", draw=["--block", "4x4"]),
-        e("cP-2-1-1.png", "honeycomb:cP", "2,1,1", "Fig. 15 top, labels [2,1,1]: one infinite thread repeating in a "
+        e("cP-2-1-1.png", "honeycomb:cP", "2,1,1", "fig:cp_single top row, labels [2,1,1]: one infinite thread repeating in a "
           "4x2x2 domain.", expect="1 component, period [-4, 0, 0]", draw=["--block", "2x2x2"]),
-        e("cP-1-3-1.png", "honeycomb:cP", "1,3,1", "Fig. 16 top, labels [1,3,1]: two distinct threads, 1x2x1 "
+        e("cP-1-3-1.png", "honeycomb:cP", "1,3,1", "fig:cp_multiple top row, labels [1,3,1]: two distinct threads, 1x2x1 "
           "repeating domain.", expect="2 components, periods [0, 2, 0]", draw=["--block", "2x2x2"]),
-        e("cI-1.png", "honeycomb:cI", "1", "Fig. 14: truncated octahedra (cI); uniform twisting gives 7 components "
+        e("kaleidocycle.png", "kaleidocycle:6", "solve:1", "fig:flexagon: tetrahedra hinged edge to edge in "
+          "a ring merge into a single knot; labels found by `lkspace solve kaleidocycle:6 --components 1`.",
+          expect="1 component", draw=["--view", "-60,50"]),
+        e("cI-1.png", "honeycomb:cI", "1", "fig:bravais3D_repeated_cf: truncated octahedra (cI); uniform twisting gives 7 components "
           "per module for every twist number (one cubic cell drawn).", expect="7 components", draw=["--block", "1x1x1"]),
     ]  # fmt: skip
+
+
+def labels_of(entry: Entry) -> str | None:
+    """The entry's ``--twist``; ``solve:N`` asks ``lkspace solve`` for labels with N components."""
+    if entry.twist is None or not entry.twist.startswith("solve:"):
+        return entry.twist
+    found = run(["solve", entry.mesh, "--components", entry.twist.split(":")[1]])
+    return ",".join(str(t) for t in found["solutions"][0]["labels"])
 
 
 def run(args: list[str]) -> dict:
@@ -151,6 +160,7 @@ def main() -> None:
         if args.only and args.only not in entry.file:
             continue
         path = os.path.join(args.out, entry.file)
+        entry.twist = labels_of(entry)
         design = [entry.mesh] + (["--twist", entry.twist] if entry.twist else [])
         t0 = time.perf_counter()
         written = run(["export", *design, "-o", path, "--size", SIZE, *entry.draw])
@@ -171,7 +181,8 @@ def main() -> None:
         "Made by `python experiments/gallery.py` with the installed `lkspace` command: every picture by",
         "`lkspace export`, every measurement by `lkspace trace --json` (components, holding together, thread",
         "periods) or `lkspace identify --json` (knot/link name).  Each row quotes the claim of",
-        "*Twisted Edges* the picture checks, what the claim needs, and what lkspace measured.",
+        "*Twisted Edges* the picture checks (by the figure's LaTeX label), what the claim needs, and",
+        "what lkspace measured.",
         f"Pictures are {SIZE} pixels; periodic structures are drawn as blocks of cells with the threads cut",
         "at the block's faces.",
         "",

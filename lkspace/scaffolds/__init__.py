@@ -11,6 +11,7 @@ icosahedron                regular icosahedron (20 triangles, 30 edges)
 truncated-octahedron       truncated octahedron (6 squares + 8 hexagons, 36 edges)
 dihedron:N                 two-sided regular N-gon (two faces on one N-cycle), N >= 3
 book:K                     K quads sharing one edge at equal angles, K >= 1
+kaleidocycle:K             a ring of K tetrahedra hinged edge to edge, K even >= 4
 tiling:square              square tiling (periodic, 1 face, 2 edge classes)
 tiling:hexagonal           hexagonal tiling (periodic, 1 face, 3 edge classes)
 honeycomb:cP               cubic honeycomb (3 faces, edge classes x, y, z)
@@ -44,7 +45,7 @@ from collections.abc import Callable
 
 from ..errors import ScaffoldError, UsageError
 from ..model.scaffold import Scaffold
-from . import hinged, paper, periodic, polyhedra, special
+from . import hinged, kaleidocycle, paper, periodic, polyhedra, special
 
 SOLIDS: dict[str, Callable[[], Scaffold]] = {
     "tetrahedron": polyhedra.tetrahedron,
@@ -62,6 +63,7 @@ SOLIDS.update(hinged.HINGED)
 FAMILIES: dict[str, Callable[[int], Scaffold]] = {
     "dihedron": special.dihedron,
     "book": special.book,
+    "kaleidocycle": kaleidocycle.kaleidocycle,
 }
 
 DEFAULT = "tetrahedron"
