@@ -94,12 +94,12 @@ def design_options(func: F) -> F:
         click.option(
             "--normal-offset",
             type=Finite(0),
-            help="Offset of the strands along the face normal, >= 0 (default 0.35 x radius).",
+            help="Offset of the strands along the face normal, >= 0 (default 0.35 x inset where faces nearly coincide).",
         ),
         click.option(
             "--tube-radius",
             type=Finite(0, low_open=True),
-            help="Tube radius, > 0 (default from the mesh and the strand spacing).",
+            help="Tube radius, > 0 (default from the mesh, the strand spacing and the tightest bend).",
         ),
     ]
     for option in reversed(options):

@@ -25,10 +25,19 @@ def write(
     title: str | None = None,
     look: Look | None = None,
     diagram: bool = False,
+    size: int | None = None,
+    elev: float | None = None,
+    azim: float | None = None,
     **ignored: object,
 ) -> None:
-    """Draw the picture and save it atomically; the format follows the extension (``.png``, ``.svg``)."""
-    look = look or Look()
+    """Draw the picture and save it atomically; the format follows the extension (``.png``, ``.svg``).
+
+    ``size`` (pixels, square), ``elev`` and ``azim`` are the older spelling of ``look``
+    and are still honoured when ``look`` is not given.
+    """
+    if look is None:
+        side = 900 if size is None else int(size)
+        look = Look(azim=azim if azim is not None else (None if elev is None else -58.0), elev=elev, width=side, height=side)
     if diagram:
         from .diagram import draw_diagram
 
