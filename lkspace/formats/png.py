@@ -37,7 +37,9 @@ def write(
     """
     if look is None:
         side = 900 if size is None else int(size)
-        look = Look(azim=azim if azim is not None else (None if elev is None else -58.0), elev=elev, width=side, height=side)
+        look = Look(
+            azim=azim if azim is not None else (None if elev is None else -58.0), elev=elev, width=side, height=side
+        )
     if diagram:
         from .diagram import draw_diagram
 

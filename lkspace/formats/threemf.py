@@ -77,7 +77,7 @@ def triangle_text(f: np.ndarray) -> str:
 def threemf_bytes(pieces: Printable, name: str = "lkspace", sides: int = 16) -> bytes:
     """Return the 3MF package (zip) of the pieces."""
     buf = io.BytesIO()
-    with zipfile.ZipFile(buf, "w", zipfile.ZIP_DEFLATED, compresslevel=6) as zf:
+    with zipfile.ZipFile(buf, "w", zipfile.ZIP_DEFLATED, compresslevel=1) as zf:
         zf.writestr("[Content_Types].xml", CONTENT_TYPES)
         zf.writestr("_rels/.rels", RELS)
         zf.writestr("3D/3dmodel.model", model_xml(pieces, name, sides))
