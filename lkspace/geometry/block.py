@@ -267,17 +267,51 @@ def cut_point(out_p: np.ndarray, in_p: np.ndarray, out_f: np.ndarray, in_f: np.n
     return np.asarray(in_p + s * (out_p - in_p))
 
 
+def clip_polygon(poly: np.ndarray, f: np.ndarray, half: np.ndarray) -> np.ndarray:
+    """Clip a planar polygon (``(m, 3)`` points, block coordinates ``f``) to ``|f_i| <= half_i`` (Sutherland-Hodgman)."""
+    pts, coords = poly, f
+    for axis in range(len(half)):
+        for sign in (1.0, -1.0):
+            if len(pts) == 0:
+                return pts
+            inside = sign * coords[:, axis] <= half[axis] + 1e-12
+            if inside.all():
+                continue
+            out_p, out_f = [], []
+            for k in range(len(pts)):
+                j = (k + 1) % len(pts)
+                if inside[k]:
+                    out_p.append(pts[k])
+                    out_f.append(coords[k])
+                if inside[k] != inside[j]:
+                    u = (sign * half[axis] - coords[k, axis]) / (coords[j, axis] - coords[k, axis])
+                    out_p.append(pts[k] + u * (pts[j] - pts[k]))
+                    out_f.append(coords[k] + u * (coords[j] - coords[k]))
+            pts, coords = np.array(out_p).reshape(-1, 3), np.array(out_f).reshape(-1, len(half))
+    return pts
+
+
 def block_faces(scaffold: Scaffold, block: Block) -> list[np.ndarray]:
-    """Polygons (each ``(m, 3)``) of the faces of the translates lying wholly in the block (its cells)."""
+    """Polygons (each ``(m, 3)``) of the translates' faces cut to the block: its cells, cut like the threads."""
     assert scaffold.lattice is not None
     corners = scaffold.corner_positions
     shifts = scaffold.lattice.translate(covering_translations(scaffold, block, corners))
-    narrow = replace(block, margin=1e-6 * float(np.abs(block.basis).max()))
-    moved = corners[None] + shifts[:, None]  # (n_shifts, n_corners, 3)
-    inside = narrow.inside(moved.reshape(-1, 3)).reshape(len(shifts), -1)
-    face_in = np.logical_and.reduceat(inside, scaffold.face_starts[:-1], axis=1)  # (n_shifts, n_faces)
+    half = block.sizes / 2
     starts = scaffold.face_starts
-    return [moved[t, starts[f] : starts[f + 1]] for t, f in zip(*np.nonzero(face_in), strict=True)]
+    out: list[np.ndarray] = []
+    for shift in shifts:
+        moved = corners + shift
+        f = block.fractional(moved)
+        near = np.all(np.abs(f) <= half + 1e-9, axis=1)
+        for face in range(scaffold.n_faces):
+            lo, hi = starts[face], starts[face + 1]
+            if near[lo:hi].all():
+                out.append(moved[lo:hi])
+            elif np.all(np.abs(f[lo:hi]).min(axis=0) <= half):  # may cross the block: cut it
+                piece = clip_polygon(moved[lo:hi], f[lo:hi], half)
+                if len(piece) >= 3:
+                    out.append(piece)
+    return out
 
 
 def realize_block(
