@@ -68,7 +68,7 @@ class Block:
     def inside(self, points: ArrayLike, widen: bool = True) -> np.ndarray:
         """(n,) bool: points within the block (widened by ``margin`` when ``widen``)."""
         f = self.fractional(points)
-        half = self.sizes / 2 + (self.slack() if widen else 1e-9)
+        half = self.sizes / 2 + (self.slack() if widen else 0.0) + 1e-9  # points cut on the surface count
         return np.all(np.abs(f) <= half, axis=-1)
 
     def corners(self) -> np.ndarray:
