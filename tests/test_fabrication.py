@@ -94,6 +94,7 @@ def test_clearance_that_cannot_be_met_is_refused_with_the_place(tmp_path, capsys
         (["--thickness", "nan"], ["--thickness"]),
         (["--clearance", "-0.1"], ["--clearance", ">= 0"]),
         (["--scale", "0"], ["--scale"]),
+        (["--scale", "1e300"], ["--scale", "1e+09"]),
         (["--units", "furlong"], ["--units"]),
         (["--thickness", "1.5"], ["--thickness 1.5", "bend radius", "near "]),
         (["--thickness", "0.1", "--tube-radius", "0.1"], ["exclusive"]),
@@ -105,6 +106,15 @@ def test_bad_fabrication_options(tmp_path, capsys, args, words):
     assert code == (1 if "bend radius" in words else 2)
     one_line_error(err, *words)
     assert list(tmp_path.iterdir()) == []
+
+
+def test_python_export_refuses_the_same_way(tmp_path):
+    with pytest.raises(GeometryError, match="--thickness must be") as bad:
+        export("cube", tmp_path / "c.stl", 2, thickness=-1.0)
+    assert bad.value.exit_code == 2
+    with pytest.raises(GeometryError, match=r"clearance 0\.5 .* near (edge|vertex)") as far:
+        export("cube", tmp_path / "c.3mf", 2, thickness=0.1, clearance=0.5)
+    assert far.value.exit_code == 1 and list(tmp_path.iterdir()) == []
 
 
 def test_reported_gap_is_never_more_than_the_true_gap(tmp_path):

@@ -42,6 +42,9 @@ UNITS: dict[str, tuple[str, float]] = {
 }
 """``--units`` choices: the 3MF unit name and the length in metres of one unit."""
 
+MAX_SCALE = 1e9
+"""Largest ``--scale``: coordinates stay far inside float32 (the STL and 3MF precision)."""
+
 MAX_GAP_SAMPLES = 3_000_000
 """Most centreline samples the clearance check takes (coarser sampling beyond)."""
 MAX_GAP_PAIRS = 5_000_000
@@ -102,8 +105,8 @@ def check_options(thickness: float | None, clearance: float | None, units: str, 
         raise GeometryError(f"--clearance must be a finite number >= 0, got {clearance}", usage=True)
     if units not in UNITS:
         raise GeometryError(f"--units {units!r}: expected one of {', '.join(UNITS)}", usage=True)
-    if not (np.isfinite(scale) and scale > 0):
-        raise GeometryError(f"--scale must be a finite number > 0, got {scale}", usage=True)
+    if not (np.isfinite(scale) and 0 < scale <= MAX_SCALE):
+        raise GeometryError(f"--scale must be a number in (0, {MAX_SCALE:g}], got {scale}", usage=True)
 
 
 def printable(
