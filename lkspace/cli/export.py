@@ -332,9 +332,11 @@ def export_cmd(
     data.pop("closed")
     if sizes is not None:
         data["block"] = [int(n) for n in sizes]
+    if thickness is not None and pieces is None:  # the tube that was written
+        data["tube_radius"] = thickness / 2 / scale
     human = (
         f"wrote {output}: {real.n_curves} strand(s) of {scaffold.name}, "
-        f"minimum distance between strands {real.min_distance:.3g} (tube radius {real.tube_radius:.3g})"
+        f"minimum distance between strands {real.min_distance:.3g} (tube radius {data['tube_radius']:.3g})"
     )
     if pieces is not None:
         data["fabrication"] = pieces.summary()
