@@ -91,6 +91,9 @@ def entries() -> list[Entry]:
         e("kaleidocycle.png", "kaleidocycle:6", "solve:1", "fig:flexagon: tetrahedra hinged edge to edge in "
           "a ring merge into a single knot; labels found by `lkspace solve kaleidocycle:6 --components 1`.",
           expect="1 component", draw=["--view", "-60,50"]),
+        e("laves.png", "laves", "1", "fig:laves_intro: the Laves graph's 10-rings as faces: every edge lies on 10 of "
+          "them, every vertex on 15.", check="info", expect="edge degrees {10: 6}, 60 corners = 4 vertices x 15",
+          draw=["--block", "1x1x1"]),
         e("cI-1.png", "honeycomb:cI", "1", "fig:bravais3D_repeated_cf: truncated octahedra (cI); uniform twisting gives 7 components "
           "per module for every twist number (one cubic cell drawn).", expect="7 components", draw=["--block", "1x1x1"]),
     ]  # fmt: skip
@@ -132,6 +135,15 @@ def shrink(path: str) -> int:
 def measure(entry: Entry) -> tuple[str, dict]:
     """Return the measured facts of a design as text, and the raw JSON."""
     design = [entry.mesh] + (["--twist", entry.twist] if entry.twist else [])
+    if entry.check == "info":
+        data = run(["info", entry.mesh])
+        if "error" in data:
+            return f"error: {data['error'].get('message')}", data
+        traced, _ = measure(Entry(entry.file, entry.mesh, entry.twist, entry.claim))
+        return (
+            f"edge degrees {data['edge_degrees']}, {data['corners']} corners on {data['vertices']} vertices; {traced}",
+            data,
+        )
     if entry.check == "identify":
         data = run(["identify", *design])
         if "error" in data:

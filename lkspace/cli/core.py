@@ -64,6 +64,7 @@ def scaffold_cmd(name: str, output: str | None, as_json: bool) -> None:
       honeycomb:oF                        face-centred orthorhombic cells (a,b,c = 1,1.25,1.5)
       honeycomb:cF                        rhombic dodecahedra
       honeycomb:cI                        truncated octahedra
+      laves                               the Laves graph (srs net): 10-rings as faces
       voronoi:cube-faces                  Voronoi cells of a cubic lattice with points at
                                           the cube's face centres (the paper's figure)
       NAME@AxBxC                          A x B x C supercell of a periodic NAME (AxB in 2D),

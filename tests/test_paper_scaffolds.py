@@ -1,4 +1,5 @@
-"""The kaleidocycle scaffolds: rings of tetrahedra that meet only at their hinges."""
+"""Scaffolds of the paper's figures: kaleidocycles (rings of tetrahedra meeting only at their
+hinges) and the Laves graph with its 10-rings as faces."""
 
 from __future__ import annotations
 
@@ -8,6 +9,7 @@ import pytest
 import lkspace
 from lkspace.errors import ScaffoldError
 from lkspace.scaffolds.kaleidocycle import kaleidocycle
+from lkspace.scaffolds.laves import laves
 
 
 @pytest.mark.parametrize("n", [4, 6, 8])
@@ -35,3 +37,17 @@ def test_a_single_knot_realizes_cleanly():
 def test_odd_or_tiny_rings_are_refused(name):
     with pytest.raises(ScaffoldError, match="even number of tetrahedra"):
         lkspace.load(name)
+
+
+def test_laves_graph_rings():
+    s = laves()
+    assert (s.n_vertices, s.n_edges, s.n_faces) == (4, 6, 6)
+    assert set(s.edge_degrees.tolist()) == {10}  # every edge on 10 rings (the paper)
+    assert s.n_corners == 4 * 15  # every vertex on 15 rings
+    p = s.corner_positions
+    sides = np.linalg.norm(p[s.corner_next] - p, axis=1)
+    np.testing.assert_allclose(sides, np.sqrt(2) / 4)  # the net's edges, nearest neighbours
+    assert all(len(f) == 10 for f in s.faces())  # skew decagons
+    assert [lkspace.trace(s, t).components for t in range(5)] == [6, 4, 15, 4, 6]
+    real = lkspace.realize(s, 1)
+    assert real.n_curves == 4 and real.min_distance > real.min_separation
