@@ -16,7 +16,6 @@ from __future__ import annotations
 import itertools
 
 import numpy as np
-from scipy.spatial import cKDTree
 
 from ..model.lattice import Lattice
 from ..model.scaffold import Scaffold
@@ -61,6 +60,8 @@ def laves() -> Scaffold:
     >>> s.n_vertices, s.n_edges, s.n_faces, sorted(set(s.edge_degrees.tolist()))
     (4, 6, 6, [10])
     """
+    from scipy.spatial import cKDTree  # here: loading the built-in names must not import scipy
+
     conventional = np.vstack([SITES, (SITES + 0.5) % 1.0])
     shifts = np.array(list(itertools.product(range(-2, 3), repeat=3)), np.float64)
     cloud = (conventional[None] + shifts[:, None]).reshape(-1, 3)
