@@ -58,10 +58,9 @@ def entries() -> list[Entry]:
           expect="falls apart"),
         e("trefoil.png", "dihedron:3", "1", "fig:prime_knots (a): a two-sided triangle gives the trefoil 3_1.",
           check="identify", expect="3_1", draw=["--view", "-90,50"]),
-        e("knot-5-1.png", "dihedron:5", "1", "fig:prime_knots (c): a two-sided pentagon gives 5_1.", check="identify",
+        e("knot-5-1.png", "dihedron:5", "1", "fig:prime_knots (c, d): a two-sided pentagon gives 5_1 (and a heptagon 7_1: "
+          "`lkspace identify dihedron:7 --twist 1`).", check="identify",
           expect="5_1", draw=["--diagram"]),
-        e("knot-7-1.png", "dihedron:7", "1", "fig:prime_knots (d): a two-sided heptagon gives 7_1.", check="identify",
-          expect="7_1", draw=["--diagram"]),
         e("figure-eight.png", "figure-eight", None, "fig:prime_knots (b): two triangles in front, a quadrilateral behind: "
           "the figure-eight knot 4_1.", check="identify", expect="4_1", draw=["--view", "-90,60"]),
         e("borromean.png", "tetrahedron", "1", "fig:prime_links (a): every edge of a tetrahedron twisted once gives the "
