@@ -54,8 +54,9 @@ def test_ply_tubes_and_polylines(tmp_path, borromean):
     colours = np.unique(mesh.visual.vertex_colors[:, :3], axis=0)
     assert len(colours) == 3
     export(borromean, tmp_path / "p.ply")
-    text = (tmp_path / "p.ply").read_text()
-    assert f"element edge {sum(len(c) for c in borromean.curves)}" in text
+    head = (tmp_path / "p.ply").read_bytes()[:400]
+    assert b"format binary_little_endian 1.0" in head
+    assert f"element edge {sum(len(c) for c in borromean.curves)}".encode() in head
 
 
 def test_glb_opens_in_trimesh_and_pygltflib(tmp_path, borromean):
@@ -95,7 +96,7 @@ def test_tube_of_an_open_polyline_is_capped():
 
 def test_bad_extension_writes_nothing(tmp_path, borromean):
     with pytest.raises(ExportError, match="unknown output format"):
-        export(borromean, tmp_path / "x.stl")
+        export(borromean, tmp_path / "x.xyz")
     assert os.listdir(tmp_path) == []
 
 
@@ -206,7 +207,9 @@ def test_cli_export_periodic_block(tmp_path, capsys):
     )
     assert code == 0, err
     data = json.loads(out)
-    assert data["curves"] == 18 and data["components"] == 2  # two diagonal threads, 9 translates each
+    assert data["components"] == 2 and data["block"] == [3, 3]
+    # two diagonal thread families cut to the 3 x 3 block: runs of length 1..3 cells, 5 per direction at most
+    assert 6 <= data["curves"] <= 12
     code, _, err = run(capsys, "export", "cube", "--twist", "1", "--block", "3x3", "-o", str(tmp_path / "c.glb"))
     assert code == 2 and "not periodic" in err
     code, _, err = run(capsys, "export", str(mesh), "--twist", "1", "--block", "3x3x3", "-o", str(tmp_path / "c.glb"))
@@ -247,7 +250,7 @@ def test_export_float_options_are_checked(tmp_path, capsys, args, words):
 @pytest.mark.parametrize(
     "name, words",
     [
-        ("x.stl", ["unknown output format '.stl'", ".obj"]),
+        ("x.stp", ["unknown output format '.stp'", ".obj", ".3mf"]),
         ("noext", ["unknown output format"]),
         ("", ["empty"]),
         ("missing/x.obj", ["does not exist"]),

@@ -178,6 +178,7 @@ BUILTIN_ORDERS = {
     "honeycomb:cF": (48, 24),
     "honeycomb:cI": (48, 24),
     "voronoi:cube-faces": (48, 24),
+    "laves": (24, 24),  # the Laves graph is chiral: rotations only (point group 432)
     "tiling:square@2x2": (64, 32),
     "tiling:hexagonal@2x2": (96, 48),
     "honeycomb:cP@2x2x2": (384, 192),

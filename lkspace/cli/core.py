@@ -53,6 +53,7 @@ def scaffold_cmd(name: str, output: str | None, as_json: bool) -> None:
       truncated-octahedron                6 squares + 8 hexagons
       dihedron:N                          two-sided regular N-gon (two faces, one N-cycle), N <= 1000
       book:K                              K quads sharing one edge at equal angles, K <= 1000
+      kaleidocycle:K                      a ring of K tetrahedra hinged edge to edge, K even
       cube-net, cube-lid                  a cube unfolded flat; an open box with a lid
       cubes:piano, cubes:vertex           two cubes sharing an edge; sharing a vertex
       figure-eight                        the paper's 4_1 mesh (design as default labels)
@@ -63,6 +64,7 @@ def scaffold_cmd(name: str, output: str | None, as_json: bool) -> None:
       honeycomb:oF                        face-centred orthorhombic cells (a,b,c = 1,1.25,1.5)
       honeycomb:cF                        rhombic dodecahedra
       honeycomb:cI                        truncated octahedra
+      laves                               the Laves graph (srs net): 10-rings as faces
       voronoi:cube-faces                  Voronoi cells of a cubic lattice with points at
                                           the cube's face centres (the paper's figure)
       NAME@AxBxC                          A x B x C supercell of a periodic NAME (AxB in 2D),

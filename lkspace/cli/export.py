@@ -86,18 +86,20 @@ def design_options(func: F) -> F:
         click.option("--row", type=click.IntRange(min=0), help="Row of CATALOG.parquet to use (instead of --twist)."),
         click.option(
             "--radius",
+            "--inset",
+            "radius",
             type=Finite(0, low_open=True),
-            help="Distance of the strands from their edge, > 0 (default 0.12 x shortest edge).",
+            help="Inset: distance of the strands from their edge inside the face, > 0 (default 0.12 x shortest edge).",
         ),
         click.option(
             "--normal-offset",
             type=Finite(0),
-            help="Offset of the strands along the face normal, >= 0 (default 0.35 x radius).",
+            help="Offset of the strands along the face normal, >= 0 (default 0.35 x inset where faces nearly coincide).",
         ),
         click.option(
             "--tube-radius",
             type=Finite(0, low_open=True),
-            help="Tube radius, > 0 (default from the mesh and the strand spacing).",
+            help="Tube radius, > 0 (default from the mesh, the strand spacing and the tightest bend).",
         ),
     ]
     for option in reversed(options):
@@ -123,8 +125,8 @@ def resolve_design(
     return scaffold, labels_of(scaffold, twist_spec), nulls_of(scaffold, null_spec)
 
 
-def block_translations(scaffold: Scaffold, spec: str | None) -> np.ndarray | None:
-    """Return the lattice translations ``(n, dim)`` of an ``AxBxC`` block, or ``None``."""
+def block_sizes(scaffold: Scaffold, spec: str | None) -> np.ndarray | None:
+    """Return the sizes ``(dim,)`` of an ``AxBxC`` block, or ``None``."""
     if spec is None:
         return None
     if not scaffold.periodic:
@@ -138,33 +140,104 @@ def block_translations(scaffold: Scaffold, spec: str | None) -> np.ndarray | Non
     copies = int(np.prod(sizes, dtype=object))
     if copies > MAX_BLOCK_COPIES:
         raise TooLargeError(f"--block {spec}: {copies:,} copies > {MAX_BLOCK_COPIES:,} (MAX_BLOCK_COPIES)")
-    grids = np.meshgrid(*[np.arange(n) for n in sizes], indexing="ij")
-    return np.column_stack([g.reshape(-1) for g in grids])
+    return np.array(sizes, np.int64)
 
 
-def params_of(radius: float | None, normal_offset: float | None, tube_radius: float | None) -> GeometryParams:
+def params_of(
+    radius: float | None,
+    normal_offset: float | None,
+    tube_radius: float | None,
+    helix_radius: float | None = None,
+    pitch: float | None = None,
+) -> GeometryParams:
     """Return the :class:`~lkspace.geometry.realization.GeometryParams` of the geometry options."""
     from ..geometry.realization import GeometryParams
 
-    return GeometryParams(radius=radius, normal_offset=normal_offset, tube_radius=tube_radius)
+    return GeometryParams(
+        radius=radius, normal_offset=normal_offset, tube_radius=tube_radius, helix_radius=helix_radius, pitch=pitch
+    )
+
+
+FORMAT_HELP = "Output file: .obj, .ply, .glb, .stl, .3mf, .png or .svg (the format follows the extension)."
+
+
+def picture_options(func: F) -> F:
+    """Add the picture options --view, --size, --background, --colors, --diagram, --title."""
+    options = [
+        click.option(
+            "--view",
+            metavar="AZ,EL|NAME",
+            help="Pictures: azimuth,elevation in degrees, or iso, front, back, left, right, top, bottom.",
+        ),
+        click.option("--size", metavar="WxH", help="Pictures: width x height in pixels (default 900x900)."),
+        click.option("--background", metavar="COLOR", help="Pictures: 'transparent' or a colour (default white)."),
+        click.option(
+            "--colors", metavar="LIST", help="Pictures: strand colours, a comma list or a matplotlib colormap name."
+        ),
+        click.option(
+            "--diagram", is_flag=True, help="Pictures: draw the simplified 2D knot/link diagram instead of 3D tubes."
+        ),
+        click.option("--title", help="Pictures: a title above the picture."),
+    ]
+    for option in reversed(options):
+        func = option(func)
+    return func
+
+
+def fabrication_options(func: F) -> F:
+    """Add --thickness, --clearance, --units and --scale (printable .stl/.3mf)."""
+    options = [
+        click.option(
+            "--thickness",
+            type=Finite(0, low_open=True),
+            help="Tube diameter in output units, > 0 (.stl/.3mf; sets the tube of the other formats too).",
+        ),
+        click.option(
+            "--clearance",
+            type=Finite(0),
+            help="Least gap between distinct pieces in output units, >= 0; checked on the final tubes.",
+        ),
+        click.option(
+            "--units",
+            type=click.Choice(["mm", "cm", "m", "in", "ft", "um"]),
+            help="What one output unit is: the 3MF unit and STL header (default mm), a PLY/OBJ comment.",
+        ),
+        click.option(
+            "--scale",
+            type=Finite(0, low_open=True),
+            default=1.0,
+            help="Output units per scaffold unit (.stl/.3mf; default 1).",
+        ),
+    ]
+    for option in reversed(options):
+        func = option(func)
+    return func
 
 
 @click.command("export")
 @design_options
+@click.option("-o", "--output", required=True, type=click.Path(dir_okay=False), help=FORMAT_HELP)
 @click.option(
-    "-o",
-    "--output",
-    required=True,
-    type=click.Path(dir_okay=False),
-    help="Output file: .obj, .ply, .glb or .png (the format follows the extension).",
+    "--tubes", is_flag=True, help="Write tube meshes instead of polylines (.obj, .ply; other formats are tubes)."
+)
+@click.option("--no-mesh", is_flag=True, help="Leave the input mesh out of the picture (.png, .svg).")
+@click.option(
+    "--block",
+    metavar="AxB[xC]",
+    help="Periodic scaffolds: an A x B (x C) block of cells, threads cut at its faces.",
 )
 @click.option(
-    "--tubes", is_flag=True, help="Write tube meshes instead of polylines (.obj, .ply; .glb is always tubes)."
+    "--helix-radius",
+    type=Finite(0, low_open=True),
+    help="Distance of the evenly spaced strands from the edge axis, > 0 (default about the inset).",
 )
-@click.option("--no-mesh", is_flag=True, help="Leave the input mesh out of the picture (.png).")
 @click.option(
-    "--block", metavar="AxB[xC]", help="Periodic scaffolds: realize an A x B (x C) block of lattice translates."
+    "--pitch",
+    type=Finite(0, low_open=True),
+    help="Axial length of one full helix turn, > 0 (default: the twist spreads over the whole edge).",
 )
+@fabrication_options
+@picture_options
 @json_option
 def export_cmd(
     mesh: str | None,
@@ -178,6 +251,18 @@ def export_cmd(
     tubes: bool,
     no_mesh: bool,
     block: str | None,
+    helix_radius: float | None,
+    pitch: float | None,
+    thickness: float | None,
+    clearance: float | None,
+    units: str | None,
+    scale: float,
+    view: str | None,
+    size: str | None,
+    background: str | None,
+    colors: str | None,
+    diagram: bool,
+    title: str | None,
     as_json: bool,
 ) -> None:
     """Realize the strands of MESH labelled by --twist and write them to -o FILE.
@@ -185,27 +270,58 @@ def export_cmd(
     \b
     Examples:
       lkspace export dihedron:3 --twist 1 -o trefoil.png
+      lkspace export dihedron:3 --twist 1 --diagram -o trefoil.svg
       lkspace export tetrahedron --twist 1 -o borromean.glb
-      lkspace export cube --twist 2 --tubes -o chainmail.obj
+      lkspace export cube --twist 2 -o chainmail.stl --thickness 0.1 --clearance 0.05 --scale 10
+      lkspace export honeycomb:cP --twist 2,1,1 --block 2x2x2 -o block.png --size 480x480
       lkspace export designs.parquet --row 7 -o design7.png
     """
-    from ..formats.registry import export, output_target, point_budget
+    from ..formats.registry import PICTURES, export, output_target, point_budget
     from ..geometry.realization import realize
 
     ctx = Context(as_json)
     output_target(output)  # checked before any work (export checks it again)
+    ext = os.path.splitext(output)[1].lower()
+    look = None
+    if ext in PICTURES:
+        from ..formats.render import look_of
+
+        look = look_of(view, size, background, colors)
+    elif diagram or any(v is not None for v in (view, size, background, colors)):
+        raise UsageError(
+            f"--view, --size, --background, --colors and --diagram are for pictures (.png, .svg), not {ext}"
+        )
+    if thickness is not None and tube_radius is not None:
+        raise UsageError("--thickness (a diameter in output units) and --tube-radius are exclusive")
     max_points, bound = point_budget(output, tubes)
     scaffold, labels, nulls = resolve_design(ctx, mesh, twist_spec, null_spec, row)
-    real = realize(
-        scaffold,
-        labels,
-        nulls,
-        params_of(radius, normal_offset, tube_radius),
-        translations=block_translations(scaffold, block),
-        max_points=max_points,
-        bound=bound,
+    params = params_of(radius, normal_offset, tube_radius, helix_radius, pitch)
+    sizes = block_sizes(scaffold, block)
+    if sizes is not None:
+        from ..geometry.block import realize_block
+
+        real = realize_block(scaffold, labels, nulls, params, sizes, max_points=max_points, bound=bound)
+    else:
+        real = realize(scaffold, labels, nulls, params, max_points=max_points, bound=bound)
+    pieces = None
+    if ext in (".stl", ".3mf"):
+        from ..geometry.fabrication import printable
+
+        pieces = printable(real, thickness, clearance, units or "mm", scale)
+    fmt = export(
+        real,
+        output,
+        pieces=pieces,
+        tubes=tubes,
+        show_mesh=not no_mesh,
+        thickness=thickness,
+        clearance=clearance,
+        units=units,
+        scale=scale,
+        look=look,
+        diagram=diagram,
+        title=title,
     )
-    fmt = export(real, output, tubes=tubes, show_mesh=not no_mesh)
     data = {
         "written": os.path.abspath(output),
         "format": fmt,
@@ -214,11 +330,19 @@ def export_cmd(
         **real.summary(),
     }
     data.pop("closed")
-    emit(
-        ctx,
-        data,
-        lambda: click.echo(
-            f"wrote {output}: {real.n_curves} strand(s) of {scaffold.name}, "
-            f"minimum distance between strands {real.min_distance:.3g} (tube radius {real.tube_radius:.3g})"
-        ),
+    if sizes is not None:
+        data["block"] = [int(n) for n in sizes]
+    if thickness is not None and pieces is None:  # the tube that was written
+        data["tube_radius"] = thickness / 2 / scale
+    human = (
+        f"wrote {output}: {real.n_curves} strand(s) of {scaffold.name}, "
+        f"minimum distance between strands {real.min_distance:.3g} (tube radius {data['tube_radius']:.3g})"
     )
+    if pieces is not None:
+        data["fabrication"] = pieces.summary()
+        gap = f"> {pieces.clearance + pieces.radius:.4g}" if pieces.min_gap is None else f"{pieces.min_gap:.4g}"
+        human = (
+            f"wrote {output}: {len(pieces.curves)} piece(s) of {scaffold.name}, thickness {2 * pieces.radius:.4g} "
+            f"{pieces.units}, smallest gap {gap} {pieces.units} (clearance {pieces.clearance:.4g})"
+        )
+    emit(ctx, data, lambda: click.echo(human))

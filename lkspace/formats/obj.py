@@ -1,12 +1,33 @@
-"""``.obj`` strands: one object per strand, polylines (``l``) or tube meshes."""
+"""``.obj`` strands: one object per strand, polylines (``l``) or tube meshes (``f``).
+
+A polyline is one ``l`` element listing its vertices in order (a closed strand repeats
+its first vertex at the end), as the OBJ specification defines polylines.  Lines are formatted from
+plain lists (``ndarray.tolist``), not numpy scalars.
+"""
 
 from __future__ import annotations
 
 import os
 
+import numpy as np
+
 from ..geometry.realization import Realization
 from ..io.atomic import write_text
 from .tubes import tube_meshes
+
+
+def vertex_lines(v: np.ndarray) -> str:
+    """``v x y z`` lines of ``v`` (n, 3)."""
+    if not len(v):
+        return ""
+    return "".join(["v {:.6f} {:.6f} {:.6f}\n".format(*r) for r in v.tolist()])
+
+
+def face_lines(f: np.ndarray) -> str:
+    """``f a b c`` lines (1-based indices already added)."""
+    if not len(f):
+        return ""
+    return "".join(["f {} {} {}\n".format(*r) for r in f.tolist()])
 
 
 def write(
@@ -16,22 +37,23 @@ def write(
     tubes: bool = False,
     radius: float | None = None,
     sides: int = 12,
+    units: str | None = None,
     **ignored: object,
 ) -> None:
     """Write polylines (``l``) or tube meshes to ``path``, one ``o strand_k`` object per curve."""
-    lines = [f"# lkspace strands of {real.scaffold.name}: {real.n_curves} curve(s)"]
+    out = [f"# lkspace strands of {real.scaffold.name}: {real.n_curves} curve(s)\n"]
+    if units:
+        out.append(f"# units {units}\n")
     base = 1
     if tubes:
         for k, (v, _, f) in enumerate(tube_meshes(real, radius, sides)):
-            lines.append(f"o strand_{k}")
-            lines.extend(f"v {x:.6f} {y:.6f} {z:.6f}" for x, y, z in v)
-            lines.extend(f"f {a + base} {b + base} {c + base}" for a, b, c in f)
+            out += [f"o strand_{k}\n", vertex_lines(v), face_lines(f + base)]
             base += len(v)
     else:
         for k, (curve, closed) in enumerate(zip(real.curves, real.closed, strict=False)):
-            lines.append(f"o strand_{k}")
-            lines.extend(f"v {x:.6f} {y:.6f} {z:.6f}" for x, y, z in curve)
-            idx = list(range(base, base + len(curve))) + ([base] if closed else [])
-            lines.append("l " + " ".join(map(str, idx)))
+            idx = np.arange(base, base + len(curve))
+            if closed:
+                idx = np.append(idx, base)
+            out += [f"o strand_{k}\n", vertex_lines(curve), "l " + " ".join(idx.astype(str).tolist()) + "\n"]
             base += len(curve)
-    write_text(path, "\n".join(lines) + "\n")
+    write_text(path, "".join(out))

@@ -1,17 +1,23 @@
 """Export: one writer per file type behind a registry, chosen by the output's extension.
 
-======  =======================================================================
+========  =====================================================================
 ``.obj``  one object per strand: polylines (``l``) or, with ``tubes=True``, tube meshes
-``.ply``  ASCII PLY with a colour per strand: polylines as ``edge``, tubes as ``face``
+``.ply``  binary PLY with a colour per strand: polylines as ``edge``, tubes as ``face``
 ``.glb``  glTF 2.0 binary: one tube mesh, node and material per strand
-``.png``  a matplotlib picture: shaded tubes, the scaffold drawn faintly (``[render]``)
-======  =======================================================================
+``.stl``  binary STL: one closed tube shell per printable piece (``thickness``, ``clearance``)
+``.3mf``  3MF package: one coloured mesh object per printable piece, with its ``units``
+``.png``  a picture: shaded tubes, the scaffold drawn faintly, or with ``diagram=True``
+          a 2D knot/link diagram (``[render]``; diagrams also ``[knots]``)
+``.svg``  the same picture as vector graphics
+========  =====================================================================
 
 Each format is a module of :mod:`lkspace.formats` with a ``write(real, path, **options)``
 function, imported only when used.  The output path is checked before any work
 (:func:`lkspace.io.paths.output_file`: an existing folder, not a device, an extension of
 :data:`FORMATS`); every file is written to a temporary name and renamed when complete,
 replacing the file a symlink points to.  Tubes are bounded by :data:`MAX_TUBE_VERTICES`.
+Printable formats (:data:`PRINTABLE`) get their pieces from
+:func:`lkspace.geometry.fabrication.printable`, which proves the clearance first.
 """
 
 from __future__ import annotations
@@ -19,6 +25,7 @@ from __future__ import annotations
 import importlib
 import math
 import os
+from typing import TYPE_CHECKING, Any
 
 from numpy.typing import ArrayLike
 
@@ -29,9 +36,25 @@ from ..io.paths import output_file
 from ..io.sources import ScaffoldSource
 from ..progress import task
 
-WRITERS = {".obj": "obj", ".ply": "ply", ".glb": "glb", ".png": "png"}
+if TYPE_CHECKING:
+    from ..geometry.fabrication import Printable
+    from .render import Look
+
+WRITERS = {
+    ".obj": "obj",
+    ".ply": "ply",
+    ".glb": "glb",
+    ".stl": "stl",
+    ".3mf": "threemf",
+    ".png": "png",
+    ".svg": "png",
+}
 """Extension -> module of :mod:`lkspace.formats` whose ``write`` writes it."""
 FORMATS = tuple(WRITERS)
+PRINTABLE = (".stl", ".3mf")
+"""Formats of solid, printable pieces."""
+PICTURES = (".png", ".svg")
+"""Formats drawn with matplotlib."""
 
 TUBE_SIDES = 12
 """Vertices around a tube's circle (the writers' default ``sides``)."""
@@ -39,8 +62,8 @@ TUBE_SIDES = 12
 MAX_TUBE_VERTICES = 6_000_000
 """Most tube vertices an export writes (curve points times :data:`TUBE_SIDES`).
 
-A vertex is about 60 bytes of ``.obj``/``.ply`` text or 24 of ``.glb``, and the tube frames
-are built point by point: past this bound a file runs into gigabytes and minutes.
+A vertex is about 60 bytes of ``.obj`` text or 15-24 bytes of binary: past this bound a
+file runs into gigabytes and minutes.
 """
 
 
@@ -63,10 +86,10 @@ def output_target(path: str | os.PathLike[str]) -> str:
 def point_budget(path: str | os.PathLike[str], tubes: bool) -> tuple[int, str]:
     """Most curve points worth realizing for an export to ``path``, and the bound's name.
 
-    Tubes (``tubes``, ``.glb``, ``.png``) allow :data:`MAX_TUBE_VERTICES` / :data:`TUBE_SIDES`.
+    Tubes (``tubes``, ``.glb``, ``.stl``, ``.3mf``, pictures) allow :data:`MAX_TUBE_VERTICES` / :data:`TUBE_SIDES`.
     """
     ext = os.path.splitext(os.fspath(path))[1].lower()
-    if tubes or ext in (".glb", ".png"):
+    if tubes or ext in (".glb", *PRINTABLE, *PICTURES):
         return min(
             MAX_POINTS, MAX_TUBE_VERTICES // TUBE_SIDES
         ), "MAX_TUBE_VERTICES / 12 for tubes; polylines allow more"
@@ -84,6 +107,13 @@ def export(
     radius: float | None = None,
     show_mesh: bool = True,
     title: str | None = None,
+    thickness: float | None = None,
+    clearance: float | None = None,
+    units: str | None = None,
+    scale: float = 1.0,
+    look: Look | None = None,
+    diagram: bool = False,
+    pieces: Printable | None = None,
 ) -> str:
     """Write a design's strands to ``path``; the format follows the extension.
 
@@ -93,13 +123,29 @@ def export(
         Realized strands, or a scaffold realized here with ``labels``, ``nulls`` and
         ``params`` (see :func:`lkspace.realize`).
     path : str or os.PathLike
-        ``.obj``, ``.ply``, ``.glb`` or ``.png``.
+        ``.obj``, ``.ply``, ``.glb``, ``.stl``, ``.3mf``, ``.png`` or ``.svg``.
     tubes : bool
-        Tube meshes instead of polylines (``.obj``, ``.ply``; ``.glb`` is always tubes).
+        Tube meshes instead of polylines (``.obj``, ``.ply``; the other formats are always tubes).
     radius : float, optional
-        Tube radius (default: the realization's).
+        Tube radius in scaffold units (default: the realization's).
     show_mesh, title
-        ``.png`` only: draw the scaffold faintly; a title.
+        Pictures only: draw the scaffold faintly; a title.
+    thickness, clearance : float, optional
+        Tube diameter and the least surface gap between distinct pieces, in output
+        units (``.stl``, ``.3mf``; see :func:`lkspace.geometry.fabrication.printable`).
+        ``thickness`` also sets the tube of the other formats (``radius = thickness / 2 / scale``);
+        ``clearance`` given with a tube format is checked there too.
+    units : str, optional
+        What one output unit is (``mm``, ``cm``, ``m``, ``in``, ``ft``, ``um``): the 3MF
+        ``unit`` and the STL header (default ``mm``), a PLY/OBJ comment (none by default).
+    scale : float
+        Output units per scaffold unit (printable formats).
+    look : Look, optional
+        Pictures: view, size, background and colours (:func:`lkspace.formats.render.look_of`).
+    diagram : bool
+        Pictures: draw the 2D knot/link diagram instead of the 3D render.
+    pieces : Printable, optional
+        Printable formats: pieces already made by :func:`~lkspace.geometry.fabrication.printable`.
 
     Returns
     -------
@@ -111,11 +157,18 @@ def export(
     >>> import tempfile, os
     >>> export("tetrahedron", os.path.join(tempfile.mkdtemp(), "t.obj"), 1)
     'obj'
+    >>> export("tetrahedron", os.path.join(tempfile.mkdtemp(), "t.stl"), 1, thickness=0.1, clearance=0.05)
+    'stl'
     """
     if radius is not None and not (math.isfinite(radius) and radius > 0):
         raise ExportError(f"tube radius must be a finite number > 0, got {radius}")
+    from ..geometry.fabrication import check_options
+
+    check_options(thickness, clearance, units or "mm", scale)
     target = output_target(path)  # checked before any work: extension, folder, device
     ext = os.path.splitext(os.fspath(path))[1].lower()
+    if diagram and ext not in PICTURES:
+        raise ExportError(f"{path}: a diagram is drawn as {' or '.join(PICTURES)}, not {ext}")
     with task(f"export {os.path.basename(os.fspath(path))}") as step:
         if not isinstance(design, Realization):
             step.note("realizing")
@@ -123,6 +176,8 @@ def export(
         if not isinstance(design, Realization):
             design = realize(design, labels, nulls, params, max_points=budget, bound=bound)
         real = design
+        if radius is None and thickness is not None and ext not in PRINTABLE:
+            radius = thickness / 2 / scale
         if radius is not None and radius > MAX_RELATIVE * real.scale:
             raise ExportError(f"tube radius {radius:g} exceeds {MAX_RELATIVE:g} x the shortest edge ({real.scale:.4g})")
         points = sum(len(c) for c in real.curves)
@@ -131,7 +186,18 @@ def export(
                 f"{path}: tubes of {points:,} curve points need {points * TUBE_SIDES:,} vertices "
                 f"> {MAX_TUBE_VERTICES:,} (MAX_TUBE_VERTICES); write polylines (.obj or .ply without --tubes)"
             )
+        if (pieces is None and ext in PRINTABLE) or (clearance is not None and (tubes or ext == ".glb")):
+            from ..geometry.fabrication import printable
+
+            step.note("checking clearance")
+            if ext in PRINTABLE and pieces is None:
+                pieces = printable(real, thickness, clearance, units or "mm", scale)
+            elif ext not in PRINTABLE:
+                tube = 2 * (radius if radius is not None else real.tube_radius) * scale
+                printable(real, tube, clearance, units or "mm", scale)
         step.note(f"writing {points:,} points")
         writer = importlib.import_module(f"{__package__}.{WRITERS[ext]}")
-        writer.write(real, target, tubes=tubes, radius=radius, show_mesh=show_mesh, title=title)
+        options: dict[str, Any] = {"tubes": tubes, "radius": radius, "show_mesh": show_mesh, "title": title}
+        options.update(pieces=pieces, units=units, look=look, diagram=diagram)
+        writer.write(real, target, **options)
     return ext[1:]

@@ -31,7 +31,7 @@ def resample(curve: np.ndarray, closed: bool, spacing: float) -> tuple[np.ndarra
     return out, s, length
 
 
-def _pieces_apart(
+def pieces_apart(
     owner: np.ndarray,
     arc: np.ndarray,
     lengths: np.ndarray,
@@ -53,13 +53,13 @@ def _pieces_apart(
     cyc = closed[oi]
     along = np.where(same & cyc, np.minimum(along, lengths[oi] - along), along)
     apart = ~same | (along > exclusion)
-    if joins:
-        for a, b in joins:
-            for x, y in ((i, j), (j, i)):
-                m = (owner[x] == a) & (owner[y] == b)
-                if m.any():
-                    gap = (lengths[a] - arc[x[m]]) + arc[y[m]]
-                    apart[m] &= gap > exclusion
+    if joins:  # vectorized over the pairs: one table lookup per orientation
+        pair_keys = np.array([a * len(lengths) + b for a, b in joins], np.int64)
+        for x, y in ((i, j), (j, i)):
+            m = np.isin(owner[x].astype(np.int64) * len(lengths) + owner[y], pair_keys)
+            if m.any():
+                gap = (lengths[owner[x[m]]] - arc[x[m]]) + arc[y[m]]
+                apart[m] &= gap > exclusion
     return apart
 
 
@@ -74,9 +74,10 @@ def _joins(curves: Sequence[np.ndarray], closed: np.ndarray, tol: float) -> list
     return [(open_ids[a], open_ids[b]) for b, hits in enumerate(pairs) for a in hits if a != b]
 
 
-def _samples(
+def samples(
     curves: Sequence[np.ndarray], closed: np.ndarray, spacing: float
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Resample every curve at ``spacing``: ``(points, arclength, owner curve, curve lengths)``."""
     chunks = [resample(c, bool(cl), spacing) for c, cl in zip(curves, closed, strict=False)]
     pts = np.vstack([c[0] for c in chunks])
     arc = np.concatenate([c[1] for c in chunks])
@@ -122,13 +123,13 @@ def check_embedding(
                 "point": (0.5 * (pts[i[b]] + pts[j[b]])).tolist(),
             }
 
-    pts, arc, owner, lengths = _samples(curves, closed, min_separation / 2.0)
+    pts, arc, owner, lengths = samples(curves, closed, min_separation / 2.0)
     pairs = cKDTree(pts).query_pairs(min_separation, output_type="ndarray")
     if len(pairs):
-        keep = _pieces_apart(owner, arc, lengths, closed, pairs[:, 0], pairs[:, 1], 4 * min_separation, joins)
+        keep = pieces_apart(owner, arc, lengths, closed, pairs[:, 0], pairs[:, 1], 4 * min_separation, joins)
         consider(pts, owner, pairs[keep, 0], pairs[keep, 1])
     spacing = max(min_separation / 2.0, 0.02 * scale)
-    pts, arc, owner, lengths = _samples(curves, closed, spacing)
+    pts, arc, owner, lengths = samples(curves, closed, spacing)
     k = min(48, len(pts))
     tree = cKDTree(pts)
     for lo in range(0, len(pts), CHUNK):  # in chunks: k neighbours per sample take ~3 kB each
@@ -138,6 +139,29 @@ def check_embedding(
         j = nb.reshape(-1)
         found = j < len(pts)
         i, j = i[found], j[found]
-        keep = _pieces_apart(owner, arc, lengths, closed, i, j, 0.3 * scale, joins)
+        keep = pieces_apart(owner, arc, lengths, closed, i, j, 0.3 * scale, joins)
         consider(pts, owner, i[keep], j[keep])
     return best, where
+
+
+def tightest_bend(curves: list[np.ndarray], closed: np.ndarray) -> tuple[float, int, np.ndarray]:
+    """Return the smallest bend radius of the centrelines, its piece and point.
+
+    At a polyline point where the direction turns by ``theta`` between segments of
+    lengths ``a`` and ``b``, the bend radius is ``min(a, b) / 2 / tan(theta / 2)`` (the
+    circle tangent to both segments at the nearer midpoint distance).
+    """
+    best, piece, where = np.inf, -1, np.zeros(3)
+    for k, (c, cl) in enumerate(zip(curves, closed, strict=True)):
+        pts = np.vstack([c[-1:], c, c[:1]]) if cl else c
+        seg = np.diff(pts, axis=0)
+        a, b = seg[:-1], seg[1:]
+        la, lb = np.linalg.norm(a, axis=1), np.linalg.norm(b, axis=1)
+        ok = (la > 0) & (lb > 0)
+        cosang = np.einsum("ij,ij->i", a, b) / np.where(ok, la * lb, 1.0)
+        turn = np.arccos(np.clip(cosang, -1.0, 1.0))
+        bend = np.where(ok & (turn > 1e-9), 0.5 * np.minimum(la, lb) / np.tan(0.5 * np.maximum(turn, 1e-9)), np.inf)
+        if len(bend) and bend.min() < best:
+            i = int(np.argmin(bend))
+            best, piece, where = float(bend[i]), k, pts[i + 1]
+    return best, piece, where

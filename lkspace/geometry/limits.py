@@ -11,6 +11,7 @@ import numpy as np
 
 from ..errors import GeometryError
 from ..model.scaffold import Scaffold
+from .helix import RAMP
 
 __all__ = ["MAX_POINTS", "MAX_RELATIVE", "MAX_SAMPLES", "check_lengths", "check_winding"]
 
@@ -46,16 +47,17 @@ def check_winding(
 ) -> None:
     """Refuse, before any geometry, twists that wind the strands of an edge too tightly to embed.
 
-    On an edge of degree K >= 2 with twist t the strands advance ``1.5 |t|`` slots over the
-    helix span at the steepest point of the smoothstep, so neighbouring passes lie about
-    ``span / (1.5 |t|)`` apart along the axis.  Below half of ``min_separation`` the
+    On an edge of degree K >= 2 with twist t the strands advance ``|t| / (1 - RAMP)`` slots
+    over the helix span where the twist profile of :mod:`~lkspace.geometry.helix` is
+    steepest, so neighbouring passes lie about ``span (1 - RAMP) / |t|`` apart along the
+    axis.  Below half of ``min_separation`` the
     embedding check would fail anyway (after building and sampling every turn, at great
     cost for huge twists); the factor 2 keeps this test from refusing any embeddable design.
     """
     k = scaffold.edge_degrees
     twist = np.abs(np.where(k > 1, np.asarray(labels, np.float64), 0.0))  # floats: -2**63 has no int64 abs
     span = (1 - margins[:, 0] - margins[:, 1]) * np.linalg.norm(pb - pa, axis=1)
-    gap = span / np.maximum(1.5 * twist, 1e-300)
+    gap = span * (1 - RAMP) / np.maximum(twist, 1e-300)
     bad = np.flatnonzero((twist > 0) & (gap < 0.5 * min_sep))
     if len(bad):
         e = int(bad[np.argmin(gap[bad])])

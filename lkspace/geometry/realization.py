@@ -11,17 +11,18 @@ order), made perpendicular to the axis.  The normal offset ``h`` separates faces
 in one plane (a two-sided polygon, the figure-eight mesh).
 
 * **Along an edge** of degree ``K`` and twist ``t``, every strand leaves its track a
-  ``margin`` away from each end and follows a helix about the edge axis: at parameter
-  ``sigma`` in ``[0, 1]`` the strand that started in slot ``i`` at end ``a`` sits at the
-  slot coordinate ``x = i + t * g(sigma)`` (``g`` the smoothstep), i.e. at the angle
-  ``Phi(x)`` and radius ``R(x)`` interpolated between the slots' own track angles
-  (``Phi`` increases with ``x``, so positive ``t`` turns counter-clockwise about the
-  axis ``a -> b``: right-handed).  At ``sigma = 1`` it arrives on the track of slot
-  ``(i + t) mod K`` — exactly the twist rule of :mod:`lkspace.strands.ports`.  (On a boundary
-  edge, ``K = 1``, the ``t`` full turns about an empty axis are isotopic to a straight
-  run and are drawn straight.)  All ``K``
-  strands of an edge share ``g``, so at every ``sigma`` they sit at distinct slot
-  coordinates and never meet: the edge carries the braid of a ``2 pi t / K`` rotation.
+  ``margin`` away from each end and winds about the edge axis: at parameter ``sigma`` in
+  ``[0, 1]`` the strand that started in slot ``i`` at end ``a`` sits at the slot
+  coordinate ``x = i + t * G(sigma)``.  Near the ends its angle is ``Phi(x)``, interpolated
+  between the slots' own track angles; in the middle the ``K`` strands sit evenly spaced,
+  ``2 pi / K`` apart at the helix radius, and ``G`` turns them at a constant rate: a
+  regular helix of ``t / K`` turns (:mod:`~lkspace.geometry.helix` gives the smooth
+  transitions and the proof that strands of one edge never meet).  Angles increase with
+  ``x``, so positive ``t`` turns counter-clockwise about the axis ``a -> b``:
+  right-handed.  At ``sigma = 1`` a strand arrives on the track of slot ``(i + t) mod K``
+  — exactly the twist rule of :mod:`lkspace.strands.ports`.  (On a boundary edge,
+  ``K = 1``, the ``t`` full turns about an empty axis are isotopic to a straight run and
+  are drawn straight.)
 * **Across a face corner** the strand turns inside its face, from the end of one side's
   track to the start of the next, along a quadratic Bézier curve whose control point is
   where the two tracks meet.
@@ -41,7 +42,7 @@ an open polyline.  ``translations`` realizes a block of lattice translates at on
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -51,9 +52,17 @@ from ..io.sources import ScaffoldSource, load
 from ..model.scaffold import Scaffold
 from ..strands.ports import port_model
 from ..strands.tracing import Trace, trace
-from .clearance import check_embedding
+from .clearance import check_embedding, tightest_bend
+from .helix import edge_angles, even_offsets, helix_windows, twist_profile
 from .limits import MAX_POINTS, MAX_SAMPLES, check_lengths, check_winding
-from .tracks import bezier_controls, default_scale, lattice_shift, place_name, side_tracks, smoothstep
+from .tracks import bezier_controls, default_scale, lattice_shift, place_name, side_tracks
+
+if TYPE_CHECKING:
+    from .block import Block
+
+
+NEAR_ANGLE = np.pi / 6
+"""Faces meeting at an edge at less than this angle get the default normal offset."""
 
 
 @dataclass(frozen=True)
@@ -63,17 +72,26 @@ class GeometryParams:
     Attributes
     ----------
     radius : float or None
-        In-face distance ``rho`` of the tracks from their edge (default ``0.12 * scale``).
+        The **inset**: in-face distance ``rho`` of the tracks from their edge (default
+        ``0.12 * scale``); a strand follows its face as the polygon inset by ``rho``.
     normal_offset : float or None
-        Offset ``h`` of the tracks along the face normal (default ``0.35 * radius``).
+        Offset ``h`` of the tracks along the face normal.  Default ``0.35 * radius`` on
+        edges where two faces meet at less than :data:`NEAR_ANGLE` (a two-sided polygon),
+        0 elsewhere; a value given applies on every edge.
     margin : float or None
         Length at each edge end kept straight for the corner turns (default
         ``0.28 * scale``; longer at acute corners, at most ``0.42`` of the edge).
     tube_radius : float or None
         Radius of exported tubes (default ``0.03 * scale``, shrunk to ``0.45`` of the
-        minimum separation found).
+        minimum separation found and to ``0.9`` of the tightest bend of a curve).
     min_separation : float or None
         Refuse geometry whose distinct pieces come closer (default ``0.01 * scale``).
+    helix_radius : float or None
+        Distance of the evenly spaced helix strands from the edge axis (default: the
+        mean distance of the edge's tracks, about ``radius``); see :mod:`~lkspace.geometry.helix`.
+    pitch : float or None
+        Axial length of one full turn of an edge's helix (default: the twist spreads
+        over the whole edge).
     samples_per_turn : int
         Polyline points per full helix turn.
     edge_samples : int
@@ -87,9 +105,11 @@ class GeometryParams:
     margin: float | None = None
     tube_radius: float | None = None
     min_separation: float | None = None
+    helix_radius: float | None = None
+    pitch: float | None = None
     samples_per_turn: int = 32
-    edge_samples: int = 10
-    corner_samples: int = 8
+    edge_samples: int = 24
+    corner_samples: int = 12
 
     def check(self) -> None:
         """Raise :class:`GeometryError` (a usage error) naming a parameter that is not usable.
@@ -98,7 +118,7 @@ class GeometryParams:
         ``min_separation`` positive, ``normal_offset`` at least 0; the sample counts
         integers in ``1..MAX_SAMPLES`` (``corner_samples`` from 2).
         """
-        for name in ("radius", "normal_offset", "margin", "tube_radius", "min_separation"):
+        for name in ("radius", "normal_offset", "margin", "tube_radius", "min_separation", "helix_radius", "pitch"):
             value = getattr(self, name)
             if value is None:
                 continue
@@ -136,6 +156,9 @@ class Realization:
         Where it occurs: the two curves and the nearest scaffold element.
     translations : (n_copies, dim) int64
         Lattice translations of the copies (one zero row for a single copy).
+    block : Block or None
+        Set by :func:`lkspace.geometry.block.realize_block`: the block of cells the
+        curves were cut to (threads end on its faces; closed loops are whole).
     """
 
     scaffold: Scaffold
@@ -153,6 +176,7 @@ class Realization:
     min_distance: float
     closest: dict[str, Any] = field(default_factory=dict)
     translations: np.ndarray | None = None
+    block: Block | None = None
 
     def __repr__(self) -> str:
         points = sum(len(c) for c in self.curves)
@@ -239,8 +263,9 @@ def realize(
         if not np.isfinite(value) or value <= 0:
             raise GeometryError(f"geometry parameter {name} must be positive, got {value}")
     lengths = {"radius": rho, "normal_offset": h, "margin": margin, "tube_radius": params.tube_radius or 0.0}
+    lengths["helix_radius"] = params.helix_radius or 0.0
     check_lengths(scaffold.name, lengths, scale)
-    fr = side_tracks(scaffold, rho, h, margin)
+    fr = side_tracks(scaffold, rho, h, margin, NEAR_ANGLE if params.normal_offset is None else None)
     if check:
         check_winding(scaffold, fr.pa, fr.pb, fr.margin, tr.labels, min_sep)
     model = port_model(scaffold)
@@ -300,20 +325,20 @@ def realize(
     fwd = ((y % 2 == 0) == scaffold.side_forward[ys])[piece]  # port y at end a
     ep = e[piece]
     slot = scaffold.radial.side_slot[ys][piece]
-    g = smoothstep(sig)
+    start, width = helix_windows(scaffold, fr, twist, params.pitch)
+    g = twist_profile((sig - start[ep]) / width[ep])
     xs = np.where(fwd, slot + t[piece] * g, slot - t[piece] * g)
     fa, fb = fr.margin[ep, 0], fr.margin[ep, 1]
     span = 1 - fa - fb
     par = np.where(fwd, fa + span * sig, 1 - fb - span * sig)
-    kk = k[piece]
-    j0 = np.floor(xs).astype(np.int64)
-    rem = xs - j0
-    jm = np.mod(j0, kk)
-    wraps = np.floor_divide(j0, kk)
-    idx = scaffold.radial.edge_starts[ep] + jm
-    nxt_idx = np.where(jm + 1 == kk, scaffold.radial.edge_starts[ep], idx + 1)
-    phi = fr.slot_angle[idx] + rem * fr.slot_gap[idx] + 2 * np.pi * wraps
-    rad = (1 - rem) * fr.slot_radius[idx] + rem * fr.slot_radius[nxt_idx]
+    theta0 = even_offsets(scaffold, fr)
+    if params.helix_radius is not None:
+        helix_radius = np.full(scaffold.n_edges, float(params.helix_radius))
+    else:
+        helix_radius = np.bincount(
+            scaffold.side_edge[scaffold.radial.edge_sides], fr.slot_radius, minlength=scaffold.n_edges
+        ) / np.maximum(degrees, 1)
+    phi, rad = edge_angles(fr, scaffold, ep, xs, sig, theta0, helix_radius)
     edge_pts = (
         fr.pa[ep]
         + par[:, None] * (fr.pb[ep] - fr.pa[ep])
@@ -365,7 +390,10 @@ def realize(
             f"{min_dist:.3g} (< min_separation {min_sep:.3g}) near {closest['place']}; the geometry would "
             "self-intersect (try a smaller --radius or --normal-offset)"
         )
-    tube = params.tube_radius if params.tube_radius is not None else min(0.03 * scale, 0.45 * min_dist)
+    if params.tube_radius is not None:
+        tube = params.tube_radius
+    else:  # thin enough to stay clear of the other strands and not to fold where a curve bends
+        tube = min(0.03 * scale, 0.45 * min_dist, 0.9 * tightest_bend(curves, closed)[0])
     return Realization(
         scaffold,
         tr,

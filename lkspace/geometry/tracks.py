@@ -64,10 +64,14 @@ class Tracks:
     port_dir: np.ndarray  # (2 n_corners, 3) unit direction toward the corner
 
 
-def side_tracks(scaffold: Scaffold, rho: float, h: float, margin: float) -> Tracks:
+def side_tracks(scaffold: Scaffold, rho: float, h: float, margin: float, near_angle: float | None = None) -> Tracks:
     """Compute the :class:`Tracks` of ``scaffold``: tracks at in-face offset ``rho`` and normal offset ``h``.
 
     ``margin`` is the least length kept straight at each edge end (more at acute corners).
+    With ``near_angle`` (radians) the normal offset is applied only on edges where two
+    faces meet at a smaller angle (a two-sided polygon): elsewhere it is not needed, and
+    leaving it out keeps the tracks independent of the faces' orientation, so that a
+    motion reversing a face's corner order still maps the tracks onto tracks.
     Raises :class:`~lkspace.errors.GeometryError` when a face's centroid lies on an edge's
     line or the normal offset reorders the strands around an edge.
     """
@@ -97,7 +101,10 @@ def side_tracks(scaffold: Scaffold, rho: float, h: float, margin: float) -> Trac
     n = n - np.sum(n * d, axis=1, keepdims=True) * d
     n_norm = np.linalg.norm(n, axis=1, keepdims=True)
     n = np.where(n_norm > 1e-9, n / np.where(n_norm > 0, n_norm, 1), 0.0)
-    w = rho * r + h * n  # (n_corners, 3) track offsets
+    h_side = np.full(len(e), float(h))
+    if near_angle is not None:
+        h_side *= min_face_angle(scaffold, r, u1, u2)[e] < near_angle
+    w = rho * r + h_side[:, None] * n  # (n_corners, 3) track offsets
     ang = np.arctan2(np.sum(w * u2[e], axis=1), np.sum(w * u1[e], axis=1))
     rad = np.linalg.norm(w, axis=1)
     # unwrap the angles of each edge in slot order: strictly increasing within one turn
@@ -146,6 +153,23 @@ def side_tracks(scaffold: Scaffold, rho: float, h: float, margin: float) -> Trac
     port_dir = np.where(at_a[:, None], -axis[pe], axis[pe])
     out = Tracks(pa, pb, axis, length, u1, u2, frac, shift, slot_angle, gap, rad[sides], port_point, port_dir)
     return out
+
+
+def min_face_angle(scaffold: Scaffold, r: np.ndarray, u1: np.ndarray, u2: np.ndarray) -> np.ndarray:
+    """(n_edges,) the smallest angle between two faces about each edge (``2 pi`` for a lone face)."""
+    e = scaffold.side_edge
+    ang = np.arctan2(np.sum(r * u2[e], axis=1), np.sum(r * u1[e], axis=1))
+    order = np.lexsort((ang, e))
+    se, sa = e[order], ang[order]
+    gaps = np.full(scaffold.n_edges, 2 * np.pi)
+    same = se[1:] == se[:-1]
+    np.minimum.at(gaps, se[1:][same], np.diff(sa)[same])
+    first = np.r_[True, ~same]
+    last = np.r_[~same, True]
+    wrap = sa[first] + 2 * np.pi - sa[last]  # from each edge's last face back to its first
+    multi = np.bincount(e, minlength=scaffold.n_edges)[se[first]] > 1
+    np.minimum.at(gaps, se[first][multi], wrap[multi])
+    return gaps
 
 
 def bezier_controls(a: np.ndarray, da: np.ndarray, c: np.ndarray, dc: np.ndarray) -> np.ndarray:

@@ -11,6 +11,7 @@ icosahedron                regular icosahedron (20 triangles, 30 edges)
 truncated-octahedron       truncated octahedron (6 squares + 8 hexagons, 36 edges)
 dihedron:N                 two-sided regular N-gon (two faces on one N-cycle), N >= 3
 book:K                     K quads sharing one edge at equal angles, K >= 1
+kaleidocycle:K             a ring of K tetrahedra hinged edge to edge, K even >= 4
 tiling:square              square tiling (periodic, 1 face, 2 edge classes)
 tiling:hexagonal           hexagonal tiling (periodic, 1 face, 3 edge classes)
 honeycomb:cP               cubic honeycomb (3 faces, edge classes x, y, z)
@@ -24,6 +25,8 @@ cubes:piano                two cubes sharing an edge (piano hinge, degree 4)
 cubes:vertex               two cubes sharing a vertex
 figure-eight               square: two triangles in front, a quad behind (paper; 4_1)
 whitehead                  square fanned into four triangles, no back (paper; L5a1)
+laves                      the Laves graph (srs net), periodic: its 10-rings as faces
+                           (the paper's figure; every edge of degree 10)
 voronoi:cube-faces         Voronoi scaffold of a cubic lattice with points at the
                            cube's face centres (the paper's figure; 12 triangles)
 NAME@AxBxC                 the A x B x C supercell of a periodic NAME (AxB in 2D)
@@ -44,7 +47,7 @@ from collections.abc import Callable
 
 from ..errors import ScaffoldError, UsageError
 from ..model.scaffold import Scaffold
-from . import hinged, paper, periodic, polyhedra, special
+from . import hinged, kaleidocycle, laves, paper, periodic, polyhedra, special
 
 SOLIDS: dict[str, Callable[[], Scaffold]] = {
     "tetrahedron": polyhedra.tetrahedron,
@@ -55,6 +58,7 @@ SOLIDS: dict[str, Callable[[], Scaffold]] = {
     "truncated-octahedron": polyhedra.truncated_octahedron,
     "figure-eight": paper.figure_eight,
     "whitehead": paper.whitehead,
+    "laves": laves.laves,
 }
 
 SOLIDS.update(hinged.HINGED)
@@ -62,6 +66,7 @@ SOLIDS.update(hinged.HINGED)
 FAMILIES: dict[str, Callable[[int], Scaffold]] = {
     "dihedron": special.dihedron,
     "book": special.book,
+    "kaleidocycle": kaleidocycle.kaleidocycle,
 }
 
 DEFAULT = "tetrahedron"

@@ -1,0 +1,245 @@
+"""3D pictures of realized strands on a matplotlib ``Figure`` (extra ``[render]``).
+
+The figure is a :class:`matplotlib.figure.Figure` with its own Agg canvas: pyplot and
+``matplotlib.use`` are never touched, so the caller's backend and open figures stay as
+they were.  Tubes are shaded per triangle (Lambert plus a specular highlight) and drawn
+back to front; the scaffold (or, for a block, its cells and frame) is drawn faintly.
+
+Picture options (:class:`Look`): ``view`` (``"AZIMUTH,ELEVATION"`` in degrees or a name of
+:data:`VIEWS`), ``size`` (``"WxH"`` pixels), ``background`` (``"transparent"`` or a
+colour) and ``colors`` (a comma list of colours, or a matplotlib colormap name).
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from ..errors import UsageError, require
+from ..geometry.realization import Realization
+from .colors import colors as default_colors
+from .tubes import tube_meshes
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
+
+VIEWS: dict[str, tuple[float, float]] = {
+    "iso": (-58.0, 24.0),
+    "front": (-90.0, 0.0),
+    "back": (90.0, 0.0),
+    "left": (180.0, 0.0),
+    "right": (0.0, 0.0),
+    "top": (-90.0, 90.0),
+    "bottom": (-90.0, -90.0),
+}
+"""Named views: ``(azimuth, elevation)`` in degrees (matplotlib's convention; z is up)."""
+
+MAX_SIZE = 4000
+"""Largest width or height of a picture, in pixels."""
+
+
+@dataclass(frozen=True)
+class Look:
+    """How a picture looks: view angles, pixel size, background and strand colours."""
+
+    azim: float | None = None
+    elev: float | None = None
+    width: int = 900
+    height: int = 900
+    background: str = "white"
+    palette: tuple[tuple[float, float, float], ...] | None = None
+
+    def colors(self, n: int) -> np.ndarray:
+        """(n, 3) colours: the palette repeated, or the default colours."""
+        if not self.palette:
+            return default_colors(n)
+        return np.array([self.palette[k % len(self.palette)] for k in range(n)], np.float64)
+
+    @property
+    def transparent(self) -> bool:
+        """Whether the background is transparent."""
+        return self.background == "transparent"
+
+
+def parse_view(text: str | None) -> tuple[float | None, float | None]:
+    """``"iso"`` or ``"AZ,EL"`` -> ``(azimuth, elevation)``; ``None`` -> the defaults."""
+    if text is None:
+        return None, None
+    key = text.strip().lower()
+    if key in VIEWS:
+        return VIEWS[key]
+    m = re.fullmatch(r"\s*(-?[0-9.]+)\s*,\s*(-?[0-9.]+)\s*", text)
+    if not m:
+        raise UsageError(f"--view {text!r}: expected AZIMUTH,ELEVATION in degrees or one of {', '.join(VIEWS)}")
+    azim, elev = float(m.group(1)), float(m.group(2))
+    if not (np.isfinite(azim) and np.isfinite(elev) and -90 <= elev <= 90):
+        raise UsageError(f"--view {text!r}: the elevation must lie in -90..90 degrees")
+    return azim, elev
+
+
+def parse_size(text: str | None, default: tuple[int, int] = (900, 900)) -> tuple[int, int]:
+    """``"WxH"`` (or one number for a square) -> ``(width, height)`` in pixels."""
+    if text is None:
+        return default
+    m = re.fullmatch(r"\s*([0-9]{1,6})\s*(?:[xX]\s*([0-9]{1,6}))?\s*", text)
+    if not m:
+        raise UsageError(f"--size {text!r}: expected WIDTHxHEIGHT in pixels, e.g. 480x480")
+    w = int(m.group(1))
+    h = int(m.group(2) or m.group(1))
+    if not (16 <= w <= MAX_SIZE and 16 <= h <= MAX_SIZE):
+        raise UsageError(f"--size {text!r}: width and height must lie in 16..{MAX_SIZE} pixels")
+    return w, h
+
+
+def parse_color(text: str, option: str) -> tuple[float, float, float]:
+    """Parse a matplotlib colour (name, ``#rrggbb``, ``0.5`` grey) -> RGB in ``[0, 1]``."""
+    require("matplotlib", "render", "colours")
+    from matplotlib.colors import to_rgb
+
+    try:
+        r, g, b = to_rgb(text.strip())
+    except ValueError:
+        raise UsageError(
+            f"{option} {text!r}: not a colour (a name such as 'navy', '#1f77b4' or a grey '0.8')"
+        ) from None
+    return float(r), float(g), float(b)
+
+
+def parse_colors(text: str | None) -> tuple[tuple[float, float, float], ...] | None:
+    """Parse a comma list of colours, or a matplotlib colormap name (sampled at 8 points)."""
+    if text is None:
+        return None
+    require("matplotlib", "render", "colours")
+    import matplotlib
+
+    name = text.strip()
+    if "," not in name and name in matplotlib.colormaps:
+        cmap = matplotlib.colormaps[name]
+        n = getattr(cmap, "N", 256)
+        ks = np.linspace(0, 1, 8) if n > 32 else (np.arange(min(n, 12)) + 0.5) / min(n, 12)
+        return tuple((float(cmap(k)[0]), float(cmap(k)[1]), float(cmap(k)[2])) for k in ks)
+    parts = [p for p in name.split(",") if p.strip()]
+    if not parts:
+        raise UsageError("--colors: give a comma list of colours or a colormap name")
+    return tuple(parse_color(p, "--colors") for p in parts)
+
+
+def look_of(view: str | None, size: str | None, background: str | None, colors: str | None) -> Look:
+    """Build a :class:`Look` from the command line's strings (checked; a usage error names the option)."""
+    azim, elev = parse_view(view)
+    width, height = parse_size(size)
+    bg = "white" if background is None else background.strip()
+    if bg.lower() != "transparent":
+        parse_color(bg, "--background")
+    else:
+        bg = "transparent"
+    return Look(azim, elev, width, height, bg, parse_colors(colors))
+
+
+def new_figure(look: Look) -> Figure:
+    """Return a new Figure of the look's size with its own Agg canvas (no pyplot)."""
+    require("matplotlib", "render", "pictures")
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=(look.width / 100, look.height / 100), dpi=100)
+    FigureCanvasAgg(fig)
+    if look.transparent:
+        fig.patch.set_alpha(0.0)
+    else:
+        fig.patch.set_facecolor(look.background)
+    return fig
+
+
+def scaffold_polygons(real: Realization) -> list[np.ndarray]:
+    """Return the faces to draw faintly: the block's cells, the translates' faces, or the scaffold."""
+    sc = real.scaffold
+    base = [sc.corner_positions[s:t] for s, t in zip(sc.face_starts[:-1], sc.face_starts[1:], strict=True)]
+    if real.block is not None:
+        from ..geometry.block import block_faces
+
+        return block_faces(sc, real.block)
+    shifts = (
+        sc.lattice.translate(real.translations)
+        if sc.lattice is not None and real.translations is not None
+        else np.zeros((1, 3))
+    )
+    return [p + d for d in shifts for p in base]
+
+
+def render(
+    real: Realization,
+    look: Look | None = None,
+    *,
+    show_mesh: bool = True,
+    radius: float | None = None,
+    title: str | None = None,
+) -> Figure:
+    """Draw shaded tubes on a new Figure: a colour per strand (translates share it), per thread run in a block."""
+    require("mpl_toolkits.mplot3d", "render", "3D pictures")
+    from mpl_toolkits.mplot3d.art3d import Line3DCollection, Poly3DCollection
+
+    look = look or Look()
+    radius = real.tube_radius if radius is None else radius
+    fig = new_figure(look)
+    ax: Any = fig.add_subplot(projection="3d", computed_zorder=False)
+    if look.transparent:
+        ax.patch.set_alpha(0.0)
+    else:
+        ax.set_facecolor(look.background)
+    pts = np.vstack(real.curves) if real.curves else np.zeros((1, 3))
+    polys = scaffold_polygons(real) if show_mesh else []
+    frame = real.block.frame() if real.block is not None else []
+    every = np.vstack([pts, *polys, *frame]) if (polys or frame) else pts
+    extent = np.ptp(every, axis=0)
+    elev = look.elev if look.elev is not None else (55.0 if extent[2] < 0.25 * extent.max() else 24.0)
+    azim = look.azim if look.azim is not None else -58.0
+    ax.view_init(elev=elev, azim=azim)
+    e, a = np.radians(elev), np.radians(azim)
+    view = np.array([np.cos(e) * np.cos(a), np.cos(e) * np.sin(a), np.sin(e)])
+    light = view + np.array([0.3, -0.2, 0.6])
+    light /= np.linalg.norm(light)
+    if polys:
+        ax.add_collection3d(
+            Poly3DCollection(
+                polys, facecolors=(0.6, 0.65, 0.75, 0.06), edgecolors=(0.35, 0.35, 0.45, 0.3), linewidths=0.5
+            )
+        )
+    if frame:
+        ax.add_collection3d(Line3DCollection(frame, colors=[(0.2, 0.2, 0.25, 0.7)], linewidths=1.0))
+    if real.curves:
+        spacing = 1.2 * radius
+        all_tris, all_cols = [], []
+        if real.block is not None:  # a block: every thread run has its colour
+            palette = look.colors(real.n_curves)
+        else:  # translates share their strand's colour
+            palette = look.colors(int(real.strand_of.max()) + 1 if len(real.strand_of) else 1)[real.strand_of]
+        for (v, nrm, f), rgb in zip(tube_meshes(real, radius, 10, spacing), palette, strict=True):
+            fn = nrm[f].mean(axis=1)
+            fn /= np.maximum(np.linalg.norm(fn, axis=1, keepdims=True), 1e-12)
+            lam = np.clip(fn @ light, 0, 1)
+            spec = np.clip(fn @ ((light + view) / np.linalg.norm(light + view)), 0, 1) ** 24
+            shade = np.clip(rgb[None] * (0.35 + 0.65 * lam[:, None]) + 0.35 * spec[:, None], 0, 1)
+            facing = fn @ view > -0.2
+            all_tris.append(v[f[facing]])
+            all_cols.append(shade[facing])
+        tris = np.concatenate(all_tris)
+        cols = np.concatenate(all_cols)
+        order = np.argsort(tris.mean(axis=1) @ view)  # far first: painter's algorithm
+        ax.add_collection3d(
+            Poly3DCollection(tris[order], facecolors=cols[order], edgecolors=cols[order], linewidths=0.25)
+        )
+    lo, hi = every.min(0) - 2 * radius, every.max(0) + 2 * radius
+    center, half = (lo + hi) / 2, (hi - lo).max() / 2
+    ax.set_xlim(center[0] - half, center[0] + half)
+    ax.set_ylim(center[1] - half, center[1] + half)
+    ax.set_zlim(center[2] - half, center[2] + half)
+    ax.set_box_aspect((1, 1, 1), zoom=1.25)
+    ax.set_axis_off()
+    if title:
+        ax.set_title(title, fontsize=12)
+    fig.subplots_adjust(0, 0, 1, 1)
+    return fig

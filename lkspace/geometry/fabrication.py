@@ -1,0 +1,188 @@
+"""Printable pieces: strands as solid tubes of a given thickness, checked for clearance.
+
+:func:`printable` turns a :class:`~lkspace.geometry.realization.Realization` into the
+pieces a printer gets: the periods of one infinite thread joined into one polyline
+(a block cut by :func:`~lkspace.geometry.block.realize_block` is already one piece per
+thread run), scaled by ``scale`` into output units.  It then proves, on the polylines
+the tube meshes are built around, that
+
+* every tube of radius ``r = thickness / 2`` stays clear of itself: the centreline bends
+  nowhere tighter than ``r`` (else the tube folds into itself), and
+* any two distinct pieces (different pieces, or one piece farther apart along it than a
+  few thicknesses) keep a surface gap of at least ``clearance``.
+
+The gap is measured conservatively: the centrelines are sampled every ``spacing`` and
+``gap >= (sampled distance) - spacing - 2 r`` (every point of a polyline lies within
+``spacing / 2`` of a sample, and every point of a tube mesh within ``r`` of its
+centreline), so the printed surfaces are at least ``clearance`` apart.  Anything that
+cannot be met is refused with one :class:`~lkspace.errors.GeometryError` naming the two
+pieces and the nearest scaffold vertex or edge.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.spatial import cKDTree
+
+from ..errors import GeometryError
+from .block import join_curves
+from .clearance import pieces_apart, samples, tightest_bend
+from .realization import Realization
+from .tracks import place_name
+
+UNITS: dict[str, tuple[str, float]] = {
+    "um": ("micron", 1e-6),
+    "mm": ("millimeter", 1e-3),
+    "cm": ("centimeter", 1e-2),
+    "m": ("meter", 1.0),
+    "in": ("inch", 0.0254),
+    "ft": ("foot", 0.3048),
+}
+"""``--units`` choices: the 3MF unit name and the length in metres of one unit."""
+
+MAX_SCALE = 1e9
+"""Largest ``--scale``: coordinates stay far inside float32 (the STL and 3MF precision)."""
+
+MAX_GAP_SAMPLES = 3_000_000
+"""Most centreline samples the clearance check takes (coarser sampling beyond)."""
+MAX_GAP_PAIRS = 5_000_000
+"""The search for the smallest gap (to report it) stops widening past this many sample pairs."""
+
+
+@dataclass(frozen=True, eq=False)
+class Printable:
+    """Pieces ready for a mesh writer, in output units.
+
+    Attributes
+    ----------
+    curves : list of (n_k, 3) float64
+        Centrelines, scaled; ``closed[k]`` joins the ends, an open piece gets flat caps.
+    closed : (n_pieces,) bool
+    strand_of : (n_pieces,) int64
+        The strand of the trace each piece realizes (colours).
+    radius : float
+        Tube radius (half the thickness), output units.
+    clearance : float
+        The gap that was asked for and proved.
+    min_gap : float or None
+        The smallest surface gap measured (a lower bound), or ``None`` if every gap
+        exceeds ``clearance + radius``.
+    units : str
+        A key of :data:`UNITS`.
+    scale : float
+        Output units per scaffold unit.
+    """
+
+    curves: list[np.ndarray]
+    closed: np.ndarray
+    strand_of: np.ndarray
+    radius: float
+    clearance: float
+    min_gap: float | None
+    units: str
+    scale: float
+
+    def summary(self) -> dict[str, object]:
+        """JSON-ready facts of the pieces."""
+        return {
+            "pieces": len(self.curves),
+            "open_pieces": int((~self.closed).sum()),
+            "thickness": 2 * self.radius,
+            "clearance": self.clearance,
+            "min_gap": self.min_gap,
+            "units": self.units,
+            "scale": self.scale,
+        }
+
+
+def check_options(thickness: float | None, clearance: float | None, units: str, scale: float) -> None:
+    """Refuse unusable fabrication options (usage errors naming the option)."""
+    if thickness is not None and not (np.isfinite(thickness) and thickness > 0):
+        raise GeometryError(f"--thickness must be a finite number > 0, got {thickness}", usage=True)
+    if clearance is not None and not (np.isfinite(clearance) and clearance >= 0):
+        raise GeometryError(f"--clearance must be a finite number >= 0, got {clearance}", usage=True)
+    if units not in UNITS:
+        raise GeometryError(f"--units {units!r}: expected one of {', '.join(UNITS)}", usage=True)
+    if not (np.isfinite(scale) and 0 < scale <= MAX_SCALE):
+        raise GeometryError(f"--scale must be a number in (0, {MAX_SCALE:g}], got {scale}", usage=True)
+
+
+def printable(
+    real: Realization,
+    thickness: float | None = None,
+    clearance: float | None = None,
+    units: str = "mm",
+    scale: float = 1.0,
+) -> Printable:
+    """Return the :class:`Printable` pieces of ``real`` (``thickness``, ``clearance`` in output units).
+
+    ``thickness`` defaults to twice the realization's tube radius (scaled), ``clearance``
+    to 0 (tubes must not touch).  Raises :class:`GeometryError` when a tube would fold
+    into itself or two pieces come closer than ``clearance``.
+
+    Examples
+    --------
+    >>> from lkspace.geometry.realization import realize
+    >>> p = printable(realize("tetrahedron", 1), thickness=0.1, clearance=0.05)
+    >>> len(p.curves), p.radius, p.min_gap is None or p.min_gap >= 0.05
+    (3, 0.05, True)
+    """
+    clearance = 0.0 if clearance is None else float(clearance)
+    check_options(thickness, clearance, units, scale)
+    curves, closed, members = join_curves(real.curves, real.closed, 1e-6 * real.scale)
+    strand_of = real.strand_of[[m[0] for m in members]] if members else np.zeros(0, np.int64)
+    scaled = [np.asarray(c, np.float64) * scale for c in curves]
+    bend, piece, point = tightest_bend(scaled, closed)
+    if thickness is None:  # the picture's tube, thinned where the curves bend tighter
+        radius = min(real.tube_radius * scale, 0.9 * bend)
+    else:
+        radius = 0.5 * thickness
+    if bend < radius:
+        raise GeometryError(
+            f"{real.scaffold.name}: --thickness {2 * radius:.4g} exceeds twice the bend radius {bend:.4g} of piece "
+            f"{piece} near {place_name(real.scaffold, point / scale)}; the tube would fold into itself "
+            "(use a smaller --thickness or a larger --scale)"
+        )
+    min_gap = check_gaps(real, scaled, closed, radius, clearance, scale)
+    return Printable(scaled, closed, np.asarray(strand_of, np.int64), radius, clearance, min_gap, units, scale)
+
+
+def check_gaps(
+    real: Realization, curves: list[np.ndarray], closed: np.ndarray, radius: float, clearance: float, scale: float
+) -> float | None:
+    """Prove a surface gap of ``clearance`` between distinct pieces; return the smallest gap found."""
+    if not curves:
+        return None
+    want = 2 * radius + clearance
+    total = sum(float(np.linalg.norm(np.diff(np.vstack([c, c[:1]]) if cl else c, axis=0), axis=1).sum())
+                for c, cl in zip(curves, closed, strict=True))  # fmt: skip
+    spacing = max(min(radius, clearance if clearance > 0 else radius) / 3, total / MAX_GAP_SAMPLES)
+    pts, arc, owner, lengths = samples(curves, closed, spacing)
+    tree = cKDTree(pts)
+    reach = want + spacing + radius
+    exclusion = max(4 * want, np.pi * (radius + spacing))
+    while True:  # widen the search until a gap is found (a number to report), within bounds
+        pairs = tree.query_pairs(reach, output_type="ndarray")
+        keep = np.zeros(0, bool)
+        if len(pairs):
+            keep = pieces_apart(owner, arc, lengths, closed, pairs[:, 0], pairs[:, 1], exclusion)
+        if np.any(keep) or reach > 0.5 * max(lengths.max(), want) or len(pairs) > MAX_GAP_PAIRS:
+            break
+        reach *= 2
+    if not np.any(keep):
+        return None
+    i, j = pairs[keep, 0], pairs[keep, 1]
+    d = np.linalg.norm(pts[i] - pts[j], axis=1)
+    b = int(np.argmin(d))
+    gap = float(d[b] - spacing - 2 * radius)
+    if gap < clearance:
+        mid = 0.5 * (pts[i[b]] + pts[j[b]]) / scale
+        what = f"pieces {owner[i[b]]} and {owner[j[b]]}" if owner[i[b]] != owner[j[b]] else f"piece {owner[i[b]]}"
+        raise GeometryError(
+            f"{real.scaffold.name}: {what} leave a gap of {max(gap, 0.0):.4g} < clearance {clearance:.4g} "
+            f"(thickness {2 * radius:.4g}) near {place_name(real.scaffold, mid)}; use a smaller --thickness or "
+            "--clearance, or a larger --scale"
+        )
+    return gap
