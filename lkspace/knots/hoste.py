@@ -44,7 +44,7 @@ def ht_manifold(name: str) -> Any | None:
         return None
 
 
-def _meridian_isometries(exterior: Any, table: Any) -> list[int]:
+def meridian_isometries(exterior: Any, table: Any) -> list[int]:
     """Determinants (+1, -1) of the isometries ``exterior -> table`` that take meridians to meridians."""
     try:
         isometries = exterior.is_isometric_to(table, return_isometries=True)
@@ -94,7 +94,7 @@ def ht_name(exterior: Any, n_components: int) -> dict[str, Any] | None:
         table = ht_manifold(name)
         if table is None or table.num_cusps() != n_components:
             continue
-        dets = set(_meridian_isometries(exterior, table))
+        dets = set(meridian_isometries(exterior, table))
         if dets:
             mirror = None if len(dets) == 2 else dets.pop() < 0
             results.append({"name": name, "table_name": name, "table": TABLE, "mirror": mirror})
