@@ -11,8 +11,7 @@ from collections.abc import Callable, Iterable
 from types import ModuleType
 from typing import Any
 
-from .hoste import TABLE as HT_TABLE
-from .hoste import ht_crossings, ht_name
+from .hoste import ht_name
 from .tables import HOMFLY_MAX_CROSSINGS, JONES_POINT, knot_modules, laurent_value, tables
 
 KNOT_FLOER_MAX_CROSSINGS = 40
@@ -86,18 +85,11 @@ def name_diagram(pd: list[list[int]], n_components: int) -> dict[str, Any]:
         out["note"] = f"volume {volume} differs from {entry['table_name']}'s {table_volume}"
         return out
     mirrors = {m for _, m in cands}
-    out.update(name=entry["name"], table_name=entry["table_name"], table=table_of(entry["name"], n_components))
+    out.update(name=entry["name"], table_name=entry["table_name"], table="knotinfo" if n_components == 1 else "linkinfo")
     out["mirror"] = mirrors.pop() if len(mirrors) == 1 else None
     if out["mirror"] is not None and n_components == 1:
         out["chiral_name"] = ("m" if out["mirror"] else "") + entry["name"]
     return out
-
-
-def table_of(name: str, n_components: int) -> str:
-    """The table a name comes from: ``"knotinfo"``, ``"linkinfo"`` or ``"HTLinkExteriors"``."""
-    if ht_crossings(name) is not None:
-        return HT_TABLE
-    return "knotinfo" if n_components == 1 else "linkinfo"
 
 
 def _name_from_ht(out: dict[str, Any], exterior: Any, n_components: int) -> dict[str, Any]:
