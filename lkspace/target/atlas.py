@@ -1,0 +1,277 @@
+"""The atlas of a design space: every knot and link type it realizes (``lkspace atlas``).
+
+Every design (one per orbit of the rotation group: rotations keep the type and the
+chirality) is identified (:func:`lkspace.knots.recognition.identify`) in ``processes``
+worker processes, in the order of :class:`~lkspace.target.candidates.OrderedWalk`.
+Designs are grouped by **type**: the name (``3_1``; both mirror images together, counted
+apart in ``chirality``), ``split: 0_1 + 3_1`` for a split link with named pieces, or
+``unknown (N components)``.  Per type: designs, assignments (the orbit sizes summed),
+the **simplest design** (smallest ``sum |t|``, then fewest non-zero labels, then
+smallest largest ``|t|``) and the table that named it.
+
+Resumable: each identified design is appended to ``cache.jsonl`` in the output folder
+(one JSON line, flushed at once; a torn last line is ignored), headed by a line naming
+the space; a rerun reads it and identifies only the rest.  A catalog written by
+``enumerate --identify`` is summed from its ``knot_name`` column without identifying.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import time
+from collections.abc import Iterator
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from ..errors import CatalogError, LkspaceError
+from ..knots.recognition import identify
+from ..model.scaffold import Scaffold
+from ..progress import task
+from ..workers import context, ignore_interrupts
+from .candidates import OrderedWalk
+
+CACHE = "cache.jsonl"
+
+
+def type_key(ident: dict[str, Any]) -> str:
+    """The atlas type of an identification: its name, ``split: A + B`` or ``unknown (N components)``."""
+    if ident.get("name"):
+        return str(ident["name"])
+    pieces = ident.get("pieces")
+    if ident.get("split") and pieces and all(pieces):
+        return "split: " + " + ".join(sorted(pieces))
+    return f"unknown ({ident.get('components')} components)"
+
+
+def record_of(scaffold: Scaffold, labels: np.ndarray, seed: int, time_limit: float | None) -> dict[str, Any]:
+    """Identify one design; the few fields the atlas keeps."""
+    try:
+        ident = identify(scaffold, labels, seed=seed, time_limit=time_limit).to_dict()
+    except LkspaceError as exc:
+        return {"type": "unknown (not identified)", "status": f"unknown: {exc}", "components": None}
+    return {
+        "type": type_key(ident),
+        "components": ident["components"],
+        "table": ident.get("table"),
+        "mirror": ident.get("mirror"),
+        "crossings": ident.get("crossings"),
+        "status": ident["status"],
+    }
+
+
+@dataclass
+class TypeEntry:
+    """One type of the atlas."""
+
+    name: str
+    components: int | None
+    table: str | None = None
+    crossings: int | None = None
+    designs: int = 0
+    assignments: int = 0
+    simplest: list[int] = field(default_factory=list)
+    cost: tuple[int, int, int] = (1 << 62, 0, 0)
+    chirality: dict[str, int] = field(default_factory=lambda: {"table": 0, "mirror": 0, "undetermined": 0})
+
+    def add(self, labels: np.ndarray, orbit: int, rec: dict[str, Any]) -> None:
+        """Count one design of this type."""
+        self.designs += 1
+        self.assignments += int(orbit)
+        a = np.abs(labels)
+        cost = (int(a.sum()), int((a != 0).sum()), int(a.max()) if len(a) else 0)
+        if cost < self.cost:
+            self.cost, self.simplest = cost, [int(x) for x in labels]
+        crossings = rec.get("crossings")
+        if crossings is not None and (self.crossings is None or crossings < self.crossings):
+            self.crossings = int(crossings)
+        self.table = self.table or rec.get("table")
+        mirror = rec.get("mirror")
+        self.chirality[{True: "mirror", False: "table"}.get(mirror, "undetermined")] += 1
+
+    def to_dict(self) -> dict[str, Any]:
+        """Return the JSON form (``name``, ``components``, ``designs``, ``assignments``, ``simplest`` ...)."""
+        return {
+            "name": self.name,
+            "components": self.components,
+            "table": self.table,
+            "crossings": self.crossings,
+            "designs": self.designs,
+            "assignments": self.assignments,
+            "simplest": self.simplest,
+            "simplest_sum_abs": self.cost[0],
+            "simplest_nonzero": self.cost[1],
+            "chirality": self.chirality,
+        }
+
+
+def sort_types(types: dict[str, TypeEntry]) -> list[TypeEntry]:
+    """Types by components, then known before unknown, then crossings, then name."""
+    return sorted(
+        types.values(),
+        key=lambda t: (t.components or 0, t.name.startswith(("unknown", "split")), t.crossings or 0, t.name),
+    )
+
+
+_WORKER: dict[str, Any] = {}
+
+
+def _init(scaffold: Scaffold, seed: int, time_limit: float | None) -> None:
+    ignore_interrupts()
+    _WORKER.update(scaffold=scaffold, seed=seed, time_limit=time_limit)
+
+
+def _record_row(labels: np.ndarray) -> dict[str, Any]:
+    return record_of(_WORKER["scaffold"], np.asarray(labels, np.int64), _WORKER["seed"], _WORKER["time_limit"])
+
+
+def read_cache(path: str, header: dict[str, Any]) -> dict[tuple[int, ...], dict[str, Any]]:
+    """Records of a previous run (``{labels: record}``); empty if none or if it was for another space."""
+    if not os.path.exists(path):
+        return {}
+    out: dict[tuple[int, ...], dict[str, Any]] = {}
+    with open(path, encoding="utf-8") as fh:
+        first = fh.readline()
+        try:
+            if json.loads(first) != header:
+                return {}
+        except json.JSONDecodeError:
+            return {}
+        for line in fh:
+            try:
+                item = json.loads(line)
+                out[tuple(item["labels"])] = item["record"]
+            except (json.JSONDecodeError, KeyError, TypeError):
+                continue  # a line torn by an interrupted run
+    return out
+
+
+def atlas(
+    scaffold: Scaffold,
+    label_set: np.ndarray,
+    folder: str | None = None,
+    *,
+    no_zero: bool = False,
+    processes: int = 1,
+    seed: int = 0,
+    time_limit: float | None = 60.0,
+) -> dict[str, Any]:
+    """Identify every design of the space; return ``{"types": [...], "designs": n, ...}``.
+
+    ``folder``: keep the resumable cache there (``cache.jsonl``).
+
+    Examples
+    --------
+    >>> from lkspace import load
+    >>> out = atlas(load("dihedron:3"), np.array([0, 1]))
+    >>> [(t["name"], t["designs"], t["simplest"]) for t in out["types"]]
+    [('0_1', 1, [0, 0, 1]), ('3_1', 1, [1, 1, 1]), ('L2a1', 1, [0, 1, 1]), ('split: 0_1 + 0_1', 1, [0, 0, 0])]
+    """
+    t0 = time.monotonic()
+    header = {
+        "scaffold": scaffold.name,
+        "hash": scaffold.content_hash(),
+        "labels": [int(x) for x in label_set],
+        "no_zero": no_zero,
+        "seed": seed,
+    }
+    cache_path = os.path.join(folder, CACHE) if folder else None
+    cached = read_cache(cache_path, header) if cache_path else {}
+    types: dict[str, TypeEntry] = {}
+    n_designs = n_new = 0
+    sink = _open_cache(cache_path, header, bool(cached)) if cache_path else None
+    try:
+        with task(f"atlas of {scaffold.name}") as step:
+            for labels, orbit, rec in _records(scaffold, label_set, no_zero, cached, processes, seed, time_limit):
+                if rec.pop("new", False):
+                    n_new += 1
+                    if sink is not None:
+                        sink.write(json.dumps({"labels": labels.tolist(), "record": rec}) + "\n")
+                        sink.flush()
+                entry = types.setdefault(rec["type"], TypeEntry(rec["type"], rec.get("components")))
+                entry.add(labels, orbit, rec)
+                n_designs += 1
+                step.note(f"{n_designs:,} designs, {len(types)} types")
+    finally:
+        if sink is not None:
+            sink.close()
+    listed = [t.to_dict() for t in sort_types(types)]
+    return {
+        "scaffold": scaffold.name,
+        "label_set": [int(x) for x in label_set],
+        "designs": n_designs,
+        "assignments": sum(t["assignments"] for t in listed),
+        "identified_now": n_new,
+        "from_cache": n_designs - n_new,
+        "types": listed,
+        "wall_time": round(time.monotonic() - t0, 3),
+    }
+
+
+def _open_cache(path: str, header: dict[str, Any], resume: bool) -> Any:
+    os.makedirs(os.path.dirname(path) or ".", exist_ok=True)
+    fh = open(path, "a" if resume else "w", encoding="utf-8")  # noqa: SIM115 - closed by the caller
+    if not resume:
+        fh.write(json.dumps(header) + "\n")
+        fh.flush()
+    return fh
+
+
+def _records(
+    scaffold: Scaffold,
+    label_set: np.ndarray,
+    no_zero: bool,
+    cached: dict[tuple[int, ...], dict[str, Any]],
+    processes: int,
+    seed: int,
+    time_limit: float | None,
+) -> Iterator[tuple[np.ndarray, int, dict[str, Any]]]:
+    """``(labels, orbit size, record)`` of every design; records not in ``cached`` are marked ``new``."""
+    pool = context().Pool(processes, _init, (scaffold, seed, time_limit)) if processes > 1 else None
+    _WORKER.update(scaffold=scaffold, seed=seed, time_limit=time_limit)
+    try:
+        for batch in OrderedWalk(scaffold, label_set, None, no_zero=no_zero):
+            keys = [tuple(r) for r in batch.labels.tolist()]
+            todo = [i for i, k in enumerate(keys) if k not in cached]
+            rows = batch.labels[todo]
+            fresh = pool.imap(_record_row, rows, chunksize=8) if pool is not None else map(_record_row, rows)
+            got = dict(zip(todo, fresh, strict=False))
+            for i, k in enumerate(keys):
+                rec = {**got[i], "new": True} if i in got else dict(cached[k])
+                yield batch.labels[i], int(batch.orbit_sizes[i]), rec
+    finally:
+        if pool is not None:
+            pool.terminate()
+            pool.join()
+
+
+def atlas_of_catalog(path: str) -> dict[str, Any]:
+    """Sum a catalog identified by ``enumerate --identify`` (its ``knot_name`` column) into atlas types."""
+    from ..catalog.reader import read_catalog
+
+    cat = read_catalog(path)
+    frame = cat.frame
+    if "knot_name" not in frame.columns:
+        raise CatalogError(f"{path}: no knot_name column; run 'lkspace enumerate ... --identify' or give MESH")
+    types: dict[str, TypeEntry] = {}
+    for i in range(len(frame)):
+        name = frame["knot_name"].iloc[i]
+        comps = int(frame["components"].iloc[i])
+        split = frame["split"].iloc[i] if "split" in frame.columns else None
+        key = str(name) if isinstance(name, str) else f"{'split' if split is True else 'unknown'} ({comps} components)"
+        mirror = frame["mirror"].iloc[i] if "mirror" in frame.columns else None
+        rec = {"mirror": None if mirror is None or mirror is np.nan else bool(mirror) if isinstance(mirror, (bool, np.bool_)) else None,
+               "crossings": None}  # fmt: skip
+        entry = types.setdefault(key, TypeEntry(key, comps))
+        entry.add(cat.labels[i].astype(np.int64), int(frame["orbit_size"].iloc[i]), rec)
+    listed = [t.to_dict() for t in sort_types(types)]
+    return {
+        "scaffold": cat.scaffold.name,
+        "label_set": cat.metadata.get("label_set"),
+        "designs": len(frame),
+        "assignments": sum(t["assignments"] for t in listed),
+        "types": listed,
+        "from_catalog": os.path.abspath(path),
+    }
