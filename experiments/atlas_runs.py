@@ -1,0 +1,146 @@
+"""Atlases of the built-in scaffolds for results/atlas/ (run: ``nice python experiments/atlas_runs.py``).
+
+Each space is identified with :func:`lkspace.target.atlas.atlas` (resumable cache under
+``$ATLAS_CACHE``, default /tmp/lkspace-atlas-cache, never committed) and written to
+``results/atlas/NAME/`` (README.md, atlas.parquet, a few PNGs).  Wall and CPU times go to
+``results/atlas/runs.json``; ``results/atlas/README.md`` gets the table "which knots and
+links each scaffold makes", by crossing number, and the types of the 32 single-cycle
+tetrahedral designs.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import resource
+import sys
+import time
+
+import numpy as np
+
+from lkspace import load
+from lkspace.model.specs import parse_label_set
+from lkspace.target.atlas import atlas, read_cache
+from lkspace.target.gallery import write_gallery
+
+ROOT = os.path.join(os.path.dirname(__file__), "..", "results", "atlas")
+CACHE = os.environ.get("ATLAS_CACHE", "/tmp/lkspace-atlas-cache")
+
+SPACES = [  # (folder, scaffold, labels, pictures)
+    ("tetrahedron", "tetrahedron", "-2..2", 5),
+    ("figure-eight", "figure-eight", "-2..2", 2),
+    ("whitehead", "whitehead", "-2..2", 2),
+    ("dihedron-3", "dihedron:3", "-2..2", 0),
+    ("dihedron-4", "dihedron:4", "-2..2", 0),
+    ("dihedron-5", "dihedron:5", "-2..2", 0),
+    ("dihedron-6", "dihedron:6", "-2..2", 0),
+    ("book-2", "book:2", "-1..1", 0),
+    ("book-3", "book:3", "-1..1", 0),
+    ("octahedron", "octahedron", "-1..1", 4),
+    ("cube", "cube", "-1..1", 4),
+]
+
+
+def cpu() -> float:
+    r = resource.getrusage(resource.RUSAGE_SELF)
+    c = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return r.ru_utime + r.ru_stime + c.ru_utime + c.ru_stime
+
+
+def main(only: list[str]) -> None:
+    runs_path = os.path.join(ROOT, "runs.json")
+    runs = json.load(open(runs_path)) if os.path.exists(runs_path) else {}
+    for folder, name, labels, pictures in SPACES:
+        if only and folder not in only:
+            continue
+        scaffold = load(name)
+        t0, c0 = time.monotonic(), cpu()
+        data = atlas(scaffold, parse_label_set(labels), os.path.join(CACHE, folder))
+        write_gallery(os.path.join(ROOT, folder), data, scaffold, pictures)
+        runs[folder] = {
+            "scaffold": name,
+            "labels": labels,
+            "designs": data["designs"],
+            "types": len(data["types"]),
+            "identified_now": data["identified_now"],
+            "wall_s": round(time.monotonic() - t0, 1),
+            "cpu_s": round(cpu() - c0, 1),
+        }
+        with open(runs_path, "w") as fh:
+            json.dump(runs, fh, indent=1)
+        print(folder, runs[folder], flush=True)
+    summary(runs)
+
+
+def summary(runs: dict) -> None:
+    import pandas as pd
+
+    lines = [
+        "# Atlases: which knots and links each scaffold makes",
+        "",
+        "Made by `experiments/atlas_runs.py` (`lkspace atlas`); one folder per space with its",
+        "README.md (every type, designs, assignments, simplest design), atlas.parquet and pictures.",
+        "Designs are counted up to rotation; a name stands for both mirror images.",
+        "",
+        "## Types by crossing number (non-split, named)",
+        "",
+        "| space | labels | designs | 0 | 2 | 3 | 4 | 5 | 6 | 7 | 8 | 9+ |",
+        "|---|---|---|---|---|---|---|---|---|---|---|---|",
+    ]
+    for folder, run in runs.items():
+        frame = pd.read_parquet(os.path.join(ROOT, folder, "atlas.parquet"))
+        named = frame[~frame["name"].str.startswith(("unknown", "split"))]
+        cells = []
+        for lo, hi in [(0, 0), (2, 2), (3, 3), (4, 4), (5, 5), (6, 6), (7, 7), (8, 8), (9, 999)]:
+            pick = named[named["name"].map(lambda n: lo <= _crossing_number(n) <= hi)]
+            cells.append(", ".join(sorted(pick["name"])) or "")
+        row = f"| [{run['scaffold']}]({folder}/README.md) | {run['labels']} | {run['designs']:,} | " + " | ".join(cells)
+        lines.append(row + " |")
+    lines += ["", "## Cost", "", "| space | designs | identified | wall s | CPU s |", "|---|---|---|---|---|"]
+    for folder, run in runs.items():
+        lines.append(
+            f"| {run['scaffold']} {run['labels']} | {run['designs']:,} | {run['identified_now']:,} | "
+            f"{run['wall_s']} | {run['cpu_s']} |"
+        )
+    lines += single_cycle_table()
+    with open(os.path.join(ROOT, "README.md"), "w") as fh:
+        fh.write("\n".join(lines) + "\n")
+
+
+def _crossing_number(name: str) -> int:
+    """Crossing number from a name (``3_1`` 3, ``L6a4`` 6, ``11a_1`` 11, a sum: the total)."""
+    import re
+
+    total = 0
+    for part in name.split("#"):
+        m = re.match(r"m?[KL]?(\d+)", part)
+        total += int(m[1]) if m else 0
+    return total
+
+
+def single_cycle_table() -> list[str]:
+    """The 32 single-cycle designs of the tetrahedron with labels -1..1 and their types."""
+    from lkspace.target.candidates import OrderedWalk
+
+    scaffold = load("tetrahedron")
+    header = {"scaffold": "tetrahedron", "hash": scaffold.content_hash(), "labels": [-2, -1, 0, 1, 2],
+              "no_zero": False, "seed": 0}  # fmt: skip
+    cached = read_cache(os.path.join(CACHE, "tetrahedron", "cache.jsonl"), header)
+    if not cached:
+        return []
+    rows = [(lab, cached[tuple(lab)]) for b in OrderedWalk(scaffold, np.arange(-1, 2), 1) for lab in b.labels.tolist()]
+    lines = [
+        "",
+        f"## The {len(rows)} single-cycle tetrahedral designs (labels -1..1, up to rotation)",
+        "",
+        "| labels (edge order) | type | chirality |",
+        "|---|---|---|",
+    ]
+    for lab, rec in rows:
+        chir = {True: "mirror", False: "table", None: "-"}[rec.get("mirror")]
+        lines.append(f"| `{','.join(map(str, lab))}` | {rec['type']} | {chir} |")
+    return lines
+
+
+if __name__ == "__main__":
+    main(sys.argv[1:])
