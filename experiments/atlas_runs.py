@@ -92,12 +92,12 @@ def summary(runs: dict) -> None:
         named = frame[~frame["name"].str.startswith(("unknown", "split"))]
         cells = []
         for lo, hi in [(0, 0), (2, 2), (3, 3), (4, 4), (5, 5), (6, 6), (7, 7), (8, 8), (9, 999)]:
-            pick = named[named["name"].map(lambda n: lo <= _crossing_number(n) <= hi)]
+            pick = named[[lo <= _crossing_number(n) <= hi for n in named["name"]]]
             cells.append(", ".join(sorted(pick["name"])) or "")
         row = f"| [{run['scaffold']}]({folder}/README.md) | {run['labels']} | {run['designs']:,} | " + " | ".join(cells)
         lines.append(row + " |")
     lines += ["", "## Cost", "", "| space | designs | identified | wall s | CPU s |", "|---|---|---|---|---|"]
-    for folder, run in runs.items():
+    for run in runs.values():
         lines.append(
             f"| {run['scaffold']} {run['labels']} | {run['designs']:,} | {run['identified_now']:,} | "
             f"{run['wall_s']} | {run['cpu_s']} |"

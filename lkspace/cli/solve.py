@@ -43,6 +43,7 @@ MAX_SEED = 2**31 - 1
 
 
 def fix_label(value: str, item: str) -> int:
+    """Parse the label of a ``--fix EDGE=T`` item (within ``MAX_FIX_LABEL``)."""
     try:
         label = int(value)
     except ValueError:

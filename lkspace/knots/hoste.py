@@ -33,7 +33,7 @@ def ht_crossings(name: str) -> int | None:
 
 
 def ht_manifold(name: str) -> Any | None:
-    """The table's exterior of ``name`` (a ``snappy.Manifold``), ``None`` if the table has no such entry."""
+    """Return the table's exterior of ``name`` (a ``snappy.Manifold``), ``None`` if the table has no such entry."""
     import snappy
 
     if HT_NAME.fullmatch(name) is None:
@@ -45,7 +45,7 @@ def ht_manifold(name: str) -> Any | None:
 
 
 def meridian_isometries(exterior: Any, table: Any) -> list[int]:
-    """Determinants (+1, -1) of the isometries ``exterior -> table`` that take meridians to meridians."""
+    """Return the determinants (+1, -1) of the isometries ``exterior -> table`` that take meridians to meridians."""
     try:
         isometries = exterior.is_isometric_to(table, return_isometries=True)
     except Exception:  # noqa: BLE001 - SnapPy cannot decide (degenerate triangulation)
@@ -102,7 +102,7 @@ def ht_name(exterior: Any, n_components: int) -> dict[str, Any] | None:
 
 
 def _ht_names(found: list[Any], letter: str) -> set[str]:
-    """The names among SnapPy's answers that are Hoste-Thistlethwaite names of a knot (``K``) or link (``L``)."""
+    """Return the names among SnapPy's answers that are Hoste-Thistlethwaite names of a knot (``K``) or link (``L``)."""
     out = set()
     for m in found:
         name = str(m).split("(")[0]

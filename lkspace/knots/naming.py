@@ -85,7 +85,9 @@ def name_diagram(pd: list[list[int]], n_components: int) -> dict[str, Any]:
         out["note"] = f"volume {volume} differs from {entry['table_name']}'s {table_volume}"
         return out
     mirrors = {m for _, m in cands}
-    out.update(name=entry["name"], table_name=entry["table_name"], table="knotinfo" if n_components == 1 else "linkinfo")
+    out.update(
+        name=entry["name"], table_name=entry["table_name"], table="knotinfo" if n_components == 1 else "linkinfo"
+    )
     out["mirror"] = mirrors.pop() if len(mirrors) == 1 else None
     if out["mirror"] is not None and n_components == 1:
         out["chiral_name"] = ("m" if out["mirror"] else "") + entry["name"]

@@ -9,6 +9,9 @@ apart in ``chirality``), ``split: 0_1 + 3_1`` for a split link with named pieces
 the **simplest design** (smallest ``sum |t|``, then fewest non-zero labels, then
 smallest largest ``|t|``) and the table that named it.
 
+A design that differs from one already identified only on edges of degree 1 takes its
+type without a second identification (:func:`~lkspace.target.screen.type_labels`).
+
 Resumable: each identified design is appended to ``cache.jsonl`` in the output folder
 (one JSON line, flushed at once; a torn last line is ignored), headed by a line naming
 the space; a rerun reads it and identifies only the rest.  A catalog written by
@@ -20,6 +23,7 @@ from __future__ import annotations
 import json
 import os
 import time
+from collections import Counter
 from collections.abc import Iterator
 from dataclasses import dataclass, field
 from typing import Any
@@ -32,12 +36,13 @@ from ..model.scaffold import Scaffold
 from ..progress import task
 from ..workers import context, ignore_interrupts
 from .candidates import OrderedWalk
+from .screen import type_labels
 
 CACHE = "cache.jsonl"
 
 
 def type_key(ident: dict[str, Any]) -> str:
-    """The atlas type of an identification: its name, ``split: A + B`` or ``unknown (N components)``."""
+    """Return the atlas type of an identification: its name, ``split: A + B`` or ``unknown (N components)``."""
     if ident.get("name"):
         return str(ident["name"])
     pieces = ident.get("pieces")
@@ -89,7 +94,7 @@ class TypeEntry:
             self.crossings = int(crossings)
         self.table = self.table or rec.get("table")
         mirror = rec.get("mirror")
-        self.chirality[{True: "mirror", False: "table"}.get(mirror, "undetermined")] += 1
+        self.chirality["undetermined" if mirror is None else "mirror" if mirror else "table"] += 1
 
     def to_dict(self) -> dict[str, Any]:
         """Return the JSON form (``name``, ``components``, ``designs``, ``assignments``, ``simplest`` ...)."""
@@ -128,7 +133,7 @@ def _record_row(labels: np.ndarray) -> dict[str, Any]:
 
 
 def read_cache(path: str, header: dict[str, Any]) -> dict[tuple[int, ...], dict[str, Any]]:
-    """Records of a previous run (``{labels: record}``); empty if none or if it was for another space."""
+    """Return the records of a previous run (``{labels: record}``); empty if none or if it was for another space."""
     if not os.path.exists(path):
         return {}
     out: dict[tuple[int, ...], dict[str, Any]] = {}
@@ -180,13 +185,15 @@ def atlas(
     cache_path = os.path.join(folder, CACHE) if folder else None
     cached = read_cache(cache_path, header) if cache_path else {}
     types: dict[str, TypeEntry] = {}
-    n_designs = n_new = 0
+    n_designs = 0
+    how: Counter[str] = Counter()
     sink = _open_cache(cache_path, header, bool(cached)) if cache_path else None
     try:
         with task(f"atlas of {scaffold.name}") as step:
             for labels, orbit, rec in _records(scaffold, label_set, no_zero, cached, processes, seed, time_limit):
-                if rec.pop("new", False):
-                    n_new += 1
+                source = rec.pop("source")
+                how[source] += 1
+                if source != "cache":
                     if sink is not None:
                         sink.write(json.dumps({"labels": labels.tolist(), "record": rec}) + "\n")
                         sink.flush()
@@ -203,8 +210,9 @@ def atlas(
         "label_set": [int(x) for x in label_set],
         "designs": n_designs,
         "assignments": sum(t["assignments"] for t in listed),
-        "identified_now": n_new,
-        "from_cache": n_designs - n_new,
+        "identified_now": how["identified"],
+        "reused": how["reused"],
+        "from_cache": how["cache"],
         "types": listed,
         "wall_time": round(time.monotonic() - t0, 3),
     }
@@ -228,18 +236,35 @@ def _records(
     seed: int,
     time_limit: float | None,
 ) -> Iterator[tuple[np.ndarray, int, dict[str, Any]]]:
-    """``(labels, orbit size, record)`` of every design; records not in ``cached`` are marked ``new``."""
+    """``(labels, orbit size, record)`` of every design; ``record["source"]`` says where it came from.
+
+    ``"cache"`` (a previous run), ``"identified"`` (identified now) or ``"reused"``: a design
+    that differs from one identified before only on edges of degree 1 has its type
+    (:func:`~lkspace.target.screen.type_labels`).
+    """
     pool = context().Pool(processes, _init, (scaffold, seed, time_limit)) if processes > 1 else None
     _WORKER.update(scaffold=scaffold, seed=seed, time_limit=time_limit)
+    known: dict[tuple[int, ...], dict[str, Any]] = {}
     try:
         for batch in OrderedWalk(scaffold, label_set, None, no_zero=no_zero):
             keys = [tuple(r) for r in batch.labels.tolist()]
-            todo = [i for i, k in enumerate(keys) if k not in cached]
-            rows = batch.labels[todo]
+            zkeys = [tuple(r) for r in type_labels(scaffold, batch.labels).tolist()]
+            for k, z in zip(keys, zkeys, strict=True):
+                if k in cached:
+                    known.setdefault(z, cached[k])
+            todo = list(dict.fromkeys(z for k, z in zip(keys, zkeys, strict=True) if k not in cached and z not in known))
+            rows = np.array(todo, np.int64).reshape(len(todo), scaffold.n_edges)
             fresh = pool.imap(_record_row, rows, chunksize=8) if pool is not None else map(_record_row, rows)
-            got = dict(zip(todo, fresh, strict=False))
-            for i, k in enumerate(keys):
-                rec = {**got[i], "new": True} if i in got else dict(cached[k])
+            new = set()
+            for z, rec in zip(todo, fresh, strict=True):
+                known[z] = rec
+                new.add(z)
+            for i, (k, z) in enumerate(zip(keys, zkeys, strict=True)):
+                if k in cached:
+                    rec = {**cached[k], "source": "cache"}
+                else:
+                    rec = {**known[z], "source": "identified" if z in new else "reused"}
+                    new.discard(z)
                 yield batch.labels[i], int(batch.orbit_sizes[i]), rec
     finally:
         if pool is not None:

@@ -40,13 +40,13 @@ class Candidates:
 
 
 def shells(label_set: np.ndarray, no_zero: bool) -> list[int]:
-    """The values ``k`` of ``|t|`` in the label set, increasing (0 left out under ``no_zero``)."""
+    """Return the values ``k`` of ``|t|`` in the label set, increasing (0 left out under ``no_zero``)."""
     values = np.unique(np.abs(np.asarray(label_set, np.int64)))
     return [int(k) for k in values if not (no_zero and k == 0)]
 
 
 def simplicity_order(labels: np.ndarray) -> np.ndarray:
-    """Indices sorting rows by ``sum |t|``, then the number of non-zero labels (stable)."""
+    """Return indices sorting rows by ``sum |t|``, then the number of non-zero labels (stable)."""
     a = np.abs(labels.astype(np.int64))
     return np.lexsort(((a != 0).sum(axis=1), a.sum(axis=1)))
 

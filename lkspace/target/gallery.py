@@ -19,7 +19,7 @@ PICTURE_SIZE = 480
 
 
 def picture_name(type_name: str) -> str:
-    """A file name for a type's picture: ``3_1.png``, ``split_0_1_3_1.png``."""
+    """Return a file name for a type's picture: ``3_1.png``, ``split_0_1_3_1.png``."""
     return re.sub(r"[^A-Za-z0-9_#-]+", "_", type_name).strip("_").replace("#", "+") + ".png"
 
 
@@ -49,7 +49,7 @@ def picture(scaffold: Scaffold, labels: list[int], path: str, title: str) -> Non
 
 
 def _pictures(folder: str, data: dict[str, Any], scaffold: Scaffold, limit: int) -> list[str]:
-    out = []
+    out: list[str] = []
     for entry in data["types"]:
         if len(out) >= limit:
             break
@@ -88,7 +88,7 @@ def _parquet(path: str, data: dict[str, Any]) -> None:
 
 
 def markdown(data: dict[str, Any]) -> str:
-    """The atlas as a Markdown page: a heading, the space, one table row per type."""
+    """Return the atlas as a Markdown page: a heading, the space, one table row per type."""
     lines = [
         f"# Atlas of {data['scaffold']}, labels {data.get('label_set')}",
         "",

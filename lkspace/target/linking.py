@@ -34,7 +34,9 @@ def parse_linking_matrix(text: str) -> np.ndarray:
         rows = json.loads(text) if text.strip().startswith("[") else [r.split(",") for r in text.split(";")]
         matrix = np.array([[int(str(v).strip()) for v in row] for row in rows], dtype=np.int64)
     except (ValueError, TypeError, OverflowError):
-        raise UsageError(f"{where}: write integers, rows separated by ';' (e.g. 0,1;1,0) or JSON [[0,1],[1,0]]") from None
+        raise UsageError(
+            f"{where}: write integers, rows separated by ';' (e.g. 0,1;1,0) or JSON [[0,1],[1,0]]"
+        ) from None
     n = len(matrix)
     if matrix.ndim != 2 or matrix.shape != (n, n) or n == 0:
         raise UsageError(f"{where}: not a square matrix")

@@ -127,7 +127,7 @@ def _amphichiral_knots() -> frozenset[str]:
 
 
 def _prime(name: str, chirality: str, typed: str) -> Target:
-    """The target of one prime (or trivial) name."""
+    """Return the target of one prime (or trivial) name."""
     if name == "0_1":
         return Target("0_1", "any", 1, 0, "knotinfo", frozenset({Fraction(1)}), None, True)
     entries = table_entries().get(name)
@@ -191,7 +191,7 @@ def parse_type(text: str, chirality: str = "any") -> Target:
 
 
 def _sum(text: str, chirality: str, typed: str) -> Target:
-    """A connected sum of knots: the Jones polynomial is the product of the factors'."""
+    """Return the target of a connected sum of knots: the Jones polynomial is the product of the factors'."""
     parts = [p.strip() for p in text.split("#")]
     chiral = []
     primes = []
@@ -227,7 +227,11 @@ def judge(target: Target, ident: dict[str, Any]) -> str:
         if ident.get("split") and ident.get("status") == "identified":
             return "other"  # a split link: targets are non-split
         cands = ident.get("candidates") or []
-        if cands and target.table in ("knotinfo", "linkinfo") and target.name not in {_canonical(c.split(' ')[0]) for c in cands}:
+        if (
+            cands
+            and target.table in ("knotinfo", "linkinfo")
+            and target.name not in {_canonical(c.split(" ")[0]) for c in cands}
+        ):
             return "other"
         return "undetermined"
     if name != target.name:

@@ -39,6 +39,25 @@ JONES_MAX_CROSSINGS = 40
 """Simplified diagrams with more crossings skip the Jones filter."""
 
 
+def type_labels(scaffold: Scaffold, labels: np.ndarray) -> np.ndarray:
+    """Return ``labels`` with the edges of degree 1 set to 0: a design of the same knot or link type.
+
+    On an edge of degree 1 a lone strand turns ``t`` times about the edge's axis, inside
+    a thin cylinder around the edge that no other strand enters: a one-strand braid,
+    isotopic (ends fixed, inside the cylinder) to the untwisted arc.  So the type depends
+    on the labels of the edges of degree >= 2 only.
+
+    Examples
+    --------
+    >>> from lkspace import load
+    >>> type_labels(load("book:2"), np.array([[2, 1, -1, 0, 1, 1, 2]])).tolist()
+    [[2, 0, 0, 0, 0, 0, 0]]
+    """
+    out = np.array(labels, np.int64, copy=True)
+    out[..., np.asarray(scaffold.edge_degrees) == 1] = 0
+    return out
+
+
 @dataclass(frozen=True, eq=False)
 class Goal:
     """What the search wants: a type (``target``), a linking matrix (``linking``), or both."""

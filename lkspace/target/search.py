@@ -27,7 +27,7 @@ from ..progress import task
 from ..strands.tracing import trace
 from ..workers import context
 from .candidates import OrderedWalk
-from .screen import Goal, init_worker, screen, screen_row
+from .screen import Goal, init_worker, screen, screen_row, type_labels
 
 CHECK_SEED_SHIFT = 1009
 """Seed offset of the projection used to re-identify an answer (independent of the search's)."""
@@ -111,9 +111,10 @@ def solve_target(
     solutions: list[dict[str, Any]] = []
     undetermined: list[list[int]] = []
     timed_out = False
-    with task(f"searching {scaffold.name} for {goal.label}") as step, _screener(
-        scaffold, goal, seed, identify_time_limit, processes
-    ) as run:
+    with (
+        task(f"searching {scaffold.name} for {goal.label}") as step,
+        _screener(scaffold, goal, seed, identify_time_limit, processes) as run,
+    ):
         for batch in walk:
             for labels, orbit, verdict in run(batch.labels, batch.orbit_sizes):
                 tally["designs"] += 1
@@ -174,6 +175,7 @@ class _screener:
         self.args = (scaffold, goal, seed, time_limit)
         self.processes = processes
         self.pool: Any = None
+        self.seen: dict[tuple[int, ...], dict[str, Any]] = {}
 
     def __enter__(self) -> Any:
         init_worker(*self.args, worker=False)
@@ -182,10 +184,21 @@ class _screener:
         return self.run
 
     def run(self, labels: np.ndarray, orbits: np.ndarray) -> Iterator[tuple[np.ndarray, int, dict[str, Any]]]:
-        rows = iter(labels)
-        results = self.pool.imap(screen_row, rows, chunksize=4) if self.pool is not None else map(screen_row, rows)
-        for i, verdict in enumerate(results):
-            yield labels[i], int(orbits[i]), verdict
+        """Screen the rows; a row equal to an earlier one off the degree-1 edges takes its verdict."""
+        zkeys = [tuple(r) for r in type_labels(self.args[0], labels).tolist()]
+        firsts: dict[tuple[int, ...], int] = {}
+        for i, z in enumerate(zkeys):
+            if z not in self.seen:
+                firsts.setdefault(z, i)
+        first = sorted(firsts.values())
+        rows = iter(labels[first])
+        fresh = self.pool.imap(screen_row, rows, chunksize=4) if self.pool is not None else map(screen_row, rows)
+        for i, z in enumerate(zkeys):
+            if z not in self.seen:
+                self.seen[z] = next(fresh)
+                yield labels[i], int(orbits[i]), self.seen[z]
+            else:
+                yield labels[i], int(orbits[i]), {**self.seen[z], "reason": "same type as a design screened before"}
 
     def __exit__(self, *exc: object) -> None:
         if self.pool is not None:
