@@ -12,6 +12,7 @@ from ..errors import UsageError
 from ..io.paths import output_file
 from ..knots.budget import TIME_LIMIT
 from .common import Context, emit, label_set, load_mesh, usage_errors
+from .edges import edge_values, fix_label
 
 
 def target_cmd(
@@ -36,7 +37,6 @@ def target_cmd(
     from ..target.names import parse_type
     from ..target.screen import Goal
     from ..target.search import solve_target
-    from .solve import edge_values, fix_label
 
     if signed and linking_text is None:
         raise UsageError("--signed applies to --linking-matrix only")

@@ -252,7 +252,9 @@ def _records(
             for k, z in zip(keys, zkeys, strict=True):
                 if k in cached:
                     known.setdefault(z, cached[k])
-            todo = list(dict.fromkeys(z for k, z in zip(keys, zkeys, strict=True) if k not in cached and z not in known))
+            todo = list(
+                dict.fromkeys(z for k, z in zip(keys, zkeys, strict=True) if k not in cached and z not in known)
+            )
             rows = np.array(todo, np.int64).reshape(len(todo), scaffold.n_edges)
             fresh = pool.imap(_record_row, rows, chunksize=8) if pool is not None else map(_record_row, rows)
             new = set()
