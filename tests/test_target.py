@@ -220,3 +220,45 @@ def test_hoste_thistlethwaite_names_with_chirality():
             assert (got["name"], got["table"], got["mirror"]) == (name, "HTLinkExteriors", mirrored)
     target = parse_type("K14n10910")
     assert (target.components, target.crossings, target.table) == (1, 14, "HTLinkExteriors")
+
+
+def reverse_component(pd, component_edges):
+    """The PD code with one component (edges numbered consecutively) run the other way."""
+    a, b = min(component_edges), max(component_edges)
+
+    def flip(e):
+        return a + b - e if a <= e <= b else e
+
+    out = []
+    for i, j, k, ll in pd:
+        x = [flip(i), flip(j), flip(k), flip(ll)]
+        out.append([x[2], x[3], x[0], x[1]] if a <= i <= b else x)  # the incoming under edge first
+    return out
+
+
+def test_jones_filter_holds_every_orientation_of_a_link():
+    """Reversing a component changes the Jones polynomial; the target's fingerprints hold both."""
+    import regina
+    import snappy
+
+    from lkspace.knots.naming import one_based
+    from lkspace.knots.tables import JONES_POINT, laurent_value
+
+    pd = one_based(snappy.HTLinkExteriors["L13n4723"].link().PD_code())
+    parent = {e: e for x in pd for e in x}
+
+    def root(e):
+        while parent[e] != e:
+            e = parent[e]
+        return e
+
+    for i, j, k, ll in pd:
+        parent[root(i)], parent[root(j)] = root(k), root(ll)
+    comps = {}
+    for e in parent:
+        comps.setdefault(root(e), []).append(e)
+    fps = parse_type("L13n4723").fingerprints
+    values = {laurent_value(regina.Link.fromPD(pd).jones(), JONES_POINT)}
+    for comp in comps.values():
+        values.add(laurent_value(regina.Link.fromPD(reverse_component(pd, comp)).jones(), JONES_POINT))
+    assert len(values) == 2 and values <= fps

@@ -106,12 +106,28 @@ def _canonical(name: str) -> str:
 
 
 def _jones_values(pd: list[list[int]]) -> set[Fraction]:
-    """Jones polynomial of a PD code at ``sqrt t = 2/3`` and ``3/2`` (the mirror's)."""
-    _, regina, _ = knot_modules()
+    """Jones polynomial of a PD code at ``sqrt t = 2/3`` and ``3/2`` (the mirror's), every orientation.
+
+    Reversing the components in a set S multiplies the Jones polynomial by ``t^(-3 lam)``,
+    ``lam`` the linking number of S with the rest (Morton); both signs are kept, so the
+    set holds every orientation of the link and of its mirror image.
+    """
+    spherogram, regina, _ = knot_modules()
     if not pd:
         return {Fraction(1)}
     jones = regina.Link.fromPD(pd).jones()
-    return {laurent_value(jones, JONES_POINT), laurent_value(jones, 1 / JONES_POINT)}
+    lk = np.asarray(spherogram.Link(pd).linking_matrix(), np.int64)
+    n = len(lk)
+    lams = set()
+    for mask in range(1 << max(n - 1, 0)):
+        inside = np.array([(mask >> i) & 1 for i in range(n)], bool)
+        lams.add(abs(int(lk[inside][:, ~inside].sum())))
+    out = set()
+    for x in (JONES_POINT, 1 / JONES_POINT):
+        value = laurent_value(jones, x)
+        for lam in lams:
+            out |= {value * x ** (6 * lam), value * x ** (-6 * lam)}
+    return out
 
 
 def _abs_linking(pd: list[list[int]]) -> np.ndarray:
