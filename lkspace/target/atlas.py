@@ -257,16 +257,14 @@ def _records(
             )
             rows = np.array(todo, np.int64).reshape(len(todo), scaffold.n_edges)
             fresh = pool.imap(_record_row, rows, chunksize=8) if pool is not None else map(_record_row, rows)
-            new = set()
-            for z, rec in zip(todo, fresh, strict=True):
-                known[z] = rec
-                new.add(z)
             for i, (k, z) in enumerate(zip(keys, zkeys, strict=True)):
                 if k in cached:
                     rec = {**cached[k], "source": "cache"}
-                else:
-                    rec = {**known[z], "source": "identified" if z in new else "reused"}
-                    new.discard(z)
+                elif z in known:
+                    rec = {**known[z], "source": "reused"}
+                else:  # the first design of its family: the next identification, in order
+                    known[z] = next(fresh)
+                    rec = {**known[z], "source": "identified"}
                 yield batch.labels[i], int(batch.orbit_sizes[i]), rec
     finally:
         if pool is not None:
