@@ -262,3 +262,10 @@ def test_jones_filter_holds_every_orientation_of_a_link():
     for comp in comps.values():
         values.add(laurent_value(regina.Link.fromPD(reverse_component(pd, comp)).jones(), JONES_POINT))
     assert len(values) == 2 and values <= fps
+
+
+def test_worker_processes_give_the_same_answers():
+    one = solve_type("tetrahedron", "5_2", "-2..2", count=2)
+    two = solve_type("tetrahedron", "5_2", "-2..2", count=2, processes=2)
+    assert one.status == two.status == "found"
+    assert [s["labels"] for s in one.solutions] == [s["labels"] for s in two.solutions]

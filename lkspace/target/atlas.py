@@ -265,7 +265,7 @@ def _records(
                 else:  # the first design of its family: the next identification, in order
                     known[z] = next(fresh)
                     rec = {**known[z], "source": "identified"}
-                yield batch.labels[i], int(batch.orbit_sizes[i]), rec
+                yield batch.labels[i].astype(np.int64), int(batch.orbit_sizes[i]), rec
     finally:
         if pool is not None:
             pool.terminate()

@@ -26,13 +26,13 @@ from ..design.walk import walk_blocks
 from ..errors import LabelError
 from ..model.scaffold import Scaffold
 
-MAX_SHELL_ROWS = 1 << 22
+MAX_SHELL_ROWS = 1 << 20
 """Most designs of one shell sorted together; a bigger shell is sorted in pieces of this size."""
 
 
 @dataclass(frozen=True, eq=False)
 class Candidates:
-    """Designs of one shell, in search order: ``labels (m, n_edges) int64``, ``orbit_sizes (m,) int64``."""
+    """Designs of one shell, in search order: ``labels (m, n_edges) int8``, ``orbit_sizes (m,) int64``."""
 
     shell: int
     labels: np.ndarray
@@ -97,13 +97,13 @@ class OrderedWalk:
             sizes: list[np.ndarray] = []
             n_rows = 0
             for block in walk_blocks(space, components=self.components):
-                rows = block.labels.astype(np.int64)
+                rows = block.labels  # int8: a shell of millions of designs stays small
                 keep = np.ones(len(rows), bool)
                 if len(pinned):
                     keep &= np.all(rows[:, pinned[:, 0]] == pinned[:, 1], axis=1)
                     keep &= np.all(np.isin(rows[:, free], label_set), axis=1)
                 if free.any():
-                    keep &= np.abs(rows[:, free]).max(axis=1) == k
+                    keep &= np.abs(rows[:, free].astype(np.int64)).max(axis=1) == k
                 elif k != ks[0]:
                     keep[:] = False  # every edge pinned: one design, met in the first shell
                 pending.append(rows[keep])

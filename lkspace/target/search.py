@@ -27,7 +27,7 @@ from ..progress import task
 from ..strands.tracing import trace
 from ..workers import context
 from .candidates import OrderedWalk
-from .screen import Goal, init_worker, screen, screen_row, type_labels
+from .screen import Goal, init_worker, screen, screen_row
 
 CHECK_SEED_SHIFT = 1009
 """Seed offset of the projection used to re-identify an answer (independent of the search's)."""
@@ -175,7 +175,8 @@ class _screener:
         self.args = (scaffold, goal, seed, time_limit)
         self.processes = processes
         self.pool: Any = None
-        self.seen: dict[tuple[int, ...], dict[str, Any]] = {}
+        self.seen: dict[bytes, dict[str, Any]] = {}
+        self.sent: set[bytes] = set()
 
     def __enter__(self) -> Any:
         init_worker(*self.args, worker=False)
@@ -184,21 +185,35 @@ class _screener:
         return self.run
 
     def run(self, labels: np.ndarray, orbits: np.ndarray) -> Iterator[tuple[np.ndarray, int, dict[str, Any]]]:
-        """Screen the rows; a row equal to an earlier one off the degree-1 edges takes its verdict."""
-        zkeys = [tuple(r) for r in type_labels(self.args[0], labels).tolist()]
-        firsts: dict[tuple[int, ...], int] = {}
-        for i, z in enumerate(zkeys):
-            if z not in self.seen:
-                firsts.setdefault(z, i)
-        first = sorted(firsts.values())
-        rows = iter(labels[first])
-        fresh = self.pool.imap(screen_row, rows, chunksize=4) if self.pool is not None else map(screen_row, rows)
-        for i, z in enumerate(zkeys):
-            if z not in self.seen:
-                self.seen[z] = next(fresh)
-                yield labels[i], int(orbits[i]), self.seen[z]
+        """Screen the rows; a row equal to an earlier one off the degree-1 edges takes its verdict.
+
+        The rows sent to the workers are the first of each family, in order (``sent``);
+        the results come back in that order and are matched to the rows here (``seen``).
+        """
+        loose = np.asarray(self.args[0].edge_degrees) == 1
+
+        def key(row: np.ndarray) -> bytes:
+            z = row.copy()
+            z[loose] = 0
+            return z.tobytes()
+
+        def firsts() -> Iterator[np.ndarray]:
+            for row in labels:
+                k = key(row)
+                if k not in self.sent:
+                    self.sent.add(k)
+                    yield row.astype(np.int64)
+
+        fresh = (
+            self.pool.imap(screen_row, firsts(), chunksize=4) if self.pool is not None else map(screen_row, firsts())
+        )
+        for i, row in enumerate(labels):
+            k = key(row)
+            if k in self.seen:
+                verdict = {**self.seen[k], "reason": "same type as a design screened before"}
             else:
-                yield labels[i], int(orbits[i]), {**self.seen[z], "reason": "same type as a design screened before"}
+                verdict = self.seen[k] = next(fresh)
+            yield row.astype(np.int64), int(orbits[i]), verdict
 
     def __exit__(self, *exc: object) -> None:
         if self.pool is not None:
