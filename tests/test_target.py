@@ -265,7 +265,11 @@ def test_jones_filter_holds_every_orientation_of_a_link():
 
 
 def test_worker_processes_give_the_same_answers():
-    one = solve_type("tetrahedron", "5_2", "-2..2", count=2)
-    two = solve_type("tetrahedron", "5_2", "-2..2", count=2, processes=2)
+    one = solve_type("tetrahedron", "3_1", "-1..1", count=3)
+    two = solve_type("tetrahedron", "3_1", "-1..1", count=3, processes=2)
     assert one.status == two.status == "found"
     assert [s["labels"] for s in one.solutions] == [s["labels"] for s in two.solutions]
+    assert (
+        atlas(load("dihedron:4"), np.arange(-1, 2), processes=2)["types"]
+        == atlas(load("dihedron:4"), np.arange(-1, 2))["types"]
+    )
