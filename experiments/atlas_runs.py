@@ -20,7 +20,7 @@ import numpy as np
 
 from lkspace import load
 from lkspace.model.specs import parse_label_set
-from lkspace.target.atlas import atlas, read_cache
+from lkspace.target.atlas import atlas, crossing_number, read_cache
 from lkspace.target.gallery import write_gallery
 
 ROOT = os.path.join(os.path.dirname(__file__), "..", "results", "atlas")
@@ -95,7 +95,7 @@ def summary(runs: dict) -> None:
         named = frame[~frame["name"].str.startswith(("unknown", "split"))]
         cells = []
         for lo, hi in [(0, 0), (2, 2), (3, 3), (4, 4), (5, 5), (6, 6), (7, 7), (8, 8), (9, 999)]:
-            pick = named[[lo <= _crossing_number(n) <= hi for n in named["name"]]]
+            pick = named[[lo <= crossing_number(n) <= hi for n in named["name"]]]
             cells.append(", ".join(sorted(pick["name"])) or "")
         row = f"| [{run['scaffold']}]({folder}/README.md) | {run['labels']} | {run['designs']:,} | " + " | ".join(cells)
         lines.append(row + " |")
@@ -108,17 +108,6 @@ def summary(runs: dict) -> None:
     lines += single_cycle_table()
     with open(os.path.join(ROOT, "README.md"), "w") as fh:
         fh.write("\n".join(lines) + "\n")
-
-
-def _crossing_number(name: str) -> int:
-    """Crossing number from a name (``3_1`` 3, ``L6a4`` 6, ``11a_1`` 11, a sum: the total)."""
-    import re
-
-    total = 0
-    for part in name.split("#"):
-        m = re.match(r"m?[KL]?(\d+)", part)
-        total += int(m[1]) if m else 0
-    return total
 
 
 def single_cycle_table() -> list[str]:

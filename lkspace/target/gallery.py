@@ -95,7 +95,7 @@ def markdown(data: dict[str, Any]) -> str:
         f"{data['designs']:,} designs (up to rotation) of {data['assignments']:,} assignments; "
         f"{len(data['types'])} types.  *simplest*: smallest sum |t|, then fewest non-zero labels.",
         "",
-        "| type | components | table | crossings | designs | assignments | chirality (table/mirror/?) | simplest |",
+        "| type | components | table | smallest diagram (crossings) | designs | assignments | chirality (table/mirror/?) | simplest |",
         "|---|---|---|---|---|---|---|---|",
     ]
     for t in data["types"]:
