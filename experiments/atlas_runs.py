@@ -69,6 +69,8 @@ def main(only: list[str]) -> None:
         }
         if data["identified_now"] == 0 and before.get("identified_now"):  # all from the cache: keep the real cost
             runs[folder].update({k: before[k] for k in ("identified_now", "wall_s", "cpu_s")})
+        latest = json.load(open(runs_path)) if os.path.exists(runs_path) else {}  # another runner may have written
+        runs = {**latest, folder: runs[folder]}
         with open(runs_path, "w") as fh:
             json.dump(runs, fh, indent=1)
         print(folder, runs[folder], flush=True)
@@ -105,9 +107,41 @@ def summary(runs: dict) -> None:
             f"| {run['scaffold']} {run['labels']} | {run['designs']:,} | {run['identified_now']:,} | "
             f"{run['wall_s']} | {run['cpu_s']} |"
         )
+    lines += book_family()
     lines += single_cycle_table()
     with open(os.path.join(ROOT, "README.md"), "w") as fh:
         fh.write("\n".join(lines) + "\n")
+
+
+def book_family() -> list[str]:
+    """book:K with twist t on its spine (the one edge of degree K) and 0 elsewhere, identified.
+
+    Labels on the edges of degree 1 do not change the type (a one-strand braid), so the
+    spine label is the whole design space of a book up to type.
+    """
+    from lkspace import identify
+
+    lines = [
+        "",
+        "## book:K: the spine twist t (edges of degree 1 do not change the type)",
+        "",
+        "| K \\ t | " + " | ".join(str(t) for t in range(1, 7)) + " |",
+        "|---|" + "---|" * 6,
+    ]
+    for k in range(2, 6):
+        scaffold = load(f"book:{k}")
+        spine = int(np.argmax(scaffold.edge_degrees))
+        cells = []
+        for t in range(1, 7):
+            labels = np.zeros(scaffold.n_edges, np.int64)
+            labels[spine] = t
+            r = identify(scaffold, labels)
+            name = r.details.get("chiral_name") or r.name
+            if name is None and r.split:
+                name = "split: " + " + ".join(sorted(r.details.get("pieces") or []))
+            cells.append(str(name or f"unknown ({r.components})"))
+        lines.append(f"| {k} | " + " | ".join(cells) + " |")
+    return lines
 
 
 def single_cycle_table() -> list[str]:

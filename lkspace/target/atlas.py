@@ -287,24 +287,57 @@ def _records(
 
 
 def atlas_of_catalog(path: str) -> dict[str, Any]:
-    """Sum a catalog identified by ``enumerate --identify`` (its ``knot_name`` column) into atlas types."""
+    """Sum a catalog identified by ``enumerate --identify`` (its ``knot_name`` column) into atlas types.
+
+    Rows without a name are grouped as ``split (N components)`` or ``unknown (N
+    components)``; the work is columnar (pandas ``groupby``), so big catalogs sum quickly.
+    """
+    import pandas as pd
+
     from ..catalog.reader import read_catalog
 
     cat = read_catalog(path)
     frame = cat.frame
     if "knot_name" not in frame.columns:
         raise CatalogError(f"{path}: no knot_name column; run 'lkspace enumerate ... --identify' or give MESH")
+    comps = frame["components"].to_numpy(np.int64)
+    names = frame["knot_name"].astype(object).where(frame["knot_name"].notna(), None).to_numpy()
+    split = frame["split"].fillna(False).to_numpy(bool) if "split" in frame.columns else np.zeros(len(frame), bool)
+    fallback = np.where(split, "split", "unknown")
+    keys = [n if n is not None else f"{f} ({c} components)" for n, f, c in zip(names, fallback, comps, strict=True)]
+    mirror = frame["mirror"] if "mirror" in frame.columns else pd.Series([None] * len(frame))
+    chir = np.where(
+        mirror.isna().to_numpy(), "undetermined", np.where(mirror.fillna(False).to_numpy(bool), "mirror", "table")
+    )
+    a = np.abs(cat.labels.astype(np.int64))
+    rows = pd.DataFrame(
+        {
+            "key": keys,
+            "components": comps,
+            "orbit": frame["orbit_size"].to_numpy(np.int64),
+            "sum_abs": a.sum(axis=1),
+            "nonzero": (a != 0).sum(axis=1),
+            "max_abs": a.max(axis=1) if a.shape[1] else 0,
+            "chirality": chir,
+        }
+    )
+    simplest = rows.sort_values(["sum_abs", "nonzero", "max_abs"], kind="stable").groupby("key").head(1)
     types: dict[str, TypeEntry] = {}
-    for i in range(len(frame)):
-        name = frame["knot_name"].iloc[i]
-        comps = int(frame["components"].iloc[i])
-        split = frame["split"].iloc[i] if "split" in frame.columns else None
-        key = str(name) if isinstance(name, str) else f"{'split' if split is True else 'unknown'} ({comps} components)"
-        mirror = frame["mirror"].iloc[i] if "mirror" in frame.columns else None
-        rec = {"mirror": None if mirror is None or mirror is np.nan else bool(mirror) if isinstance(mirror, (bool, np.bool_)) else None,
-               "crossings": None}  # fmt: skip
-        entry = types.setdefault(key, TypeEntry(key, comps))
-        entry.add(cat.labels[i].astype(np.int64), int(frame["orbit_size"].iloc[i]), rec)
+    sums = rows.groupby("key").agg(
+        designs=("orbit", "size"), assignments=("orbit", "sum"), components=("components", "first")
+    )
+    counts = rows.groupby(["key", "chirality"]).size()
+    for key, row in sums.iterrows():
+        entry = TypeEntry(
+            str(key), int(row["components"]), designs=int(row["designs"]), assignments=int(row["assignments"])
+        )
+        for side in entry.chirality:
+            entry.chirality[side] = int(counts.get((key, side), 0))
+        types[str(key)] = entry
+    for i, row in simplest.iterrows():
+        entry = types[str(row["key"])]
+        entry.simplest = [int(x) for x in cat.labels[int(i)]]
+        entry.cost = (int(row["sum_abs"]), int(row["nonzero"]), int(row["max_abs"]))
     listed = [t.to_dict() for t in sort_types(types)]
     return {
         "scaffold": cat.scaffold.name,
