@@ -43,6 +43,13 @@ from .numbers import Finite
     metavar="S",
     help="Seconds per design for identification (past it: an unknown type); 0: no limit.",
 )
+@click.option(
+    "--stop-after",
+    type=Finite(0),
+    default=0,
+    metavar="S",
+    help="Identify for at most S seconds, then write the atlas of the designs done (complete: false); 0: no limit.",
+)
 @click.option("--seed", type=click.IntRange(0, 2**31 - 1), default=0, show_default=True, help="Projection seed.")
 @json_option
 def atlas_cmd(
@@ -53,6 +60,7 @@ def atlas_cmd(
     pictures: int,
     processes: int,
     time_limit: float,
+    stop_after: float,
     seed: int,
     as_json: bool,
 ) -> None:
@@ -93,6 +101,7 @@ def atlas_cmd(
             processes=processes,
             seed=seed,
             time_limit=time_limit or None,
+            stop_after=stop_after or None,
         )
     files = write_gallery(folder, data, scaffold, pictures) if folder is not None else []
     data["written"] = [os.path.join(os.path.abspath(folder), f) for f in files] if folder else []
@@ -102,6 +111,10 @@ def atlas_cmd(
             f"{data['scaffold']}: {data['designs']:,} designs, {len(data['types'])} types"
             + (f" [{data['wall_time']:.1f} s]" if "wall_time" in data else "")
         )
+        if not data.get("complete", True):
+            click.echo(
+                f"  partial: --stop-after reached, {data['skipped']:,} designs not identified (rerun with -o to go on)"
+            )
         for t in data["types"]:
             simplest = ",".join(map(str, t["simplest"]))
             table = f" ({t['table']})" if t.get("table") else ""

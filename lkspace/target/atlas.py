@@ -176,10 +176,14 @@ def atlas(
     processes: int = 1,
     seed: int = 0,
     time_limit: float | None = 60.0,
+    stop_after: float | None = None,
 ) -> dict[str, Any]:
     """Identify every design of the space; return ``{"types": [...], "designs": n, ...}``.
 
-    ``folder``: keep the resumable cache there (``cache.jsonl``).
+    ``folder``: keep the resumable cache there (``cache.jsonl``).  ``stop_after``: seconds
+    after which nothing more is identified; the answer then covers the designs identified
+    so far (the simplest ones: the walk goes simplest first), ``complete`` is false and
+    ``skipped`` counts the rest.  A rerun with the same folder continues.
 
     Examples
     --------
@@ -204,9 +208,13 @@ def atlas(
     sink = _open_cache(cache_path, header, bool(cached)) if cache_path else None
     try:
         with task(f"atlas of {scaffold.name}") as step:
-            for labels, orbit, rec in _records(scaffold, label_set, no_zero, cached, processes, seed, time_limit):
+            deadline = None if not stop_after else t0 + stop_after
+            records = _records(scaffold, label_set, no_zero, cached, processes, seed, time_limit, deadline)
+            for labels, orbit, rec in records:
                 source = rec.pop("source")
                 how[source] += 1
+                if source == "skipped":
+                    continue
                 if source != "cache":
                     if sink is not None:
                         sink.write(json.dumps({"labels": labels.tolist(), "record": rec}) + "\n")
@@ -227,6 +235,8 @@ def atlas(
         "identified_now": how["identified"],
         "reused": how["reused"],
         "from_cache": how["cache"],
+        "complete": how["skipped"] == 0,
+        "skipped": how["skipped"],
         "types": listed,
         "wall_time": round(time.monotonic() - t0, 3),
     }
@@ -249,13 +259,16 @@ def _records(
     processes: int,
     seed: int,
     time_limit: float | None,
+    deadline: float | None = None,
 ) -> Iterator[tuple[np.ndarray, int, dict[str, Any]]]:
     """``(labels, orbit size, record)`` of every design; ``record["source"]`` says where it came from.
 
     ``"cache"`` (a previous run), ``"identified"`` (identified now) or ``"reused"``: a design
     that differs from one identified before only on edges of degree 1 has its type
-    (:func:`~lkspace.target.screen.type_labels`).
+    (:func:`~lkspace.target.screen.type_labels`).  Past ``deadline`` (``time.monotonic()``)
+    nothing more is identified: the rest is ``"skipped"`` (still counted).
     """
+    late = False
     pool = context().Pool(processes, _init, (scaffold, seed, time_limit)) if processes > 1 else None
     _WORKER.update(scaffold=scaffold, seed=seed, time_limit=time_limit)
     known: dict[tuple[int, ...], dict[str, Any]] = {}
@@ -276,6 +289,9 @@ def _records(
                     rec = {**cached[k], "source": "cache"}
                 elif z in known:
                     rec = {**known[z], "source": "reused"}
+                elif late or (deadline is not None and time.monotonic() > deadline):
+                    late = True  # from now on no identification: results keep their order
+                    rec = {"source": "skipped"}
                 else:  # the first design of its family: the next identification, in order
                     known[z] = next(fresh)
                     rec = {**known[z], "source": "identified"}

@@ -95,6 +95,11 @@ def markdown(data: dict[str, Any]) -> str:
         f"{data['designs']:,} designs (up to rotation) of {data['assignments']:,} assignments; "
         f"{len(data['types'])} types.  *simplest*: smallest sum |t|, then fewest non-zero labels.",
         "",
+        *(
+            [f"**Partial**: the time budget ran out; {data['skipped']:,} more designs were not identified.", ""]
+            if not data.get("complete", True)
+            else []
+        ),
         "| type | components | table | smallest diagram (crossings) | designs | assignments | chirality (table/mirror/?) | simplest |",
         "|---|---|---|---|---|---|---|---|",
     ]
