@@ -283,3 +283,18 @@ def test_atlas_with_a_time_budget_is_partial_then_resumes(tmp_path):
     assert part["designs"] + part["skipped"] == whole["designs"] == 120
     again = atlas(load("dihedron:4"), np.arange(-2, 3), str(tmp_path))
     assert again["complete"] and again["types"] == whole["types"]
+
+
+def test_a_tetrahedron_design_is_named_from_htlinkexteriors(capsys):
+    """A 12-crossing link past LinkInfo's 11, named with its table and chirality; its mirror design too."""
+    code, out, err = run(capsys, "identify", "tetrahedron", "--twist", "-2,-2,-2,-2,2,2", "--json")
+    assert code == 0, err
+    data = json.loads(out)
+    assert (data["name"], data["table"], data["status"], data["components"]) == (
+        "L12n2205",
+        "HTLinkExteriors",
+        "identified",
+        4,
+    )
+    mirror = identify("tetrahedron", [2, 2, 2, 2, -2, -2])  # every label negated: here the mirror image
+    assert mirror.name == "L12n2205" and mirror.mirror == (not data["mirror"])
