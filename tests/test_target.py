@@ -298,3 +298,12 @@ def test_a_tetrahedron_design_is_named_from_htlinkexteriors(capsys):
     )
     mirror = identify("tetrahedron", [2, 2, 2, 2, -2, -2])  # every label negated: here the mirror image
     assert mirror.name == "L12n2205" and mirror.mirror == (not data["mirror"])
+
+
+def test_solve_type_writes_its_design_for_identify(tmp_path, capsys):
+    design = tmp_path / "trefoil.json"
+    code, out, err = run(capsys, "solve", "dihedron:3", "--type", "m3_1", "--labels", "-1..1", "-o", design)
+    assert code == 0 and "m3_1" in out, err
+    code, out, err = run(capsys, "identify", design, "--json")
+    assert code == 0, err
+    assert json.loads(out)["chiral_name"] == "m3_1"
