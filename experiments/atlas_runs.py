@@ -107,10 +107,31 @@ def summary(runs: dict) -> None:
             f"| {run['scaffold']} {run['labels']} | {run['designs']:,} | {run['identified_now']:,} | "
             f"{run['wall_s']} | {run['cpu_s']} |"
         )
+    lines += cube_estimate(runs)
     lines += book_family()
     lines += single_cycle_table()
     with open(os.path.join(ROOT, "README.md"), "w") as fh:
         fh.write("\n".join(lines) + "\n")
+
+
+def cube_estimate(runs: dict) -> list[str]:
+    """What the single-component designs of the cube with labels -2..2 would cost, from the -1..1 run."""
+    from lkspace import count_designs
+
+    run = runs.get("cube")
+    if not run or not run.get("identified_now"):
+        return []
+    n = count_designs("cube", "-2..2").by_components[1]
+    per = run["cpu_s"] / run["identified_now"]
+    return [
+        "",
+        "## The cube's single-component designs with labels -2..2: not run",
+        "",
+        f"There are {n:,} of them (up to rotation).  The cube -1..1 atlas cost {per * 1000:.0f} ms of CPU per",
+        f"design (realize, project, simplify, name), so they would take about {n * per / 3600:,.0f} CPU hours",
+        "(the degree-1 sharing does not apply: every cube edge has degree 2).  `lkspace solve cube --type NAME`",
+        "searches that space for one type at a time instead, simplest first, with the cheap filters.",
+    ]
 
 
 def book_family() -> list[str]:
