@@ -307,3 +307,18 @@ def test_solve_type_writes_its_design_for_identify(tmp_path, capsys):
     code, out, err = run(capsys, "identify", design, "--json")
     assert code == 0, err
     assert json.loads(out)["chiral_name"] == "m3_1"
+
+
+@pytest.mark.parametrize(
+    ("args", "words"),
+    [
+        (["dodecahedron"], ["MAX_DESIGNS", "--stop-after"]),
+        (["honeycomb:cP"], ["periodic"]),
+        (["tetrahedron", "--labels", "-300..300"], ["-127..127"]),
+    ],
+)
+def test_bad_atlas_requests_are_one_line_and_exit_2(capsys, args, words):
+    code, out, err = run(capsys, "atlas", *args)
+    assert code == 2 and err.count("\n") == 1 and err.startswith("lkspace: error: "), err
+    for word in words:
+        assert word in err

@@ -31,7 +31,7 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import CatalogError, LkspaceError
+from ..errors import CatalogError, LkspaceError, TooLargeError
 from ..knots.recognition import identify
 from ..model.scaffold import Scaffold
 from ..progress import task
@@ -40,6 +40,9 @@ from .candidates import OrderedWalk
 from .screen import type_labels
 
 CACHE = "cache.jsonl"
+
+MAX_DESIGNS = 5_000_000
+"""Largest design space an atlas walks to its end; a bigger one needs ``stop_after`` (``--stop-after``)."""
 
 
 def type_key(ident: dict[str, Any]) -> str:
@@ -183,7 +186,8 @@ def atlas(
     ``folder``: keep the resumable cache there (``cache.jsonl``).  ``stop_after``: seconds
     after which nothing more is identified; the answer then covers the designs identified
     so far (the simplest ones: the walk goes simplest first), ``complete`` is false and
-    ``skipped`` counts the rest.  A rerun with the same folder continues.
+    ``skipped`` counts the designs walked but not identified (the walk itself stops at the
+    deadline too, so there may be more).  A rerun with the same folder continues.
 
     Examples
     --------
@@ -193,6 +197,15 @@ def atlas(
     [('0_1', 1, [0, 0, 1]), ('3_1', 1, [1, 1, 1]), ('L2a1', 1, [0, 1, 1]), ('split: 0_1 + 0_1', 1, [0, 0, 0])]
     """
     t0 = time.monotonic()
+    if not stop_after:
+        from ..design.counting import count_designs
+
+        n = count_designs(scaffold, label_set).designs
+        if n > MAX_DESIGNS:
+            raise TooLargeError(
+                f"{scaffold.name}: {n:,} designs with labels {label_set.tolist()} > {MAX_DESIGNS:,} (MAX_DESIGNS); "
+                "an atlas would identify them all: give --stop-after S for the simplest ones, or a smaller label set"
+            )
     header = {
         "scaffold": scaffold.name,
         "hash": scaffold.content_hash(),
@@ -213,7 +226,7 @@ def atlas(
             for labels, orbit, rec in records:
                 source = rec.pop("source")
                 how[source] += 1
-                if source == "skipped":
+                if source in ("skipped", "unwalked"):
                     continue
                 if source != "cache":
                     if sink is not None:
@@ -235,7 +248,7 @@ def atlas(
         "identified_now": how["identified"],
         "reused": how["reused"],
         "from_cache": how["cache"],
-        "complete": how["skipped"] == 0,
+        "complete": how["skipped"] == 0 and not how["unwalked"],
         "skipped": how["skipped"],
         "types": listed,
         "wall_time": round(time.monotonic() - t0, 3),
@@ -272,8 +285,9 @@ def _records(
     pool = context().Pool(processes, _init, (scaffold, seed, time_limit)) if processes > 1 else None
     _WORKER.update(scaffold=scaffold, seed=seed, time_limit=time_limit)
     known: dict[tuple[int, ...], dict[str, Any]] = {}
+    walk = OrderedWalk(scaffold, label_set, None, no_zero=no_zero, deadline=deadline)
     try:
-        for batch in OrderedWalk(scaffold, label_set, None, no_zero=no_zero):
+        for batch in walk:
             keys = [tuple(r) for r in batch.labels.tolist()]
             zkeys = [tuple(r) for r in type_labels(scaffold, batch.labels).tolist()]
             for k, z in zip(keys, zkeys, strict=True):
@@ -296,6 +310,8 @@ def _records(
                     known[z] = next(fresh)
                     rec = {**known[z], "source": "identified"}
                 yield batch.labels[i].astype(np.int64), int(batch.orbit_sizes[i]), rec
+        if not walk.complete:
+            yield np.zeros(0, np.int64), 0, {"source": "unwalked"}
     finally:
         if pool is not None:
             pool.terminate()
