@@ -101,10 +101,22 @@ def summary(runs: dict) -> None:
             cells.append(", ".join(sorted(pick["name"])) or "")
         row = f"| [{run['scaffold']}]({folder}/README.md) | {run['labels']} | {run['designs']:,} | " + " | ".join(cells)
         lines.append(row + " |")
-    lines += ["", "## Cost", "", "| space | designs | identified | wall s | CPU s |", "|---|---|---|---|---|"]
+    lines += [
+        "",
+        "## Cost",
+        "",
+        "One process, `nice`, on a machine of 2 cores shared by 5 engineers (load 5 to 14): wall times are",
+        "mostly waiting; CPU times (this process and its children) are the cost.  *identified*: designs",
+        "identified; the others of a space share the type of a design that differs only on edges of",
+        "degree 1 (a lone strand's twist is a one-strand braid: it does not change the type).",
+        "",
+        "| space | designs | identified | wall s | CPU s |",
+        "|---|---|---|---|---|",
+    ]
     for run in runs.values():
+        note = f" ({run['note']})" if run.get("note") else ""
         lines.append(
-            f"| {run['scaffold']} {run['labels']} | {run['designs']:,} | {run['identified_now']:,} | "
+            f"| {run['scaffold']} {run['labels']}{note} | {run['designs']:,} | {run['identified_now']:,} | "
             f"{run['wall_s']} | {run['cpu_s']} |"
         )
     lines += cube_estimate(runs)
@@ -190,4 +202,7 @@ def single_cycle_table() -> list[str]:
 
 
 if __name__ == "__main__":
-    main(sys.argv[1:])
+    if sys.argv[1:] == ["--summary"]:
+        summary(json.load(open(os.path.join(ROOT, "runs.json"))))
+    else:
+        main(sys.argv[1:])

@@ -2,7 +2,7 @@
 
 Both walk the same designs in the same order (simplest first) and stop at the first
 match; the naive loop identifies every design (:func:`lkspace.identify`) and compares
-names.  Best of ``--repeats`` runs (default 1; the machine is shared: times are noisy).
+names.  Best of ``--repeats`` runs (default 2; the machine is shared: times are noisy).
 Writes ``results/bench_target.json`` and ``results/bench_target.md``.
 """
 
@@ -54,7 +54,7 @@ def best(func, repeats):
 
 def main() -> None:
     ap = argparse.ArgumentParser()
-    ap.add_argument("--repeats", type=int, default=1)
+    ap.add_argument("--repeats", type=int, default=2)
     args = ap.parse_args()
     rows = []
     for mesh, name, labels in CASES:
@@ -82,7 +82,7 @@ def main() -> None:
     lines = [
         "# solve --type: cheap filters before identification",
         "",
-        "`python experiments/bench_target.py` (one run each, 1 process; a machine of 2 cores shared",
+        "`python experiments/bench_target.py` (best of 2 runs, 1 process; a machine of 2 cores shared",
         "by 5 engineers, so times are noisy).  Both columns walk the same designs in the same order",
         "(simplest first) and stop at the first match or the end of the space.",
         "",
