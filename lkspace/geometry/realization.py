@@ -192,6 +192,7 @@ def realize(
     result: Trace | None = None,
     max_points: int = MAX_POINTS,
     bound: str = "MAX_POINTS",
+    measure: bool = True,
 ) -> Realization:
     """Realize the strands of ``scaffold`` under twist ``labels`` as 3D polylines.
 
@@ -211,6 +212,9 @@ def realize(
         Refuse (:class:`~lkspace.errors.TooLargeError`, before building anything) when
         the curves would have more points (default :data:`MAX_POINTS`); ``bound`` names
         the limit in the message.
+    measure : bool
+        Measure the clearance (:func:`check_embedding`); ``False`` skips it and the check
+        (``min_distance`` is ``inf``), for previews that measure later.
 
     Returns
     -------
@@ -352,7 +356,7 @@ def realize(
             strand_of.append(s_i)
             copy_of.append(c_i)
     closed = np.array(closed_flags, bool)
-    min_dist, closest = check_embedding(curves, closed, min_sep, scale)
+    min_dist, closest = check_embedding(curves, closed, min_sep, scale) if measure else (float("inf"), {})
     if closest:
         closest["place"] = place_name(scaffold, closest["point"])
     if check and min_dist < min_sep:

@@ -1,0 +1,18 @@
+"""The studio: design knots and links live in the browser (``lkspace studio``, ``docs/studio.md``).
+
+A small Starlette app (:mod:`~lkspace.studio.app`) served by uvicorn
+(:mod:`~lkspace.studio.server`) and one static page drawing with a vendored three.js
+build (``static/``).  The page only draws and edits; every answer comes from the public
+API through these modules:
+
+======================================  ==================================================
+:mod:`~lkspace.studio.scaffolds`        the scaffolds the page may use (built-in names,
+                                        files named on the command line, uploads)
+:mod:`~lkspace.studio.designs`          labels -> trace + strand curves (binary), the
+                                        embedding check, export to bytes
+:mod:`~lkspace.studio.jobs`             identify and solve in worker processes (cancellable)
+:mod:`~lkspace.studio.browse`           catalog filter / sort / page over Arrow data
+======================================  ==================================================
+
+Nothing here is imported by ``import lkspace`` or ``lkspace --help``.
+"""

@@ -1,0 +1,351 @@
+"""The studio's HTTP interface: a Starlette app of JSON endpoints and the static page.
+
+Every endpoint answers JSON; bad input gets ``{"error": {"type", "message"}}`` with a 4xx
+status and the server keeps running.  Request bodies are read up to a size limit; the
+page names scaffolds by built-in name or by the id of one the server holds, never by a
+path.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+from collections.abc import Awaitable, Callable
+from dataclasses import dataclass, field
+from typing import Any
+
+from starlette.applications import Starlette
+from starlette.exceptions import HTTPException
+from starlette.requests import Request
+from starlette.responses import FileResponse, JSONResponse, Response
+from starlette.routing import Mount, Route
+from starlette.staticfiles import StaticFiles
+
+from .. import __version__
+from ..errors import LkspaceError, TooLargeError, UsageError
+from ..scaffolds import DEFAULT
+from .browse import Browser
+from .designs import EXPORTS, Cache, clearance, design, export_bytes, parse_block, parse_labels, parse_nulls
+from .jobs import Jobs
+from .scaffolds import MAX_UPLOAD, Registry, builtin_choices, dumps
+
+STATIC = os.path.join(os.path.dirname(__file__), "static")
+"""The page and its vendored three.js build (shipped in the wheel)."""
+
+MAX_JSON = 2_000_000
+"""Largest JSON request body, in bytes."""
+
+OBJECTIVES = (None, "min-abs", "min-nonzero")
+
+
+@dataclass(eq=False)
+class Studio:
+    """What one studio serves: its scaffolds, realizations, jobs and (optionally) a catalog."""
+
+    initial: str = DEFAULT
+    registry: Registry = field(default_factory=Registry)
+    cache: Cache = field(default_factory=Cache)
+    jobs: Jobs = field(default_factory=Jobs)
+    browser: Browser | None = None
+    local_only: bool = True
+
+
+class BadRequest(UsageError):
+    """A request the endpoints cannot read (not JSON, too large, fields missing)."""
+
+    status = 400
+
+
+class NotJson(BadRequest):
+    """A POST without ``Content-Type: application/json`` (a cross-site form cannot send one without asking)."""
+
+    status = 415
+
+
+LOCAL_NAMES = ("127.0.0.1", "localhost", "::1")
+
+
+class LocalHostOnly:
+    """ASGI middleware: answer only requests addressed to this machine by name (DNS rebinding defence)."""
+
+    def __init__(self, app: Any) -> None:
+        self.app = app
+
+    async def __call__(self, scope: Any, receive: Any, send: Any) -> None:
+        """Refuse (403, JSON) an HTTP request whose Host header is not a local name."""
+        if scope["type"] == "http":
+            host = dict(scope.get("headers") or []).get(b"host", b"").decode("latin-1")
+            name = host[1:].split("]")[0] if host.startswith("[") else host.split(":")[0]
+            if name not in LOCAL_NAMES:
+                error = {
+                    "error": {
+                        "type": "HTTPError",
+                        "message": f"host {name[:60]!r} refused: the studio answers 127.0.0.1",
+                    }
+                }
+                await JSONResponse(error, status_code=403)(scope, receive, send)
+                return
+        await self.app(scope, receive, send)
+
+
+def fail(exc: Exception) -> JSONResponse:
+    """Return the JSON error answer to ``exc``."""
+    if isinstance(exc, LkspaceError):
+        status = getattr(exc, "status", 413 if isinstance(exc, TooLargeError) else 400 if exc.exit_code == 2 else 422)
+        kind = type(exc).__name__
+        message = " ".join(str(exc).split())
+    else:
+        status, kind = 500, "InternalError"
+        message = f"internal error ({type(exc).__name__}: {exc})"
+    return JSONResponse({"error": {"type": kind, "message": message}}, status_code=status)
+
+
+async def body_of(request: Request, limit: int) -> bytes:
+    """Return the request body, refused past ``limit`` bytes (before reading it all)."""
+    declared = request.headers.get("content-length")
+    if declared is not None and declared.isdigit() and int(declared) > limit:
+        raise TooLargeError(f"request of {int(declared):,} bytes > {limit:,}")
+    chunks, size = [], 0
+    async for chunk in request.stream():
+        size += len(chunk)
+        if size > limit:
+            raise TooLargeError(f"request larger than {limit:,} bytes")
+        chunks.append(chunk)
+    return b"".join(chunks)
+
+
+async def json_of(request: Request) -> dict[str, Any]:
+    """Return the JSON object of the request body (``Content-Type: application/json`` required)."""
+    if request.headers.get("content-type", "").split(";")[0].strip().lower() != "application/json":
+        raise NotJson("send the request body as application/json")
+    raw = await body_of(request, MAX_JSON)
+    try:
+        data = json.loads(raw or b"{}", parse_constant=lambda c: None)
+    except (ValueError, RecursionError):
+        raise BadRequest("request body: not valid JSON") from None
+    if not isinstance(data, dict):
+        raise BadRequest("request body: expected a JSON object")
+    return data
+
+
+Handler = Callable[[Studio, dict[str, Any]], Any]
+
+
+def endpoint(handler: Handler) -> Callable[[Request], Awaitable[Response]]:
+    """Wrap ``handler(studio, body)`` (run in a worker thread) as a route answering JSON or an error."""
+    from starlette.concurrency import run_in_threadpool
+
+    async def route(request: Request) -> Response:
+        try:
+            body = await json_of(request) if request.method == "POST" else dict(request.query_params)
+            body.update(request.path_params)
+            result = await run_in_threadpool(handler, request.app.state.studio, body)
+        except Exception as exc:  # noqa: BLE001 - every failure is an answer; the server runs on
+            return fail(exc)
+        if isinstance(result, Response):
+            return result
+        return Response(dumps(result), media_type="application/json")
+
+    return route
+
+
+def design_args(studio: Studio, body: dict[str, Any]) -> tuple[Any, ...]:
+    """``(held, labels, nulls, block)`` of a request naming a design."""
+    held = studio.registry.get(body.get("key"))
+    sc = held.scaffold
+    return (
+        held,
+        parse_labels(sc, body.get("labels")),
+        parse_nulls(sc, body.get("nulls")),
+        parse_block(sc, body.get("block")),
+    )
+
+
+def info(studio: Studio, body: dict[str, Any]) -> dict[str, Any]:
+    """Return what the page needs first: built-in names, the scaffold to open, exports, the catalog."""
+    return {
+        "version": __version__,
+        "builtins": builtin_choices(),
+        "initial": studio.initial,
+        "exports": list(EXPORTS),
+        "catalog": studio.browser.info() if studio.browser else None,
+        "max_upload": MAX_UPLOAD,
+    }
+
+
+def scaffold(studio: Studio, body: dict[str, Any]) -> dict[str, Any]:
+    """Return the scaffold ``key``: geometry, edges, orbits, default labels."""
+    return studio.registry.get(body.get("key")).view()
+
+
+def orbits(studio: Studio, body: dict[str, Any]) -> dict[str, Any]:
+    """Return the edge orbits of scaffold ``key`` under its rotations."""
+    return studio.registry.get(body.get("key")).orbit_view()
+
+
+def redraw(studio: Studio, body: dict[str, Any]) -> dict[str, Any]:
+    """Trace and realize a design (no clearance measurement)."""
+    held, labels, nulls, block = design_args(studio, body)
+    return design(held.scaffold, labels, nulls, block, studio.cache, held.key)
+
+
+def measure(studio: Studio, body: dict[str, Any]) -> dict[str, Any]:
+    """Return the embedding check of a design (from the realization the redraw kept)."""
+    held, labels, nulls, block = design_args(studio, body)
+    real = studio.cache.get(Cache.key(held.key, labels, nulls, block))
+    if real is None:
+        design(held.scaffold, labels, nulls, block, studio.cache, held.key)
+        real = studio.cache.get(Cache.key(held.key, labels, nulls, block))
+        if real is None:
+            raise BadRequest("this design has no geometry to measure")
+    return clearance(real)
+
+
+def identify(studio: Studio, body: dict[str, Any]) -> dict[str, Any]:
+    """Start identifying a design in a worker (cancelling the previous identification)."""
+    held, labels, nulls, _ = design_args(studio, body)
+    if held.scaffold.periodic:
+        return {"job": None, "message": "periodic: an infinite structure, not a knot or link"}
+    return {"job": studio.jobs.start("identify", held.scaffold, labels, nulls).id}
+
+
+def solve(studio: Studio, body: dict[str, Any]) -> dict[str, Any]:
+    """Start a solve in a worker: ``components``, ``label_set``, ``no_zero``, ``fixes``, ``objective``, ``count``, ``time_limit``."""
+    held = studio.registry.get(body.get("key"))
+    components, count, limit = body.get("components"), body.get("count", 5), body.get("time_limit", 60)
+    if (
+        not isinstance(components, int)
+        or isinstance(components, bool)
+        or not 1 <= components <= held.scaffold.n_corners
+    ):
+        raise BadRequest(f"components: an integer in 1..{held.scaffold.n_corners}")
+    if not isinstance(count, int) or isinstance(count, bool) or not 1 <= count <= 50:
+        raise BadRequest("count: an integer in 1..50")
+    if not isinstance(limit, int | float) or isinstance(limit, bool) or not (math.isfinite(limit) and 0 < limit <= 600):
+        raise BadRequest("time_limit: seconds in (0, 600]")
+    label_set = body.get("label_set", "-2..2")
+    if not isinstance(label_set, str) or len(label_set) > 200:
+        raise BadRequest("label_set: text like -2..2 or -1,1")
+    if body.get("objective") not in OBJECTIVES:
+        raise BadRequest("objective: none, min-abs or min-nonzero")
+    fixes_in = body.get("fixes") or {}
+    if not isinstance(fixes_in, dict) or len(fixes_in) > held.scaffold.n_edges:
+        raise BadRequest("fixes: an object edge -> label")
+    fixes = {}
+    for edge, value in fixes_in.items():
+        if not str(edge).isdigit() or not 0 <= int(edge) < held.scaffold.n_edges:
+            raise BadRequest(f"fixes: edge {str(edge)[:20]!r} out of range 0..{held.scaffold.n_edges - 1}")
+        if not isinstance(value, int) or isinstance(value, bool) or abs(value) > 10**6:
+            raise BadRequest(f"fixes: label of edge {edge} must be an integer within ±10**6")
+        fixes[int(edge)] = value
+    from ..model.specs import parse_label_set
+
+    parse_label_set(label_set)  # refused here, not in the worker
+    options = {
+        "label_set": label_set,
+        "no_zero": bool(body.get("no_zero")),
+        "fixes": fixes,
+        "count": count,
+        "objective": body.get("objective"),
+        "time_limit": float(limit),
+        "distinct_up_to": "none",
+        "workers": 2,
+    }
+    return {"job": studio.jobs.start("solve", held.scaffold, {"components": components, **options}).id}
+
+
+def job(studio: Studio, body: dict[str, Any]) -> dict[str, Any]:
+    """Return the state of job ``id`` (progress, result or error)."""
+    found = studio.jobs.get(int(body["id"]) if str(body.get("id", "")).isdigit() else None)
+    if found is None:
+        raise BadRequest(f"no job {str(body.get('id'))[:20]!r}")
+    return found.poll()
+
+
+def cancel(studio: Studio, body: dict[str, Any]) -> dict[str, Any]:
+    """Cancel job ``id`` (terminating its worker)."""
+    found = studio.jobs.get(int(body["id"]) if str(body.get("id", "")).isdigit() else None)
+    if found is None:
+        raise BadRequest(f"no job {str(body.get('id'))[:20]!r}")
+    found.cancel()
+    return found.poll()
+
+
+def catalog_query(studio: Studio, body: dict[str, Any]) -> dict[str, Any]:
+    """One page of the catalog: ``filters``, ``sort``, ``descending``, ``offset``, ``limit``."""
+    if studio.browser is None:
+        raise BadRequest("no catalog: start the studio with a catalog (lkspace studio CATALOG.parquet)")
+    b = body
+    return studio.browser.query(
+        b.get("filters"), b.get("sort"), b.get("descending", False), b.get("offset", 0), b.get("limit", 50)
+    )
+
+
+def download(studio: Studio, body: dict[str, Any]) -> Response:
+    """Return the design as a file (``format``: one of :data:`~lkspace.studio.designs.EXPORTS`)."""
+    held, labels, nulls, _ = design_args(studio, body)
+    content, name = export_bytes(held.scaffold, labels, nulls, body.get("format"))
+    kinds = {"json": "application/json", "png": "image/png", "glb": "model/gltf-binary"}
+    media = kinds.get(str(body.get("format")), "application/octet-stream")
+    return Response(content, media_type=media, headers={"Content-Disposition": f'attachment; filename="{name}"'})
+
+
+async def upload(request: Request) -> Response:
+    """Hold an uploaded ``.obj`` / ``.json`` scaffold (raw body, name in ``X-Filename``)."""
+    from starlette.concurrency import run_in_threadpool
+
+    studio: Studio = request.app.state.studio
+    try:
+        data = await body_of(request, MAX_UPLOAD)
+        name = request.headers.get("x-filename", "upload.json")
+        held = await run_in_threadpool(studio.registry.upload, name, data)
+        return Response(dumps(held.view()), media_type="application/json")
+    except Exception as exc:  # noqa: BLE001 - every failure is an answer
+        return fail(exc)
+
+
+async def http_error(request: Request, exc: Exception) -> Response:
+    """Unknown paths and methods: a JSON error too."""
+    status = getattr(exc, "status_code", 500)
+    return JSONResponse(
+        {
+            "error": {
+                "type": "HTTPError",
+                "message": f"{request.method} {request.url.path[:80]}: {getattr(exc, 'detail', '')}",
+            }
+        },
+        status_code=status,
+    )
+
+
+async def page(request: Request) -> Response:
+    """Return the studio page."""
+    return FileResponse(os.path.join(STATIC, "index.html"), headers={"Cache-Control": "no-store"})
+
+
+def create_app(studio: Studio | None = None) -> Any:
+    """Return the ASGI app serving ``studio`` (a fresh one by default); local names only unless ``studio.local_only`` is off."""
+    posts = {
+        "scaffold": scaffold,
+        "design": redraw,
+        "orbits": orbits,
+        "clearance": measure,
+        "identify": identify,
+        "solve": solve,
+        "catalog": catalog_query,
+        "export": download,
+    }
+    routes = [
+        Route("/", page),
+        Route("/favicon.ico", lambda request: Response(status_code=204)),
+        Route("/api/info", endpoint(info)),
+        Route("/api/upload", upload, methods=["POST"]),
+        Route("/api/job/{id}", endpoint(job)),
+        Route("/api/job/{id}/cancel", endpoint(cancel), methods=["POST"]),
+        *[Route(f"/api/{name}", endpoint(fn), methods=["POST"]) for name, fn in posts.items()],
+        Mount("/static", StaticFiles(directory=STATIC), name="static"),
+    ]
+    app = Starlette(routes=routes, exception_handlers={HTTPException: http_error})
+    app.state.studio = studio = studio or Studio()
+    return LocalHostOnly(app) if studio.local_only else app

@@ -1,0 +1,227 @@
+"""A labelled design as the page draws it: trace, strand curves (binary), clearance, exports.
+
+Every answer comes from :func:`lkspace.trace` and :func:`lkspace.realize`; curves travel
+as base64 ``float32`` arrays so a redraw of ~100,000 points costs a few milliseconds.
+The redraw realizes without measuring the clearance (``measure=False``); the page asks for
+the measurement (:func:`clearance`) right after, so a design appears at once and its
+embedding verdict follows.
+"""
+
+from __future__ import annotations
+
+import base64
+import os
+import re
+import tempfile
+import threading
+import time
+from collections import OrderedDict
+from typing import Any
+
+import numpy as np
+
+from ..errors import GeometryError, LabelError, TooLargeError, UsageError
+from ..formats.registry import FORMATS, export
+from ..geometry.clearance import check_embedding
+from ..geometry.realization import Realization, realize
+from ..io.scaffold_json import format_scaffold_json
+from ..model.scaffold import Scaffold
+from ..model.validation import validate_labels, validate_nulls
+from ..strands.tracing import trace
+
+MAX_STUDIO_POINTS = 600_000
+"""Most curve points a redraw realizes, block copies included (as tubes, about 3 million vertices in the browser)."""
+
+MAX_BLOCK = 64
+"""Most lattice copies of a periodic block the page may ask for."""
+
+EXPORTS = ("json", *(ext[1:] for ext in FORMATS))
+"""Download formats: the scaffold file with labels, then every format of the export registry."""
+
+MAX_EXPORT_POINTS = 400_000
+"""Most curve points of a downloaded file (tubes are 12 vertices a point)."""
+
+
+def parse_labels(scaffold: Scaffold, value: object) -> np.ndarray:
+    """``(n_edges,) int64`` from the page's list (integers, or decimal strings for exact int64)."""
+    if value is None:
+        if scaffold.labels is None:
+            return np.zeros(scaffold.n_edges, np.int64)
+        return scaffold.labels
+    if not isinstance(value, list):
+        raise LabelError("labels: expected a list with one integer per edge")
+    if len(value) != scaffold.n_edges:
+        raise LabelError(f"{scaffold.name}: expected {scaffold.n_edges} twist labels (one per edge), got {len(value)}")
+    items: list[int] = []
+    for i, v in enumerate(value):
+        if isinstance(v, str) and re.fullmatch(r"[+-]?\d{1,25}", v.strip()):
+            v = int(v)
+        if isinstance(v, bool) or not isinstance(v, int):
+            raise LabelError(f"label of edge {scaffold.edge_name(i)}: {str(v)[:30]!r} is not an integer")
+        items.append(v)
+    try:
+        array = np.array(items, dtype=np.int64)
+    except OverflowError:  # past int64: validate_labels names the edge and the range
+        array = np.array(items, dtype=object)
+    return validate_labels(scaffold, array)
+
+
+def parse_nulls(scaffold: Scaffold, value: object) -> np.ndarray | None:
+    """Null edge-sides ``(n_corners,) bool`` from the page's list of side indices (``None``: the scaffold's own)."""
+    if value is None:
+        return scaffold.nulls
+    if not isinstance(value, list) or not all(isinstance(v, int) and not isinstance(v, bool) for v in value):
+        raise LabelError("nulls: expected a list of side indices (integers)")
+    if len(value) > scaffold.n_corners:
+        raise LabelError(f"nulls: {len(value)} sides, but {scaffold.name} has {scaffold.n_corners}")
+    return validate_nulls(scaffold, np.array(value, dtype=np.int64))
+
+
+def parse_block(scaffold: Scaffold, value: object) -> np.ndarray | None:
+    """Lattice translations ``(n, dim)`` of the page's block sizes ``[A, B, C]`` (``None``: one cell)."""
+    if value is None or not scaffold.periodic:
+        return None
+    if not isinstance(value, list) or len(value) != scaffold.dim:
+        raise UsageError(f"block: give {scaffold.dim} sizes for a {scaffold.dim}D lattice")
+    if not all(isinstance(v, int) and not isinstance(v, bool) and 1 <= v <= MAX_BLOCK for v in value):
+        raise UsageError(f"block: sizes must be integers in 1..{MAX_BLOCK}")
+    if int(np.prod(value)) > MAX_BLOCK:
+        raise TooLargeError(f"block: {int(np.prod(value))} copies > {MAX_BLOCK}")
+    grids = np.meshgrid(*[np.arange(n) for n in value], indexing="ij")
+    return np.column_stack([g.reshape(-1) for g in grids])
+
+
+def pack(array: np.ndarray, dtype: str = "<f4") -> str:
+    """Base64 text of ``array`` as little-endian ``dtype``."""
+    return base64.b64encode(np.ascontiguousarray(array, dtype=dtype).tobytes()).decode("ascii")
+
+
+def edge_named(scaffold: Scaffold, message: str) -> int | None:
+    """Return the edge a geometry message names (``edge 3-7`` or ``edge 3-7[0,1,0]``), if any."""
+    names = {scaffold.edge_name(e): e for e in range(scaffold.n_edges)}
+    for found in re.findall(r"edge (\d+-\d+(?:\[[-\d,]+\])?)", message):
+        if found in names:
+            return names[found]
+    return None
+
+
+def nearest_edge(scaffold: Scaffold, point: np.ndarray) -> int:
+    """Return the edge of the (unit-cell) scaffold nearest to ``point``."""
+    pa, pb = scaffold.edge_points[:, 0], scaffold.edge_points[:, 1]
+    v = pb - pa
+    s = np.clip(np.sum((point - pa) * v, axis=1) / np.maximum(np.sum(v * v, axis=1), 1e-300), 0, 1)
+    return int(np.argmin(np.linalg.norm(pa + s[:, None] * v - point, axis=1)))
+
+
+class Cache:
+    """The last few realizations, keyed by scaffold, labels, nulls and block (for the clearance and exports)."""
+
+    def __init__(self, size: int = 8) -> None:
+        self._items: OrderedDict[bytes, Realization] = OrderedDict()
+        self._size = size
+        self._lock = threading.Lock()
+
+    @staticmethod
+    def key(key: str, labels: np.ndarray, nulls: np.ndarray | None, block: np.ndarray | None) -> bytes:
+        """Return the cache key of a design."""
+        parts = [key.encode(), labels.tobytes(), b"-" if nulls is None else nulls.tobytes()]
+        return b"|".join([*parts, b"-" if block is None else block.tobytes()])
+
+    def get(self, key: bytes) -> Realization | None:
+        """Return the realization under ``key``, if kept."""
+        with self._lock:
+            return self._items.get(key)
+
+    def put(self, key: bytes, real: Realization) -> None:
+        """Keep ``real`` under ``key`` (forgetting the oldest past the size)."""
+        with self._lock:
+            self._items[key] = real
+            self._items.move_to_end(key)
+            while len(self._items) > self._size:
+                self._items.popitem(last=False)
+
+
+def design(
+    scaffold: Scaffold, labels: np.ndarray, nulls: np.ndarray | None, block: np.ndarray | None, cache: Cache, key: str
+) -> dict[str, Any]:
+    """Return the page's view of a design: the trace's summary and the strand curves (or the error, on its edge)."""
+    t0 = time.perf_counter()
+    tr = trace(scaffold, labels, nulls)
+    kinds, lengths = tr.strand_kinds, tr.strand_lengths.tolist()
+    periods = tr.periods.tolist() if scaffold.periodic else [None] * tr.components
+    out: dict[str, Any] = {
+        "components": tr.components,
+        "holds_together": tr.holds_together,
+        "pieces": tr.n_pieces,
+        "strands": [
+            {"kind": kind, "length": length, "period": period if kind != "open" else None, "closed": kind == "loop"}
+            for kind, length, period in zip(kinds, lengths, periods, strict=True)
+        ],
+        "labels": [str(int(t)) if abs(int(t)) > 2**53 else int(t) for t in tr.labels],
+        "nulls": [] if tr.nulls is None else np.flatnonzero(tr.nulls).tolist(),
+        "periodic": scaffold.periodic,
+    }
+    if scaffold.periodic:
+        out["closed_loops"] = kinds.count("loop")
+        out["infinite_threads"] = kinds.count("thread")
+        out["lift_index"] = tr.holding.lift_index
+    t1 = time.perf_counter()
+    try:
+        real = realize(scaffold, tr.labels, nulls, None, block, True, tr, MAX_STUDIO_POINTS, "the studio's", False)
+    except (GeometryError, TooLargeError) as exc:
+        out["failure"] = {"message": str(exc), "edge": edge_named(scaffold, str(exc))}
+        out["timing"] = {"trace": t1 - t0, "realize": time.perf_counter() - t1}
+        return out
+    cache.put(Cache.key(key, tr.labels, nulls, block), real)
+    counts = np.array([len(c) for c in real.curves], np.int64)
+    out["curves"] = {
+        "points": pack(np.vstack(real.curves) if real.curves else np.zeros((0, 3))),
+        "counts": counts.tolist(),
+        "closed": real.closed.tolist(),
+        "strand": real.strand_of.tolist(),
+        "copy": real.copy_of.tolist(),
+        "radius": real.tube_radius,
+        "scale": real.scale,
+    }
+    out["timing"] = {"trace": t1 - t0, "realize": time.perf_counter() - t1}
+    return out
+
+
+def clearance(real: Realization) -> dict[str, Any]:
+    """Measure the embedding of ``real``: ``min_distance`` against ``min_separation``, and where (the edge)."""
+    best, where = check_embedding(real.curves, real.closed, real.min_separation, real.scale)
+    out: dict[str, Any] = {
+        "min_distance": best,
+        "min_separation": real.min_separation,
+        "ok": best >= real.min_separation,
+    }
+    if where:
+        point = np.asarray(where["point"])
+        if real.scaffold.lattice is not None and real.translations is not None:
+            shift = real.scaffold.lattice.translate(real.translations[real.copy_of[where["curves"][0]]][None])[0]
+            point = point - shift
+        out["edge"] = nearest_edge(real.scaffold, point)
+        out["curves"] = where["curves"]
+    if not out["ok"]:
+        out["message"] = (
+            f"strands {where['curves'][0]} and {where['curves'][1]} come within {best:.3g} "
+            f"(< min_separation {real.min_separation:.3g}) near edge {real.scaffold.edge_name(out['edge'])}: "
+            "the geometry would self-intersect"
+        )
+    return out
+
+
+def export_bytes(scaffold: Scaffold, labels: np.ndarray, nulls: np.ndarray | None, fmt: object) -> tuple[bytes, str]:
+    """Return the design written as ``fmt`` (one of :data:`EXPORTS`): ``(content, file name)``."""
+    if fmt not in EXPORTS:
+        raise UsageError(f"format {str(fmt)[:20]!r}: choose one of {', '.join(EXPORTS)}")
+    stem = re.sub(r"[^A-Za-z0-9_.-]+", "_", scaffold.name)[:60] or "design"
+    name = f"{stem}.{fmt}"
+    if fmt == "json":
+        return format_scaffold_json(scaffold, labels, nulls).encode(), name
+    with tempfile.TemporaryDirectory(prefix="lkspace-studio-") as folder:
+        path = os.path.join(folder, name)
+        real = realize(scaffold, labels, nulls, max_points=MAX_EXPORT_POINTS, bound="the studio's download bound")
+        export(real, path, title=scaffold.name if fmt == "png" else None)
+        with open(path, "rb") as handle:
+            return handle.read(), name

@@ -1,0 +1,186 @@
+"""Identify and solve in worker processes: never blocking an edit, cancelled by terminating.
+
+Each job runs :func:`run_job` in a fresh process of lkspace's worker context
+(:func:`lkspace.workers.context`; the fork server preloads the heavy modules, so a job
+starts in milliseconds after the first).  Progress of the library's long steps
+(:mod:`lkspace.progress`) and the result come back through a queue the server drains
+when the page polls.  A new identify cancels the one before it (its result would be
+stale); a solve runs until it ends or the page cancels it.
+"""
+
+from __future__ import annotations
+
+import itertools
+import queue as queues
+import threading
+import time
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from ..errors import LkspaceError
+from ..model.scaffold import Scaffold
+from ..progress import Step, install
+from ..workers import context, ignore_interrupts
+
+PRELOAD = ["lkspace.studio.jobs", "lkspace.strands.tracing", "lkspace.inverse.pipeline", "lkspace.knots.recognition"]
+"""Modules the fork server imports once, so jobs start without importing them."""
+
+IDENTIFY_SECONDS = 30.0
+"""Time limit of one identification."""
+
+MAX_JOBS = 64
+"""Finished jobs remembered (the oldest are forgotten)."""
+
+
+class QueueReporter:
+    """Sends the progress of a worker's long steps to the server."""
+
+    def __init__(self, channel: Any) -> None:
+        self._channel = channel
+
+    def show(self, step: Step) -> None:
+        """Send the state of ``step``."""
+        self._channel.put(("progress", {"step": step.description, "done": step.done, "note": step.text}))
+
+    def close(self, step: Step) -> None:
+        """Nothing to remove."""
+
+
+def identify_payload(scaffold: Scaffold, labels: np.ndarray, nulls: np.ndarray | None) -> dict[str, Any]:
+    """Return the knot or link type of a design (:func:`lkspace.identify`) as the page shows it."""
+    from ..knots.recognition import identify
+
+    found = identify(scaffold, labels, nulls, time_limit=IDENTIFY_SECONDS)
+    return {
+        "name": found.name,
+        "status": found.status,
+        "components": found.components,
+        "linking_matrix": found.linking_matrix,
+        "mirror": found.mirror,
+        "split": found.split,
+        "crossings": found.crossings,
+    }
+
+
+def solve_payload(scaffold: Scaffold, options: dict[str, Any]) -> dict[str, Any]:
+    """Designs answering a query (:func:`lkspace.solve`); ``options`` are its keyword arguments."""
+    from ..inverse.pipeline import solve
+
+    result = solve(scaffold, **options)
+    out = result.to_dict()
+    out["solutions"] = [{"labels": s.labels.tolist(), "components": s.components} for s in result.solutions]
+    return out
+
+
+TASKS: dict[str, Callable[..., dict[str, Any]]] = {"identify": identify_payload, "solve": solve_payload}
+"""Job kinds -> the function a worker runs."""
+
+
+def run_job(kind: str, args: tuple[Any, ...], channel: Any) -> None:
+    """Worker entry point: run ``TASKS[kind](*args)`` and send ``("done", result)`` or ``("error", message)``."""
+    ignore_interrupts()
+    install(QueueReporter(channel))
+    try:
+        channel.put(("done", TASKS[kind](*args)))
+    except LkspaceError as exc:
+        channel.put(("error", str(exc)))
+    except Exception as exc:  # noqa: BLE001 - reported to the page, the server keeps running
+        channel.put(("error", f"internal error ({type(exc).__name__}: {exc})"))
+
+
+@dataclass(eq=False)
+class Job:
+    """One job: its process, what it reported and its state (``running``, ``done``, ``error``, ``cancelled``)."""
+
+    id: int
+    kind: str
+    process: Any
+    channel: Any
+    started: float = field(default_factory=time.monotonic)
+    ended: float | None = None
+    state: str = "running"
+    progress: dict[str, Any] = field(default_factory=dict)
+    result: Any = None
+    error: str | None = None
+
+    def poll(self) -> dict[str, Any]:
+        """Take what the worker sent; return the job's JSON view."""
+        while self.state == "running":
+            try:
+                what, value = self.channel.get_nowait()
+            except queues.Empty:
+                if not self.process.is_alive():
+                    time.sleep(0.05)  # a result sent just before exiting may still be in the pipe
+                    if self.channel.empty():
+                        self.state, self.error = "error", f"the worker stopped (exit code {self.process.exitcode})"
+                break
+            if what == "progress":
+                self.progress = value
+            elif what == "done":
+                self.state, self.result = "done", value
+            else:
+                self.state, self.error = "error", value
+        if self.state != "running":
+            self.ended = self.ended or time.monotonic()
+            self.process.join(timeout=0.5)
+        return {
+            "id": self.id,
+            "kind": self.kind,
+            "state": self.state,
+            "elapsed": round((self.ended or time.monotonic()) - self.started, 2),
+            "progress": self.progress,
+            "result": self.result,
+            "error": self.error,
+        }
+
+    def cancel(self) -> None:
+        """Stop the worker (if running) and mark the job cancelled."""
+        if self.state == "running":
+            self.state = "cancelled"
+            self.process.terminate()
+            self.process.join(timeout=2)
+            if self.process.is_alive():
+                self.process.kill()
+                self.process.join(timeout=2)
+
+
+class Jobs:
+    """The jobs of one studio."""
+
+    def __init__(self) -> None:
+        self._ctx = context()
+        if hasattr(self._ctx, "set_forkserver_preload"):
+            self._ctx.set_forkserver_preload(PRELOAD)
+        self._jobs: dict[int, Job] = {}
+        self._ids = itertools.count(1)
+        self._lock = threading.Lock()
+        self._latest_identify: Job | None = None
+
+    def start(self, kind: str, *args: Any) -> Job:
+        """Start a ``kind`` job; a new identify cancels the previous one."""
+        if kind == "identify" and self._latest_identify is not None:
+            self._latest_identify.cancel()
+        channel = self._ctx.Queue()
+        process = self._ctx.Process(target=run_job, args=(kind, args, channel), daemon=True)  # type: ignore[attr-defined]
+        process.start()
+        with self._lock:
+            job = Job(next(self._ids), kind, process, channel)
+            self._jobs[job.id] = job
+            finished = [j for j in self._jobs.values() if j.state != "running"]
+            for old in finished[: max(0, len(self._jobs) - MAX_JOBS)]:
+                del self._jobs[old.id]
+        if kind == "identify":
+            self._latest_identify = job
+        return job
+
+    def get(self, job_id: object) -> Job | None:
+        """Return the job with id ``job_id``, if known."""
+        return self._jobs.get(job_id) if isinstance(job_id, int) else None
+
+    def shutdown(self) -> None:
+        """Stop every running worker."""
+        for job in list(self._jobs.values()):
+            job.cancel()

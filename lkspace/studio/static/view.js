@@ -1,0 +1,219 @@
+// The 3D view: scaffold faces (translucent), pickable edges, strand tubes coloured by strand.
+// It only draws what the server computed; it knows nothing of twists or tracing.
+import * as THREE from 'three';
+import { OrbitControls } from '/static/vendor/OrbitControls.js';
+
+export const PALETTE = ['#1f77b4', '#d62728', '#2ca02c', '#ff7f0e', '#9467bd', '#8c564b', '#e377c2',
+  '#17becf', '#bcbd22', '#393b79', '#637939', '#843c39', '#7b4173', '#3182bd', '#e6550d', '#31a354'];
+
+export function strandColor(k) { return PALETTE[k % PALETTE.length]; }
+
+function decodeFloats(b64) {
+  const bin = atob(b64);
+  const bytes = new Uint8Array(bin.length);
+  for (let i = 0; i < bin.length; i++) bytes[i] = bin.charCodeAt(i);
+  return new Float32Array(bytes.buffer);
+}
+
+// Tube mesh around polylines: rotation-minimizing frames (double reflection, Wang et al. 2008), `sides` around.
+// Plain arithmetic on typed arrays (no per-point objects): ~100,000 points in a few tens of milliseconds.
+function tubeGeometry(points, counts, closedFlags, colorOf, radius, sides) {
+  let nv = 0, ni = 0;
+  for (let c = 0; c < counts.length; c++) {
+    nv += counts[c] * sides;
+    ni += (closedFlags[c] ? counts[c] : counts[c] - 1) * sides * 6;
+  }
+  const pos = new Float32Array(nv * 3), nor = new Float32Array(nv * 3), col = new Float32Array(nv * 3);
+  const index = nv > 65535 ? new Uint32Array(ni) : new Uint16Array(ni);
+  const cosv = new Float64Array(sides), sinv = new Float64Array(sides);
+  for (let s = 0; s < sides; s++) { cosv[s] = Math.cos(2 * Math.PI * s / sides); sinv[s] = Math.sin(2 * Math.PI * s / sides); }
+  const color = new THREE.Color();
+  let start = 0, v = 0, ii = 0;
+  for (let c = 0; c < counts.length; c++) {
+    const n = counts[c], closed = closedFlags[c], P = 3 * start;
+    color.set(colorOf(c));
+    let tx = 0, ty = 0, tz = 0, rx = 0, ry = 0, rz = 0;
+    const tangent = (i) => {
+      const a = closed ? (i - 1 + n) % n : Math.max(i - 1, 0), b = closed ? (i + 1) % n : Math.min(i + 1, n - 1);
+      const x = points[P + 3 * b] - points[P + 3 * a], y = points[P + 3 * b + 1] - points[P + 3 * a + 1], z = points[P + 3 * b + 2] - points[P + 3 * a + 2];
+      const l = Math.hypot(x, y, z) || 1;
+      return [x / l, y / l, z / l];
+    };
+    for (let i = 0; i < n; i++) {
+      const [ux, uy, uz] = tangent(i);
+      if (i === 0) { // any unit vector perpendicular to the first tangent
+        rx = Math.abs(ux) < 0.9 ? 1 : 0; ry = rx ? 0 : 1; rz = 0;
+        const d = rx * ux + ry * uy; rx -= d * ux; ry -= d * uy; rz -= d * uz;
+      } else {
+        const vx = points[P + 3 * i] - points[P + 3 * i - 3], vy = points[P + 3 * i + 1] - points[P + 3 * i - 2], vz = points[P + 3 * i + 2] - points[P + 3 * i - 1];
+        const c1 = vx * vx + vy * vy + vz * vz;
+        if (c1 > 1e-20) {
+          let k = 2 * (vx * rx + vy * ry + vz * rz) / c1;
+          const lx = rx - k * vx, ly = ry - k * vy, lz = rz - k * vz;
+          k = 2 * (vx * tx + vy * ty + vz * tz) / c1;
+          const wx = ux - (tx - k * vx), wy = uy - (ty - k * vy), wz = uz - (tz - k * vz);
+          const c2 = wx * wx + wy * wy + wz * wz;
+          k = c2 > 1e-20 ? 2 * (wx * lx + wy * ly + wz * lz) / c2 : 0;
+          rx = lx - k * wx; ry = ly - k * wy; rz = lz - k * wz;
+        }
+      }
+      const rl = Math.hypot(rx, ry, rz) || 1; rx /= rl; ry /= rl; rz /= rl;
+      tx = ux; ty = uy; tz = uz;
+      const bx = ty * rz - tz * ry, by = tz * rx - tx * rz, bz = tx * ry - ty * rx;
+      const px = points[P + 3 * i], py = points[P + 3 * i + 1], pz = points[P + 3 * i + 2];
+      for (let s = 0; s < sides; s++) {
+        const nx = cosv[s] * rx + sinv[s] * bx, ny = cosv[s] * ry + sinv[s] * by, nz = cosv[s] * rz + sinv[s] * bz;
+        const o = 3 * (v + i * sides + s);
+        pos[o] = px + radius * nx; pos[o + 1] = py + radius * ny; pos[o + 2] = pz + radius * nz;
+        nor[o] = nx; nor[o + 1] = ny; nor[o + 2] = nz;
+        col[o] = color.r; col[o + 1] = color.g; col[o + 2] = color.b;
+      }
+    }
+    const rings = closed ? n : n - 1;
+    for (let i = 0; i < rings; i++) {
+      const j = (i + 1) % n;
+      for (let s = 0; s < sides; s++) {
+        const s2 = (s + 1) % sides;
+        const a = v + i * sides + s, b2 = v + i * sides + s2, c2 = v + j * sides + s, d = v + j * sides + s2;
+        index[ii++] = a; index[ii++] = c2; index[ii++] = b2; index[ii++] = b2; index[ii++] = c2; index[ii++] = d;
+      }
+    }
+    v += n * sides; start += n;
+  }
+  const g = new THREE.BufferGeometry();
+  g.setAttribute('position', new THREE.BufferAttribute(pos, 3));
+  g.setAttribute('normal', new THREE.BufferAttribute(nor, 3));
+  g.setAttribute('color', new THREE.BufferAttribute(col, 3));
+  g.setIndex(new THREE.BufferAttribute(index, 1));
+  return g;
+}
+
+export class View {
+  constructor(canvas, layer) {
+    this.canvas = canvas; this.layer = layer;
+    this.renderer = new THREE.WebGLRenderer({ canvas, antialias: true, preserveDrawingBuffer: true });
+    this.renderer.setPixelRatio(Math.min(window.devicePixelRatio, 2));
+    this.scene = new THREE.Scene(); this.scene.background = new THREE.Color('#ffffff');
+    this.camera = new THREE.PerspectiveCamera(40, 1, 0.01, 1000);
+    this.controls = new OrbitControls(this.camera, canvas);
+    this.controls.addEventListener('change', () => this.render());
+    this.scene.add(new THREE.HemisphereLight('#ffffff', '#777788', 2.2));
+    const sun = new THREE.DirectionalLight('#ffffff', 1.4); sun.position.set(3, 5, 4); this.camera.add(sun);
+    this.scene.add(this.camera);
+    this.groups = { faces: new THREE.Group(), edges: new THREE.Group(), strands: new THREE.Group(), marks: new THREE.Group() };
+    for (const g of Object.values(this.groups)) this.scene.add(g);
+    this.raycaster = new THREE.Raycaster();
+    this.edgeColors = null; this.sc = null; this.showNumbers = false; this.colors = [];
+    new ResizeObserver(() => this.resize()).observe(canvas.parentElement);
+    this.resize();
+  }
+  resize() {
+    const el = this.canvas.parentElement, w = el.clientWidth, h = el.clientHeight;
+    this.renderer.setSize(w, h, false); this.camera.aspect = w / Math.max(h, 1); this.camera.updateProjectionMatrix(); this.render();
+  }
+  clear(group) { for (const o of [...group.children]) { group.remove(o); o.geometry?.dispose(); o.material?.dispose(); } }
+  setScaffold(sc, block) {
+    this.sc = sc; this.block = block;
+    for (const g of Object.values(this.groups)) this.clear(g);
+    const cp = sc.corner_positions, fs = sc.face_starts, cen = sc.face_centroids;
+    const tri = [];
+    for (let f = 0; f + 1 < fs.length; f++) for (let c = fs[f]; c < fs[f + 1]; c++) {
+      const d = c + 1 < fs[f + 1] ? c + 1 : fs[f];
+      tri.push(cen[3 * f], cen[3 * f + 1], cen[3 * f + 2], cp[3 * c], cp[3 * c + 1], cp[3 * c + 2], cp[3 * d], cp[3 * d + 1], cp[3 * d + 2]);
+    }
+    const fg = new THREE.BufferGeometry(); fg.setAttribute('position', new THREE.Float32BufferAttribute(tri, 3));
+    const fm = new THREE.MeshBasicMaterial({ color: '#8aa4c8', transparent: true, opacity: 0.13, side: THREE.DoubleSide, depthWrite: false });
+    this.groups.faces.add(new THREE.Mesh(fg, fm));
+    const eg = new THREE.BufferGeometry(); eg.setAttribute('position', new THREE.Float32BufferAttribute(sc.edge_points, 3));
+    this.edgeColors = new Float32Array(sc.n_edges * 6).fill(0.45);
+    eg.setAttribute('color', new THREE.BufferAttribute(this.edgeColors, 3));
+    this.edgeLines = new THREE.LineSegments(eg, new THREE.LineBasicMaterial({ vertexColors: true }));
+    this.groups.edges.add(this.edgeLines);
+    if (sc.lattice) { this.outlineCell(sc.lattice); this.blockCopies(sc, block); }
+    const box = new THREE.Box3().setFromBufferAttribute(eg.getAttribute('position'));
+    this.scale = box.getSize(new THREE.Vector3()).length() || 1;
+    this.raycaster.params.Line.threshold = this.scale * 0.012;
+  }
+  blockCopies(sc, block) { // the other cells of the block: their edges, faint and not pickable
+    if (!block) return;
+    const sizes = [...block, 1, 1].slice(0, 3), basis = sc.lattice, pts = [];
+    for (let i = 0; i < sizes[0]; i++) for (let j = 0; j < sizes[1]; j++) for (let k = 0; k < sizes[2]; k++) {
+      if (!i && !j && !k) continue;
+      const t = [0, 1, 2].map((a) => i * basis[0][a] + j * (basis[1] ? basis[1][a] : 0) + k * (basis[2] ? basis[2][a] : 0));
+      for (let x = 0; x < sc.edge_points.length; x++) pts.push(sc.edge_points[x] + t[x % 3]);
+      if (pts.length > 3e6) break;
+    }
+    if (!pts.length) return;
+    const g = new THREE.BufferGeometry(); g.setAttribute('position', new THREE.Float32BufferAttribute(pts, 3));
+    this.groups.faces.add(new THREE.LineSegments(g, new THREE.LineBasicMaterial({ color: '#b8c4d8', transparent: true, opacity: 0.5 })));
+  }
+  outlineCell(basis) {
+    const v = basis.map((b) => new THREE.Vector3(b[0], b[1], b[2]));
+    while (v.length < 3) v.push(new THREE.Vector3());
+    const corners = [];
+    for (let i = 0; i < 8; i++) corners.push(new THREE.Vector3().addScaledVector(v[0], i & 1).addScaledVector(v[1], (i >> 1) & 1).addScaledVector(v[2], (i >> 2) & 1));
+    const pts = [];
+    for (let i = 0; i < 8; i++) for (const bit of [1, 2, 4]) if (!(i & bit)) pts.push(corners[i], corners[i | bit]);
+    const g = new THREE.BufferGeometry().setFromPoints(pts);
+    this.groups.edges.add(new THREE.LineSegments(g, new THREE.LineDashedMaterial({ color: '#c07000', dashSize: 0.05, gapSize: 0.04 })).computeLineDistances());
+  }
+  setEdgeColors(labels, selected, pinned, errorEdge) {
+    if (!this.edgeColors) return;
+    const c = new THREE.Color();
+    for (let e = 0; e < labels.length; e++) {
+      const t = Number(labels[e]);
+      c.set(e === errorEdge ? '#ff0000' : e === selected ? '#f0b000' : pinned.has(e) ? '#00a060' : t > 0 ? '#2050c0' : t < 0 ? '#c03030' : '#888888');
+      for (const k of [0, 3]) { this.edgeColors[6 * e + k] = c.r; this.edgeColors[6 * e + k + 1] = c.g; this.edgeColors[6 * e + k + 2] = c.b; }
+    }
+    this.edgeLines.geometry.getAttribute('color').needsUpdate = true;
+  }
+  setStrands(curves) {
+    this.clear(this.groups.strands);
+    if (!curves) { this.colors = []; return; }
+    const pts = decodeFloats(curves.points);
+    const total = pts.length / 3, sides = total > 200000 ? 5 : total > 40000 ? 6 : 8;
+    const colorOf = (c) => strandColor(curves.strand[c]);
+    this.colors = [...new Set(curves.strand.map((k) => strandColor(k)))];
+    const g = tubeGeometry(pts, curves.counts, curves.closed, colorOf, curves.radius, sides);
+    this.groups.strands.add(new THREE.Mesh(g, new THREE.MeshStandardMaterial({ vertexColors: true, roughness: 0.45, metalness: 0.05 })));
+  }
+  markError(point) {
+    this.clear(this.groups.marks);
+    if (!point) return;
+    const m = new THREE.Mesh(new THREE.SphereGeometry(this.scale * 0.02, 16, 8), new THREE.MeshBasicMaterial({ color: '#ff0000', transparent: true, opacity: 0.6 }));
+    m.position.set(point[0], point[1], point[2]); this.groups.marks.add(m);
+  }
+  fit() {
+    const box = new THREE.Box3().setFromObject(this.groups.strands.children.length ? this.groups.strands : this.groups.edges);
+    if (box.isEmpty()) box.setFromObject(this.groups.edges);
+    const center = box.getCenter(new THREE.Vector3()), r = box.getSize(new THREE.Vector3()).length() / 2 || 1;
+    const dist = r / Math.sin((this.camera.fov * Math.PI) / 360);
+    const dir = new THREE.Vector3(0.55, 0.45, 0.7).normalize();
+    this.camera.position.copy(center).addScaledVector(dir, dist); this.camera.near = dist / 100; this.camera.far = dist * 10;
+    this.camera.updateProjectionMatrix(); this.controls.target.copy(center); this.controls.update(); this.render();
+  }
+  pick(clientX, clientY) {
+    const rect = this.canvas.getBoundingClientRect();
+    const ndc = new THREE.Vector2(((clientX - rect.left) / rect.width) * 2 - 1, -((clientY - rect.top) / rect.height) * 2 + 1);
+    this.raycaster.setFromCamera(ndc, this.camera);
+    const hits = this.edgeLines ? this.raycaster.intersectObject(this.edgeLines) : [];
+    return hits.length ? Math.floor(hits[0].index / 2) : null;
+  }
+  screenOf(p) { // page coordinates of a 3D point
+    const rect = this.canvas.getBoundingClientRect(); const v = new THREE.Vector3(p[0], p[1], p[2]).project(this.camera);
+    return { x: rect.left + (v.x + 1) / 2 * rect.width, y: rect.top + (1 - v.y) / 2 * rect.height, z: v.z };
+  }
+  edgeMid(e) { const p = this.sc.edge_points; return [0, 1, 2].map((k) => (p[6 * e + k] + p[6 * e + 3 + k]) / 2); }
+  render() {
+    this.renderer.render(this.scene, this.camera);
+    if (this.showNumbers && this.sc) this.drawNumbers(); else if (this.layer.childElementCount) this.layer.replaceChildren();
+  }
+  drawNumbers() {
+    const sc = this.sc, rect = this.canvas.getBoundingClientRect(), out = [];
+    const add = (p, text, cls) => { const s = this.screenOf(p); if (s.z < 1) out.push(`<span class="${cls}" style="left:${s.x - rect.left}px;top:${s.y - rect.top}px">${text}</span>`); };
+    if (sc.n_edges <= 400) for (let e = 0; e < sc.n_edges; e++) add(this.edgeMid(e), e, 'e');
+    if (sc.n_vertices <= 300) sc.vertices.forEach((v, i) => add(v, i, 'v'));
+    if (sc.n_faces <= 300) for (let f = 0; f < sc.n_faces; f++) add(sc.face_centroids.slice(3 * f, 3 * f + 3), 'f' + f, 'f');
+    this.layer.innerHTML = out.join('');
+  }
+}

@@ -1,0 +1,74 @@
+"""``lkspace studio`` on the command line: start-up stays light, the URL is printed, --host warns, errors are one line."""
+
+import re
+import signal
+import subprocess
+import sys
+
+import pytest
+
+pytest.importorskip("starlette")
+pytest.importorskip("uvicorn")
+httpx = pytest.importorskip("httpx")
+
+
+def test_help_does_not_import_the_web_stack():
+    code = (
+        "import sys; from lkspace.cli import main; main(['--help']); main(['studio', '--help']);"
+        " print(sorted(m for m in ('starlette', 'uvicorn', 'pyarrow', 'lkspace.studio.app') if m in sys.modules))"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60)
+    assert "studio" in out.stdout and out.stdout.strip().splitlines()[-1] == "[]"
+
+
+def test_serves_a_file_from_the_command_line_warns_on_host_and_stops_on_ctrl_c(tmp_path):
+    mesh = tmp_path / "tetra.obj"
+    subprocess.run([sys.executable, "-m", "lkspace", "scaffold", "tetrahedron", "-o", str(mesh)], check=True)
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "lkspace", "studio", str(mesh), "--no-browser", "--port", "0", "--host", "0.0.0.0"],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+    try:
+        url = re.search(r"http://\S+/", proc.stdout.readline()).group(0)
+        info = httpx.get(url + "api/info", timeout=30).json()
+        assert info["initial"].startswith("id:")  # the file, held by content id: the page never sends its path
+        design = httpx.post(url + "api/design", json={"key": info["initial"], "labels": [1] * 6}, timeout=30).json()
+        assert design["components"] == 3
+    finally:
+        proc.send_signal(signal.SIGINT)
+        _, err = proc.communicate(timeout=15)
+    assert proc.returncode == 130
+    assert "lkspace: warning: listening on 0.0.0.0" in err and "Traceback" not in err
+
+
+@pytest.mark.parametrize(
+    ("args", "code", "text"),
+    [
+        (["no-such-scaffold"], 2, "neither a file nor a built-in"),
+        (["cube", "--port", "99999"], 2, "99999"),
+    ],
+)
+def test_bad_usage_is_one_line(args, code, text):
+    out = subprocess.run(
+        [sys.executable, "-m", "lkspace", "studio", *args, "--no-browser"], capture_output=True, text=True, timeout=60
+    )
+    assert out.returncode == code and text in out.stderr and "Traceback" not in out.stderr
+
+
+def test_a_port_in_use_is_one_line():
+    import socket
+
+    with socket.socket() as taken:
+        taken.bind(("127.0.0.1", 0))
+        taken.listen(1)
+        port = taken.getsockname()[1]
+        out = subprocess.run(
+            [sys.executable, "-m", "lkspace", "studio", "cube", "--no-browser", "--port", str(port)],
+            capture_output=True,
+            text=True,
+            timeout=60,
+        )
+    assert out.returncode == 2 and f"cannot listen on 127.0.0.1:{port}" in out.stderr
+    assert out.stderr.count("\n") == 1
