@@ -29,6 +29,7 @@ COMMANDS = {
     "solve": "solve:solve_cmd",
     "export": "export:export_cmd",
     "identify": "identify:identify_cmd",
+    "atlas": "atlas:atlas_cmd",
     "studio": "studio:studio_cmd",
 }
 """Command name -> ``module:attribute`` under :mod:`lkspace.cli`."""

@@ -47,7 +47,8 @@ def identify_cmd(
 
     Needs the extra [knots] (snappy, spherogram, regina, database-knotinfo).  Names are
     Rolfsen's for knots (0_1, 3_1, 4_1, 8_19, ...) and Thistlethwaite's for links (L2a1,
-    L4a1, L6a4, ...); 'name' is null when no table entry is certain.  The status says
+    L4a1, L6a4, ...), and SnapPy's HTLinkExteriors past them (K14n10910, L13n4723);
+    'table' says which table named it; 'name' is null when no table entry is certain.  The status says
     'identified' or 'unknown: <why>' (not in the tables, diagram too large, time limit).
     Periodic scaffolds are refused; twists making more than 2,000 crossings too.
 
@@ -73,7 +74,8 @@ def identify_cmd(
         chir = ""
         if result.get("mirror") is not None:
             chir = " (mirror of the table diagram)" if result["mirror"] else " (as in the table)"
-        click.echo(f"{scaffold.name}: {result['components']} component(s): {name}{chir}")
+        table = f" [{result['table']}]" if result.get("table") and result["name"] else ""
+        click.echo(f"{scaffold.name}: {result['components']} component(s): {name}{chir}{table}")
         if result.get("crossings") is not None:
             click.echo(f"  crossings of the simplified diagram: {result['crossings']}")
         else:

@@ -4,52 +4,18 @@ from __future__ import annotations
 
 import os
 import sys
-from collections.abc import Callable, Iterable
 
 import click
 
 from .. import io
 from ..errors import UsageError
 from ..io.paths import output_file
-from ..model.scaffold import Scaffold
-from ..model.specs import edge_index
 from .common import Context, emit, json_option, label_set, labels_option, load_mesh, mesh_argument, usage_errors
+from .edges import edge_values, fix_label
 from .numbers import Finite
-
-
-def _edge_values(
-    scaffold: Scaffold, items: Iterable[str], option: str, parse: Callable[[str, str], int]
-) -> dict[int, int]:
-    """``EDGE=VALUE`` items -> {edge index: parsed value}; an edge named twice is an error."""
-    out: dict[int, int] = {}
-    for item in items:
-        name, eq, value = item.rpartition("=")
-        if not eq or not name.strip():
-            raise UsageError(
-                f"{option} {item!r}: write EDGE=VALUE, e.g. {option} 3-7={'odd' if 'parity' in option else '2'}"
-            )
-        e = edge_index(scaffold, name)
-        if e in out:
-            raise UsageError(f"{option}: edge {scaffold.edge_name(e)} given twice")
-        out[e] = parse(value.strip(), item)
-    return out
-
-
-MAX_FIX_LABEL = 1_000_000
-"""Largest ``|t|`` a ``--fix`` label may have (costs and labels stay far inside 64-bit integers)."""
 
 MAX_SEED = 2**31 - 1
 """Largest ``--seed`` (CP-SAT takes a 32-bit signed seed)."""
-
-
-def _label(value: str, item: str) -> int:
-    try:
-        label = int(value)
-    except ValueError:
-        raise UsageError(f"--fix {item!r}: {value!r} is not an integer label") from None
-    if abs(label) > MAX_FIX_LABEL:
-        raise UsageError(f"--fix {item!r}: labels must lie in -{MAX_FIX_LABEL:,}..{MAX_FIX_LABEL:,}")
-    return label
 
 
 def _parity(value: str, item: str) -> int:
@@ -71,8 +37,37 @@ MAX_COUNT = 10_000
     "--components",
     "-n",
     type=click.IntRange(min=1),
-    required=True,
+    default=None,
     help="Exact number of strand components N (more than the mesh can have: infeasible).",
+)
+@click.option(
+    "--type",
+    "type_name",
+    metavar="NAME",
+    default=None,
+    help="A knot or link type instead of --components: 3_1, m3_1, 4_1, L6a4, K14n10910, 3_1#4_1 ...",
+)
+@click.option(
+    "--chirality",
+    type=click.Choice(["any", "table", "mirror"]),
+    default="any",
+    show_default=True,
+    help="With --type: either mirror image, the table diagram's, or its mirror (same as an m prefix).",
+)
+@click.option(
+    "--linking-matrix",
+    "linking_text",
+    metavar="M",
+    default=None,
+    help="Pairwise linking numbers up to renumbering, rows split by ';' (e.g. 0,1;1,0); alone or with --type.",
+)
+@click.option("--signed", is_flag=True, help="With --linking-matrix: compare signs too (strands as traced).")
+@click.option(
+    "--processes",
+    type=click.IntRange(min=1, max=256),
+    default=1,
+    show_default=True,
+    help="With --type/--linking-matrix: worker processes screening designs.",
 )
 @click.option("--no-zero", is_flag=True, help="Forbid twist label 0.")
 @labels_option
@@ -146,7 +141,12 @@ MAX_COUNT = 10_000
 @json_option
 def solve_cmd(
     mesh: str | None,
-    components: int,
+    components: int | None,
+    type_name: str | None,
+    chirality: str,
+    linking_text: str | None,
+    signed: bool,
+    processes: int,
     no_zero: bool,
     labels_spec: str,
     fix_items: tuple[str, ...],
@@ -161,26 +161,49 @@ def solve_cmd(
     output: str | None,
     as_json: bool,
 ) -> None:
-    """Find twist labels on MESH giving exactly --components strands, or prove none exist.
+    """Find twist labels on MESH giving exactly --components strands (or a --type), or prove none exist.
 
     Status is optimal (objective proved), feasible, infeasible (proved: no design) or
     unknown (time ran out).  Every design is re-traced before it is printed.
+
+    With --type or --linking-matrix (docs/design-to-target.md) the designs are searched
+    simplest first (smallest largest |t|, then total |t|, then fewest non-zero labels);
+    the status is found, exhausted (the whole space searched: proved absent) or unknown.
+    A plain name matches either mirror image; m3_1 or --chirality asks for one.  Every
+    answer is re-identified before it is printed.
 
     \b
     Examples:
       lkspace solve --components 1
       lkspace solve cube --components 1 --no-zero --count 3
       lkspace solve dodecahedron -n 2 --labels -1,1,2 --fix 0=2 --objective min-abs
+      lkspace solve cube --type 3_1 --labels -1..1
+      lkspace solve tetrahedron --type L6a4
+      lkspace solve octahedron --linking-matrix "0,1,0;1,0,1;0,1,0" --labels -1..1
     """
     from ..inverse.pipeline import solve
 
     ctx = Context(as_json)
+    if type_name is not None or linking_text is not None:
+        if components is not None or parity_items or objective != "none" or distinct_up_to != "none":
+            raise UsageError(
+                "--type/--linking-matrix: --components, --parity, --objective and --distinct-up-to do not apply"
+            )
+        from .solve_target import target_cmd
+
+        target_cmd(ctx, mesh, type_name, chirality, linking_text, signed, no_zero, labels_spec, fix_items,
+                   count, time_limit, processes, seed, output)  # fmt: skip
+        return
+    if components is None:
+        raise UsageError("solve: give --components N, --type NAME or --linking-matrix M")
+    if chirality != "any" or signed or processes != 1:
+        raise UsageError("--chirality, --signed and --processes apply to --type/--linking-matrix only")
     target = None if output is None else output_file(output, (".json",))  # checked before any work
     scaffold = load_mesh(ctx, mesh)
     labels = label_set(labels_spec)
     with usage_errors():
-        fixes = _edge_values(scaffold, fix_items, "--fix", _label)
-        parities = _edge_values(scaffold, parity_items, "--parity", _parity)
+        fixes = edge_values(scaffold, fix_items, "--fix", fix_label)
+        parities = edge_values(scaffold, parity_items, "--parity", _parity)
     result = solve(
         scaffold,
         components,

@@ -11,6 +11,7 @@ from collections.abc import Callable, Iterable
 from types import ModuleType
 from typing import Any
 
+from .hoste import ht_name
 from .tables import HOMFLY_MAX_CROSSINGS, JONES_POINT, knot_modules, laurent_value, tables
 
 KNOT_FLOER_MAX_CROSSINGS = 40
@@ -28,16 +29,16 @@ def _homfly(regina: ModuleType, pd: list[list[int]], mirror: bool = False) -> st
     return str(link.homfly())
 
 
-def _identify_names(link: Any) -> tuple[list[str], float | None]:
-    """SnapPy's names of the exterior (``[]`` if not hyperbolic) and its volume."""
+def _identify_names(link: Any) -> tuple[list[str], float | None, Any]:
+    """SnapPy's names of the exterior (``[]`` if not hyperbolic), its volume and the exterior if hyperbolic."""
     try:
         exterior = link.exterior()
         hyperbolic = exterior.solution_type() == "all tetrahedra positively oriented"
         volume = float(exterior.volume()) if hyperbolic else 0.0
         names = [str(m).split("(")[0] for m in exterior.identify()] if hyperbolic else []
-        return names, volume
+        return names, volume, exterior if hyperbolic else None
     except Exception:  # noqa: BLE001 - SnapPy may fail on a degenerate exterior
-        return [], None
+        return [], None, None
 
 
 def name_diagram(pd: list[list[int]], n_components: int) -> dict[str, Any]:
@@ -54,7 +55,7 @@ def name_diagram(pd: list[list[int]], n_components: int) -> dict[str, Any]:
     if not pd:
         out.update(crossings=0, jones="1", homfly=None, volume=0.0)
         if n_components == 1:
-            out.update(name="0_1", table_name="0_1")
+            out.update(name="0_1", table_name="0_1", table="knotinfo")
         return out
     rl = regina.Link.fromPD(pd)
     jones = rl.jones()
@@ -68,12 +69,14 @@ def name_diagram(pd: list[list[int]], n_components: int) -> dict[str, Any]:
     if homfly is not None and cands:
         cands = [(e, m) for e, m in cands if e["pd"] and _homfly(regina, json.loads(e["pd"]), m) == homfly]
     link = spherogram.Link(pd)
-    names, volume = _identify_names(link)
+    names, volume, exterior = _identify_names(link)
     out["volume"] = volume
     if len({e["name"] for e, _ in cands}) > 1 and names:
         cands = [(e, m) for e, m in cands if e["name"] in names or _knot_alias(e["name"]) in names]
     out["homfly"] = homfly
     out["candidates"] = sorted({e["table_name"] + (" (mirror)" if m else "") for e, m in cands})
+    if not cands and exterior is not None:
+        return _name_from_ht(out, exterior, n_components)
     if len({e["name"] for e, _ in cands}) != 1:
         return out
     entry = cands[0][0]
@@ -82,10 +85,23 @@ def name_diagram(pd: list[list[int]], n_components: int) -> dict[str, Any]:
         out["note"] = f"volume {volume} differs from {entry['table_name']}'s {table_volume}"
         return out
     mirrors = {m for _, m in cands}
-    out.update(name=entry["name"], table_name=entry["table_name"])
+    out.update(
+        name=entry["name"], table_name=entry["table_name"], table="knotinfo" if n_components == 1 else "linkinfo"
+    )
     out["mirror"] = mirrors.pop() if len(mirrors) == 1 else None
     if out["mirror"] is not None and n_components == 1:
         out["chiral_name"] = ("m" if out["mirror"] else "") + entry["name"]
+    return out
+
+
+def _name_from_ht(out: dict[str, Any], exterior: Any, n_components: int) -> dict[str, Any]:
+    """Name a hyperbolic link in no KnotInfo/LinkInfo entry from ``HTLinkExteriors`` (:mod:`lkspace.knots.hoste`)."""
+    found = ht_name(exterior, n_components)
+    if found is None:
+        return out
+    out.update(found)
+    if found["mirror"] is not None and n_components == 1:
+        out["chiral_name"] = ("m" if found["mirror"] else "") + found["name"]
     return out
 
 
@@ -117,6 +133,7 @@ def name_pd(pd: list[list[int]], n_components: int, stage: Callable[[str], None]
     if not pd:
         out = {
             "name": "0_1" if n_components == 1 else None,
+            "table": "knotinfo" if n_components == 1 else None,
             "crossings": 0,
             "split": n_components > 1,
             "mirror": None,
@@ -153,9 +170,10 @@ def name_pd(pd: list[list[int]], n_components: int, stage: Callable[[str], None]
             named = [name_diagram(one_based(f.PD_code()), len(f.link_components)) for f in factors]
             out["factors"] = [f.get("chiral_name") or f["name"] for f in named]
             if all(f["name"] for f in named):
-                out.update(name="#".join(sorted((f["name"] for f in named), key=_name_key)), prime=False, mirror=None)
+                out.update(name="#".join(sorted((f["name"] for f in named), key=name_key)), prime=False, mirror=None)
+                out["table"] = "+".join(sorted({str(f.get("table")) for f in named}))
                 if all(f.get("chiral_name") or f["mirror"] is None for f in named) and n_components == 1:
-                    out["chiral_name"] = "#".join(sorted(out["factors"], key=_name_key))
+                    out["chiral_name"] = "#".join(sorted(out["factors"], key=name_key))
     if n_components == 1 and simple and len(simple) <= KNOT_FLOER_MAX_CROSSINGS:
         stage("knot Floer homology")
         try:
@@ -166,6 +184,7 @@ def name_pd(pd: list[list[int]], n_components: int, stage: Callable[[str], None]
     return out
 
 
-def _name_key(name: str) -> tuple[int, str]:
-    m = re.match(r"m?L?(\d+)", name)
+def name_key(name: str) -> tuple[int, str]:
+    """Sort key of a name: crossing number first (``"m3_1"``, ``"L6a4"``, ``"K14n10910"`` alike), then the text."""
+    m = re.match(r"m?[KL]?(\d+)", name)
     return (int(m[1]) if m else 0, name)

@@ -107,7 +107,7 @@ def status_of(named: dict[str, Any]) -> str:
         return f"unknown: {len(candidates)} table entries match ({', '.join(candidates[:4])})"
     if named.get("note"):
         return f"unknown: {named['note']}"
-    return "unknown: not in the tables (knots up to 13 crossings, links up to 11)"
+    return "unknown: not in the tables (KnotInfo/LinkInfo: knots up to 13 crossings, links up to 11; HTLinkExteriors: hyperbolic knots up to 15, links up to 14)"
 
 
 def identify_curves(curves: Sequence[np.ndarray], seed: int = 0) -> dict[str, Any]:

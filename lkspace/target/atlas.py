@@ -1,0 +1,381 @@
+"""The atlas of a design space: every knot and link type it realizes (``lkspace atlas``).
+
+Every design (one per orbit of the rotation group: rotations keep the type and the
+chirality) is identified (:func:`lkspace.knots.recognition.identify`) in ``processes``
+worker processes, in the order of :class:`~lkspace.target.candidates.OrderedWalk`.
+Designs are grouped by **type**: the name (``3_1``; both mirror images together, counted
+apart in ``chirality``), ``split: 0_1 + 3_1`` for a split link with named pieces, or
+``unknown (N components)``.  Per type: designs, assignments (the orbit sizes summed),
+the **simplest design** (smallest ``sum |t|``, then fewest non-zero labels, then
+smallest largest ``|t|``) and the table that named it.
+
+A design that differs from one already identified only on edges of degree 1 takes its
+type without a second identification (:func:`~lkspace.target.screen.type_labels`).
+
+Resumable: each identified design is appended to ``cache.jsonl`` in the output folder
+(one JSON line, flushed at once; a torn last line is ignored), headed by a line naming
+the space; a rerun reads it and identifies only the rest.  A catalog written by
+``enumerate --identify`` is summed from its ``knot_name`` column without identifying.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import re
+import time
+from collections import Counter
+from collections.abc import Iterator
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from ..errors import CatalogError, LkspaceError, TooLargeError
+from ..knots.recognition import identify
+from ..model.scaffold import Scaffold
+from ..progress import task
+from ..workers import context, ignore_interrupts
+from .candidates import OrderedWalk
+from .screen import type_labels
+
+CACHE = "cache.jsonl"
+
+MAX_DESIGNS = 5_000_000
+"""Largest design space an atlas walks to its end; a bigger one needs ``stop_after`` (``--stop-after``)."""
+
+
+def type_key(ident: dict[str, Any]) -> str:
+    """Return the atlas type of an identification: its name, ``split: A + B`` or ``unknown (N components)``."""
+    if ident.get("name"):
+        return str(ident["name"])
+    pieces = ident.get("pieces")
+    if ident.get("split") and pieces and all(pieces):
+        return "split: " + " + ".join(sorted(pieces))
+    return f"unknown ({ident.get('components')} components)"
+
+
+def record_of(scaffold: Scaffold, labels: np.ndarray, seed: int, time_limit: float | None) -> dict[str, Any]:
+    """Identify one design; the few fields the atlas keeps."""
+    try:
+        ident = identify(scaffold, labels, seed=seed, time_limit=time_limit).to_dict()
+    except LkspaceError as exc:
+        return {"type": "unknown (not identified)", "status": f"unknown: {exc}", "components": None}
+    return {
+        "type": type_key(ident),
+        "components": ident["components"],
+        "table": ident.get("table"),
+        "mirror": ident.get("mirror"),
+        "crossings": ident.get("crossings"),
+        "status": ident["status"],
+    }
+
+
+@dataclass
+class TypeEntry:
+    """One type of the atlas."""
+
+    name: str
+    components: int | None
+    table: str | None = None
+    crossings: int | None = None
+    designs: int = 0
+    assignments: int = 0
+    simplest: list[int] = field(default_factory=list)
+    cost: tuple[int, int, int] = (1 << 62, 0, 0)
+    chirality: dict[str, int] = field(default_factory=lambda: {"table": 0, "mirror": 0, "undetermined": 0})
+
+    def add(self, labels: np.ndarray, orbit: int, rec: dict[str, Any]) -> None:
+        """Count one design of this type."""
+        self.designs += 1
+        self.assignments += int(orbit)
+        a = np.abs(labels)
+        cost = (int(a.sum()), int((a != 0).sum()), int(a.max()) if len(a) else 0)
+        if cost < self.cost:
+            self.cost, self.simplest = cost, [int(x) for x in labels]
+        crossings = rec.get("crossings")
+        if crossings is not None and (self.crossings is None or crossings < self.crossings):
+            self.crossings = int(crossings)
+        self.table = self.table or rec.get("table")
+        mirror = rec.get("mirror")
+        self.chirality["undetermined" if mirror is None else "mirror" if mirror else "table"] += 1
+
+    def to_dict(self) -> dict[str, Any]:
+        """Return the JSON form (``name``, ``components``, ``designs``, ``assignments``, ``simplest`` ...)."""
+        return {
+            "name": self.name,
+            "components": self.components,
+            "table": self.table,
+            "crossings": self.crossings,
+            "designs": self.designs,
+            "assignments": self.assignments,
+            "simplest": self.simplest,
+            "simplest_sum_abs": self.cost[0],
+            "simplest_nonzero": self.cost[1],
+            "chirality": self.chirality,
+        }
+
+
+def sort_types(types: dict[str, TypeEntry]) -> list[TypeEntry]:
+    """Return the types by components, then named before split and unknown, then crossing number and name."""
+    return sorted(
+        types.values(),
+        key=lambda t: (t.components or 0, t.name.startswith(("unknown", "split")), crossing_number(t.name), t.name),
+    )
+
+
+def crossing_number(name: str) -> int:
+    """Return the crossing number a name states (``3_1``: 3, ``L6a4``: 6, ``11a_1``: 11, ``3_1#4_1``: 7; else 0).
+
+    For a sum it is the sum of the factors' (additivity is proved for alternating
+    factors, conjectured in general): a sort key, not a bound.
+    """
+    total = 0
+    for part in name.split("#"):
+        m = re.match(r"m?[KL]?(\d+)", part)
+        total += int(m[1]) if m else 0
+    return total
+
+
+_WORKER: dict[str, Any] = {}
+
+
+def _init(scaffold: Scaffold, seed: int, time_limit: float | None) -> None:
+    ignore_interrupts()
+    _WORKER.update(scaffold=scaffold, seed=seed, time_limit=time_limit)
+
+
+def _record_row(labels: np.ndarray) -> dict[str, Any]:
+    return record_of(_WORKER["scaffold"], np.asarray(labels, np.int64), _WORKER["seed"], _WORKER["time_limit"])
+
+
+def read_cache(path: str, header: dict[str, Any]) -> dict[tuple[int, ...], dict[str, Any]]:
+    """Return the records of a previous run (``{labels: record}``); empty if none or if it was for another space."""
+    if not os.path.exists(path):
+        return {}
+    out: dict[tuple[int, ...], dict[str, Any]] = {}
+    with open(path, encoding="utf-8") as fh:
+        first = fh.readline()
+        try:
+            if json.loads(first) != header:
+                return {}
+        except json.JSONDecodeError:
+            return {}
+        for line in fh:
+            try:
+                item = json.loads(line)
+                out[tuple(item["labels"])] = item["record"]
+            except (json.JSONDecodeError, KeyError, TypeError):
+                continue  # a line torn by an interrupted run
+    return out
+
+
+def atlas(
+    scaffold: Scaffold,
+    label_set: np.ndarray,
+    folder: str | None = None,
+    *,
+    no_zero: bool = False,
+    processes: int = 1,
+    seed: int = 0,
+    time_limit: float | None = 60.0,
+    stop_after: float | None = None,
+) -> dict[str, Any]:
+    """Identify every design of the space; return ``{"types": [...], "designs": n, ...}``.
+
+    ``folder``: keep the resumable cache there (``cache.jsonl``).  ``stop_after``: seconds
+    after which nothing more is identified; the answer then covers the designs identified
+    so far (the simplest ones: the walk goes simplest first), ``complete`` is false and
+    ``skipped`` counts the designs walked but not identified (the walk itself stops at the
+    deadline too, so there may be more).  A rerun with the same folder continues.
+
+    Examples
+    --------
+    >>> from lkspace import load
+    >>> out = atlas(load("dihedron:3"), np.array([0, 1]))
+    >>> [(t["name"], t["designs"], t["simplest"]) for t in out["types"]]
+    [('0_1', 1, [0, 0, 1]), ('3_1', 1, [1, 1, 1]), ('L2a1', 1, [0, 1, 1]), ('split: 0_1 + 0_1', 1, [0, 0, 0])]
+    """
+    t0 = time.monotonic()
+    if not stop_after:
+        from ..design.counting import count_designs
+
+        n = count_designs(scaffold, label_set).designs
+        if n > MAX_DESIGNS:
+            raise TooLargeError(
+                f"{scaffold.name}: {n:,} designs with labels {label_set.tolist()} > {MAX_DESIGNS:,} (MAX_DESIGNS); "
+                "an atlas would identify them all: give --stop-after S for the simplest ones, or a smaller label set"
+            )
+    header = {
+        "scaffold": scaffold.name,
+        "hash": scaffold.content_hash(),
+        "labels": [int(x) for x in label_set],
+        "no_zero": no_zero,
+        "seed": seed,
+    }
+    cache_path = os.path.join(folder, CACHE) if folder else None
+    cached = read_cache(cache_path, header) if cache_path else {}
+    types: dict[str, TypeEntry] = {}
+    n_designs = 0
+    how: Counter[str] = Counter()
+    sink = _open_cache(cache_path, header, bool(cached)) if cache_path else None
+    try:
+        with task(f"atlas of {scaffold.name}") as step:
+            deadline = None if not stop_after else t0 + stop_after
+            records = _records(scaffold, label_set, no_zero, cached, processes, seed, time_limit, deadline)
+            for labels, orbit, rec in records:
+                source = rec.pop("source")
+                how[source] += 1
+                if source in ("skipped", "unwalked"):
+                    continue
+                if source != "cache":
+                    if sink is not None:
+                        sink.write(json.dumps({"labels": labels.tolist(), "record": rec}) + "\n")
+                        sink.flush()
+                entry = types.setdefault(rec["type"], TypeEntry(rec["type"], rec.get("components")))
+                entry.add(labels, orbit, rec)
+                n_designs += 1
+                step.note(f"{n_designs:,} designs, {len(types)} types")
+    finally:
+        if sink is not None:
+            sink.close()
+    listed = [t.to_dict() for t in sort_types(types)]
+    return {
+        "scaffold": scaffold.name,
+        "label_set": [int(x) for x in label_set],
+        "designs": n_designs,
+        "assignments": sum(t["assignments"] for t in listed),
+        "identified_now": how["identified"],
+        "reused": how["reused"],
+        "from_cache": how["cache"],
+        "complete": how["skipped"] == 0 and not how["unwalked"],
+        "skipped": how["skipped"],
+        "types": listed,
+        "wall_time": round(time.monotonic() - t0, 3),
+    }
+
+
+def _open_cache(path: str, header: dict[str, Any], resume: bool) -> Any:
+    os.makedirs(os.path.dirname(path) or ".", exist_ok=True)
+    fh = open(path, "a" if resume else "w", encoding="utf-8")  # noqa: SIM115 - closed by the caller
+    if not resume:
+        fh.write(json.dumps(header) + "\n")
+        fh.flush()
+    return fh
+
+
+def _records(
+    scaffold: Scaffold,
+    label_set: np.ndarray,
+    no_zero: bool,
+    cached: dict[tuple[int, ...], dict[str, Any]],
+    processes: int,
+    seed: int,
+    time_limit: float | None,
+    deadline: float | None = None,
+) -> Iterator[tuple[np.ndarray, int, dict[str, Any]]]:
+    """``(labels, orbit size, record)`` of every design; ``record["source"]`` says where it came from.
+
+    ``"cache"`` (a previous run), ``"identified"`` (identified now) or ``"reused"``: a design
+    that differs from one identified before only on edges of degree 1 has its type
+    (:func:`~lkspace.target.screen.type_labels`).  Past ``deadline`` (``time.monotonic()``)
+    nothing more is identified: the rest is ``"skipped"`` (still counted).
+    """
+    late = False
+    pool = context().Pool(processes, _init, (scaffold, seed, time_limit)) if processes > 1 else None
+    _WORKER.update(scaffold=scaffold, seed=seed, time_limit=time_limit)
+    known: dict[tuple[int, ...], dict[str, Any]] = {}
+    walk = OrderedWalk(scaffold, label_set, None, no_zero=no_zero, deadline=deadline)
+    try:
+        for batch in walk:
+            keys = [tuple(r) for r in batch.labels.tolist()]
+            zkeys = [tuple(r) for r in type_labels(scaffold, batch.labels).tolist()]
+            for k, z in zip(keys, zkeys, strict=True):
+                if k in cached:
+                    known.setdefault(z, cached[k])
+            todo = list(
+                dict.fromkeys(z for k, z in zip(keys, zkeys, strict=True) if k not in cached and z not in known)
+            )
+            rows = np.array(todo, np.int64).reshape(len(todo), scaffold.n_edges)
+            fresh = pool.imap(_record_row, rows, chunksize=8) if pool is not None else map(_record_row, rows)
+            for i, (k, z) in enumerate(zip(keys, zkeys, strict=True)):
+                if k in cached:
+                    rec = {**cached[k], "source": "cache"}
+                elif z in known:
+                    rec = {**known[z], "source": "reused"}
+                elif late or (deadline is not None and time.monotonic() > deadline):
+                    late = True  # from now on no identification: results keep their order
+                    rec = {"source": "skipped"}
+                else:  # the first design of its family: the next identification, in order
+                    known[z] = next(fresh)
+                    rec = {**known[z], "source": "identified"}
+                yield batch.labels[i].astype(np.int64), int(batch.orbit_sizes[i]), rec
+        if not walk.complete:
+            yield np.zeros(0, np.int64), 0, {"source": "unwalked"}
+    finally:
+        if pool is not None:
+            pool.terminate()
+            pool.join()
+
+
+def atlas_of_catalog(path: str) -> dict[str, Any]:
+    """Sum a catalog identified by ``enumerate --identify`` (its ``knot_name`` column) into atlas types.
+
+    Rows without a name are grouped as ``split (N components)`` or ``unknown (N
+    components)``; the work is columnar (pandas ``groupby``), so big catalogs sum quickly.
+    """
+    import pandas as pd
+
+    from ..catalog.reader import read_catalog
+
+    cat = read_catalog(path)
+    frame = cat.frame
+    if "knot_name" not in frame.columns:
+        raise CatalogError(f"{path}: no knot_name column; run 'lkspace enumerate ... --identify' or give MESH")
+    comps = frame["components"].to_numpy(np.int64)
+    names = frame["knot_name"].astype(object).where(frame["knot_name"].notna(), None).to_numpy()
+    split = frame["split"].fillna(False).to_numpy(bool) if "split" in frame.columns else np.zeros(len(frame), bool)
+    fallback = np.where(split, "split", "unknown")
+    keys = [n if n is not None else f"{f} ({c} components)" for n, f, c in zip(names, fallback, comps, strict=True)]
+    mirror = frame["mirror"] if "mirror" in frame.columns else pd.Series([None] * len(frame))
+    chir = np.where(
+        mirror.isna().to_numpy(), "undetermined", np.where(mirror.fillna(False).to_numpy(bool), "mirror", "table")
+    )
+    a = np.abs(cat.labels.astype(np.int64))
+    rows = pd.DataFrame(
+        {
+            "key": keys,
+            "components": comps,
+            "orbit": frame["orbit_size"].to_numpy(np.int64),
+            "sum_abs": a.sum(axis=1),
+            "nonzero": (a != 0).sum(axis=1),
+            "max_abs": a.max(axis=1) if a.shape[1] else 0,
+            "chirality": chir,
+        }
+    )
+    simplest = rows.sort_values(["sum_abs", "nonzero", "max_abs"], kind="stable").groupby("key").head(1)
+    types: dict[str, TypeEntry] = {}
+    sums = rows.groupby("key").agg(
+        designs=("orbit", "size"), assignments=("orbit", "sum"), components=("components", "first")
+    )
+    counts = rows.groupby(["key", "chirality"]).size()
+    for key, row in sums.iterrows():
+        entry = TypeEntry(
+            str(key), int(row["components"]), designs=int(row["designs"]), assignments=int(row["assignments"])
+        )
+        for side in entry.chirality:
+            entry.chirality[side] = int(counts.get((key, side), 0))
+        types[str(key)] = entry
+    for i, row in simplest.iterrows():
+        entry = types[str(row["key"])]
+        entry.simplest = [int(x) for x in cat.labels[int(i)]]
+        entry.cost = (int(row["sum_abs"]), int(row["nonzero"]), int(row["max_abs"]))
+    listed = [t.to_dict() for t in sort_types(types)]
+    return {
+        "scaffold": cat.scaffold.name,
+        "label_set": cat.metadata.get("label_set"),
+        "designs": len(frame),
+        "assignments": sum(t["assignments"] for t in listed),
+        "types": listed,
+        "from_catalog": os.path.abspath(path),
+    }

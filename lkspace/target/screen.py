@@ -1,0 +1,163 @@
+"""One design against a goal: cheap filters first, full identification only for survivors.
+
+The filters, each a proof that the design is *not* the target:
+
+1. **linking numbers** of the realized curves (exact, from the projection's crossing
+   signs), compared up to renumbering (:func:`lkspace.target.linking.matches`);
+2. **split**: a component that crosses nothing in the projection makes a link split;
+3. **crossings**: a projection with fewer crossings than the target's crossing number;
+4. **Jones polynomial** of the simplified diagram at ``sqrt t = 2/3``, which must equal
+   the target's (or its mirror's, or another orientation's).
+
+A design passing all four is identified (:func:`lkspace.knots.recognition.identify`, with
+its time limit) and compared by name and chirality (:func:`lkspace.target.names.judge`).
+A linking-matrix goal needs only the first filter: its verdict is exact.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from ..errors import DiagramError, LkspaceError
+from ..geometry.realization import realize
+from ..knots.diagram import Diagram, project
+from ..knots.naming import one_based
+from ..knots.recognition import identify
+from ..knots.tables import JONES_POINT, knot_modules, laurent_value
+from ..model.scaffold import Scaffold
+from ..workers import ignore_interrupts
+from .linking import matches
+from .names import Target, judge
+
+SIMPLIFY_MAX_CROSSINGS = 400
+"""Projections with more crossings skip the simplify-and-Jones filter (identification has time budgets)."""
+
+JONES_MAX_CROSSINGS = 40
+"""Simplified diagrams with more crossings skip the Jones filter."""
+
+
+def type_labels(scaffold: Scaffold, labels: np.ndarray) -> np.ndarray:
+    """Return ``labels`` with the edges of degree 1 set to 0: a design of the same knot or link type.
+
+    On an edge of degree 1 a lone strand turns ``t`` times about the edge's axis, inside
+    a thin cylinder around the edge that no other strand enters: a one-strand braid,
+    isotopic (ends fixed, inside the cylinder) to the untwisted arc.  So the type depends
+    on the labels of the edges of degree >= 2 only.
+
+    Examples
+    --------
+    >>> from lkspace import load
+    >>> type_labels(load("book:2"), np.array([[2, 1, -1, 0, 1, 1, 2]])).tolist()
+    [[2, 0, 0, 0, 0, 0, 0]]
+    """
+    out = np.array(labels, np.int64, copy=True)
+    out[..., np.asarray(scaffold.edge_degrees) == 1] = 0
+    return out
+
+
+@dataclass(frozen=True, eq=False)
+class Goal:
+    """What the search wants: a type (``target``), a linking matrix (``linking``), or both."""
+
+    components: int
+    target: Target | None = None
+    linking: np.ndarray | None = None
+    signed: bool = False
+
+    @property
+    def label(self) -> str:
+        """Short text for progress lines and messages."""
+        if self.target is not None:
+            return self.target.label
+        return f"linking matrix {np.asarray(self.linking).tolist()}"
+
+
+def projection(curves: list[np.ndarray], seed: int) -> Diagram:
+    """Project ``curves``; a rare non-generic projection is turned again (three tries)."""
+    for attempt in range(3):
+        try:
+            return project(curves, seed=seed + attempt)
+        except DiagramError:
+            if attempt == 2:
+                raise
+    raise AssertionError("unreachable")  # pragma: no cover
+
+
+def _jones_value(diagram: Diagram) -> tuple[int, Any] | None:
+    """``(simplified crossings, Jones at 2/3)``, or ``None`` when the diagram is too big for the filter."""
+    if diagram.n_crossings > SIMPLIFY_MAX_CROSSINGS:
+        return None
+    if not diagram.pd:
+        return 0, 1
+    spherogram, regina, _ = knot_modules()
+    link = spherogram.Link(diagram.pd)
+    link.simplify("global")
+    pd = one_based(link.PD_code())
+    if len(pd) > JONES_MAX_CROSSINGS:
+        return None
+    if not pd:
+        return 0, 1
+    return len(pd), laurent_value(regina.Link.fromPD(pd).jones(), JONES_POINT)
+
+
+def screen(
+    scaffold: Scaffold, labels: np.ndarray, goal: Goal, seed: int = 0, time_limit: float | None = 60.0
+) -> dict[str, Any]:
+    """Judge one design (closed strands, ``goal.components`` of them) against ``goal``.
+
+    Returns
+    -------
+    dict
+        ``verdict`` (``"match"``, ``"other"`` or ``"undetermined"``), ``reason`` (the
+        filter that decided, or the identification status) and, when identified,
+        ``name``, ``chiral_name``, ``mirror``, ``table``, ``status``.
+    """
+    try:
+        real = realize(scaffold, labels)
+        diagram = projection(real.curves, seed)
+    except LkspaceError as exc:
+        return {"verdict": "undetermined", "reason": f"not realized: {exc}"}
+    lm = diagram.linking_matrix()
+    out: dict[str, Any] = {"linking_matrix": lm.tolist()}
+    if goal.linking is not None and not matches(lm, goal.linking, goal.signed):
+        return {**out, "verdict": "other", "reason": "linking matrix"}
+    target = goal.target
+    if target is None:
+        return {**out, "verdict": "match", "reason": "linking matrix"}
+    if target.linking is not None and not matches(lm, target.linking):
+        return {**out, "verdict": "other", "reason": "linking numbers"}
+    if diagram.free_components and goal.components > 1:
+        return {**out, "verdict": "other", "reason": "split"}
+    if diagram.n_crossings < target.crossings:
+        return {**out, "verdict": "other", "reason": "crossings"}
+    jones = _jones_value(diagram)
+    if jones is not None and jones[1] not in target.fingerprints:
+        return {**out, "verdict": "other", "reason": "Jones polynomial"}
+    try:
+        ident = identify(scaffold, labels, seed=seed, time_limit=time_limit).to_dict()
+    except LkspaceError as exc:
+        return {**out, "verdict": "undetermined", "reason": f"not identified: {exc}"}
+    verdict = judge(target, ident)
+    keep = ("name", "chiral_name", "mirror", "table", "status", "crossings")
+    return {**out, **{k: ident.get(k) for k in keep}, "verdict": verdict, "reason": "identified"}
+
+
+_WORKER: dict[str, Any] = {}
+
+
+def init_worker(scaffold: Scaffold, goal: Goal, seed: int, time_limit: float | None, worker: bool = True) -> None:
+    """Keep what :func:`screen_row` needs in this (worker) process."""
+    if worker:
+        ignore_interrupts()
+        if goal.target is not None:
+            knot_modules()
+    _WORKER.update(scaffold=scaffold, goal=goal, seed=seed, time_limit=time_limit)
+
+
+def screen_row(labels: np.ndarray) -> dict[str, Any]:
+    """:func:`screen` with the worker's scaffold and goal (for ``Pool.imap``)."""
+    w = _WORKER
+    return screen(w["scaffold"], np.asarray(labels, np.int64), w["goal"], w["seed"], w["time_limit"])

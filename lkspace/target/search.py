@@ -1,0 +1,221 @@
+"""Search a design space for a knot or link type or a linking matrix: ``lkspace solve --type/--linking-matrix``.
+
+Designs with the right number of components come simplest first
+(:class:`~lkspace.target.candidates.OrderedWalk`), are screened by cheap filters and, if
+they survive, identified (:func:`~lkspace.target.screen.screen`), in ``processes``
+worker processes.  Every match is **re-identified** in this process with another
+projection before it is reported.
+
+Status: ``found`` (``count`` designs, or fewer when the space ran out), ``exhausted``
+(the whole space walked and every design proved to be something else: the type is
+absent), ``unknown`` (time ran out, or some designs could not be identified).
+"""
+
+from __future__ import annotations
+
+import time
+from collections import Counter
+from collections.abc import Iterator, Mapping
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from ..errors import SolveVerificationError
+from ..model.scaffold import Scaffold
+from ..progress import task
+from ..strands.tracing import trace
+from ..workers import context
+from .candidates import OrderedWalk
+from .screen import Goal, init_worker, screen, screen_row
+
+CHECK_SEED_SHIFT = 1009
+"""Seed offset of the projection used to re-identify an answer (independent of the search's)."""
+
+
+@dataclass(frozen=True)
+class TargetResult:
+    """The answer: ``status``, ``solutions`` (dicts with ``labels``, ``components``, ``name`` ...) and counts."""
+
+    status: str
+    solutions: list[dict[str, Any]]
+    goal: Goal
+    wall_time: float
+    complete: bool
+    stats: dict[str, Any] = field(default_factory=dict)
+    reason: str = ""
+
+    def __repr__(self) -> str:
+        return f"TargetResult({self.status}, {len(self.solutions)} solution(s) for {self.goal.label})"
+
+    def to_dict(self) -> dict[str, Any]:
+        """Return the JSON form (``status``, ``solutions``, ``target``, ``stats`` ...)."""
+        out: dict[str, Any] = {
+            "status": self.status,
+            "solutions": self.solutions,
+            "components": self.goal.components,
+            "exhausted": self.status == "exhausted",
+            "space_complete": self.complete,
+            "wall_time": round(self.wall_time, 3),
+            "stats": self.stats,
+        }
+        if self.goal.target is not None:
+            out["target"] = self.goal.target.to_dict()
+        if self.goal.linking is not None:
+            out["linking_matrix"] = np.asarray(self.goal.linking).tolist()
+            out["signed"] = self.goal.signed
+        if self.reason:
+            out["reason"] = self.reason
+        return out
+
+
+def check_answer(scaffold: Scaffold, labels: np.ndarray, goal: Goal, seed: int, time_limit: float | None) -> dict:
+    """Re-trace and re-identify a match with another projection; raise if it is not the goal."""
+    components = trace(scaffold, labels).components
+    if components != goal.components:
+        raise SolveVerificationError(
+            f"internal error: {labels.tolist()} on {scaffold.name} traces to {components} components, "
+            f"not {goal.components}; please report this bug"
+        )
+    again = screen(scaffold, labels, goal, seed + CHECK_SEED_SHIFT, time_limit)
+    return again
+
+
+def solve_target(
+    scaffold: Scaffold,
+    goal: Goal,
+    *,
+    label_set: np.ndarray,
+    no_zero: bool = False,
+    fixes: Mapping[int, int] | None = None,
+    count: int = 1,
+    time_limit: float | None = None,
+    identify_time_limit: float | None = 60.0,
+    processes: int = 1,
+    seed: int = 0,
+) -> TargetResult:
+    """Find up to ``count`` designs of ``goal``, simplest first (see the module docstring).
+
+    Examples
+    --------
+    >>> from lkspace import load
+    >>> from lkspace.target.names import parse_type
+    >>> r = solve_target(load("dihedron:3"), Goal(1, parse_type("3_1")), label_set=np.arange(-1, 2))
+    >>> r.status, r.solutions[0]["labels"], r.solutions[0]["name"]
+    ('found', [-1, -1, -1], '3_1')
+    """
+    t0 = time.monotonic()
+    deadline = None if not time_limit else t0 + time_limit
+    walk = OrderedWalk(scaffold, label_set, goal.components, no_zero=no_zero, fixes=fixes, deadline=deadline)
+    tally: Counter[str] = Counter()
+    solutions: list[dict[str, Any]] = []
+    undetermined: list[list[int]] = []
+    timed_out = False
+    with (
+        task(f"searching {scaffold.name} for {goal.label}") as step,
+        _screener(scaffold, goal, seed, identify_time_limit, processes) as run,
+    ):
+        for batch in walk:
+            for labels, orbit, verdict in run(batch.labels, batch.orbit_sizes):
+                tally["designs"] += 1
+                tally[f"{verdict['verdict']}: {verdict['reason']}"] += 1
+                step.note(f"{tally['designs']:,} designs screened (|t| <= {batch.shell}), {len(solutions)} found")
+                if verdict["verdict"] == "undetermined":
+                    undetermined.append(labels.tolist())
+                elif verdict["verdict"] == "match":
+                    again = check_answer(scaffold, labels, goal, seed, identify_time_limit)
+                    if again["verdict"] != "match":
+                        tally["re-identification disagreed"] += 1
+                        undetermined.append(labels.tolist())
+                        continue
+                    solutions.append(_solution(labels, orbit, goal, again))
+                    if len(solutions) >= count:
+                        break
+                if deadline is not None and time.monotonic() > deadline:
+                    timed_out = True
+                    break
+            if len(solutions) >= count or timed_out:
+                break
+    complete = walk.complete and not timed_out and len(solutions) < count
+    if solutions:
+        status, reason = "found", ""
+    elif complete and not undetermined:
+        status, reason = "exhausted", "every design of the space is proved to be another type"
+    elif undetermined:
+        status, reason = "unknown", f"{len(undetermined)} design(s) could not be told apart from the target"
+    else:
+        status, reason = "unknown", "time ran out before the space was searched"
+    stats: dict[str, Any] = dict(sorted(tally.items()))
+    stats["undetermined_examples"] = undetermined[:5]
+    return TargetResult(status, solutions, goal, time.monotonic() - t0, complete, stats, reason)
+
+
+def _solution(labels: np.ndarray, orbit: int, goal: Goal, ident: dict[str, Any]) -> dict[str, Any]:
+    a = np.abs(labels)
+    out = {
+        "labels": labels.tolist(),
+        "components": goal.components,
+        "sum_abs": int(a.sum()),
+        "max_abs": int(a.max()) if len(a) else 0,
+        "nonzero": int((labels != 0).sum()),
+        "orbit_size": int(orbit),
+        "linking_matrix": ident.get("linking_matrix"),
+        "reidentified": True,
+    }
+    for key in ("name", "chiral_name", "mirror", "table", "crossings"):
+        if key in ident:
+            out[key] = ident[key]
+    return out
+
+
+class _screener:
+    """A context giving ``run(labels, orbits)``: ``(labels, orbit, verdict)`` per row, in order."""
+
+    def __init__(self, scaffold: Scaffold, goal: Goal, seed: int, time_limit: float | None, processes: int) -> None:
+        self.args = (scaffold, goal, seed, time_limit)
+        self.processes = processes
+        self.pool: Any = None
+        self.seen: dict[bytes, dict[str, Any]] = {}
+        self.sent: set[bytes] = set()
+
+    def __enter__(self) -> Any:
+        init_worker(*self.args, worker=False)
+        if self.processes > 1:
+            self.pool = context().Pool(self.processes, initializer=init_worker, initargs=(*self.args, True))
+        return self.run
+
+    def run(self, labels: np.ndarray, orbits: np.ndarray) -> Iterator[tuple[np.ndarray, int, dict[str, Any]]]:
+        """Screen the rows; a row equal to an earlier one off the degree-1 edges takes its verdict.
+
+        The rows sent to the workers are the first of each family, in order (``sent``);
+        the results come back in that order and are matched to the rows here (``seen``).
+        """
+        loose = np.asarray(self.args[0].edge_degrees) == 1
+
+        def key(row: np.ndarray) -> bytes:
+            z = row.copy()
+            z[loose] = 0
+            return z.tobytes()
+
+        def firsts() -> Iterator[np.ndarray]:
+            for row in labels:
+                k = key(row)
+                if k not in self.sent:
+                    self.sent.add(k)
+                    yield row.astype(np.int64)
+
+        fresh = (
+            self.pool.imap(screen_row, firsts(), chunksize=4) if self.pool is not None else map(screen_row, firsts())
+        )
+        for i, row in enumerate(labels):
+            k = key(row)
+            if k in self.seen:
+                verdict = {**self.seen[k], "reason": "same type as a design screened before"}
+            else:
+                verdict = self.seen[k] = next(fresh)
+            yield row.astype(np.int64), int(orbits[i]), verdict
+
+    def __exit__(self, *exc: object) -> None:
+        if self.pool is not None:
+            self.pool.terminate()  # a found answer or Ctrl-C: the queue is not waited for
+            self.pool.join()
