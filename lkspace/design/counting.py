@@ -17,6 +17,7 @@ import numpy as np
 
 from ..io.sources import ScaffoldSource
 from ..model.specs import LabelSetSpec
+from .batch import class_components, design_counts
 from .space import MAX_CLASSES, DesignSpace, make_space
 
 
@@ -63,14 +64,14 @@ class DesignCount:
 
 
 def class_weights(space: DesignSpace, components: int | None = None) -> np.ndarray:
-    """(n_reps,) int64: designs per representative class (0 where ``components`` excludes it)."""
-    co = space.classes
-    out = np.zeros(len(co.codes), dtype=object)
-    for c in range(len(co.codes)):
-        if components is not None and space.class_info(co.residues[c]).components != components:
-            continue
-        out[c] = space.class_design_count(c)
-    return out
+    """(n_reps,) designs per representative class (0 where ``components`` excludes it).
+
+    int64, or an object array of exact ints when counts may pass int64.
+    """
+    weights = design_counts(space, np.arange(len(space.classes.codes)))
+    if components is not None:
+        weights = np.where(class_components(space) == components, weights, 0)
+    return weights
 
 
 def burnside_total(space: DesignSpace) -> int:
@@ -97,15 +98,20 @@ def count_space(space: DesignSpace, components: int | None = None) -> DesignCoun
             f"{space.n_classes} residue classes: too many to split the count by components",
         )
     co = space.classes
-    by: dict[int, int] = {}
-    covered = 0
-    for c in range(len(co.codes)):
-        comp = space.class_info(co.residues[c]).components
-        if components is not None and comp != components:
-            continue
-        n = space.class_design_count(c)
-        by[comp] = by.get(comp, 0) + n
-        covered += space.class_size(c) * int(co.orbit_sizes[c])
+    comps = class_components(space)
+    keep = np.arange(len(comps)) if components is None else np.flatnonzero(comps == components)
+    counts = design_counts(space, keep)
+    n_opts = space.residue_table[2]
+    e = np.arange(space.scaffold.n_edges)
+    if counts.dtype != object:
+        sizes = np.prod(n_opts[e[None, :], co.indices[keep]], axis=1) * co.orbit_sizes[keep]
+        by = {int(c): int(counts[comps[keep] == c].sum(dtype=object)) for c in np.unique(comps[keep])}
+        covered = int(sizes.sum(dtype=object))
+    else:
+        by = {}
+        for c, n in zip(comps[keep].tolist(), counts.tolist(), strict=True):
+            by[c] = by.get(c, 0) + n
+        covered = sum(space.size_of(co.indices[c]) * int(co.orbit_sizes[c]) for c in keep.tolist())
     return DesignCount(sum(by.values()), space.assignments, covered, dict(sorted(by.items())))
 
 

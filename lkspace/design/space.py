@@ -272,15 +272,22 @@ class ClassOrbits:
         Mixed-radix code of the class (edge 0 most significant): the ``residue_class`` key.
     orbit_sizes : (n_reps,) int64
         Classes in each representative's orbit.
-    stabilizers : list of (n_h,) int64
-        Group actions fixing each representative, identity first.
+    stab_ptr, stab_ids : (n_reps + 1,), (n_fix,) int64
+        The group actions fixing each representative (identity first), as CSR:
+        ``stab_ids[stab_ptr[c]:stab_ptr[c + 1]]``.
     """
 
     indices: np.ndarray
     residues: np.ndarray
     codes: np.ndarray
     orbit_sizes: np.ndarray
-    stabilizers: list[np.ndarray]
+    stab_ptr: np.ndarray
+    stab_ids: np.ndarray
+
+    @cached_property
+    def stabilizers(self) -> list[np.ndarray]:
+        """Group actions fixing each representative, identity first (one array per class)."""
+        return np.split(self.stab_ids, self.stab_ptr[1:-1])
 
 
 def class_orbits(space: DesignSpace) -> ClassOrbits:
@@ -309,9 +316,12 @@ def class_orbits(space: DesignSpace) -> ClassOrbits:
     reps = np.flatnonzero(best == np.arange(n_cls))
     codes = np.stack(image_codes, axis=1)[reps]  # (n_reps, n_g)
     fixes = codes == reps[:, None]
-    stabilizers = [np.flatnonzero(row) for row in fixes]
-    orbit_sizes = len(perms) // fixes.sum(axis=1)
-    return ClassOrbits(idx[reps], val[reps], reps, orbit_sizes.astype(np.int64), stabilizers)
+    n_fix = fixes.sum(axis=1)
+    ptr = np.zeros(len(reps) + 1, np.int64)
+    np.cumsum(n_fix, out=ptr[1:])
+    orbit_sizes = len(perms) // n_fix
+    stab_ids = np.nonzero(fixes)[1].astype(np.int64)  # row-major: per class, ascending (identity first)
+    return ClassOrbits(idx[reps], val[reps], reps, orbit_sizes.astype(np.int64), ptr, stab_ids)
 
 
 def canonical_form(space: DesignSpace, labels: ArrayLike) -> tuple[np.ndarray, int]:
