@@ -57,6 +57,10 @@ class ClassTraces:
         """The traces of the classes ``keep`` (indices or a mask)."""
         return ClassTraces(*(a[keep] for a in self._arrays()))
 
+    def slim(self) -> ClassTraces:
+        """The same traces without the per-port arrays (what catalog rows need)."""
+        return ClassTraces(*self._arrays()[:4], np.zeros((0, 0), np.int64), np.zeros((0, 0, 0), np.int64))
+
     def _arrays(self) -> tuple[np.ndarray, ...]:
         return self.components, self.lengths, self.periods, self.walk_periods, self.port_strand, self.port_shift
 
@@ -224,7 +228,11 @@ def class_components(space: DesignSpace, class_ids: np.ndarray | None = None) ->
 
 
 def concat_traces(parts: list[ClassTraces]) -> ClassTraces:
-    """One :class:`ClassTraces` of several batches (strand arrays padded to the widest)."""
+    """One :class:`ClassTraces` of several batches, for their rows' columns.
+
+    Strand arrays are padded to the widest; the per-port arrays (only holding together
+    needs them) are left empty.
+    """
     n_s = max(p.lengths.shape[1] for p in parts)
 
     def pad(a: np.ndarray, fill: int) -> np.ndarray:
@@ -236,8 +244,8 @@ def concat_traces(parts: list[ClassTraces]) -> ClassTraces:
         np.concatenate([pad(p.lengths, -1) for p in parts]),
         np.concatenate([pad(p.periods, 0) for p in parts]),
         np.concatenate([pad(p.walk_periods, 0) for p in parts]),
-        np.concatenate([p.port_strand for p in parts]),
-        np.concatenate([p.port_shift for p in parts]),
+        np.zeros((0, 0), np.int64),
+        np.zeros((0, 0, 0), np.int64),
     )
 
 

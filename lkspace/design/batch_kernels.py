@@ -252,15 +252,17 @@ def rows_hold_together_lift(
         basis[:, :] = 0
         has[:] = False
         for r in range(n_vec):
-            w = vec[r].copy()
+            for j in range(dim):
+                v[j] = vec[r, j]
             for col in range(dim):
-                if w[col] == 0:
+                if v[col] == 0:
                     continue
                 if not has[col]:
-                    basis[col, :] = w
+                    for j in range(dim):
+                        basis[col, j] = v[j]
                     has[col] = True
                     break
-                g, b2 = basis[col, col], w[col]
+                g, b2 = basis[col, col], v[col]
                 x0, y0, x1, y1 = 1, 0, 0, 1
                 while b2 != 0:
                     q = g // b2
@@ -269,13 +271,16 @@ def rows_hold_together_lift(
                     y0, y1 = y1, y0 - q * y1
                 if g < 0:
                     g, x0, y0 = -g, -x0, -y0
-                p1, q1 = basis[col, col] // g, w[col] // g
-                row = x0 * basis[col, :] + y0 * w
-                w = p1 * w - q1 * basis[col, :]
-                basis[col, :] = row
+                p1, q1 = basis[col, col] // g, v[col] // g
+                for j in range(dim):
+                    bj = basis[col, j]
+                    basis[col, j] = x0 * bj + y0 * v[j]
+                    v[j] = p1 * v[j] - q1 * bj
                 for jj in range(col + 1, dim):
                     if has[jj] and basis[jj, jj] != 0:
-                        w = w - (w[jj] // basis[jj, jj]) * basis[jj, :]
+                        f = v[jj] // basis[jj, jj]
+                        for j in range(dim):
+                            v[j] -= f * basis[jj, j]
         index = 1
         for col in range(dim):
             if not has[col]:
@@ -318,3 +323,58 @@ def burnside_classes(
             total += f
         out[c] = total // (stab_ptr[c + 1] - stab_ptr[c])
     return out
+
+
+@kernel
+def orbit_minima(
+    first: int,
+    stop: int,
+    n_res: np.ndarray,
+    values: np.ndarray,
+    lookup: np.ndarray,
+    moduli: np.ndarray,
+    perms: np.ndarray,
+    signs: np.ndarray,
+    is_rep: np.ndarray,
+    n_fix: np.ndarray,
+) -> None:
+    """For class codes ``first..stop``: whether each is its orbit's smallest code, and how many actions fix it.
+
+    Codes are mixed radix over the edges' residue indices (edge 0 most significant); the
+    image of a class under action ``(perm, sign)`` puts residue ``sign * r`` of edge ``j``
+    on edge ``perm[j]``.
+    """
+    n_e = len(n_res)
+    n_g = len(signs)
+    digits = np.zeros(n_e, np.int64)
+    img = np.zeros(n_e, np.int64)
+    rest = first
+    for j in range(n_e - 1, -1, -1):
+        digits[j] = rest % n_res[j]
+        rest //= n_res[j]
+    for i in range(stop - first):
+        code = first + i
+        rep = True
+        fix = 0
+        for g in range(n_g):
+            s = signs[g]
+            for j in range(n_e):
+                t = perms[g, j]
+                img[t] = lookup[t, (s * values[j, digits[j]]) % moduli[t]]
+            other = 0
+            for j in range(n_e):
+                other = other * n_res[j] + img[j]
+            if other < code:
+                rep = False
+                break
+            if other == code:
+                fix += 1
+        is_rep[i] = rep
+        n_fix[i] = fix
+        j = n_e - 1
+        while j >= 0:
+            digits[j] += 1
+            if digits[j] < n_res[j]:
+                break
+            digits[j] = 0
+            j -= 1

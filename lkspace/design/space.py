@@ -23,6 +23,7 @@ from ..model.specs import LabelSetSpec, parse_label_set
 from ..model.validation import validate_labels
 from ..strands.walk import walk
 from ..symmetry.group import check_label_set, check_mode, symmetry_group
+from .batch_kernels import orbit_minima
 
 MAX_CLASSES = 1 << 21
 WALK_MODES = ("designs", "residues", "spanning-trees")
@@ -300,28 +301,25 @@ def class_orbits(space: DesignSpace) -> ClassOrbits:
             f"(limit {MAX_CLASSES}); use --mode spanning-trees or a smaller label set"
         )
     dims = tuple(n_res.tolist())
-    idx = np.stack(np.unravel_index(np.arange(n_cls, dtype=np.int64), dims), axis=1).astype(np.int64)
-    e = np.arange(len(dims))
-    val = values[e, idx]
     k = space.moduli
     perms, signs = space.action
-    best = np.arange(n_cls, dtype=np.int64)
-    image_codes = []
-    for perm, s in zip(perms, signs, strict=True):
+    is_rep = np.empty(n_cls, np.bool_)
+    n_fix = np.empty(n_cls, np.int64)
+    orbit_minima(0, n_cls, n_res, values, lookup, k, perms, signs, is_rep, n_fix)
+    reps = np.flatnonzero(is_rep)
+    idx = np.stack(np.unravel_index(reps, dims), axis=1).astype(np.int64)
+    e = np.arange(len(dims))
+    val = values[e, idx]
+    fixes = np.empty((len(reps), len(signs)), bool)
+    for g, (perm, s) in enumerate(zip(perms, signs, strict=True)):
         img = np.empty_like(idx)
         img[:, perm] = lookup[perm, (s * val) % k]
-        code = np.ravel_multi_index(tuple(img.T), dims)
-        image_codes.append(code)
-        np.minimum(best, code, out=best)
-    reps = np.flatnonzero(best == np.arange(n_cls))
-    codes = np.stack(image_codes, axis=1)[reps]  # (n_reps, n_g)
-    fixes = codes == reps[:, None]
-    n_fix = fixes.sum(axis=1)
+        fixes[:, g] = np.all(img == idx, axis=1)
     ptr = np.zeros(len(reps) + 1, np.int64)
-    np.cumsum(n_fix, out=ptr[1:])
-    orbit_sizes = len(perms) // n_fix
+    np.cumsum(n_fix[reps], out=ptr[1:])
+    orbit_sizes = len(perms) // n_fix[reps]
     stab_ids = np.nonzero(fixes)[1].astype(np.int64)  # row-major: per class, ascending (identity first)
-    return ClassOrbits(idx[reps], val[reps], reps, orbit_sizes.astype(np.int64), ptr, stab_ids)
+    return ClassOrbits(idx, val, reps, orbit_sizes.astype(np.int64), ptr, stab_ids)
 
 
 def canonical_form(space: DesignSpace, labels: ArrayLike) -> tuple[np.ndarray, int]:

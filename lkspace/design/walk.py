@@ -220,7 +220,7 @@ def walk_blocks(
             continue
         labels, stab, row_class = expand_batch(space, run)
         holds = holds_batch(space, traces, labels, row_class)
-        yield Block(co.codes[run], traces, row_class, labels, space.n_actions // stab, holds)
+        yield Block(co.codes[run], traces.slim(), row_class, labels, space.n_actions // stab, holds)
 
 
 def _large_class(space: DesignSpace, c: int, traces: ClassTraces) -> Iterator[Block]:
@@ -243,7 +243,7 @@ def _large_class(space: DesignSpace, c: int, traces: ClassTraces) -> Iterator[Bl
         labels = out[:m]
         row_class = np.zeros(m, np.int64)
         holds = holds_batch(space, traces, labels, row_class)
-        yield Block(co.codes[[c]], traces, row_class, labels, space.n_actions // stab[:m], holds)
+        yield Block(co.codes[[c]], traces.slim(), row_class, labels, space.n_actions // stab[:m], holds)
 
 
 def residue_row(
