@@ -24,11 +24,14 @@ from typing import Any
 import numpy as np
 import pyarrow as pa
 
+from ..engine import is_dask, run_tasks
 from ..workers import Terminated, context, ignore_interrupts, in_main_thread
 from .batches import space_batches
 from .lock import pid_alive
 from .transaction import file_sha256
 from .writer import CatalogWriter
+
+KILL_ONCE = "LKSPACE_KILL_WORKER_ONCE"
 
 ORPHAN_POLL = 0.5
 """Seconds between a worker's checks that the main process still runs."""
@@ -85,7 +88,17 @@ def _exit_with(main_pid: int) -> None:
 
 def write_part(i: int) -> tuple[int, dict[str, Any]]:
     """Write part ``i`` of the run in ``_STATE``; return ``(i, summary with file and sha256)``."""
-    st = _STATE
+    return write_part_with(_STATE, i)
+
+
+def write_part_with(st: dict[str, Any], i: int) -> tuple[int, dict[str, Any]]:
+    """Write part ``i`` of the run ``st`` (a Dask task, or :func:`write_part` in a pool worker)."""
+    if st.get("on_dask"):
+        fault_hook()
+    if st.get("remote") is not None:
+        from .remote import write_part_remote
+
+        return write_part_remote(st, i)
     path = os.path.join(st["folder"], st["files"][i])
     meta = {**st["meta"], "shard": {"index": i, "count": len(st["files"]), "plan": st["plan"]}}
     ids = st["ranges"][i] if st["ranges"] is not None else None
@@ -94,15 +107,37 @@ def write_part(i: int) -> tuple[int, dict[str, Any]]:
     return i, {**summary, "file": st["files"][i], "sha256": file_sha256(path)}
 
 
+def fault_hook() -> None:
+    """Testing aid for Dask runs: with ``$LKSPACE_KILL_WORKER_ONCE`` = a path that does not exist
+    yet, the first part to start creates it and kills its own worker (SIGKILL), as a lost machine would."""
+    flag = os.environ.get(KILL_ONCE)
+    if flag:
+        try:
+            fd = os.open(flag, os.O_CREAT | os.O_EXCL | os.O_WRONLY)
+        except FileExistsError:
+            return
+        os.close(fd)
+        os.kill(os.getpid(), signal.SIGKILL)
+
+
 def run_parts(
-    state: dict[str, Any], todo: list[int], jobs: int, tick: Callable[[int], object]
+    state: dict[str, Any], todo: list[int], jobs: int, tick: Callable[[int], object], scheduler: str = "local"
 ) -> Generator[tuple[int, dict[str, Any]], None, None]:
     """Write the parts ``todo`` with ``jobs`` processes; yield ``(i, summary)`` as each finishes.
 
     ``tick(rows written so far)`` is called as rows are written (in this process) or at
     least every quarter second (rows of the finished parts, with workers).  An exception
-    (KeyboardInterrupt included) terminates the workers before it propagates.
+    (KeyboardInterrupt included) terminates the workers before it propagates.  With a
+    Dask ``scheduler`` (:mod:`lkspace.engine`) each part is a Dask task.
     """
+    if is_dask(scheduler):
+        rows_done = 0
+        shared = {**state, "on_dask": True}
+        for _, done in run_tasks(write_part_with, shared, todo, scheduler, jobs, name="lkspace-part"):
+            rows_done += int(done[1]["rows"])
+            yield done
+            tick(rows_done)
+        return
     if jobs <= 1 or len(todo) <= 1:  # in this process: rows counted as they are written
         rows = [0]
 

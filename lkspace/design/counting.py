@@ -17,8 +17,14 @@ import numpy as np
 
 from ..io.sources import ScaffoldSource
 from ..model.specs import LabelSetSpec
+from ..engine import is_dask
 from .batch import class_components, design_counts
+from .census import census
 from .space import MAX_CLASSES, DesignSpace, make_space
+
+
+CENSUS_AUTO = 1 << 24
+"""Residue vectors a count splits by components unasked (about ten seconds on one core)."""
 
 
 @dataclass(frozen=True)
@@ -82,21 +88,36 @@ def burnside_total(space: DesignSpace) -> int:
     return total // space.n_actions
 
 
-def count_space(space: DesignSpace, components: int | None = None) -> DesignCount:
+def count_space(
+    space: DesignSpace, components: int | None = None, scheduler: str = "local", jobs: int = 1
+) -> DesignCount:
     """Exact totals without listing: designs, assignments covered, designs by components.
 
-    Per representative residue class (Burnside over its stabilizer).  When there are too
-    many residue classes to list and no component filter is asked for, the total comes
-    from Burnside over the whole group and ``by_components`` is ``None``.
+    Per representative residue class (Burnside over its stabilizer), batched
+    (:mod:`lkspace.design.batch`).  Past :data:`~lkspace.design.space.MAX_CLASSES` residue
+    classes the count is a census (:mod:`lkspace.design.census`: Burnside by components
+    over every residue vector, in shards on ``scheduler`` with ``jobs`` workers) when a
+    component filter, ``jobs > 1`` or a Dask scheduler asks for it or when it is small
+    (:data:`CENSUS_AUTO` vectors); otherwise the total comes from Burnside over the whole
+    group and ``by_components`` is ``None``.
     """
-    if space.n_classes > MAX_CLASSES and components is None:
-        return DesignCount(
-            burnside_total(space),
-            space.assignments,
-            len(space.walk_labels) ** space.scaffold.n_edges,
-            None,
-            f"{space.n_classes} residue classes: too many to split the count by components",
-        )
+    if space.n_classes > MAX_CLASSES:
+        wanted = components is not None or jobs > 1 or is_dask(scheduler)
+        if not wanted and space.n_classes > CENSUS_AUTO:
+            return DesignCount(
+                burnside_total(space),
+                space.assignments,
+                len(space.walk_labels) ** space.scaffold.n_edges,
+                None,
+                f"{space.n_classes:,} residue classes: too many to split the count by components in one "
+                "process; --jobs N or --scheduler dask splits them (a census, in shards)",
+            )
+        found = census(space, scheduler, jobs)
+        by = found.by_components
+        if components is not None:
+            by = {c: n for c, n in by.items() if c == components}
+        covered = sum(n for c, n in found.assignments_by_components.items() if c in by)
+        return DesignCount(sum(by.values()), space.assignments, covered, by, f"census in {found.shards} shard(s)")
     co = space.classes
     comps = class_components(space)
     keep = np.arange(len(comps)) if components is None else np.flatnonzero(comps == components)
