@@ -115,12 +115,15 @@ def run_tasks(
     scheduler: str,
     jobs: int,
     name: str = "lkspace",
+    setup: Callable[[], object] | None = None,
 ) -> Iterator[tuple[int, Any]]:
     """Run ``fn(shared, item)`` for every item; yield ``(position, result)`` as each finishes.
 
     ``fn`` must be a top-level function (it is pickled).  ``shared`` goes to each worker
-    once.  Interrupting the iteration (Ctrl-C) stops the workers: the pool is terminated,
-    or the Dask futures are cancelled.
+    once.  ``setup()`` runs first on every Dask worker (joining ones too) in its main
+    thread, where libraries that install signal handlers must be imported.  Interrupting
+    the iteration (Ctrl-C) stops the workers: the pool is terminated, or the Dask futures
+    are cancelled.
     """
     if not items:
         return
@@ -141,6 +144,8 @@ def run_tasks(
         return
     distributed = import_distributed(f"--scheduler {scheduler}")
     with dask_client(scheduler, jobs) as client:
+        if setup is not None:
+            client.register_plugin(_setup_plugin(distributed, setup), name=f"{name}-setup")
         [shared_future] = client.scatter([shared], broadcast=True, hash=False)
         futures = {
             client.submit(fn, shared_future, item, key=f"{name}-{i}-{os.getpid()}", pure=False): i
@@ -151,6 +156,14 @@ def run_tasks(
                 yield futures[future], future.result()
         finally:
             client.cancel(list(futures))
+
+
+def _setup_plugin(distributed: Any, setup: Callable[[], object]) -> Any:
+    class Setup(distributed.WorkerPlugin):  # type: ignore[misc,name-defined]
+        def setup(self, worker: Any) -> None:
+            setup()
+
+    return Setup()
 
 
 _LOCAL: dict[str, Any] = {}

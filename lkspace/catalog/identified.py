@@ -76,7 +76,8 @@ def identify_catalog(
     total = sum(pq.read_metadata(f).num_rows for f in files)
     with task("identifying designs", total) as step:
         if is_dask(scheduler):
-            for i, summary in run_tasks(identify_part, (scaffold, seed), files, scheduler, processes, "lkspace-identify"):
+            found = run_tasks(identify_part, (scaffold, seed), files, scheduler, processes, "lkspace-identify", load_knots)
+            for i, summary in found:
                 _add(totals, summary)
                 step.advance(pq.read_metadata(files[i]).num_rows)
         else:
@@ -84,6 +85,11 @@ def identify_catalog(
                 _add(totals, _summary(_identify_file(file, scaffold, processes, seed, step)))
     totals["names"] = dict(sorted(totals["names"].items(), key=lambda kv: -kv[1]))
     return totals
+
+
+def load_knots() -> None:
+    """On a Dask worker, before its tasks: import the knot libraries in the main thread (PARI sets signal handlers)."""
+    import snappy  # noqa: F401
 
 
 def identify_part(shared: tuple[Scaffold, int], file: str) -> dict[str, Any]:
@@ -118,7 +124,7 @@ def _identify_file(file: str, scaffold: Scaffold, processes: int, seed: int, ste
     if meta.get("identified"):
         step.advance(table.num_rows)
         return None
-    labels = np.array(table.column("labels").to_pylist(), dtype=np.int64).reshape(table.num_rows, -1)
+    labels = np.array(table.column("labels").to_pylist(), dtype=np.int64).reshape(table.num_rows, scaffold.n_edges)
     chunk = IDENTIFY_CHUNK * max(1, processes)
     pieces = []
     for start in range(0, len(labels), chunk):
