@@ -29,7 +29,10 @@ def canonical(df: pd.DataFrame) -> pd.DataFrame:
     out = df.copy()
     for col in out.columns:
         if out[col].dtype == object:
-            out[col] = [x if isinstance(x, bytes) else repr([list(y) if hasattr(y, "__len__") else y for y in x]) for x in out[col]]
+            out[col] = [
+                x if isinstance(x, bytes) else repr([list(y) if hasattr(y, "__len__") else y for y in x])
+                for x in out[col]
+            ]
     by = "key" if "key" in out.columns else "residue_class"
     return out.sort_values(by).reset_index(drop=True)
 

@@ -77,7 +77,7 @@ def import_distributed(purpose: str) -> Any:
 
 @contextlib.contextmanager
 def dask_client(scheduler: str, jobs: int) -> Iterator[Any]:
-    """A ``distributed.Client``: of a new LocalCluster (``"dask"``, ``jobs`` workers) or of a running scheduler.
+    """Yield a ``distributed.Client`` of a new LocalCluster (``"dask"``, ``jobs`` workers) or of a running scheduler.
 
     The LocalCluster's worker processes are forked from this process once ``distributed``
     is imported (:func:`import_distributed`; a fresh interpreter would trip on SnapPy).
@@ -159,7 +159,7 @@ def run_tasks(
 
 
 def _setup_plugin(distributed: Any, setup: Callable[[], object]) -> Any:
-    class Setup(distributed.WorkerPlugin):  # type: ignore[misc,name-defined]
+    class Setup(distributed.WorkerPlugin):
         def setup(self, worker: Any) -> None:
             setup()
 
@@ -177,4 +177,3 @@ def _init_local(fn: Callable[..., Any], shared: Any) -> None:
 def _run_local(job: tuple[int, Any]) -> tuple[int, Any]:
     i, item = job
     return i, _LOCAL["fn"](_LOCAL["shared"], item)
-

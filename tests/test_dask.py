@@ -31,9 +31,7 @@ def cluster():
     import dask
 
     with dask.config.set({"distributed.worker.multiprocessing-method": "fork"}):
-        with distributed.LocalCluster(
-            n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None
-        ) as lc:
+        with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as lc:
             yield lc.scheduler_address
 
 
@@ -93,7 +91,9 @@ def test_cli_local_cluster_survives_a_killed_worker(tmp_path):
     env = {**os.environ, "LKSPACE_KILL_WORKER_ONCE": str(flag)}
     out = tmp_path / "cube"
     cmd = ["lkspace", "enumerate", "cube", "--labels", "-1..1", "-o", str(out), "--shards", "4"]
-    done = subprocess.run([*cmd, "--scheduler", "dask", "--jobs", "2", "--json"], env=env, capture_output=True, text=True)
+    done = subprocess.run(
+        [*cmd, "--scheduler", "dask", "--jobs", "2", "--json"], env=env, capture_output=True, text=True
+    )
     assert done.returncode == 0, done.stderr
     assert flag.exists()  # a worker really died
     assert json.loads(done.stdout)["designs"] == 22_815

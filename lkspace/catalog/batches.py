@@ -13,14 +13,14 @@ from typing import Any
 import numpy as np
 import pyarrow as pa
 
+from ..design.batch import concat_traces
 from ..design.space import DesignSpace
 from ..design.spanning import spanning_tree_rows
-from ..design.batch import concat_traces
 from ..design.walk import Block, walk_blocks
 from ..kernels import kernel
-from .columns import INT64_MAX, residue_rows_to_batch, strand_columns
+from .columns import residue_rows_to_batch, strand_columns
 from .residue_rows import residue_batches
-from .schema import ROW_GROUP, design_schema, residue_schema
+from .schema import ROW_GROUP, design_schema
 
 
 @kernel

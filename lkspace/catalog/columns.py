@@ -65,5 +65,3 @@ def residue_rows_to_batch(rows: list[dict[str, Any]], periodic: bool) -> pa.Reco
     data = {f.name: [r[f.name] for r in rows] for f in schema}
     data["residue_class"] = [c if c <= INT64_MAX else None for c in data["residue_class"]]
     return pa.RecordBatch.from_pydict(data, schema=schema)
-
-

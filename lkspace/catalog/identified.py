@@ -76,7 +76,9 @@ def identify_catalog(
     total = sum(pq.read_metadata(f).num_rows for f in files)
     with task("identifying designs", total) as step:
         if is_dask(scheduler):
-            found = run_tasks(identify_part, (scaffold, seed), files, scheduler, processes, "lkspace-identify", load_knots)
+            found = run_tasks(
+                identify_part, (scaffold, seed), files, scheduler, processes, "lkspace-identify", load_knots
+            )
             for i, summary in found:
                 _add(totals, summary)
                 step.advance(pq.read_metadata(files[i]).num_rows)

@@ -24,7 +24,6 @@ from __future__ import annotations
 import json
 import os
 import secrets
-import tempfile
 from typing import Any
 
 import pyarrow.parquet as pq
@@ -32,6 +31,7 @@ import pyarrow.parquet as pq
 from ..design.space import DesignSpace
 from ..engine import is_dask
 from ..errors import CatalogError, UsageError, require
+from .jobs import run_parts, write_part_remote
 from .plan import Plan
 from .schema import METADATA_KEY
 from .transaction import MANIFEST, part_name
@@ -49,25 +49,6 @@ def _fs(url: str) -> tuple[Any, str]:
     fsspec = require("fsspec", "dask", f"writing to {url}")
     fs, root = fsspec.core.url_to_fs(url)
     return fs, root
-
-
-def write_part_remote(st: dict[str, Any], i: int) -> tuple[int, dict[str, Any]]:
-    """Write part ``i`` to a local temporary file, upload it under its final name; return its summary."""
-    from .batches import space_batches
-    from .jobs import write_batches
-    from .transaction import file_sha256
-
-    fs, root = _fs(st["remote"])
-    dest = root if st["files"] is None else f"{root}/{st['files'][i]}"
-    meta = {**st["meta"], "shard": {"index": i, "count": st["count"], "plan": st["plan"]}}
-    ids = st["ranges"][i] if st["ranges"] is not None else None
-    with tempfile.TemporaryDirectory(prefix="lkspace-part-") as tmp:
-        local = os.path.join(tmp, "part.parquet")
-        summary = write_batches(local, st["schema"], meta, space_batches(st["space"], st["mode"], ids, *st["walk"]))
-        digest = file_sha256(local)
-        fs.put_file(local, dest)
-    name = os.path.basename(dest) if st["files"] is None else st["files"][i]
-    return i, {**summary, "file": name, "sha256": digest}
 
 
 def _kept_parts(fs: Any, root: str, signature: dict[str, Any], fingerprint: str) -> dict[str, dict[str, Any]]:
@@ -112,8 +93,6 @@ def write_remote(
     resume: bool,
 ) -> tuple[list[dict[str, Any]], int]:
     """Write the catalog of ``plan`` to ``url``; return the parts' summaries and how many were kept."""
-    from .jobs import run_parts
-
     fs, root = _fs(url)
     if fs.protocol in ("memory", ("memory",)) and (jobs > 1 or is_dask(scheduler)):
         raise UsageError(f"{url}: memory:// is private to this process; use --jobs 1 and --scheduler local")

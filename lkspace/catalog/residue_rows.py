@@ -28,7 +28,7 @@ INT64_MAX = 2**63 - 1
 
 
 def _exact_sizes(space: DesignSpace, indices: np.ndarray, classes: np.ndarray) -> list[int]:
-    """Assignments per row (class size x classes in the orbit), exact Python ints."""
+    """Return the assignments per row (class size x classes in the orbit), exact Python ints."""
     n_opts = space.residue_table[2]
     e = np.arange(indices.shape[1])
     sizes = n_opts[e[None, :], indices]

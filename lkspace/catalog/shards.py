@@ -24,16 +24,16 @@ import pyarrow as pa
 import pyarrow.parquet as pq
 
 from ..design.space import DesignSpace, make_space
+from ..engine import resolve_scheduler
 from ..errors import CatalogError
 from ..io.atomic import remove_path, replace_path
 from ..io.scaffold_json import scaffold_to_dict
 from ..io.sources import ScaffoldSource
 from ..model.specs import LabelSetSpec
 from ..progress import task
-from ..engine import resolve_scheduler
 from ..workers import interrupt_signals
 from .batches import space_batches
-from .jobs import ignored_signals, run_parts, write_batches
+from .jobs import ignored_signals, run_parts
 from .lock import catalog_lock
 from .plan import Plan, check_jobs, make_plan
 from .reader import read_metadata
@@ -52,6 +52,7 @@ from .transaction import (
     seed_build,
     verified_parts,
 )
+from .writer import write_batches
 
 CANONICAL_RULE = (
     "orbit member smallest in (t mod K per edge, then t per edge), lexicographic in edge order; see docs/catalog.md"
@@ -201,7 +202,14 @@ def write_catalog(
         target = catalog_target(path)
     elif identify:
         raise CatalogError("--identify rewrites the files of a local catalog; write to a local path", usage=True)
-    plan = make_plan(space, mode, components, max_designs, sample, shards, yes)
+    with interrupt_signals():  # planning loads compiled kernels: a signal now stops the run cleanly too
+        try:
+            plan = make_plan(space, mode, components, max_designs, sample, shards, yes)
+        except KeyboardInterrupt as exc:
+            shown = remote or target.shown
+            raise CatalogInterrupted(
+                f"interrupted; nothing was written to {shown}", 128 + getattr(exc, "signum", 2)
+            ) from None
     meta = catalog_metadata(space, mode, components, max_designs, sample, seed)
     periodic = space.scaffold.periodic
     schema = design_schema(space.scaffold.n_edges, periodic) if mode == "designs" else residue_schema(periodic)

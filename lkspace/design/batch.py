@@ -54,12 +54,13 @@ class ClassTraces:
     port_shift: np.ndarray
 
     def select(self, keep: np.ndarray) -> ClassTraces:
-        """The traces of the classes ``keep`` (indices or a mask)."""
+        """Return the traces of the classes ``keep`` (indices or a mask)."""
         return ClassTraces(*(a[keep] for a in self._arrays()))
 
     def slim(self) -> ClassTraces:
-        """The same traces without the per-port arrays (what catalog rows need)."""
-        return ClassTraces(*self._arrays()[:4], np.zeros((0, 0), np.int64), np.zeros((0, 0, 0), np.int64))
+        """Return the same traces without the per-port arrays (what catalog rows need)."""
+        c, lengths, periods, walk_periods = self._arrays()[:4]
+        return ClassTraces(c, lengths, periods, walk_periods, np.zeros((0, 0), np.int64), np.zeros((0, 0, 0), np.int64))
 
     def _arrays(self) -> tuple[np.ndarray, ...]:
         return self.components, self.lengths, self.periods, self.walk_periods, self.port_strand, self.port_shift

@@ -81,7 +81,7 @@ class Census:
 
 
 def value_kinds(space: DesignSpace) -> np.ndarray:
-    """The distinct label counts (> 1) of residue classes: the exponents a census keeps."""
+    """Return the distinct label counts (> 1) of residue classes: the exponents a census keeps."""
     n_res, _, n_opts, _, _ = space.residue_table
     vals = sorted({int(n_opts[e, i]) for e in range(len(n_res)) for i in range(int(n_res[e]))} - {1})
     if len(vals) > MAX_VALUE_KINDS:
@@ -93,7 +93,6 @@ def terms(space: DesignSpace) -> list[Term]:
     """One :class:`Term` per distinct signed edge permutation of the group (identity first)."""
     n_res, values, n_opts, opts, lookup = space.residue_table
     kinds = value_kinds(space).tolist()
-    k = space.moduli
     perms, signs = space.action
     zero_idx = lookup[:, 0]
     out = []
@@ -214,7 +213,7 @@ def census(
         for comp, n in part.items():
             by[comp] = by.get(comp, 0) + n
     n_g = space.n_actions
-    for comp, n in by.items():
+    for n in by.values():
         if n % n_g:
             raise ArithmeticError(f"census of {space.scaffold.name}: {n} is not divisible by {n_g}")  # a bug if so
     result = {c: n // n_g for c, n in sorted(by.items()) if n}

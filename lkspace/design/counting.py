@@ -15,13 +15,12 @@ from typing import Any
 
 import numpy as np
 
+from ..engine import is_dask
 from ..io.sources import ScaffoldSource
 from ..model.specs import LabelSetSpec
-from ..engine import is_dask
 from .batch import class_components, design_counts
 from .census import census
 from .space import MAX_CLASSES, DesignSpace, make_space
-
 
 CENSUS_AUTO = 1 << 24
 """Residue vectors a count splits by components unasked (about ten seconds on one core)."""

@@ -186,7 +186,7 @@ class Block:
     holds_together: np.ndarray
 
     def head(self, n: int) -> Block:
-        """The first ``n`` rows."""
+        """Return the first ``n`` rows."""
         return Block(
             self.class_codes,
             self.traces,
