@@ -148,3 +148,26 @@ def test_census_on_dask_equals_local(cluster):
     space = make_space("voronoi:cube-faces", "-1..1")
     want = count_space(space).by_components
     assert census(space, cluster, 2, shard_choices=5000).by_components == want
+
+
+@pytest.mark.filterwarnings("ignore::ResourceWarning")  # sockets distributed leaves to the collector
+@pytest.mark.filterwarnings("ignore::pytest.PytestUnraisableExceptionWarning")
+def test_worker_started_with_the_lkspace_entry_point(tmp_path):
+    """``python -m lkspace.dask_worker`` joins a scheduler and runs tasks although SnapPy is installed."""
+    import sys
+
+    distributed = import_distributed("tests")
+    with distributed.LocalCluster(n_workers=0, processes=False, protocol="tcp", dashboard_address=":0") as lc:
+        cmd = [sys.executable, "-m", "lkspace.dask_worker", lc.scheduler_address, "--nworkers", "1", "--nthreads", "1"]
+        worker = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        try:
+            with distributed.Client(lc) as client:
+                client.wait_for_workers(1, timeout=60)
+            space = make_space("cube", "-1..1")
+            assert (
+                census(space, lc.scheduler_address, 1, shard_choices=2000).by_components
+                == count_space(space).by_components
+            )
+        finally:
+            worker.terminate()
+            worker.wait(timeout=30)

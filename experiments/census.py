@@ -1,0 +1,260 @@
+"""Census of large design spaces: exact counts by component number, in shards.
+
+Three studies (results in ``results/census/``, small JSON/MD/PNG files):
+
+``parity``
+    The dodecahedron, icosahedron and truncated octahedron under rotations, labels
+    ``{0, 1}`` and ``{-1, 0, 1}``.  Every edge has degree K = 2, so ``{-1, 0, 1}`` reaches
+    the residues 0 (label 0) and 1 (labels -1 and 1): the same ``2^E`` parity vectors as
+    ``{0, 1}``, each standing for ``2^(odd edges)`` assignments.  One pass over the parity
+    vectors of every Burnside term (:mod:`lkspace.design.census`) counts, per component
+    number, how many vectors have each number of odd cycle variables; the two label sets
+    are two weightings of the same histograms (weight 1, and ``2^odd``).  Shards are
+    checkpointed (``$LKSPACE_CENSUS_CHECKPOINTS``, default ``/tmp/lkspace-census``) after
+    each one, so a run can stop and go on; ``results/census/parity-NAME.json`` holds the
+    counts, or for a run that did not finish the shards done and an extrapolation.
+
+``lattice``
+    The paper's open question, how the number of distinct LK structures grows with the
+    lattice: supercells of ``tiling:square``, ``tiling:hexagonal`` (labels {0,1}),
+    ``honeycomb:cP`` (labels 0..3: every residue of its degree-4 edges) and
+    ``honeycomb:cI`` (labels 0..2, and {0,1}): designs and single-thread (one-component)
+    designs versus cells, with wall time and throughput; a table and a plot.
+
+``plan``
+    Measured rates (residue vectors per second per core) and the core-hours of spaces
+    beyond this machine.
+
+Run from the repository root, e.g. ``nice python experiments/census.py parity --jobs 2``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import sys
+import time
+
+import numpy as np
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, ROOT)
+
+from lkspace.design.census import SHARD_CHOICES, census, shard_term, terms  # noqa: E402
+from lkspace.design.counting import burnside_total  # noqa: E402
+from lkspace.design.space import make_space  # noqa: E402
+from lkspace.engine import run_tasks  # noqa: E402
+
+OUT = os.path.join(ROOT, "results", "census")
+CHECKPOINTS = os.environ.get("LKSPACE_CENSUS_CHECKPOINTS", "/tmp/lkspace-census")
+SOLIDS = ("dodecahedron", "icosahedron", "truncated-octahedron")
+
+
+def save(name: str, data: dict) -> None:
+    os.makedirs(OUT, exist_ok=True)
+    tmp = os.path.join(OUT, name + ".tmp")
+    with open(tmp, "w") as fh:
+        json.dump(data, fh, indent=1)
+        fh.write("\n")
+    os.replace(tmp, os.path.join(OUT, name))
+
+
+def parity(solid: str, jobs: int, budget: float) -> dict:
+    """Census of ``solid`` for {0,1} and {-1,0,1} (one pass), checkpointed; stop after ``budget`` seconds."""
+    space = make_space(solid, "-1..1", "rotations")
+    all_terms = terms(space)
+    items = []
+    for g, t in enumerate(all_terms):
+        items += [(g, a, min(t.size, a + SHARD_CHOICES)) for a in range(0, t.size, SHARD_CHOICES)]
+    name = f"parity-{solid}.json"
+    checkpoint = os.path.join(CHECKPOINTS, name)
+    state = json.load(open(checkpoint)) if os.path.exists(checkpoint) else {}
+    done = {tuple(k) for k in state.get("done", [])}
+    hists = {int(g): _dense(cells) for g, cells in state.get("hists", {}).items()}
+    seconds = float(state.get("seconds", 0.0))
+    todo = [it for it in items if tuple(it) not in done]
+    started = time.perf_counter()
+    ran = 0
+    for pos, hist in run_tasks(shard_term, (space, all_terms), todo, "local", jobs, name="census"):
+        g = todo[pos][0]
+        h = hist.astype(object)
+        hists[g] = h if g not in hists else _add(hists[g], h)
+        done.add(tuple(todo[pos]))
+        ran += todo[pos][2] - todo[pos][1]
+        elapsed = seconds + time.perf_counter() - started
+        state = _parity_state(space, all_terms, items, done, hists, elapsed, jobs)
+        os.makedirs(CHECKPOINTS, exist_ok=True)
+        with open(checkpoint + ".tmp", "w") as fh:
+            json.dump(state, fh)
+        os.replace(checkpoint + ".tmp", checkpoint)
+        save(name, {k: v for k, v in state.items() if k not in ("done", "hists")})
+        if time.perf_counter() - started > budget:
+            break
+    return state
+
+
+def _dense(cells: list[list[int]]) -> np.ndarray:
+    rows = max([c[0] for c in cells] + [0]) + 1
+    cols = max([c[1] for c in cells] + [0]) + 1
+    out = np.zeros((rows, cols), dtype=object)
+    for comp, cell, n in cells:
+        out[comp, cell] = n
+    return out
+
+
+def _add(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    rows, cols = max(a.shape[0], b.shape[0]), max(a.shape[1], b.shape[1])
+    out = np.zeros((rows, cols), dtype=object)
+    out[: a.shape[0], : a.shape[1]] += a
+    out[: b.shape[0], : b.shape[1]] += b
+    return out
+
+
+def _parity_state(space, all_terms, items, done, hists, seconds, jobs) -> dict:
+    vectors_total = sum(b - a for _, a, b in items)
+    vectors_done = sum(b - a for g, a, b in items if (g, a, b) in done)
+    complete = len(done) == len(items)
+    result: dict = {
+        "scaffold": space.scaffold.name,
+        "edges": space.scaffold.n_edges,
+        "symmetry": "rotations",
+        "group_order": space.group_order,
+        "parity_vectors": 2**space.scaffold.n_edges,
+        "shards": len(items),
+        "shards_done": len(done),
+        "vectors_total": vectors_total,
+        "vectors_done": vectors_done,
+        "seconds": round(seconds, 1),
+        "jobs": jobs,
+        "vectors_per_second": round(vectors_done / max(seconds, 1e-9)),
+        "complete": complete,
+        "done": sorted(list(k) for k in done),
+        "hists": {str(g): [[int(c), int(k), int(h[c, k])] for c, k in zip(*np.nonzero(h))] for g, h in hists.items()},
+    }
+    if complete:
+        n_g = space.n_actions
+        for key, base in (("labels_0_1", 1), ("labels_-1_0_1", 2)):
+            by: dict[int, int] = {}
+            for h in hists.values():
+                for comp in range(h.shape[0]):
+                    for cell in range(h.shape[1]):
+                        if h[comp, cell]:
+                            by[comp] = by.get(comp, 0) + int(h[comp, cell]) * base**cell
+            assert all(n % n_g == 0 for n in by.values())
+            result[key] = {str(c): n // n_g for c, n in sorted(by.items()) if n}
+        check_01 = burnside_total(make_space(space.scaffold, "0,1", "rotations"))
+        check_m101 = burnside_total(space)
+        result["burnside_totals_agree"] = (
+            sum(result["labels_0_1"].values()) == check_01 and sum(result["labels_-1_0_1"].values()) == check_m101
+        )
+    else:
+        rate = result["vectors_per_second"]
+        result["extrapolated_seconds_for_all"] = round(vectors_total / max(rate, 1))
+    return result
+
+
+LATTICE = [  # family, label set, supercell shapes (cells grow)
+    ("tiling:square", "0,1", ["1x1", "2x1", "2x2", "3x2", "4x2", "3x3", "4x3"]),
+    ("tiling:hexagonal", "0,1", ["1x1", "2x1", "2x2", "3x2", "4x2", "3x3"]),
+    ("honeycomb:cP", "0..3", ["1x1x1", "2x1x1", "3x1x1", "2x2x1"]),
+    ("honeycomb:cI", "0..2", ["1x1x1"]),
+    ("honeycomb:cI", "0,1", ["1x1x1", "2x1x1"]),
+]
+
+
+def lattice(jobs: int) -> list[dict]:
+    rows = []
+    for family, labels, shapes in LATTICE:
+        for shape in shapes:
+            space = make_space(f"{family}@{shape}", labels, "rotations")
+            t0 = time.perf_counter()
+            found = census(space, "local", jobs)
+            dt = time.perf_counter() - t0
+            cells = int(np.prod([int(x) for x in shape.split("x")]))
+            vectors = sum(t.size for t in terms(space))
+            row = {
+                "scaffold": f"{family}@{shape}",
+                "family": family,
+                "labels": labels,
+                "cells": cells,
+                "edges": space.scaffold.n_edges,
+                "group_order": space.group_order,
+                "residue_vectors": space.n_classes,
+                "designs": found.designs,
+                "single_thread_designs": found.by_components.get(1, 0),
+                "by_components": {str(k): v for k, v in found.by_components.items()},
+                "seconds": round(dt, 2),
+                "vectors_per_second": round(vectors / dt),
+                "jobs": jobs,
+            }
+            print(json.dumps(row), flush=True)
+            rows.append(row)
+            save("lattice.json", {"rows": rows})
+    return rows
+
+
+def lattice_report(rows: list[dict]) -> None:
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=(6.4, 4.0), dpi=80)
+    ax = fig.add_subplot(1, 1, 1)
+    keys = sorted({(r["family"], r["labels"]) for r in rows}, key=str)
+    for i, (family, labels) in enumerate(keys):
+        pts = sorted(
+            (r["cells"], r["designs"], r["single_thread_designs"])
+            for r in rows
+            if (r["family"], r["labels"]) == (family, labels)
+        )
+        x = [p[0] for p in pts]
+        color = f"C{i}"
+        ax.plot(x, [p[1] for p in pts], "o-", color=color, label=f"{family} {{{labels}}}: designs")
+        ax.plot(x, [max(p[2], 0.8) for p in pts], "s--", color=color, alpha=0.6, label="  single-thread")
+    ax.set_yscale("log")
+    ax.set_xlabel("cells in the supercell")
+    ax.set_ylabel("designs up to rotation")
+    ax.set_title("Distinct LK structures vs lattice size", fontsize=10)
+    ax.legend(fontsize=6, ncol=2)
+    fig.tight_layout()
+    fig.savefig(os.path.join(OUT, "lattice.png"))
+    lines = [
+        "# Distinct LK structures versus lattice size",
+        "",
+        "Designs up to rotation (symmetries of the supercell torus) of supercells; `single-thread`:",
+        "designs with one component.  Exact census (Burnside by components over every residue",
+        "vector, `experiments/census.py lattice`); wall time on the shared 2-core machine.",
+        "",
+        "| supercell | labels | cells | edges | group | residue vectors | designs | single-thread | seconds | vectors/s |",
+        "|---|---|---|---|---|---|---|---|---|---|",
+    ]
+    for r in rows:
+        lines.append(
+            f"| {r['scaffold']} | {{{r['labels']}}} | {r['cells']} | {r['edges']} | {r['group_order']} | "
+            f"{r['residue_vectors']:,} | {r['designs']:,} | {r['single_thread_designs']:,} | {r['seconds']} | "
+            f"{r['vectors_per_second']:,} |"
+        )
+    lines += ["", "![designs vs cells](lattice.png)", ""]
+    with open(os.path.join(OUT, "lattice.md"), "w") as fh:
+        fh.write("\n".join(lines))
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("study", choices=["parity", "lattice", "lattice-report"])
+    ap.add_argument("--jobs", type=int, default=2)
+    ap.add_argument("--solids", nargs="*", default=list(SOLIDS))
+    ap.add_argument("--budget", type=float, default=1e9, help="seconds per solid before stopping (checkpointed)")
+    args = ap.parse_args()
+    if args.study == "parity":
+        for solid in args.solids:
+            state = parity(solid, args.jobs, args.budget)
+            print(solid, {k: v for k, v in state.items() if k not in ("done", "hists")}, flush=True)
+    elif args.study == "lattice":
+        lattice_report(lattice(args.jobs))
+    else:
+        with open(os.path.join(OUT, "lattice.json")) as fh:
+            lattice_report(json.load(fh)["rows"])
+
+
+if __name__ == "__main__":
+    main()
