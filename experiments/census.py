@@ -133,25 +133,54 @@ def _parity_state(space, all_terms, items, done, hists, seconds, jobs) -> dict:
         "hists": {str(g): [[int(c), int(k), int(h[c, k])] for c, k in zip(*np.nonzero(h))] for g, h in hists.items()},
     }
     if complete:
-        n_g = space.n_actions
-        for key, base in (("labels_0_1", 1), ("labels_-1_0_1", 2)):
-            by: dict[int, int] = {}
-            for h in hists.values():
-                for comp in range(h.shape[0]):
-                    for cell in range(h.shape[1]):
-                        if h[comp, cell]:
-                            by[comp] = by.get(comp, 0) + int(h[comp, cell]) * base**cell
-            assert all(n % n_g == 0 for n in by.values())
-            result[key] = {str(c): n // n_g for c, n in sorted(by.items()) if n}
-        check_01 = burnside_total(make_space(space.scaffold, "0,1", "rotations"))
-        check_m101 = burnside_total(space)
-        result["burnside_totals_agree"] = (
-            sum(result["labels_0_1"].values()) == check_01 and sum(result["labels_-1_0_1"].values()) == check_m101
-        )
+        result.update(parity_counts(space, all_terms, hists))
     else:
         rate = result["vectors_per_second"]
         result["extrapolated_seconds_for_all"] = round(vectors_total / max(rate, 1))
     return result
+
+
+LABEL_SETS = [("0,1", 1, 1), ("-1..1", 1, 2), ("-2..2", 3, 2), ("-3..3", 3, 4)]
+"""Label sets counted from one parity pass: name, labels of residue 0, labels of residue 1 (K = 2)."""
+
+
+def parity_counts(space, all_terms, hists) -> dict:
+    """Designs by components of every label set of :data:`LABEL_SETS` from the parity histograms.
+
+    Under rotations every cycle's signs multiply to +1, so a term's vector with ``k`` of its
+    ``n`` cycle variables odd stands for ``even^(n - k) * odd^k`` fixed assignments.
+    """
+    n_g = space.n_actions
+    out: dict = {}
+    for name, even, odd in LABEL_SETS:
+        by: dict[int, int] = {}
+        for g, h in hists.items():
+            n_var = len(all_terms[g].n_choices)
+            for comp, cell in zip(*(x.tolist() for x in np.nonzero(h)), strict=True):
+                by[comp] = by.get(comp, 0) + int(h[comp, cell]) * even ** (n_var - cell) * odd**cell
+        assert all(n % n_g == 0 for n in by.values())
+        counts = {str(c): n // n_g for c, n in sorted(by.items()) if n}
+        check = burnside_total(make_space(space.scaffold, name, "rotations"))
+        out[f"labels {name}"] = {
+            "designs": sum(counts.values()),
+            "burnside_total_agrees": sum(counts.values()) == check,
+            "by_components": counts,
+        }
+    return out
+
+
+def parity_report(solid: str) -> None:
+    """Rewrite ``results/census/parity-NAME.json`` from a finished checkpoint (all label sets)."""
+    space = make_space(solid, "-1..1", "rotations")
+    all_terms = terms(space)
+    with open(os.path.join(CHECKPOINTS, f"parity-{solid}.json")) as fh:
+        state = json.load(fh)
+    hists = {int(g): _dense(cells) for g, cells in state["hists"].items()}
+    summary = {k: v for k, v in state.items() if k not in ("done", "hists") and not k.startswith("labels")}
+    summary.pop("burnside_totals_agree", None)
+    if state["complete"]:
+        summary.update(parity_counts(space, all_terms, hists))
+    save(f"parity-{solid}.json", summary)
 
 
 LATTICE = [  # family, label set, supercell shapes (cells grow)
@@ -240,7 +269,7 @@ def lattice_report(rows: list[dict]) -> None:
 
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("study", choices=["parity", "lattice", "lattice-report"])
+    ap.add_argument("study", choices=["parity", "parity-report", "lattice", "lattice-report"])
     ap.add_argument("--jobs", type=int, default=2)
     ap.add_argument("--solids", nargs="*", default=list(SOLIDS))
     ap.add_argument("--budget", type=float, default=1e9, help="seconds per solid before stopping (checkpointed)")
@@ -249,6 +278,9 @@ def main() -> None:
         for solid in args.solids:
             state = parity(solid, args.jobs, args.budget)
             print(solid, {k: v for k, v in state.items() if k not in ("done", "hists")}, flush=True)
+    elif args.study == "parity-report":
+        for solid in args.solids:
+            parity_report(solid)
     elif args.study == "lattice":
         lattice_report(lattice(args.jobs))
     else:
