@@ -137,12 +137,17 @@ def main() -> None:
     for sc in ("tetrahedron", "honeycomb:cP"):
         write_catalog(make_space(sc, "-1..1"), os.path.join(warm, sc.replace(":", "") + ".parquet"))
     shutil.rmtree(warm)
-    cases = {}
+    cases: dict = {}
     for case in CASES:
         if args.only and case[0] not in args.only:
             continue
         cases[case[0]] = run_case(case, args.repeat, case[0] in args.count_only)
         print(case[0], json.dumps(cases[case[0]]), flush=True)
+        record(args, cases)  # after every case: a long run stopped midway keeps what it measured
+
+
+def record(args: argparse.Namespace, cases: dict) -> None:
+    """Merge ``cases`` under ``args.label`` into the JSON and rewrite the Markdown."""
     path = os.path.join(RESULTS, "bench_enumerate.json")
     data = {}
     if os.path.exists(path):
