@@ -283,9 +283,84 @@ def lattice_report(rows: list[dict]) -> None:
         fh.write("\n".join(lines))
 
 
+BEYOND = [  # scaffold, labels, what it answers
+    ("truncated-octahedron", "-1..1", "parity classes {0,1}, {-1,0,1}, -2..2, ... (one pass)"),
+    ("tiling:square@4x4", "0,1", "square lattice, 16 cells"),
+    ("tiling:square@5x5", "0,1", "square lattice, 25 cells"),
+    ("tiling:hexagonal@4x4", "0,1", "hexagonal lattice, 16 cells"),
+    ("honeycomb:cP@2x2x2", "0..3", "cubic honeycomb, 8 cells, all residues"),
+    ("honeycomb:cI@2x1x1", "0..2", "bcc honeycomb, 2 cells, all residues"),
+    ("honeycomb:cI@3x1x1", "0,1", "bcc honeycomb, 3 cells, parity"),
+]
+
+
+def plan() -> None:
+    """Core-hours of spaces beyond this machine, from the rates measured here (per port and vector)."""
+    measured = []
+    for solid in SOLIDS:
+        path = os.path.join(OUT, f"parity-{solid}.json")
+        if os.path.exists(path):
+            d = json.load(open(path))
+            ports = 2 * make_space(solid, "0,1").scaffold.n_corners
+            measured.append((solid, d["vectors_per_second"] / d["jobs"], ports))
+    for r in json.load(open(os.path.join(OUT, "lattice.json")))["rows"]:
+        if r["residue_vectors"] >= 1 << 22:
+            ports = 2 * make_space(r["scaffold"], r["labels"]).scaffold.n_corners
+            measured.append((r["scaffold"], r["vectors_per_second"] / r["jobs"], ports))
+    # the census walks every port of every vector: seconds per vector ~ c * ports
+    c = float(np.median([1 / (rate * ports) for _, rate, ports in measured]))
+    rows = []
+    for name, labels, what in BEYOND:
+        space = make_space(name, labels, "rotations")
+        vectors = sum(t.size for t in terms(space))
+        ports = 2 * space.scaffold.n_corners
+        hours = vectors * c * ports / 3600
+        rows.append(
+            {
+                "scaffold": name,
+                "labels": labels,
+                "what": what,
+                "edges": space.scaffold.n_edges,
+                "residue_vectors": vectors,
+                "ports": ports,
+                "core_hours": hours,
+            }
+        )
+    save("plan.json", {"seconds_per_vector_per_port": c, "measured": measured, "rows": rows})
+    lines = [
+        "# Plan: census of spaces beyond this machine",
+        "",
+        "A census costs one strand walk (every port) per residue vector of every Burnside term",
+        f"(`experiments/census.py`).  Measured here: {c * 1e9:.2f} ns per port and vector per core (median of",
+        "the runs below, on the shared 2-core machine under load, so an idle core is faster).",
+        "",
+        "| measured run | vectors/s per core | ports |",
+        "|---|---|---|",
+        *[f"| {n} | {rate:,.0f} | {p} |" for n, rate, p in measured],
+        "",
+        "| space | labels | edges | residue vectors | core-hours | on 100 cores |",
+        "|---|---|---|---|---|---|",
+    ]
+    for r in rows:
+        lines.append(
+            f"| {r['scaffold']} ({r['what']}) | {{{r['labels']}}} | {r['edges']} | {r['residue_vectors']:.3g} | "
+            f"{r['core_hours']:,.1f} | {r['core_hours'] / 100:,.2f} h |"
+        )
+    lines += [
+        "",
+        "Shards are 2^24 vectors (seconds to a minute each), so any of these runs as Dask tasks",
+        "(`lkspace enumerate SPACE --count-only --scheduler tcp://...`, docs/scale.md); past about",
+        "10^15 vectors (square 5x5: 2^50) a census is out of reach and the total from Burnside",
+        "over the whole group (instant) is what remains.",
+        "",
+    ]
+    with open(os.path.join(OUT, "plan.md"), "w") as fh:
+        fh.write("\n".join(lines))
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("study", choices=["parity", "parity-report", "lattice", "lattice-report"])
+    ap.add_argument("study", choices=["parity", "parity-report", "lattice", "lattice-report", "plan"])
     ap.add_argument("--jobs", type=int, default=2)
     ap.add_argument("--solids", nargs="*", default=list(SOLIDS))
     ap.add_argument("--budget", type=float, default=1e9, help="seconds per solid before stopping (checkpointed)")
@@ -299,6 +374,8 @@ def main() -> None:
             parity_report(solid)
     elif args.study == "lattice":
         lattice_report(lattice(args.jobs))
+    elif args.study == "plan":
+        plan()
     else:
         with open(os.path.join(OUT, "lattice.json")) as fh:
             lattice_report(json.load(fh)["rows"])
