@@ -378,3 +378,31 @@ def orbit_minima(
                 break
             digits[j] = 0
             j -= 1
+
+
+@kernel
+def stabilizer_ids(
+    indices: np.ndarray,
+    values: np.ndarray,
+    lookup: np.ndarray,
+    moduli: np.ndarray,
+    perms: np.ndarray,
+    signs: np.ndarray,
+    ptr: np.ndarray,
+    out: np.ndarray,
+) -> None:
+    """The actions fixing each class ``indices (n_c, n_edges)``, ascending, into ``out[ptr[c]:ptr[c+1]]``."""
+    n_c, n_e = indices.shape
+    for c in range(n_c):
+        m = ptr[c]
+        for g in range(len(signs)):
+            s = signs[g]
+            fixed = True
+            for j in range(n_e):
+                t = perms[g, j]
+                if lookup[t, (s * values[j, indices[c, j]]) % moduli[t]] != indices[c, t]:
+                    fixed = False
+                    break
+            if fixed:
+                out[m] = g
+                m += 1

@@ -23,7 +23,7 @@ from ..model.specs import LabelSetSpec, parse_label_set
 from ..model.validation import validate_labels
 from ..strands.walk import walk
 from ..symmetry.group import check_label_set, check_mode, symmetry_group
-from .batch_kernels import orbit_minima
+from .batch_kernels import orbit_minima, stabilizer_ids
 
 MAX_CLASSES = 1 << 21
 WALK_MODES = ("designs", "residues", "spanning-trees")
@@ -310,15 +310,11 @@ def class_orbits(space: DesignSpace) -> ClassOrbits:
     idx = np.stack(np.unravel_index(reps, dims), axis=1).astype(np.int64)
     e = np.arange(len(dims))
     val = values[e, idx]
-    fixes = np.empty((len(reps), len(signs)), bool)
-    for g, (perm, s) in enumerate(zip(perms, signs, strict=True)):
-        img = np.empty_like(idx)
-        img[:, perm] = lookup[perm, (s * val) % k]
-        fixes[:, g] = np.all(img == idx, axis=1)
     ptr = np.zeros(len(reps) + 1, np.int64)
     np.cumsum(n_fix[reps], out=ptr[1:])
     orbit_sizes = len(perms) // n_fix[reps]
-    stab_ids = np.nonzero(fixes)[1].astype(np.int64)  # row-major: per class, ascending (identity first)
+    stab_ids = np.empty(ptr[-1], np.int64)  # per class, ascending (identity first)
+    stabilizer_ids(idx, values, lookup, k, perms, signs, ptr, stab_ids)
     return ClassOrbits(idx, val, reps, orbit_sizes.astype(np.int64), ptr, stab_ids)
 
 
