@@ -32,22 +32,24 @@ RESULTS = os.path.join(ROOT, "results")
 
 CASES = [  # name, scaffold, labels, symmetry, jobs, what the classes are like
     ("oF", "honeycomb:oF", "-1..1", "rotations", 1, "tiny: 1 assignment per class, periodic"),
-    ("cI", "honeycomb:cI", "-1..1", "rotations", 1, "tiny: 1 assignment per class, periodic"),
     ("voronoi", "voronoi:cube-faces", "-1..1", "rotations", 1, "tiny, edges of degree 3 and 4"),
     ("hex2x2", "tiling:hexagonal@2x2", "-1..1", "rotations", 1, "small (2^odd edges), periodic"),
     ("octahedron", "octahedron", "-1..1", "isometries", 1, "small (2^odd edges)"),
     ("cube1", "cube", "-2..2", "rotations", 1, "large: up to 3^12 per class"),
     ("cube2", "cube", "-2..2", "rotations", 2, "large: up to 3^12 per class, 2 workers"),
+    ("cI", "honeycomb:cI", "-1..1", "rotations", 1, "tiny: 1 assignment per class, periodic"),
 ]
 
 
-def best(fn, repeat: int) -> tuple[float, object]:
-    times, out = [], None
+def best(fn, repeat: int) -> tuple[float, float, object]:
+    """Best wall time and best CPU time of this process (both in seconds) over ``repeat`` runs."""
+    times, cpus, out = [], [], None
     for _ in range(repeat):
-        t0 = time.perf_counter()
+        t0, c0 = time.perf_counter(), time.process_time()
         out = fn()
         times.append(time.perf_counter() - t0)
-    return min(times), out
+        cpus.append(time.process_time() - c0)
+    return min(times), min(cpus), out
 
 
 def run_case(case, repeat: int, skip_list: bool) -> dict:
@@ -57,7 +59,7 @@ def run_case(case, repeat: int, skip_list: bool) -> dict:
 
     name, scaffold, labels, symmetry, jobs, kind = case
     space = make_space(scaffold, labels, symmetry)
-    t_count, counted = best(lambda: count_space(make_space(scaffold, labels, symmetry)), repeat)
+    t_count, c_count, counted = best(lambda: count_space(make_space(scaffold, labels, symmetry)), repeat)
     out: dict = {
         "scaffold": scaffold,
         "labels": labels,
@@ -66,7 +68,8 @@ def run_case(case, repeat: int, skip_list: bool) -> dict:
         "assignments": space.assignments,
         "designs": counted.designs,
         "count_seconds": round(t_count, 3),
-        "count_assignments_per_second": round(space.assignments / t_count),
+        "count_cpu_seconds": round(c_count, 3),
+        "count_assignments_per_cpu_second": round(space.assignments / c_count),
     }
     if not skip_list:
         tmp = tempfile.mkdtemp(prefix="lkspace-bench-")
@@ -76,7 +79,7 @@ def run_case(case, repeat: int, skip_list: bool) -> dict:
                 shutil.rmtree(os.path.join(tmp, "c"), ignore_errors=True)
                 return write_catalog(make_space(scaffold, labels, symmetry), os.path.join(tmp, "c"), jobs=jobs)
 
-            t_list, written = best(listing, repeat)
+            t_list, c_list, written = best(listing, repeat)
         finally:
             shutil.rmtree(tmp)
         assert written.designs == counted.designs
@@ -85,9 +88,18 @@ def run_case(case, repeat: int, skip_list: bool) -> dict:
             list_seconds=round(t_list, 3),
             list_assignments_per_second=round(space.assignments / t_list),
             list_assignments_per_second_per_core=round(space.assignments / t_list / jobs),
+            list_cpu_seconds=round(c_list, 3) if jobs == 1 else None,
+            list_assignments_per_cpu_second=round(space.assignments / c_list) if jobs == 1 else None,
             rows_per_second=round(written.designs / t_list),
         )
     return out
+
+
+def _pair(row: dict, what: str) -> str:
+    wall, cpu = row.get(f"{what}_seconds"), row.get(f"{what}_cpu_seconds")
+    if wall is None:
+        return "-"
+    return f"{wall} ({cpu})" if cpu is not None else str(wall)
 
 
 def markdown(data: dict) -> str:
@@ -99,15 +111,19 @@ def markdown(data: dict) -> str:
         "best of the runs of each label; the 2 cores are shared with other jobs (load average below).",
         "`before`: the code before the batched walk (commit 167379a); `after`: this code.",
         "",
+        "Times are wall seconds and, in brackets, CPU seconds of the process (one-process cases): the",
+        "machine was heavily loaded (load average 8-16 on 2 cores), so CPU seconds are the fairer",
+        "comparison; rates are assignments per CPU second where measured, else per wall second and core.",
+        "",
         "| case | classes | assignments | designs | " + " | ".join(f"list s ({lb})" for lb in labels) + " | "
-        "list assignments/s per core (" + labels[-1] + ") | " + " | ".join(f"count s ({lb})" for lb in labels) + " |",
+        "list assignments/s (" + labels[-1] + ") | " + " | ".join(f"count s ({lb})" for lb in labels) + " |",
         "|---" * (5 + 2 * len(labels)) + "|",
     ]
     cases = data[labels[-1]]["cases"]
     for name, row in cases.items():
-        lst = [data[lb]["cases"].get(name, {}).get("list_seconds", "-") for lb in labels]
-        cnt = [data[lb]["cases"].get(name, {}).get("count_seconds", "-") for lb in labels]
-        rate = row.get("list_assignments_per_second_per_core", "-")
+        lst = [_pair(data[lb]["cases"].get(name, {}), "list") for lb in labels]
+        cnt = [_pair(data[lb]["cases"].get(name, {}), "count") for lb in labels]
+        rate = row.get("list_assignments_per_cpu_second") or row.get("list_assignments_per_second_per_core", "-")
         jobs = f", {row['jobs']} jobs" if row.get("jobs", 1) > 1 else ""
         lines.append(
             f"| {row['scaffold']} {row['labels']} {row['symmetry']}{jobs} | {row['classes']} | "

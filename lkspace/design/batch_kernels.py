@@ -391,7 +391,7 @@ def stabilizer_ids(
     ptr: np.ndarray,
     out: np.ndarray,
 ) -> None:
-    """The actions fixing each class ``indices (n_c, n_edges)``, ascending, into ``out[ptr[c]:ptr[c+1]]``."""
+    """Write the actions fixing each class ``indices (n_c, n_edges)``, ascending, to ``out[ptr[c]:ptr[c+1]]``."""
     n_c, n_e = indices.shape
     for c in range(n_c):
         m = ptr[c]
