@@ -22,10 +22,10 @@ from ..strands.ports import port_model
 from .batch_kernels import burnside_classes, expand_classes, rows_hold_together_lift, trace_classes
 from .space import DesignSpace
 
-BATCH_ASSIGNMENTS = 1 << 16
+BATCH_ASSIGNMENTS = 1 << 13
 """Assignments per batch of small classes (a larger class is walked alone, in chunks)."""
 
-BATCH_PORTS = 1 << 20
+BATCH_PORTS = 1 << 16
 """Largest ``classes x ports`` of one batch's trace arrays (bounds memory on big scaffolds)."""
 
 INT64_SAFE = 1 << 62
