@@ -53,6 +53,12 @@ def is_dask(scheduler: str) -> bool:
     return scheduler != "local"
 
 
+def check_scheduler(scheduler: str) -> None:
+    """Before any work: raise :class:`~lkspace.errors.MissingDependencyError` if ``scheduler`` needs Dask and it is missing."""
+    if is_dask(scheduler):
+        import_distributed(f"--scheduler {scheduler}")
+
+
 def import_distributed(purpose: str) -> Any:
     """Import ``distributed`` (extra ``lkspace[dask]``) although SnapPy's module is also named ``snappy``.
 
@@ -60,7 +66,7 @@ def import_distributed(purpose: str) -> Any:
     SnapPy (extra ``lkspace[knots]``), which has no ``compress``; so ``snappy`` is hidden
     while ``distributed`` is imported, then put back (SnapPy stays importable).
     """
-    if "distributed" in sys.modules:
+    if sys.modules.get("distributed") is not None:
         return sys.modules["distributed"]
     require("dask", "dask", purpose)
     saved = sys.modules.get("snappy")

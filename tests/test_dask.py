@@ -171,3 +171,21 @@ def test_worker_started_with_the_lkspace_entry_point(tmp_path):
         finally:
             worker.terminate()
             worker.wait(timeout=30)
+
+
+def test_missing_dask_is_one_clear_line(tmp_path):
+    import sys
+
+    code = (
+        "import sys; sys.modules['dask'] = None; sys.modules['distributed'] = None\n"
+        "from lkspace.cli import main\n"
+        f"sys.exit(main(['enumerate', 'cube', '--labels', '-1..1', '--shards', '2', '-o', {str(tmp_path / 'c')!r},"
+        " '--scheduler', 'dask']))"
+    )
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    assert done.returncode == 1, done.stderr
+    assert (
+        done.stderr.strip().splitlines()[-1].startswith("lkspace: error: --scheduler dask needs the optional package")
+    )
+    assert "lkspace[dask]" in done.stderr and "Traceback" not in done.stderr
+    assert not (tmp_path / "c").exists()

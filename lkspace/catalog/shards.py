@@ -24,7 +24,7 @@ import pyarrow as pa
 import pyarrow.parquet as pq
 
 from ..design.space import DesignSpace, make_space
-from ..engine import resolve_scheduler
+from ..engine import check_scheduler, resolve_scheduler
 from ..errors import CatalogError
 from ..io.atomic import remove_path, replace_path
 from ..io.scaffold_json import scaffold_to_dict
@@ -197,6 +197,7 @@ def write_catalog(
         space = make_space(space, label_set, symmetry, no_zero)
     check_jobs(jobs)
     engine = resolve_scheduler(scheduler)
+    check_scheduler(engine)
     remote = remote_url(path)
     if remote is None:
         target = catalog_target(path)

@@ -139,10 +139,11 @@ def enumerate_cmd(
     from ..catalog.remote import remote_url
     from ..catalog.shards import write_catalog
     from ..catalog.transaction import catalog_target
-    from ..engine import resolve_scheduler
+    from ..engine import check_scheduler, resolve_scheduler
 
     ctx = Context(as_json)
     engine = resolve_scheduler(scheduler)
+    check_scheduler(engine)
     if output is not None and not count_only and remote_url(output) is None:
         catalog_target(output)  # a bad -o fails before any work
     scaffold = load_mesh(ctx, mesh)
