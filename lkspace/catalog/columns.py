@@ -28,6 +28,18 @@ def per_row_lists(values: np.ndarray, counts: np.ndarray, row_class: np.ndarray)
     """
     starts = np.zeros(len(counts) + 1, np.int64)
     np.cumsum(counts, out=starts[1:])
+    cuts = np.flatnonzero(np.diff(row_class)) + 1
+    if len(cuts) < 64:  # few runs of rows (chunks of large classes): tile each class's list
+        bounds = [0, *cuts.tolist(), len(row_class)]
+        pieces = [
+            np.tile(values[starts[row_class[a]] : starts[row_class[a] + 1]], b - a)
+            for a, b in zip(bounds[:-1], bounds[1:], strict=True)
+            if b > a
+        ]
+        flat = np.concatenate(pieces) if pieces else values[:0]
+        return flat, counts[row_class]
+    starts = np.zeros(len(counts) + 1, np.int64)
+    np.cumsum(counts, out=starts[1:])
     row_counts = counts[row_class]
     total = int(row_counts.sum())
     row_offsets = np.zeros(len(row_counts), np.int64)

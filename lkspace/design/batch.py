@@ -19,7 +19,13 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..strands.ports import port_model
-from .batch_kernels import burnside_classes, expand_classes, rows_hold_together_lift, trace_classes
+from .batch_kernels import (
+    burnside_classes,
+    expand_classes,
+    rows_hold_together_finite,
+    rows_hold_together_lift,
+    trace_classes,
+)
 from .space import DesignSpace
 
 BATCH_ASSIGNMENTS = 1 << 13
@@ -113,8 +119,21 @@ def trace_batch(space: DesignSpace, residues: np.ndarray) -> ClassTraces:
 
 
 def holds_batch(space: DesignSpace, traces: ClassTraces, labels: np.ndarray, row_class: np.ndarray) -> np.ndarray:
-    """(m,) bool: whether each row ``labels[i]`` (of class ``row_class[i]`` of ``traces``) holds together."""
+    """(m,) bool: whether each row ``labels[i]`` (of class ``row_class[i]`` of ``traces``) holds together.
+
+    Finite scaffolds: union-find over each class's distinct strands per edge.  Periodic
+    ones: over every port, with lattice potentials, and the index of the lift.
+    """
     p = _ports(space)
+    if not space.scaffold.periodic:
+        ptr, strands = edge_strands(space, traces.port_strand)
+        return rows_hold_together_finite(
+            np.ascontiguousarray(labels, np.int8),
+            np.ascontiguousarray(row_class, np.int64),
+            traces.components,
+            ptr,
+            strands,
+        )
     return rows_hold_together_lift(
         np.ascontiguousarray(labels, np.int8),
         np.ascontiguousarray(row_class, np.int64),
@@ -126,6 +145,18 @@ def holds_batch(space: DesignSpace, traces: ClassTraces, labels: np.ndarray, row
         p[9],
         p[7],
     )
+
+
+def edge_strands(space: DesignSpace, port_strand: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Return the distinct strands through each edge of each class, CSR over ``class * n_edges + edge``."""
+    sc = space.scaffold
+    n_c, n_ports = port_strand.shape
+    n_max = n_ports // 2 + 1
+    edge_of_port = np.repeat(sc.side_edge, 2).astype(np.int64)
+    keys = (np.arange(n_c, dtype=np.int64)[:, None] * sc.n_edges + edge_of_port[None, :]) * n_max + port_strand
+    keys = np.unique(keys)
+    ptr = np.searchsorted(keys // n_max, np.arange(n_c * sc.n_edges + 1))
+    return ptr.astype(np.int64), (keys % n_max).astype(np.int64)
 
 
 def class_sizes(space: DesignSpace, indices: np.ndarray) -> np.ndarray:

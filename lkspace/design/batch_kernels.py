@@ -406,3 +406,42 @@ def stabilizer_ids(
             if fixed:
                 out[m] = g
                 m += 1
+
+
+@kernel
+def rows_hold_together_finite(
+    labels: np.ndarray, row_class: np.ndarray, components: np.ndarray, ptr: np.ndarray, strands: np.ndarray
+) -> np.ndarray:
+    """(m,) bool for finite scaffolds: strands joined at nonzero-label edges form one piece.
+
+    ``strands[ptr[c * n_edges + e]:ptr[c * n_edges + e + 1]]`` are the distinct strands of
+    batch class ``c`` through edge ``e`` (the per-class form of
+    :func:`lkspace.design.walk.rows_hold_together`).
+    """
+    m, n_e = labels.shape
+    out = np.ones(m, np.bool_)
+    parent = np.empty(max(1, int(components.max()) if len(components) else 1), np.int64)
+    for i in range(m):
+        c = row_class[i]
+        n = components[c]
+        if n <= 1:
+            continue
+        for k in range(n):
+            parent[k] = k
+        pieces = n
+        for e in range(n_e):
+            if labels[i, e] == 0:
+                continue
+            base = c * n_e + e
+            a = strands[ptr[base]]
+            while parent[a] != a:
+                a = parent[a]
+            for p in range(ptr[base] + 1, ptr[base + 1]):
+                b = strands[p]
+                while parent[b] != b:
+                    b = parent[b]
+                if a != b:
+                    parent[b] = a
+                    pieces -= 1
+        out[i] = pieces == 1
+    return out
