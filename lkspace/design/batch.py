@@ -20,12 +20,12 @@ import numpy as np
 
 from ..strands.ports import port_model
 from .batch_kernels import (
-    burnside_classes,
     expand_classes,
     rows_hold_together_finite,
     rows_hold_together_lift,
     trace_classes,
 )
+from .orbit_kernels import burnside_classes
 from .space import DesignSpace
 
 BATCH_ASSIGNMENTS = 1 << 13

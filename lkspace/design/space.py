@@ -23,7 +23,7 @@ from ..model.specs import LabelSetSpec, parse_label_set
 from ..model.validation import validate_labels
 from ..strands.walk import walk
 from ..symmetry.group import check_label_set, check_mode, symmetry_group
-from .batch_kernels import orbit_minima, stabilizer_ids
+from .orbit_kernels import orbit_minima, stabilizer_ids
 
 MAX_CLASSES = 1 << 21
 WALK_MODES = ("designs", "residues", "spanning-trees")
