@@ -138,7 +138,7 @@ def enumerate_cmd(
     """
     from ..catalog.remote import remote_url
     from ..catalog.shards import write_catalog
-    from ..catalog.transaction import catalog_target
+    from ..catalog.transaction import CatalogInterrupted, catalog_target
     from ..engine import check_scheduler, resolve_scheduler
 
     ctx = Context(as_json)
@@ -146,13 +146,19 @@ def enumerate_cmd(
     check_scheduler(engine)
     if output is not None and not count_only and remote_url(output) is None:
         catalog_target(output)  # a bad -o fails before any work
-    scaffold = load_mesh(ctx, mesh)
-    labels = label_set(labels_spec)
     if sample is not None and mode != "spanning-trees":
         raise UsageError("--sample applies to --mode spanning-trees only")
     if identify and (output is None or count_only):
         raise UsageError("--identify names the rows of a written catalog: give -o CATALOG.parquet")
-    space = make_space(scaffold, labels, symmetry, no_zero)
+    try:
+        scaffold = load_mesh(ctx, mesh)
+        labels = label_set(labels_spec)
+        space = make_space(scaffold, labels, symmetry, no_zero)
+    except KeyboardInterrupt as exc:  # Ctrl-C or SIGTERM while the symmetry group is computed
+        if output is None or count_only:
+            raise
+        code = 128 + getattr(exc, "signum", 2)
+        raise CatalogInterrupted(f"interrupted; nothing was written to {output}", code) from None
     started = time.perf_counter()
     if count_only or output is None:
         payload = _count_payload(space, mode, components, max_designs, sample, seed, engine, jobs)
