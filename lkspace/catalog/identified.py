@@ -60,28 +60,59 @@ def _column(values: Iterable[Any], type_: pa.DataType) -> pa.Array:
 
 
 def identify_catalog(
-    path: str | os.PathLike[str], scaffold: Scaffold, processes: int = 1, seed: int = 0
+    path: str | os.PathLike[str], scaffold: Scaffold, processes: int = 1, seed: int = 0, scheduler: str = "local"
 ) -> dict[str, Any]:
     """Add knot/link columns to every row of the catalog at ``path``; returns a summary.
 
-    Progress (rows identified) is reported through :func:`lkspace.progress.task`.
+    Progress (rows identified) is reported through :func:`lkspace.progress.task`.  With a
+    Dask ``scheduler`` (:mod:`lkspace.engine`) each file (part) is one Dask task on one
+    worker; otherwise files go one after the other, each over ``processes`` processes.
     """
+    from ..engine import is_dask, run_tasks
+
     path = os.fspath(path)
-    rows = named = 0
-    names: dict[str, int] = {}
+    totals: dict[str, Any] = {"rows": 0, "named": 0, "names": {}}
     files = catalog_files(path)
     total = sum(pq.read_metadata(f).num_rows for f in files)
     with task("identifying designs", total) as step:
-        for file in files:
-            found = _identify_file(file, scaffold, processes, seed, step)
-            if found is None:
-                continue
-            rows += len(found)
-            known = found["knot_name"].dropna()
-            named += len(known)
-            for name, n in known.value_counts().items():
-                names[str(name)] = names.get(str(name), 0) + int(n)
-    return {"rows": rows, "named": named, "names": dict(sorted(names.items(), key=lambda kv: -kv[1]))}
+        if is_dask(scheduler):
+            found = run_tasks(
+                identify_part, (scaffold, seed), files, scheduler, processes, "lkspace-identify", load_knots
+            )
+            for i, summary in found:
+                _add(totals, summary)
+                step.advance(pq.read_metadata(files[i]).num_rows)
+        else:
+            for file in files:
+                _add(totals, _summary(_identify_file(file, scaffold, processes, seed, step)))
+    totals["names"] = dict(sorted(totals["names"].items(), key=lambda kv: -kv[1]))
+    return totals
+
+
+def load_knots() -> None:
+    """On a Dask worker, before its tasks: import the knot libraries in the main thread (PARI sets signal handlers)."""
+    import snappy  # noqa: F401
+
+
+def identify_part(shared: tuple[Scaffold, int], file: str) -> dict[str, Any]:
+    """Dask task: identify the rows of one catalog file (one process); return its summary."""
+    scaffold, seed = shared
+    with task("identifying designs", None) as step:
+        return _summary(_identify_file(file, scaffold, 1, seed, step))
+
+
+def _summary(found: pd.DataFrame | None) -> dict[str, Any]:
+    if found is None:
+        return {"rows": 0, "named": 0, "names": {}}
+    known = found["knot_name"].dropna()
+    return {"rows": len(found), "named": len(known), "names": {str(k): int(n) for k, n in known.value_counts().items()}}
+
+
+def _add(totals: dict[str, Any], summary: dict[str, Any]) -> None:
+    totals["rows"] += summary["rows"]
+    totals["named"] += summary["named"]
+    for name, n in summary["names"].items():
+        totals["names"][name] = totals["names"].get(name, 0) + n
 
 
 def _identify_file(file: str, scaffold: Scaffold, processes: int, seed: int, step: Step) -> pd.DataFrame | None:
@@ -95,7 +126,7 @@ def _identify_file(file: str, scaffold: Scaffold, processes: int, seed: int, ste
     if meta.get("identified"):
         step.advance(table.num_rows)
         return None
-    labels = np.array(table.column("labels").to_pylist(), dtype=np.int64).reshape(table.num_rows, -1)
+    labels = np.array(table.column("labels").to_pylist(), dtype=np.int64).reshape(table.num_rows, scaffold.n_edges)
     chunk = IDENTIFY_CHUNK * max(1, processes)
     pieces = []
     for start in range(0, len(labels), chunk):

@@ -16,53 +16,26 @@ import multiprocessing as mp
 import os
 import pickle
 import signal
+import tempfile
 import threading
 import time
-from collections.abc import Callable, Generator, Iterable, Iterator
+from collections.abc import Callable, Generator, Iterator
 from typing import Any
 
-import numpy as np
-import pyarrow as pa
-
+from ..engine import is_dask, run_tasks
+from ..errors import require
 from ..workers import Terminated, context, ignore_interrupts, in_main_thread
 from .batches import space_batches
 from .lock import pid_alive
 from .transaction import file_sha256
-from .writer import CatalogWriter
+from .writer import write_batches
+
+KILL_ONCE = "LKSPACE_KILL_WORKER_ONCE"
 
 ORPHAN_POLL = 0.5
 """Seconds between a worker's checks that the main process still runs."""
 
 _STATE: dict[str, Any] = {}
-
-
-def write_batches(
-    path: str,
-    schema: pa.Schema,
-    meta: dict[str, Any],
-    batches: Iterable[pa.RecordBatch],
-    on_rows: Callable[[int], object] | None = None,
-) -> dict[str, Any]:
-    """Write ``batches`` to ``path`` atomically; return the part summary (also stored in its footer)."""
-    writer = CatalogWriter(path, schema, meta)
-    by: dict[str, int] = {}
-    covered = 0
-    try:
-        for batch in batches:
-            writer.write(batch)
-            comps = batch.column("components").to_numpy()
-            for c, n in zip(*np.unique(comps, return_counts=True), strict=True):
-                by[str(int(c))] = by.get(str(int(c)), 0) + int(n)
-            sizes = batch.column("orbit_size").to_numpy()
-            covered = -1 if covered < 0 or (sizes < 0).any() else covered + int(sizes.sum())  # -1: past 64 bits
-            if on_rows is not None:
-                on_rows(batch.num_rows)
-    except BaseException as exc:
-        writer.abort(exc)
-        raise
-    summary = {"by_components": by, "assignments_covered": covered}
-    writer.close(summary)
-    return {**summary, "rows": writer.rows}
 
 
 def init_worker(state: bytes, main_pid: int) -> None:
@@ -85,7 +58,15 @@ def _exit_with(main_pid: int) -> None:
 
 def write_part(i: int) -> tuple[int, dict[str, Any]]:
     """Write part ``i`` of the run in ``_STATE``; return ``(i, summary with file and sha256)``."""
-    st = _STATE
+    return write_part_with(_STATE, i)
+
+
+def write_part_with(st: dict[str, Any], i: int) -> tuple[int, dict[str, Any]]:
+    """Write part ``i`` of the run ``st`` (a Dask task, or :func:`write_part` in a pool worker)."""
+    if st.get("on_dask"):
+        fault_hook()
+    if st.get("remote") is not None:
+        return write_part_remote(st, i)
     path = os.path.join(st["folder"], st["files"][i])
     meta = {**st["meta"], "shard": {"index": i, "count": len(st["files"]), "plan": st["plan"]}}
     ids = st["ranges"][i] if st["ranges"] is not None else None
@@ -94,15 +75,57 @@ def write_part(i: int) -> tuple[int, dict[str, Any]]:
     return i, {**summary, "file": st["files"][i], "sha256": file_sha256(path)}
 
 
+def write_part_remote(st: dict[str, Any], i: int) -> tuple[int, dict[str, Any]]:
+    """Write part ``i`` to a local temporary file, upload it under its final name (fsspec); return its summary."""
+    fsspec = require("fsspec", "dask", f"writing to {st['remote']}")
+    fs, root = fsspec.core.url_to_fs(st["remote"])
+    dest = root if st["files"] is None else f"{root}/{st['files'][i]}"
+    meta = {**st["meta"], "shard": {"index": i, "count": st["count"], "plan": st["plan"]}}
+    ids = st["ranges"][i] if st["ranges"] is not None else None
+    with tempfile.TemporaryDirectory(prefix="lkspace-part-") as tmp:
+        local = os.path.join(tmp, "part.parquet")
+        summary = write_batches(local, st["schema"], meta, space_batches(st["space"], st["mode"], ids, *st["walk"]))
+        digest = file_sha256(local)
+        fs.put_file(local, dest)
+    name = os.path.basename(dest) if st["files"] is None else st["files"][i]
+    return i, {**summary, "file": name, "sha256": digest}
+
+
+def fault_hook() -> None:
+    """Kill this worker once, for tests of lost workers (Dask runs only).
+
+    With ``$LKSPACE_KILL_WORKER_ONCE`` set to a path that does not exist yet, the first
+    part to start creates it and kills its own worker process (SIGKILL), as a lost
+    machine would.
+    """
+    flag = os.environ.get(KILL_ONCE)
+    if flag:
+        try:
+            fd = os.open(flag, os.O_CREAT | os.O_EXCL | os.O_WRONLY)
+        except FileExistsError:
+            return
+        os.close(fd)
+        os.kill(os.getpid(), signal.SIGKILL)
+
+
 def run_parts(
-    state: dict[str, Any], todo: list[int], jobs: int, tick: Callable[[int], object]
+    state: dict[str, Any], todo: list[int], jobs: int, tick: Callable[[int], object], scheduler: str = "local"
 ) -> Generator[tuple[int, dict[str, Any]], None, None]:
     """Write the parts ``todo`` with ``jobs`` processes; yield ``(i, summary)`` as each finishes.
 
     ``tick(rows written so far)`` is called as rows are written (in this process) or at
     least every quarter second (rows of the finished parts, with workers).  An exception
-    (KeyboardInterrupt included) terminates the workers before it propagates.
+    (KeyboardInterrupt included) terminates the workers before it propagates.  With a
+    Dask ``scheduler`` (:mod:`lkspace.engine`) each part is a Dask task.
     """
+    if is_dask(scheduler):
+        rows_done = 0
+        shared = {**state, "on_dask": True}
+        for _, done in run_tasks(write_part_with, shared, todo, scheduler, jobs, name="lkspace-part"):
+            rows_done += int(done[1]["rows"])
+            yield done
+            tick(rows_done)
+        return
     if jobs <= 1 or len(todo) <= 1:  # in this process: rows counted as they are written
         rows = [0]
 

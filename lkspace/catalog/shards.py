@@ -24,6 +24,7 @@ import pyarrow as pa
 import pyarrow.parquet as pq
 
 from ..design.space import DesignSpace, make_space
+from ..engine import check_scheduler, resolve_scheduler
 from ..errors import CatalogError
 from ..io.atomic import remove_path, replace_path
 from ..io.scaffold_json import scaffold_to_dict
@@ -32,10 +33,11 @@ from ..model.specs import LabelSetSpec
 from ..progress import task
 from ..workers import interrupt_signals
 from .batches import space_batches
-from .jobs import ignored_signals, run_parts, write_batches
+from .jobs import ignored_signals, run_parts
 from .lock import catalog_lock
 from .plan import Plan, check_jobs, make_plan
 from .reader import read_metadata
+from .remote import remote_url, write_remote
 from .schema import FORMAT_VERSION, design_schema, residue_schema
 from .transaction import (
     CatalogInterrupted,
@@ -50,6 +52,7 @@ from .transaction import (
     seed_build,
     verified_parts,
 )
+from .writer import write_batches
 
 CANONICAL_RULE = (
     "orbit member smallest in (t mod K per edge, then t per edge), lexicographic in edge order; see docs/catalog.md"
@@ -160,6 +163,7 @@ def write_catalog(
     identify: bool = False,
     yes: bool = False,
     progress: Progress | None = None,
+    scheduler: str | None = None,
 ) -> CatalogWritten:
     """Walk a design space and write its catalog; return its totals (:class:`CatalogWritten`).
 
@@ -175,7 +179,10 @@ def write_catalog(
     interrupted run whose checksums still match and redoes the rest.  ``identify=True``
     adds knot/link columns before the catalog is put in place.  Runs estimated past
     :data:`~lkspace.catalog.plan.ROW_LIMIT` rows need ``yes=True``.  ``progress(total)``
-    may return a callable taking the rows written so far.
+    may return a callable taking the rows written so far.  ``scheduler`` says where the
+    parts are written (:mod:`lkspace.engine`: ``"local"``, ``"dask"`` or a Dask scheduler
+    address; default ``$DASK_SCHEDULER_ADDRESS`` or local).  ``path`` may be an fsspec URL
+    (``s3://bucket/cat.parquet``, ``memory://cat``): see :mod:`lkspace.catalog.remote`.
 
     Raises
     ------
@@ -189,12 +196,29 @@ def write_catalog(
     if not isinstance(space, DesignSpace):
         space = make_space(space, label_set, symmetry, no_zero)
     check_jobs(jobs)
-    target = catalog_target(path)
-    plan = make_plan(space, mode, components, max_designs, sample, shards, yes)
+    engine = resolve_scheduler(scheduler)
+    check_scheduler(engine)
+    remote = remote_url(path)
+    if remote is None:
+        target = catalog_target(path)
+    elif identify:
+        raise CatalogError("--identify rewrites the files of a local catalog; write to a local path", usage=True)
+    with interrupt_signals():  # planning loads compiled kernels: a signal now stops the run cleanly too
+        try:
+            plan = make_plan(space, mode, components, max_designs, sample, shards, yes)
+        except KeyboardInterrupt as exc:
+            shown = remote or target.shown
+            raise CatalogInterrupted(
+                f"interrupted; nothing was written to {shown}", 128 + getattr(exc, "signum", 2)
+            ) from None
     meta = catalog_metadata(space, mode, components, max_designs, sample, seed)
     periodic = space.scaffold.periodic
     schema = design_schema(space.scaffold.n_edges, periodic) if mode == "designs" else residue_schema(periodic)
-    run = _Run(space, target, plan, meta, schema, mode, (components, max_designs, sample, seed), identify)
+    walk = (components, max_designs, sample, seed)
+    if remote is not None:
+        summaries, kept = write_remote(space, remote, plan, meta, schema, mode, walk, jobs, engine, resume)
+        return _totals(space, meta, summaries, remote, plan.parts, kept)
+    run = _Run(space, target, plan, meta, schema, mode, walk, identify, engine)
     with catalog_lock(target.lock, target.shown), interrupt_signals(), task("writing catalog", plan.rows) as step:
         advance = progress(plan.rows) if progress is not None else None
 
@@ -229,9 +253,10 @@ class _Run:
         mode: str,
         walk: tuple[Any, ...],
         identify: bool,
+        scheduler: str = "local",
     ) -> None:
         self.space, self.target, self.plan, self.meta, self.schema = space, target, plan, meta, schema
-        self.mode, self.walk, self.identify = mode, walk, identify
+        self.mode, self.walk, self.identify, self.scheduler = mode, walk, identify, scheduler
         self.signature = {**meta, "shards": plan.parts, "plan": plan.fingerprint, "identify": identify}
         self.parts: dict[str, dict[str, Any]] = {}
         self.identified: dict[str, Any] | None = None
@@ -298,10 +323,12 @@ class _Run:
             "schema": self.schema,
         }
         todo = [i for i in range(n) if str(i) not in self.parts]
-        with contextlib.closing(run_parts(state, todo, jobs, lambda rows: tick(base + rows))) as finished:
+        parts = run_parts(state, todo, jobs, lambda rows: tick(base + rows), self.scheduler)
+        with contextlib.closing(parts) as finished:
             for i, summary in finished:
                 self.parts[str(i)] = summary
                 save_manifest(build, manifest)
+        prune_build(build, self.parts)  # temporaries of a worker lost mid-part
         manifest["complete"] = True  # every part is there
         save_manifest(build, manifest)
         if self.identify:
@@ -316,7 +343,7 @@ class _Run:
     def _identify(self, path: str) -> None:
         from .identified import identify_catalog
 
-        self.identified = identify_catalog(path, self.space.scaffold, processes=self.jobs)
+        self.identified = identify_catalog(path, self.space.scaffold, processes=self.jobs, scheduler=self.scheduler)
 
     def interrupted(self) -> str:
         """Return the line that says what an interrupt left and how to go on."""
@@ -353,7 +380,7 @@ def _totals(
         assignments=space.assignments,
         assignments_covered=-1 if min(covered) < 0 else sum(covered),
         by_components=dict(sorted(by.items())),
-        output=os.path.abspath(path),
+        output=path if remote_url(path) else os.path.abspath(path),
         shards=shards,
         shards_resumed=skipped,
         group_order=space.group_order,

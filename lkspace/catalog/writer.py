@@ -3,8 +3,10 @@
 from __future__ import annotations
 
 import json
+from collections.abc import Callable, Iterable
 from typing import Any
 
+import numpy as np
 import pyarrow as pa
 import pyarrow.parquet as pq
 
@@ -62,3 +64,32 @@ class CatalogWriter:
             self._writer.close()
         finally:
             self._ctx.__exit__(type(exc), exc, exc.__traceback__)
+
+
+def write_batches(
+    path: str,
+    schema: pa.Schema,
+    meta: dict[str, Any],
+    batches: Iterable[pa.RecordBatch],
+    on_rows: Callable[[int], object] | None = None,
+) -> dict[str, Any]:
+    """Write ``batches`` to ``path`` atomically; return the part summary (also stored in its footer)."""
+    writer = CatalogWriter(path, schema, meta)
+    by: dict[str, int] = {}
+    covered = 0
+    try:
+        for batch in batches:
+            writer.write(batch)
+            comps = batch.column("components").to_numpy()
+            for c, n in zip(*np.unique(comps, return_counts=True), strict=True):
+                by[str(int(c))] = by.get(str(int(c)), 0) + int(n)
+            sizes = batch.column("orbit_size").to_numpy()
+            covered = -1 if covered < 0 or (sizes < 0).any() else covered + int(sizes.sum())  # -1: past 64 bits
+            if on_rows is not None:
+                on_rows(batch.num_rows)
+    except BaseException as exc:
+        writer.abort(exc)
+        raise
+    summary = {"by_components": by, "assignments_covered": covered}
+    writer.close(summary)
+    return {**summary, "rows": writer.rows}

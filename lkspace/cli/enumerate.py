@@ -21,12 +21,14 @@ def _count_payload(
     max_designs: int | None,
     sample: int | None,
     seed: int,
+    scheduler: str = "local",
+    jobs: int = 1,
 ) -> dict[str, Any]:
     from ..catalog.listing import designs
     from ..design.counting import count_space
 
     if mode == "designs":
-        totals = count_space(space, components).to_dict()
+        totals = count_space(space, components, scheduler, jobs).to_dict()
         if max_designs is not None:
             totals["designs"] = min(totals["designs"], max_designs)
         return totals
@@ -90,6 +92,12 @@ def _count_payload(
     type=click.IntRange(1, MAX_SHARDS),
     help="Parts of the catalog (default: one per million designs; one file up to a million).",
 )
+@click.option(
+    "--scheduler",
+    metavar="local|dask|tcp://HOST:PORT",
+    help="Where parts run: this machine's processes (local), a Dask LocalCluster (dask) or a running "
+    "Dask scheduler; default $DASK_SCHEDULER_ADDRESS or local.",
+)
 @click.option("--resume", is_flag=True, help="Keep the verified parts of an interrupted run and do the rest.")
 @click.option("--yes", is_flag=True, help="Go ahead with a catalog estimated past 10^8 rows or 2 GB.")
 @click.option("--identify", is_flag=True, help="Add knot/link names and invariants to every row (extra [knots]; slow).")
@@ -108,6 +116,7 @@ def enumerate_cmd(
     seed: int,
     jobs: int,
     shards: int | None,
+    scheduler: str | None,
     resume: bool,
     yes: bool,
     identify: bool,
@@ -122,26 +131,37 @@ def enumerate_cmd(
       lkspace enumerate cube --count-only --components 1 --no-zero
       lkspace enumerate cube --mode residues -o cube-topology.parquet
       lkspace enumerate cube --labels -2..2 -o cube.parquet --jobs 2 --resume   # after Ctrl-C
+      lkspace enumerate cube --labels -2..2 -o s3://bucket/cube --scheduler tcp://head:8786
 
     The representative of each design is the orbit member smallest in (t mod K per
     edge, then t per edge), lexicographically in edge order.
     """
+    from ..catalog.remote import remote_url
     from ..catalog.shards import write_catalog
-    from ..catalog.transaction import catalog_target
+    from ..catalog.transaction import CatalogInterrupted, catalog_target
+    from ..engine import check_scheduler, resolve_scheduler
 
     ctx = Context(as_json)
-    if output is not None and not count_only:
+    engine = resolve_scheduler(scheduler)
+    check_scheduler(engine)
+    if output is not None and not count_only and remote_url(output) is None:
         catalog_target(output)  # a bad -o fails before any work
-    scaffold = load_mesh(ctx, mesh)
-    labels = label_set(labels_spec)
     if sample is not None and mode != "spanning-trees":
         raise UsageError("--sample applies to --mode spanning-trees only")
     if identify and (output is None or count_only):
         raise UsageError("--identify names the rows of a written catalog: give -o CATALOG.parquet")
-    space = make_space(scaffold, labels, symmetry, no_zero)
+    try:
+        scaffold = load_mesh(ctx, mesh)
+        labels = label_set(labels_spec)
+        space = make_space(scaffold, labels, symmetry, no_zero)
+    except KeyboardInterrupt as exc:  # Ctrl-C or SIGTERM while the symmetry group is computed
+        if output is None or count_only:
+            raise
+        code = 128 + getattr(exc, "signum", 2)
+        raise CatalogInterrupted(f"interrupted; nothing was written to {output}", code) from None
     started = time.perf_counter()
     if count_only or output is None:
-        payload = _count_payload(space, mode, components, max_designs, sample, seed)
+        payload = _count_payload(space, mode, components, max_designs, sample, seed, engine, jobs)
         payload.update(
             group_order=space.group_order, written=None, mode=mode, symmetry=symmetry, label_set=labels.tolist()
         )
@@ -161,6 +181,7 @@ def enumerate_cmd(
             resume=resume,
             identify=identify,
             yes=yes,
+            scheduler=engine,
         )
         payload = written.to_dict()
         payload["written"] = payload.pop("output")

@@ -15,9 +15,15 @@ from typing import Any
 
 import numpy as np
 
+from ..engine import is_dask
 from ..io.sources import ScaffoldSource
 from ..model.specs import LabelSetSpec
+from .batch import class_components, design_counts
+from .census import census
 from .space import MAX_CLASSES, DesignSpace, make_space
+
+CENSUS_AUTO = 1 << 24
+"""Residue vectors a count splits by components unasked (about ten seconds on one core)."""
 
 
 @dataclass(frozen=True)
@@ -63,14 +69,14 @@ class DesignCount:
 
 
 def class_weights(space: DesignSpace, components: int | None = None) -> np.ndarray:
-    """(n_reps,) int64: designs per representative class (0 where ``components`` excludes it)."""
-    co = space.classes
-    out = np.zeros(len(co.codes), dtype=object)
-    for c in range(len(co.codes)):
-        if components is not None and space.class_info(co.residues[c]).components != components:
-            continue
-        out[c] = space.class_design_count(c)
-    return out
+    """(n_reps,) designs per representative class (0 where ``components`` excludes it).
+
+    int64, or an object array of exact ints when counts may pass int64.
+    """
+    weights = design_counts(space, np.arange(len(space.classes.codes)))
+    if components is not None:
+        weights = np.where(class_components(space) == components, weights, 0)
+    return weights
 
 
 def burnside_total(space: DesignSpace) -> int:
@@ -81,31 +87,51 @@ def burnside_total(space: DesignSpace) -> int:
     return total // space.n_actions
 
 
-def count_space(space: DesignSpace, components: int | None = None) -> DesignCount:
+def count_space(
+    space: DesignSpace, components: int | None = None, scheduler: str = "local", jobs: int = 1
+) -> DesignCount:
     """Exact totals without listing: designs, assignments covered, designs by components.
 
-    Per representative residue class (Burnside over its stabilizer).  When there are too
-    many residue classes to list and no component filter is asked for, the total comes
-    from Burnside over the whole group and ``by_components`` is ``None``.
+    Per representative residue class (Burnside over its stabilizer), batched
+    (:mod:`lkspace.design.batch`).  Past :data:`~lkspace.design.space.MAX_CLASSES` residue
+    classes the count is a census (:mod:`lkspace.design.census`: Burnside by components
+    over every residue vector, in shards on ``scheduler`` with ``jobs`` workers) when a
+    component filter, ``jobs > 1`` or a Dask scheduler asks for it or when it is small
+    (:data:`CENSUS_AUTO` vectors); otherwise the total comes from Burnside over the whole
+    group and ``by_components`` is ``None``.
     """
-    if space.n_classes > MAX_CLASSES and components is None:
-        return DesignCount(
-            burnside_total(space),
-            space.assignments,
-            len(space.walk_labels) ** space.scaffold.n_edges,
-            None,
-            f"{space.n_classes} residue classes: too many to split the count by components",
-        )
+    if space.n_classes > MAX_CLASSES:
+        wanted = components is not None or jobs > 1 or is_dask(scheduler)
+        if not wanted and space.n_classes > CENSUS_AUTO:
+            return DesignCount(
+                burnside_total(space),
+                space.assignments,
+                len(space.walk_labels) ** space.scaffold.n_edges,
+                None,
+                f"{space.n_classes:,} residue classes: too many to split the count by components in one "
+                "process; --jobs N or --scheduler dask splits them (a census, in shards)",
+            )
+        found = census(space, scheduler, jobs)
+        by = found.by_components
+        if components is not None:
+            by = {c: n for c, n in by.items() if c == components}
+        covered = sum(n for c, n in found.assignments_by_components.items() if c in by)
+        return DesignCount(sum(by.values()), space.assignments, covered, by, f"census in {found.shards} shard(s)")
     co = space.classes
-    by: dict[int, int] = {}
-    covered = 0
-    for c in range(len(co.codes)):
-        comp = space.class_info(co.residues[c]).components
-        if components is not None and comp != components:
-            continue
-        n = space.class_design_count(c)
-        by[comp] = by.get(comp, 0) + n
-        covered += space.class_size(c) * int(co.orbit_sizes[c])
+    comps = class_components(space)
+    keep = np.arange(len(comps)) if components is None else np.flatnonzero(comps == components)
+    counts = design_counts(space, keep)
+    n_opts = space.residue_table[2]
+    e = np.arange(space.scaffold.n_edges)
+    if counts.dtype != object:
+        sizes = np.prod(n_opts[e[None, :], co.indices[keep]], axis=1) * co.orbit_sizes[keep]
+        by = {int(c): int(counts[comps[keep] == c].sum(dtype=object)) for c in np.unique(comps[keep])}
+        covered = int(sizes.sum(dtype=object))
+    else:
+        by = {}
+        for c, n in zip(comps[keep].tolist(), counts.tolist(), strict=True):
+            by[c] = by.get(c, 0) + n
+        covered = sum(space.size_of(co.indices[c]) * int(co.orbit_sizes[c]) for c in keep.tolist())
     return DesignCount(sum(by.values()), space.assignments, covered, dict(sorted(by.items())))
 
 

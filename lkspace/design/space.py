@@ -23,6 +23,7 @@ from ..model.specs import LabelSetSpec, parse_label_set
 from ..model.validation import validate_labels
 from ..strands.walk import walk
 from ..symmetry.group import check_label_set, check_mode, symmetry_group
+from .orbit_kernels import orbit_minima, stabilizer_ids
 
 MAX_CLASSES = 1 << 21
 WALK_MODES = ("designs", "residues", "spanning-trees")
@@ -272,15 +273,22 @@ class ClassOrbits:
         Mixed-radix code of the class (edge 0 most significant): the ``residue_class`` key.
     orbit_sizes : (n_reps,) int64
         Classes in each representative's orbit.
-    stabilizers : list of (n_h,) int64
-        Group actions fixing each representative, identity first.
+    stab_ptr, stab_ids : (n_reps + 1,), (n_fix,) int64
+        The group actions fixing each representative (identity first), as CSR:
+        ``stab_ids[stab_ptr[c]:stab_ptr[c + 1]]``.
     """
 
     indices: np.ndarray
     residues: np.ndarray
     codes: np.ndarray
     orbit_sizes: np.ndarray
-    stabilizers: list[np.ndarray]
+    stab_ptr: np.ndarray
+    stab_ids: np.ndarray
+
+    @cached_property
+    def stabilizers(self) -> list[np.ndarray]:
+        """Group actions fixing each representative, identity first (one array per class)."""
+        return np.split(self.stab_ids, self.stab_ptr[1:-1])
 
 
 def class_orbits(space: DesignSpace) -> ClassOrbits:
@@ -293,25 +301,21 @@ def class_orbits(space: DesignSpace) -> ClassOrbits:
             f"(limit {MAX_CLASSES}); use --mode spanning-trees or a smaller label set"
         )
     dims = tuple(n_res.tolist())
-    idx = np.stack(np.unravel_index(np.arange(n_cls, dtype=np.int64), dims), axis=1).astype(np.int64)
-    e = np.arange(len(dims))
-    val = values[e, idx]
     k = space.moduli
     perms, signs = space.action
-    best = np.arange(n_cls, dtype=np.int64)
-    image_codes = []
-    for perm, s in zip(perms, signs, strict=True):
-        img = np.empty_like(idx)
-        img[:, perm] = lookup[perm, (s * val) % k]
-        code = np.ravel_multi_index(tuple(img.T), dims)
-        image_codes.append(code)
-        np.minimum(best, code, out=best)
-    reps = np.flatnonzero(best == np.arange(n_cls))
-    codes = np.stack(image_codes, axis=1)[reps]  # (n_reps, n_g)
-    fixes = codes == reps[:, None]
-    stabilizers = [np.flatnonzero(row) for row in fixes]
-    orbit_sizes = len(perms) // fixes.sum(axis=1)
-    return ClassOrbits(idx[reps], val[reps], reps, orbit_sizes.astype(np.int64), stabilizers)
+    is_rep = np.empty(n_cls, np.bool_)
+    n_fix = np.empty(n_cls, np.int64)
+    orbit_minima(0, n_cls, n_res, values, lookup, k, perms, signs, is_rep, n_fix)
+    reps = np.flatnonzero(is_rep)
+    idx = np.stack(np.unravel_index(reps, dims), axis=1).astype(np.int64)
+    e = np.arange(len(dims))
+    val = values[e, idx]
+    ptr = np.zeros(len(reps) + 1, np.int64)
+    np.cumsum(n_fix[reps], out=ptr[1:])
+    orbit_sizes = len(perms) // n_fix[reps]
+    stab_ids = np.empty(ptr[-1], np.int64)  # per class, ascending (identity first)
+    stabilizer_ids(idx, values, lookup, k, perms, signs, ptr, stab_ids)
+    return ClassOrbits(idx, val, reps, orbit_sizes.astype(np.int64), ptr, stab_ids)
 
 
 def canonical_form(space: DesignSpace, labels: ArrayLike) -> tuple[np.ndarray, int]:

@@ -41,6 +41,7 @@ import numpy as np
 
 from ..kernels import kernel
 from ..strands.tracing import trace
+from .batch import BATCH_ASSIGNMENTS, ClassTraces, batches_of, expand_batch, holds_batch, trace_batch
 from .space import ClassInfo, DesignSpace
 
 CHUNK = 1 << 20
@@ -162,44 +163,87 @@ def holds_together_rows(space: DesignSpace, residues: np.ndarray, info: ClassInf
 
 @dataclass
 class Block:
-    """Designs of one representative class (or a chunk of it)."""
+    """Designs of a run of representative classes (or a chunk of one large class).
 
-    class_code: int
-    residues: np.ndarray  # (n_edges,)
-    info: ClassInfo
-    labels: np.ndarray  # (m, n_edges) int8
-    orbit_sizes: np.ndarray  # (m,) int64
-    holds_together: np.ndarray  # (m,) bool
+    Attributes
+    ----------
+    class_codes : (n_c,) int64
+        ``residue_class`` code of each class of the run.
+    traces : ClassTraces
+        Per class: components, strand lengths and periods.
+    row_class : (m,) int64
+        Class (index into ``class_codes``) of each row.
+    labels : (m, n_edges) int8
+    orbit_sizes : (m,) int64
+    holds_together : (m,) bool
+    """
+
+    class_codes: np.ndarray
+    traces: ClassTraces
+    row_class: np.ndarray
+    labels: np.ndarray
+    orbit_sizes: np.ndarray
+    holds_together: np.ndarray
+
+    def head(self, n: int) -> Block:
+        """Return the first ``n`` rows."""
+        return Block(
+            self.class_codes,
+            self.traces,
+            self.row_class[:n],
+            self.labels[:n],
+            self.orbit_sizes[:n],
+            self.holds_together[:n],
+        )
 
 
 def walk_blocks(
     space: DesignSpace, class_ids: Iterable[int] | None = None, components: int | None = None
 ) -> Iterator[Block]:
-    """Yield the designs of the representative classes ``class_ids`` (default all), in order."""
+    """Yield the designs of the representative classes ``class_ids`` (default all), in order.
+
+    Small classes go many to a compiled call (:mod:`lkspace.design.batch`); a class larger
+    than :data:`~lkspace.design.batch.BATCH_ASSIGNMENTS` assignments alone, in chunks of
+    :data:`CHUNK`.
+    """
+    co = space.classes
+    ids = np.arange(len(co.codes)) if class_ids is None else np.fromiter(class_ids, np.int64)
+    for run in batches_of(space, ids):
+        traces = trace_batch(space, co.residues[run])
+        if components is not None:
+            keep = traces.components == components
+            run, traces = run[keep], traces.select(keep)
+            if len(run) == 0:
+                continue
+        if len(run) == 1 and space.size_of(co.indices[run[0]]) >= BATCH_ASSIGNMENTS:
+            yield from _large_class(space, int(run[0]), traces)
+            continue
+        labels, stab, row_class = expand_batch(space, run)
+        holds = holds_batch(space, traces, labels, row_class)
+        yield Block(co.codes[run], traces.slim(), row_class, labels, space.n_actions // stab, holds)
+
+
+def _large_class(space: DesignSpace, c: int, traces: ClassTraces) -> Iterator[Block]:
     co = space.classes
     perms, signs = space.action
     inv = np.argsort(perms, axis=1)
-    n_res, values, n_opts_t, opts_t, _ = space.residue_table
+    _, _, n_opts_t, opts_t, _ = space.residue_table
     e = np.arange(space.scaffold.n_edges)
-    ids = range(len(co.codes)) if class_ids is None else class_ids
-    for c in ids:
-        info = space.class_info(co.residues[c])
-        if components is not None and info.components != components:
-            continue
-        n_opts = n_opts_t[e, co.indices[c]]
-        opts = np.ascontiguousarray(opts_t[e, co.indices[c]])
-        h = co.stabilizers[c][1:]
-        size = math.prod(n_opts.tolist())
-        for start in range(0, size, CHUNK):
-            stop = min(size, start + CHUNK)
-            out = np.empty((stop - start, len(e)), np.int8)
-            stab = np.empty(stop - start, np.int64)
-            m = canonical_block(
-                opts, n_opts, np.ascontiguousarray(inv[h]), np.ascontiguousarray(signs[h]), start, stop, out, stab
-            )
-            labels = out[:m]
-            holds = holds_together_rows(space, co.residues[c], info, labels)
-            yield Block(int(co.codes[c]), co.residues[c], info, labels, space.n_actions // stab[:m], holds)
+    n_opts = n_opts_t[e, co.indices[c]]
+    opts = np.ascontiguousarray(opts_t[e, co.indices[c]])
+    h = co.stabilizers[c][1:]
+    size = math.prod(n_opts.tolist())
+    for start in range(0, size, CHUNK):
+        stop = min(size, start + CHUNK)
+        out = np.empty((stop - start, len(e)), np.int8)
+        stab = np.empty(stop - start, np.int64)
+        m = canonical_block(
+            opts, n_opts, np.ascontiguousarray(inv[h]), np.ascontiguousarray(signs[h]), start, stop, out, stab
+        )
+        labels = out[:m]
+        row_class = np.zeros(m, np.int64)
+        holds = holds_batch(space, traces, labels, row_class)
+        yield Block(co.codes[[c]], traces.slim(), row_class, labels, space.n_actions // stab[:m], holds)
 
 
 def residue_row(

@@ -1,0 +1,79 @@
+"""Arrow columns of catalog rows built from per-class facts (lists expanded per row, vectorized)."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+import pyarrow as pa
+
+from ..design.batch import ClassTraces
+from .schema import residue_schema
+
+INT64_MAX = 2**63 - 1
+"""Largest ``residue_class`` code stored; a larger one (a class of a big scaffold) is stored as null."""
+
+
+def list_column(values: np.ndarray, counts: np.ndarray, type_: pa.ListType) -> pa.Array:
+    """Return a list column of Arrow type ``type_``: row ``i`` holds the next ``counts[i]`` of ``values``."""
+    offsets = np.zeros(len(counts) + 1, np.int32)
+    np.cumsum(counts, out=offsets[1:])
+    return pa.ListArray.from_arrays(pa.array(offsets), pa.array(values, type=type_.value_type))
+
+
+def per_row_lists(values: np.ndarray, counts: np.ndarray, row_class: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Expand per-class lists (``values`` CSR with ``counts`` per class) to one list per row of ``row_class``.
+
+    Returns ``(flat values, counts per row)``.
+    """
+    starts = np.zeros(len(counts) + 1, np.int64)
+    np.cumsum(counts, out=starts[1:])
+    cuts = np.flatnonzero(np.diff(row_class)) + 1
+    if len(cuts) < 64:  # few runs of rows (chunks of large classes): tile each class's list
+        bounds = [0, *cuts.tolist(), len(row_class)]
+        pieces = [
+            np.tile(values[starts[row_class[a]] : starts[row_class[a] + 1]], b - a)
+            for a, b in zip(bounds[:-1], bounds[1:], strict=True)
+            if b > a
+        ]
+        flat = np.concatenate(pieces) if pieces else values[:0]
+        return flat, counts[row_class]
+    starts = np.zeros(len(counts) + 1, np.int64)
+    np.cumsum(counts, out=starts[1:])
+    row_counts = counts[row_class]
+    total = int(row_counts.sum())
+    row_offsets = np.zeros(len(row_counts), np.int64)
+    if len(row_counts):
+        np.cumsum(row_counts[:-1], out=row_offsets[1:])
+    idx = np.repeat(starts[row_class] - row_offsets, row_counts) + np.arange(total)
+    return values[idx], row_counts
+
+
+def strand_columns(traces: ClassTraces, row_class: np.ndarray, periodic: bool) -> dict[str, pa.Array]:
+    """``strand_lengths`` (and, periodic, ``n_infinite``, ``strand_periods``) of each row from its class."""
+    n_s = traces.components
+    mask = np.arange(traces.lengths.shape[1])[None, :] < n_s[:, None]
+    flat, counts = per_row_lists(traces.lengths[mask].astype(np.int32), n_s, row_class)
+    cols = {"strand_lengths": list_column(flat, counts, pa.list_(pa.int32()))}
+    if periodic:
+        dim = traces.periods.shape[2]
+        periods = traces.periods[mask]  # (total strands, dim)
+        infinite = np.zeros(len(n_s), np.int16)
+        np.add.at(infinite, np.repeat(np.arange(len(n_s)), n_s), np.any(periods != 0, axis=1))
+        cols["n_infinite"] = pa.array(infinite[row_class])
+        flat_p, counts_p = per_row_lists(periods.reshape(-1), n_s * dim, row_class)
+        inner = pa.ListArray.from_arrays(
+            pa.array(np.arange(len(flat_p) // max(dim, 1) + 1, dtype=np.int32) * dim), pa.array(flat_p, pa.int64())
+        )
+        offsets = np.zeros(len(counts) + 1, np.int32)
+        np.cumsum(counts, out=offsets[1:])
+        cols["strand_periods"] = pa.ListArray.from_arrays(pa.array(offsets), inner)
+    return cols
+
+
+def residue_rows_to_batch(rows: list[dict[str, Any]], periodic: bool) -> pa.RecordBatch:
+    """Record batch of the residues schema from row dicts (few rows: one per class orbit)."""
+    schema = residue_schema(periodic)
+    data = {f.name: [r[f.name] for r in rows] for f in schema}
+    data["residue_class"] = [c if c <= INT64_MAX else None for c in data["residue_class"]]
+    return pa.RecordBatch.from_pydict(data, schema=schema)

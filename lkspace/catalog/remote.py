@@ -1,0 +1,138 @@
+"""Catalogs written to an fsspec URL (``s3://bucket/cat.parquet``, ``gs://...``, ``memory://...``).
+
+Object stores have no atomic rename and no lock, so a URL catalog is written in an
+order that makes completeness visible instead:
+
+1. a folder catalog's old manifest ``_lkspace.json`` is deleted first (from then on the
+   folder reads as incomplete);
+2. every part is written by a worker to a local temporary file and uploaded whole under
+   its final name (an object appears only when its upload completes);
+3. the manifest, listing each part with its rows and SHA-256, is written **last**: its
+   presence marks the catalog complete.
+
+``resume=True`` keeps the parts already in the folder whose footer metadata matches the
+run (settings, plan, part number) and that read to the end, and writes the rest.  A
+one-file catalog (up to a million rows) is uploaded in one piece.  Readers: pandas,
+pyarrow and ``dask.dataframe.read_parquet`` open the URL directly (names starting with
+``_`` are skipped).  Two runs writing one URL at once are not detected (no lock): don't.
+``memory://`` lives in one process's memory, so it takes ``--jobs 1`` and the local
+scheduler (tests, notebooks).
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import secrets
+from typing import Any
+
+import pyarrow.parquet as pq
+
+from ..design.space import DesignSpace
+from ..engine import is_dask
+from ..errors import CatalogError, UsageError, require
+from .jobs import run_parts, write_part_remote
+from .plan import Plan
+from .schema import METADATA_KEY
+from .transaction import MANIFEST, part_name
+
+
+def remote_url(path: Any) -> str | None:
+    """``path`` when it is an fsspec URL other than a local file (``file://`` is local), else ``None``."""
+    text = os.fspath(path) if isinstance(path, os.PathLike) else str(path)
+    if "://" not in text or text.startswith("file://"):
+        return None
+    return text.rstrip("/")
+
+
+def _fs(url: str) -> tuple[Any, str]:
+    fsspec = require("fsspec", "dask", f"writing to {url}")
+    fs, root = fsspec.core.url_to_fs(url)
+    return fs, root
+
+
+def _kept_parts(fs: Any, root: str, signature: dict[str, Any], fingerprint: str) -> dict[str, dict[str, Any]]:
+    """Parts already in the folder ``root`` that belong to this run (footer metadata) and read to the end."""
+    import hashlib
+
+    kept: dict[str, dict[str, Any]] = {}
+    for path in sorted(fs.glob(f"{root}/part-*.parquet")):
+        try:
+            with fs.open(path, "rb") as fh:
+                data = fh.read()
+            import io
+
+            meta = json.loads(pq.read_metadata(io.BytesIO(data)).metadata[METADATA_KEY])
+            pq.read_table(io.BytesIO(data))
+        except (OSError, ValueError, KeyError, TypeError):
+            continue
+        shard = meta.get("shard") or {}
+        if shard.get("plan") != fingerprint or any(meta.get(k) != v for k, v in signature.items()):
+            continue
+        entry = {
+            "rows": meta["rows"],
+            "by_components": meta["by_components"],
+            "assignments_covered": meta["assignments_covered"],
+            "file": os.path.basename(path),
+            "sha256": hashlib.sha256(data).hexdigest(),
+        }
+        kept.setdefault(str(shard["index"]), entry)
+    return kept
+
+
+def write_remote(
+    space: DesignSpace,
+    url: str,
+    plan: Plan,
+    meta: dict[str, Any],
+    schema: Any,
+    mode: str,
+    walk: tuple[Any, ...],
+    jobs: int,
+    scheduler: str,
+    resume: bool,
+) -> tuple[list[dict[str, Any]], int]:
+    """Write the catalog of ``plan`` to ``url``; return the parts' summaries and how many were kept."""
+    fs, root = _fs(url)
+    if fs.protocol in ("memory", ("memory",)) and (jobs > 1 or is_dask(scheduler)):
+        raise UsageError(f"{url}: memory:// is private to this process; use --jobs 1 and --scheduler local")
+    single = plan.parts == 1 and url.endswith(".parquet")
+    n = plan.parts
+    signature = {**meta, "shards": n}
+    state = {
+        "space": space,
+        "mode": mode,
+        "walk": walk,
+        "remote": url,
+        "meta": meta,
+        "plan": plan.fingerprint,
+        "ranges": plan.ranges,
+        "schema": schema,
+        "count": n,
+    }
+    if single:
+        if fs.isdir(root):
+            raise CatalogError(f"{url}: is a folder; give a new name for a one-file catalog")
+        state["files"] = None
+        return [write_part_remote(state, 0)[1]], 0
+    kept = _kept_parts(fs, root, meta, plan.fingerprint) if resume and fs.isdir(root) else {}
+    if fs.exists(f"{root}/{MANIFEST}"):
+        fs.rm(f"{root}/{MANIFEST}")  # from here on the folder reads as incomplete
+    if not kept and fs.isdir(root):
+        for old in fs.glob(f"{root}/part-*.parquet"):
+            fs.rm(old)
+    fs.makedirs(root, exist_ok=True)
+    run_id = secrets.token_hex(4)
+    state["files"] = [kept[str(i)]["file"] if str(i) in kept else part_name(i, run_id) for i in range(n)]
+    parts = dict(kept)
+    todo = [i for i in range(n) if str(i) not in kept]
+    for i, summary in run_parts(state, todo, jobs, lambda rows: None, scheduler):
+        parts[str(i)] = summary
+    keep_files = {str(p["file"]) for p in parts.values()}
+    for old in fs.glob(f"{root}/part-*.parquet"):
+        if os.path.basename(old) not in keep_files:
+            fs.rm(old)
+    manifest = {**signature, "run": run_id, "parts": parts, "complete": True}
+    with fs.open(f"{root}/{MANIFEST}", "w") as fh:  # last: the manifest marks the catalog complete
+        fh.write(json.dumps(manifest, indent=1))
+    return [parts[str(i)] for i in range(n)], len(kept)

@@ -1,0 +1,230 @@
+"""Census: exact design counts by component number for spaces too big to list, in shards.
+
+Burnside's lemma, split by components (constant on an orbit, and a function of the
+residues ``t mod K`` only)::
+
+    designs with c components = (1/|G|) sum_g #{t in SET^E : g t = t, components(t) = c}
+
+An assignment fixed by ``g`` is constant along each cycle of ``g``'s edge permutation up
+to its signs, so the fixed ones are enumerated at the level of residues: one **variable**
+per cycle (for the identity, per edge) taking each residue class ``r`` the label set
+reaches, weighted by the labels of that class (``n(r)``: the label count when the signs
+around the cycle multiply to +1; when they multiply to -1 only ``t = 0`` is fixed, so
+the weight is 1 for the class of 0 and the class is skipped otherwise).  Each residue
+vector is traced once (components only, :mod:`lkspace.design.census_kernel`).
+
+Weights stay exact: a shard counts residue vectors per ``(components, how many variables
+have each label count)`` in int64 cells, and the sum ``count * prod n^k`` is taken in
+Python integers.  Example: labels ``{-1, 0, 1}`` on edges of degree K = 2 (every edge of
+a polyhedron) reach residues 0 (label 0) and 1 (labels -1 and 1), so they have the
+residue classes of labels ``{0, 1}`` with weight ``2^(odd edges)``: both label sets come
+from one pass over the ``2^E`` parity vectors.
+
+Shards are contiguous ranges of one term's choices (about :data:`SHARD_CHOICES` each);
+they run on any scheduler of :mod:`lkspace.engine` and their histograms are summed.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from ..engine import run_tasks
+from ..errors import LabelError
+from ..strands.ports import port_model
+from .census_kernel import census_range
+from .space import DesignSpace
+
+SHARD_CHOICES = 1 << 24
+"""Residue vectors per shard (seconds of work on one core for a polyhedron)."""
+
+MAX_VALUE_KINDS = 3
+"""Distinct label counts per residue class (besides 1) a census keeps apart exactly."""
+
+
+@dataclass(frozen=True, eq=False)
+class Term:
+    """The residue vectors fixed by one group action: variables (cycles) and their choices."""
+
+    var_ptr: np.ndarray
+    var_edges: np.ndarray
+    var_signs: np.ndarray
+    n_choices: np.ndarray
+    choice_res: np.ndarray
+    choice_val: np.ndarray
+
+    @property
+    def size(self) -> int:
+        """Number of residue vectors (exact)."""
+        return math.prod(int(x) for x in self.n_choices)
+
+
+@dataclass
+class Census:
+    """Exact census of a design space: designs by components (Python ints)."""
+
+    by_components: dict[int, int]
+    assignments_by_components: dict[int, int]
+    group_order: int
+    residue_vectors: int
+    shards: int
+    seconds_by_term: dict[str, float] = field(default_factory=dict)
+
+    @property
+    def designs(self) -> int:
+        """All designs."""
+        return sum(self.by_components.values())
+
+
+def value_kinds(space: DesignSpace) -> np.ndarray:
+    """Return the distinct label counts (> 1) of residue classes: the exponents a census keeps."""
+    n_res, _, n_opts, _, _ = space.residue_table
+    vals = sorted({int(n_opts[e, i]) for e in range(len(n_res)) for i in range(int(n_res[e]))} - {1})
+    if len(vals) > MAX_VALUE_KINDS:
+        raise LabelError(f"a census keeps at most {MAX_VALUE_KINDS} distinct class sizes apart; {vals}")
+    return np.array(vals, np.int64)
+
+
+def terms(space: DesignSpace) -> list[Term]:
+    """One :class:`Term` per distinct signed edge permutation of the group (identity first)."""
+    n_res, values, n_opts, opts, lookup = space.residue_table
+    kinds = value_kinds(space).tolist()
+    perms, signs = space.action
+    zero_idx = lookup[:, 0]
+    out = []
+    for perm, s in zip(perms.tolist(), signs.tolist(), strict=True):
+        seen = [False] * len(perm)
+        ptr, edges, esigns, n_ch, ch_res, ch_val = [0], [], [], [], [], []
+        for e in range(len(perm)):
+            if seen[e]:
+                continue
+            x, sign = e, 1
+            while not seen[x]:
+                seen[x] = True
+                edges.append(x)
+                esigns.append(sign)
+                x, sign = perm[x], sign * s
+            even = sign == 1  # the product of signs around the cycle
+            choices = []
+            for i in range(int(n_res[e])):
+                if even:
+                    n = int(n_opts[e, i])
+                    choices.append((int(values[e, i]), kinds.index(n) if n in kinds else -1))
+                elif i == zero_idx[e] and np.any(opts[e, i, : n_opts[e, i]] == 0):
+                    choices.append((0, -1))
+            ptr.append(len(edges))
+            n_ch.append(len(choices))
+            ch_res.append([c[0] for c in choices])
+            ch_val.append([c[1] for c in choices])
+        width = max([len(c) for c in ch_res] + [1])
+        res_arr = np.zeros((len(n_ch), width), np.int64)
+        val_arr = np.full((len(n_ch), width), -1, np.int64)
+        for v, (r, c) in enumerate(zip(ch_res, ch_val, strict=True)):
+            res_arr[v, : len(r)], val_arr[v, : len(c)] = r, c
+        out.append(
+            Term(
+                np.array(ptr, np.int64),
+                np.array(edges, np.int64),
+                np.array(esigns, np.int64),
+                np.array(n_ch, np.int64),
+                res_arr,
+                val_arr,
+            )
+        )
+    return out
+
+
+def shard_term(shared: tuple[DesignSpace, list[Term]], item: tuple[int, int, int]) -> np.ndarray:
+    """Task: the histogram ``(n_corners + 1, cells)`` of choices ``first..stop`` of term ``g``."""
+    space, all_terms = shared
+    g, first, stop = item
+    t = all_terms[g]
+    model = port_model(space.scaffold)
+    n_vals = len(value_kinds(space))
+    hist = np.zeros((space.scaffold.n_corners + 1, (len(t.n_choices) + 1) ** n_vals), np.int64)
+    if 0 in t.n_choices.tolist():
+        return hist
+    census_range(
+        first,
+        stop,
+        t.var_ptr,
+        t.var_edges,
+        t.var_signs,
+        t.n_choices,
+        t.choice_res,
+        t.choice_val,
+        n_vals,
+        space.moduli,
+        model.corner_partner,
+        model.port_a,
+        model.port_b,
+        model.edge_starts,
+        hist,
+    )
+    return hist
+
+
+def cell_weights(n_var: int, kinds: list[int]) -> list[int]:
+    """Weight ``prod kinds[d] ** exps[d]`` of every histogram cell (exact ints)."""
+    cells = (n_var + 1) ** len(kinds)
+    out = []
+    for cell in range(cells):
+        w, rest = 1, cell
+        for kind in kinds:
+            w *= kind ** (rest % (n_var + 1))
+            rest //= n_var + 1
+        out.append(w)
+    return out
+
+
+def census(
+    space: DesignSpace,
+    scheduler: str = "local",
+    jobs: int = 1,
+    shard_choices: int = SHARD_CHOICES,
+    progress: Callable[[int, int], object] | None = None,
+) -> Census:
+    """Count the designs of ``space`` by components exactly, in shards (see the module docstring).
+
+    ``progress(shards done, shards)`` is called as shards finish.
+    """
+    all_terms = terms(space)
+    kinds = value_kinds(space).tolist()
+    items = []
+    for g, t in enumerate(all_terms):
+        size = t.size
+        items += [(g, a, min(size, a + shard_choices)) for a in range(0, size, shard_choices)]
+    totals: list[dict[int, int]] = [{} for _ in all_terms]
+    done = 0
+    for pos, hist in run_tasks(shard_term, (space, all_terms), items, scheduler, jobs, name="lkspace-census"):
+        g = items[pos][0]
+        weights = cell_weights(len(all_terms[g].n_choices), kinds)
+        for comp, cell in zip(*np.nonzero(hist), strict=True):
+            totals[g][int(comp)] = totals[g].get(int(comp), 0) + int(hist[comp, cell]) * weights[cell]
+        done += 1
+        if progress is not None:
+            progress(done, len(items))
+    by: dict[int, int] = {}
+    for part in totals:
+        for comp, n in part.items():
+            by[comp] = by.get(comp, 0) + n
+    n_g = space.n_actions
+    for n in by.values():
+        if n % n_g:
+            raise ArithmeticError(f"census of {space.scaffold.name}: {n} is not divisible by {n_g}")  # a bug if so
+    result = {c: n // n_g for c, n in sorted(by.items()) if n}
+    return Census(result, dict(sorted(totals[0].items())), space.group_order, space.n_classes, len(items))
+
+
+def census_payload(space: DesignSpace, result: Census) -> dict[str, Any]:
+    """JSON fields of a census (``by_components`` keyed by strings)."""
+    return {
+        "designs": result.designs,
+        "by_components": {str(k): v for k, v in result.by_components.items()},
+        "residue_vectors": result.residue_vectors,
+        "shards": result.shards,
+    }

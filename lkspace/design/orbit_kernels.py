@@ -1,0 +1,130 @@
+"""Compiled kernels over residue classes and the group: orbit representatives, stabilizers, counts.
+
+* :func:`orbit_minima`: whether each class code is the smallest of its orbit, and how many
+  group actions fix it (the representatives of :func:`lkspace.design.space.class_orbits`);
+* :func:`stabilizer_ids`: the actions fixing each representative;
+* :func:`burnside_classes`: designs per class, Burnside's lemma over its stabilizer.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..kernels import kernel
+
+
+@kernel
+def burnside_classes(
+    indices: np.ndarray,
+    n_opts: np.ndarray,
+    has_zero: np.ndarray,
+    stab_ptr: np.ndarray,
+    stab_ids: np.ndarray,
+    cyc_ptr: np.ndarray,
+    cyc_head: np.ndarray,
+    cyc_even: np.ndarray,
+) -> np.ndarray:
+    """(n_c,) int64: designs in each class ``indices (n_c, n_edges)`` (Burnside over its stabilizer).
+
+    ``fix(h)`` is the product over the cycles of ``h`` of the class's label count on the
+    cycle's first edge (signs multiply to +1) or ``has_zero`` there (to -1); the caller
+    makes sure the sums fit in int64.
+    """
+    n_c = indices.shape[0]
+    out = np.zeros(n_c, np.int64)
+    for c in range(n_c):
+        total = 0
+        for p in range(stab_ptr[c], stab_ptr[c + 1]):
+            h = stab_ids[p]
+            f = 1
+            for q in range(cyc_ptr[h], cyc_ptr[h + 1]):
+                e = cyc_head[q]
+                f *= n_opts[e, indices[c, e]] if cyc_even[q] else has_zero[e, indices[c, e]]
+                if f == 0:
+                    break
+            total += f
+        out[c] = total // (stab_ptr[c + 1] - stab_ptr[c])
+    return out
+
+
+@kernel
+def orbit_minima(
+    first: int,
+    stop: int,
+    n_res: np.ndarray,
+    values: np.ndarray,
+    lookup: np.ndarray,
+    moduli: np.ndarray,
+    perms: np.ndarray,
+    signs: np.ndarray,
+    is_rep: np.ndarray,
+    n_fix: np.ndarray,
+) -> None:
+    """For class codes ``first..stop``: whether each is its orbit's smallest code, and how many actions fix it.
+
+    Codes are mixed radix over the edges' residue indices (edge 0 most significant); the
+    image of a class under action ``(perm, sign)`` puts residue ``sign * r`` of edge ``j``
+    on edge ``perm[j]``.
+    """
+    n_e = len(n_res)
+    n_g = len(signs)
+    digits = np.zeros(n_e, np.int64)
+    img = np.zeros(n_e, np.int64)
+    rest = first
+    for j in range(n_e - 1, -1, -1):
+        digits[j] = rest % n_res[j]
+        rest //= n_res[j]
+    for i in range(stop - first):
+        code = first + i
+        rep = True
+        fix = 0
+        for g in range(n_g):
+            s = signs[g]
+            for j in range(n_e):
+                t = perms[g, j]
+                img[t] = lookup[t, (s * values[j, digits[j]]) % moduli[t]]
+            other = 0
+            for j in range(n_e):
+                other = other * n_res[j] + img[j]
+            if other < code:
+                rep = False
+                break
+            if other == code:
+                fix += 1
+        is_rep[i] = rep
+        n_fix[i] = fix
+        j = n_e - 1
+        while j >= 0:
+            digits[j] += 1
+            if digits[j] < n_res[j]:
+                break
+            digits[j] = 0
+            j -= 1
+
+
+@kernel
+def stabilizer_ids(
+    indices: np.ndarray,
+    values: np.ndarray,
+    lookup: np.ndarray,
+    moduli: np.ndarray,
+    perms: np.ndarray,
+    signs: np.ndarray,
+    ptr: np.ndarray,
+    out: np.ndarray,
+) -> None:
+    """Write the actions fixing each class ``indices (n_c, n_edges)``, ascending, to ``out[ptr[c]:ptr[c+1]]``."""
+    n_c, n_e = indices.shape
+    for c in range(n_c):
+        m = ptr[c]
+        for g in range(len(signs)):
+            s = signs[g]
+            fixed = True
+            for j in range(n_e):
+                t = perms[g, j]
+                if lookup[t, (s * values[j, indices[c, j]]) % moduli[t]] != indices[c, t]:
+                    fixed = False
+                    break
+            if fixed:
+                out[m] = g
+                m += 1

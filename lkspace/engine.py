@@ -1,0 +1,185 @@
+"""Where the shards of a big run execute: ``--scheduler local``, ``dask`` or ``tcp://HOST:PORT``.
+
+``local`` (the default) runs shards in this process (``jobs`` = 1) or in a pool of
+``jobs`` worker processes (:mod:`lkspace.workers`).  ``dask`` starts a
+``distributed.LocalCluster`` of ``jobs`` single-threaded worker processes; ``tcp://...``
+connects to a running Dask scheduler (a cluster started by ``dask-jobqueue``, Kubernetes
+or ``dask scheduler`` / ``dask worker`` by hand).  Left unset, the scheduler is read from
+the environment variable ``DASK_SCHEDULER_ADDRESS`` when it is set, else ``local``.
+
+Under Dask every shard is one task; a task whose worker dies is run again on another
+worker (``distributed``'s own retry of lost tasks, up to :data:`ALLOWED_FAILURES` worker
+deaths per task), so a lost worker costs only its shard.  Dask is imported only here and
+only when a Dask scheduler is asked for (the extra ``lkspace[dask]``).
+
+This module imports nothing of lkspace but :mod:`lkspace.errors` and :mod:`lkspace.workers`.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import sys
+from collections.abc import Callable, Iterator, Sequence
+from typing import Any
+
+from .errors import UsageError, require
+from .workers import context, ignore_interrupts
+
+SCHEDULERS = ("local", "dask")
+"""Named schedulers; anything else must be a ``tcp://HOST:PORT`` (or ``tls://``) address."""
+
+ENV_ADDRESS = "DASK_SCHEDULER_ADDRESS"
+ALLOWED_FAILURES = 3
+"""Worker deaths a Dask task survives before the run fails (``distributed.scheduler.allowed-failures``)."""
+
+
+def resolve_scheduler(spec: str | None) -> str:
+    """Return the scheduler to use: ``spec``, else ``$DASK_SCHEDULER_ADDRESS``, else ``"local"``.
+
+    Examples
+    --------
+    >>> resolve_scheduler("local"), resolve_scheduler("tcp://10.0.0.5:8786")
+    ('local', 'tcp://10.0.0.5:8786')
+    """
+    text = (spec if spec is not None else os.environ.get(ENV_ADDRESS, "") or "local").strip()
+    if text in SCHEDULERS or text.startswith(("tcp://", "tls://", "ucx://", "inproc://")):
+        return text
+    raise UsageError(f"--scheduler {text!r}: use local, dask or a scheduler address like tcp://HOST:8786")
+
+
+def is_dask(scheduler: str) -> bool:
+    """Whether ``scheduler`` (resolved) runs shards on Dask."""
+    return scheduler != "local"
+
+
+def check_scheduler(scheduler: str) -> None:
+    """Before any work: raise :class:`~lkspace.errors.MissingDependencyError` if ``scheduler`` needs Dask and it is missing."""
+    if is_dask(scheduler):
+        import_distributed(f"--scheduler {scheduler}")
+
+
+def import_distributed(purpose: str) -> Any:
+    """Import ``distributed`` (extra ``lkspace[dask]``) although SnapPy's module is also named ``snappy``.
+
+    ``distributed`` probes ``import snappy`` for python-snappy compression and fails on
+    SnapPy (extra ``lkspace[knots]``), which has no ``compress``; so ``snappy`` is hidden
+    while ``distributed`` is imported, then put back (SnapPy stays importable).
+    """
+    if sys.modules.get("distributed") is not None:
+        return sys.modules["distributed"]
+    require("dask", "dask", purpose)
+    saved = sys.modules.get("snappy")
+    if saved is None or not hasattr(saved, "compress"):
+        sys.modules["snappy"] = None  # type: ignore[assignment]  # makes `import snappy` raise ImportError
+    try:
+        return require("distributed", "dask", purpose)
+    finally:
+        if saved is None:
+            sys.modules.pop("snappy", None)
+        else:
+            sys.modules["snappy"] = saved
+
+
+@contextlib.contextmanager
+def dask_client(scheduler: str, jobs: int) -> Iterator[Any]:
+    """Yield a ``distributed.Client`` of a new LocalCluster (``"dask"``, ``jobs`` workers) or of a running scheduler.
+
+    The LocalCluster's worker processes are forked from this process once ``distributed``
+    is imported (:func:`import_distributed`; a fresh interpreter would trip on SnapPy).
+    """
+    distributed = import_distributed(f"--scheduler {scheduler}")
+    import dask
+
+    settings = {
+        "distributed.scheduler.allowed-failures": ALLOWED_FAILURES,
+        "distributed.worker.multiprocessing-method": "fork",
+    }
+    with dask.config.set(settings):
+        if scheduler == "dask":
+            cluster = distributed.LocalCluster(
+                n_workers=jobs, threads_per_worker=1, processes=True, dashboard_address=None
+            )
+            try:
+                with distributed.Client(cluster) as client:
+                    yield client
+            finally:
+                cluster.close()
+        else:
+            try:
+                client = distributed.Client(scheduler, timeout="10s")
+            except OSError as exc:
+                raise UsageError(f"--scheduler {scheduler}: no Dask scheduler answers there ({exc})") from None
+            with client:
+                yield client
+
+
+def run_tasks(
+    fn: Callable[..., Any],
+    shared: Any,
+    items: Sequence[Any],
+    scheduler: str,
+    jobs: int,
+    name: str = "lkspace",
+    setup: Callable[[], object] | None = None,
+) -> Iterator[tuple[int, Any]]:
+    """Run ``fn(shared, item)`` for every item; yield ``(position, result)`` as each finishes.
+
+    ``fn`` must be a top-level function (it is pickled).  ``shared`` goes to each worker
+    once.  ``setup()`` runs first on every Dask worker (joining ones too) in its main
+    thread, where libraries that install signal handlers must be imported.  Interrupting
+    the iteration (Ctrl-C) stops the workers: the pool is terminated, or the Dask futures
+    are cancelled.
+    """
+    if not items:
+        return
+    if not is_dask(scheduler):
+        if jobs <= 1 or len(items) <= 1:
+            for i, item in enumerate(items):
+                yield i, fn(shared, item)
+            return
+        pool = context().Pool(min(jobs, len(items)), initializer=_init_local, initargs=(fn, shared))
+        try:
+            yield from pool.imap_unordered(_run_local, list(enumerate(items)))
+            pool.close()
+        except BaseException:
+            pool.terminate()
+            raise
+        finally:
+            pool.join()
+        return
+    distributed = import_distributed(f"--scheduler {scheduler}")
+    with dask_client(scheduler, jobs) as client:
+        if setup is not None:
+            client.register_plugin(_setup_plugin(distributed, setup), name=f"{name}-setup")
+        [shared_future] = client.scatter([shared], broadcast=True, hash=False)
+        futures = {
+            client.submit(fn, shared_future, item, key=f"{name}-{i}-{os.getpid()}", pure=False): i
+            for i, item in enumerate(items)
+        }
+        try:
+            for future in distributed.as_completed(futures):
+                yield futures[future], future.result()
+        finally:
+            client.cancel(list(futures))
+
+
+def _setup_plugin(distributed: Any, setup: Callable[[], object]) -> Any:
+    class Setup(distributed.WorkerPlugin):
+        def setup(self, worker: Any) -> None:
+            setup()
+
+    return Setup()
+
+
+_LOCAL: dict[str, Any] = {}
+
+
+def _init_local(fn: Callable[..., Any], shared: Any) -> None:
+    ignore_interrupts()
+    _LOCAL.update(fn=fn, shared=shared)
+
+
+def _run_local(job: tuple[int, Any]) -> tuple[int, Any]:
+    i, item = job
+    return i, _LOCAL["fn"](_LOCAL["shared"], item)
