@@ -18,7 +18,7 @@ def main() -> None:
     import dask
     from distributed.cli.dask_worker import main as dask_worker
 
-    dask.config.set({"distributed.worker.multiprocessing-method": "fork"})
+    dask.config.set({"distributed.worker.multiprocessing-method": "fork", "distributed.worker.daemon": False})
     dask_worker()
 
 

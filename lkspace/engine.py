@@ -94,6 +94,7 @@ def dask_client(scheduler: str, jobs: int) -> Iterator[Any]:
     settings = {
         "distributed.scheduler.allowed-failures": ALLOWED_FAILURES,
         "distributed.worker.multiprocessing-method": "fork",
+        "distributed.worker.daemon": False,  # a task may start processes (identification does)
     }
     with dask.config.set(settings):
         if scheduler == "dask":

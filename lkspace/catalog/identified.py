@@ -16,6 +16,7 @@ The ``lkspace`` metadata gains ``"identified": true``.
 from __future__ import annotations
 
 import json
+import multiprocessing
 import os
 from collections.abc import Iterable
 from typing import TYPE_CHECKING, Any
@@ -24,7 +25,7 @@ import numpy as np
 import pyarrow as pa
 import pyarrow.parquet as pq
 
-from ..errors import CatalogError
+from ..errors import CatalogError, UsageError
 from ..io.atomic import atomic_path
 from ..model.scaffold import Scaffold
 from ..progress import Step, task
@@ -95,10 +96,19 @@ def load_knots() -> None:
 
 
 def identify_part(shared: tuple[Scaffold, int], file: str) -> dict[str, Any]:
-    """Dask task: identify the rows of one catalog file (one process); return its summary."""
+    """Dask task: identify the rows of one catalog file in one child process; return its summary.
+
+    The child runs the identification in its main thread (a Dask task runs in a worker
+    thread, where SnapPy's PARI cannot decide between table entries).
+    """
+    if multiprocessing.current_process().daemon:
+        raise UsageError(
+            "identifying on Dask needs workers that may start processes: start them with"
+            " 'python -m lkspace.dask_worker' (or set distributed.worker.daemon: false)"
+        )
     scaffold, seed = shared
     with task("identifying designs", None) as step:
-        return _summary(_identify_file(file, scaffold, 1, seed, step))
+        return _summary(_identify_file(file, scaffold, 1, seed, step, isolate=True))
 
 
 def _summary(found: pd.DataFrame | None) -> dict[str, Any]:
@@ -115,7 +125,9 @@ def _add(totals: dict[str, Any], summary: dict[str, Any]) -> None:
         totals["names"][name] = totals["names"].get(name, 0) + n
 
 
-def _identify_file(file: str, scaffold: Scaffold, processes: int, seed: int, step: Step) -> pd.DataFrame | None:
+def _identify_file(
+    file: str, scaffold: Scaffold, processes: int, seed: int, step: Step, isolate: bool = False
+) -> pd.DataFrame | None:
     """Identify the rows of one catalog file and rewrite it with the columns; ``None`` if it already has them."""
     from ..knots.recognition import identify_batch
 
@@ -131,7 +143,7 @@ def _identify_file(file: str, scaffold: Scaffold, processes: int, seed: int, ste
     pieces = []
     for start in range(0, len(labels), chunk):
         piece = labels[start : start + chunk]
-        pieces.append(identify_batch(scaffold, piece, processes=processes, seed=seed, progress=False))
+        pieces.append(identify_batch(scaffold, piece, processes=processes, seed=seed, progress=False, isolate=isolate))
         step.advance(len(piece))
     import pandas as pd
 

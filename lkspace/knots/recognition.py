@@ -289,6 +289,7 @@ def identify_batch(
     progress: bool | None = None,
     *,
     time_limit: float | None = TIME_LIMIT,
+    isolate: bool = False,
 ) -> pd.DataFrame:
     """Identify many designs of one scaffold: a ``pandas.DataFrame``, one row per design.
 
@@ -308,6 +309,10 @@ def identify_batch(
     time_limit : float or None
         Seconds per design, as for :func:`identify` (default 60); a design that runs out
         gets the status ``unknown: time limit ...`` and the same text in ``error``.
+    isolate : bool
+        Identify in worker processes even when ``processes`` is 1.  For callers that run
+        in a thread other than the main one (a Dask task): SnapPy's PARI works only in a
+        process's main thread, and a thread would leave exteriors undecided.
 
     Returns
     -------
@@ -330,8 +335,8 @@ def identify_batch(
     _init_worker(scaffold, seed, time_limit)
     chunk = max(1, min(64, len(labels_2d) // (4 * max(processes, 1)) or 1))
     rows_iter: Iterator[dict[str, Any]]
-    if processes > 1 and len(labels_2d) > 1:
-        pool = context().Pool(processes, initializer=_init_worker, initargs=(scaffold, seed, time_limit, True))
+    if (processes > 1 or isolate) and len(labels_2d) > 0:
+        pool = context().Pool(max(processes, 1), initializer=_init_worker, initargs=(scaffold, seed, time_limit, True))
         rows_iter = pool.imap(_identify_row, labels_2d, chunksize=chunk)
     else:
         pool = None
