@@ -43,17 +43,24 @@ def reference(tmp_path_factory):
 
 
 def start(out):
+    """Start the run and return once it is writing (its build folder exists), so that a slow
+    start-up on a loaded machine does not turn a signal meant for the run into one for start-up."""
     env = {**os.environ, "LKSPACE_PROGRESS": "0"}
-    return subprocess.Popen(
+    proc = subprocess.Popen(
         [*lkspace_command(), *SPACE, "--jobs", "2", "-o", str(out)], stderr=subprocess.PIPE, text=True, env=env
     )
+    build = out.parent / f".{out.name}.lkspace-build"
+    deadline = time.monotonic() + 60
+    while not build.exists() and proc.poll() is None and time.monotonic() < deadline:
+        time.sleep(0.02)
+    return proc
 
 
 @pytest.mark.parametrize("signum", [signal.SIGINT, signal.SIGTERM, signal.SIGKILL])
 def test_stop_at_random_points_then_resume(tmp_path, capsys, reference, signum):
     rng = random.Random(int(signum))
     out = tmp_path / "cube.parquet"
-    for delay in sorted(rng.uniform(1.0, 4.0) for _ in range(2)):
+    for delay in sorted(rng.uniform(0.0, 3.0) for _ in range(2)):  # seconds into the writing
         shutil.rmtree(out, ignore_errors=True)
         proc = start(out)
         time.sleep(delay)
