@@ -38,7 +38,7 @@ from ..progress import Step, task
 from ..strands.tracing import trace
 from ..workers import context, ignore_interrupts
 from .budget import INLINE_CROSSINGS, MAX_CROSSINGS, TIME_LIMIT, TimeLimitReached, run_in_time, twist_crossings
-from .diagram import Diagram, DiagramError, project
+from .diagram import Diagram, project, project_generic
 from .naming import name_pd
 from .tables import knot_modules, tables
 
@@ -195,7 +195,7 @@ def identify(
         step.note("realizing")
         real = realize(scaffold, tr.labels, nulls, params, result=tr)
         step.note("diagram")
-        diagram = _diagram(real.curves, seed)
+        diagram = project_generic(real.curves, seed)
         head = {
             "components": len(real.curves),
             "linking_matrix": diagram.linking_matrix().tolist(),
@@ -216,17 +216,6 @@ def identify(
     out["min_distance"] = real.min_distance
     main = {k: out.pop(k, None) for k in ("components", "name", "linking_matrix", "mirror", "split", "crossings")}
     return Identification(**main, details=out, status=status)
-
-
-def _diagram(curves: Sequence[np.ndarray], seed: int) -> Diagram:
-    """Project ``curves``; a rare non-generic projection is turned again (three tries)."""
-    for attempt in range(3):
-        try:
-            return project(curves, seed=seed + attempt)
-        except DiagramError:
-            if attempt == 2:
-                raise
-    raise AssertionError("unreachable")  # pragma: no cover
 
 
 def _name_in_time(diagram: Diagram, time_limit: float | None, step: Step) -> dict[str, Any]:

@@ -21,9 +21,9 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import DiagramError, LkspaceError
+from ..errors import LkspaceError
 from ..geometry.realization import realize
-from ..knots.diagram import Diagram, project
+from ..knots.diagram import Diagram, project_generic
 from ..knots.naming import one_based
 from ..knots.recognition import identify
 from ..knots.tables import JONES_POINT, knot_modules, laurent_value
@@ -75,17 +75,6 @@ class Goal:
         return f"linking matrix {np.asarray(self.linking).tolist()}"
 
 
-def projection(curves: list[np.ndarray], seed: int) -> Diagram:
-    """Project ``curves``; a rare non-generic projection is turned again (three tries)."""
-    for attempt in range(3):
-        try:
-            return project(curves, seed=seed + attempt)
-        except DiagramError:
-            if attempt == 2:
-                raise
-    raise AssertionError("unreachable")  # pragma: no cover
-
-
 def _jones_value(diagram: Diagram) -> tuple[int, Any] | None:
     """``(simplified crossings, Jones at 2/3)``, or ``None`` when the diagram is too big for the filter."""
     if diagram.n_crossings > SIMPLIFY_MAX_CROSSINGS:
@@ -117,7 +106,7 @@ def screen(
     """
     try:
         real = realize(scaffold, labels)
-        diagram = projection(real.curves, seed)
+        diagram = project_generic(real.curves, seed)
     except LkspaceError as exc:
         return {"verdict": "undetermined", "reason": f"not realized: {exc}"}
     lm = diagram.linking_matrix()
