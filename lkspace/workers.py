@@ -11,14 +11,24 @@ from __future__ import annotations
 
 import contextlib
 import multiprocessing as mp
+import os
 import signal
 import threading
 from collections.abc import Iterator
 
+IMPORTED_IN = os.getpid()
+"""The process that imported this module; a fork of it (a Dask worker of our LocalCluster) has another pid."""
+
 
 def context() -> mp.context.BaseContext:
-    """Return the multiprocessing context of lkspace's workers: ``forkserver`` where available, else ``spawn``."""
-    return mp.get_context("forkserver" if "forkserver" in mp.get_all_start_methods() else "spawn")
+    """Return the multiprocessing context of lkspace's workers: ``forkserver`` where available, else ``spawn``.
+
+    A process forked from one that had imported lkspace (the workers of the LocalCluster
+    that ``--scheduler dask`` starts) uses ``spawn``: the fork server it would inherit is
+    its parent's, which it can neither wait for nor reach.
+    """
+    forked = os.getpid() != IMPORTED_IN
+    return mp.get_context("forkserver" if "forkserver" in mp.get_all_start_methods() and not forked else "spawn")
 
 
 def ignore_interrupts() -> None:
