@@ -61,3 +61,19 @@ def test_identify_single_file_keeps_metadata(tmp_path, capsys):
 def test_identify_needs_an_output(capsys):
     assert main(["enumerate", "dihedron:3", "--identify"]) == 2
     assert "give -o" in capsys.readouterr().err
+
+
+def test_identify_status_says_why_a_row_is_unnamed(tmp_path):
+    """Every identified row carries a status: ``identified`` for a named row or a split link
+    whose pieces are named, else why not (12-crossing links of the tetrahedron's -2,2 designs
+    past every table)."""
+    statuses = []
+    for labels in ("-1..1", "-2,2"):
+        out = tmp_path / f"t{labels}.parquet"
+        assert main(["enumerate", "tetrahedron", f"--labels={labels}", "-o", str(out), "--identify"]) == 0
+        statuses.append(pd.read_parquet(out))
+    df = pd.concat(statuses, ignore_index=True)
+    named, split = df["knot_name"].notna(), df["split"].fillna(False).astype(bool)
+    assert split.any() and (~named & ~split).any()
+    assert (df.loc[named | split, "identify_status"] == "identified").all()
+    assert df.loc[~named & ~split, "identify_status"].str.startswith("unknown: not in the tables").all()

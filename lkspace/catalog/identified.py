@@ -9,7 +9,9 @@ these extra columns:
 ``knot_name`` (string, null when unknown, split or open), ``crossings`` (int32, the
 simplified diagram's), ``mirror`` (bool, null when the table does not tell),
 ``split`` (bool), ``jones`` (string), ``linking_matrix`` (JSON text) and
-``identify_error`` (string, null unless the design could not be identified).
+``identify_error`` (string, null unless the design could not be identified) and
+``identify_status`` (string: ``identified``, or ``unknown: <why>`` — for example two
+table entries that the checks could not tell apart).
 The ``lkspace`` metadata gains ``"identified": true``.
 """
 
@@ -46,6 +48,7 @@ COLUMNS = {
     "jones": pa.string(),
     "linking_matrix": pa.string(),
     "identify_error": pa.string(),
+    "identify_status": pa.string(),
 }
 
 
@@ -148,7 +151,7 @@ def _identify_file(
     import pandas as pd
 
     found = pd.concat(pieces, ignore_index=True) if pieces else identify_batch(scaffold, labels, progress=False)
-    found = found.rename(columns={"error": "identify_error"})
+    found = found.rename(columns={"error": "identify_error", "status": "identify_status"})
     for name, type_ in COLUMNS.items():
         column = _column(found[name].tolist() if name in found else [None] * table.num_rows, type_)
         if name in table.column_names:
