@@ -18,22 +18,11 @@ import numpy as np
 import pytest
 
 import lkspace
-from lkspace.cli import main
+
+from .cli_calls import one_line_error, run
 
 BIG_KNOT = "2,2,2,2,2,1,2,2,1,2,1,2,1,2,2,1,2,1,2,1,2,2,1,1,2,1,1,2,2,2,1,2,2,1,2,2"
 """A one-component design of the truncated octahedron: a 189-crossing projection, 81 after simplification."""
-
-
-def run(capsys, *args):
-    code = main(list(args))
-    out, err = capsys.readouterr()
-    return code, out, err
-
-
-def one_line_error(err: str, *words: str) -> None:
-    assert err.count("\n") == 1 and err.startswith("lkspace: error: "), err
-    for word in words:
-        assert word in err, err
 
 
 def lkspace_command() -> list[str]:

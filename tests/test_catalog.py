@@ -14,9 +14,10 @@ from lkspace.catalog.plan import split_classes
 from lkspace.catalog.reader import read_catalog, read_metadata
 from lkspace.catalog.schema import FORMAT_VERSION
 from lkspace.catalog.shards import write_catalog
-from lkspace.cli import main
 from lkspace.design.space import make_space
 from lkspace.errors import CatalogError, ExportError
+
+from .cli_calls import run
 
 
 def test_single_file_catalog(tmp_path):
@@ -89,10 +90,6 @@ def test_not_a_catalog(tmp_path):
 
 
 # ---- the command line ----------------------------------------------------------------------
-def run(capsys, *args):
-    code = main(list(args))
-    out, err = capsys.readouterr()
-    return code, out, err
 
 
 def test_cli_default_scaffold_json(capsys):

@@ -16,13 +16,9 @@ import lkspace.catalog.jobs as jobs
 import lkspace.catalog.shards as shards
 from lkspace.cli import main
 
+from .cli_calls import run
+
 CUBE = ["enumerate", "cube", "--labels", "-1..1", "--shards", "3"]
-
-
-def run(capsys, *args):
-    code = main([str(a) for a in args])
-    out, err = capsys.readouterr()
-    return code, out, err
 
 
 def interrupt_part(monkeypatch, n):

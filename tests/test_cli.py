@@ -10,11 +10,7 @@ import pytest
 
 from lkspace.cli import main
 
-
-def run(capsys, *args):
-    code = main(list(args))
-    out, err = capsys.readouterr()
-    return code, out, err
+from .cli_calls import run
 
 
 def run_json(capsys, *args):

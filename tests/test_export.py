@@ -17,6 +17,8 @@ from lkspace.formats.registry import export
 from lkspace.formats.tubes import tube
 from lkspace.geometry.realization import realize
 
+from .cli_calls import one_line_error, run
+
 trimesh = pytest.importorskip("trimesh")
 
 
@@ -112,12 +114,6 @@ def test_failed_write_leaves_the_old_file(tmp_path, borromean, monkeypatch):
     with pytest.raises(RuntimeError):
         export(borromean, path, tubes=True)
     assert path.read_text() == "old" and os.listdir(tmp_path) == ["b.obj"]
-
-
-def run(capsys, *args):
-    code = main(list(args))
-    out, err = capsys.readouterr()
-    return code, out, err
 
 
 def test_cli_export_json(tmp_path, capsys):
@@ -217,12 +213,6 @@ def test_cli_export_periodic_block(tmp_path, capsys):
 
 
 # --- bounds, numbers and output paths (the budgets issue) ----------------------------------
-
-
-def one_line_error(err: str, *words: str) -> None:
-    assert err.count("\n") == 1 and err.startswith("lkspace: error: "), err
-    for word in words:
-        assert word in err, err
 
 
 @pytest.mark.parametrize(

@@ -11,26 +11,15 @@ import zipfile
 import numpy as np
 import pytest
 
-from lkspace.cli import main
 from lkspace.errors import GeometryError
 from lkspace.formats.registry import export
 from lkspace.geometry.fabrication import printable
 from lkspace.geometry.realization import realize
 
+from .cli_calls import one_line_error, run
+
 trimesh = pytest.importorskip("trimesh")
 manifold3d = pytest.importorskip("manifold3d")
-
-
-def run(capsys, *args):
-    code = main(list(args))
-    out, err = capsys.readouterr()
-    return code, out, err
-
-
-def one_line_error(err: str, *words: str) -> None:
-    assert err.count("\n") == 1 and err.startswith("lkspace: error: "), err
-    for word in words:
-        assert word in err, err
 
 
 def bodies_of(path) -> list:

@@ -10,23 +10,12 @@ import numpy as np
 import pytest
 
 import lkspace
-from lkspace.cli import main
 from lkspace.formats.registry import export
 from lkspace.geometry.realization import realize
 
+from .cli_calls import one_line_error, run
+
 plt_image = pytest.importorskip("matplotlib.image")
-
-
-def run(capsys, *args):
-    code = main(list(args))
-    out, err = capsys.readouterr()
-    return code, out, err
-
-
-def one_line_error(err: str, *words: str) -> None:
-    assert err.count("\n") == 1 and err.startswith("lkspace: error: "), err
-    for word in words:
-        assert word in err, err
 
 
 def test_rendering_leaves_the_callers_backend_and_pyplot_alone():

@@ -10,7 +10,6 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from lkspace import identify, load
-from lkspace.cli import main
 
 pytest.importorskip("spherogram")
 pytest.importorskip("snappy")
@@ -21,11 +20,7 @@ from lkspace.target.names import parse_type  # noqa: E402
 from lkspace.target.screen import Goal  # noqa: E402
 from lkspace.target.search import solve_target  # noqa: E402
 
-
-def run(capsys, *args):
-    code = main([str(a) for a in args])
-    out, err = capsys.readouterr()
-    return code, out, err
+from .cli_calls import run
 
 
 def solve_type(mesh, name, labels="-1..1", **kw):

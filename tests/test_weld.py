@@ -9,9 +9,10 @@ import numpy as np
 import pytest
 
 import lkspace
-from lkspace.cli import main
 from lkspace.errors import ScaffoldError
 from lkspace.io.weld import DEFAULT_WELD, default_tolerance, weld
+
+from .cli_calls import run
 
 
 def split_obj(scaffold: lkspace.Scaffold, jitter: float = 0.0, seed: int = 0) -> str:
@@ -25,12 +26,6 @@ def split_obj(scaffold: lkspace.Scaffold, jitter: float = 0.0, seed: int = 0) ->
         lines.append("f " + " ".join(str(n + k + 1) for k in range(len(face))))
         n += len(face)
     return "\n".join(lines) + "\n"
-
-
-def run(capsys, *args):
-    code = main(list(args))
-    out, err = capsys.readouterr()
-    return code, out, err
 
 
 def test_weld_merges_copies_in_first_copy_order():
