@@ -35,10 +35,11 @@ from functools import cached_property
 
 import numpy as np
 
-from ..errors import LabelError, ScaffoldError
+from ..errors import LabelError, ScaffoldError, TooLargeError
 from ..model.scaffold import Scaffold
-from .finite import finite_lifts
-from .motions import candidate_vertex_perms, edge_permutation, periodic_motions
+from .finite import MAX_GROUP_ENTRIES, finite_lifts
+from .motions import _tolerance
+from .periodic import periodic_symmetry
 
 #: Modes of ``--symmetry``.
 MODES = ("rotations", "isometries", "none")
@@ -179,18 +180,21 @@ def finite_tables(scaffold: Scaffold) -> Tables4:
 
 
 def periodic_tables(scaffold: Scaffold) -> Tables4:
-    """``(sigmas, Qs, taus, edge_perms)`` of a periodic scaffold, the identity first."""
-    rows = []
-    seen = set()
-    for sigma, q, tau, lattice_part in periodic_motions(scaffold, candidate_vertex_perms(scaffold)):
-        key = (sigma.tobytes(), np.round(q, 6).tobytes())
-        if key in seen:
-            continue
-        perm = edge_permutation(scaffold, sigma, lattice_part)
-        if perm is None:
-            continue
-        seen.add(key)
-        rows.append((sigma, q, tau, perm))
-    rows.sort(key=lambda r: not (np.allclose(r[1], np.eye(3)) and np.array_equal(r[0], np.arange(len(r[0])))))
-    sig, qs, taus, perms = zip(*rows, strict=True)
-    return np.array(sig, np.int64), np.array(qs, np.float64), np.array(taus, np.float64), np.array(perms, np.int64)
+    """``(sigmas, Qs, taus, edge_perms)`` of a periodic scaffold, the identity first.
+
+    Raises :class:`~lkspace.errors.TooLargeError` when the tables would pass
+    :data:`~lkspace.symmetry.finite.MAX_GROUP_ENTRIES` entries.
+    """
+    found = periodic_symmetry(scaffold, _tolerance(scaffold))
+    size = scaffold.n_vertices + scaffold.n_edges
+    if found.order * size > MAX_GROUP_ENTRIES:
+        raise TooLargeError(
+            f"{scaffold.name}: its symmetry group has {found.order} motions on {size} vertices and edges: "
+            f"its tables would pass {MAX_GROUP_ENTRIES} entries; use --symmetry none"
+        )
+    motions = found.elements()
+    sigmas = np.array([m.sigma for m in motions], np.int64)
+    qs = np.array([m.q for m in motions], np.float64)
+    taus = np.array([m.tau for m in motions], np.float64)
+    perms = np.array([m.edge_perm for m in motions], np.int64)
+    return sigmas, qs, taus, perms

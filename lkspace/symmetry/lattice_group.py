@@ -1,0 +1,104 @@
+"""The point group of a lattice: every orthogonal ``Q`` mapping the lattice onto itself.
+
+``Q`` maps the lattice ``L`` (basis rows ``B``, ``dim`` of them) onto itself when
+``B Q^T = N B`` for an integer matrix ``N`` (row ``i`` of ``N``: the lattice coordinates
+of ``Q b_i``).  ``Q`` preserves lengths, so ``Q b_i`` is a lattice vector as long as
+``b_i``: the candidates for the images of a basis are the lattice vectors of those
+lengths, found exactly (no bounded grid of ``N``) by enumerating the coordinates allowed
+by the dual basis, ``|c_i| <= r * |d_i|`` for a vector of length ``r``.  The basis is
+LLL-reduced first (a unimodular change of basis ``U``), which keeps that box small for
+any supercell or skewed basis; ``N`` is reported in the caller's basis,
+``N = U^-1 N_red U``.  A choice of images is kept when its Gram matrix equals the
+basis's.
+
+For a 2D lattice in 3D space each in-plane map gives two motions of space: ``Q`` keeps
+or reverses the plane's normal (turning the plane over is a rotation of space).
+"""
+
+from __future__ import annotations
+
+import itertools
+
+import numpy as np
+
+PointOperation = tuple[np.ndarray, np.ndarray, int]
+"""``(Q (3, 3) float64, N (dim, dim) int64, s)``: ``B Q^T = N B``, ``s = +-1`` the image of a 2D lattice's normal."""
+
+
+def lll_reduce(basis: np.ndarray, delta: float = 0.99) -> tuple[np.ndarray, np.ndarray]:
+    """LLL-reduce the rows of ``basis (dim, 3)``: ``(reduced (dim, 3) float64, U (dim, dim) int64)``, ``reduced = U basis``."""
+    b = np.array(basis, dtype=np.float64)
+    dim = len(b)
+    u = np.eye(dim, dtype=np.int64)
+    k = 1
+    while k < dim:
+        for j in range(k - 1, -1, -1):
+            star, _ = _gram_schmidt(b)
+            mu = round(float(b[k] @ star[j] / (star[j] @ star[j])))
+            if mu:
+                b[k] -= mu * b[j]
+                u[k] -= mu * u[j]
+        star, mus = _gram_schmidt(b)
+        if star[k] @ star[k] >= (delta - mus[k, k - 1] ** 2) * (star[k - 1] @ star[k - 1]):
+            k += 1
+        else:
+            b[[k, k - 1]] = b[[k - 1, k]]
+            u[[k, k - 1]] = u[[k - 1, k]]
+            k = max(k - 1, 1)
+    return b, u
+
+
+def _gram_schmidt(b: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Gram–Schmidt vectors ``(dim, 3)`` and coefficients ``mu (dim, dim)`` of the rows of ``b``."""
+    star = np.array(b, dtype=np.float64)
+    mus = np.zeros((len(b), len(b)))
+    for i in range(len(b)):
+        for j in range(i):
+            mus[i, j] = b[i] @ star[j] / (star[j] @ star[j])
+            star[i] -= mus[i, j] * star[j]
+    return star, mus
+
+
+def short_vectors(basis: np.ndarray, radius: float) -> tuple[np.ndarray, np.ndarray]:
+    """Every nonzero lattice vector of length at most ``radius``: ``(coords (m, dim) int64, vectors (m, 3))``."""
+    gram = basis @ basis.T
+    reach = np.floor(radius * np.sqrt(np.diag(np.linalg.inv(gram))) + 1e-9).astype(np.int64)
+    axes = [np.arange(-r, r + 1) for r in reach]
+    coords = np.array(list(itertools.product(*axes)), dtype=np.int64).reshape(-1, len(basis))
+    vectors = coords @ basis
+    keep = (np.einsum("ij,ij->i", vectors, vectors) <= radius**2) & np.any(coords != 0, axis=1)
+    return coords[keep], vectors[keep]
+
+
+def point_group(basis: np.ndarray, tol: float) -> list[PointOperation]:
+    """Every orthogonal ``Q`` with ``basis Q^T = N basis``, ``N`` integer; the identity first.
+
+    ``tol`` bounds the position error of an image vector (lengths and angles must agree
+    to within it); ``Q`` is then the orthogonal matrix nearest to the exact fit.
+    """
+    basis = np.asarray(basis, dtype=np.float64)
+    dim = len(basis)
+    reduced, u = lll_reduce(basis)
+    lengths = np.linalg.norm(reduced, axis=1)
+    coords, vectors = short_vectors(reduced, float(lengths.max()) + 2 * tol)
+    norms = np.linalg.norm(vectors, axis=1)
+    choices = [np.flatnonzero(np.abs(norms - lengths[i]) <= 2 * tol) for i in range(dim)]
+    gram = reduced @ reduced.T
+    bound = 2 * tol * (lengths[:, None] + lengths[None, :])
+    normal = np.cross(reduced[0], reduced[1])
+    normal /= np.linalg.norm(normal)
+    u_inv = np.rint(np.linalg.inv(u)).astype(np.int64)
+    out: list[PointOperation] = []
+    for pick in itertools.product(*choices):
+        images = vectors[list(pick)]
+        if np.any(np.abs(images @ images.T - gram) > bound):
+            continue
+        n_red = coords[list(pick)]
+        n = u_inv @ n_red @ u
+        for s in (1, -1) if dim == 2 else (1,):
+            frame = np.vstack([reduced, normal]) if dim == 2 else reduced
+            target = np.vstack([images, s * normal]) if dim == 2 else images
+            w, _, vt = np.linalg.svd(np.linalg.solve(frame, target))
+            out.append(((w @ vt).T, n, s))
+    out.sort(key=lambda op: not (np.array_equal(op[1], np.eye(dim, dtype=np.int64)) and op[2] == 1))
+    return out

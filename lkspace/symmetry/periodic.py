@@ -1,0 +1,286 @@
+"""Symmetries of a periodic scaffold: affine isometries of the infinite mesh, modulo its lattice.
+
+A symmetry of the quotient is a motion ``x -> Q x + tau`` of space that carries the
+infinite periodic mesh onto itself and the scaffold's lattice ``L`` onto itself; two
+motions differing by a translation of ``L`` are one.  So ``Q`` lies in the point group
+of ``L`` (:mod:`~lkspace.symmetry.lattice_group`: every one, whatever the size of the
+entries of ``N``), and ``tau`` may be any vector: a lattice translation of the original
+cell inside a supercell, a non-lattice translation, a screw or glide part.
+
+Each motion is built directly (no incidence-graph automorphisms):
+
+* a motion maps an *anchor* vertex (from the rarest kind: corner and edge counts) onto a
+  vertex of its kind, which fixes ``tau = p_j - Q p_anchor`` for each candidate ``j``;
+* every vertex is then mapped and matched with a periodic KD-tree on lattice coordinates;
+  a match within the tolerance gives an exact integer key, vertex ``sigma[v]`` plus
+  lattice offset ``offsets[v]`` (``Q p_v + tau = p_sigma[v] + offsets[v] @ B``);
+* the motion is kept when every face, as a cyclic sequence of (vertex, offset) corners up
+  to translation, is again a face, and every edge again an edge.  A corner ``(v, o)`` goes
+  to ``(sigma[v], offsets[v] + o @ N)``.
+
+A few sample vertices reject most candidates before the full check.  The group is
+``T x reps``: the translation subgroup ``T`` (closed from its verified generators by the
+images of the anchor, an integer key per element) and one verified motion per point
+operation that has one.  Its tables are then composed, ``O(order x size)``; the order
+alone costs ``O(size)`` memory.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import cached_property
+
+import numpy as np
+
+from ..model.scaffold import Scaffold, unique_rows
+from .lattice_group import PointOperation, point_group
+
+SAMPLE = 16
+"""Vertices checked on every candidate motion before the full check."""
+
+
+@dataclass(frozen=True)
+class Motion:
+    """One verified symmetry of a periodic scaffold.
+
+    Attributes
+    ----------
+    sigma : (n_vertices,) int64
+        Image vertex of each vertex.
+    offsets : (n_vertices, dim) int64
+        ``Q p_v + tau = p_sigma[v] + offsets[v] @ basis``.
+    q : (3, 3) float64
+    n : (dim, dim) int64
+        ``basis Q^T = n basis``.
+    tau : (3,) float64
+    edge_perm : (n_edges,) int64
+        Image edge of each edge.
+    """
+
+    sigma: np.ndarray
+    offsets: np.ndarray
+    q: np.ndarray
+    n: np.ndarray
+    tau: np.ndarray
+    edge_perm: np.ndarray
+
+    def after(self, other: Motion) -> Motion:
+        """Return the motion ``self o other`` (first ``other``, then ``self``)."""
+        return Motion(
+            sigma=self.sigma[other.sigma],
+            offsets=self.offsets[other.sigma] + other.offsets @ self.n,
+            q=self.q @ other.q,
+            n=other.n @ self.n,
+            tau=self.q @ other.tau + self.tau,
+            edge_perm=self.edge_perm[other.edge_perm],
+        )
+
+
+class PeriodicSearch:
+    """Candidate motions of one periodic scaffold, checked as the module docstring says."""
+
+    def __init__(self, scaffold: Scaffold, tol: float) -> None:
+        from scipy.spatial import cKDTree
+
+        assert scaffold.lattice is not None, "a periodic search needs a lattice"
+        self.scaffold = scaffold
+        self.tol = tol
+        self.basis = scaffold.lattice.basis
+        self.pinv = np.linalg.pinv(self.basis)
+        self.positions = scaffold.vertices
+        self.fractional = self.positions @ self.pinv
+        self.tree = cKDTree(_wrap(self.fractional), boxsize=1.0)
+        kinds = np.column_stack(
+            [
+                np.bincount(scaffold.corners, minlength=scaffold.n_vertices),
+                np.bincount(scaffold.edge_vertices.reshape(-1), minlength=scaffold.n_vertices),
+            ]
+        )
+        _, kind = unique_rows(kinds)
+        counts = np.bincount(kind)
+        self.anchor = int(np.flatnonzero(kind == np.argmin(counts))[0])
+        self.targets = np.flatnonzero(kind == kind[self.anchor])
+        n = scaffold.n_vertices
+        self.sample = np.unique(np.r_[self.anchor, np.linspace(0, n - 1, min(n, SAMPLE)).astype(np.int64)])
+        self.faces = face_keys(scaffold.corner_keys, scaffold.face_starts)
+
+    @cached_property
+    def operations(self) -> list[PointOperation]:
+        """The lattice's point group, the identity first."""
+        return point_group(self.basis, self.tol)
+
+    def match(self, images: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Vertex, lattice offset and ``ok`` of points ``images (..., 3)`` (``ok``: a vertex within ``tol``)."""
+        frac = images @ self.pinv
+        _, sigma = self.tree.query(_wrap(frac))
+        offsets = np.rint(frac - self.fractional[sigma]).astype(np.int64)
+        landed = self.positions[sigma] + offsets @ self.basis
+        ok = np.all(np.abs(landed - images) <= self.tol, axis=-1)
+        return sigma, offsets, ok
+
+    def candidates(self, q: np.ndarray) -> np.ndarray:
+        """(m,) int64: the targets ``j`` whose ``tau = p_j - Q p_anchor`` maps the sample vertices onto vertices."""
+        taus = self.positions[self.targets] - q @ self.positions[self.anchor]
+        images = (self.positions[self.sample] @ q.T)[None, :, :] + taus[:, None, :]
+        _, _, ok = self.match(images)
+        return self.targets[np.all(ok, axis=1)]
+
+    def verify(self, op: PointOperation, target: int) -> Motion | None:
+        """Return the motion with point part ``op`` taking the anchor to vertex ``target``, or None if it is no symmetry."""
+        q, n, _ = op
+        sc = self.scaffold
+        tau = self.positions[target] - q @ self.positions[self.anchor]
+        sigma, offsets, ok = self.match(self.positions @ q.T + tau)
+        if not ok.all() or len(np.unique(sigma)) != len(sigma):
+            return None
+        assert sc.corner_offsets is not None
+        image = np.column_stack([sigma[sc.corners], offsets[sc.corners] + sc.corner_offsets @ n])
+        if not np.array_equal(face_keys(image, sc.face_starts), self.faces):
+            return None
+        perm = edge_permutation(sc, sigma, offsets, n)
+        if perm is None:
+            return None
+        return Motion(sigma=sigma, offsets=offsets, q=q, n=n, tau=tau, edge_perm=perm)
+
+    def first(self, op: PointOperation) -> Motion | None:
+        """Return the first verified motion with point part ``op``, or None if ``op`` is no symmetry's."""
+        for target in self.candidates(op[0]).tolist():
+            motion = self.verify(op, target)
+            if motion is not None:
+                return motion
+        return None
+
+
+@dataclass(frozen=True)
+class PeriodicSymmetry:
+    """The symmetry group of a periodic scaffold as translations times one motion per point operation.
+
+    Attributes
+    ----------
+    translations : list of Motion
+        The translation subgroup ``T`` (identity first), modulo the lattice.
+    representatives : list of Motion
+        One motion per point operation of the group (identity first).
+    """
+
+    translations: list[Motion]
+    representatives: list[Motion]
+
+    @property
+    def order(self) -> int:
+        """Number of isometries."""
+        return len(self.translations) * len(self.representatives)
+
+    @property
+    def n_rotations(self) -> int:
+        """Number of proper motions."""
+        return len(self.translations) * sum(np.linalg.det(r.q) > 0 for r in self.representatives)
+
+    def elements(self) -> list[Motion]:
+        """Every motion ``t o r`` (translations inner), the identity first."""
+        return [t.after(r) for r in self.representatives for t in self.translations]
+
+
+def periodic_symmetry(scaffold: Scaffold, tol: float) -> PeriodicSymmetry:
+    """Find the translation subgroup and a motion per point operation (see the module docstring)."""
+    search = PeriodicSearch(scaffold, tol)
+    identity_op = search.operations[0]
+    identity = search.verify(identity_op, search.anchor)
+    assert identity is not None, "the identity must be a symmetry"
+    translations = _translation_group(search, identity)
+    representatives = [identity]
+    for op in search.operations[1:]:
+        motion = search.first(op)
+        if motion is not None:
+            representatives.append(motion)
+    return PeriodicSymmetry(translations=translations, representatives=representatives)
+
+
+def _translation_group(search: PeriodicSearch, identity: Motion) -> list[Motion]:
+    """Return the translation subgroup: generators verified, the rest composed (keyed by the anchor's image)."""
+    op = search.operations[0]
+    elements = {search.anchor: identity}
+    generators: list[Motion] = []
+    for target in search.candidates(op[0]).tolist():
+        if target in elements:
+            continue
+        motion = search.verify(op, target)
+        if motion is None:
+            continue
+        generators.append(motion)
+        frontier = list(elements.values())
+        while frontier:
+            new = []
+            for g in generators:
+                for h in frontier:
+                    product = g.after(h)
+                    key = int(product.sigma[search.anchor])
+                    if key not in elements:
+                        elements[key] = product
+                        new.append(product)
+            frontier = new
+    return list(elements.values())
+
+
+def face_keys(corner_keys: np.ndarray, face_starts: np.ndarray) -> np.ndarray:
+    """(n_faces, ...) int64, rows sorted: each face as its cyclic corner sequence, canonical up to translation.
+
+    A face's key is the lexicographically smallest of its corner sequences (every start,
+    both directions) with the start's offset subtracted: an exact integer fingerprint.
+    Faces of one size whose smallest vertex occurs once are done with numpy (start: that
+    corner); the rest in Python.  Faces of several sizes are padded with -1.
+    """
+    sizes = np.diff(face_starts)
+    width = int(sizes.max()) * corner_keys.shape[1]
+    rows = np.full((len(sizes), width), -1, np.int64)
+    for m in np.unique(sizes).tolist():
+        faces = np.flatnonzero(sizes == m)
+        block = corner_keys[face_starts[faces][:, None] + np.arange(m)]  # (f, m, 1 + dim)
+        verts = block[:, :, 0]
+        first = np.argmin(verts, axis=1)
+        unique = np.sum(verts == verts[np.arange(len(faces)), first][:, None], axis=1) == 1
+        steps = np.arange(m)
+        fwd = block[np.arange(len(faces))[:, None], (first[:, None] + steps) % m]
+        rev = block[np.arange(len(faces))[:, None], (first[:, None] - steps) % m]
+        fwd[:, :, 1:] -= fwd[:, :1, 1:]
+        rev[:, :, 1:] -= rev[:, :1, 1:]
+        diff = (fwd[:, 1] - rev[:, 1]) if m > 1 else np.zeros((len(faces), corner_keys.shape[1]), np.int64)
+        lead = diff[np.arange(len(faces)), np.argmax(diff != 0, axis=1)]
+        chosen = np.where((lead <= 0)[:, None, None], fwd, rev).reshape(len(faces), -1)
+        rows[faces[unique], : chosen.shape[1]] = chosen[unique]
+        for f in faces[~unique].tolist():
+            seq = corner_keys[face_starts[f] : face_starts[f + 1]]
+            best = min(
+                tuple(map(tuple, (s := np.roll(seq[::d], -i, axis=0)) - np.r_[0, s[0, 1:]]))
+                for d in (1, -1)
+                for i in range(m)
+            )
+            rows[f, : m * corner_keys.shape[1]] = np.array(best, np.int64).reshape(-1)
+    return rows[np.lexsort(rows.T[::-1])]
+
+
+def edge_permutation(scaffold: Scaffold, sigma: np.ndarray, offsets: np.ndarray, n: np.ndarray) -> np.ndarray | None:
+    """(n_edges,) int64: image edge of each edge under the motion, or None if one is no edge."""
+    keys = scaffold.edge_keys
+    a, b = sigma[keys[:, 0]], sigma[keys[:, 1]]
+    delta = offsets[keys[:, 1]] + keys[:, 2:] @ n - offsets[keys[:, 0]]
+    nz = delta != 0
+    first = delta[np.arange(len(delta)), np.argmax(nz, axis=1)]
+    forward = (a < b) | ((a == b) & (first > 0))
+    image = np.column_stack(
+        [np.where(forward, a, b), np.where(forward, b, a), np.where(forward[:, None], delta, -delta)]
+    )
+    _, inverse = unique_rows(np.concatenate([keys, image]))
+    slot = np.full(2 * len(keys), -1, np.int64)
+    slot[inverse[: len(keys)]] = np.arange(len(keys))
+    perm = slot[inverse[len(keys) :]]
+    if np.any(perm < 0) or len(np.unique(perm)) != len(perm):
+        return None
+    return perm
+
+
+def _wrap(frac: np.ndarray) -> np.ndarray:
+    """Lattice coordinates wrapped into ``[0, 1)`` (for the periodic KD-tree)."""
+    wrapped = np.mod(frac, 1.0)
+    wrapped[wrapped >= 1.0] = 0.0
+    return wrapped
