@@ -29,7 +29,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ..errors import ScaffoldError, UsageError
-from ..model.lattice import Lattice
+from ..model.lattice import Lattice, lll_reduce
 from ..model.scaffold import Scaffold
 from .polyhedra import convex_polyhedron
 
@@ -47,10 +47,15 @@ LATTICES = {
 
 
 def _translates(lattice: Lattice, points: np.ndarray, reach: int = 2) -> tuple[np.ndarray, np.ndarray]:
-    """All ``points + n @ basis`` for ``n`` in ``[-reach, reach]^dim``; and which are base."""
+    """All ``points + m @ reduced`` for ``m`` in ``[-reach, reach]^dim``; and which are base.
+
+    ``reduced`` is the LLL-reduced basis, so the translates surround the base points
+    however skewed the given basis is.
+    """
+    _, unimodular = lll_reduce(lattice.basis)
     shifts = np.array(list(itertools.product(range(-reach, reach + 1), repeat=lattice.dim)))
     order = np.argsort(np.abs(shifts).sum(axis=1), kind="stable")  # the zero shift first
-    shifts = shifts[order]
+    shifts = shifts[order] @ unimodular  # in the given basis
     cloud = (points[None, :, :] + lattice.translate(shifts)[:, None, :]).reshape(-1, 3)
     return cloud, np.arange(len(points))
 
