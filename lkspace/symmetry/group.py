@@ -154,6 +154,23 @@ def symmetry_group(scaffold: Scaffold) -> SymmetryGroup:
     return cached
 
 
+def symmetry_orders(scaffold: Scaffold) -> tuple[int, int]:
+    """``(isometries, rotations)``: the orders of the symmetry group, without its tables for periodic scaffolds.
+
+    Examples
+    --------
+    >>> from lkspace import load
+    >>> symmetry_orders(load("tiling:hexagonal@2x1"))
+    (16, 8)
+    """
+    cached = scaffold.__dict__.get("_symmetry_group")
+    if scaffold.periodic and cached is None:
+        found = periodic_symmetry(scaffold, _tolerance(scaffold))
+        return found.order, found.n_rotations
+    group = symmetry_group(scaffold)
+    return group.order, group.n_rotations
+
+
 def compute_group(scaffold: Scaffold) -> SymmetryGroup:
     """Finite: isometries lifted to automorphisms; periodic: candidates -> rigid motions.  The identity first."""
     sigmas, qs, taus, perms = finite_tables(scaffold) if not scaffold.periodic else periodic_tables(scaffold)
@@ -192,9 +209,10 @@ def periodic_tables(scaffold: Scaffold) -> Tables4:
             f"{scaffold.name}: its symmetry group has {found.order} motions on {size} vertices and edges: "
             f"its tables would pass {MAX_GROUP_ENTRIES} entries; use --symmetry none"
         )
-    motions = found.elements()
-    sigmas = np.array([m.sigma for m in motions], np.int64)
-    qs = np.array([m.q for m in motions], np.float64)
-    taus = np.array([m.tau for m in motions], np.float64)
-    perms = np.array([m.edge_perm for m in motions], np.int64)
+    sigmas = np.empty((found.order, scaffold.n_vertices), np.int64)
+    qs = np.empty((found.order, 3, 3), np.float64)
+    taus = np.empty((found.order, 3), np.float64)
+    perms = np.empty((found.order, scaffold.n_edges), np.int64)
+    for i, motion in enumerate(found.elements()):
+        sigmas[i], qs[i], taus[i], perms[i] = motion.sigma, motion.q, motion.tau, motion.edge_perm
     return sigmas, qs, taus, perms

@@ -21,22 +21,28 @@ Each motion is built directly (no incidence-graph automorphisms):
 A few sample vertices reject most candidates before the full check.  The group is
 ``T x reps``: the translation subgroup ``T`` (closed from its verified generators by the
 images of the anchor, an integer key per element) and one verified motion per point
-operation that has one.  Its tables are then composed, ``O(order x size)``; the order
-alone costs ``O(size)`` memory.
+operation that has one (a translation ``tau`` works for ``Q`` exactly when ``tau + t``
+does for every ``t`` in ``T``, so one target per orbit of ``T`` is tried).  The order
+costs ``O(size)`` memory and about ``O(size x (generators + point operations))`` time;
+the tables, composed afterwards, ``O(order x size)``.
 """
 
 from __future__ import annotations
 
+from collections.abc import Iterator
 from dataclasses import dataclass
 from functools import cached_property
 
 import numpy as np
 
 from ..model.scaffold import Scaffold, unique_rows
+from ..progress import task
 from .lattice_group import PointOperation, point_group
 
 SAMPLE = 16
 """Vertices checked on every candidate motion before the full check."""
+CHUNK = 1024
+"""Candidate translations sample-checked at once."""
 
 
 @dataclass(frozen=True)
@@ -118,12 +124,12 @@ class PeriodicSearch:
         ok = np.all(np.abs(landed - images) <= self.tol, axis=-1)
         return sigma, offsets, ok
 
-    def candidates(self, q: np.ndarray) -> np.ndarray:
-        """(m,) int64: the targets ``j`` whose ``tau = p_j - Q p_anchor`` maps the sample vertices onto vertices."""
-        taus = self.positions[self.targets] - q @ self.positions[self.anchor]
+    def candidates(self, q: np.ndarray, targets: np.ndarray) -> np.ndarray:
+        """(m,) int64: the ``targets`` whose ``tau = p_j - Q p_anchor`` maps the sample vertices onto vertices."""
+        taus = self.positions[targets] - q @ self.positions[self.anchor]
         images = (self.positions[self.sample] @ q.T)[None, :, :] + taus[:, None, :]
         _, _, ok = self.match(images)
-        return self.targets[np.all(ok, axis=1)]
+        return targets[np.all(ok, axis=1)]
 
     def verify(self, op: PointOperation, target: int) -> Motion | None:
         """Return the motion with point part ``op`` taking the anchor to vertex ``target``, or None if it is no symmetry."""
@@ -142,84 +148,121 @@ class PeriodicSearch:
             return None
         return Motion(sigma=sigma, offsets=offsets, q=q, n=n, tau=tau, edge_perm=perm)
 
-    def first(self, op: PointOperation) -> Motion | None:
-        """Return the first verified motion with point part ``op``, or None if ``op`` is no symmetry's."""
-        for target in self.candidates(op[0]).tolist():
-            motion = self.verify(op, target)
-            if motion is not None:
-                return motion
+    def first(self, op: PointOperation, targets: np.ndarray) -> Motion | None:
+        """Return the first verified motion with point part ``op`` taking the anchor into ``targets``, or None."""
+        for start in range(0, len(targets), CHUNK):
+            for target in self.candidates(op[0], targets[start : start + CHUNK]).tolist():
+                motion = self.verify(op, target)
+                if motion is not None:
+                    return motion
         return None
 
 
 @dataclass(frozen=True)
 class PeriodicSymmetry:
-    """The symmetry group of a periodic scaffold as translations times one motion per point operation.
+    """The symmetry group of a periodic scaffold: translations ``T`` times one motion per point operation.
 
     Attributes
     ----------
-    translations : list of Motion
-        The translation subgroup ``T`` (identity first), modulo the lattice.
+    generators : list of Motion
+        Verified generators of ``T``.
+    translation_tree : (n_translations, 2) int64
+        Element ``i`` of ``T`` is ``generators[tree[i, 1]] o element[tree[i, 0]]`` (row 0,
+        the identity, is ``(-1, -1)``).
     representatives : list of Motion
         One motion per point operation of the group (identity first).
     """
 
-    translations: list[Motion]
+    generators: list[Motion]
+    translation_tree: np.ndarray
     representatives: list[Motion]
 
     @property
     def order(self) -> int:
         """Number of isometries."""
-        return len(self.translations) * len(self.representatives)
+        return len(self.translation_tree) * len(self.representatives)
 
     @property
     def n_rotations(self) -> int:
         """Number of proper motions."""
-        return len(self.translations) * sum(np.linalg.det(r.q) > 0 for r in self.representatives)
+        return len(self.translation_tree) * int(sum(np.linalg.det(r.q) > 0 for r in self.representatives))
 
-    def elements(self) -> list[Motion]:
-        """Every motion ``t o r`` (translations inner), the identity first."""
-        return [t.after(r) for r in self.representatives for t in self.translations]
+    def translations(self) -> list[Motion]:
+        """Return the elements of ``T``, composed along :attr:`translation_tree`; the identity first."""
+        out = [self.representatives[0]]
+        for parent, g in self.translation_tree[1:].tolist():
+            out.append(self.generators[g].after(out[parent]))
+        return out
+
+    def elements(self) -> Iterator[Motion]:
+        """Yield every motion ``t o r`` (translations inner), the identity first."""
+        translations = self.translations()
+        for r in self.representatives:
+            for t in translations:
+                yield t.after(r)
 
 
 def periodic_symmetry(scaffold: Scaffold, tol: float) -> PeriodicSymmetry:
     """Find the translation subgroup and a motion per point operation (see the module docstring)."""
     search = PeriodicSearch(scaffold, tol)
-    identity_op = search.operations[0]
-    identity = search.verify(identity_op, search.anchor)
+    identity = search.verify(search.operations[0], search.anchor)
     assert identity is not None, "the identity must be a symmetry"
-    translations = _translation_group(search, identity)
+    generators, tree = _translation_group(search)
+    # tau fails for Q iff tau + t fails for every t in T: one target per T-orbit suffices
+    orbit = _orbits(scaffold.n_vertices, generators)
+    _, first = np.unique(orbit[search.targets], return_index=True)
+    targets = search.targets[np.sort(first)]
     representatives = [identity]
-    for op in search.operations[1:]:
-        motion = search.first(op)
-        if motion is not None:
-            representatives.append(motion)
-    return PeriodicSymmetry(translations=translations, representatives=representatives)
+    with task("symmetry search", total=len(search.operations)) as step:
+        for op in search.operations[1:]:
+            motion = search.first(op, targets)
+            if motion is not None:
+                representatives.append(motion)
+            step.advance()
+    return PeriodicSymmetry(generators=generators, translation_tree=tree, representatives=representatives)
 
 
-def _translation_group(search: PeriodicSearch, identity: Motion) -> list[Motion]:
-    """Return the translation subgroup: generators verified, the rest composed (keyed by the anchor's image)."""
+def _translation_group(search: PeriodicSearch) -> tuple[list[Motion], np.ndarray]:
+    """Return generators of the translation subgroup and its tree (see :class:`PeriodicSymmetry`).
+
+    Elements are keyed by the anchor's image, an integer: ``g o h`` takes it to
+    ``g.sigma[key(h)]``, so closing under the generators costs one integer per element.
+    """
     op = search.operations[0]
-    elements = {search.anchor: identity}
+    keys = [search.anchor]
+    index = {search.anchor: 0}
+    tree = [(-1, -1)]
     generators: list[Motion] = []
-    for target in search.candidates(op[0]).tolist():
-        if target in elements:
+    for target in search.candidates(op[0], search.targets).tolist():
+        if target in index:
             continue
         motion = search.verify(op, target)
         if motion is None:
             continue
         generators.append(motion)
-        frontier = list(elements.values())
+        frontier = list(range(len(keys)))
         while frontier:
             new = []
-            for g in generators:
-                for h in frontier:
-                    product = g.after(h)
-                    key = int(product.sigma[search.anchor])
-                    if key not in elements:
-                        elements[key] = product
-                        new.append(product)
+            for g, gen in enumerate(generators):
+                for h, key in zip(frontier, gen.sigma[[keys[h] for h in frontier]].tolist(), strict=True):
+                    if key not in index:
+                        index[key] = len(keys)
+                        keys.append(key)
+                        tree.append((h, g))
+                        new.append(index[key])
             frontier = new
-    return list(elements.values())
+    return generators, np.array(tree, np.int64).reshape(-1, 2)
+
+
+def _orbits(n_vertices: int, generators: list[Motion]) -> np.ndarray:
+    """(n_vertices,) int64: the orbit label of each vertex under the translations ``generators``."""
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+
+    rows = np.concatenate([np.arange(n_vertices)] * len(generators) or [np.zeros(0, np.int64)])
+    cols = np.concatenate([g.sigma for g in generators] or [np.zeros(0, np.int64)])
+    graph = coo_matrix((np.ones(len(rows)), (rows, cols)), shape=(n_vertices, n_vertices))
+    return connected_components(graph, directed=True, connection="weak")[1].astype(np.int64)
 
 
 def face_keys(corner_keys: np.ndarray, face_starts: np.ndarray) -> np.ndarray:
