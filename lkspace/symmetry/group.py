@@ -11,14 +11,15 @@ How the group is found
    linear in the mesh (times the group order for the tables).  When the vertices are
    coplanar both motions of each in-plane map are kept (a flat polygon has the in-plane
    rotations and the half-turns that flip it over).
-2. **Periodic scaffolds** (:mod:`~lkspace.symmetry.motions`): the automorphisms of the
-   incidence structure (python-igraph: BLISS generators, closed into the group) give
-   candidate vertex permutations ``sigma``; ``Q`` must map the lattice to itself,
-   ``B Q^T = N B`` for an integer matrix ``N`` (the lattice point group, searched over
-   ``N`` with entries in ``{-1, 0, 1}``, enough for reduced bases); ``tau`` is fixed by one
-   vertex and the others must land on their images up to lattice translations.  The
-   image of every edge class and every face (as a set of lattice-offset corners) must
-   again be one.
+2. **Periodic scaffolds** (:mod:`~lkspace.symmetry.periodic`): every motion
+   ``x -> Q x + tau`` carrying the infinite mesh and its lattice onto themselves, modulo
+   the lattice.  ``Q`` runs over the lattice's whole point group
+   (:mod:`~lkspace.symmetry.lattice_group`: ``B Q^T = N B``, ``N`` integer of any size,
+   from the lattice vectors as long as an LLL-reduced basis); ``tau`` is fixed by one
+   vertex's image, every vertex is matched by a KD-tree to an exact (vertex, offset) key,
+   and every face (a cycle of corners) and edge must land on one.  The translation
+   subgroup is closed from verified generators and one motion is verified per point
+   operation; the tables are their compositions.
 3. **Action on labels.**  Each motion permutes the edges, ``edge_perms[g, e]`` is the
    image of edge ``e``.  A proper motion (rotation, ``det Q = +1``) keeps twist labels: a
    right-handed twist stays right-handed and the rule reads the same from either end; an
@@ -38,7 +39,7 @@ import numpy as np
 from ..errors import LabelError, ScaffoldError, TooLargeError
 from ..model.scaffold import Scaffold
 from .finite import MAX_GROUP_ENTRIES, finite_lifts
-from .motions import _tolerance
+from .motions import tolerance
 from .periodic import periodic_symmetry
 
 #: Modes of ``--symmetry``.
@@ -165,7 +166,7 @@ def symmetry_orders(scaffold: Scaffold) -> tuple[int, int]:
     """
     cached = scaffold.__dict__.get("_symmetry_group")
     if scaffold.periodic and cached is None:
-        found = periodic_symmetry(scaffold, _tolerance(scaffold))
+        found = periodic_symmetry(scaffold, tolerance(scaffold))
         return found.order, found.n_rotations
     group = symmetry_group(scaffold)
     return group.order, group.n_rotations
@@ -202,7 +203,7 @@ def periodic_tables(scaffold: Scaffold) -> Tables4:
     Raises :class:`~lkspace.errors.TooLargeError` when the tables would pass
     :data:`~lkspace.symmetry.finite.MAX_GROUP_ENTRIES` entries.
     """
-    found = periodic_symmetry(scaffold, _tolerance(scaffold))
+    found = periodic_symmetry(scaffold, tolerance(scaffold))
     size = scaffold.n_vertices + scaffold.n_edges
     if found.order * size > MAX_GROUP_ENTRIES:
         raise TooLargeError(

@@ -103,6 +103,11 @@ def plane_normal(x: np.ndarray) -> tuple[np.ndarray, float]:
     return vectors[:, 0], float(np.sqrt(max(values[0], 0.0) / max(len(x), 1)))
 
 
+def tolerance(scaffold: Scaffold) -> float:
+    """Distance within which two positions of ``scaffold`` count as one (the periodic search uses it too)."""
+    return _tolerance(scaffold)
+
+
 def finite_motions(scaffold: Scaffold, sigmas: np.ndarray) -> Iterator[Motion]:
     """Yield the rigid motions of a finite scaffold realizing the candidate vertex permutations ``sigmas``.
 
