@@ -13,12 +13,14 @@ import json
 
 import numpy as np
 import pytest
+from hypothesis import HealthCheck, example, given, settings
 
 import lkspace
 from lkspace.model.lattice import Lattice
 from lkspace.scaffolds.periodic import voronoi_scaffold
 from tests.brute_periodic import brute_group, burnside
 from tests.cli_calls import run
+from tests.strategies import PLANE_LATTICES, voronoi_tilings
 
 LATTICES = ["tiling:square", "tiling:hexagonal", "honeycomb:cP", "honeycomb:hP", "honeycomb:oF", "honeycomb:cF"]
 LATTICES += ["honeycomb:cI", "voronoi:cube-faces", "laves"]
@@ -112,6 +114,24 @@ def test_voronoi_of_a_skewed_basis():
     scaffold = voronoi_scaffold(Lattice(np.array([[1.0, 0, 0], [5, 1, 0], [3, -2, 1]])), [[0, 0, 0]])
     assert (scaffold.n_faces, scaffold.n_vertices, scaffold.n_edges) == (3, 1, 3)
     assert (symmetry_group(scaffold).order, symmetry_group(scaffold).n_rotations) == (48, 24)
+
+
+@settings(max_examples=30, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(voronoi_tilings())
+@example(("oblique", np.zeros((1, 3))))  # a corner at lattice coordinate 0.371875 once split a vertex class
+def test_voronoi_tilings_match_the_brute_force(case):
+    """Voronoi tilings of 1-3 points at quarter coordinates: glides, half-cell translations, mirrors."""
+    from lkspace.errors import ScaffoldError
+    from lkspace.symmetry.group import symmetry_group
+
+    name, generators = case
+    try:
+        scaffold = voronoi_scaffold(Lattice(np.array(PLANE_LATTICES[name])), generators)
+    except ScaffoldError:  # e.g. two generators on one lattice point
+        return
+    group = symmetry_group(scaffold)
+    brute = brute_group(scaffold, 2)
+    assert (group.order, group.n_rotations) == (len(brute), sum(s == 1 for s, _ in brute))
 
 
 @pytest.mark.slow
