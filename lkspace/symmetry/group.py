@@ -11,7 +11,7 @@ How the group is found
    linear in the mesh (times the group order for the tables).  When the vertices are
    coplanar both motions of each in-plane map are kept (a flat polygon has the in-plane
    rotations and the half-turns that flip it over).
-2. **Periodic scaffolds** (:mod:`~lkspace.symmetry.periodic`): every motion
+2. **Periodic scaffolds** (:mod:`~lkspace.symmetry.periodic_search`): every motion
    ``x -> Q x + tau`` carrying the infinite mesh and its lattice onto themselves, modulo
    the lattice.  ``Q`` runs over the lattice's whole point group
    (:mod:`~lkspace.symmetry.lattice_group`: ``B Q^T = N B``, ``N`` integer of any size,
@@ -40,7 +40,7 @@ from ..errors import LabelError, ScaffoldError, TooLargeError
 from ..model.scaffold import Scaffold
 from .finite import MAX_GROUP_ENTRIES, finite_lifts
 from .motions import tolerance
-from .periodic import periodic_symmetry
+from .periodic_search import periodic_symmetry
 
 #: Modes of ``--symmetry``.
 MODES = ("rotations", "isometries", "none")

@@ -3,7 +3,7 @@
 Candidates come from the automorphisms of the coloured incidence graph (igraph); a
 candidate is kept only when a rigid motion realizes it.  Finite scaffolds take this path
 only when coincident vertices leave the faster search of :mod:`lkspace.symmetry.finite`
-ambiguous; periodic scaffolds never do (:mod:`lkspace.symmetry.periodic` builds their
+ambiguous; periodic scaffolds never do (:mod:`lkspace.symmetry.periodic_search` builds their
 motions directly).  :mod:`lkspace.symmetry.group` assembles the group.
 """
 

@@ -46,7 +46,7 @@ CHUNK = 1024
 
 
 @dataclass(frozen=True)
-class Motion:
+class PeriodicMotion:
     """One verified symmetry of a periodic scaffold.
 
     Attributes
@@ -70,9 +70,9 @@ class Motion:
     tau: np.ndarray
     edge_perm: np.ndarray
 
-    def after(self, other: Motion) -> Motion:
+    def after(self, other: PeriodicMotion) -> PeriodicMotion:
         """Return the motion ``self o other`` (first ``other``, then ``self``)."""
-        return Motion(
+        return PeriodicMotion(
             sigma=self.sigma[other.sigma],
             offsets=self.offsets[other.sigma] + other.offsets @ self.n,
             q=self.q @ other.q,
@@ -131,7 +131,7 @@ class PeriodicSearch:
         _, _, ok = self.match(images)
         return targets[np.all(ok, axis=1)]
 
-    def verify(self, op: PointOperation, target: int) -> Motion | None:
+    def verify(self, op: PointOperation, target: int) -> PeriodicMotion | None:
         """Return the motion with point part ``op`` taking the anchor to vertex ``target``, or None if it is no symmetry."""
         q, n, _ = op
         sc = self.scaffold
@@ -146,9 +146,9 @@ class PeriodicSearch:
         perm = edge_permutation(sc, sigma, offsets, n)
         if perm is None:
             return None
-        return Motion(sigma=sigma, offsets=offsets, q=q, n=n, tau=tau, edge_perm=perm)
+        return PeriodicMotion(sigma=sigma, offsets=offsets, q=q, n=n, tau=tau, edge_perm=perm)
 
-    def first(self, op: PointOperation, targets: np.ndarray) -> Motion | None:
+    def first(self, op: PointOperation, targets: np.ndarray) -> PeriodicMotion | None:
         """Return the first verified motion with point part ``op`` taking the anchor into ``targets``, or None."""
         for start in range(0, len(targets), CHUNK):
             for target in self.candidates(op[0], targets[start : start + CHUNK]).tolist():
@@ -164,18 +164,18 @@ class PeriodicSymmetry:
 
     Attributes
     ----------
-    generators : list of Motion
+    generators : list of PeriodicMotion
         Verified generators of ``T``.
     translation_tree : (n_translations, 2) int64
         Element ``i`` of ``T`` is ``generators[tree[i, 1]] o element[tree[i, 0]]`` (row 0,
         the identity, is ``(-1, -1)``).
-    representatives : list of Motion
+    representatives : list of PeriodicMotion
         One motion per point operation of the group (identity first).
     """
 
-    generators: list[Motion]
+    generators: list[PeriodicMotion]
     translation_tree: np.ndarray
-    representatives: list[Motion]
+    representatives: list[PeriodicMotion]
 
     @property
     def order(self) -> int:
@@ -187,14 +187,14 @@ class PeriodicSymmetry:
         """Number of proper motions."""
         return len(self.translation_tree) * int(sum(np.linalg.det(r.q) > 0 for r in self.representatives))
 
-    def translations(self) -> list[Motion]:
+    def translations(self) -> list[PeriodicMotion]:
         """Return the elements of ``T``, composed along :attr:`translation_tree`; the identity first."""
         out = [self.representatives[0]]
         for parent, g in self.translation_tree[1:].tolist():
             out.append(self.generators[g].after(out[parent]))
         return out
 
-    def elements(self) -> Iterator[Motion]:
+    def elements(self) -> Iterator[PeriodicMotion]:
         """Yield every motion ``t o r`` (translations inner), the identity first."""
         translations = self.translations()
         for r in self.representatives:
@@ -222,7 +222,7 @@ def periodic_symmetry(scaffold: Scaffold, tol: float) -> PeriodicSymmetry:
     return PeriodicSymmetry(generators=generators, translation_tree=tree, representatives=representatives)
 
 
-def _translation_group(search: PeriodicSearch) -> tuple[list[Motion], np.ndarray]:
+def _translation_group(search: PeriodicSearch) -> tuple[list[PeriodicMotion], np.ndarray]:
     """Return generators of the translation subgroup and its tree (see :class:`PeriodicSymmetry`).
 
     Elements are keyed by the anchor's image, an integer: ``g o h`` takes it to
@@ -232,7 +232,7 @@ def _translation_group(search: PeriodicSearch) -> tuple[list[Motion], np.ndarray
     keys = [search.anchor]
     index = {search.anchor: 0}
     tree = [(-1, -1)]
-    generators: list[Motion] = []
+    generators: list[PeriodicMotion] = []
     for target in search.candidates(op[0], search.targets).tolist():
         if target in index:
             continue
@@ -254,7 +254,7 @@ def _translation_group(search: PeriodicSearch) -> tuple[list[Motion], np.ndarray
     return generators, np.array(tree, np.int64).reshape(-1, 2)
 
 
-def _orbits(n_vertices: int, generators: list[Motion]) -> np.ndarray:
+def _orbits(n_vertices: int, generators: list[PeriodicMotion]) -> np.ndarray:
     """(n_vertices,) int64: the orbit label of each vertex under the translations ``generators``."""
     from scipy.sparse import coo_matrix
     from scipy.sparse.csgraph import connected_components
