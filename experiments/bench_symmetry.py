@@ -40,6 +40,8 @@ PERIODIC = {  # name -> command line (after ``lkspace``)
     "honeycomb:cP@4x4x4": ["info", "honeycomb:cP@4x4x4", "--json"],
     "tiling:square@16x16": ["info", "tiling:square@16x16", "--json"],
     "tiling:hexagonal@8x8": ["info", "tiling:hexagonal@8x8", "--json"],
+    "tiling:square@64x64": ["info", "tiling:square@64x64", "--json"],  # before: not run (igraph closure of 65,536)
+    "honeycomb:cP@10x10x10": ["info", "honeycomb:cP@10x10x10", "--json"],  # before: not run
     "tiling:hexagonal@2x1 enumerate 0,1": [
         "enumerate", "tiling:hexagonal@2x1", "--labels", "0,1", "--count-only", "--json",
     ],
