@@ -14,6 +14,7 @@ import json
 import numpy as np
 import pytest
 from hypothesis import HealthCheck, example, given, settings
+from hypothesis import strategies as st
 
 import lkspace
 from lkspace.model.lattice import Lattice
@@ -142,3 +143,22 @@ def test_larger_supercells_match_the_brute_force(name, capsys):
     group = brute_group(lkspace.load(name), bound(name))
     order = cli_json(capsys, "info", name)["symmetry_group_order"]
     assert order == {"isometries": len(group), "rotations": sum(sign == 1 for sign, _ in group)}
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.data())
+def test_face_keys_are_cycles_up_to_translation(data):
+    """Rotating, reversing or translating a face keeps its key; the key is the smallest sequence (Python)."""
+    from lkspace.symmetry.periodic_search import face_keys
+
+    m = data.draw(st.integers(3, 6))
+    corners = np.array(data.draw(st.lists(st.tuples(*[st.integers(0, 2)] * 3), min_size=m, max_size=m)), np.int64)
+    shift = np.r_[0, data.draw(st.tuples(st.integers(-3, 3), st.integers(-3, 3)))]
+    moved = np.roll(corners[:: data.draw(st.sampled_from([1, -1]))], data.draw(st.integers(0, m - 1)), axis=0) + shift
+    keys = face_keys(np.concatenate([corners, moved]), np.array([0, m, 2 * m]))
+    assert np.array_equal(keys[0], keys[1])
+    smallest = min(
+        tuple(np.concatenate([[row[0], *(row[1:] - seq[0, 1:])] for row in seq]).tolist())
+        for seq in (np.roll(corners[::d], -i, axis=0) for d in (1, -1) for i in range(m))
+    )
+    assert tuple(keys[0].tolist()) == smallest

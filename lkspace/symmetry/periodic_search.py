@@ -270,8 +270,9 @@ def face_keys(corner_keys: np.ndarray, face_starts: np.ndarray) -> np.ndarray:
 
     A face's key is the lexicographically smallest of its corner sequences (every start,
     both directions) with the start's offset subtracted: an exact integer fingerprint.
-    Faces of one size whose smallest vertex occurs once are done with numpy (start: that
-    corner); the rest in Python.  Faces of several sizes are padded with -1.
+    A face whose smallest vertex occurs once starts there (one comparison picks the
+    direction); the others compare every start (in chunks).  Faces of several sizes are
+    padded with -1.
     """
     sizes = np.diff(face_starts)
     width = int(sizes.max()) * corner_keys.shape[1]
@@ -291,15 +292,25 @@ def face_keys(corner_keys: np.ndarray, face_starts: np.ndarray) -> np.ndarray:
         lead = diff[np.arange(len(faces)), np.argmax(diff != 0, axis=1)]
         chosen = np.where((lead <= 0)[:, None, None], fwd, rev).reshape(len(faces), -1)
         rows[faces[unique], : chosen.shape[1]] = chosen[unique]
-        for f in faces[~unique].tolist():
-            seq = corner_keys[face_starts[f] : face_starts[f + 1]]
-            best = min(
-                tuple(map(tuple, (s := np.roll(seq[::d], -i, axis=0)) - np.r_[0, s[0, 1:]]))
-                for d in (1, -1)
-                for i in range(m)
-            )
-            rows[f, : m * corner_keys.shape[1]] = np.array(best, np.int64).reshape(-1)
+        for start in range(0, int((~unique).sum()), CHUNK):
+            some = faces[~unique][start : start + CHUNK]
+            rows[some, : chosen.shape[1]] = _smallest_sequences(block[np.searchsorted(faces, some)])
     return rows[np.lexsort(rows.T[::-1])]
+
+
+def _smallest_sequences(block: np.ndarray) -> np.ndarray:
+    """(f, m * c) int64: per face of ``block (f, m, c)`` the smallest normalized sequence (every start, both ways)."""
+    f, m, c = block.shape
+    steps = np.arange(m)
+    starts = np.r_[(steps[:, None] + steps) % m, (steps[:, None] - steps) % m]  # (2m, m): forward, then backward
+    seqs = block[:, starts]  # (f, 2m, m, c)
+    seqs[..., 1:] -= seqs[:, :, :1, 1:]
+    flat = seqs.reshape(f, 2 * m, m * c)
+    alive = np.ones((f, 2 * m), bool)
+    for col in range(m * c):  # lexicographic minimum over the 2m sequences of each face
+        values = np.where(alive, flat[:, :, col], np.iinfo(np.int64).max)
+        alive &= values == values.min(axis=1, keepdims=True)
+    return flat[np.arange(f), np.argmax(alive, axis=1)]
 
 
 def edge_permutation(scaffold: Scaffold, sigma: np.ndarray, offsets: np.ndarray, n: np.ndarray) -> np.ndarray | None:
