@@ -20,7 +20,7 @@ import lkspace
 from lkspace.model.lattice import Lattice
 from lkspace.scaffolds.periodic import voronoi_scaffold
 from tests.brute_periodic import brute_group, burnside
-from tests.cli_calls import run
+from tests.cli_calls import one_line_error, run
 from tests.strategies import PLANE_LATTICES, voronoi_tilings
 
 LATTICES = ["tiling:square", "tiling:hexagonal", "honeycomb:cP", "honeycomb:hP", "honeycomb:oF", "honeycomb:cF"]
@@ -133,6 +133,17 @@ def test_voronoi_tilings_match_the_brute_force(case):
     group = symmetry_group(scaffold)
     brute = brute_group(scaffold, 2)
     assert (group.order, group.n_rotations) == (len(brute), sum(s == 1 for s, _ in brute))
+
+
+def test_large_supercell_orders_without_tables(capsys):
+    """``info`` counts the 65,536 motions of a 64 x 64 torus; ``enumerate`` refuses their tables in one line."""
+    assert cli_json(capsys, "info", "tiling:square@64x64")["symmetry_group_order"] == {
+        "rotations": 8 * 64 * 64,
+        "isometries": 16 * 64 * 64,
+    }
+    code, _, err = run(capsys, "enumerate", "tiling:square@64x64", "--labels", "0,1", "--count-only")
+    assert code == 2
+    one_line_error(err, "65536 motions", "--symmetry none")
 
 
 @pytest.mark.slow
