@@ -146,8 +146,9 @@ def markdown(results: dict) -> str:
         "of supercells); `after-periodic` builds each motion directly per point operation of the",
         "LLL-reduced lattice. Result: isometries/rotations (info) or designs (group order) (enumerate).",
         "`group CPU s`: CPU time of the symmetry search alone (`compute_group`, the group's tables) in",
-        "a separate process, robust to the other jobs; wall times include Python start-up (about",
-        "1-2 s here) and the machine's load.",
+        "a separate process, robust to the other jobs (`-`: the tables would pass `MAX_GROUP_ENTRIES`,",
+        "so only `info`'s order is measured); wall times include Python start-up (about 1-2 s here)",
+        "and the machine's load.",
         "",
         *_table(results, list(PERIODIC)),
         "",
@@ -181,7 +182,8 @@ def _table(results: dict, names: list[str]) -> list[str]:
             else:
                 result = r.get("error", "") or r.get("status", "")
             cpu = r.get("group_cpu_seconds")
-            cells += [str(r.get("seconds", "")), str(r.get("peak_mb", "")), "" if cpu is None else str(cpu), result]
+            cpu_cell = "" if "group_cpu_seconds" not in r else "-" if cpu is None else str(cpu)
+            cells += [str(r.get("seconds", "")), str(r.get("peak_mb", "")), cpu_cell, result]
         lines.append(f"| {name} | {vertices} | " + " | ".join(cells) + " |")
     return lines
 
