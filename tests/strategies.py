@@ -225,3 +225,22 @@ BAD_NAMES = st.one_of(
     ),
 )  # fmt: skip
 """MESH values that are neither files nor good built-in names."""
+
+
+PLANE_LATTICES = {  # reduced bases: the brute-force reference needs N entries up to 2 only
+    "square": [[1.0, 0, 0], [0, 1, 0]],
+    "hexagonal": [[1.0, 0, 0], [0.5, 3**0.5 / 2, 0]],
+    "rectangular": [[1.0, 0, 0], [0, 1.5, 0]],
+    "centred": [[1.0, 0, 0], [0.5, 1.25, 0]],
+    "oblique": [[1.0, 0, 0], [0.3, 1.2, 0]],
+}
+
+
+@st.composite
+def voronoi_tilings(draw):
+    """``(lattice name, generators (n, 3))``: 1-3 points at quarter lattice coordinates of a plane lattice."""
+    name = draw(st.sampled_from(sorted(PLANE_LATTICES)))
+    quarters = st.tuples(st.integers(0, 3), st.integers(0, 3))
+    cells = draw(st.lists(quarters, min_size=1, max_size=3, unique=True))
+    basis = np.array(PLANE_LATTICES[name])
+    return name, np.array(cells, dtype=np.float64) / 4 @ basis

@@ -183,7 +183,7 @@ BUILTIN_ORDERS = {
     "tiling:hexagonal@2x2": (96, 48),
     "honeycomb:cP@2x2x2": (384, 192),
     "tiling:square@3x2": (48, 24),
-    "honeycomb:hP@2x1x1": (8, 4),
+    "honeycomb:hP@2x1x1": (16, 8),  # the lattice (2 a1, a2, c) is rectangular: 4 in-plane maps x 2 x 2 translations
 }
 
 

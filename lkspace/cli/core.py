@@ -156,14 +156,14 @@ def info_cmd(mesh: str | None, list_edges: bool, as_json: bool) -> None:
     vertex pair 0-based (as in twist files) and 1-based (as in the OBJ file), its degree
     K (number of faces on it) and its name (periodic: with the offset of its end b).
     """
-    from ..symmetry.group import symmetry_group
+    from ..symmetry.group import symmetry_orders
 
     ctx = Context(as_json)
     scaffold = load_mesh(ctx, mesh)
     scaffold.radial  # validates the radial order
     data = info_dict(scaffold)
-    group = symmetry_group(scaffold)
-    data["symmetry_group_order"] = {"rotations": group.n_rotations, "isometries": group.order}
+    isometries, rotations = symmetry_orders(scaffold)  # periodic: without the group's tables
+    data["symmetry_group_order"] = {"rotations": rotations, "isometries": isometries}
     data["n_edges"] = scaffold.n_edges
     if list_edges:  # the JSON field "edges" then holds the list (n_edges keeps the count)
         data["edges"] = edge_list(scaffold)

@@ -114,3 +114,37 @@ class Lattice:
 
     def __hash__(self) -> int:
         return hash(self.basis.tobytes())
+
+
+def lll_reduce(basis: np.ndarray, delta: float = 0.99) -> tuple[np.ndarray, np.ndarray]:
+    """LLL-reduce the rows of ``basis (dim, 3)``: ``(reduced (dim, 3) float64, U (dim, dim) int64)``, ``reduced = U basis``."""
+    b = np.array(basis, dtype=np.float64)
+    dim = len(b)
+    u = np.eye(dim, dtype=np.int64)
+    k = 1
+    while k < dim:
+        for j in range(k - 1, -1, -1):
+            star, _ = _gram_schmidt(b)
+            mu = round(float(b[k] @ star[j] / (star[j] @ star[j])))
+            if mu:
+                b[k] -= mu * b[j]
+                u[k] -= mu * u[j]
+        star, mus = _gram_schmidt(b)
+        if star[k] @ star[k] >= (delta - mus[k, k - 1] ** 2) * (star[k - 1] @ star[k - 1]):
+            k += 1
+        else:
+            b[[k, k - 1]] = b[[k - 1, k]]
+            u[[k, k - 1]] = u[[k - 1, k]]
+            k = max(k - 1, 1)
+    return b, u
+
+
+def _gram_schmidt(b: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Gram–Schmidt vectors ``(dim, 3)`` and coefficients ``mu (dim, dim)`` of the rows of ``b``."""
+    star = np.array(b, dtype=np.float64)
+    mus = np.zeros((len(b), len(b)))
+    for i in range(len(b)):
+        for j in range(i):
+            mus[i, j] = b[i] @ star[j] / (star[j] @ star[j])
+            star[i] -= mus[i, j] * star[j]
+    return star, mus

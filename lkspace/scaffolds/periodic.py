@@ -29,7 +29,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ..errors import ScaffoldError, UsageError
-from ..model.lattice import Lattice
+from ..model.lattice import Lattice, lll_reduce
 from ..model.scaffold import Scaffold
 from .polyhedra import convex_polyhedron
 
@@ -47,10 +47,15 @@ LATTICES = {
 
 
 def _translates(lattice: Lattice, points: np.ndarray, reach: int = 2) -> tuple[np.ndarray, np.ndarray]:
-    """All ``points + n @ basis`` for ``n`` in ``[-reach, reach]^dim``; and which are base."""
+    """All ``points + m @ reduced`` for ``m`` in ``[-reach, reach]^dim``; and which are base.
+
+    ``reduced`` is the LLL-reduced basis, so the translates surround the base points
+    however skewed the given basis is.
+    """
+    _, unimodular = lll_reduce(lattice.basis)
     shifts = np.array(list(itertools.product(range(-reach, reach + 1), repeat=lattice.dim)))
     order = np.argsort(np.abs(shifts).sum(axis=1), kind="stable")  # the zero shift first
-    shifts = shifts[order]
+    shifts = shifts[order] @ unimodular  # in the given basis
     cloud = (points[None, :, :] + lattice.translate(shifts)[:, None, :]).reshape(-1, 3)
     return cloud, np.arange(len(points))
 
@@ -95,40 +100,63 @@ def voronoi_polygons(lattice: Lattice, generators: ArrayLike) -> list[np.ndarray
 
 
 def quotient_scaffold(lattice: Lattice, polygons: Iterable[np.ndarray], name: str) -> Scaffold:
-    """Return the periodic scaffold of ``polygons`` (each ``(m, 3)``) modulo ``lattice``."""
-    dim = lattice.dim
-    vertex_keys: dict[tuple, int] = {}
-    vertex_positions: list[np.ndarray] = []
+    """Return the periodic scaffold of ``polygons`` (each ``(m, 3)``) modulo ``lattice``.
+
+    Corners closer than ``10^-DECIMALS`` in lattice coordinates modulo the lattice are one
+    vertex class (a periodic KD-tree, not rounded floats: a coordinate on a rounding
+    boundary cannot split a class); a face is then an exact integer key, its corners'
+    classes and offsets up to translation, and translates of a face are one face class.
+    """
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+    from scipy.spatial import cKDTree
+
+    polys = [np.asarray(p, dtype=np.float64) for p in polygons]
+    sizes = [len(p) for p in polys]
+    frac = lattice.fractional(np.concatenate(polys))
+    shifts = np.concatenate(
+        [
+            np.repeat(np.floor(np.round(f.mean(axis=0), DECIMALS - 1))[None], len(f), axis=0)
+            for f in np.split(frac, np.cumsum(sizes)[:-1])
+        ]
+    )
+    frac = frac - shifts  # each face near the cell [0, 1)
+    wrapped = np.mod(frac, 1.0)
+    pairs = cKDTree(np.where(wrapped >= 1.0, 0.0, wrapped), boxsize=1.0).query_pairs(
+        10.0**-DECIMALS, output_type="ndarray"
+    )
+    graph = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(len(frac), len(frac)))
+    _, cluster = connected_components(graph, directed=False)
+    _, first, vertex_class = np.unique(cluster, return_index=True, return_inverse=True)
+    order = np.argsort(first)  # classes numbered by first occurrence
+    rank = np.empty(len(order), np.int64)
+    rank[order] = np.arange(len(order))
+    vertex_class = rank[vertex_class.reshape(-1)]
+    first = first[order]
+    base = np.floor(np.round(frac[first], DECIMALS - 1))  # the representative's cell
+    offsets = np.rint(frac - (frac[first] - base)[vertex_class]).astype(np.int64)
+    points = np.concatenate(polys) - lattice.translate(shifts)
+    positions = points[first] - lattice.translate(base)
     face_keys = set()
-    faces, offsets = [], []
-    for poly in polygons:
-        frac = np.round(lattice.fractional(poly), DECIMALS)
-        shift = np.floor(np.round(frac.mean(axis=0), DECIMALS - 1))
-        frac = frac - shift
-        key = tuple(sorted(map(tuple, np.round(frac, DECIMALS - 1).tolist())))
+    faces, face_offsets = [], []
+    starts = np.r_[0, np.cumsum(sizes)]
+    for f in range(len(polys)):
+        corners = list(
+            zip(vertex_class[starts[f] : starts[f + 1]].tolist(), offsets[starts[f] : starts[f + 1]].tolist())
+        )
+        low = min(corners)[1]
+        key = tuple(sorted((v, tuple(o - m for o, m in zip(off, low))) for v, off in corners))
         if key in face_keys:
             continue
         face_keys.add(key)
-        cell = np.floor(np.round(frac, DECIMALS - 1)).astype(np.int64)
-        wrapped = np.round(frac - cell, DECIMALS - 1)
-        face, offs = [], []
-        for w, c, p in zip(wrapped.tolist(), cell, poly - lattice.translate(shift)):
-            vkey = tuple(w)
-            if vkey not in vertex_keys:
-                vertex_keys[vkey] = len(vertex_positions)
-                vertex_positions.append(p - lattice.translate(c))
-            face.append(vertex_keys[vkey])
-            offs.append(c.tolist())
-        faces.append(face)
-        offsets.append(offs)
-    # number vertices and faces deterministically: by position of the representative
-    positions = np.array(vertex_positions)
+        faces.append([v for v, _ in corners])
+        face_offsets.append([off for _, off in corners])
+    # number vertices deterministically: by position of the representative
     order = np.lexsort(np.round(positions, DECIMALS).T[::-1])
     renumber = np.empty(len(order), np.int64)
     renumber[order] = np.arange(len(order))
     faces = [renumber[f].tolist() for f in faces]
-    del dim
-    return Scaffold.from_faces(positions[order], faces, lattice=lattice, offsets=offsets, name=name)
+    return Scaffold.from_faces(positions[order], faces, lattice=lattice, offsets=face_offsets, name=name)
 
 
 def wigner_seitz(name: str) -> Scaffold:

@@ -11,14 +11,15 @@ How the group is found
    linear in the mesh (times the group order for the tables).  When the vertices are
    coplanar both motions of each in-plane map are kept (a flat polygon has the in-plane
    rotations and the half-turns that flip it over).
-2. **Periodic scaffolds** (:mod:`~lkspace.symmetry.motions`): the automorphisms of the
-   incidence structure (python-igraph: BLISS generators, closed into the group) give
-   candidate vertex permutations ``sigma``; ``Q`` must map the lattice to itself,
-   ``B Q^T = N B`` for an integer matrix ``N`` (the lattice point group, searched over
-   ``N`` with entries in ``{-1, 0, 1}``, enough for reduced bases); ``tau`` is fixed by one
-   vertex and the others must land on their images up to lattice translations.  The
-   image of every edge class and every face (as a set of lattice-offset corners) must
-   again be one.
+2. **Periodic scaffolds** (:mod:`~lkspace.symmetry.periodic_search`): every motion
+   ``x -> Q x + tau`` carrying the infinite mesh and its lattice onto themselves, modulo
+   the lattice.  ``Q`` runs over the lattice's whole point group
+   (:mod:`~lkspace.symmetry.lattice_group`: ``B Q^T = N B``, ``N`` integer of any size,
+   from the lattice vectors as long as an LLL-reduced basis); ``tau`` is fixed by one
+   vertex's image, every vertex is matched by a KD-tree to an exact (vertex, offset) key,
+   and every face (a cycle of corners) and edge must land on one.  The translation
+   subgroup is closed from verified generators and one motion is verified per point
+   operation; the tables are their compositions.
 3. **Action on labels.**  Each motion permutes the edges, ``edge_perms[g, e]`` is the
    image of edge ``e``.  A proper motion (rotation, ``det Q = +1``) keeps twist labels: a
    right-handed twist stays right-handed and the rule reads the same from either end; an
@@ -35,10 +36,11 @@ from functools import cached_property
 
 import numpy as np
 
-from ..errors import LabelError, ScaffoldError
+from ..errors import LabelError, ScaffoldError, TooLargeError
 from ..model.scaffold import Scaffold
-from .finite import finite_lifts
-from .motions import candidate_vertex_perms, edge_permutation, periodic_motions
+from .finite import MAX_GROUP_ENTRIES, finite_lifts
+from .motions import tolerance
+from .periodic_search import periodic_symmetry
 
 #: Modes of ``--symmetry``.
 MODES = ("rotations", "isometries", "none")
@@ -153,6 +155,23 @@ def symmetry_group(scaffold: Scaffold) -> SymmetryGroup:
     return cached
 
 
+def symmetry_orders(scaffold: Scaffold) -> tuple[int, int]:
+    """``(isometries, rotations)``: the orders of the symmetry group, without its tables for periodic scaffolds.
+
+    Examples
+    --------
+    >>> from lkspace import load
+    >>> symmetry_orders(load("tiling:hexagonal@2x1"))
+    (16, 8)
+    """
+    cached = scaffold.__dict__.get("_symmetry_group")
+    if scaffold.periodic and cached is None:
+        found = periodic_symmetry(scaffold, tolerance(scaffold))
+        return found.order, found.n_rotations
+    group = symmetry_group(scaffold)
+    return group.order, group.n_rotations
+
+
 def compute_group(scaffold: Scaffold) -> SymmetryGroup:
     """Finite: isometries lifted to automorphisms; periodic: candidates -> rigid motions.  The identity first."""
     sigmas, qs, taus, perms = finite_tables(scaffold) if not scaffold.periodic else periodic_tables(scaffold)
@@ -179,18 +198,22 @@ def finite_tables(scaffold: Scaffold) -> Tables4:
 
 
 def periodic_tables(scaffold: Scaffold) -> Tables4:
-    """``(sigmas, Qs, taus, edge_perms)`` of a periodic scaffold, the identity first."""
-    rows = []
-    seen = set()
-    for sigma, q, tau, lattice_part in periodic_motions(scaffold, candidate_vertex_perms(scaffold)):
-        key = (sigma.tobytes(), np.round(q, 6).tobytes())
-        if key in seen:
-            continue
-        perm = edge_permutation(scaffold, sigma, lattice_part)
-        if perm is None:
-            continue
-        seen.add(key)
-        rows.append((sigma, q, tau, perm))
-    rows.sort(key=lambda r: not (np.allclose(r[1], np.eye(3)) and np.array_equal(r[0], np.arange(len(r[0])))))
-    sig, qs, taus, perms = zip(*rows, strict=True)
-    return np.array(sig, np.int64), np.array(qs, np.float64), np.array(taus, np.float64), np.array(perms, np.int64)
+    """``(sigmas, Qs, taus, edge_perms)`` of a periodic scaffold, the identity first.
+
+    Raises :class:`~lkspace.errors.TooLargeError` when the tables would pass
+    :data:`~lkspace.symmetry.finite.MAX_GROUP_ENTRIES` entries.
+    """
+    found = periodic_symmetry(scaffold, tolerance(scaffold))
+    size = scaffold.n_vertices + scaffold.n_edges
+    if found.order * size > MAX_GROUP_ENTRIES:
+        raise TooLargeError(
+            f"{scaffold.name}: its symmetry group has {found.order} motions on {size} vertices and edges: "
+            f"its tables would pass {MAX_GROUP_ENTRIES} entries; use --symmetry none"
+        )
+    sigmas = np.empty((found.order, scaffold.n_vertices), np.int64)
+    qs = np.empty((found.order, 3, 3), np.float64)
+    taus = np.empty((found.order, 3), np.float64)
+    perms = np.empty((found.order, scaffold.n_edges), np.int64)
+    for i, motion in enumerate(found.elements()):
+        sigmas[i], qs[i], taus[i], perms[i] = motion.sigma, motion.q, motion.tau, motion.edge_perm
+    return sigmas, qs, taus, perms
