@@ -39,6 +39,7 @@ from ..errors import LabelError, ScaffoldError
 from ..model.scaffold import Scaffold
 from .finite import finite_lifts
 from .motions import candidate_vertex_perms, edge_permutation, periodic_motions
+from .tolerance import resolve_tolerance
 
 #: Modes of ``--symmetry``.
 MODES = ("rotations", "isometries", "none")
@@ -134,8 +135,12 @@ def check_label_set(labels: np.ndarray, mode: str) -> None:
             )
 
 
-def symmetry_group(scaffold: Scaffold) -> SymmetryGroup:
-    """Return the rigid symmetry group of ``scaffold`` (cached on the scaffold object).
+def symmetry_group(scaffold: Scaffold, tolerance: float | None = None) -> SymmetryGroup:
+    """Return the rigid symmetry group of ``scaffold`` (cached on the scaffold object, per tolerance).
+
+    ``tolerance`` (mesh units): how far a motion may move a vertex from the vertex it is
+    matched with; ``None`` is the default rule of :mod:`lkspace.symmetry.tolerance`
+    (1/100 of the shortest edge).  The group's permutations are exact either way.
 
     Examples
     --------
@@ -146,16 +151,20 @@ def symmetry_group(scaffold: Scaffold) -> SymmetryGroup:
     >>> symmetry_group(load("dihedron:5")).order
     20
     """
-    cached = scaffold.__dict__.get("_symmetry_group")
-    if cached is None:
-        cached = compute_group(scaffold)
-        object.__setattr__(scaffold, "_symmetry_group", cached)
-    return cached
+    tol = resolve_tolerance(scaffold, tolerance)
+    cache = scaffold.__dict__.setdefault("_symmetry_groups", {})
+    if tol not in cache:
+        cache[tol] = compute_group(scaffold, tol)
+    group: SymmetryGroup = cache[tol]
+    return group
 
 
-def compute_group(scaffold: Scaffold) -> SymmetryGroup:
+def compute_group(scaffold: Scaffold, tolerance: float) -> SymmetryGroup:
     """Finite: isometries lifted to automorphisms; periodic: candidates -> rigid motions.  The identity first."""
-    sigmas, qs, taus, perms = finite_tables(scaffold) if not scaffold.periodic else periodic_tables(scaffold)
+    if scaffold.periodic:
+        sigmas, qs, taus, perms = periodic_tables(scaffold, tolerance)
+    else:
+        sigmas, qs, taus, perms = finite_tables(scaffold, tolerance)
     proper = np.linalg.det(qs) > 0
     if not len(qs) or not (np.allclose(qs[0], np.eye(3)) and np.array_equal(sigmas[0], np.arange(sigmas.shape[1]))):
         raise ScaffoldError(f"{scaffold.name}: symmetry search failed to find the identity")  # pragma: no cover
@@ -167,22 +176,22 @@ def compute_group(scaffold: Scaffold) -> SymmetryGroup:
 Tables4 = tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]
 
 
-def finite_tables(scaffold: Scaffold) -> Tables4:
+def finite_tables(scaffold: Scaffold, tolerance: float) -> Tables4:
     """``(sigmas, Qs, taus, edge_perms)`` of a finite scaffold (every motion fixes the vertex centroid)."""
     v = scaffold.vertices
     scale = max(float(np.abs(v).max()), 1e-300)
     centroid = (v / scale).mean(axis=0)
-    sigmas, qs, perms = finite_lifts(scaffold)
+    sigmas, qs, perms = finite_lifts(scaffold, tolerance)
     with np.errstate(over="ignore", invalid="ignore"):  # translations of a mesh near 1e308 may overflow
         taus = scale * (centroid[None, :] - qs @ centroid)
     return sigmas, qs, taus, perms
 
 
-def periodic_tables(scaffold: Scaffold) -> Tables4:
+def periodic_tables(scaffold: Scaffold, tolerance: float | None = None) -> Tables4:
     """``(sigmas, Qs, taus, edge_perms)`` of a periodic scaffold, the identity first."""
     rows = []
     seen = set()
-    for sigma, q, tau, lattice_part in periodic_motions(scaffold, candidate_vertex_perms(scaffold)):
+    for sigma, q, tau, lattice_part in periodic_motions(scaffold, candidate_vertex_perms(scaffold), tolerance):
         key = (sigma.tobytes(), np.round(q, 6).tobytes())
         if key in seen:
             continue
