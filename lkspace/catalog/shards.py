@@ -31,6 +31,7 @@ from ..io.scaffold_json import scaffold_to_dict
 from ..io.sources import ScaffoldSource
 from ..model.specs import LabelSetSpec
 from ..progress import task
+from ..symmetry.tolerance import resolve_tolerance
 from ..workers import interrupt_signals
 from .batches import space_batches
 from .jobs import ignored_signals, run_parts
@@ -134,6 +135,7 @@ def catalog_metadata(
         },
         "label_set": space.label_set.tolist(),
         "symmetry": space.mode,
+        "symmetry_tolerance": None if space.mode == "none" else resolve_tolerance(sc, space.tolerance),
         "group_order": space.group_order,
         "acting_order": space.n_actions,
         "assignments": space.assignments,

@@ -22,6 +22,7 @@ from .common import (
     load_mesh,
     mesh_argument,
     nulls_of,
+    symmetry_facts,
     usage_errors,
     weld_option,
 )
@@ -162,8 +163,10 @@ def info_cmd(mesh: str | None, list_edges: bool, as_json: bool) -> None:
     scaffold = load_mesh(ctx, mesh)
     scaffold.radial  # validates the radial order
     data = info_dict(scaffold)
-    group = symmetry_group(scaffold)
+    facts = symmetry_facts(scaffold)
+    group = symmetry_group(scaffold, facts["symmetry_tolerance"])
     data["symmetry_group_order"] = {"rotations": group.n_rotations, "isometries": group.order}
+    data.update(facts)
     data["n_edges"] = scaffold.n_edges
     if list_edges:  # the JSON field "edges" then holds the list (n_edges keeps the count)
         data["edges"] = edge_list(scaffold)
@@ -173,8 +176,9 @@ def info_cmd(mesh: str | None, list_edges: bool, as_json: bool) -> None:
 
         table = Table(title=f"{scaffold.name}", show_header=False, box=None)
         for key, value in data.items():
-            if value is not None and not isinstance(value, list):
-                table.add_row(key.replace("_", " "), str(value))
+            if value is not None and not isinstance(value, list) and key != "symmetry_note":
+                shown = f"{value:.3g}" if key == "symmetry_tolerance" else str(value)
+                table.add_row(key.replace("_", " "), shown)
         _console().print(table)
         if list_edges:
             edges = Table("edge", "a-b", "OBJ a-b", "degree", "name", title="edges (edge order)")

@@ -11,7 +11,17 @@ from ..catalog.plan import MAX_JOBS, MAX_SHARDS
 from ..design.space import WALK_MODES, DesignSpace, make_space
 from ..errors import UsageError
 from ..symmetry.group import MODES as SYMMETRY_MODES
-from .common import Context, emit, json_option, label_set, labels_option, load_mesh, mesh_argument
+from .common import (
+    Context,
+    emit,
+    json_option,
+    label_set,
+    labels_option,
+    load_mesh,
+    mesh_argument,
+    symmetry_facts,
+    symmetry_tolerance,
+)
 
 
 def _count_payload(
@@ -42,6 +52,7 @@ def _count_payload(
         components=components,
         no_zero=space.no_zero,
         max_designs=max_designs,
+        tolerance=space.tolerance,
         sample=sample,
         seed=seed,
     ):
@@ -153,7 +164,8 @@ def enumerate_cmd(
     try:
         scaffold = load_mesh(ctx, mesh)
         labels = label_set(labels_spec)
-        space = make_space(scaffold, labels, symmetry, no_zero)
+        space = make_space(scaffold, labels, symmetry, no_zero, symmetry_tolerance())
+        facts = symmetry_facts(scaffold) if symmetry != "none" else {}
     except KeyboardInterrupt as exc:  # Ctrl-C or SIGTERM while the symmetry group is computed
         if output is None or count_only:
             raise
@@ -186,16 +198,17 @@ def enumerate_cmd(
         payload = written.to_dict()
         payload["written"] = payload.pop("output")
     payload["seconds"] = round(time.perf_counter() - started, 3)
+    payload.update(facts)
 
     def human() -> None:
         from rich.console import Console
         from rich.table import Table
 
         con = Console(highlight=False)
-        con.print(
-            f"{scaffold.name}: label set {labels.tolist()}, symmetry {symmetry} (group order {space.group_order}), "
-            f"mode {mode}"
-        )
+        found = f"group order {space.group_order}"
+        if facts:
+            found += f"; found {facts['group']} within {facts['symmetry_tolerance']:.3g}"
+        con.print(f"{scaffold.name}: label set {labels.tolist()}, symmetry {symmetry} ({found}), mode {mode}")
         table = Table(show_header=False, box=None)
         table.add_row("designs", f"{payload['designs']:,}")
         table.add_row("assignments", f"{payload['assignments']:,}")

@@ -314,7 +314,13 @@ def ambiguous_lifts(scaffold: Scaffold, structure: Structure, size: int, toleran
             perm = structure.edge_permutation(sigma)
             proper = bool(np.linalg.det(q) > 0)
             key = (sigma.tobytes(), proper)
-            if perm is not None and key not in seen and structure.radial.keeps(sigma, perm, segment_hashes(perm[scaffold.side_edge], structure.starts), proper):
+            if (
+                perm is not None
+                and key not in seen
+                and structure.radial.keeps(
+                    sigma, perm, segment_hashes(perm[scaffold.side_edge], structure.starts), proper
+                )
+            ):
                 seen.add(key)
                 yield sigma, q, perm
         return

@@ -48,7 +48,9 @@ class RadialCheck:
         bad = np.bincount(edge[repeated | same[face]], minlength=self.n_edges) > 0
         self.edges = np.flatnonzero((k >= 3) & ~bad)
         sizes = k[self.edges]
-        seg = np.repeat(starts[self.edges], sizes) + (np.arange(int(sizes.sum())) - np.repeat(np.cumsum(sizes) - sizes, sizes))
+        seg = np.repeat(starts[self.edges], sizes) + (
+            np.arange(int(sizes.sum())) - np.repeat(np.cumsum(sizes) - sizes, sizes)
+        )
         self.sides = radial.edge_sides[seg]  # sides of the checked edges, each edge's in slot order
         first = np.cumsum(sizes) - sizes
         self.successor = np.arange(len(self.sides)) + 1

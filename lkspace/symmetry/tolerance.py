@@ -68,7 +68,7 @@ def default_tolerance(scaffold: Scaffold) -> float:
     return max(RELATIVE * shortest_edge(scaffold), FLOOR * mesh_unit(scaffold))
 
 
-def check_tolerance(tolerance: float) -> float:
+def check_tolerance(tolerance: float | str) -> float:
     """Return ``tolerance`` as a float if it is a finite number > 0; raise :class:`~lkspace.errors.UsageError` otherwise."""
     try:
         value = float(tolerance)
@@ -80,7 +80,7 @@ def check_tolerance(tolerance: float) -> float:
 
 
 def resolve_tolerance(scaffold: Scaffold, tolerance: float | None) -> float:
-    """The tolerance to use (mesh units): ``tolerance`` if given, else :func:`default_tolerance`.
+    """Return the tolerance to use (mesh units): ``tolerance`` if given, else :func:`default_tolerance`.
 
     Raises :class:`~lkspace.errors.UsageError` unless a given ``tolerance`` is a finite
     number > 0 and below half the shortest edge (past it, an edge's two ends would count as one).
