@@ -150,7 +150,7 @@ def enumerate_cmd(
     from ..catalog.remote import remote_url
     from ..catalog.shards import write_catalog
     from ..catalog.transaction import CatalogInterrupted, catalog_target
-    from ..engine import check_scheduler, resolve_scheduler
+    from ..engine import check_scheduler, is_dask, resolve_scheduler
 
     ctx = Context(as_json)
     engine = resolve_scheduler(scheduler)
@@ -199,6 +199,20 @@ def enumerate_cmd(
         payload["written"] = payload.pop("output")
     payload["seconds"] = round(time.perf_counter() - started, 3)
     payload.update(facts)
+    on_dask = is_dask(engine) and (
+        str(payload.get("note", "")).startswith("census")
+        if count_only or output is None
+        else payload["shards"] > 1 or identify or remote_url(output) is not None
+    )
+    payload["ran_in"] = (
+        ("a Dask LocalCluster" if engine == "dask" else f"Dask at {engine}") if on_dask else "this process"
+    )
+    if is_dask(engine) and not on_dask:
+        unused = "was not started" if engine == "dask" else "answered but was not used"
+        click.echo(
+            f"lkspace: note: ran in this process: too small to split into parts, so --scheduler {engine} {unused}",
+            err=True,
+        )
 
     def human() -> None:
         from rich.console import Console
@@ -220,6 +234,7 @@ def enumerate_cmd(
             table.add_row(
                 "identified", f"{payload['identified']['named']:,} of {payload['identified']['rows']:,} named: {top}"
             )
+        table.add_row("ran in", payload["ran_in"])
         table.add_row("seconds", str(payload["seconds"]))
         con.print(table)
 
