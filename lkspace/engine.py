@@ -85,8 +85,14 @@ def check_scheduler(scheduler: str) -> None:
 
 @contextlib.contextmanager
 def _connect(distributed: Any, address: str) -> Iterator[Any]:
-    """Yield a ``distributed.Client`` of the scheduler at ``address``; one line if none answers in time."""
+    """Yield a ``distributed.Client`` of the scheduler at ``address``; one line if none answers in time.
+
+    A ``tcp://`` address that refuses connections fails at once (``distributed`` would retry
+    until the timeout).
+    """
     try:
+        if address.startswith("tcp://"):
+            _knock(address[len("tcp://") :])
         client = distributed.Client(address, timeout=f"{CONNECT_TIMEOUT}s")
     except (OSError, TimeoutError) as exc:
         raise UsageError(f"--scheduler {address}: no Dask scheduler answers there ({exc})") from None
@@ -150,6 +156,17 @@ def dask_client(scheduler: str, jobs: int) -> Iterator[Any]:
         else:
             with _connect(distributed, scheduler) as client:
                 yield client
+
+
+def _knock(host_port: str) -> None:
+    """Open and close a TCP connection to ``HOST[:PORT]`` (Dask's port 8786 by default); ``OSError`` if refused."""
+    import socket
+
+    host, _, port = host_port.rpartition(":")
+    if not port.isdigit() or host.endswith(":"):  # no port (an IPv6 host has colons of its own)
+        host, port = host_port, "8786"
+    with socket.create_connection((host.strip("[]") or "127.0.0.1", int(port)), timeout=CONNECT_TIMEOUT):
+        pass
 
 
 def run_tasks(
