@@ -2,9 +2,9 @@
 
 A hand-made mesh with rounded or slightly wrong coordinates may miss a symmetry its
 designer meant.  :func:`near_symmetry` searches again with a looser tolerance
-(:func:`loose_tolerance`: ten times the tolerance or 5% of the shortest edge, whichever
-is larger, but at most a quarter of it); when that finds more motions it reports how far
-the mesh is from having them and which ``--tolerance`` would count them.  Only finite
+(:func:`loose_tolerance`: 100 times the tolerance, at most 5% of the shortest edge);
+when that finds more motions it says which ``--tolerance`` counts them, and how far the
+best-fitting one misses.  Only finite
 scaffolds of at most :data:`MAX_VERTICES` vertices are checked (the search runs twice).
 """
 
@@ -27,43 +27,48 @@ MAX_VERTICES = 20_000
 
 @dataclass(frozen=True)
 class NearSymmetry:
-    """Motions that fit within ``needed`` but not within ``tolerance`` (mesh units).
+    """Motions found with tolerance ``suggested`` but not with ``tolerance`` (mesh units).
 
     Attributes
     ----------
     tolerance : float
         The tolerance used.
-    needed : float
-        The largest distance one of the missed motions moves a vertex from its match.
     suggested : float
-        A ``--tolerance`` that counts them (``needed`` rounded up, with a margin).
+        A ``--tolerance`` (one significant digit, rounded up) with which the search finds them.
     rotations, isometries : int
-        Orders of the group with them (rotations only; with reflections).
+        Orders of the group found with ``suggested`` (rotations only; all).
     example : str
         The missed motion that fits best, in words, e.g. ``"a 1/3 turn about the axis (0.00, 0.00, 1.00) ..."``.
+    miss : float
+        How far that motion moves a vertex from the vertex it is matched with (best fit).
     """
 
     tolerance: float
-    needed: float
     suggested: float
     rotations: int
     isometries: int
     example: str
+    miss: float
 
     def message(self, name: str, group: SymmetryGroup) -> str:
         """One line for the user: what was missed, by how much, and what to do."""
         return (
-            f"{name} is within {self.needed:.2g} of having {self.rotations} rotations ({self.isometries} isometries), "
-            f"not {group.n_rotations} ({group.order}), e.g. {self.example}; that is more than the "
-            f"tolerance {self.tolerance:.2g}: pass --tolerance {self.suggested:g} to count them, or correct the "
-            "coordinates (more decimals)"
+            f"{name} has {self.rotations} rotations ({self.isometries} isometries) if points {self.suggested:g} "
+            f"apart count as one, but only {group.n_rotations} ({group.order}) within the tolerance "
+            f"{self.tolerance:.2g}: e.g. {self.example} misses by {self.miss:.2g}; pass --tolerance "
+            f"{self.suggested:g} to count them, or correct the coordinates (more decimals)"
         )
 
 
 def loose_tolerance(scaffold: Scaffold, tolerance: float) -> float:
-    """Return the looser tolerance of the second search (mesh units); at most a quarter of the shortest edge."""
-    edge = shortest_edge(scaffold)
-    return min(max(10 * tolerance, 0.05 * edge), 0.25 * edge)
+    """Return the tolerance of the second search (mesh units): 100 ``tolerance``, at most 5% of the shortest edge."""
+    return min(100 * tolerance, 0.05 * shortest_edge(scaffold))
+
+
+def round_up(value: float) -> float:
+    """``value`` rounded up to one significant digit (``0.0372 -> 0.04``)."""
+    unit = 10.0 ** math.floor(math.log10(value))
+    return float(f"{math.ceil(value / unit - 1e-9) * unit:.1g}")
 
 
 def near_symmetry(scaffold: Scaffold, tolerance: float | None = None) -> NearSymmetry | None:
@@ -93,22 +98,19 @@ def near_symmetry(scaffold: Scaffold, tolerance: float | None = None) -> NearSym
     known = {(s.tobytes(), bool(p)) for s, p in zip(strict.vertex_perms, strict.proper, strict=True)}
     x = np.asarray(scaffold.vertices, np.float64)
     x = x - x.mean(axis=0)
-    best: tuple[float, np.ndarray] | None = None
-    needed = 0.0
+    misses = []
     for sigma, q, proper in zip(wide.vertex_perms, wide.matrices, wide.proper, strict=True):
-        if (sigma.tobytes(), bool(proper)) in known:
-            continue
-        fit = procrustes(x, x[sigma])
-        if (np.linalg.det(fit) > 0) != bool(proper):
-            fit = q  # a flat mesh: the fit picked the other side; the search's own matrix fits as well
-        miss = float(np.sqrt(np.einsum("ij,ij->i", x @ fit.T - x[sigma], x @ fit.T - x[sigma]).max()))
-        needed = max(needed, miss)
-        if best is None or (miss, not proper) < (best[0], np.linalg.det(best[1]) < 0):
-            best = (miss, fit)
-    assert best is not None, "a larger group has a motion the smaller one lacks"
-    suggested = float(f"{1.2 * needed:.1g}")
-    suggested = suggested if suggested > needed else float(f"{2 * needed:.1g}")
-    return NearSymmetry(tol, needed, suggested, wide.n_rotations, wide.order, describe(best[1]))
+        if (sigma.tobytes(), bool(proper)) not in known:
+            fit = procrustes(x, x[sigma])
+            if (np.linalg.det(fit) > 0) != bool(proper):
+                fit = q  # a flat mesh: the fit took the other side; the search's own matrix fits as well
+            d = x @ fit.T - x[sigma]
+            misses.append((float(np.sqrt(np.einsum("ij,ij->i", d, d).max())), not proper, fit))
+    miss, _, fit = min(misses, key=lambda m: m[:2])
+    suggested = round_up(1.1 * min(max(m[0] for m in misses), loose))
+    if suggested >= loose or compute_group(scaffold, suggested).order != wide.order:
+        suggested = loose  # products of near motions may miss by more than each: the search's own tolerance
+    return NearSymmetry(tol, suggested, wide.n_rotations, wide.order, describe(fit), miss)
 
 
 def describe(q: np.ndarray) -> str:
