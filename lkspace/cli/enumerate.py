@@ -66,6 +66,32 @@ def _count_payload(
     }
 
 
+def _where_it_ran(
+    engine: str, payload: dict[str, Any], counted: bool, identify: bool, output: str | None
+) -> str | None:
+    """Say where a run on a Dask ``engine`` ran (``None`` for the local scheduler); note it when Dask went unused.
+
+    A census and every part of a sharded, remote or identified catalog are Dask tasks; a
+    one-file catalog and a count that needs no census run in this process.
+    """
+    from ..catalog.remote import remote_url
+    from ..engine import is_dask
+
+    if not is_dask(engine):
+        return None
+    if counted:
+        on_dask = str(payload.get("note", "")).startswith("census")
+    else:
+        on_dask = payload["shards"] > 1 or identify or (output is not None and remote_url(output) is not None)
+    if on_dask:
+        return "a Dask LocalCluster" if engine == "dask" else f"Dask at {engine}"
+    unused = "was not started" if engine == "dask" else "answered but was not used"
+    click.echo(
+        f"lkspace: note: ran in this process: too small to split into parts, so --scheduler {engine} {unused}", err=True
+    )
+    return "this process"
+
+
 @click.command("enumerate")
 @mesh_argument
 @labels_option
@@ -150,7 +176,7 @@ def enumerate_cmd(
     from ..catalog.remote import remote_url
     from ..catalog.shards import write_catalog
     from ..catalog.transaction import CatalogInterrupted, catalog_target
-    from ..engine import check_scheduler, is_dask, resolve_scheduler
+    from ..engine import check_scheduler, resolve_scheduler
 
     ctx = Context(as_json)
     engine = resolve_scheduler(scheduler)
@@ -199,20 +225,9 @@ def enumerate_cmd(
         payload["written"] = payload.pop("output")
     payload["seconds"] = round(time.perf_counter() - started, 3)
     payload.update(facts)
-    on_dask = is_dask(engine) and (
-        str(payload.get("note", "")).startswith("census")
-        if count_only or output is None
-        else payload["shards"] > 1 or identify or remote_url(output) is not None
-    )
-    payload["ran_in"] = (
-        ("a Dask LocalCluster" if engine == "dask" else f"Dask at {engine}") if on_dask else "this process"
-    )
-    if is_dask(engine) and not on_dask:
-        unused = "was not started" if engine == "dask" else "answered but was not used"
-        click.echo(
-            f"lkspace: note: ran in this process: too small to split into parts, so --scheduler {engine} {unused}",
-            err=True,
-        )
+    ran_in = _where_it_ran(engine, payload, count_only or output is None, identify, output)
+    if ran_in is not None:
+        payload["ran_in"] = ran_in
 
     def human() -> None:
         from rich.console import Console
@@ -234,7 +249,8 @@ def enumerate_cmd(
             table.add_row(
                 "identified", f"{payload['identified']['named']:,} of {payload['identified']['rows']:,} named: {top}"
             )
-        table.add_row("ran in", payload["ran_in"])
+        if "ran_in" in payload:
+            table.add_row("ran in", payload["ran_in"])
         table.add_row("seconds", str(payload["seconds"]))
         con.print(table)
 
