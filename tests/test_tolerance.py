@@ -188,3 +188,47 @@ def test_large_perturbations_lose_the_group(name, seed, size):
     step *= size * tol / np.linalg.norm(step, axis=1, keepdims=True)
     moved = Scaffold.from_faces(sc.vertices + step, sc.faces(), name="moved")
     assert symmetry_group(moved, tol).order == 1
+
+
+def without_tolerance(file):
+    """Rewrite the catalog file as one written before ``symmetry_tolerance`` was recorded."""
+    import pyarrow.parquet as pq
+
+    from lkspace.catalog.reader import read_metadata
+    from lkspace.catalog.schema import METADATA_KEY
+
+    meta = read_metadata(file)
+    del meta["symmetry_tolerance"]
+    table = pq.read_table(file)
+    pq.write_table(table.replace_schema_metadata({METADATA_KEY: json.dumps(meta).encode()}), file)
+
+
+def test_catalogs_from_before_the_tolerance_still_read_and_resume(tmp_path, capsys):
+    from lkspace.catalog.reader import read_catalog, read_metadata
+    from lkspace.catalog.shards import write_catalog
+    from lkspace.catalog.transaction import file_sha256, load_manifest, save_manifest
+
+    space = make_space("tetrahedron", "-1..1")
+    one = tmp_path / "t.parquet"
+    first = write_catalog(space, one)
+    without_tolerance(one)
+    assert "symmetry_tolerance" not in read_metadata(one)
+    assert len(read_catalog(one).labels) == first.designs == 87
+    code, _, err = run(capsys, "export", one, "--row", 5, "-o", tmp_path / "row5.obj")
+    assert code == 0 and (tmp_path / "row5.obj").exists(), err
+    assert write_catalog(space, one, resume=True).shards_resumed == 1  # the old file is kept as it is
+    # a sharded build from before: every part and the manifest without the key, part 1 lost
+    write_catalog(space, tmp_path / "c", shards=3)
+    build = tmp_path / ".c.lkspace-build"
+    (tmp_path / "c").rename(build)
+    manifest = load_manifest(str(build))
+    manifest.pop("complete")
+    del manifest["symmetry_tolerance"]
+    for entry in manifest["parts"].values():
+        without_tolerance(build / entry["file"])
+        entry["sha256"] = file_sha256(str(build / entry["file"]))
+    (build / manifest["parts"].pop("1")["file"]).unlink()
+    save_manifest(str(build), manifest)
+    again = write_catalog(space, tmp_path / "c", shards=3, resume=True)
+    assert again.shards_resumed == 2 and again.designs == 87
+    assert len(read_catalog(tmp_path / "c").labels) == 87

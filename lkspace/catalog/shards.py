@@ -49,6 +49,7 @@ from .transaction import (
     part_name,
     prune_build,
     remove_temporaries,
+    same_settings,
     save_manifest,
     seed_build,
     verified_parts,
@@ -299,7 +300,7 @@ class _Run:
         build, n = self.target.build, self.plan.parts
         self.jobs = jobs
         old = load_manifest(build) if resume and os.path.isdir(build) else None
-        if old is not None and {k: old.get(k) for k in self.signature} == self.signature:
+        if old is not None and same_settings(old, self.signature):
             run_id = str(old["run"])
             self.parts = verified_parts(build, old)
         else:
@@ -361,7 +362,7 @@ def _matches(part: str, meta: dict[str, Any]) -> bool:
     """Whether the catalog file ``part`` has the metadata ``meta`` and reads to the end."""
     try:
         old = read_metadata(part)
-        if any(old.get(k) != v for k, v in meta.items()):
+        if not same_settings(old, meta):
             return False
         pq.ParquetFile(part).read()
     except (CatalogError, OSError, pa.ArrowException):
