@@ -15,8 +15,10 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from lkspace import Scaffold, load
+from lkspace.design.counting import count_designs
 from lkspace.design.space import make_space
 from lkspace.errors import UsageError
+from lkspace.inverse.pipeline import symmetry_actions
 from lkspace.symmetry.group import symmetry_group
 from lkspace.symmetry.nearby import near_symmetry
 from lkspace.symmetry.slots import RadialCheck
@@ -132,6 +134,11 @@ def test_tolerance_is_a_parameter_not_state():
     assert symmetry_group(sc).n_rotations == 6  # the default is not changed by the call before
     assert symmetry_group(sc, 1e-6).n_rotations == 2
     assert default_tolerance(sc) == pytest.approx(0.01 * shortest_edge(sc))
+    assert count_designs(sc, "-1..1", tolerance=1e-6).designs == 29_889
+    assert count_designs(sc, "-1..1").designs == 10_233
+    labels = np.arange(-1, 2)
+    assert len(symmetry_actions(sc, "rotations", labels, 1e-6)) == 1  # solve --distinct-up-to: non-identity actions
+    assert len(symmetry_actions(sc, "rotations", labels)) == 5
 
 
 def test_catalog_records_its_tolerance(tmp_path, capsys):

@@ -11,11 +11,12 @@ scaffolds of at most :data:`MAX_VERTICES` vertices are checked (the search runs 
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import TooLargeError
+from ..errors import LkspaceWarning, TooLargeError
 from ..model.scaffold import Scaffold
 from .group import SymmetryGroup, compute_group, symmetry_group
 from .pointset import procrustes
@@ -90,7 +91,9 @@ def near_symmetry(scaffold: Scaffold, tolerance: float | None = None) -> NearSym
         return None
     strict = symmetry_group(scaffold, tol)
     try:
-        wide = compute_group(scaffold, loose)
+        with warnings.catch_warnings():  # the first search has said what there is to say
+            warnings.simplefilter("ignore", LkspaceWarning)
+            wide = compute_group(scaffold, loose)
     except TooLargeError:
         return None
     if wide.order <= strict.order:
@@ -108,9 +111,16 @@ def near_symmetry(scaffold: Scaffold, tolerance: float | None = None) -> NearSym
             misses.append((float(np.sqrt(np.einsum("ij,ij->i", d, d).max())), not proper, fit))
     miss, _, fit = min(misses, key=lambda m: m[:2])
     suggested = round_up(1.1 * min(max(m[0] for m in misses), loose))
-    if suggested >= loose or compute_group(scaffold, suggested).order != wide.order:
+    if suggested >= loose or _quiet_order(scaffold, suggested) != wide.order:
         suggested = loose  # products of near motions may miss by more than each: the search's own tolerance
     return NearSymmetry(tol, suggested, wide.n_rotations, wide.order, describe(fit), miss)
+
+
+def _quiet_order(scaffold: Scaffold, tolerance: float) -> int:
+    """Order of the group found with ``tolerance``, without repeating the first search's warnings."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", LkspaceWarning)
+        return compute_group(scaffold, tolerance).order
 
 
 def describe(q: np.ndarray) -> str:

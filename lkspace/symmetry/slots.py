@@ -27,7 +27,6 @@ class RadialCheck:
         self.scaffold = scaffold
         k = scaffold.edge_degrees
         self.n_edges = scaffold.n_edges
-        self.face_hashes = face_hashes
         self.active = bool(np.any(k >= 3))
         if not self.active:
             return
