@@ -116,6 +116,10 @@ class Structure:
             return None
         return perm if self.radial.keeps(sigma, perm, hashes, proper) else None
 
+    def keeps_radial(self, sigma: np.ndarray, perm: np.ndarray, proper: bool) -> bool:
+        """Whether the automorphism ``(sigma, perm)`` keeps the radial order of every edge (:mod:`.slots`)."""
+        return self.radial.keeps(sigma, perm, segment_hashes(perm[self.scaffold.side_edge], self.starts), proper)
+
 
 class Lifter:
     """Lift site permutations to vertex permutations (one vertex per site, or by faces)."""
@@ -314,13 +318,7 @@ def ambiguous_lifts(scaffold: Scaffold, structure: Structure, size: int, toleran
             perm = structure.edge_permutation(sigma)
             proper = bool(np.linalg.det(q) > 0)
             key = (sigma.tobytes(), proper)
-            if (
-                perm is not None
-                and key not in seen
-                and structure.radial.keeps(
-                    sigma, perm, segment_hashes(perm[scaffold.side_edge], structure.starts), proper
-                )
-            ):
+            if perm is not None and key not in seen and structure.keeps_radial(sigma, perm, proper):
                 seen.add(key)
                 yield sigma, q, perm
         return
