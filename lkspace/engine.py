@@ -7,6 +7,12 @@ connects to a running Dask scheduler (a cluster started by ``dask-jobqueue``, Ku
 or ``dask scheduler`` / ``dask worker`` by hand).  Left unset, the scheduler is read from
 the environment variable ``DASK_SCHEDULER_ADDRESS`` when it is set, else ``local``.
 
+A named scheduler address is always contacted first (:func:`check_scheduler`): one that
+does not answer within :data:`CONNECT_TIMEOUT` seconds is a usage error (exit 2) before any
+work, never a silent local run.  Work too small to split (a one-file catalog, a count
+that needs no census) runs in this process even then; the command says so.  The
+LocalCluster serves no dashboard.
+
 Under Dask every shard is one task; a task whose worker dies is run again on another
 worker (``distributed``'s own retry of lost tasks, up to :data:`ALLOWED_FAILURES` worker
 deaths per task), so a lost worker costs only its shard.  Dask is imported only here and
@@ -30,6 +36,15 @@ SCHEDULERS = ("local", "dask")
 """Named schedulers; anything else must be a ``tcp://HOST:PORT`` (or ``tls://``) address."""
 
 ENV_ADDRESS = "DASK_SCHEDULER_ADDRESS"
+CONNECT_TIMEOUT = 10
+"""Seconds to wait for a named Dask scheduler to answer."""
+
+NO_DASHBOARD = {"dashboard": False, "dashboard_address": "127.0.0.1:0"}
+"""Scheduler options of our LocalCluster: no dashboard.  A ``distributed.Scheduler`` always
+opens a web server (``dashboard_address=None`` alone still binds port 8787 and serves status
+pages and metrics); this one listens on a free local port, and with no HTTP routes
+(``distributed.scheduler.http.routes``) it answers every request with 404."""
+
 ALLOWED_FAILURES = 3
 """Worker deaths a Dask task survives before the run fails (``distributed.scheduler.allowed-failures``)."""
 
@@ -54,9 +69,35 @@ def is_dask(scheduler: str) -> bool:
 
 
 def check_scheduler(scheduler: str) -> None:
-    """Before any work: raise :class:`~lkspace.errors.MissingDependencyError` if ``scheduler`` needs Dask and it is missing."""
-    if is_dask(scheduler):
-        import_distributed(f"--scheduler {scheduler}")
+    """Before any work: check that Dask is installed if ``scheduler`` needs it, and that a named scheduler answers.
+
+    Raises :class:`~lkspace.errors.MissingDependencyError` without the extra ``lkspace[dask]``
+    and :class:`~lkspace.errors.UsageError` when no scheduler answers at the address
+    within :data:`CONNECT_TIMEOUT` seconds.
+    """
+    if not is_dask(scheduler):
+        return
+    distributed = import_distributed(f"--scheduler {scheduler}")
+    if scheduler != "dask":
+        with _connect(distributed, scheduler):
+            pass
+
+
+@contextlib.contextmanager
+def _connect(distributed: Any, address: str) -> Iterator[Any]:
+    """Yield a ``distributed.Client`` of the scheduler at ``address``; one line if none answers in time.
+
+    A ``tcp://`` address that refuses connections fails at once (``distributed`` would retry
+    until the timeout).
+    """
+    try:
+        if address.startswith("tcp://"):
+            _knock(address[len("tcp://") :])
+        client = distributed.Client(address, timeout=f"{CONNECT_TIMEOUT}s")
+    except (OSError, TimeoutError) as exc:
+        raise UsageError(f"--scheduler {address}: no Dask scheduler answers there ({exc})") from None
+    with client:
+        yield client
 
 
 def import_distributed(purpose: str) -> Any:
@@ -95,11 +136,17 @@ def dask_client(scheduler: str, jobs: int) -> Iterator[Any]:
         "distributed.scheduler.allowed-failures": ALLOWED_FAILURES,
         "distributed.worker.multiprocessing-method": "fork",
         "distributed.worker.daemon": False,  # a task may start processes (identification does)
+        "distributed.scheduler.http.routes": [],  # the web servers serve nothing (see NO_DASHBOARD)
+        "distributed.worker.http.routes": [],
     }
     with dask.config.set(settings):
         if scheduler == "dask":
             cluster = distributed.LocalCluster(
-                n_workers=jobs, threads_per_worker=1, processes=True, dashboard_address=None
+                n_workers=jobs,
+                threads_per_worker=1,
+                processes=True,
+                dashboard_address=None,
+                scheduler_kwargs=NO_DASHBOARD,
             )
             try:
                 with distributed.Client(cluster) as client:
@@ -107,12 +154,19 @@ def dask_client(scheduler: str, jobs: int) -> Iterator[Any]:
             finally:
                 cluster.close()
         else:
-            try:
-                client = distributed.Client(scheduler, timeout="10s")
-            except OSError as exc:
-                raise UsageError(f"--scheduler {scheduler}: no Dask scheduler answers there ({exc})") from None
-            with client:
+            with _connect(distributed, scheduler) as client:
                 yield client
+
+
+def _knock(host_port: str) -> None:
+    """Open and close a TCP connection to ``HOST[:PORT]`` (Dask's port 8786 by default); ``OSError`` if refused."""
+    import socket
+
+    host, _, port = host_port.rpartition(":")
+    if not port.isdigit() or host.endswith(":"):  # no port (an IPv6 host has colons of its own)
+        host, port = host_port, "8786"
+    with socket.create_connection((host.strip("[]") or "127.0.0.1", int(port)), timeout=CONNECT_TIMEOUT):
+        pass
 
 
 def run_tasks(

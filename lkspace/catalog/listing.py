@@ -29,6 +29,7 @@ def designs(
     seed: int = 0,
     batch_rows: int | None = None,
     as_arrow: bool = False,
+    tolerance: float | None = None,
 ) -> Iterator[pd.DataFrame | pa.RecordBatch]:
     """Walk a design space and yield its catalog rows in batches (no files).
 
@@ -48,6 +49,8 @@ def designs(
         Rows per batch (default 262,144).
     as_arrow : bool
         Yield ``pyarrow.RecordBatch`` instead of pandas DataFrames.
+    tolerance : float, optional
+        Symmetry search tolerance in mesh units (default: 1/100 of the shortest edge).
 
     Yields
     ------
@@ -61,7 +64,7 @@ def designs(
     >>> len(df), int(df.orbit_size.sum())
     (12, 64)
     """
-    space = make_space(scaffold, label_set, symmetry, no_zero)
+    space = make_space(scaffold, label_set, symmetry, no_zero, tolerance)
     if mode not in WALK_MODES:
         raise LabelError(f"unknown mode {mode!r}; choose one of {', '.join(WALK_MODES)}")
     if mode == "designs":

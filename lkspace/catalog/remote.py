@@ -34,7 +34,7 @@ from ..errors import CatalogError, UsageError, require
 from .jobs import run_parts, write_part_remote
 from .plan import Plan
 from .schema import METADATA_KEY
-from .transaction import MANIFEST, part_name
+from .transaction import MANIFEST, part_name, same_settings
 
 
 def remote_url(path: Any) -> str | None:
@@ -67,7 +67,7 @@ def _kept_parts(fs: Any, root: str, signature: dict[str, Any], fingerprint: str)
         except (OSError, ValueError, KeyError, TypeError):
             continue
         shard = meta.get("shard") or {}
-        if shard.get("plan") != fingerprint or any(meta.get(k) != v for k, v in signature.items()):
+        if shard.get("plan") != fingerprint or not same_settings(meta, signature):
             continue
         entry = {
             "rows": meta["rows"],

@@ -31,6 +31,7 @@ from ..io.scaffold_json import scaffold_to_dict
 from ..io.sources import ScaffoldSource
 from ..model.specs import LabelSetSpec
 from ..progress import task
+from ..symmetry.tolerance import resolve_tolerance
 from ..workers import interrupt_signals
 from .batches import space_batches
 from .jobs import ignored_signals, run_parts
@@ -48,6 +49,7 @@ from .transaction import (
     part_name,
     prune_build,
     remove_temporaries,
+    same_settings,
     save_manifest,
     seed_build,
     verified_parts,
@@ -134,6 +136,7 @@ def catalog_metadata(
         },
         "label_set": space.label_set.tolist(),
         "symmetry": space.mode,
+        "symmetry_tolerance": None if space.mode == "none" else resolve_tolerance(sc, space.tolerance),
         "group_order": space.group_order,
         "acting_order": space.n_actions,
         "assignments": space.assignments,
@@ -297,7 +300,7 @@ class _Run:
         build, n = self.target.build, self.plan.parts
         self.jobs = jobs
         old = load_manifest(build) if resume and os.path.isdir(build) else None
-        if old is not None and {k: old.get(k) for k in self.signature} == self.signature:
+        if old is not None and same_settings(old, self.signature):
             run_id = str(old["run"])
             self.parts = verified_parts(build, old)
         else:
@@ -359,7 +362,7 @@ def _matches(part: str, meta: dict[str, Any]) -> bool:
     """Whether the catalog file ``part`` has the metadata ``meta`` and reads to the end."""
     try:
         old = read_metadata(part)
-        if any(old.get(k) != v for k, v in meta.items()):
+        if not same_settings(old, meta):
             return False
         pq.ParquetFile(part).read()
     except (CatalogError, OSError, pa.ArrowException):

@@ -161,6 +161,15 @@ def prune_build(folder: str, parts: dict[str, dict[str, Any]]) -> None:
             remove_path(os.path.join(folder, entry))
 
 
+LATER_KEYS = ("symmetry_tolerance",)
+"""Settings recorded since format version 1 was fixed: a catalog without one was written before it existed."""
+
+
+def same_settings(old: dict[str, Any], signature: dict[str, Any]) -> bool:
+    """Whether the metadata ``old`` has every setting of ``signature`` (a :data:`LATER_KEYS` setting it lacks passes)."""
+    return all(old.get(k) == v for k, v in signature.items() if k in old or k not in LATER_KEYS)
+
+
 def seed_build(target: Target, build: str, signature: dict[str, Any], run: str) -> dict[str, dict[str, Any]]:
     """Start a build from the finished catalog at the target, if it is of the same run settings.
 
@@ -168,7 +177,7 @@ def seed_build(target: Target, build: str, signature: dict[str, Any], run: str) 
     checksums are verified; returns them as manifest entries.
     """
     old = load_manifest(target.path) if os.path.isdir(target.path) else None
-    if old is None or {k: old.get(k) for k in signature} != signature:
+    if old is None or not same_settings(old, signature):
         return {}
     import shutil
 

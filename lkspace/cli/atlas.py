@@ -8,7 +8,16 @@ import click
 
 from ..errors import UsageError
 from ..knots.budget import TIME_LIMIT
-from .common import Context, emit, json_option, label_set, labels_option, load_mesh, mesh_argument
+from .common import (
+    Context,
+    emit,
+    json_option,
+    label_set,
+    labels_option,
+    load_mesh,
+    mesh_argument,
+    symmetry_tolerance,
+)
 from .export import is_catalog
 from .numbers import Finite
 
@@ -102,6 +111,7 @@ def atlas_cmd(
             seed=seed,
             time_limit=time_limit or None,
             stop_after=stop_after or None,
+            tolerance=symmetry_tolerance(),
         )
     files = write_gallery(folder, data, scaffold, pictures) if folder is not None else []
     data["written"] = [os.path.join(os.path.abspath(folder), f) for f in files] if folder else []

@@ -64,7 +64,47 @@ def load_mesh(ctx: Context, mesh: str | None) -> Scaffold:
     ctx.notes["scaffold"] = scaffold.name
     if tol is not None:
         ctx.notes["welded"] = {"tolerance": None if tol is True else tol, "vertices": scaffold.n_vertices}
+    given = symmetry_tolerance()
+    if given is not None:
+        from ..symmetry.tolerance import resolve_tolerance
+
+        try:
+            resolve_tolerance(scaffold, given)  # a tolerance past half the shortest edge fails before any work
+        except UsageError as exc:
+            raise UsageError(f"--{exc}") from None
     return scaffold
+
+
+def symmetry_facts(scaffold: Scaffold) -> dict[str, Any]:
+    """Find the symmetry group with ``--tolerance`` (or the default); say when a larger one was just missed.
+
+    Returns ``group`` (e.g. ``"6 rotations, 12 isometries"``), ``symmetry_group_order``
+    (``{"rotations": int, "isometries": int}``), ``symmetry_tolerance``
+    (mesh units) and ``symmetry_note`` (``None``, or the line also printed on stderr as a note).
+    """
+    from ..symmetry.group import symmetry_orders
+    from ..symmetry.nearby import near_symmetry
+    from ..symmetry.tolerance import resolve_tolerance
+
+    tol = resolve_tolerance(scaffold, symmetry_tolerance())
+    isometries, rotations = symmetry_orders(scaffold, tol)  # periodic: without the group's tables
+    near = near_symmetry(scaffold, tol)
+    note = None if near is None else near.message(scaffold.name, rotations, isometries)
+    if note is not None:
+        click.echo(f"lkspace: note: {note}", err=True)
+    return {
+        "group": f"{rotations} rotations, {isometries} isometries",
+        "symmetry_group_order": {"rotations": rotations, "isometries": isometries},
+        "symmetry_tolerance": tol,
+        "symmetry_note": note,
+    }
+
+
+def symmetry_tolerance() -> float | None:
+    """Return the ``--tolerance T`` of the running command (mesh units), or ``None`` for the default rule."""
+    current = click.get_current_context(silent=True)
+    value = None if current is None else current.meta.get(TOLERANCE_KEY)
+    return None if value is None else float(value)
 
 
 def labels_of(scaffold: Scaffold, spec: str | None) -> np.ndarray:
@@ -146,9 +186,36 @@ weld_option = click.option(
 )
 
 
+TOLERANCE_KEY = "lkspace.tolerance"
+"""Key of the ``--tolerance`` value in ``click.Context.meta`` (read by :func:`symmetry_tolerance`)."""
+
+
+def _store_tolerance(ctx: click.Context, _param: click.Parameter, value: str | None) -> None:
+    """Check ``--tolerance T`` (a finite number > 0) and keep it in the context."""
+    if value is None:
+        return
+    from ..symmetry.tolerance import check_tolerance
+
+    try:
+        ctx.meta[TOLERANCE_KEY] = check_tolerance(value)
+    except UsageError as exc:
+        raise UsageError(f"--{exc}") from None
+
+
+tolerance_option = click.option(
+    "--tolerance",
+    default=None,
+    expose_value=False,
+    callback=_store_tolerance,
+    metavar="T",
+    help="How far apart two points may be and still count as one for symmetry (mesh units; "
+    "default 1/100 of the shortest edge).",
+)
+
+
 def mesh_argument(func: Callable[..., Any]) -> Callable[..., Any]:
-    """Add the ``[MESH]`` argument and its ``--weld [TOL]`` option (read by :func:`load_mesh`)."""
-    return click.argument("mesh", required=False, metavar="[MESH]")(weld_option(func))
+    """Add the ``[MESH]`` argument, its ``--weld [TOL]`` and ``--tolerance T`` options (read by :func:`load_mesh`)."""
+    return click.argument("mesh", required=False, metavar="[MESH]")(weld_option(tolerance_option(func)))
 
 
 labels_option = click.option(

@@ -22,6 +22,7 @@ from .common import (
     load_mesh,
     mesh_argument,
     nulls_of,
+    symmetry_facts,
     usage_errors,
     weld_option,
 )
@@ -156,14 +157,11 @@ def info_cmd(mesh: str | None, list_edges: bool, as_json: bool) -> None:
     vertex pair 0-based (as in twist files) and 1-based (as in the OBJ file), its degree
     K (number of faces on it) and its name (periodic: with the offset of its end b).
     """
-    from ..symmetry.group import symmetry_orders
-
     ctx = Context(as_json)
     scaffold = load_mesh(ctx, mesh)
     scaffold.radial  # validates the radial order
     data = info_dict(scaffold)
-    isometries, rotations = symmetry_orders(scaffold)  # periodic: without the group's tables
-    data["symmetry_group_order"] = {"rotations": rotations, "isometries": isometries}
+    data.update(symmetry_facts(scaffold))  # periodic: the orders without the group's tables
     data["n_edges"] = scaffold.n_edges
     if list_edges:  # the JSON field "edges" then holds the list (n_edges keeps the count)
         data["edges"] = edge_list(scaffold)
@@ -173,8 +171,9 @@ def info_cmd(mesh: str | None, list_edges: bool, as_json: bool) -> None:
 
         table = Table(title=f"{scaffold.name}", show_header=False, box=None)
         for key, value in data.items():
-            if value is not None and not isinstance(value, list):
-                table.add_row(key.replace("_", " "), str(value))
+            if value is not None and not isinstance(value, list) and key != "symmetry_note":
+                shown = f"{value:.3g}" if key == "symmetry_tolerance" else str(value)
+                table.add_row(key.replace("_", " "), shown)
         _console().print(table)
         if list_edges:
             edges = Table("edge", "a-b", "OBJ a-b", "degree", "name", title="edges (edge order)")

@@ -11,7 +11,17 @@ from ..catalog.plan import MAX_JOBS, MAX_SHARDS
 from ..design.space import WALK_MODES, DesignSpace, make_space
 from ..errors import UsageError
 from ..symmetry.group import MODES as SYMMETRY_MODES
-from .common import Context, emit, json_option, label_set, labels_option, load_mesh, mesh_argument
+from .common import (
+    Context,
+    emit,
+    json_option,
+    label_set,
+    labels_option,
+    load_mesh,
+    mesh_argument,
+    symmetry_facts,
+    symmetry_tolerance,
+)
 
 
 def _count_payload(
@@ -42,6 +52,7 @@ def _count_payload(
         components=components,
         no_zero=space.no_zero,
         max_designs=max_designs,
+        tolerance=space.tolerance,
         sample=sample,
         seed=seed,
     ):
@@ -53,6 +64,32 @@ def _count_payload(
         "assignments": space.assignments,
         "by_components": dict(sorted(by.items(), key=lambda kv: int(kv[0]))),
     }
+
+
+def _where_it_ran(
+    engine: str, payload: dict[str, Any], counted: bool, identify: bool, output: str | None
+) -> str | None:
+    """Say where a run on a Dask ``engine`` ran (``None`` for the local scheduler); note it when Dask went unused.
+
+    A census and every part of a sharded, remote or identified catalog are Dask tasks; a
+    one-file catalog and a count that needs no census run in this process.
+    """
+    from ..catalog.remote import remote_url
+    from ..engine import is_dask
+
+    if not is_dask(engine):
+        return None
+    if counted:
+        on_dask = str(payload.get("note", "")).startswith("census")
+    else:
+        on_dask = payload["shards"] > 1 or identify or (output is not None and remote_url(output) is not None)
+    if on_dask:
+        return "a Dask LocalCluster" if engine == "dask" else f"Dask at {engine}"
+    unused = "was not started" if engine == "dask" else "answered but was not used"
+    click.echo(
+        f"lkspace: note: ran in this process: too small to split into parts, so --scheduler {engine} {unused}", err=True
+    )
+    return "this process"
 
 
 @click.command("enumerate")
@@ -153,7 +190,8 @@ def enumerate_cmd(
     try:
         scaffold = load_mesh(ctx, mesh)
         labels = label_set(labels_spec)
-        space = make_space(scaffold, labels, symmetry, no_zero)
+        space = make_space(scaffold, labels, symmetry, no_zero, symmetry_tolerance())
+        facts = symmetry_facts(scaffold) if symmetry != "none" else {}
     except KeyboardInterrupt as exc:  # Ctrl-C or SIGTERM while the symmetry group is computed
         if output is None or count_only:
             raise
@@ -186,16 +224,20 @@ def enumerate_cmd(
         payload = written.to_dict()
         payload["written"] = payload.pop("output")
     payload["seconds"] = round(time.perf_counter() - started, 3)
+    payload.update(facts)
+    ran_in = _where_it_ran(engine, payload, count_only or output is None, identify, output)
+    if ran_in is not None:
+        payload["ran_in"] = ran_in
 
     def human() -> None:
         from rich.console import Console
         from rich.table import Table
 
         con = Console(highlight=False)
-        con.print(
-            f"{scaffold.name}: label set {labels.tolist()}, symmetry {symmetry} (group order {space.group_order}), "
-            f"mode {mode}"
-        )
+        found = f"group order {space.group_order}"
+        if facts:
+            found += f"; found {facts['group']} within {facts['symmetry_tolerance']:.3g}"
+        con.print(f"{scaffold.name}: label set {labels.tolist()}, symmetry {symmetry} ({found}), mode {mode}")
         table = Table(show_header=False, box=None)
         table.add_row("designs", f"{payload['designs']:,}")
         table.add_row("assignments", f"{payload['assignments']:,}")
@@ -207,6 +249,8 @@ def enumerate_cmd(
             table.add_row(
                 "identified", f"{payload['identified']['named']:,} of {payload['identified']['rows']:,} named: {top}"
             )
+        if "ran_in" in payload:
+            table.add_row("ran in", payload["ran_in"])
         table.add_row("seconds", str(payload["seconds"]))
         con.print(table)
 

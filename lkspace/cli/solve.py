@@ -10,7 +10,17 @@ import click
 from .. import io
 from ..errors import UsageError
 from ..io.paths import output_file
-from .common import Context, emit, json_option, label_set, labels_option, load_mesh, mesh_argument, usage_errors
+from .common import (
+    Context,
+    emit,
+    json_option,
+    label_set,
+    labels_option,
+    load_mesh,
+    mesh_argument,
+    symmetry_tolerance,
+    usage_errors,
+)
 from .edges import edge_values, fix_label
 from .numbers import Finite
 
@@ -218,6 +228,7 @@ def solve_cmd(
         workers=workers,
         seed=seed,
         fast_path=not no_fast_path,
+        tolerance=symmetry_tolerance(),
     )
     written = None
     if target is not None and output is not None and result.solutions:

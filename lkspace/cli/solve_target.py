@@ -11,7 +11,7 @@ from .. import io
 from ..errors import UsageError
 from ..io.paths import output_file
 from ..knots.budget import TIME_LIMIT
-from .common import Context, emit, label_set, load_mesh, usage_errors
+from .common import Context, emit, label_set, load_mesh, symmetry_tolerance, usage_errors
 from .edges import edge_values, fix_label
 
 
@@ -68,6 +68,7 @@ def target_cmd(
         identify_time_limit=min(TIME_LIMIT, limit) if limit else TIME_LIMIT,
         processes=processes,
         seed=seed,
+        tolerance=symmetry_tolerance(),
     )
     written = None
     if target_path is not None and output is not None and result.solutions:

@@ -142,6 +142,7 @@ def count_designs(
     *,
     components: int | None = None,
     no_zero: bool = False,
+    tolerance: float | None = None,
 ) -> DesignCount:
     """Count the designs of a space exactly, without listing them.
 
@@ -155,10 +156,12 @@ def count_designs(
         Count only designs with this many components.
     no_zero : bool
         Leave label 0 out.
+    tolerance : float, optional
+        Symmetry search tolerance in mesh units (default: 1/100 of the shortest edge).
 
     Examples
     --------
     >>> count_designs("cube", "-1..1")
     DesignCount(22,815 designs of 531,441 assignments; by components {1: 8800, 2: 9837, 3: 3534, 4: 641, 5: 2, 6: 1})
     """
-    return count_space(make_space(scaffold, label_set, symmetry, no_zero), components)
+    return count_space(make_space(scaffold, label_set, symmetry, no_zero, tolerance), components)

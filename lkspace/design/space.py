@@ -54,12 +54,16 @@ class DesignSpace:
         ``"rotations"``, ``"isometries"`` or ``"none"``.
     no_zero : bool
         Leave label 0 out of the walk (a filter: ``assignments`` still counts ``|SET|^edges``).
+    tolerance : float or None
+        Symmetry search tolerance in mesh units (:func:`~lkspace.symmetry.group.symmetry_group`);
+        ``None``: the default rule.
     """
 
     scaffold: Scaffold
     label_set: np.ndarray
     mode: str = "rotations"
     no_zero: bool = False
+    tolerance: float | None = None
     group_order: int = field(init=False)
 
     def __post_init__(self) -> None:
@@ -73,7 +77,7 @@ class DesignSpace:
         object.__setattr__(self, "label_set", labels)
         check_mode(self.mode)
         check_label_set(labels, self.mode)
-        group = symmetry_group(self.scaffold) if self.mode != "none" else None
+        group = symmetry_group(self.scaffold, self.tolerance) if self.mode != "none" else None
         object.__setattr__(self, "group_order", group.mode_order(self.mode) if group else 1)
         if len(self.walk_labels) == 0:
             raise LabelError("--no-zero leaves no labels to walk")
@@ -89,7 +93,7 @@ class DesignSpace:
         if self.mode == "none":
             n = self.scaffold.n_edges
             return np.arange(n, dtype=np.int64)[None, :], np.ones(1, np.int64)
-        return symmetry_group(self.scaffold).action(self.mode)
+        return symmetry_group(self.scaffold, self.tolerance).action(self.mode)
 
     @property
     def n_actions(self) -> int:
@@ -347,9 +351,13 @@ def canonical_form(space: DesignSpace, labels: ArrayLike) -> tuple[np.ndarray, i
 
 
 def make_space(
-    scaffold: ScaffoldSource, label_set: LabelSetSpec = "-2..2", symmetry: str = "rotations", no_zero: bool = False
+    scaffold: ScaffoldSource,
+    label_set: LabelSetSpec = "-2..2",
+    symmetry: str = "rotations",
+    no_zero: bool = False,
+    tolerance: float | None = None,
 ) -> DesignSpace:
-    """Build a :class:`DesignSpace` from user-level arguments (name or Scaffold, label SET or array)."""
+    """Build a :class:`DesignSpace` from user-level arguments (name or Scaffold, label SET or array, tolerance)."""
     sc = load(scaffold)
     lab = parse_label_set(label_set) if isinstance(label_set, str) else np.asarray(label_set, np.int64)
-    return DesignSpace(sc, lab, symmetry, no_zero)
+    return DesignSpace(sc, lab, symmetry, no_zero, tolerance)

@@ -123,6 +123,7 @@ def solve(
     workers: int = 0,
     seed: int = 0,
     fast_path: bool = True,
+    tolerance: float | None = None,
 ) -> SolveResult:
     """Find up to ``count`` designs on ``scaffold`` with exactly ``components`` strands.
 
@@ -152,6 +153,8 @@ def solve(
     fast_path : bool
         Try the spanning-tree/forest construction of :mod:`lkspace.inverse.constructive` first (it
         answers many queries with N <= F in linear time; CP-SAT takes over otherwise).
+    tolerance : float, optional
+        Symmetry search tolerance for ``distinct_up_to``, in mesh units (default: 1/100 of the shortest edge).
 
     Examples
     --------
@@ -171,7 +174,7 @@ def solve(
     deadline = None if not time_limit else t0 + time_limit
     with task(f"solving {scaffold.name} for {query.components} component(s)") as step:
         step.note("symmetry" if distinct_up_to != "none" else "fast path")
-        actions = symmetry_actions(scaffold, distinct_up_to, label_set)
+        actions = symmetry_actions(scaffold, distinct_up_to, label_set, tolerance)
         if fast_path and (count == 1 or distinct_up_to == "none"):
             step.note("fast path")
             # the local search behind the fast path gets half of the time left (30 s without a limit)
@@ -234,15 +237,17 @@ def heartbeat(step: Step, every: float = 1.0) -> Iterator[None]:
 LOCAL_SEARCH_SECONDS = 30.0
 
 
-def symmetry_actions(scaffold: Scaffold, mode: str, label_set: np.ndarray) -> list[EdgeAction]:
-    """Edge actions ``(perm (n_edges,) int64, sign)`` of the non-identity symmetries for ``mode``."""
+def symmetry_actions(
+    scaffold: Scaffold, mode: str, label_set: np.ndarray, tolerance: float | None = None
+) -> list[EdgeAction]:
+    """Edge actions ``(perm (n_edges,) int64, sign)`` of the non-identity symmetries for ``mode`` (``tolerance``: the search's)."""
     if mode == "none":
         return []
     if mode not in ("rotations", "isometries"):
         raise LabelError(f"--distinct-up-to {mode!r}: expected rotations, isometries or none", usage=True)
     if mode == "isometries" and not np.array_equal(np.sort(-label_set), label_set):
         raise LabelError("--distinct-up-to isometries: the label set must be closed under negation", usage=True)
-    perms, signs = symmetry_group(scaffold).action(mode)
+    perms, signs = symmetry_group(scaffold, tolerance).action(mode)
     return [(perm, int(sign)) for perm, sign in zip(perms[1:], signs[1:], strict=True)]  # identity first
 
 

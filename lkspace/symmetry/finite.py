@@ -25,6 +25,8 @@ from ..errors import LkspaceWarning, TooLargeError
 from ..model.scaffold import Scaffold
 from ..progress import task
 from .pointset import Sites, SiteSearch, find_sites, standard_position
+from .slots import RadialCheck
+from .tolerance import FLOOR, mesh_unit
 
 MAX_GROUP_ENTRIES = 50_000_000
 """Most entries the group's tables (order x (vertices + edges)) may hold, about 400 MB.
@@ -74,11 +76,11 @@ class Structure:
         self.starts = scaffold.face_starts
         self.sizes = np.diff(self.starts)
         self.face_of_side = np.repeat(np.arange(scaffold.n_faces), self.sizes)
-        self.faces = self.sorted_faces(scaffold.side_edge)
+        self.faces = self.sorted_faces(segment_hashes(scaffold.side_edge, self.starts), scaffold.side_edge)
+        self.radial = RadialCheck(scaffold, segment_hashes(scaffold.side_edge, self.starts))
 
-    def sorted_faces(self, side_edges: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """Faces as edge multisets in a canonical order: ``((2, n_faces) sizes and hashes, sorted edges)``."""
-        hashes = segment_hashes(side_edges, self.starts)
+    def sorted_faces(self, hashes: np.ndarray, side_edges: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Faces (``hashes`` of their edges) as edge multisets in a canonical order: ``((2, n_faces), sorted edges)``."""
         order = np.lexsort((hashes, self.sizes))
         sorted_sides = side_edges[np.lexsort((side_edges, self.face_of_side))]
         edges = sorted_sides[gather(self.starts, order)]
@@ -97,17 +99,26 @@ class Structure:
             return None
         return perm.astype(np.int64)
 
-    def automorphism(self, sigma: np.ndarray) -> np.ndarray | None:
-        """Edge permutation of ``sigma`` if it is an incidence automorphism (edges and faces kept), else ``None``."""
+    def automorphism(self, sigma: np.ndarray, proper: bool) -> np.ndarray | None:
+        """Edge permutation of ``sigma`` if it keeps edges, faces and radial orders (:mod:`.slots`), else ``None``.
+
+        ``proper``: the motion is a rotation (it decides which way radial orders must turn).
+        """
         if np.any(np.bincount(sigma, minlength=self.n_vertices) != 1):
             return None
         perm = self.edge_permutation(sigma)
         if perm is None:
             return None
-        keys, edges = self.sorted_faces(perm[self.scaffold.side_edge])
+        image_sides = perm[self.scaffold.side_edge]
+        hashes = segment_hashes(image_sides, self.starts)
+        keys, edges = self.sorted_faces(hashes, image_sides)
         if not (np.array_equal(keys, self.faces[0]) and np.array_equal(edges, self.faces[1])):
             return None
-        return perm
+        return perm if self.radial.keeps(sigma, perm, hashes, proper) else None
+
+    def keeps_radial(self, sigma: np.ndarray, perm: np.ndarray, proper: bool) -> bool:
+        """Whether the automorphism ``(sigma, perm)`` keeps the radial order of every edge (:mod:`.slots`)."""
+        return self.radial.keeps(sigma, perm, segment_hashes(perm[self.scaffold.side_edge], self.starts), proper)
 
 
 class Lifter:
@@ -255,18 +266,20 @@ class Elements:
             frontier = new
 
 
-def finite_lifts(scaffold: Scaffold) -> Tables:
+def finite_lifts(scaffold: Scaffold, tolerance: float) -> Tables:
     """Return ``(sigma, Q, edge_perm)`` for every symmetry of a finite scaffold, the identity first.
 
-    Raises :class:`~lkspace.errors.TooLargeError` when the group's tables would pass
+    ``tolerance`` (mesh units, :mod:`lkspace.symmetry.tolerance`): how far a motion may
+    move a vertex from the vertex it is matched with.  Raises
+    :class:`~lkspace.errors.TooLargeError` when the group's tables would pass
     :data:`MAX_GROUP_ENTRIES` or the candidates :data:`~lkspace.symmetry.pointset.MAX_FRAME_CANDIDATES`.
     """
     x = standard_position(scaffold.vertices)
-    sites = find_sites(x, vertex_invariants(scaffold))
+    sites = find_sites(x, vertex_invariants(scaffold), max(tolerance / mesh_unit(scaffold), FLOOR))
     structure = Structure(scaffold)
     lifter = Lifter(scaffold, sites)
     if lifter.ambiguous:
-        return stack(list(ambiguous_lifts(scaffold, structure, scaffold.n_vertices + scaffold.n_edges)))
+        return stack(list(ambiguous_lifts(scaffold, structure, scaffold.n_vertices + scaffold.n_edges, tolerance)))
     search = SiteSearch(sites)
     found = Elements(search, scaffold.n_vertices, scaffold.n_edges, scaffold.name)
     with task("symmetry search (motions)", total=None) as step:
@@ -286,14 +299,14 @@ def finite_lifts(scaffold: Scaffold) -> Tables:
                 if search.key(pi, bool(np.linalg.det(q) > 0)) in found.keys:
                     continue
                 sigma = lifter.lift(pi)
-                perm = None if sigma is None else structure.automorphism(sigma)
+                perm = None if sigma is None else structure.automorphism(sigma, bool(np.linalg.det(q) > 0))
                 if sigma is not None and perm is not None:
                     found.add_generator((sigma, q, perm, pi))
                     step.note(f"{len(found.rows)} motions found")
     return found.tables()
 
 
-def ambiguous_lifts(scaffold: Scaffold, structure: Structure, size: int) -> Iterator[Lift]:
+def ambiguous_lifts(scaffold: Scaffold, structure: Structure, size: int, tolerance: float) -> Iterator[Lift]:
     """Lifts when coincident vertices leave faces ambiguous: the exact igraph search if small, else the identity."""
     from .motions import MAX_AUTOMORPHISMS, automorphism_count, candidate_vertex_perms, finite_motions
 
@@ -301,10 +314,11 @@ def ambiguous_lifts(scaffold: Scaffold, structure: Structure, size: int) -> Iter
     count = automorphism_count(scaffold)
     if count <= MAX_AUTOMORPHISMS and count * (size + scaffold.n_faces) <= MAX_GROUP_ENTRIES:
         seen = set()
-        for sigma, q, _, _ in finite_motions(scaffold, candidate_vertex_perms(scaffold)):
+        for sigma, q, _, _ in finite_motions(scaffold, candidate_vertex_perms(scaffold), tolerance):
             perm = structure.edge_permutation(sigma)
-            key = (sigma.tobytes(), bool(np.linalg.det(q) > 0))
-            if perm is not None and key not in seen:
+            proper = bool(np.linalg.det(q) > 0)
+            key = (sigma.tobytes(), proper)
+            if perm is not None and key not in seen and structure.keeps_radial(sigma, perm, proper):
                 seen.add(key)
                 yield sigma, q, perm
         return

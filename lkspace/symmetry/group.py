@@ -39,8 +39,8 @@ import numpy as np
 from ..errors import LabelError, ScaffoldError, TooLargeError
 from ..model.scaffold import Scaffold
 from .finite import MAX_GROUP_ENTRIES, finite_lifts
-from .motions import tolerance
 from .periodic_search import periodic_symmetry
+from .tolerance import resolve_tolerance
 
 #: Modes of ``--symmetry``.
 MODES = ("rotations", "isometries", "none")
@@ -136,8 +136,12 @@ def check_label_set(labels: np.ndarray, mode: str) -> None:
             )
 
 
-def symmetry_group(scaffold: Scaffold) -> SymmetryGroup:
-    """Return the rigid symmetry group of ``scaffold`` (cached on the scaffold object).
+def symmetry_group(scaffold: Scaffold, tolerance: float | None = None) -> SymmetryGroup:
+    """Return the rigid symmetry group of ``scaffold`` (cached on the scaffold object, per tolerance).
+
+    ``tolerance`` (mesh units): how far a motion may move a vertex from the vertex it is
+    matched with; ``None`` is the default rule of :mod:`lkspace.symmetry.tolerance`
+    (1/100 of the shortest edge).  The group's permutations are exact either way.
 
     Examples
     --------
@@ -148,15 +152,18 @@ def symmetry_group(scaffold: Scaffold) -> SymmetryGroup:
     >>> symmetry_group(load("dihedron:5")).order
     20
     """
-    cached = scaffold.__dict__.get("_symmetry_group")
-    if cached is None:
-        cached = compute_group(scaffold)
-        object.__setattr__(scaffold, "_symmetry_group", cached)
-    return cached
+    tol = resolve_tolerance(scaffold, tolerance)
+    cache = scaffold.__dict__.setdefault("_symmetry_groups", {})
+    if tol not in cache:
+        cache[tol] = compute_group(scaffold, tol)
+    group: SymmetryGroup = cache[tol]
+    return group
 
 
-def symmetry_orders(scaffold: Scaffold) -> tuple[int, int]:
+def symmetry_orders(scaffold: Scaffold, tolerance: float | None = None) -> tuple[int, int]:
     """``(isometries, rotations)``: the orders of the symmetry group, without its tables for periodic scaffolds.
+
+    ``tolerance`` as for :func:`symmetry_group`.
 
     Examples
     --------
@@ -164,17 +171,20 @@ def symmetry_orders(scaffold: Scaffold) -> tuple[int, int]:
     >>> symmetry_orders(load("tiling:hexagonal@2x1"))
     (16, 8)
     """
-    cached = scaffold.__dict__.get("_symmetry_group")
-    if scaffold.periodic and cached is None:
-        found = periodic_symmetry(scaffold, tolerance(scaffold))
+    tol = resolve_tolerance(scaffold, tolerance)
+    if scaffold.periodic and tol not in scaffold.__dict__.get("_symmetry_groups", {}):
+        found = periodic_symmetry(scaffold, tol)
         return found.order, found.n_rotations
-    group = symmetry_group(scaffold)
+    group = symmetry_group(scaffold, tol)
     return group.order, group.n_rotations
 
 
-def compute_group(scaffold: Scaffold) -> SymmetryGroup:
+def compute_group(scaffold: Scaffold, tolerance: float) -> SymmetryGroup:
     """Finite: isometries lifted to automorphisms; periodic: candidates -> rigid motions.  The identity first."""
-    sigmas, qs, taus, perms = finite_tables(scaffold) if not scaffold.periodic else periodic_tables(scaffold)
+    if scaffold.periodic:
+        sigmas, qs, taus, perms = periodic_tables(scaffold, tolerance)
+    else:
+        sigmas, qs, taus, perms = finite_tables(scaffold, tolerance)
     proper = np.linalg.det(qs) > 0
     if not len(qs) or not (np.allclose(qs[0], np.eye(3)) and np.array_equal(sigmas[0], np.arange(sigmas.shape[1]))):
         raise ScaffoldError(f"{scaffold.name}: symmetry search failed to find the identity")  # pragma: no cover
@@ -186,24 +196,24 @@ def compute_group(scaffold: Scaffold) -> SymmetryGroup:
 Tables4 = tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]
 
 
-def finite_tables(scaffold: Scaffold) -> Tables4:
+def finite_tables(scaffold: Scaffold, tolerance: float) -> Tables4:
     """``(sigmas, Qs, taus, edge_perms)`` of a finite scaffold (every motion fixes the vertex centroid)."""
     v = scaffold.vertices
     scale = max(float(np.abs(v).max()), 1e-300)
     centroid = (v / scale).mean(axis=0)
-    sigmas, qs, perms = finite_lifts(scaffold)
+    sigmas, qs, perms = finite_lifts(scaffold, tolerance)
     with np.errstate(over="ignore", invalid="ignore"):  # translations of a mesh near 1e308 may overflow
         taus = scale * (centroid[None, :] - qs @ centroid)
     return sigmas, qs, taus, perms
 
 
-def periodic_tables(scaffold: Scaffold) -> Tables4:
+def periodic_tables(scaffold: Scaffold, tolerance: float) -> Tables4:
     """``(sigmas, Qs, taus, edge_perms)`` of a periodic scaffold, the identity first.
 
     Raises :class:`~lkspace.errors.TooLargeError` when the tables would pass
     :data:`~lkspace.symmetry.finite.MAX_GROUP_ENTRIES` entries.
     """
-    found = periodic_symmetry(scaffold, tolerance(scaffold))
+    found = periodic_symmetry(scaffold, tolerance)
     size = scaffold.n_vertices + scaffold.n_edges
     if found.order * size > MAX_GROUP_ENTRIES:
         raise TooLargeError(

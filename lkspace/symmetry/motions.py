@@ -17,6 +17,7 @@ import numpy as np
 from ..errors import ScaffoldError, TooLargeError
 from ..model.scaffold import Scaffold
 from ..progress import task
+from .tolerance import resolve_tolerance
 
 if TYPE_CHECKING:
     import igraph
@@ -90,8 +91,9 @@ def candidate_vertex_perms(scaffold: Scaffold) -> np.ndarray:
 
 
 # ---- rigid-motion check ---------------------------------------------------------------
-def _tolerance(scaffold: Scaffold) -> float:
-    return 1e-6 * max(1.0, float(np.abs(scaffold.vertices).max()))
+def _tolerance(scaffold: Scaffold, tolerance: float | None = None) -> float:
+    """How far (mesh units) a motion may move a vertex from its image: ``tolerance`` or the default rule."""
+    return resolve_tolerance(scaffold, tolerance)
 
 
 def plane_normal(x: np.ndarray) -> tuple[np.ndarray, float]:
@@ -103,19 +105,15 @@ def plane_normal(x: np.ndarray) -> tuple[np.ndarray, float]:
     return vectors[:, 0], float(np.sqrt(max(values[0], 0.0) / max(len(x), 1)))
 
 
-def tolerance(scaffold: Scaffold) -> float:
-    """Distance within which two positions of ``scaffold`` count as one (the periodic search uses it too)."""
-    return _tolerance(scaffold)
-
-
-def finite_motions(scaffold: Scaffold, sigmas: np.ndarray) -> Iterator[Motion]:
+def finite_motions(scaffold: Scaffold, sigmas: np.ndarray, tolerance: float | None = None) -> Iterator[Motion]:
     """Yield the rigid motions of a finite scaffold realizing the candidate vertex permutations ``sigmas``.
 
+    A motion may move each vertex by up to ``tolerance`` (mesh units; default: :mod:`.tolerance`).
     ``Q`` is the orthogonal Procrustes fit about the vertex centroid (and its composition with
     the mirror in the vertices' plane when they are coplanar); the lattice part is ``None``.
     """
     x = scaffold.vertices - scaffold.vertices.mean(axis=0)
-    tol = _tolerance(scaffold)
+    tol = _tolerance(scaffold, tolerance)
     normal, spread = plane_normal(x)
     flat = spread <= tol
     mirror = np.eye(3) - 2 * np.outer(normal, normal)
@@ -124,5 +122,5 @@ def finite_motions(scaffold: Scaffold, sigmas: np.ndarray) -> Iterator[Motion]:
         u, _, wt = np.linalg.svd(y.T @ x)
         q0 = u @ wt
         for q in (q0, q0 @ mirror) if flat else (q0,):
-            if np.abs(x @ q.T - y).max() <= tol:
+            if np.sqrt(np.einsum("ij,ij->i", x @ q.T - y, x @ q.T - y).max()) <= tol:
                 yield sigma, q, scaffold.vertices.mean(axis=0) - q @ scaffold.vertices.mean(axis=0), None

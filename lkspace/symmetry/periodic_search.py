@@ -288,7 +288,7 @@ def face_keys(corner_keys: np.ndarray, face_starts: np.ndarray) -> np.ndarray:
         rev = block[np.arange(len(faces))[:, None], (first[:, None] - steps) % m]
         fwd[:, :, 1:] -= fwd[:, :1, 1:]
         rev[:, :, 1:] -= rev[:, :1, 1:]
-        diff = (fwd[:, 1] - rev[:, 1]) if m > 1 else np.zeros((len(faces), corner_keys.shape[1]), np.int64)
+        diff = (fwd - rev).reshape(len(faces), -1)  # the whole sequences: their second corners may tie
         lead = diff[np.arange(len(faces)), np.argmax(diff != 0, axis=1)]
         chosen = np.where((lead <= 0)[:, None, None], fwd, rev).reshape(len(faces), -1)
         rows[faces[unique], : chosen.shape[1]] = chosen[unique]

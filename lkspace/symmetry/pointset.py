@@ -3,8 +3,10 @@
 The vertices are first put in a standard position: divided by their largest coordinate
 (no overflow for coordinates near ``1e308``, no underflow for tiny ones), centred on their
 centroid (which every isometry of the set fixes) and scaled to RMS radius 1.  Positions
-closer than :data:`TOLERANCE` are one **site** (an OBJ with one vertex copy per face has
-several vertices per site).  Every site gets an invariant class (radius, number of
+closer than :data:`WELD` are one **site** (an OBJ with one vertex copy per face has
+several vertices per site).  A candidate motion must move every site to within the
+search's tolerance ``Sites.tolerance`` (:mod:`lkspace.symmetry.tolerance`, in these
+units) of a site of its class, one-to-one.  Every site gets an invariant class (radius, number of
 vertex copies, and caller-given invariants such as degrees) that any symmetry keeps.
 
 Candidates: an isometry fixing the centroid is fixed by the images of two sites ``a``,
@@ -12,8 +14,10 @@ Candidates: an isometry fixing the centroid is fixed by the images of two sites 
 is taken from the smallest class and ``b`` from a small class, and the images ``a'``,
 ``b'`` run over their classes with ``|a' - b'| = |a - b|`` (a KD-tree finds them).  Each
 candidate is probed on a few sites, then every site is matched with the KD-tree
-(:class:`scipy.spatial.cKDTree`): the candidate is kept when it maps the sites one-to-one
-onto sites of their own class.  Its matrix is refit on all sites (3 x 3 Procrustes).
+(:class:`scipy.spatial.cKDTree`, within :data:`SLACK` tolerances, since a frame fixed by
+two rounded sites is a little off far from them): the candidate is kept when it maps the
+sites one-to-one onto sites of their own class and, refit on all sites (3 x 3
+Procrustes), moves none by more than the tolerance.
 Collinear sites (a line through the centroid) have the four motions that fix or flip
 the line.  Memory: O(sites) per candidate; time: O(candidates) + O(motions x sites log sites).
 """
@@ -29,8 +33,11 @@ from ..errors import TooLargeError
 from ..model.scaffold import unique_rows
 from ..progress import task
 
-TOLERANCE = 1e-6
-"""Distance (in units of the RMS radius about the centroid) below which two positions are equal."""
+WELD = 1e-6
+"""Distance (in units of the RMS radius about the centroid) below which two positions are one site."""
+
+SLACK = 4.0
+"""Candidates are matched to sites within ``SLACK`` tolerances, then refit and checked within one."""
 
 MAX_FRAME_CANDIDATES = 5_000_000
 """Most candidate frames ``(a', b')`` the search tries; past it, :class:`~lkspace.errors.TooLargeError`.
@@ -56,11 +63,14 @@ class Sites:
         Site of each vertex.
     classes : (n_sites,) int64
         Invariant class of each site (equal for sites a symmetry may exchange).
+    tolerance : float
+        How far (same units) a motion may move a site from the site it is matched with.
     """
 
     points: np.ndarray
     of_vertex: np.ndarray
     classes: np.ndarray
+    tolerance: float
 
     @property
     def n_sites(self) -> int:
@@ -94,17 +104,18 @@ def gap_clusters(values: np.ndarray, tol: float) -> np.ndarray:
     return ids
 
 
-def find_sites(x: np.ndarray, invariants: list[np.ndarray]) -> Sites:
+def find_sites(x: np.ndarray, invariants: list[np.ndarray], tolerance: float = WELD) -> Sites:
     """Weld positions ``x`` (standard position) into sites; class them by radius and ``invariants``.
 
     ``invariants`` are ``(n_vertices,)`` float arrays kept by every symmetry (e.g. vertex
-    degrees); a site's value is the sum over its vertices.
+    degrees, exact); a site's value is the sum over its vertices.  Radii closer than ten
+    ``tolerance`` chain into one class (a rounded mesh keeps its classes whole).
     """
     from scipy.sparse import coo_matrix
     from scipy.sparse.csgraph import connected_components
     from scipy.spatial import cKDTree
 
-    pairs = cKDTree(x).query_pairs(TOLERANCE, output_type="ndarray")
+    pairs = cKDTree(x).query_pairs(WELD, output_type="ndarray")
     n = len(x)
     if len(pairs):
         graph = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(n, n))
@@ -117,11 +128,11 @@ def find_sites(x: np.ndarray, invariants: list[np.ndarray]) -> Sites:
     points = np.zeros((n_sites, 3))
     np.add.at(points, of_vertex, x)
     points /= copies[:, None]
-    columns = [gap_clusters(np.sqrt(np.einsum("ij,ij->i", points, points)), 10 * TOLERANCE), copies]
+    columns = [gap_clusters(np.sqrt(np.einsum("ij,ij->i", points, points)), 10 * tolerance), copies]
     for inv in invariants:
-        columns.append(gap_clusters(np.bincount(of_vertex, weights=inv, minlength=n_sites), 10 * TOLERANCE))
+        columns.append(gap_clusters(np.bincount(of_vertex, weights=inv, minlength=n_sites), 10 * WELD))
     _, classes = unique_rows(np.column_stack(columns).astype(np.int64))
-    return Sites(points=points, of_vertex=of_vertex, classes=classes)
+    return Sites(points=points, of_vertex=of_vertex, classes=classes, tolerance=tolerance)
 
 
 def frame(a: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -138,8 +149,8 @@ def procrustes(x: np.ndarray, y: np.ndarray) -> np.ndarray:
     return u @ wt
 
 
-def refit(x: np.ndarray, pi: np.ndarray, q: np.ndarray, normal: np.ndarray) -> np.ndarray | None:
-    """Refit ``q`` on all sites (Procrustes), keeping its handedness; ``None`` if the fit misses a site.
+def refit(x: np.ndarray, pi: np.ndarray, q: np.ndarray, normal: np.ndarray, tolerance: float) -> np.ndarray | None:
+    """Refit ``q`` on all sites (Procrustes), keeping its handedness; ``None`` if it moves a site past ``tolerance``.
 
     For coplanar sites the fit leaves the side of the plane open: ``normal`` (the direction
     of least spread) is mirrored when the fit's determinant differs from ``q``'s.
@@ -147,9 +158,15 @@ def refit(x: np.ndarray, pi: np.ndarray, q: np.ndarray, normal: np.ndarray) -> n
     fit = procrustes(x, x[pi])
     if np.linalg.det(fit) * np.linalg.det(q) < 0:
         fit = fit @ (np.eye(3) - 2 * np.outer(normal, normal))
-    if np.abs(rotate(x, fit) - x[pi]).max() > TOLERANCE:
+    if miss(x, pi, fit) > tolerance:
         return None
     return fit
+
+
+def miss(x: np.ndarray, pi: np.ndarray, q: np.ndarray) -> float:
+    """Largest distance between a site ``x[i]`` moved by ``q`` and the site ``x[pi[i]]`` it is matched with."""
+    d = rotate(x, q) - x[pi]
+    return float(np.sqrt(np.einsum("ij,ij->i", d, d).max()))
 
 
 def line_motions(direction: np.ndarray) -> list[np.ndarray]:
@@ -174,7 +191,7 @@ class Matcher:
     def match(self, q: np.ndarray) -> np.ndarray | None:
         """Return ``(n_sites,) int64``, the site each site goes to under ``q``, or ``None``."""
         pts, classes = self.sites.points, self.sites.classes
-        dist, idx = self.tree.query(rotate(pts, q), distance_upper_bound=TOLERANCE)
+        dist, idx = self.tree.query(rotate(pts, q), distance_upper_bound=SLACK * self.sites.tolerance)
         if not np.all(np.isfinite(dist)):
             return None
         if not np.array_equal(classes[idx], classes):
@@ -187,7 +204,7 @@ class Matcher:
         """(m,) bool: which ``qs (m, 3, 3)`` map every probe site onto a site of its class."""
         pts, classes = self.sites.points, self.sites.classes
         images = np.einsum("mij,pj->mpi", qs, pts[probes])
-        dist, idx = self.tree.query(images.reshape(-1, 3), distance_upper_bound=TOLERANCE)
+        dist, idx = self.tree.query(images.reshape(-1, 3), distance_upper_bound=SLACK * self.sites.tolerance)
         ok = np.isfinite(dist).reshape(len(qs), -1)
         idx = np.minimum(idx, len(pts) - 1).reshape(len(qs), -1)
         ok &= classes[idx] == classes[probes][None, :]
@@ -196,15 +213,15 @@ class Matcher:
 
 def anchors(sites: Sites) -> tuple[int, int | None]:
     """Return sites ``a`` (smallest class off the centroid) and ``b`` (small class, far from the line 0-a)."""
-    pts, classes = sites.points, sites.classes
+    pts, classes, tol = sites.points, sites.classes, sites.tolerance
     radii = np.sqrt(np.einsum("ij,ij->i", pts, pts))
     sizes = np.bincount(classes)
-    off = radii > TOLERANCE
+    off = radii > max(tol, WELD)
     a = int(np.flatnonzero(off)[np.argmin(sizes[classes[off]] * 1.0)])
-    sines = np.linalg.norm(np.cross(pts / np.maximum(radii, TOLERANCE)[:, None], pts[a] / radii[a]), axis=1)
+    sines = np.linalg.norm(np.cross(pts / np.maximum(radii, WELD)[:, None], pts[a] / radii[a]), axis=1)
     best = float(sines.max())
-    if best <= 1e3 * TOLERANCE:
-        return a, None  # collinear sites
+    if best <= 1e3 * WELD or float(np.max(sines * radii)) <= tol:
+        return a, None  # collinear sites (within the tolerance of the line through 0 and a)
     good = sines >= min(0.2, 0.5 * best)
     cls = np.flatnonzero(good)[np.argmin(sizes[classes[good]] * 1.0)]
     members = np.flatnonzero((classes == classes[cls]) & good)
@@ -265,7 +282,8 @@ class SiteSearch:
         images_b = np.flatnonzero(classes == classes[b])
         d = float(np.linalg.norm(pts[a] - pts[b]))
         tree_b = cKDTree(pts[images_b])
-        counts = tree_b.query_ball_point(pts[images_a], d + TOLERANCE, return_length=True)
+        slack = SLACK * self.sites.tolerance
+        counts = tree_b.query_ball_point(pts[images_a], d + slack, return_length=True)
         total = 2 * int(np.sum(counts))
         if total > MAX_FRAME_CANDIDATES:
             raise TooLargeError(
@@ -278,13 +296,13 @@ class SiteSearch:
         with task("symmetry search (candidate motions)", total=total) as step:
             for start in range(0, len(images_a), per_block):
                 block = images_a[start : start + per_block]
-                near = tree_b.query_ball_point(pts[block], d + TOLERANCE)
+                near = tree_b.query_ball_point(pts[block], d + slack)
                 pa = np.repeat(block, [len(m) for m in near])
                 step.advance(2 * len(pa))
                 if not len(pa):
                     continue
                 pb = images_b[np.concatenate([np.asarray(m, np.int64) for m in near])]
-                keep = np.abs(np.linalg.norm(pts[pa] - pts[pb], axis=1) - d) <= 2 * TOLERANCE
+                keep = np.abs(np.linalg.norm(pts[pa] - pts[pb], axis=1) - d) <= slack
                 pa, pb = pa[keep], pb[keep]
                 if len(pa):
                     frames = frame(pts[pa], pts[pb])
@@ -301,6 +319,6 @@ class SiteSearch:
         if pi is None:
             return None
         if self.b is not None:
-            fit = refit(self.sites.points, pi, q, self.normal)
+            fit = refit(self.sites.points, pi, q, self.normal, self.sites.tolerance)
             return None if fit is None else (fit, pi)
-        return q, pi
+        return (q, pi) if miss(self.sites.points, pi, q) <= self.sites.tolerance else None

@@ -180,6 +180,7 @@ def atlas(
     seed: int = 0,
     time_limit: float | None = 60.0,
     stop_after: float | None = None,
+    tolerance: float | None = None,
 ) -> dict[str, Any]:
     """Identify every design of the space; return ``{"types": [...], "designs": n, ...}``.
 
@@ -188,6 +189,7 @@ def atlas(
     so far (the simplest ones: the walk goes simplest first), ``complete`` is false and
     ``skipped`` counts the designs walked but not identified (the walk itself stops at the
     deadline too, so there may be more).  A rerun with the same folder continues.
+    ``tolerance``: the symmetry search's, in mesh units (default: 1/100 of the shortest edge).
 
     Examples
     --------
@@ -200,7 +202,7 @@ def atlas(
     if not stop_after:
         from ..design.counting import count_designs
 
-        n = count_designs(scaffold, label_set).designs
+        n = count_designs(scaffold, label_set, tolerance=tolerance).designs
         if n > MAX_DESIGNS:
             raise TooLargeError(
                 f"{scaffold.name}: {n:,} designs with labels {label_set.tolist()} > {MAX_DESIGNS:,} (MAX_DESIGNS); "
@@ -222,7 +224,7 @@ def atlas(
     try:
         with task(f"atlas of {scaffold.name}") as step:
             deadline = None if not stop_after else t0 + stop_after
-            records = _records(scaffold, label_set, no_zero, cached, processes, seed, time_limit, deadline)
+            records = _records(scaffold, label_set, no_zero, cached, processes, seed, time_limit, deadline, tolerance)
             for labels, orbit, rec in records:
                 source = rec.pop("source")
                 how[source] += 1
@@ -273,6 +275,7 @@ def _records(
     seed: int,
     time_limit: float | None,
     deadline: float | None = None,
+    tolerance: float | None = None,
 ) -> Iterator[tuple[np.ndarray, int, dict[str, Any]]]:
     """``(labels, orbit size, record)`` of every design; ``record["source"]`` says where it came from.
 
@@ -285,7 +288,7 @@ def _records(
     pool = context().Pool(processes, _init, (scaffold, seed, time_limit)) if processes > 1 else None
     _WORKER.update(scaffold=scaffold, seed=seed, time_limit=time_limit)
     known: dict[tuple[int, ...], dict[str, Any]] = {}
-    walk = OrderedWalk(scaffold, label_set, None, no_zero=no_zero, deadline=deadline)
+    walk = OrderedWalk(scaffold, label_set, None, no_zero=no_zero, deadline=deadline, tolerance=tolerance)
     try:
         for batch in walk:
             keys = [tuple(r) for r in batch.labels.tolist()]

@@ -74,8 +74,10 @@ class OrderedWalk:
         no_zero: bool = False,
         fixes: Mapping[int, int] | None = None,
         deadline: float | None = None,
+        tolerance: float | None = None,
     ) -> None:
         self.fixes = dict(fixes or {})
+        self.tolerance = tolerance
         self.label_set = np.unique(np.asarray(label_set, np.int64))
         if no_zero and 0 in self.fixes.values():
             raise LabelError("--fix EDGE=0 contradicts --no-zero", usage=True)
@@ -92,7 +94,7 @@ class OrderedWalk:
         self.complete = False
         for k in ks:
             sub = np.union1d(label_set[np.abs(label_set) <= k], pinned[:, 1])
-            space = DesignSpace(scaffold, sub, mode, self.no_zero)
+            space = DesignSpace(scaffold, sub, mode, self.no_zero, self.tolerance)
             pending: list[np.ndarray] = []
             sizes: list[np.ndarray] = []
             n_rows = 0

@@ -93,8 +93,11 @@ def solve_target(
     identify_time_limit: float | None = 60.0,
     processes: int = 1,
     seed: int = 0,
+    tolerance: float | None = None,
 ) -> TargetResult:
     """Find up to ``count`` designs of ``goal``, simplest first (see the module docstring).
+
+    ``tolerance``: the symmetry search's, in mesh units (default: 1/100 of the shortest edge).
 
     Examples
     --------
@@ -106,7 +109,9 @@ def solve_target(
     """
     t0 = time.monotonic()
     deadline = None if not time_limit else t0 + time_limit
-    walk = OrderedWalk(scaffold, label_set, goal.components, no_zero=no_zero, fixes=fixes, deadline=deadline)
+    walk = OrderedWalk(
+        scaffold, label_set, goal.components, no_zero=no_zero, fixes=fixes, deadline=deadline, tolerance=tolerance
+    )
     tally: Counter[str] = Counter()
     solutions: list[dict[str, Any]] = []
     undetermined: list[list[int]] = []
