@@ -187,14 +187,21 @@ def test_small_perturbations_keep_the_group(name, seed, size):
 @settings(max_examples=20, deadline=None)
 @given(name=st.sampled_from(SOLIDS), seed=st.integers(0, 2**32 - 1), size=st.floats(10.0, 20.0))
 def test_large_perturbations_lose_the_group(name, seed, size):
-    """Moving every vertex by 10 to 20 tolerances in random directions leaves only the identity."""
+    """Moving every vertex by 10 to 20 tolerances in random directions breaks the group.
+
+    What is left is exactly what fits within the tolerance: random steps can, by chance, keep
+    a half turn (hypothesis found one), so the brute force says which motions survive.
+    """
     sc = load(name)
     tol = default_tolerance(sc)
     rng = np.random.default_rng(seed)
     step = rng.normal(size=sc.vertices.shape)
     step *= size * tol / np.linalg.norm(step, axis=1, keepdims=True)
     moved = Scaffold.from_faces(sc.vertices + step, sc.faces(), name="moved")
-    assert symmetry_group(moved, tol).order == 1
+    order = symmetry_group(moved, tol).order
+    assert order < symmetry_group(sc).order
+    if sc.n_vertices <= 6:
+        assert order == len(brute_motions(moved.vertices, sc.faces(), tol))
 
 
 def without_tolerance(file):
