@@ -14,7 +14,7 @@ from ..errors import LkspaceError
 
 
 def parser() -> argparse.ArgumentParser:
-    """The command line of ``python -m lkspace.blender``."""
+    """Return the command line of ``python -m lkspace.blender``."""
     top = argparse.ArgumentParser(prog="python -m lkspace.blender", description=__doc__.splitlines()[0])
     commands = top.add_subparsers(dest="command", required=True)
     build = commands.add_parser("build", help="write the installable add-on zip")
@@ -38,7 +38,9 @@ def main(argv: list[str] | None = None) -> int:
             from .bundle import build
 
             names = build(args.output)
-            print(f"{args.output}: {len(names)} files; install it in Blender from Preferences > Add-ons > Install from Disk")
+            print(
+                f"{args.output}: {len(names)} files; install it in Blender from Preferences > Add-ons > Install from Disk"
+            )
             return 0
         from .headless import render_design
 

@@ -79,4 +79,3 @@ def component_order(result: Trace) -> np.ndarray:
     """
     lowest = np.minimum.reduceat(result.step_corners, result.strand_starts[:-1])
     return np.argsort(lowest, kind="stable")
-

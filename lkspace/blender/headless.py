@@ -19,10 +19,8 @@ def render_design(
     """
     try:
         import bpy
-    except ImportError as exc:
-        raise MissingDependencyError(
-            f"rendering with Blender needs the bpy module (pip install 'lkspace[blender]', Python 3.11): {exc}"
-        ) from None
+    except ImportError:
+        raise MissingDependencyError("bpy", "blender", "rendering with Blender (Python 3.11)") from None
     from ..io.paths import output_file
     from ..io.sources import load
     from . import addon

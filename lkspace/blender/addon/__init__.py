@@ -28,7 +28,7 @@ INSTALL = f'"{sys.executable}" -m pip install "lkspace[knots]"'
 """The command that installs lkspace into the Python running this Blender."""
 
 
-class LKSPACE_PT_missing(bpy.types.Panel):  # type: ignore[misc]  # noqa: N801
+class LKSPACE_PT_missing(bpy.types.Panel):  # noqa: N801
     """Shown instead of the real panel when Blender's Python cannot import lkspace."""
 
     bl_label = "lkspace"
@@ -47,7 +47,7 @@ class LKSPACE_PT_missing(bpy.types.Panel):  # type: ignore[misc]  # noqa: N801
         layout.operator("lkspace.copy_install_command")
 
 
-class LKSPACE_OT_copy_install_command(bpy.types.Operator):  # type: ignore[misc]  # noqa: N801
+class LKSPACE_OT_copy_install_command(bpy.types.Operator):  # noqa: N801
     """Copy the command that installs lkspace into Blender's Python to the clipboard."""
 
     bl_idname = "lkspace.copy_install_command"
@@ -67,7 +67,7 @@ EXIT_HOOK: list[Any] = []
 
 
 def classes() -> tuple[Any, ...]:
-    """The add-on's classes, in registration order (importing lkspace; may raise ImportError)."""
+    """Return the add-on's classes in registration order (imports lkspace: may raise ImportError)."""
     from . import builtin, design_ops, edit_ops, panel
 
     return (*panel.CLASSES, *edit_ops.CLASSES, *design_ops.CLASSES, *builtin.CLASSES)
@@ -100,9 +100,10 @@ def unregister() -> None:
     if not REGISTERED:
         return
     if not MISSING:
-        from . import live
+        from . import identifying, live
 
         live.remove_handler()
+        identifying.stop_all()
         del bpy.types.Scene.lkspace
         del bpy.types.Object.lkspace
     for cls in reversed(REGISTERED):

@@ -41,7 +41,7 @@ def scaffold_object(scene: Any, scaffold: Scaffold, labels: np.ndarray, nulls: n
     return obj
 
 
-class LKSPACE_OT_add_scaffold(bpy.types.Operator):  # type: ignore[misc]  # noqa: N801
+class LKSPACE_OT_add_scaffold(bpy.types.Operator):  # noqa: N801
     """Add a built-in scaffold (or a scaffold file) as a mesh with its twists, and its strands."""
 
     bl_idname = "lkspace.add_scaffold"
@@ -83,7 +83,7 @@ def add_scaffold(context: Any, name: str, twist: str) -> Any:
     return obj
 
 
-class LKSPACE_OT_periodic_block(bpy.types.Operator):  # type: ignore[misc]  # noqa: N801
+class LKSPACE_OT_periodic_block(bpy.types.Operator):  # noqa: N801
     """Add a block of a built-in periodic scaffold's strands (a tiling or honeycomb, e.g. tiling:square)."""
 
     bl_idname = "lkspace.periodic_block"

@@ -1,61 +1,24 @@
 """Operators that read a design: regenerate, identify, export a printable file.
 
 ``bpy.ops.lkspace.regenerate()`` rebuilds the active mesh's strands.  Identification
-(SnapPy, seconds) runs in a background thread by default and lands on the object's
-``lkspace.knot`` when done (a timer polls it); ``background=False`` waits for it.
+(SnapPy, seconds) runs in a child process by default and lands on the object's
+``lkspace.knot`` when done (:mod:`.identifying`); ``background=False`` waits for it.
 """
 
 from __future__ import annotations
 
-import os
-from concurrent.futures import Future, ThreadPoolExecutor
 from typing import Any
 
 import bpy
-import numpy as np
 
 from lkspace.errors import LkspaceError
 
-from . import live, meshio
-
-JOBS: dict[str, tuple[str, Future[str]]] = {}
-"""Object name -> (state key, running identification)."""
-POOL = ThreadPoolExecutor(max_workers=1, thread_name_prefix="lkspace-identify")
+from . import identifying, live, meshio
 
 
-def identify_text(scaffold: Any, labels: np.ndarray, nulls: np.ndarray) -> str:
-    """The knot or link name of a design, or why it has none, as the panel shows it."""
-    from lkspace.knots.recognition import identify
+class DesignOperator(bpy.types.Operator):
+    """Base of the operators reading the active mesh's design (not registered: Blender wants leaf classes)."""
 
-    try:
-        found = identify(scaffold, labels, nulls)
-    except LkspaceError as exc:
-        return f"not identified: {exc}"
-    if found.name is None:
-        return found.status
-    return found.name + (" (mirror)" if found.mirror else "")
-
-
-def poll_jobs() -> float | None:
-    """Timer: move finished identifications to their objects; stop when none is left."""
-    for name, (key, job) in list(JOBS.items()):
-        if not job.done():
-            continue
-        del JOBS[name]
-        obj = bpy.data.objects.get(name)
-        if obj is not None and obj.lkspace.key == key:
-            obj.lkspace.knot = job.result()
-    for window in getattr(bpy.context.window_manager, "windows", []):
-        for area in window.screen.areas:
-            area.tag_redraw()
-    return 0.5 if JOBS else None
-
-
-class LKSPACE_OT_regenerate(bpy.types.Operator):  # type: ignore[misc]  # noqa: N801
-    """Build the active mesh's strands: one curve object per component, in a collection named after the mesh."""
-
-    bl_idname = "lkspace.regenerate"
-    bl_label = "Regenerate Strands"
     bl_options = {"REGISTER", "UNDO"}
 
     @classmethod
@@ -63,6 +26,13 @@ class LKSPACE_OT_regenerate(bpy.types.Operator):  # type: ignore[misc]  # noqa: 
         """Only with an active mesh object."""
         obj = context.active_object
         return obj is not None and obj.type == "MESH"
+
+
+class LKSPACE_OT_regenerate(DesignOperator):  # noqa: N801
+    """Build the active mesh's strands: one curve object per component, in a collection named after the mesh."""
+
+    bl_idname = "lkspace.regenerate"
+    bl_label = "Regenerate Strands"
 
     def execute(self, context: Any) -> set[str]:
         """Regenerate; report lkspace's error as one line."""
@@ -73,7 +43,7 @@ class LKSPACE_OT_regenerate(bpy.types.Operator):  # type: ignore[misc]  # noqa: 
         return {"FINISHED"}
 
 
-class LKSPACE_OT_identify(LKSPACE_OT_regenerate):  # noqa: N801
+class LKSPACE_OT_identify(DesignOperator):  # noqa: N801
     """Name the knot or link of the active mesh's design (SnapPy; can take seconds)."""
 
     bl_idname = "lkspace.identify"
@@ -88,16 +58,14 @@ class LKSPACE_OT_identify(LKSPACE_OT_regenerate):  # noqa: N801
             return {"CANCELLED"}
         design, labels, nulls = meshio.read_design(obj)
         if not self.background:
-            obj.lkspace.knot = identify_text(design.scaffold, labels, nulls)
+            obj.lkspace.knot = identifying.identify_now(design.scaffold, labels, nulls)
             return {"FINISHED"}
         obj.lkspace.knot = "identifying..."
-        JOBS[obj.name] = (obj.lkspace.key, POOL.submit(identify_text, design.scaffold, labels, nulls))
-        if not bpy.app.timers.is_registered(poll_jobs):
-            bpy.app.timers.register(poll_jobs, first_interval=0.5)
+        identifying.start(obj.name, obj.lkspace.key, design.scaffold, labels, nulls)
         return {"FINISHED"}
 
 
-class LKSPACE_OT_export(LKSPACE_OT_regenerate):  # noqa: N801
+class LKSPACE_OT_export(DesignOperator):  # noqa: N801
     """Write printable pieces (.stl or .3mf) through lkspace's checked fabrication path."""
 
     bl_idname = "lkspace.export"

@@ -19,7 +19,7 @@ from lkspace.errors import LkspaceError
 from . import live, meshio
 
 
-class MeshOperator(bpy.types.Operator):  # type: ignore[misc]
+class MeshOperator(bpy.types.Operator):
     """Base of the operators working on the active mesh object."""
 
     bl_options = {"REGISTER", "UNDO"}

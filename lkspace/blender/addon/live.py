@@ -27,7 +27,7 @@ BUSY: set[str] = set()
 
 
 def state_key(design: MeshDesign, labels: np.ndarray, nulls: np.ndarray, obj: Any) -> str:
-    """A digest of everything the strands depend on: mesh, labels, nulls and placement."""
+    """Return a digest of everything the strands depend on: mesh, labels, nulls and placement."""
     h = hashlib.sha256(design.scaffold.content_hash().encode())
     for arr in (labels, nulls, np.array(obj.matrix_world, np.float64)):
         h.update(np.ascontiguousarray(arr).tobytes())
@@ -66,7 +66,7 @@ def regenerate(obj: Any, scene: Any, force: bool = True) -> bool:
         BUSY.discard(obj.name)
 
 
-@bpy.app.handlers.persistent  # type: ignore[misc]
+@bpy.app.handlers.persistent
 def on_depsgraph_update(scene: Any, depsgraph: Any) -> None:
     """Regenerate the active mesh after an edit, when ``scene.lkspace.live`` is on."""
     settings = getattr(scene, "lkspace", None)

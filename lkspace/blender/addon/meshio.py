@@ -18,7 +18,7 @@ from lkspace.blender.meshdata import NULL, TWIST, MeshArrays, MeshDesign, mesh_d
 
 
 def object_data(obj: Any) -> Any:
-    """The mesh of ``obj`` with Edit Mode changes flushed to it."""
+    """Return the mesh of ``obj`` with Edit Mode changes flushed to it."""
     if obj.mode == "EDIT":
         obj.update_from_editmode()
     return obj.data
@@ -28,7 +28,7 @@ def mesh_arrays(mesh: Any) -> MeshArrays:
     """Copy the vertices, edges and polygons of a ``bpy.types.Mesh`` into :class:`MeshArrays`."""
 
     def get(collection: Any, name: str, count: int, dtype: type, width: int = 1) -> np.ndarray:
-        out = np.zeros(count * width, dtype)
+        out: np.ndarray = np.zeros(count * width, dtype)
         collection.foreach_get(name, out)
         return out.reshape(-1, width) if width > 1 else out
 
@@ -43,7 +43,7 @@ def mesh_arrays(mesh: Any) -> MeshArrays:
 
 def attribute_values(mesh: Any, name: str, domain: str, count: int, dtype: type) -> np.ndarray:
     """Values of attribute ``name`` (zeros when the mesh has none), ``(count,)``."""
-    out = np.zeros(count, dtype)
+    out: np.ndarray = np.zeros(count, dtype)
     attribute = mesh.attributes.get(name)
     if attribute is not None and attribute.domain == domain:
         attribute.data.foreach_get("value", out)
@@ -61,7 +61,7 @@ def loop_nulls(mesh: Any) -> np.ndarray:
 
 
 def read_design(obj: Any) -> tuple[MeshDesign, np.ndarray, np.ndarray]:
-    """The scaffold of mesh object ``obj`` with its labels and null sides in lkspace's order."""
+    """Return the scaffold of mesh object ``obj`` with its labels and null sides in lkspace's order."""
     mesh = object_data(obj)
     design = mesh_design(mesh_arrays(mesh), obj.name)
     return design, design.labels(twists(mesh)), design.nulls(loop_nulls(mesh))
@@ -87,7 +87,7 @@ def write_labels(obj: Any, design: MeshDesign, labels: np.ndarray) -> None:
 
 
 def selected_edges(mesh: Any) -> np.ndarray:
-    """Indices of the selected Blender edges."""
+    """Return the indices of the selected Blender edges."""
     selected = np.zeros(len(mesh.edges), bool)
     mesh.edges.foreach_get("select", selected)
     return np.flatnonzero(selected)

@@ -22,7 +22,7 @@ def live_toggled(settings: Any, context: Any) -> None:
         live.regenerate(obj, context.scene)
 
 
-class LkspaceSettings(bpy.types.PropertyGroup):  # type: ignore[misc]
+class LkspaceSettings(bpy.types.PropertyGroup):
     """Scene settings of the lkspace panel."""
 
     twist: bpy.props.IntProperty(name="Twist", default=1, description="Twist to give the selected edges")  # type: ignore[valid-type]
@@ -35,11 +35,11 @@ class LkspaceSettings(bpy.types.PropertyGroup):  # type: ignore[misc]
     seed: bpy.props.IntProperty(name="Seed", default=0, min=0)  # type: ignore[valid-type]
     components: bpy.props.IntProperty(name="Components", default=1, min=1)  # type: ignore[valid-type]
     time_limit: bpy.props.FloatProperty(name="Time limit", default=20.0, min=0.5, description="Seconds for Solve")  # type: ignore[valid-type]
-    live: bpy.props.BoolProperty(name="Live", default=True, update=live_toggled, description="Regenerate after every edit")  # type: ignore[valid-type]
+    live: bpy.props.BoolProperty(name="Live", default=True, update=live_toggled, description="Regenerate on edits")  # type: ignore[valid-type]
     engine: bpy.props.EnumProperty(name="Engine", items=ENGINES)  # type: ignore[valid-type]
 
 
-class LkspaceResult(bpy.types.PropertyGroup):  # type: ignore[misc]
+class LkspaceResult(bpy.types.PropertyGroup):
     """What lkspace found for a mesh object at its last regeneration."""
 
     components: bpy.props.IntProperty(name="Components")  # type: ignore[valid-type]
@@ -50,7 +50,7 @@ class LkspaceResult(bpy.types.PropertyGroup):  # type: ignore[misc]
     key: bpy.props.StringProperty(name="State")  # type: ignore[valid-type]
 
 
-class LKSPACE_OT_scene_preset(bpy.types.Operator):  # type: ignore[misc]  # noqa: N801
+class LKSPACE_OT_scene_preset(bpy.types.Operator):  # noqa: N801
     """Fit a camera to the strands, add lights and a world, and pick the render engine."""
 
     bl_idname = "lkspace.scene_preset"
@@ -64,7 +64,7 @@ class LKSPACE_OT_scene_preset(bpy.types.Operator):  # type: ignore[misc]  # noqa
         return {"FINISHED"}
 
 
-class LKSPACE_PT_design(bpy.types.Panel):  # type: ignore[misc]  # noqa: N801
+class LKSPACE_PT_design(bpy.types.Panel):  # noqa: N801
     """The lkspace sidebar panel."""
 
     bl_label = "lkspace"
@@ -79,6 +79,7 @@ class LKSPACE_PT_design(bpy.types.Panel):  # type: ignore[misc]  # noqa: N801
         obj = context.active_object
         if obj is None or obj.type != "MESH":
             layout.label(text="Select a mesh: its edges carry the twists")
+            layout.operator("lkspace.add_scaffold")
             layout.operator("lkspace.periodic_block")
             return
         edit = layout.box()
@@ -122,7 +123,9 @@ class LKSPACE_PT_design(bpy.types.Panel):  # type: ignore[misc]  # noqa: N801
         row = out.row(align=True)
         row.prop(settings, "engine", text="")
         row.operator("lkspace.scene_preset").engine = settings.engine
-        out.operator("lkspace.periodic_block")
+        row = out.row(align=True)
+        row.operator("lkspace.add_scaffold")
+        row.operator("lkspace.periodic_block")
 
 
 def wrap(text: str, width: int = 48) -> list[str]:

@@ -68,7 +68,7 @@ def fit_camera(scene: Any, points: np.ndarray, margin: float = 1.12) -> Any:
 
 
 def add_lights(scene: Any) -> None:
-    """A key sun and a soft fill (replacing earlier lkspace lights)."""
+    """Add a key sun and a soft fill (replacing earlier lkspace lights)."""
     for name in ("lkspace key", "lkspace fill"):
         old = bpy.data.objects.get(name)
         if old is not None:

@@ -23,7 +23,7 @@ SOURCE = "lkspace_source"
 
 
 def material(slot: int) -> Any:
-    """The shared material of colour slot ``slot`` (created on first use)."""
+    """Return the shared material of colour slot ``slot`` (created on first use)."""
     name = f"lkspace strand {slot:02d}"
     mat = bpy.data.materials.get(name)
     rgb = [float(x) for x in colors(slot + 1)[slot]]
@@ -39,7 +39,7 @@ def material(slot: int) -> Any:
 
 
 def strand_collection(obj: Any, scene: Any) -> Any:
-    """The collection named after mesh object ``obj``, linked into ``scene`` (created if needed)."""
+    """Return the collection named after mesh object ``obj``, linked into ``scene`` (created if needed)."""
     coll = bpy.data.collections.get(obj.name)
     if coll is None:
         coll = bpy.data.collections.new(obj.name)
@@ -63,7 +63,7 @@ def clear(coll: Any) -> None:
 
 
 def curve_object(name: str, points: np.ndarray, closed: bool, radius: float, slot: int) -> Any:
-    """A curve object through ``points (n, 3)`` with a round bevel of ``radius``."""
+    """Make a curve object through ``points (n, 3)`` with a round bevel of ``radius``."""
     data = bpy.data.curves.new(name, type="CURVE")
     data.dimensions = "3D"
     data.bevel_mode = "ROUND"
@@ -83,7 +83,9 @@ def build(obj: Any, real: Realization, scene: Any, colour_slots: np.ndarray | No
     """Replace the strand curves of mesh object ``obj`` with those of ``real``; return them.
 
     Curves follow the mesh object (they share its world matrix); ``colour_slots[s]`` is the
-    colour slot of strand ``s`` (default: :func:`component_order`).
+    colour slot of strand ``s`` (default: :func:`component_order`).  Each curve carries the
+    custom properties ``lk_strand`` (its strand in lkspace's trace) and ``lk_faces`` (the
+    polygon of each corner it turns around, in order: ``faces`` of ``lkspace trace --json``).
     """
     coll = strand_collection(obj, scene)
     clear(coll)
@@ -99,6 +101,7 @@ def build(obj: Any, real: Realization, scene: Any, colour_slots: np.ndarray | No
         curve = curve_object(name, np.asarray(points, np.float64), bool(real.closed[k]), real.tube_radius, slot)
         curve[SOURCE] = obj.name
         curve["lk_strand"] = int(real.strand_of[k])
+        curve["lk_faces"] = real.trace.strand_faces(int(real.strand_of[k])).tolist()
         curve.matrix_world = obj.matrix_world.copy()
         coll.objects.link(curve)
         made.append(curve)
