@@ -112,9 +112,7 @@ def assert_same_strands(obj, result):
     curves = strand_curves(obj)
     assert len(curves) == result.components == obj.lkspace.components
     got = sorted(cyclic_key(list(c["lk_faces"]), c.data.splines[0].use_cyclic_u) for c in curves)
-    want = sorted(
-        cyclic_key(result.strand_faces(k).tolist(), bool(result.closed[k])) for k in range(result.components)
-    )
+    want = sorted(cyclic_key(result.strand_faces(k).tolist(), bool(result.closed[k])) for k in range(result.components))
     assert got == want
     assert obj.lkspace.holds_together == result.holds_together
 

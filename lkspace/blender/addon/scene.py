@@ -7,7 +7,6 @@ render`` (headless, for ``experiments/gallery.py --renderer blender``).
 
 from __future__ import annotations
 
-import math
 from typing import Any
 
 import bpy
@@ -40,8 +39,21 @@ def strand_points(scene: Any) -> np.ndarray:
     return np.vstack(parts)
 
 
-def fit_camera(scene: Any, points: np.ndarray, margin: float = 1.12) -> Any:
-    """Place the scene's camera (created if needed) so that ``points`` fill the frame."""
+def view_direction(points: np.ndarray) -> np.ndarray:
+    """Return the unit vector from the design toward the camera: :data:`VIEW`, tipped toward a flat design's normal."""
+    view = VIEW / np.linalg.norm(VIEW)
+    if len(points) < 3:
+        return view
+    _, spread, axes = np.linalg.svd(points - points.mean(axis=0), full_matrices=False)
+    if spread[2] > 0.3 * spread[0]:
+        return view
+    normal = axes[2] if axes[2] @ view >= 0 else -axes[2]
+    tipped = 2 * normal + view
+    return np.asarray(tipped / np.linalg.norm(tipped))
+
+
+def fit_camera(scene: Any, points: np.ndarray, margin: float = 1.08) -> Any:
+    """Place the scene's camera (created if needed) so that ``points`` fill the frame of the render size."""
     cam = scene.camera
     if cam is None:
         cam = bpy.data.objects.new("lkspace camera", bpy.data.cameras.new("lkspace camera"))
@@ -49,15 +61,19 @@ def fit_camera(scene: Any, points: np.ndarray, margin: float = 1.12) -> Any:
         scene.camera = cam
     if len(points) == 0:
         points = np.zeros((1, 3))
+    cam.data.lens = 50
+    cam.data.sensor_fit = "AUTO"  # the longer side of the picture spans the sensor width
+    width, height = scene.render.resolution_x, scene.render.resolution_y
+    wide = cam.data.sensor_width / 2 / cam.data.lens / margin
+    tan_x, tan_y = (wide, wide * height / width) if width >= height else (wide * width / height, wide)
     centre = (points.min(axis=0) + points.max(axis=0)) / 2
-    back = VIEW / np.linalg.norm(VIEW)  # from the centre toward the camera
+    back = view_direction(points)
     right = np.cross([0.0, 0.0, 1.0], back)
-    right /= np.linalg.norm(right)
+    right = right / np.linalg.norm(right) if np.linalg.norm(right) > 1e-9 else np.array([1.0, 0.0, 0.0])
     up = np.cross(back, right)
     rel = points - centre
-    half = math.tan(min(cam.data.angle_x, cam.data.angle_y) / 2) / margin
-    # every point inside the view cone: its sideways offset <= (distance - its depth) * tan(half angle)
-    reach = np.maximum(np.abs(rel @ right), np.abs(rel @ up)) / half + rel @ back
+    # every point inside the view: its offset across <= (distance - its depth) * tan(half angle)
+    reach = np.maximum(np.abs(rel @ right) / tan_x, np.abs(rel @ up) / tan_y) + rel @ back
     distance = max(float(reach.max()), 1e-6)
     cam.location = Vector((centre + distance * back).tolist())
     cam.rotation_mode = "QUATERNION"
@@ -85,15 +101,21 @@ def add_lights(scene: Any) -> None:
         scene.collection.objects.link(obj)
 
 
-def preset(scene: Any, engine: str = "CYCLES", size: tuple[int, int] = (800, 800), samples: int = 32) -> None:
+def preset(scene: Any, engine: str = "CYCLES", size: tuple[int, int] | None = None, samples: int = 32) -> None:
     """Set up ``scene`` for a picture of its strands: camera, lights, a light grey world, ``engine``.
 
-    The meshes the strands were made from are hidden from the render (not the viewport).
+    ``size`` is the picture's ``(width, height)`` in pixels (default: the scene's).  The
+    meshes the strands were made from are hidden from the render (not the viewport).
+    Cycles denoises with OpenImageDenoise.
     """
     points = strand_points(scene)
     for obj in scene.objects:  # the meshes the strands come from stay in the viewport, out of the picture
         if obj.type == "MESH" and bpy.data.collections.get(obj.name) is not None:
             obj.hide_render = True
+    render = scene.render
+    if size is not None:
+        render.resolution_x, render.resolution_y = size
+        render.resolution_percentage = 100
     fit_camera(scene, points)
     add_lights(scene)
     world = scene.world or bpy.data.worlds.new("lkspace world")
@@ -104,16 +126,14 @@ def preset(scene: Any, engine: str = "CYCLES", size: tuple[int, int] = (800, 800
     if background is not None:
         background.inputs["Color"].default_value = (0.9, 0.9, 0.92, 1.0)
         background.inputs["Strength"].default_value = 0.6
-    render = scene.render
     render.engine = engine
-    render.resolution_x, render.resolution_y = size
-    render.resolution_percentage = 100
     render.film_transparent = False
     scene.view_settings.view_transform = "Standard"
     if engine == "CYCLES":
         scene.cycles.device = "CPU"
         scene.cycles.samples = samples
-        scene.cycles.use_denoising = False
+        scene.cycles.use_denoising = True
+        scene.cycles.denoiser = "OPENIMAGEDENOISE"
     elif engine == "BLENDER_WORKBENCH":
         scene.display.shading.light = "STUDIO"
         scene.display.shading.color_type = "MATERIAL"
