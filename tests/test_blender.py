@@ -334,3 +334,20 @@ def test_zip_installs_and_says_how_to_install_lkspace_when_missing(tmp_path):
             assert "install lkspace with" in run.stderr
         else:
             assert "LKSPACE_OT_regenerate" in lines[-2] and "LKSPACE_PT_missing" not in lines[-2]
+
+
+def test_live_rebuilds_of_large_meshes_skip_the_clearance_measurement(blender, tmp_path):
+    bpy.ops.mesh.primitive_uv_sphere_add(segments=24, ring_count=8)
+    obj = blender.active_object
+    assert len(obj.data.polygons) > 150
+    pairs = {p: 1 for p in edge_pairs(obj)}
+    set_twists(obj, pairs)
+    assert bpy.ops.lkspace.regenerate(measure=False) == {"FINISHED"}
+    assert not obj.lkspace.measured
+    blender.scene.lkspace.live = True
+    pairs = {p: -1 for p in edge_pairs(obj)}
+    set_twists(obj, pairs)
+    blender.view_layer.update()
+    assert not obj.lkspace.measured
+    _, _, _, result = independent(obj, tmp_path, pairs)
+    assert_same_strands(obj, result)

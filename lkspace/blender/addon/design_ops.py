@@ -33,11 +33,12 @@ class LKSPACE_OT_regenerate(DesignOperator):  # noqa: N801
 
     bl_idname = "lkspace.regenerate"
     bl_label = "Regenerate Strands"
+    measure: bpy.props.BoolProperty(name="Measure clearance", default=True)  # type: ignore[valid-type]
 
     def execute(self, context: Any) -> set[str]:
         """Regenerate; report lkspace's error as one line."""
         obj = context.active_object
-        if not live.regenerate(obj, context.scene):
+        if not live.regenerate(obj, context.scene, measure=self.measure):
             self.report({"ERROR"}, obj.lkspace.message)
             return {"CANCELLED"}
         return {"FINISHED"}

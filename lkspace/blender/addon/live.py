@@ -22,6 +22,8 @@ from lkspace.strands.tracing import trace
 
 from . import meshio, strands
 
+MEASURE_FACES = 150
+"""Live rebuilds of meshes with more faces skip the clearance measurement (seconds at 500 faces)."""
 BUSY: set[str] = set()
 """Objects being regenerated now (their own updates must not start another round)."""
 
@@ -34,27 +36,32 @@ def state_key(design: MeshDesign, labels: np.ndarray, nulls: np.ndarray, obj: An
     return h.hexdigest()[:16]
 
 
-def regenerate(obj: Any, scene: Any, force: bool = True) -> bool:
+def regenerate(obj: Any, scene: Any, force: bool = True, measure: bool | None = None) -> bool:
     """Rebuild the strand curves of mesh object ``obj``; return whether it worked.
 
     Errors of lkspace (a mesh it cannot use, strands that would touch) are not raised:
     they go to ``obj.lkspace.message`` and the old curves stay.  ``force=False`` skips the
-    work when nothing changed since the last build.
+    work when nothing changed since the last build.  ``measure`` checks the clearance
+    between strands (``lkspace.realize``'s check; it also thins the tubes to fit); by
+    default only meshes of at most :data:`MEASURE_FACES` faces are measured.
     """
     result = obj.lkspace
     BUSY.add(obj.name)
     try:
         design, labels, nulls = meshio.read_design(obj)
         key = state_key(design, labels, nulls, obj)
-        if not force and key == result.key:
+        if measure is None:
+            measure = design.scaffold.n_faces <= MEASURE_FACES
+        if not force and key == result.key and (result.measured or not measure):
             return True
         traced = trace(design.scaffold, labels, nulls)
-        real = realize(design.scaffold, labels, nulls, result=traced)
+        real = realize(design.scaffold, labels, nulls, result=traced, measure=measure)
         strands.build(obj, real, scene)
         result.components = traced.components
         result.holds_together = traced.holds_together
         result.open_strands = int(np.sum(~traced.closed))
         result.message = ""
+        result.measured = measure
         if result.key != key:
             result.knot = ""
         result.key = key

@@ -47,6 +47,7 @@ class LkspaceResult(bpy.types.PropertyGroup):
     open_strands: bpy.props.IntProperty(name="Open strands")  # type: ignore[valid-type]
     knot: bpy.props.StringProperty(name="Knot or link")  # type: ignore[valid-type]
     message: bpy.props.StringProperty(name="Message")  # type: ignore[valid-type]
+    measured: bpy.props.BoolProperty(name="Clearance measured")  # type: ignore[valid-type]
     key: bpy.props.StringProperty(name="State")  # type: ignore[valid-type]
 
 
@@ -115,6 +116,8 @@ class LKSPACE_PT_design(bpy.types.Panel):  # noqa: N801
             read.label(text=f"{result.components} component(s), {together}")
             if result.open_strands:
                 read.label(text=f"{result.open_strands} open strand(s)")
+            if not result.measured:
+                read.label(text="Clearance not measured (large mesh): Regenerate checks it")
         row = read.row(align=True)
         row.operator("lkspace.identify")
         row.label(text=result.knot or "-")
