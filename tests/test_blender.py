@@ -351,3 +351,32 @@ def test_live_rebuilds_of_large_meshes_skip_the_clearance_measurement(blender, t
     assert not obj.lkspace.measured
     _, _, _, result = independent(obj, tmp_path, pairs)
     assert_same_strands(obj, result)
+
+
+def test_edit_mode_set_twist_cut_and_live_move(blender):
+    bpy.ops.mesh.primitive_cube_add()
+    obj = blender.active_object
+    assert bpy.ops.lkspace.regenerate() == {"FINISHED"} and obj.lkspace.components == 6
+    blender.scene.lkspace.live = True
+    bpy.ops.object.mode_set(mode="EDIT")
+    bpy.ops.mesh.select_all(action="SELECT")
+    assert bpy.ops.lkspace.set_twist(twist=1) == {"FINISHED"} and obj.mode == "EDIT"
+    bm = bmesh.from_edit_mesh(obj.data)
+    bm.verts.ensure_lookup_table()
+    bm.verts[0].co.x += 0.3  # a live rebuild follows a vertex moved in Edit Mode
+    bmesh.update_edit_mesh(obj.data)
+    key = obj.lkspace.key
+    blender.view_layer.update()
+    assert obj.lkspace.key != key and obj.lkspace.message == ""
+    bpy.ops.mesh.select_all(action="DESELECT")
+    bm = bmesh.from_edit_mesh(obj.data)
+    bm.edges.ensure_lookup_table()
+    bm.edges[0].select = True
+    bmesh.update_edit_mesh(obj.data)
+    assert bpy.ops.lkspace.set_null(null=True) == {"FINISHED"}
+    # both sides of the edge are cut: one closed strand cut twice or two cut once, two open strands either way
+    assert obj.lkspace.open_strands == 2
+    bpy.ops.object.mode_set(mode="OBJECT")
+    nulls = [d.value for d in obj.data.attributes["lk_null"].data]
+    assert [obj.data.loops[i].edge_index for i, cut in enumerate(nulls) if cut] == [0, 0]
+    assert len(bpy.data.meshes) == 1  # the temporary copies read in Edit Mode are gone

@@ -1,7 +1,7 @@
 """Reading a Blender mesh into lkspace and writing labels back to its attributes.
 
 Attributes are read and written on the mesh data, so an object in Edit Mode is flushed
-first (:func:`object_data`); operators that write go through :func:`edit_attributes`,
+first (:func:`readable_mesh`); operators that write go through :func:`edit_attributes`,
 which leaves Edit Mode for the write and comes back.
 """
 
@@ -17,11 +17,22 @@ import numpy as np
 from lkspace.blender.meshdata import NULL, TWIST, MeshArrays, MeshDesign, mesh_design
 
 
-def object_data(obj: Any) -> Any:
-    """Return the mesh of ``obj`` with Edit Mode changes flushed to it."""
-    if obj.mode == "EDIT":
-        obj.update_from_editmode()
-    return obj.data
+@contextmanager
+def readable_mesh(obj: Any) -> Iterator[Any]:
+    """Yield the mesh of ``obj`` with its attributes readable.
+
+    In Edit Mode the changes are flushed to the mesh, and a temporary copy is read: there
+    ``mesh.attributes`` shows the edit mesh, whose boolean corner layers Python cannot read.
+    """
+    if obj.mode != "EDIT":
+        yield obj.data
+        return
+    obj.update_from_editmode()
+    copy = obj.data.copy()
+    try:
+        yield copy
+    finally:
+        bpy.data.meshes.remove(copy)
 
 
 def mesh_arrays(mesh: Any) -> MeshArrays:
@@ -62,9 +73,9 @@ def loop_nulls(mesh: Any) -> np.ndarray:
 
 def read_design(obj: Any) -> tuple[MeshDesign, np.ndarray, np.ndarray]:
     """Return the scaffold of mesh object ``obj`` with its labels and null sides in lkspace's order."""
-    mesh = object_data(obj)
-    design = mesh_design(mesh_arrays(mesh), obj.name)
-    return design, design.labels(twists(mesh)), design.nulls(loop_nulls(mesh))
+    with readable_mesh(obj) as mesh:
+        design = mesh_design(mesh_arrays(mesh), obj.name)
+        return design, design.labels(twists(mesh)), design.nulls(loop_nulls(mesh))
 
 
 def write_attribute(mesh: Any, name: str, domain: str, kind: str, values: np.ndarray) -> None:
