@@ -7,6 +7,8 @@ paper's claim each picture checks (quoted from ``twisted-edges.tex``).  Writes
 ``results/gallery/README.md``.
 
 Run: ``python experiments/gallery.py`` (about two minutes on 2 cores).
+``--renderer blender`` draws the 3D pictures with Blender's Cycles instead (``python -m
+lkspace.blender render``, extra ``[blender]``; knot diagrams stay lkspace's).
 """
 
 from __future__ import annotations
@@ -115,6 +117,14 @@ def run(args: list[str]) -> dict:
         return {"error": {"message": proc.stderr.strip()}}
 
 
+def render_blender(entry: Entry, path: str) -> dict:
+    """Draw ``entry`` with Blender headless; return ``{}`` or ``{"error": ...}`` like :func:`run`."""
+    block = entry.draw[entry.draw.index("--block") :][:2] if "--block" in entry.draw else []
+    args = [entry.mesh, "--twist", entry.twist or "", "-o", path, "--size", SIZE, *block]
+    proc = subprocess.run([sys.executable, "-m", "lkspace.blender", "render", *args], capture_output=True, text=True)
+    return {} if proc.returncode == 0 else {"error": {"message": proc.stderr.strip()}}
+
+
 def shrink(path: str) -> int:
     """Quantize the PNG to a 256-colour palette (Pillow) when that makes it smaller; return its size."""
     from PIL import Image
@@ -181,6 +191,9 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--out", default=OUT)
     parser.add_argument("--only", help="make only the pictures whose file name contains this")
+    parser.add_argument(
+        "--renderer", choices=["lkspace", "blender"], default="lkspace", help="who draws the 3D pictures"
+    )
     args = parser.parse_args()
     os.makedirs(args.out, exist_ok=True)
     rows = []
@@ -192,7 +205,10 @@ def main() -> None:
         entry.twist = labels_of(entry)
         design = [entry.mesh] + (["--twist", entry.twist] if entry.twist else [])
         t0 = time.perf_counter()
-        written = run(["export", *design, "-o", path, "--size", SIZE, *entry.draw])
+        if args.renderer == "blender" and "--diagram" not in entry.draw:
+            written = render_blender(entry, path)
+        else:
+            written = run(["export", *design, "-o", path, "--size", SIZE, *entry.draw])
         if "error" in written:
             print(f"{entry.file}: {written['error'].get('message')}", file=sys.stderr)
             continue

@@ -1,0 +1,124 @@
+"""Reading a Blender mesh into lkspace and writing labels back to its attributes.
+
+Attributes are read and written on the mesh data, so an object in Edit Mode is flushed
+first (:func:`readable_mesh`); operators that write go through :func:`edit_attributes`,
+which leaves Edit Mode for the write and comes back.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+from contextlib import contextmanager
+from typing import Any
+
+import bpy
+import numpy as np
+
+from lkspace.blender.meshdata import NULL, TWIST, MeshArrays, MeshDesign, mesh_design
+
+
+@contextmanager
+def readable_mesh(obj: Any) -> Iterator[Any]:
+    """Yield the mesh of ``obj`` with its attributes readable.
+
+    In Edit Mode the changes are flushed to the mesh, and a temporary copy is read: there
+    ``mesh.attributes`` shows the edit mesh, whose boolean corner layers Python cannot read.
+    """
+    if obj.mode != "EDIT":
+        yield obj.data
+        return
+    obj.update_from_editmode()
+    copy = obj.data.copy()
+    try:
+        yield copy
+    finally:
+        bpy.data.meshes.remove(copy)
+
+
+def mesh_arrays(mesh: Any) -> MeshArrays:
+    """Copy the vertices, edges and polygons of a ``bpy.types.Mesh`` into :class:`MeshArrays`."""
+
+    def get(collection: Any, name: str, count: int, dtype: type, width: int = 1) -> np.ndarray:
+        out: np.ndarray = np.zeros(count * width, dtype)
+        collection.foreach_get(name, out)
+        return out.reshape(-1, width) if width > 1 else out
+
+    return MeshArrays(
+        vertices=get(mesh.vertices, "co", len(mesh.vertices), np.float64, 3),
+        edges=get(mesh.edges, "vertices", len(mesh.edges), np.int64, 2),
+        loop_starts=get(mesh.polygons, "loop_start", len(mesh.polygons), np.int64),
+        loop_totals=get(mesh.polygons, "loop_total", len(mesh.polygons), np.int64),
+        loop_vertices=get(mesh.loops, "vertex_index", len(mesh.loops), np.int64),
+    )
+
+
+def attribute_values(mesh: Any, name: str, domain: str, count: int, dtype: type) -> np.ndarray:
+    """Values of attribute ``name`` (zeros when the mesh has none), ``(count,)``."""
+    out: np.ndarray = np.zeros(count, dtype)
+    attribute = mesh.attributes.get(name)
+    if attribute is not None and attribute.domain == domain:
+        attribute.data.foreach_get("value", out)
+    return out
+
+
+def twists(mesh: Any) -> np.ndarray:
+    """(n_blender_edges,) int64: the ``lk_twist`` of every edge (0 where unset)."""
+    return attribute_values(mesh, TWIST, "EDGE", len(mesh.edges), np.int32).astype(np.int64)
+
+
+def loop_nulls(mesh: Any) -> np.ndarray:
+    """(n_loops,) bool: the ``lk_null`` of every face corner."""
+    return attribute_values(mesh, NULL, "CORNER", len(mesh.loops), bool)
+
+
+def read_design(obj: Any) -> tuple[MeshDesign, np.ndarray, np.ndarray]:
+    """Return the scaffold of mesh object ``obj`` with its labels and null sides in lkspace's order."""
+    with readable_mesh(obj) as mesh:
+        design = mesh_design(mesh_arrays(mesh), obj.name)
+        return design, design.labels(twists(mesh)), design.nulls(loop_nulls(mesh))
+
+
+def write_attribute(mesh: Any, name: str, domain: str, kind: str, values: np.ndarray) -> None:
+    """Write ``values`` to attribute ``name``, creating it (``kind`` ``INT`` or ``BOOLEAN``) if needed."""
+    attribute = mesh.attributes.get(name)
+    if attribute is not None and (attribute.domain != domain or attribute.data_type != kind):
+        mesh.attributes.remove(attribute)
+        attribute = None
+    if attribute is None:
+        attribute = mesh.attributes.new(name, kind, domain)
+    attribute.data.foreach_set("value", values)
+    mesh.update()
+
+
+def write_labels(obj: Any, design: MeshDesign, labels: np.ndarray) -> None:
+    """Set ``lk_twist`` of the face edges of ``obj`` to ``labels`` (lkspace order); loose edges keep theirs."""
+    mesh = obj.data
+    values = design.edge_twists(labels, twists(mesh)).astype(np.int32)
+    write_attribute(mesh, TWIST, "EDGE", "INT", values)
+
+
+def selected_edges(mesh: Any) -> np.ndarray:
+    """Return the indices of the selected Blender edges."""
+    selected = np.zeros(len(mesh.edges), bool)
+    mesh.edges.foreach_get("select", selected)
+    return np.flatnonzero(selected)
+
+
+def selected_faces(mesh: Any) -> np.ndarray:
+    """(n_polygons,) bool: which polygons are selected."""
+    selected = np.zeros(len(mesh.polygons), bool)
+    mesh.polygons.foreach_get("select", selected)
+    return selected
+
+
+@contextmanager
+def edit_attributes(obj: Any) -> Iterator[Any]:
+    """Yield the mesh of ``obj`` for writing attributes; from Edit Mode, leave it and come back."""
+    editing = obj.mode == "EDIT"
+    if editing:
+        bpy.ops.object.mode_set(mode="OBJECT")
+    try:
+        yield obj.data
+    finally:
+        if editing:
+            bpy.ops.object.mode_set(mode="EDIT")

@@ -1,0 +1,145 @@
+"""The add-on's settings, results and sidebar panel (View3D > Sidebar > lkspace).
+
+``scene.lkspace`` holds what the buttons use (twist to set, label set, seed, N, live
+toggle, engine); ``object.lkspace`` holds what lkspace found for a mesh (components,
+holding together, the knot name, the last error), so scripts read them too.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import bpy
+
+from . import live
+from .scene import ENGINES, preset
+
+
+def live_toggled(settings: Any, context: Any) -> None:
+    """Regenerate at once when the live toggle is switched on."""
+    obj = context.active_object
+    if settings.live and obj is not None and obj.type == "MESH":
+        live.regenerate(obj, context.scene)
+
+
+class LkspaceSettings(bpy.types.PropertyGroup):
+    """Scene settings of the lkspace panel."""
+
+    twist: bpy.props.IntProperty(name="Twist", default=1, description="Twist to give the selected edges")  # type: ignore[valid-type]
+    symmetry: bpy.props.EnumProperty(  # type: ignore[valid-type]
+        name="Symmetry",
+        items=[("rotations", "Rotations", "Rotations keep a twist"), ("isometries", "Isometries", "Mirrors negate it")],
+    )
+    label_set: bpy.props.StringProperty(name="Labels", default="-2..2", description="Labels to draw or solve with")  # type: ignore[valid-type]
+    no_zero: bpy.props.BoolProperty(name="No zero", default=True, description="Never use twist 0")  # type: ignore[valid-type]
+    seed: bpy.props.IntProperty(name="Seed", default=0, min=0)  # type: ignore[valid-type]
+    components: bpy.props.IntProperty(name="Components", default=1, min=1)  # type: ignore[valid-type]
+    time_limit: bpy.props.FloatProperty(name="Time limit", default=20.0, min=0.5, description="Seconds for Solve")  # type: ignore[valid-type]
+    live: bpy.props.BoolProperty(name="Live", default=True, update=live_toggled, description="Regenerate on edits")  # type: ignore[valid-type]
+    engine: bpy.props.EnumProperty(name="Engine", items=ENGINES)  # type: ignore[valid-type]
+
+
+class LkspaceResult(bpy.types.PropertyGroup):
+    """What lkspace found for a mesh object at its last regeneration."""
+
+    components: bpy.props.IntProperty(name="Components")  # type: ignore[valid-type]
+    holds_together: bpy.props.BoolProperty(name="Holds together")  # type: ignore[valid-type]
+    open_strands: bpy.props.IntProperty(name="Open strands")  # type: ignore[valid-type]
+    knot: bpy.props.StringProperty(name="Knot or link")  # type: ignore[valid-type]
+    message: bpy.props.StringProperty(name="Message")  # type: ignore[valid-type]
+    measured: bpy.props.BoolProperty(name="Clearance measured")  # type: ignore[valid-type]
+    key: bpy.props.StringProperty(name="State")  # type: ignore[valid-type]
+
+
+class LKSPACE_OT_scene_preset(bpy.types.Operator):  # noqa: N801
+    """Fit a camera to the strands, add lights and a world, and pick the render engine."""
+
+    bl_idname = "lkspace.scene_preset"
+    bl_label = "Scene Preset"
+    bl_options = {"REGISTER", "UNDO"}
+    engine: bpy.props.EnumProperty(name="Engine", items=ENGINES)  # type: ignore[valid-type]
+
+    def execute(self, context: Any) -> set[str]:
+        """Set the scene up for a picture."""
+        preset(context.scene, self.engine)
+        return {"FINISHED"}
+
+
+class LKSPACE_PT_design(bpy.types.Panel):  # noqa: N801
+    """The lkspace sidebar panel."""
+
+    bl_label = "lkspace"
+    bl_space_type = "VIEW_3D"
+    bl_region_type = "UI"
+    bl_category = "lkspace"
+
+    def draw(self, context: Any) -> None:
+        """Edit, read and output sections."""
+        layout = self.layout
+        settings = context.scene.lkspace
+        obj = context.active_object
+        if obj is None or obj.type != "MESH":
+            layout.label(text="Select a mesh: its edges carry the twists")
+            layout.operator("lkspace.add_scaffold")
+            layout.operator("lkspace.periodic_block")
+            return
+        edit = layout.box()
+        edit.label(text="Edit twists (lk_twist)")
+        row = edit.row(align=True)
+        row.prop(settings, "twist")
+        row.operator("lkspace.set_twist", text="Set Selected").twist = settings.twist
+        row = edit.row(align=True)
+        row.prop(settings, "symmetry", text="")
+        row.operator("lkspace.fill_orbit").mode = settings.symmetry
+        row = edit.row(align=True)
+        row.prop(settings, "label_set")
+        row.prop(settings, "no_zero")
+        row = edit.row(align=True)
+        row.prop(settings, "seed")
+        row.operator("lkspace.randomize").seed = settings.seed
+        row = edit.row(align=True)
+        row.prop(settings, "components")
+        row.operator("lkspace.solve").components = settings.components
+        row = edit.row(align=True)
+        row.operator("lkspace.set_null", text="Cut Sides").null = True
+        row.operator("lkspace.set_null", text="Uncut Sides").null = False
+        read = layout.box()
+        row = read.row(align=True)
+        row.prop(settings, "live")
+        row.operator("lkspace.regenerate", text="Regenerate")
+        result = obj.lkspace
+        if result.message:
+            for line in wrap(result.message):
+                read.label(text=line, icon="ERROR")
+        elif result.key:
+            together = "holds together" if result.holds_together else "falls apart"
+            read.label(text=f"{result.components} component(s), {together}")
+            if result.open_strands:
+                read.label(text=f"{result.open_strands} open strand(s)")
+            if not result.measured:
+                read.label(text="Clearance not measured (large mesh): Regenerate checks it")
+        row = read.row(align=True)
+        row.operator("lkspace.identify")
+        row.label(text=result.knot or "-")
+        out = layout.box()
+        out.operator("lkspace.export", text="Export STL / 3MF")
+        row = out.row(align=True)
+        row.prop(settings, "engine", text="")
+        row.operator("lkspace.scene_preset").engine = settings.engine
+        row = out.row(align=True)
+        row.operator("lkspace.add_scaffold")
+        row.operator("lkspace.periodic_block")
+
+
+def wrap(text: str, width: int = 48) -> list[str]:
+    """Split ``text`` into lines of at most about ``width`` characters for the panel."""
+    lines, line = [], ""
+    for word in text.split():
+        if line and len(line) + len(word) >= width:
+            lines.append(line)
+            line = ""
+        line = f"{line} {word}".strip()
+    return lines + [line] if line else lines
+
+
+CLASSES = (LkspaceSettings, LkspaceResult, LKSPACE_OT_scene_preset, LKSPACE_PT_design)
