@@ -239,7 +239,7 @@ def make_invariant_space(
     >>> from lkspace import load
     >>> sp = make_invariant_space(load("cube"), np.array([-1, 0, 1]), "rotations", "C3")
     >>> sp.n_orbits, sp.n_fixed, sp.count_designs()
-    (4, 81, 33)
+    (4, 81, 54)
     """
     space = InvariantSpace(scaffold, np.asarray(label_set, np.int64), mode, subgroup, no_zero)
     if len(space.elements) == 0:  # pragma: no cover - parse_subgroup always holds the identity

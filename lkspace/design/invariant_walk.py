@@ -136,8 +136,10 @@ def invariant_blocks(space: InvariantSpace, components: int | None = None) -> It
                 yield block
 
 
-def rows_block(space: InvariantSpace, labels: np.ndarray, orbit_sizes: np.ndarray, components: int | None) -> Block | None:
-    """A :class:`Block` of the rows ``labels (m, n_edges)``: their residue classes traced once each."""
+def rows_block(
+    space: InvariantSpace, labels: np.ndarray, orbit_sizes: np.ndarray, components: int | None
+) -> Block | None:
+    """Return a :class:`Block` of the rows ``labels (m, n_edges)``: their residue classes traced once each."""
     base = space.base
     residues = labels.astype(np.int64) % base.moduli
     classes, row_class = np.unique(residues, axis=0, return_inverse=True)
@@ -154,8 +156,7 @@ def rows_block(space: InvariantSpace, labels: np.ndarray, orbit_sizes: np.ndarra
 
 
 def _class_code(space: InvariantSpace, residues: np.ndarray) -> int:
-    """The ``residue_class`` code of a residue vector (-1 past 64 bits)."""
+    """Return the ``residue_class`` code of a residue vector (-1 past 64 bits)."""
     lookup = space.base.residue_table[4]
     code = space.base.class_code(lookup[np.arange(len(residues)), residues])
     return code if code < 2**63 else -1
-

@@ -51,7 +51,9 @@ class GroupTable:
 
     def __init__(self, group: SymmetryGroup) -> None:
         self.group = group
-        self.index = {self.key(s, q): i for i, (s, q) in enumerate(zip(group.vertex_perms, group.matrices, strict=True))}
+        self.index = {
+            self.key(s, q): i for i, (s, q) in enumerate(zip(group.vertex_perms, group.matrices, strict=True))
+        }
 
     @staticmethod
     def key(sigma: np.ndarray, q: np.ndarray) -> bytes:
@@ -185,7 +187,9 @@ def _element_of_perm(text: str, scaffold: Scaffold, group: SymmetryGroup, table:
     except ValueError:
         raise UsageError(f"--invariant perm: {text!r} is not a comma list of vertex indices") from None
     if len(sigma) != scaffold.n_vertices:
-        raise UsageError(f"--invariant perm: {text!r} has {len(sigma)} images, {scaffold.name} has {scaffold.n_vertices} vertices")
+        raise UsageError(
+            f"--invariant perm: {text!r} has {len(sigma)} images, {scaffold.name} has {scaffold.n_vertices} vertices"
+        )
     hits = np.flatnonzero(np.all(group.vertex_perms == sigma[None, :], axis=1))
     if not len(hits):
         raise UsageError(f"--invariant perm: {text!r} is not a symmetry of {scaffold.name}")
