@@ -144,3 +144,20 @@ def test_a_chosen_radial_order_makes_a_scaffold_that_traces():
         assert trace(sc, 0).components == len(faces)  # zero twists: one strand per face
         counts.add(trace(sc, 1).components)
     assert len(counts) > 1  # the radial order changes the strands
+
+
+def test_cli_surfaces_lists_covers_and_structures(capsys):
+    import json
+
+    from tests.cli_calls import one_line_error, run
+
+    code, out, _ = run(capsys, "surfaces", "K3,3", "--max-length", 6, "--labels", "-1..1", "--json")
+    assert code == 0
+    payload = json.loads(out)
+    n, edges = named_graph("K3,3")
+    assert len(payload["surfaces"]) == len(brute_cover_classes(n, edges, 6, 2))
+    assert payload["structures"] == sum(s["structures"] for s in payload["surfaces"])
+    assert all(s["radial_orders"] == 1 for s in payload["surfaces"])  # every edge on two faces
+    code, out, err = run(capsys, "surfaces", "K4", "--max-length", 40)
+    assert code == 2 and out == ""
+    one_line_error(err, "--max-length")
