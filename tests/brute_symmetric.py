@@ -8,6 +8,7 @@ when it maps the vertex set and the faces onto themselves.  A motion is its 3x3 
 
 from __future__ import annotations
 
+import functools
 import itertools
 from collections import Counter
 
@@ -65,9 +66,16 @@ def apply(labels, perm, sign):
     return out
 
 
+@functools.lru_cache(maxsize=4)
+def _assignments(label_set, n_edges):
+    rows = np.array(list(itertools.product(label_set, repeat=n_edges)), np.int64)
+    rows.setflags(write=False)
+    return rows
+
+
 def all_assignments(label_set, n_edges):
-    """Every assignment, ``(|SET|^n_edges, n_edges)`` int64, lexicographic."""
-    return np.array(list(itertools.product(label_set, repeat=n_edges)), np.int64)
+    """Every assignment, ``(|SET|^n_edges, n_edges)`` int64, lexicographic (read-only, cached)."""
+    return _assignments(tuple(label_set), n_edges)
 
 
 def fixed_rows(rows, actions):

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import functools
 import json
 
 import numpy as np
@@ -11,6 +12,12 @@ from lkspace import load
 from tests.brute_symmetric import all_assignments, fixed_rows, motions, raw_edges, signed_edge_action
 from tests.cli_calls import one_line_error, run
 from tests.reference import reference_trace
+
+
+@functools.lru_cache(maxsize=2)
+def cube_c3_table():
+    """The brute force for the cube, labels -1..1, rotations about vertex 0 (shared by the tests)."""
+    return brute_residues_by_components("cube", (-1, 0, 1), lambda q, s: np.linalg.det(q) > 0 and s[0] == 0)
 
 
 def brute_residues_by_components(name, label_set, h_filter):
@@ -31,7 +38,7 @@ def brute_residues_by_components(name, label_set, h_filter):
 
 @pytest.mark.parametrize("components", [1, 2, 3, 4, 5, 6])
 def test_solve_finds_exactly_the_symmetric_designs(capsys, components):
-    table, sub = brute_residues_by_components("cube", [-1, 0, 1], lambda q, s: np.linalg.det(q) > 0 and s[0] == 0)
+    table, sub = cube_c3_table()
     code, out, _ = run(
         capsys,
         "solve",

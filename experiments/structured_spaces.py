@@ -1,0 +1,151 @@
+"""Structured design spaces: symmetric designs of the Platonic solids, surfaces of small graphs.
+
+Writes ``results/structured/symmetric_platonic.{md,json}`` (per solid and subgroup: the
+subgroup's order, edge orbits, fixed assignments and designs up to the normalizer, for
+labels -1..1 and -2..2) and ``results/structured/graph_surfaces.{md,json}`` (per graph:
+the face sets with every edge on 2 (or 3) faces up to automorphism, and the strand
+structures and designs they carry).  Run: ``python experiments/structured_spaces.py``.
+"""
+
+from __future__ import annotations
+
+import json
+import pathlib
+import time
+
+import numpy as np
+
+from lkspace import load
+from lkspace.design.embeddings import graph_surfaces
+from lkspace.design.graph_faces import named_graph
+from lkspace.design.invariant import make_invariant_space
+from lkspace.design.invariant_walk import invariant_blocks
+
+OUT = pathlib.Path(__file__).resolve().parents[1] / "results" / "structured"
+SOLIDS = ("tetrahedron", "cube", "octahedron", "dodecahedron", "icosahedron")
+SUBGROUPS = {
+    "tetrahedron": ["rotations", "C3:vertex=0", "C2:edge=0", "stabilizer:face=0", "isometry-stabilizer:edge=0"],
+    "cube": ["rotations", "C4:face=0", "C2:face=0", "C3:vertex=0", "C2:edge=0", "isometry-stabilizer:face=0"],
+    "octahedron": ["rotations", "C4:vertex=0", "C2:vertex=0", "C3:face=0", "C2:edge=0", "isometry-stabilizer:vertex=0"],
+    "dodecahedron": ["rotations", "C5:face=0", "C3:vertex=0", "C2:edge=0", "isometry-stabilizer:face=0"],
+    "icosahedron": ["rotations", "C5:vertex=0", "C3:face=0", "C2:edge=0", "isometry-stabilizer:vertex=0"],
+}
+LIST_UP_TO = 200_000
+"""Fixed assignments up to which designs are also split by components (listed)."""
+
+GRAPHS = [
+    ("K4", 4, 2),
+    ("K4", 4, 4),
+    ("K5", 3, 3),
+    ("octahedron", 4, 2),
+    ("cube", 6, 2),
+    ("K3,3", 6, 2),
+    ("petersen", 9, 2),
+]
+
+
+def symmetric_rows() -> list[dict]:
+    rows = []
+    for solid in SOLIDS:
+        sc = load(solid)
+        for labels in ("-1..1", "-2..2"):
+            lab = np.arange(-1, 2) if labels == "-1..1" else np.arange(-2, 3)
+            for sub in SUBGROUPS[solid]:
+                t0 = time.perf_counter()
+                space = make_invariant_space(sc, lab, "rotations", sub)
+                row = {"solid": solid, "labels": labels, **space.summary(), "designs": space.count_designs()}
+                if space.n_fixed <= LIST_UP_TO:
+                    by: dict[int, int] = {}
+                    for block in invariant_blocks(space):
+                        for c in block.traces.components[block.row_class].tolist():
+                            by[c] = by.get(c, 0) + 1
+                    assert sum(by.values()) == row["designs"]
+                    row["by_components"] = dict(sorted(by.items()))
+                row.pop("vertex_perms")
+                row["seconds"] = round(time.perf_counter() - t0, 3)
+                rows.append(row)
+                print(solid, labels, sub, row["designs"], row["seconds"], flush=True)
+    return rows
+
+
+def graph_rows() -> list[dict]:
+    rows = []
+    for name, length, per_edge in GRAPHS:
+        t0 = time.perf_counter()
+        found = graph_surfaces(named_graph(name), length, per_edge, [-1, 0, 1])
+        rows.append(
+            {
+                "graph": name,
+                "max_length": length,
+                "per_edge": per_edge,
+                "face_sets": len(found),
+                "covers": sum(s.covers for s in found),
+                "structures": sum(s.structures for s in found),
+                "designs_-1..1": sum(s.designs or 0 for s in found),
+                "surfaces": [
+                    {
+                        "face_sizes": sorted(len(f) for f in s.faces),
+                        "covers": s.covers,
+                        "symmetry": s.symmetry,
+                        "radial_orders": s.radial_orders,
+                        "structures": s.structures,
+                        "designs": s.designs,
+                    }
+                    for s in found
+                ],
+                "seconds": round(time.perf_counter() - t0, 3),
+            }
+        )
+        print(name, length, per_edge, len(found), rows[-1]["structures"], rows[-1]["seconds"], flush=True)
+    return rows
+
+
+def write(rows: list[dict], graphs: list[dict]) -> None:
+    OUT.mkdir(parents=True, exist_ok=True)
+    (OUT / "symmetric_platonic.json").write_text(json.dumps(rows, indent=1) + "\n")
+    (OUT / "graph_surfaces.json").write_text(json.dumps(graphs, indent=1) + "\n")
+    lines = [
+        "# Symmetric designs of the Platonic solids",
+        "",
+        "Designs fixed by a subgroup H of the rotations (or, for `isometry-stabilizer`, of all symmetries),",
+        "up to the normalizer of H in the rotation group (`lkspace enumerate SOLID --invariant H`).",
+        "Written by `experiments/structured_spaces.py`.",
+        "",
+        "| solid | labels | H | order | normalizer | edge orbits (zero) | fixed assignments | designs | by components |",
+        "|---|---|---|---|---|---|---|---|---|",
+    ]
+    for r in rows:
+        by = ", ".join(f"{k}: {v}" for k, v in r.get("by_components", {}).items()) or "(counted, not listed)"
+        lines.append(
+            f"| {r['solid']} | {r['labels']} | `{r['subgroup']}` | {r['order']} | {r['normalizer_order']} | "
+            f"{r['edge_orbits']} ({r['zero_orbits']}) | {r['fixed_assignments']:,} | {r['designs']:,} | {by} |"
+        )
+    (OUT / "symmetric_platonic.md").write_text("\n".join(lines) + "\n")
+    lines = [
+        "# How many distinct LK structures does one graph admit?",
+        "",
+        "Cycles of length <= L become faces, each edge on exactly D faces; face sets up to the graph's",
+        "automorphisms.  A structure is a radial order and a residue t mod K per edge, up to the",
+        "automorphisms keeping the face set (distinct strand structures); designs use labels -1..1.",
+        "(`lkspace surfaces GRAPH --max-length L --per-edge D --labels -1..1`; `experiments/structured_spaces.py`.)",
+        "",
+        "| graph | L | D | face sets | covers | structures | designs (-1..1) | face sets: sizes, symmetry, radial orders, structures |",
+        "|---|---|---|---|---|---|---|---|",
+    ]
+    for g in graphs:
+        detail = "; ".join(
+            f"{s['face_sizes']} sym {s['symmetry']} ro {s['radial_orders']} st {s['structures']:,}"
+            for s in g["surfaces"][:6]
+        )
+        more = f"; … ({len(g['surfaces']) - 6} more)" if len(g["surfaces"]) > 6 else ""
+        lines.append(
+            f"| {g['graph']} | {g['max_length']} | {g['per_edge']} | {g['face_sets']} | {g['covers']} | "
+            f"{g['structures']:,} | {g['designs_-1..1']:,} | {detail}{more} |"
+        )
+    lines += ["", "Not reached: the Laves graph (a periodic net; the cover search takes finite graphs only)."]
+    (OUT / "graph_surfaces.md").write_text("\n".join(lines) + "\n")
+
+
+if __name__ == "__main__":
+    graphs = graph_rows()
+    write(symmetric_rows(), graphs)
