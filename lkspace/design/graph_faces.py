@@ -21,12 +21,15 @@ from functools import cached_property
 
 import numpy as np
 
-from ..errors import UsageError
+from ..errors import TooLargeError, UsageError
 from ..model.scaffold import Scaffold
 
 NAMED_GRAPHS = ("K4", "cube", "K3,3", "petersen", "octahedron", "K5")
 MAX_CYCLES = 4096
 """Most cycles a graph may offer as faces (the cover search is exponential in them)."""
+
+MAX_STEPS = 2_000_000
+"""Most branches the cover search takes before it gives up with :class:`~lkspace.errors.TooLargeError`."""
 
 
 def named_graph(name: str) -> tuple[int, list[tuple[int, int]]]:
@@ -142,32 +145,66 @@ def cycle_space(n_vertices: int, edges: Sequence[tuple[int, int]], max_length: i
 
 
 def covers(space: CycleSpace, per_edge: int) -> Iterator[tuple[int, ...]]:
-    """Every face set covering each edge exactly ``per_edge`` times (cycles decided in index order)."""
+    """Every face set covering each edge exactly ``per_edge`` times.
+
+    An exact cover with multiplicities: branch on the first available cycle through the
+    edge with the fewest available cycles per missing face (include it, or rule it out);
+    a cycle through an edge that needs no more faces is ruled out, and a branch ends when
+    some edge has fewer available cycles than it needs.
+    """
+    cycle_edges = [np.asarray(c, np.int64) for c in space.cycle_edges]
     n_e = len(space.edges)
-    cycle_edges = space.cycle_edges
-    left = np.zeros((len(cycle_edges) + 1, n_e), np.int64)  # cycles from i on through each edge
-    for i in range(len(cycle_edges) - 1, -1, -1):
-        left[i] = left[i + 1]
-        left[i, cycle_edges[i]] += 1
+    through: list[list[int]] = [[] for _ in range(n_e)]
+    for i, c in enumerate(cycle_edges):
+        for e in c.tolist():
+            through[e].append(i)
     need = np.full(n_e, per_edge, np.int64)
+    avail = np.ones(len(cycle_edges), bool)
+    n_avail = np.array([len(t) for t in through], np.int64)
     chosen: list[int] = []
+    steps = [0]
 
-    def walk(i: int) -> Iterator[tuple[int, ...]]:
-        if not need.any():
-            yield tuple(chosen)
-            return
-        if i == len(cycle_edges) or np.any(left[i] < need):
-            return
-        c = cycle_edges[i]
-        if np.all(need[c] > 0):
-            need[c] -= 1
-            chosen.append(i)
-            yield from walk(i + 1)
-            chosen.pop()
-            need[c] += 1
-        yield from walk(i + 1)
+    def drop(i: int, undo: list[int]) -> None:
+        avail[i] = False
+        n_avail[cycle_edges[i]] -= 1
+        undo.append(i)
 
-    yield from walk(0)
+    def restore(undo: list[int]) -> None:
+        for i in reversed(undo):
+            avail[i] = True
+            n_avail[cycle_edges[i]] += 1
+
+    def walk() -> Iterator[tuple[int, ...]]:
+        steps[0] += 1
+        if steps[0] > MAX_STEPS:
+            raise TooLargeError(
+                f"the cover search passed {MAX_STEPS:,} steps over {len(cycle_edges)} cycles; lower --max-length"
+            )
+        open_edges = np.flatnonzero(need > 0)
+        if not len(open_edges):
+            yield tuple(sorted(chosen))
+            return
+        if np.any(n_avail[open_edges] < need[open_edges]):
+            return
+        e = int(open_edges[np.argmin(n_avail[open_edges] - need[open_edges])])
+        c = next(i for i in through[e] if avail[i])
+        undo: list[int] = []
+        drop(c, undo)  # decided either way
+        need[cycle_edges[c]] -= 1
+        chosen.append(c)
+        for f in cycle_edges[c][need[cycle_edges[c]] == 0].tolist():
+            for i in through[f]:
+                if avail[i]:
+                    drop(i, undo)
+        yield from walk()
+        chosen.pop()
+        need[cycle_edges[c]] += 1
+        restore(undo[1:])
+        undo = undo[:1]
+        yield from walk()
+        restore(undo)
+
+    yield from walk()
 
 
 def cover_orbits(space: CycleSpace, per_edge: int) -> list[tuple[tuple[int, ...], int]]:

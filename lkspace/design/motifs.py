@@ -31,7 +31,7 @@ from numpy.typing import ArrayLike
 from ..errors import LabelError, ScaffoldError, TooLargeError
 from ..model.scaffold import Scaffold
 
-MAX_MOTIFS = 1 << 18
+MAX_MOTIFS = 1 << 16
 """Most motifs :func:`motif_classes` walks."""
 
 
