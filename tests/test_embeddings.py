@@ -161,3 +161,16 @@ def test_cli_surfaces_lists_covers_and_structures(capsys):
     code, out, err = run(capsys, "surfaces", "K4", "--max-length", 40)
     assert code == 2 and out == ""
     one_line_error(err, "--max-length")
+
+
+def test_cli_own_faces_counts_radial_orders(capsys):
+    import json
+
+    from tests.cli_calls import run
+
+    code, out, _ = run(capsys, "surfaces", "book:3", "--own-faces", "--json")
+    assert code == 0
+    (surface,) = json.loads(out)["surfaces"]
+    # three pages on one edge: 2 cyclic orders, swapped by a transposition of two pages;
+    # 3 residues mod 3 on that edge, the other edges have degree 1
+    assert surface["radial_orders"] == 2 and surface["structures"] == 3

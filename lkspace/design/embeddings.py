@@ -249,3 +249,24 @@ def graph_surfaces(
             )
         )
     return out
+
+
+def own_surface(scaffold: Scaffold, label_set: Sequence[int] | None = None) -> Surface:
+    """Return the :class:`Surface` of a finite scaffold's own faces (every radial order, coordinates ignored).
+
+    Examples
+    --------
+    >>> from lkspace import load
+    >>> s = own_surface(load("book:3"))
+    >>> s.symmetry, s.radial_orders, s.structures
+    (12, 2, 3)
+    """
+    st = scaffold_structure(scaffold)
+    return Surface(
+        faces=[st.space.cycles[f] for f in st.faces],
+        covers=1,
+        symmetry=len(st.group),
+        radial_orders=math.prod(len(o) for o in st.orders),
+        structures=count_structures(st),
+        designs=None if label_set is None else count_structures(st, label_set),
+    )
