@@ -8,6 +8,8 @@ from collections import Counter
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from lkspace import load, read_catalog
 from lkspace.catalog.symmetric import symmetric_designs
@@ -203,3 +205,31 @@ def test_cli_bad_subgroups_are_one_usage_line(capsys, args, words):
     code, stdout, err = run(capsys, "enumerate", "cube", "--labels", "-1..1", *args)
     assert code == 2 and stdout == ""
     one_line_error(err, *words)
+
+
+@settings(max_examples=25, deadline=None)
+@given(
+    name=st.sampled_from(["tetrahedron", "cube", "octahedron"]),
+    picks=st.lists(st.integers(0, 47), min_size=1, max_size=2),
+    label_set=st.sampled_from([(-1, 0, 1), (0, 1), (-1, 1)]),
+    mode=st.sampled_from(["rotations", "isometries", "none"]),
+)
+def test_generated_subgroups_give_consistent_rows(name, picks, label_set, mode):
+    sc = load(name)
+    group = symmetry_group(sc)
+    perms = ";".join(",".join(map(str, group.vertex_perms[p % group.order].tolist())) for p in picks)
+    if mode == "isometries" and label_set == (0, 1):
+        mode = "rotations"  # isometries need a label set closed under negation
+    space = make_invariant_space(sc, np.array(label_set), mode, f"perm:{perms}")
+    h = space.elements
+    rows, sizes = [], []
+    for block in invariant_blocks(space):
+        rows += block.labels.tolist()
+        sizes += block.orbit_sizes.tolist()
+    assert len(set(map(tuple, rows))) == len(rows) == space.count_designs()
+    assert sum(sizes) == space.n_fixed
+    for row in np.array(rows, np.int64).reshape(-1, sc.n_edges):
+        for p, s in zip(group.edge_perms[h], group.edge_signs[h], strict=True):
+            image = np.empty_like(row)
+            image[p] = s * row
+            assert np.array_equal(image, row)  # fixed by every element of the subgroup
