@@ -4,7 +4,9 @@ Writes ``results/structured/symmetric_platonic.{md,json}`` (per solid and subgro
 subgroup's order, edge orbits, fixed assignments and designs up to the normalizer, for
 labels -1..1 and -2..2) and ``results/structured/graph_surfaces.{md,json}`` (per graph:
 the face sets with every edge on 2 (or 3) faces up to automorphism, and the strand
-structures and designs they carry).  Run: ``python experiments/structured_spaces.py``.
+structures and designs they carry) and ``results/structured/motifs.{md,json}`` (motif classes on
+a few supercells, with how many hold together and how many are all threads).
+Run: ``python experiments/structured_spaces.py``.
 """
 
 from __future__ import annotations
@@ -20,6 +22,9 @@ from lkspace.design.embeddings import graph_surfaces
 from lkspace.design.graph_faces import named_graph
 from lkspace.design.invariant import make_invariant_space
 from lkspace.design.invariant_walk import invariant_blocks
+from lkspace.design.motifs import cell_map, check_tiles, motif_classes, tiling_matrix
+from lkspace.strands.tracing import trace
+from lkspace.symmetry.group import symmetry_group
 
 OUT = pathlib.Path(__file__).resolve().parents[1] / "results" / "structured"
 SOLIDS = ("tetrahedron", "cube", "octahedron", "dodecahedron", "icosahedron")
@@ -32,6 +37,15 @@ SUBGROUPS = {
 }
 LIST_UP_TO = 200_000
 """Fixed assignments up to which designs are also split by components (listed)."""
+
+MOTIFS = [
+    ("tiling:square", (2, 2), (1, 1), ()),
+    ("tiling:square", (4, 2), (2, 1), (1,)),
+    ("tiling:square", (2, 2), (2, 2), (0,)),
+    ("tiling:hexagonal", (2, 2), (1, 1), ()),
+    ("honeycomb:cP", (2, 2, 2), (1, 1, 1), ()),
+    ("honeycomb:cP", (2, 1, 1), (2, 1, 1), (0, 0, 0)),
+]
 
 GRAPHS = [
     ("K4", 4, 2),
@@ -100,6 +114,36 @@ def graph_rows() -> list[dict]:
     return rows
 
 
+def motif_rows() -> list[dict]:
+    rows = []
+    for name, sizes, block, shifts in MOTIFS:
+        t0 = time.perf_counter()
+        base = load(name)
+        sc = load(f"{name}@{'x'.join(map(str, sizes))}")
+        base_edge, cell = cell_map(base, sc, sizes)
+        tiling = tiling_matrix(block, shifts)
+        check_tiles(tiling, sizes)
+        perms, signs = symmetry_group(sc).action("rotations")
+        classes = motif_classes(base_edge, cell, tiling, [-1, 0, 1], perms, signs)
+        traces = [trace(sc, c.labels) for c in classes]
+        threads = [int(np.any(np.asarray(t.periods) != 0, axis=1).sum()) for t in traces]
+        rows.append(
+            {
+                "scaffold": sc.name,
+                "block": list(block),
+                "offsets": list(shifts),
+                "motifs": sum(c.motifs for c in classes),
+                "classes": len(classes),
+                "hold_together": sum(t.holds_together for t in traces),
+                "all_threads": sum(1 for t, n in zip(traces, threads, strict=True) if n == t.components),
+                "components": sorted({int(t.components) for t in traces}),
+                "seconds": round(time.perf_counter() - t0, 3),
+            }
+        )
+        print(rows[-1], flush=True)
+    return rows
+
+
 def write(rows: list[dict], graphs: list[dict]) -> None:
     OUT.mkdir(parents=True, exist_ok=True)
     (OUT / "symmetric_platonic.json").write_text(json.dumps(rows, indent=1) + "\n")
@@ -146,6 +190,28 @@ def write(rows: list[dict], graphs: list[dict]) -> None:
     (OUT / "graph_surfaces.md").write_text("\n".join(lines) + "\n")
 
 
+def write_motifs(rows: list[dict]) -> None:
+    (OUT / "motifs.json").write_text(json.dumps(rows, indent=1) + "\n")
+    lines = [
+        "# Motifs on supercells",
+        "",
+        "Every motif with labels -1..1 on a block of cells, repeated (with the offsets below the tiling's",
+        "diagonal) over the supercell; classes are designs up to the supercell's rotations",
+        "(`lkspace motifs NAME --supercell S --block B --offsets O --labels -1..1`).  The class counts",
+        "depend on the periodic symmetry group of the supercell.",
+        "",
+        "| supercell | block | offsets | motifs | classes | hold together | only threads | components |",
+        "|---|---|---|---|---|---|---|---|",
+    ]
+    for r in rows:
+        lines.append(
+            f"| {r['scaffold']} | {'x'.join(map(str, r['block']))} | {r['offsets']} | {r['motifs']:,} | "
+            f"{r['classes']:,} | {r['hold_together']:,} | {r['all_threads']:,} | {r['components']} |"
+        )
+    (OUT / "motifs.md").write_text("\n".join(lines) + "\n")
+
+
 if __name__ == "__main__":
+    write_motifs(motif_rows())
     graphs = graph_rows()
     write(symmetric_rows(), graphs)
