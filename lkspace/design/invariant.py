@@ -154,12 +154,16 @@ class InvariantSpace:
         return total // len(signs)
 
     def summary(self) -> dict[str, object]:
-        """JSON facts of the subgroup: name, orders, orbits, fixed assignments (the catalog's ``invariant`` key)."""
+        """JSON facts of the subgroup: name, orders, orbits, fixed assignments (the catalog's ``invariant`` key).
+
+        ``vertex_perms`` (the elements' vertex images) is ``None`` past 10,000 numbers.
+        """
+        small = len(self.elements) * self.scaffold.n_vertices <= 10_000
         return {
             "subgroup": self.subgroup,
             "order": int(len(self.elements)),
             "proper": bool(self.group.proper[self.elements].all()),
-            "vertex_perms": self.group.vertex_perms[self.elements].tolist(),
+            "vertex_perms": self.group.vertex_perms[self.elements].tolist() if small else None,
             "normalizer_order": int(len(self.normalizer)),
             "acting_order": int(len(self.action[1])),
             "edge_orbits": self.n_orbits,
