@@ -36,8 +36,7 @@ def run_invariant(
     from ..design.invariant import make_invariant_space
 
     with usage_errors():
-        space = make_invariant_space(scaffold, labels, symmetry, subgroup, no_zero)
-        space.summary()  # parses the subgroup: a bad name is a usage error before any work
+        space = make_invariant_space(scaffold, labels, symmetry, subgroup, no_zero)  # a bad name: usage error
     started = time.perf_counter()
     payload: dict[str, Any]
     if count_only or output is None:

@@ -45,7 +45,6 @@ from functools import cached_property
 
 import numpy as np
 
-from ..errors import LabelError
 from ..model.scaffold import Scaffold
 from ..symmetry.edge_orbits import orbit_options, signed_components
 from ..symmetry.group import SymmetryGroup, check_label_set, check_mode, symmetry_group
@@ -185,6 +184,5 @@ def make_invariant_space(
     (4, 81, 54)
     """
     space = InvariantSpace(scaffold, np.asarray(label_set, np.int64), mode, subgroup, no_zero)
-    if len(space.elements) == 0:  # pragma: no cover - parse_subgroup always holds the identity
-        raise LabelError(f"--invariant {subgroup!r}: empty subgroup")
+    _ = space.elements  # parse the name now: a bad one fails here, before any work
     return space
