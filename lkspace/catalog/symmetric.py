@@ -118,9 +118,10 @@ def count_invariant(space: InvariantSpace, components: int | None = None) -> dic
     """
     base = {"assignments": space.assignments, "fixed_assignments": space.n_fixed, "invariant": space.summary()}
     if space.n_fixed > MAX_FIXED:
+        note = f"{space.n_fixed:,} fixed assignments: too many to list (limit {MAX_FIXED:,}); counted by Burnside"
         if components is not None:
-            return {**base, "designs": None, "by_components": None}
-        return {**base, "designs": space.count_designs(), "by_components": None}
+            return {**base, "designs": None, "by_components": None, "note": note + ", which cannot filter components"}
+        return {**base, "designs": space.count_designs(), "by_components": None, "note": note}
     rows, covered = 0, 0
     by: dict[str, int] = {}
     for block in invariant_blocks(space, components):
