@@ -72,6 +72,8 @@ def run_invariant(
         for k, v in (payload["by_components"] or {}).items():
             table.add_row(f"  {k} component(s)", f"{v:,}")
         table.add_row("written", str(payload.get("written") or "- (count only; give -o FILE to write)"))
+        if payload.get("note"):
+            table.add_row("note", str(payload["note"]))
         table.add_row("seconds", str(payload["seconds"]))
         con.print(table)
 
