@@ -3,18 +3,19 @@
 The public API, loaded on first use (``import lkspace`` stays fast); every function that
 works on a scaffold also takes a path or a built-in name:
 
-=======================  ===============================================================
-:func:`load`             a scaffold from a built-in name or a ``.obj`` / ``.json`` file
-:func:`trace`            the strands of a labelled scaffold (:class:`Trace`)
-:func:`designs`          a design space, batch by batch (pandas DataFrames)
-:func:`count_designs`    exact counts of a design space, without listing it
-:func:`write_catalog`    a design space written to a Parquet catalog
-:func:`read_catalog`     a catalog back, labels as one ``(n, n_edges) int8`` array
-:func:`solve`            designs with exactly N components (CP-SAT)
-:func:`realize`          strands as 3D curves (:class:`Realization`)
-:func:`export`           strands to ``.obj``, ``.ply``, ``.glb`` or ``.png``
-:func:`identify`         the knot or link type (extra ``[knots]``)
-=======================  ===============================================================
+===========================  ===============================================================
+:func:`load`                 a scaffold from a built-in name or a ``.obj`` / ``.json`` file
+:func:`trace`                the strands of a labelled scaffold (:class:`Trace`)
+:func:`designs`              a design space, batch by batch (pandas DataFrames)
+:func:`symmetric_designs`    the designs fixed by a subgroup of the symmetries (``--invariant``)
+:func:`count_designs`        exact counts of a design space, without listing it
+:func:`write_catalog`        a design space written to a Parquet catalog
+:func:`read_catalog`         a catalog back, labels as one ``(n, n_edges) int8`` array
+:func:`solve`                designs with exactly N components (CP-SAT)
+:func:`realize`              strands as 3D curves (:class:`Realization`)
+:func:`export`               strands to ``.obj``, ``.ply``, ``.glb`` or ``.png``
+:func:`identify`             the knot or link type (extra ``[knots]``)
+===========================  ===============================================================
 
 Quick start
 -----------
@@ -38,6 +39,7 @@ if TYPE_CHECKING:
     from .catalog.listing import designs
     from .catalog.reader import Catalog, read_catalog
     from .catalog.shards import CatalogWritten, write_catalog
+    from .catalog.symmetric import symmetric_designs
     from .design.counting import DesignCount, count_designs
     from .formats.registry import export
     from .geometry.realization import GeometryParams, Realization, realize
@@ -56,6 +58,7 @@ _LAZY = {
     "trace": "strands.tracing",
     "Trace": "strands.tracing",
     "designs": "catalog.listing",
+    "symmetric_designs": "catalog.symmetric",
     "count_designs": "design.counting",
     "DesignCount": "design.counting",
     "write_catalog": "catalog.shards",
@@ -79,6 +82,7 @@ __all__ = [
     "trace",
     "Trace",
     "designs",
+    "symmetric_designs",
     "count_designs",
     "DesignCount",
     "write_catalog",

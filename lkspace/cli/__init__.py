@@ -30,6 +30,8 @@ COMMANDS = {
     "export": "export:export_cmd",
     "identify": "identify:identify_cmd",
     "atlas": "atlas:atlas_cmd",
+    "surfaces": "surfaces:surfaces_cmd",
+    "motifs": "motifs:motifs_cmd",
     "studio": "studio:studio_cmd",
 }
 """Command name -> ``module:attribute`` under :mod:`lkspace.cli`."""

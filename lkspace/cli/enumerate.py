@@ -138,6 +138,12 @@ def _where_it_ran(
 @click.option("--resume", is_flag=True, help="Keep the verified parts of an interrupted run and do the rest.")
 @click.option("--yes", is_flag=True, help="Go ahead with a catalog estimated past 10^8 rows or 2 GB.")
 @click.option("--identify", is_flag=True, help="Add knot/link names and invariants to every row (extra [knots]; slow).")
+@click.option(
+    "--invariant",
+    metavar="SUBGROUP",
+    help="Only designs fixed by this subgroup of the symmetries (rotations, C3, C4:face=0, stabilizer:vertex=0, "
+    "perm:...), up to its normalizer; see docs/structured.md.",
+)
 @json_option
 def enumerate_cmd(
     mesh: str | None,
@@ -157,6 +163,7 @@ def enumerate_cmd(
     resume: bool,
     yes: bool,
     identify: bool,
+    invariant: str | None,
     as_json: bool,
 ) -> None:
     """Walk the design space of MESH: one row per design up to symmetry.
@@ -169,6 +176,7 @@ def enumerate_cmd(
       lkspace enumerate cube --mode residues -o cube-topology.parquet
       lkspace enumerate cube --labels -2..2 -o cube.parquet --jobs 2 --resume   # after Ctrl-C
       lkspace enumerate cube --labels -2..2 -o s3://bucket/cube --scheduler tcp://head:8786
+      lkspace enumerate cube --labels -1..1 --invariant C3:vertex=0 -o cube-c3.parquet
 
     The representative of each design is the orbit member smallest in (t mod K per
     edge, then t per edge), lexicographically in edge order.
@@ -187,6 +195,23 @@ def enumerate_cmd(
         raise UsageError("--sample applies to --mode spanning-trees only")
     if identify and (output is None or count_only):
         raise UsageError("--identify names the rows of a written catalog: give -o CATALOG.parquet")
+    if invariant is not None:
+        from .invariant import refuse_with_invariant, run_invariant
+
+        refuse_with_invariant(mode=mode != "designs", sample=sample, shards=shards, resume=resume, identify=identify)
+        refuse_with_invariant(jobs=jobs > 1, scheduler=scheduler)
+        return run_invariant(
+            ctx,
+            load_mesh(ctx, mesh),
+            label_set(labels_spec),
+            symmetry,
+            invariant,
+            output,
+            count_only,
+            components,
+            no_zero,
+            max_designs,
+        )
     try:
         scaffold = load_mesh(ctx, mesh)
         labels = label_set(labels_spec)

@@ -139,6 +139,11 @@ MAX_COUNT = 10_000
     help="Random seed (search and spanning trees).",
 )
 @click.option(
+    "--invariant",
+    metavar="SUBGROUP",
+    help="Only designs fixed by this subgroup of the symmetries (C3, C4:face=0, rotations, ...; docs/structured.md).",
+)
+@click.option(
     "--no-fast-path", is_flag=True, help="Always use CP-SAT, even where the spanning-tree construction applies."
 )
 @click.option(
@@ -168,6 +173,7 @@ def solve_cmd(
     workers: int,
     seed: int,
     no_fast_path: bool,
+    invariant: str | None,
     output: str | None,
     as_json: bool,
 ) -> None:
@@ -187,6 +193,7 @@ def solve_cmd(
       lkspace solve --components 1
       lkspace solve cube --components 1 --no-zero --count 3
       lkspace solve dodecahedron -n 2 --labels -1,1,2 --fix 0=2 --objective min-abs
+      lkspace solve cube --components 2 --labels -1..1 --invariant C3:vertex=0 --count 5
       lkspace solve cube --type 3_1 --labels -1..1
       lkspace solve tetrahedron --type L6a4
       lkspace solve octahedron --linking-matrix "0,1,0;1,0,1;0,1,0" --labels -1..1
@@ -195,9 +202,10 @@ def solve_cmd(
 
     ctx = Context(as_json)
     if type_name is not None or linking_text is not None:
-        if components is not None or parity_items or objective != "none" or distinct_up_to != "none":
+        if components is not None or parity_items or objective != "none" or distinct_up_to != "none" or invariant:
             raise UsageError(
-                "--type/--linking-matrix: --components, --parity, --objective and --distinct-up-to do not apply"
+                "--type/--linking-matrix: --components, --parity, --objective, --distinct-up-to and --invariant "
+                "do not apply"
             )
         from .solve_target import target_cmd
 
@@ -214,6 +222,10 @@ def solve_cmd(
     with usage_errors():
         fixes = edge_values(scaffold, fix_items, "--fix", fix_label)
         parities = edge_values(scaffold, parity_items, "--parity", _parity)
+        if invariant is not None:
+            from ..symmetry.edge_orbits import invariant_edge_orbits
+
+            invariant_edge_orbits(scaffold, invariant)  # a bad subgroup name is bad usage (exit 2)
     result = solve(
         scaffold,
         components,
@@ -229,6 +241,7 @@ def solve_cmd(
         seed=seed,
         fast_path=not no_fast_path,
         tolerance=symmetry_tolerance(),
+        invariant=invariant,
     )
     written = None
     if target is not None and output is not None and result.solutions:

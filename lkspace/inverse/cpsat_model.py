@@ -124,8 +124,17 @@ class DesignModel:
     route_vars: RouteVars = field(default_factory=lambda: ([], [], {}, []))
 
     def labels_of(self, residues: np.ndarray) -> np.ndarray:
-        """Return the reported labels ``(n_edges,) int64`` of a residue vector."""
-        return np.array([self.choices[e][int(r)] for e, r in enumerate(residues)], np.int64)
+        """Return the reported labels ``(n_edges,) int64`` of a residue vector.
+
+        Under ``query.invariant_orbits`` each edge copies its orbit's first edge (times
+        ``rel``), so the labels are fixed by the subgroup, not just their residues.
+        """
+        labels = np.array([self.choices[e][int(r)] for e, r in enumerate(residues)], np.int64)
+        if self.query.invariant_orbits is not None:
+            orbit, rel, _ = self.query.invariant_orbits
+            first = np.unique(orbit, return_index=True)[1]
+            labels = rel * labels[first[orbit]]
+        return labels
 
     def residues_from(self, value: Callable[[cp_model.BoolVarT], bool]) -> np.ndarray:
         """Return the residue vector ``(n_edges,) int64`` of a solved model (``value(literal) -> bool``)."""
@@ -287,6 +296,8 @@ def build_model(scaffold: Scaffold, query: Query, deadline: float | None = None)
         if len(opts) > 2:
             model.add_exactly_one([lit for _, lit in lits])
         dm.residue_literals[e] = lits
+    if query.invariant_orbits is not None:
+        _tie_orbits(dm, *query.invariant_orbits[:2])
     arcs = []
     starts = [model.new_bool_var(f"start{u}") for u in range(m)]
     ends = [model.new_bool_var(f"end{u}") for u in range(m)]
@@ -336,6 +347,22 @@ def build_model(scaffold: Scaffold, query: Query, deadline: float | None = None)
     if objective:
         model.minimize(sum(objective))
     return dm
+
+
+def _tie_orbits(dm: DesignModel, orbit: np.ndarray, rel: np.ndarray) -> None:
+    """Residue of edge ``e`` = ``rel[e]`` x residue of its orbit's first edge (``solve --invariant``)."""
+    assert dm.model is not None
+    first = np.unique(orbit, return_index=True)[1]
+    degrees = dm.scaffold.edge_degrees
+    for e, lits in dm.residue_literals.items():
+        e0 = int(first[orbit[e]])
+        if e0 == e or e0 not in dm.residue_literals:
+            continue  # a fixed first edge has one residue: so has e (their allowed labels match)
+        mine = dict(lits)
+        for r, lit in dm.residue_literals[e0]:
+            other = mine[int(rel[e] * r) % int(degrees[e])]
+            dm.model.add_implication(lit, other)
+            dm.model.add_implication(other, lit)
 
 
 def _late(dm: DesignModel, deadline: float | None) -> bool:

@@ -23,6 +23,7 @@ from ..model.scaffold import Scaffold
 from ..model.specs import LabelSetSpec, parse_label_set
 from ..progress import Step, task
 from ..strands.tracing import trace
+from ..symmetry.edge_orbits import invariant_edge_orbits
 from ..symmetry.group import symmetry_group
 from .constructive import spanning_designs
 from .cpsat_model import build_model
@@ -124,6 +125,7 @@ def solve(
     seed: int = 0,
     fast_path: bool = True,
     tolerance: float | None = None,
+    invariant: str | None = None,
 ) -> SolveResult:
     """Find up to ``count`` designs on ``scaffold`` with exactly ``components`` strands.
 
@@ -155,6 +157,9 @@ def solve(
         answers many queries with N <= F in linear time; CP-SAT takes over otherwise).
     tolerance : float, optional
         Symmetry search tolerance for ``distinct_up_to``, in mesh units (default: 1/100 of the shortest edge).
+    invariant : str, optional
+        Only designs fixed by this subgroup of the symmetries (a name of
+        :func:`~lkspace.symmetry.subgroups.parse_subgroup`, e.g. ``"C3"``); CP-SAT only.
 
     Examples
     --------
@@ -170,7 +175,9 @@ def solve(
     check_budget(count, time_limit)
     scaffold = load(scaffold)
     label_set = parse_label_set(label_set) if isinstance(label_set, str) else np.unique(np.asarray(label_set, np.int64))
-    query = Query(int(components), label_set, bool(no_zero), dict(fixes or {}), dict(parities or {}), objective)
+    orbits = None if invariant is None else invariant_edge_orbits(scaffold, invariant, tolerance)
+    query = Query(int(components), label_set, bool(no_zero), dict(fixes or {}), dict(parities or {}), objective, orbits)
+    fast_path = fast_path and invariant is None  # the constructions know nothing of symmetry
     deadline = None if not time_limit else t0 + time_limit
     with task(f"solving {scaffold.name} for {query.components} component(s)") as step:
         step.note("symmetry" if distinct_up_to != "none" else "fast path")

@@ -30,6 +30,10 @@ class Query:
     parities : dict of int -> int
         Edge -> required parity of its label (0 even, 1 odd).
     objective : None, ``"min-abs"`` or ``"min-nonzero"``
+    invariant_orbits : (orbit, rel, forced_zero), optional
+        Only designs fixed by a subgroup (``solve --invariant``): the subgroup's signed edge
+        orbits (:func:`~lkspace.symmetry.edge_orbits.signed_components`); every edge ``e``
+        carries ``rel[e]`` times the label of its orbit's first edge.
     """
 
     components: int
@@ -38,6 +42,7 @@ class Query:
     fixes: dict[int, int] = field(default_factory=dict)
     parities: dict[int, int] = field(default_factory=dict)
     objective: str | None = None
+    invariant_orbits: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
 
     def __post_init__(self) -> None:
         if self.objective not in OBJECTIVES:
@@ -82,6 +87,26 @@ def allowed_labels(scaffold: Scaffold, query: Query) -> list[np.ndarray]:
         out[e] = np.array([t], np.int64)
     for e, p in query.parities.items():
         out[e] = out[e][out[e] % 2 == p]
+    return out if query.invariant_orbits is None else symmetric_allowed(out, *query.invariant_orbits)
+
+
+def symmetric_allowed(
+    allowed: list[np.ndarray], orbit: np.ndarray, rel: np.ndarray, forced_zero: np.ndarray
+) -> list[np.ndarray]:
+    """Restrict per-edge ``allowed`` labels to fixed assignments: ``rel[e] * u`` with one ``u`` per orbit.
+
+    ``u`` must give an allowed label on every edge of its orbit (and be 0 on a forced-zero orbit).
+    """
+    out = list(allowed)
+    for o in range(len(forced_zero)):
+        edges = np.flatnonzero(orbit == o)
+        options = allowed[edges[0]]
+        for e in edges[1:].tolist():
+            options = np.intersect1d(options, rel[e] * allowed[e])
+        if forced_zero[o]:
+            options = options[options == 0]
+        for e in edges.tolist():
+            out[e] = np.sort(rel[e] * options)
     return out
 
 

@@ -54,18 +54,18 @@ class Held:
 
     @cached_property
     def orbits(self) -> list[list[int]]:
-        """Edge orbits under the rotation group (each a sorted list of edge indices)."""
-        from ..symmetry.group import symmetry_group
+        """Edge orbits under the rotation group (each a sorted list of edge indices).
+
+        The orbits of ``--invariant rotations`` (:mod:`lkspace.symmetry.edge_orbits`): a symmetric
+        edit gives every edge of the orbit the same label, a design fixed by all rotations.
+        """
+        from ..symmetry.edge_orbits import invariant_edge_orbits
 
         try:
-            perms, _ = symmetry_group(self.scaffold).action("rotations")
+            orbit, _, _ = invariant_edge_orbits(self.scaffold, "rotations")
         except Exception:  # noqa: BLE001 - a scaffold without a usable group: every edge alone
             return [[e] for e in range(self.scaffold.n_edges)]
-        seen: dict[int, list[int]] = {}
-        for e in range(self.scaffold.n_edges):
-            rep = int(perms[:, e].min())
-            seen.setdefault(rep, []).append(e)
-        return sorted((sorted(v) for v in seen.values()), key=lambda v: v[0])
+        return [np.flatnonzero(orbit == o).tolist() for o in range(int(orbit.max()) + 1 if len(orbit) else 0)]
 
     def orbit_view(self) -> dict[str, Any]:
         """Return the edge orbits and each edge's orbit (asked for when the page first edits an orbit)."""

@@ -1,0 +1,172 @@
+"""Catalogs of symmetric designs (``lkspace enumerate --invariant``): one Parquet file.
+
+The rows have the designs schema (:mod:`lkspace.catalog.schema`); ``orbit_size`` counts
+the fixed assignments a row stands for (its orbit under the normalizer, see
+:mod:`lkspace.design.invariant`), so the column adds up to ``fixed_assignments``.  The
+``lkspace`` metadata carries the usual keys plus ``invariant``: the subgroup's name,
+order, vertex permutations, the normalizer's order, the edge orbits and the number of
+fixed assignments.
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Iterator
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from ..design.invariant import InvariantSpace, make_invariant_space
+from ..design.invariant_walk import MAX_FIXED, invariant_blocks
+from ..design.space import DesignSpace
+from ..errors import CatalogError
+from ..io.sources import ScaffoldSource, load
+from ..model.specs import LabelSetSpec, parse_label_set
+from .batches import blocks_to_batch
+from .lock import catalog_lock
+from .schema import ROW_GROUP, design_schema
+from .shards import catalog_metadata
+from .transaction import catalog_target
+from .writer import write_batches
+
+if TYPE_CHECKING:
+    import pandas as pd
+    import pyarrow as pa
+
+
+def invariant_space(
+    scaffold: ScaffoldSource,
+    subgroup: str,
+    label_set: LabelSetSpec = "-2..2",
+    symmetry: str = "rotations",
+    no_zero: bool = False,
+) -> InvariantSpace:
+    """Return the :class:`~lkspace.design.invariant.InvariantSpace` of user-level arguments (name or Scaffold, SET)."""
+    labels = parse_label_set(label_set) if isinstance(label_set, str) else np.asarray(label_set, np.int64)
+    return make_invariant_space(load(scaffold), labels, symmetry, subgroup, no_zero)
+
+
+def invariant_batches(
+    space: InvariantSpace, components: int | None = None, max_designs: int | None = None
+) -> Iterator[pa.RecordBatch]:
+    """Record batches (designs schema) of the symmetric designs of ``space``, about ``ROW_GROUP`` rows each."""
+    n_edges, periodic = space.scaffold.n_edges, space.scaffold.periodic
+    pending, n_pending, n_total = [], 0, 0
+    for block in invariant_blocks(space, components):
+        if max_designs is not None and n_total + len(block.labels) > max_designs:
+            block = block.head(max_designs - n_total)
+        pending.append(block)
+        n_pending += len(block.labels)
+        n_total += len(block.labels)
+        if n_pending >= ROW_GROUP:
+            yield blocks_to_batch(pending, n_edges, periodic)
+            pending, n_pending = [], 0
+        if max_designs is not None and n_total >= max_designs:
+            break
+    if pending:
+        yield blocks_to_batch(pending, n_edges, periodic)
+
+
+def symmetric_designs(
+    scaffold: ScaffoldSource,
+    subgroup: str,
+    label_set: LabelSetSpec = "-2..2",
+    symmetry: str = "rotations",
+    *,
+    components: int | None = None,
+    no_zero: bool = False,
+    max_designs: int | None = None,
+) -> Iterator[pd.DataFrame]:
+    """Yield the designs fixed by ``subgroup``, up to its normalizer, as catalog rows in batches.
+
+    Parameters
+    ----------
+    scaffold : Scaffold, path or built-in name
+    subgroup : str
+        A subgroup name (``"C3"``, ``"C4:face=0"``, ``"stabilizer:vertex=2"``, ``"rotations"``, ...;
+        :mod:`lkspace.symmetry.subgroups`).
+    label_set, symmetry, components, no_zero, max_designs
+        As for :func:`lkspace.designs`.
+
+    Examples
+    --------
+    >>> import lkspace
+    >>> df = next(lkspace.symmetric_designs("cube", "C3:vertex=0", "-1..1"))
+    >>> len(df), int(df.orbit_size.sum())
+    (54, 81)
+    """
+    space = invariant_space(scaffold, subgroup, label_set, symmetry, no_zero)
+    for batch in invariant_batches(space, components, max_designs):
+        yield batch.to_pandas()
+
+
+def invariant_metadata(space: InvariantSpace, components: int | None, max_designs: int | None) -> dict[str, Any]:
+    """Return the ``lkspace`` metadata of a symmetric catalog: the usual keys and ``invariant``."""
+    plain = DesignSpace(space.scaffold, space.label_set, space.mode, space.no_zero)
+    meta = catalog_metadata(plain, "designs", components, max_designs, None, 0)
+    meta["acting_order"] = int(len(space.action[1]))
+    meta["invariant"] = space.summary()
+    meta["canonical_rule"] += "; under the normalizer of the invariant subgroup"
+    return meta
+
+
+def count_invariant(space: InvariantSpace, components: int | None = None) -> dict[str, Any]:
+    """Totals of a symmetric space: by listing when it is small enough, else ``designs`` by Burnside.
+
+    ``by_components`` is ``None`` when the fixed assignments are past
+    :data:`~lkspace.design.invariant_walk.MAX_FIXED` (counted, not listed).
+    """
+    base = {"assignments": space.assignments, "fixed_assignments": space.n_fixed, "invariant": space.summary()}
+    if space.n_fixed > MAX_FIXED:
+        note = f"{space.n_fixed:,} fixed assignments: too many to list (limit {MAX_FIXED:,}); counted by Burnside"
+        if components is not None:
+            return {**base, "designs": None, "by_components": None, "note": note + ", which cannot filter components"}
+        return {**base, "designs": space.count_designs(), "by_components": None, "note": note}
+    rows, covered = 0, 0
+    by: dict[str, int] = {}
+    for block in invariant_blocks(space, components):
+        rows += len(block.labels)
+        covered += int(block.orbit_sizes.sum())
+        comps, counts = np.unique(block.traces.components[block.row_class], return_counts=True)
+        for c, n in zip(comps.tolist(), counts.tolist(), strict=True):
+            by[str(c)] = by.get(str(c), 0) + n
+    return {
+        **base,
+        "designs": rows,
+        "assignments_covered": covered,
+        "by_components": dict(sorted(by.items(), key=lambda kv: int(kv[0]))),
+    }
+
+
+def write_invariant_catalog(
+    space: InvariantSpace,
+    path: str | os.PathLike[str],
+    components: int | None = None,
+    max_designs: int | None = None,
+) -> dict[str, Any]:
+    """Write the symmetric designs of ``space`` to one Parquet file at ``path`` (atomically, under the lock).
+
+    Returns the totals: ``designs``, ``assignments``, ``fixed_assignments``,
+    ``assignments_covered``, ``by_components``, ``output``, ``group_order``,
+    ``acting_order``, ``symmetry``, ``label_set``, ``invariant``.
+    """
+    target = catalog_target(path)
+    if os.path.isdir(target.path):
+        raise CatalogError(f"{target.shown}: is a folder; a symmetric catalog is one .parquet file", usage=True)
+    meta = invariant_metadata(space, components, max_designs)
+    schema = design_schema(space.scaffold.n_edges, space.scaffold.periodic)
+    with catalog_lock(target.lock, target.shown):
+        summary = write_batches(target.path, schema, meta, invariant_batches(space, components, max_designs))
+    return {
+        "designs": summary["rows"],
+        "assignments": space.assignments,
+        "fixed_assignments": space.n_fixed,
+        "assignments_covered": summary["assignments_covered"],
+        "by_components": dict(sorted(summary["by_components"].items(), key=lambda kv: int(kv[0]))),
+        "output": os.fspath(path),
+        "group_order": meta["group_order"],
+        "acting_order": meta["acting_order"],
+        "symmetry": space.mode,
+        "label_set": space.label_set.tolist(),
+        "invariant": meta["invariant"],
+    }

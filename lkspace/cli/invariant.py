@@ -1,0 +1,80 @@
+"""``lkspace enumerate --invariant SUBGROUP``: the designs fixed by a subgroup of the symmetries."""
+
+from __future__ import annotations
+
+import time
+from typing import Any
+
+import numpy as np
+
+from ..errors import UsageError
+from ..model.scaffold import Scaffold
+from .common import Context, emit, symmetry_tolerance, usage_errors
+
+
+def refuse_with_invariant(**given: object) -> None:
+    """One usage line naming the first option ``--invariant`` does not combine with."""
+    for name, value in given.items():
+        if value:
+            raise UsageError(f"--invariant writes one catalog file of designs; it does not combine with --{name}")
+
+
+def run_invariant(
+    ctx: Context,
+    scaffold: Scaffold,
+    labels: np.ndarray,
+    symmetry: str,
+    subgroup: str,
+    output: str | None,
+    count_only: bool,
+    components: int | None,
+    no_zero: bool,
+    max_designs: int | None,
+) -> None:
+    """Count or write the symmetric designs and report them (JSON or a table)."""
+    from ..catalog.symmetric import count_invariant, write_invariant_catalog
+    from ..design.invariant import make_invariant_space
+
+    with usage_errors():
+        space = make_invariant_space(scaffold, labels, symmetry, subgroup, no_zero, symmetry_tolerance())
+    started = time.perf_counter()
+    payload: dict[str, Any]
+    if count_only or output is None:
+        payload = count_invariant(space, components)
+        if max_designs is not None and payload["designs"] is not None:
+            payload["designs"] = min(payload["designs"], max_designs)
+        payload.update(
+            group_order=space.group.mode_order(symmetry), written=None, symmetry=symmetry, label_set=labels.tolist()
+        )
+        if output is None and not count_only:
+            ctx.notes["note"] = "no -o given: counted, nothing written"
+    else:
+        payload = write_invariant_catalog(space, output, components, max_designs)
+        payload["written"] = payload.pop("output")
+    payload["mode"] = "designs"
+    payload["seconds"] = round(time.perf_counter() - started, 3)
+
+    def human() -> None:
+        from rich.console import Console
+        from rich.table import Table
+
+        inv = payload["invariant"]
+        con = Console(highlight=False)
+        con.print(
+            f"{scaffold.name}: label set {labels.tolist()}, designs fixed by {subgroup} (order {inv['order']}), "
+            f"up to its normalizer in {symmetry} (order {inv['normalizer_order']})"
+        )
+        table = Table(show_header=False, box=None)
+        table.add_row("edge orbits", f"{inv['edge_orbits']} ({inv['zero_orbits']} forced to 0)")
+        table.add_row("fixed assignments", f"{payload['fixed_assignments']:,}")
+        designs = payload["designs"]
+        table.add_row("designs", "-" if designs is None else f"{designs:,}")
+        for k, v in (payload["by_components"] or {}).items():
+            table.add_row(f"  {k} component(s)", f"{v:,}")
+        table.add_row("written", str(payload.get("written") or "- (count only; give -o FILE to write)"))
+        if payload.get("note"):
+            table.add_row("note", str(payload["note"]))
+        table.add_row("seconds", str(payload["seconds"]))
+        con.print(table)
+
+    emit(ctx, payload, human)

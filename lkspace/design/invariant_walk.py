@@ -1,0 +1,162 @@
+"""Walking the symmetric designs of an :class:`~lkspace.design.invariant.InvariantSpace`.
+
+The fixed assignments are a product over ``H``'s edge orbits; a compiled kernel walks it
+in mixed radix (last orbit fastest), expands each to edge labels and keeps it when it is
+the smallest of its ``N``-orbit in (``t mod K`` per edge, then ``t`` per edge), counting its
+stabilizer in ``N`` on the way.  Kept rows are grouped by residue vector, each residue
+class traced once (:func:`~lkspace.design.batch.trace_batch`), and returned as
+:class:`~lkspace.design.walk.Block` s, the rows the catalog writer takes.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+
+import numpy as np
+
+from ..errors import TooLargeError
+from ..kernels import kernel
+from .batch import holds_batch, trace_batch
+from .invariant import InvariantSpace
+from .walk import Block
+
+CHUNK = 1 << 18
+"""Fixed assignments per kernel call."""
+
+MAX_FIXED = 1 << 28
+"""Largest number of fixed assignments listed (counting by Burnside has no bound)."""
+
+
+@kernel
+def invariant_canonical(
+    opts: np.ndarray,
+    n_opts: np.ndarray,
+    edge_orbit: np.ndarray,
+    edge_rel: np.ndarray,
+    moduli: np.ndarray,
+    inv_perms: np.ndarray,
+    signs: np.ndarray,
+    start: int,
+    stop: int,
+    out_labels: np.ndarray,
+    out_stab: np.ndarray,
+) -> int:
+    """Keep the fixed assignments ``start..stop`` that are canonical under ``N``; return how many.
+
+    ``opts (n_orbits, max_o)``, ``n_opts (n_orbits,)``: representative labels per orbit;
+    ``edge_orbit``, ``edge_rel (n_edges,)``: edge label = ``edge_rel * u[edge_orbit]``;
+    ``inv_perms (n_a, n_edges)``, ``signs (n_a,)``: the actions of ``N`` (identity first),
+    the image of ``t`` being ``signs[a] * t[inv_perms[a]]``.
+    """
+    n_o = len(n_opts)
+    n_e = len(edge_orbit)
+    n_a = len(signs)
+    digits = np.zeros(n_o, np.int64)
+    rest = start
+    for j in range(n_o - 1, -1, -1):
+        digits[j] = rest % n_opts[j]
+        rest //= n_opts[j]
+    x = np.empty(n_e, np.int64)
+    res = np.empty(n_e, np.int64)
+    m = 0
+    for _ in range(start, stop):
+        for j in range(n_e):
+            x[j] = edge_rel[j] * opts[edge_orbit[j], digits[edge_orbit[j]]]
+            res[j] = x[j] % moduli[j]
+        canon = True
+        stab = 1
+        for a in range(1, n_a):
+            s = signs[a]
+            cmp = 0
+            for j in range(n_e):
+                r = (s * x[inv_perms[a, j]]) % moduli[j]
+                if r != res[j]:
+                    cmp = -1 if r < res[j] else 1
+                    break
+            if cmp == 0:
+                for j in range(n_e):
+                    v = s * x[inv_perms[a, j]]
+                    if v != x[j]:
+                        cmp = -1 if v < x[j] else 1
+                        break
+            if cmp < 0:
+                canon = False
+                break
+            if cmp == 0:
+                stab += 1
+        if canon:
+            for j in range(n_e):
+                out_labels[m, j] = x[j]
+            out_stab[m] = stab
+            m += 1
+        j = n_o - 1
+        while j >= 0:
+            digits[j] += 1
+            if digits[j] < n_opts[j]:
+                break
+            digits[j] = 0
+            j -= 1
+    return m
+
+
+def invariant_blocks(space: InvariantSpace, components: int | None = None) -> Iterator[Block]:
+    """Yield the symmetric designs of ``space`` (rows canonical under ``N``), a chunk at a time.
+
+    Raises
+    ------
+    TooLargeError
+        More than :data:`MAX_FIXED` fixed assignments to walk.
+    """
+    n_fixed = space.n_fixed
+    if n_fixed > MAX_FIXED:
+        raise TooLargeError(
+            f"{space.scaffold.name}: {n_fixed:,} assignments fixed by {space.subgroup} are too many to list "
+            f"(limit {MAX_FIXED:,}); count them with --count-only or pick a larger subgroup"
+        )
+    if n_fixed == 0:
+        return
+    orbit, rel, _ = space.orbits
+    n_opts = np.array([len(o) for o in space.options], np.int64)
+    opts = np.zeros((len(n_opts), int(n_opts.max())), np.int64)
+    for i, o in enumerate(space.options):
+        opts[i, : len(o)] = o
+    perms, signs = space.action
+    inv = np.ascontiguousarray(np.argsort(perms, axis=1))
+    moduli = space.base.moduli
+    n_e = space.scaffold.n_edges
+    for start in range(0, n_fixed, CHUNK):
+        stop = min(n_fixed, start + CHUNK)
+        out = np.empty((stop - start, n_e), np.int8)
+        stab = np.empty(stop - start, np.int64)
+        work = (stop - start) * max(1, len(signs)) * n_e
+        m = invariant_canonical.run(work, opts, n_opts, orbit, rel, moduli, inv, signs, start, stop, out, stab)
+        if m:
+            block = rows_block(space, out[:m], len(signs) // stab[:m], components)
+            if block is not None:
+                yield block
+
+
+def rows_block(
+    space: InvariantSpace, labels: np.ndarray, orbit_sizes: np.ndarray, components: int | None
+) -> Block | None:
+    """Return a :class:`Block` of the rows ``labels (m, n_edges)``: their residue classes traced once each."""
+    base = space.base
+    residues = labels.astype(np.int64) % base.moduli
+    classes, row_class = np.unique(residues, axis=0, return_inverse=True)
+    row_class = row_class.reshape(-1).astype(np.int64)
+    traces = trace_batch(base, classes)
+    if components is not None:
+        keep = traces.components[row_class] == components
+        if not keep.any():
+            return None
+        labels, orbit_sizes, row_class = labels[keep], orbit_sizes[keep], row_class[keep]
+    holds = holds_batch(base, traces, labels, row_class)
+    codes = np.array([_class_code(space, r) for r in classes], np.int64)
+    return Block(codes, traces.slim(), row_class, labels, orbit_sizes.astype(np.int64), holds)
+
+
+def _class_code(space: InvariantSpace, residues: np.ndarray) -> int:
+    """Return the ``residue_class`` code of a residue vector (-1 past 64 bits)."""
+    lookup = space.base.residue_table[4]
+    code = space.base.class_code(lookup[np.arange(len(residues)), residues])
+    return code if code < 2**63 else -1
