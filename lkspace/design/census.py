@@ -21,7 +21,9 @@ residue classes of labels ``{0, 1}`` with weight ``2^(odd edges)``: both label s
 from one pass over the ``2^E`` parity vectors.
 
 Shards are contiguous ranges of one term's choices (about :data:`SHARD_CHOICES` each);
-they run on any scheduler of :mod:`lkspace.engine` and their histograms are summed.
+they run on any scheduler of :mod:`lkspace.engine` and their histograms are summed.  A
+shard is walked in compiled calls of about :data:`CALL_PORT_VISITS` port visits, short
+enough that Ctrl-C (seen between calls) stops a census within a moment.
 """
 
 from __future__ import annotations
@@ -41,6 +43,10 @@ from .space import DesignSpace
 
 SHARD_CHOICES = 1 << 24
 """Residue vectors per shard (seconds of work on one core for a polyhedron)."""
+
+CALL_PORT_VISITS = 1 << 24
+"""Port visits per compiled call (about a tenth of a second): a shard is walked in calls
+this short, so that Ctrl-C, which Python sees only between calls, stops it promptly."""
 
 MAX_VALUE_KINDS = 3
 """Distinct label counts per residue class (besides 1) a census keeps apart exactly."""
@@ -148,23 +154,25 @@ def shard_term(shared: tuple[DesignSpace, list[Term]], item: tuple[int, int, int
     hist = np.zeros((space.scaffold.n_corners + 1, (len(t.n_choices) + 1) ** n_vals), np.int64)
     if 0 in t.n_choices.tolist():
         return hist
-    census_range(
-        first,
-        stop,
-        t.var_ptr,
-        t.var_edges,
-        t.var_signs,
-        t.n_choices,
-        t.choice_res,
-        t.choice_val,
-        n_vals,
-        space.moduli,
-        model.corner_partner,
-        model.port_a,
-        model.port_b,
-        model.edge_starts,
-        hist,
-    )
+    step = max(1, CALL_PORT_VISITS // max(len(model.corner_partner), 1))
+    for a in range(first, stop, step):
+        census_range(
+            a,
+            min(stop, a + step),
+            t.var_ptr,
+            t.var_edges,
+            t.var_signs,
+            t.n_choices,
+            t.choice_res,
+            t.choice_val,
+            n_vals,
+            space.moduli,
+            model.corner_partner,
+            model.port_a,
+            model.port_b,
+            model.edge_starts,
+            hist,
+        )
     return hist
 
 
