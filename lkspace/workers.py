@@ -20,9 +20,9 @@ from __future__ import annotations
 import atexit
 import contextlib
 import multiprocessing as mp
-import sys
 import os
 import signal
+import sys
 import threading
 from collections.abc import Iterator, Sequence
 
@@ -95,8 +95,11 @@ def in_main_thread() -> bool:
 
 
 def _forked_child_defaults() -> None:
-    """In a child forked within :func:`interrupt_signals` (a Dask worker of our LocalCluster):
-    SIGTERM kills it (no :class:`Terminated` traceback) and Ctrl-C is the main process's."""
+    """In a child forked within :func:`interrupt_signals`: default SIGTERM, SIGINT ignored.
+
+    SIGTERM then kills the child (a Dask worker of our LocalCluster) without a
+    :class:`Terminated` traceback, and Ctrl-C is left to the main process.
+    """
     if signal.getsignal(signal.SIGTERM) is _raise_terminated:
         signal.signal(signal.SIGTERM, signal.SIG_DFL)
         signal.signal(signal.SIGINT, signal.SIG_IGN)
