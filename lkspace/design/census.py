@@ -37,6 +37,7 @@ import numpy as np
 
 from ..engine import run_tasks
 from ..errors import LabelError
+from ..progress import task
 from ..strands.ports import port_model
 from .census_kernel import census_range
 from .space import DesignSpace
@@ -198,7 +199,8 @@ def census(
 ) -> Census:
     """Count the designs of ``space`` by components exactly, in shards (see the module docstring).
 
-    ``progress(shards done, shards)`` is called as shards finish.
+    ``progress(shards done, shards)`` is called as shards finish (and a ``census`` step
+    of :mod:`lkspace.progress` advances).
     """
     all_terms = terms(space)
     kinds = value_kinds(space).tolist()
@@ -208,14 +210,17 @@ def census(
         items += [(g, a, min(size, a + shard_choices)) for a in range(0, size, shard_choices)]
     totals: list[dict[int, int]] = [{} for _ in all_terms]
     done = 0
-    for pos, hist in run_tasks(shard_term, (space, all_terms), items, scheduler, jobs, name="lkspace-census"):
-        g = items[pos][0]
-        weights = cell_weights(len(all_terms[g].n_choices), kinds)
-        for comp, cell in zip(*np.nonzero(hist), strict=True):
-            totals[g][int(comp)] = totals[g].get(int(comp), 0) + int(hist[comp, cell]) * weights[cell]
-        done += 1
-        if progress is not None:
-            progress(done, len(items))
+    shards = run_tasks(shard_term, (space, all_terms), items, scheduler, jobs, name="lkspace-census")
+    with task("census", total=len(items)) as step:
+        for pos, hist in shards:
+            g = items[pos][0]
+            weights = cell_weights(len(all_terms[g].n_choices), kinds)
+            for comp, cell in zip(*np.nonzero(hist), strict=True):
+                totals[g][int(comp)] = totals[g].get(int(comp), 0) + int(hist[comp, cell]) * weights[cell]
+            done += 1
+            step.advance()
+            if progress is not None:
+                progress(done, len(items))
     by: dict[int, int] = {}
     for part in totals:
         for comp, n in part.items():
