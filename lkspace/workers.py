@@ -132,12 +132,16 @@ INTERRUPTED = (128 + signal.SIGINT, 128 + signal.SIGTERM)
 def exit_now(code: int) -> None:
     """End the program with status ``code`` after an interrupt, without the interpreter's teardown.
 
-    The atexit handlers run (multiprocessing stops and joins its children there) and the
-    output is flushed; what is skipped is freeing every module, which takes seconds on a
-    busy machine once numba, pyarrow and pandas are loaded.
+    The output is flushed, then the atexit handlers run (multiprocessing stops and joins
+    its children there) with stderr silenced: the interrupt was reported in one line, and
+    a library's teardown of what the interrupt cut short (a Dask cluster half started)
+    has nothing to add.  What is skipped is freeing every module, which takes seconds on
+    a busy machine once numba, pyarrow and pandas are loaded.
     """
-    atexit._run_exitfuncs()
     for stream in (sys.stdout, sys.stderr):
         with contextlib.suppress(OSError, ValueError):  # a closed pipe, a closed file
             stream.flush()
+    with contextlib.suppress(OSError):
+        os.dup2(os.open(os.devnull, os.O_WRONLY), 2)
+    atexit._run_exitfuncs()
     os._exit(code)

@@ -31,7 +31,7 @@ from ..io.scaffold_json import scaffold_to_dict
 from ..io.sources import ScaffoldSource
 from ..model.specs import LabelSetSpec
 from ..progress import task
-from ..workers import interrupt_signals
+from ..workers import context, interrupt_signals
 from .batches import space_batches
 from .jobs import ignored_signals, run_parts
 from .lock import catalog_lock
@@ -198,6 +198,8 @@ def write_catalog(
     check_jobs(jobs)
     engine = resolve_scheduler(scheduler)
     check_scheduler(engine)
+    if jobs > 1 and engine == "local":
+        context()  # starts the fork server now: it is ready when the pool is made (a wait Ctrl-C cannot cut)
     remote = remote_url(path)
     if remote is None:
         target = catalog_target(path)
