@@ -203,6 +203,7 @@ def main() -> None:
     parser.add_argument("--label", required=True)
     parser.add_argument("--hogs", type=int, default=2, help="CPU-bound processes running meanwhile")
     parser.add_argument("--only", default="", help="run only cases whose name holds this text")
+    parser.add_argument("--note", default="", help="a sentence on the conditions, shown in the table")
     opts = parser.parse_args()
     source = opts.source.resolve()
     hogs = [subprocess.Popen([sys.executable, "-c", "while 1: pass"]) for _ in range(opts.hogs)]
@@ -231,6 +232,7 @@ def main() -> None:
         "hogs": opts.hogs,
         "cpus": os.cpu_count(),
         "rows": rows,
+        "note": opts.note or data.get(opts.label, {}).get("note", ""),
     }
     path.write_text(json.dumps(data, indent=1) + "\n")
     write_table(data, path.with_suffix(".md"))
@@ -246,11 +248,12 @@ def write_table(data: dict[str, dict], path: Path) -> None:
         "",
         "Written by `experiments/bench_interrupt.py`: seconds from the signal to the exit of the main",
         f"process (goal: under {GOAL:.0f} s), exit status (goal: 130 for Ctrl-C, 143 for SIGTERM) and lines on",
-        "stderr after the signal (goal: one, no traceback), with CPU hogs spinning on every core.",
+        "stderr after the signal (goal: one, no traceback), with CPU hogs spinning on every core; one run per case.",
         "Ctrl-C goes to the whole process group (as a terminal sends it), SIGTERM to the main process.",
         "",
         *[
-            f"- {label}: {data[label]['source']}, {data[label]['hogs']} hogs on {data[label]['cpus']} CPUs, {data[label]['date']}"
+            f"- {label}: {data[label]['source']}, {data[label]['hogs']} hogs on {data[label]['cpus']} CPUs, "
+            f"{data[label]['date']}. {data[label].get('note', '')}"
             for label in labels
         ],
         "",
