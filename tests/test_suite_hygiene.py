@@ -66,27 +66,33 @@ def parenthesized(node: ast.BoolOp, source: str) -> bool:
     return True
 
 
-def checks(func: ast.FunctionDef, helpers: set[str]) -> bool:
-    """Whether ``func`` asserts, expects an error or calls a helper that does."""
+def calls(func: ast.FunctionDef) -> set[str]:
+    """Names ``func`` calls, with ``assert`` for an assert statement."""
+    names = set()
     for node in ast.walk(func):
         if isinstance(node, ast.Assert):
-            return True
-        if isinstance(node, ast.Call):
-            name = node.func.attr if isinstance(node.func, ast.Attribute) else getattr(node.func, "id", "")
-            if name in CHECKS or name in helpers:
-                return True
-    return False
+            names.add("assert")
+        elif isinstance(node, ast.Call):
+            names.add(node.func.attr if isinstance(node.func, ast.Attribute) else getattr(node.func, "id", ""))
+    return names
+
+
+def checks(func: ast.FunctionDef, helpers: set[str]) -> bool:
+    """Whether ``func`` asserts, expects an error or calls a helper that does."""
+    return bool(calls(func) & {"assert", *CHECKS, *helpers})
 
 
 def asserting_helpers(trees: dict[str, ast.Module]) -> set[str]:
     """Names of the suite's functions that check something, directly or through another (a fixed point)."""
-    funcs = [n for t in trees.values() for n in ast.walk(t) if isinstance(n, ast.FunctionDef)]
+    called: dict[str, set[str]] = {}
+    for node in (n for t in trees.values() for n in ast.walk(t) if isinstance(n, ast.FunctionDef)):
+        called.setdefault(node.name, set()).update(calls(node))  # a name defined twice: either may be meant
     helpers: set[str] = set()
-    while True:
-        more = {f.name for f in funcs if f.name not in helpers and checks(f, helpers)}
-        if not more:
-            return helpers
+    while more := {
+        name for name, names in called.items() if name not in helpers and names & {"assert", *CHECKS, *helpers}
+    }:
         helpers |= more
+    return helpers
 
 
 def test_no_assert_checks_less_than_it_reads():
