@@ -24,6 +24,7 @@ This module imports nothing of lkspace but :mod:`lkspace.errors` and :mod:`lkspa
 from __future__ import annotations
 
 import contextlib
+import logging
 import os
 import sys
 from collections.abc import Callable, Iterator, Sequence
@@ -141,17 +142,21 @@ def dask_client(scheduler: str, jobs: int) -> Iterator[Any]:
     }
     with dask.config.set(settings):
         if scheduler == "dask":
-            cluster = distributed.LocalCluster(
-                n_workers=jobs,
-                threads_per_worker=1,
-                processes=True,
-                dashboard_address=None,
-                scheduler_kwargs=NO_DASHBOARD,
-            )
-            try:
-                with distributed.Client(cluster) as client:
-                    yield client
-            finally:
+            with quiet("distributed", logging.CRITICAL):  # its log, here and in the workers forked from here
+                cluster = distributed.LocalCluster(
+                    n_workers=jobs,
+                    threads_per_worker=1,
+                    processes=True,
+                    dashboard_address=None,
+                    scheduler_kwargs=NO_DASHBOARD,
+                )
+                try:
+                    with distributed.Client(cluster) as client:
+                        yield client
+                except BaseException:  # Ctrl-C, SIGTERM, an error, the caller stopping early
+                    stop_workers(cluster)
+                    cluster.close()
+                    raise
                 cluster.close()
         else:
             with _connect(distributed, scheduler) as client:
@@ -217,6 +222,36 @@ def run_tasks(
                 yield futures[future], future.result()
         finally:
             client.cancel(list(futures))
+
+
+STOP_SECONDS = 0.5
+"""Seconds a worker of our LocalCluster is given to stop when a run ends early, before it is killed."""
+
+
+def stop_workers(cluster: Any) -> None:
+    """Close the workers of a LocalCluster at once, without waiting for their running tasks.
+
+    A worker busy in a task does not answer a polite close (``LocalCluster.close`` waits
+    four seconds before killing it); a run that ends early needs none of their results.
+    """
+    import asyncio
+
+    async def close_all() -> None:
+        await asyncio.gather(*(w.close(timeout=STOP_SECONDS) for w in list(cluster.workers.values())))
+
+    cluster.sync(close_all)
+
+
+@contextlib.contextmanager
+def quiet(logger: str, level: int) -> Iterator[None]:
+    """Within the body, the logger ``logger`` shows only records of ``level`` and above."""
+    log = logging.getLogger(logger)
+    old = log.level
+    log.setLevel(level)
+    try:
+        yield
+    finally:
+        log.setLevel(old)
 
 
 def _setup_plugin(distributed: Any, setup: Callable[[], object]) -> Any:

@@ -5,30 +5,69 @@ a worker starts from a clean interpreter (or a clean fork server), so threads, l
 open files of the main program are never copied into it.  Worker entry points are
 top-level functions and their arguments are pickled.  This module imports nothing of
 lkspace, so every layer may use it.
+
+Ctrl-C in a terminal signals the whole process group: the fork server and every worker
+too, not only the main process.  The main process alone decides what an interrupt
+does (it stops its workers itself), so the fork server is started with SIGINT blocked
+(:func:`start_fork_server`): it and the workers forked from it never see a Ctrl-C, not
+even while they are starting up and have not yet ignored it (a fork server killed while
+it starts breaks the pool being made; a worker killed while it imports prints a
+traceback).
 """
 
 from __future__ import annotations
 
+import atexit
 import contextlib
 import multiprocessing as mp
 import os
 import signal
+import sys
 import threading
-from collections.abc import Iterator
+from collections.abc import Iterator, Sequence
 
 IMPORTED_IN = os.getpid()
 """The process that imported this module; a fork of it (a Dask worker of our LocalCluster) has another pid."""
 
 
-def context() -> mp.context.BaseContext:
+def context(preload: Sequence[str] = ()) -> mp.context.BaseContext:
     """Return the multiprocessing context of lkspace's workers: ``forkserver`` where available, else ``spawn``.
 
     A process forked from one that had imported lkspace (the workers of the LocalCluster
     that ``--scheduler dask`` starts) uses ``spawn``: the fork server it would inherit is
-    its parent's, which it can neither wait for nor reach.
+    its parent's, which it can neither wait for nor reach.  The fork server is started
+    here (:func:`start_fork_server`), importing the modules ``preload`` if this call
+    starts it.
     """
     forked = os.getpid() != IMPORTED_IN
-    return mp.get_context("forkserver" if "forkserver" in mp.get_all_start_methods() and not forked else "spawn")
+    if "forkserver" not in mp.get_all_start_methods() or forked:
+        return mp.get_context("spawn")
+    start_fork_server(preload)
+    return mp.get_context("forkserver")
+
+
+def start_fork_server(preload: Sequence[str] = ()) -> None:
+    """Start multiprocessing's fork server (if it is not running) with SIGINT blocked, so that its workers never see Ctrl-C.
+
+    The signal mask is inherited through fork and exec: the fork server and every
+    process it forks keep SIGINT blocked.  In this process the block lasts only while
+    the server is launched (not while it starts up); a Ctrl-C that came meanwhile is
+    delivered right after.  The server imports only ``preload`` (by default nothing, not
+    even the main script), so it is ready in a moment and making a pool (which waits
+    for it, with signals deferred) stays short; each worker imports what it needs.
+    """
+    from multiprocessing import forkserver, resource_tracker
+
+    resource_tracker.ensure_running()  # first: starting it unblocks SIGINT
+    forkserver.set_forkserver_preload(list(preload))  # ignored once the server runs
+    if not in_main_thread():
+        forkserver.ensure_running()
+        return
+    old = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT})
+    try:
+        forkserver.ensure_running()
+    finally:
+        signal.pthread_sigmask(signal.SIG_SETMASK, old)
 
 
 def ignore_interrupts() -> None:
@@ -42,6 +81,10 @@ class Terminated(KeyboardInterrupt):
     signum = int(signal.SIGTERM)
 
 
+_FORK_HOOK: list[bool] = []
+"""Whether :func:`_forked_child_defaults` is registered (once per process)."""
+
+
 def _raise_terminated(signum: int, frame: object) -> None:
     raise Terminated()
 
@@ -51,14 +94,54 @@ def in_main_thread() -> bool:
     return threading.current_thread() is threading.main_thread()
 
 
+def _forked_child_defaults() -> None:
+    """In a child forked within :func:`interrupt_signals`: default SIGTERM, SIGINT ignored.
+
+    SIGTERM then kills the child (a Dask worker of our LocalCluster) without a
+    :class:`Terminated` traceback, and Ctrl-C is left to the main process.
+    """
+    if signal.getsignal(signal.SIGTERM) is _raise_terminated:
+        signal.signal(signal.SIGTERM, signal.SIG_DFL)
+        signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+
 @contextlib.contextmanager
 def interrupt_signals() -> Iterator[None]:
-    """Within the body, SIGTERM stops the run like Ctrl-C does (main thread only)."""
+    """Within the body, SIGTERM stops the run like Ctrl-C does (main thread only).
+
+    A process forked meanwhile gets the default SIGTERM and ignores SIGINT: the main
+    process stops it (:func:`_forked_child_defaults`).
+    """
     if not in_main_thread():
         yield
         return
+    if not _FORK_HOOK:
+        os.register_at_fork(after_in_child=_forked_child_defaults)
+        _FORK_HOOK.append(True)
     old = signal.signal(signal.SIGTERM, _raise_terminated)
     try:
         yield
     finally:
         signal.signal(signal.SIGTERM, old)
+
+
+INTERRUPTED = (128 + signal.SIGINT, 128 + signal.SIGTERM)
+"""Exit statuses of a program stopped by Ctrl-C (130) or SIGTERM (143)."""
+
+
+def exit_now(code: int) -> None:
+    """End the program with status ``code`` after an interrupt, without the interpreter's teardown.
+
+    The output is flushed, then the atexit handlers run (multiprocessing stops and joins
+    its children there) with stderr silenced: the interrupt was reported in one line, and
+    a library's teardown of what the interrupt cut short (a Dask cluster half started)
+    has nothing to add.  What is skipped is freeing every module, which takes seconds on
+    a busy machine once numba, pyarrow and pandas are loaded.
+    """
+    for stream in (sys.stdout, sys.stderr):
+        with contextlib.suppress(OSError, ValueError):  # a closed pipe, a closed file
+            stream.flush()
+    with contextlib.suppress(OSError):
+        os.dup2(os.open(os.devnull, os.O_WRONLY), 2)
+    atexit._run_exitfuncs()
+    os._exit(code)

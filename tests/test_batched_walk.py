@@ -140,3 +140,20 @@ def test_census_beyond_class_limit(monkeypatch):
     two = count_space(make_space("honeycomb:oF", "-1..1"), components=2)
     assert two.by_components == {2: want.by_components[2]}
     assert two.assignments_covered == count_space(space, components=2).assignments_covered
+
+
+@pytest.mark.parametrize("scaffold, labels", [("cube", "-1..1"), ("book:3", "-2..2")])
+def test_census_counts_the_same_in_short_compiled_calls(monkeypatch, scaffold, labels):
+    """A shard walked in many short kernel calls (so that Ctrl-C is seen between them) counts what one call counts."""
+    import lkspace.design.census as census_mod
+
+    space = make_space(scaffold, labels)
+    items = [(g, 0, t.size) for g, t in enumerate(census_mod.terms(space))]
+    one_call = [census_mod.shard_term((space, census_mod.terms(space)), item) for item in items]
+    ports = space.scaffold.n_corners * 2
+    monkeypatch.setattr(census_mod, "CALL_PORT_VISITS", 7 * ports)  # 7 (or so) choices per call: calls end mid-digit
+    short_calls = [census_mod.shard_term((space, census_mod.terms(space)), item) for item in items]
+    assert all(np.array_equal(a, b) for a, b in zip(one_call, short_calls, strict=True))
+    assert sum(int(h.sum()) for h in short_calls) == sum(
+        t.size for t in census_mod.terms(space) if 0 not in t.n_choices
+    )

@@ -281,7 +281,7 @@ def test_export_keeps_the_symlink_and_leaves_nothing_on_failure(tmp_path, capsys
 
 
 def test_export_huge_twist_and_block_are_refused_quickly(capsys, tmp_path):
-    t0 = time.monotonic()
+    cpu = time.process_time()  # CPU seconds, whatever the load
     code, _, err = run(capsys, "export", "dihedron:3", "--twist", "100000", "-o", str(tmp_path / "x.obj"))
     assert code == 1
     one_line_error(err, "winds its strands")
@@ -290,7 +290,7 @@ def test_export_huge_twist_and_block_are_refused_quickly(capsys, tmp_path):
     )
     assert code == 2
     one_line_error(err, "1,000,000 copies", "MAX_BLOCK_COPIES")
-    assert time.monotonic() - t0 < 10
+    assert time.process_time() - cpu < 10
 
 
 @pytest.mark.parametrize("command", ["export", "identify"])

@@ -56,7 +56,7 @@ def studio(tmp_path_factory):
     assert match, f"no URL in {line!r}; stderr: {proc.stderr.read() if proc.poll() is not None else ''}"
     yield match.group(1), catalog, folder
     proc.send_signal(signal.SIGINT)
-    _, err = proc.communicate(timeout=15)
+    _, err = proc.communicate(timeout=60)  # a hang detector
     assert proc.returncode == 130 and "Traceback" not in err, err
 
 

@@ -38,7 +38,7 @@ def test_serves_a_file_from_the_command_line_warns_on_host_and_stops_on_ctrl_c(t
         assert design["components"] == 3
     finally:
         proc.send_signal(signal.SIGINT)
-        _, err = proc.communicate(timeout=15)
+        _, err = proc.communicate(timeout=60)  # a hang detector
     assert proc.returncode == 130
     assert "lkspace: warning: listening on 0.0.0.0" in err and "Traceback" not in err
 

@@ -60,9 +60,9 @@ def test_weld_is_fast_on_a_large_mesh():
     sphere = geodesic_sphere(5)  # 20480 triangles, 61440 vertex copies
     vertices = np.concatenate([sphere.vertices[f] for f in sphere.faces()])
     faces = np.arange(len(vertices)).reshape(-1, 3).tolist()
-    start = time.perf_counter()
+    start = time.process_time()  # CPU seconds, whatever the load
     points, welded = weld((vertices, faces))
-    assert time.perf_counter() - start < 5
+    assert time.process_time() - start < 5
     assert len(points) == sphere.n_vertices and len(welded) == sphere.n_faces
 
 

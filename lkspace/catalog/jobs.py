@@ -181,7 +181,11 @@ def ignored_signals() -> Iterator[None]:
 
 @contextlib.contextmanager
 def deferred_signals() -> Iterator[None]:
-    """Within the body, SIGINT and SIGTERM wait; one that came is raised when the body ends."""
+    """Within the body, SIGINT and SIGTERM wait; one that came is raised when the body ends.
+
+    The signal wins over an error of the body (which it may have caused: a worker or
+    the fork server stopped by the same signal to the process group breaks the pool).
+    """
     if not in_main_thread():
         yield
         return
@@ -192,5 +196,5 @@ def deferred_signals() -> Iterator[None]:
     finally:
         for s, handler in old.items():
             signal.signal(s, handler)
-    if caught:
-        raise Terminated() if caught[0] == signal.SIGTERM else KeyboardInterrupt()
+        if caught:
+            raise Terminated() if caught[0] == signal.SIGTERM else KeyboardInterrupt()

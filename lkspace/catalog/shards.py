@@ -32,7 +32,7 @@ from ..io.sources import ScaffoldSource
 from ..model.specs import LabelSetSpec
 from ..progress import task
 from ..symmetry.tolerance import resolve_tolerance
-from ..workers import interrupt_signals
+from ..workers import context, interrupt_signals
 from .batches import space_batches
 from .jobs import ignored_signals, run_parts
 from .lock import catalog_lock
@@ -201,6 +201,8 @@ def write_catalog(
     check_jobs(jobs)
     engine = resolve_scheduler(scheduler)
     check_scheduler(engine)
+    if jobs > 1 and engine == "local":
+        context()  # starts the fork server now: it is ready when the pool is made (a wait Ctrl-C cannot cut)
     remote = remote_url(path)
     if remote is None:
         target = catalog_target(path)

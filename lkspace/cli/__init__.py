@@ -19,7 +19,7 @@ import click
 from .. import __version__
 from ..errors import LkspaceError, LkspaceWarning
 from ..progress import install, stderr_reporter
-from ..workers import Terminated, interrupt_signals
+from ..workers import INTERRUPTED, Terminated, exit_now, interrupt_signals
 
 COMMANDS = {
     "scaffold": "core:scaffold_cmd",
@@ -68,9 +68,17 @@ def main(argv: list[str] | None = None) -> int:
     Errors never reach Python's default handler: each becomes one line on stderr (and,
     under ``--json``, an ``{"error": {...}}`` object on stdout) and an exit status of 1
     (bad data), 2 (bad usage), 130 (Ctrl-C), 143 (SIGTERM) or 70 (a bug in lkspace; set
-    ``LKSPACE_DEBUG=1`` for the traceback).
+    ``LKSPACE_DEBUG=1`` for the traceback).  Run as the program (``argv`` left out), an
+    interrupted command ends the process at once (:func:`~lkspace.workers.exit_now`).
     """
-    args = sys.argv[1:] if argv is None else list(argv)
+    code = _run(sys.argv[1:] if argv is None else list(argv))
+    if argv is None and code in INTERRUPTED:  # the program, not a call from Python: stop now
+        exit_now(code)
+    return code
+
+
+def _run(args: list[str]) -> int:
+    """Run the command line on ``args``; return the exit status (see :func:`main`)."""
     as_json = "--json" in args[: args.index("--")] if "--" in args else "--json" in args
     install(stderr_reporter())
     with warnings.catch_warnings(), interrupt_signals():  # SIGTERM stops a command as Ctrl-C does

@@ -21,7 +21,9 @@ residue classes of labels ``{0, 1}`` with weight ``2^(odd edges)``: both label s
 from one pass over the ``2^E`` parity vectors.
 
 Shards are contiguous ranges of one term's choices (about :data:`SHARD_CHOICES` each);
-they run on any scheduler of :mod:`lkspace.engine` and their histograms are summed.
+they run on any scheduler of :mod:`lkspace.engine` and their histograms are summed.  A
+shard is walked in compiled calls of about :data:`CALL_PORT_VISITS` port visits, short
+enough that Ctrl-C (seen between calls) stops a census within a moment.
 """
 
 from __future__ import annotations
@@ -35,12 +37,17 @@ import numpy as np
 
 from ..engine import run_tasks
 from ..errors import LabelError
+from ..progress import task
 from ..strands.ports import port_model
 from .census_kernel import census_range
 from .space import DesignSpace
 
 SHARD_CHOICES = 1 << 24
 """Residue vectors per shard (seconds of work on one core for a polyhedron)."""
+
+CALL_PORT_VISITS = 1 << 24
+"""Port visits per compiled call (about a tenth of a second): a shard is walked in calls
+this short, so that Ctrl-C, which Python sees only between calls, stops it promptly."""
 
 MAX_VALUE_KINDS = 3
 """Distinct label counts per residue class (besides 1) a census keeps apart exactly."""
@@ -148,23 +155,25 @@ def shard_term(shared: tuple[DesignSpace, list[Term]], item: tuple[int, int, int
     hist = np.zeros((space.scaffold.n_corners + 1, (len(t.n_choices) + 1) ** n_vals), np.int64)
     if 0 in t.n_choices.tolist():
         return hist
-    census_range(
-        first,
-        stop,
-        t.var_ptr,
-        t.var_edges,
-        t.var_signs,
-        t.n_choices,
-        t.choice_res,
-        t.choice_val,
-        n_vals,
-        space.moduli,
-        model.corner_partner,
-        model.port_a,
-        model.port_b,
-        model.edge_starts,
-        hist,
-    )
+    step = max(1, CALL_PORT_VISITS // max(len(model.corner_partner), 1))
+    for a in range(first, stop, step):
+        census_range(
+            a,
+            min(stop, a + step),
+            t.var_ptr,
+            t.var_edges,
+            t.var_signs,
+            t.n_choices,
+            t.choice_res,
+            t.choice_val,
+            n_vals,
+            space.moduli,
+            model.corner_partner,
+            model.port_a,
+            model.port_b,
+            model.edge_starts,
+            hist,
+        )
     return hist
 
 
@@ -190,7 +199,8 @@ def census(
 ) -> Census:
     """Count the designs of ``space`` by components exactly, in shards (see the module docstring).
 
-    ``progress(shards done, shards)`` is called as shards finish.
+    ``progress(shards done, shards)`` is called as shards finish (and a ``census`` step
+    of :mod:`lkspace.progress` advances).
     """
     all_terms = terms(space)
     kinds = value_kinds(space).tolist()
@@ -200,14 +210,17 @@ def census(
         items += [(g, a, min(size, a + shard_choices)) for a in range(0, size, shard_choices)]
     totals: list[dict[int, int]] = [{} for _ in all_terms]
     done = 0
-    for pos, hist in run_tasks(shard_term, (space, all_terms), items, scheduler, jobs, name="lkspace-census"):
-        g = items[pos][0]
-        weights = cell_weights(len(all_terms[g].n_choices), kinds)
-        for comp, cell in zip(*np.nonzero(hist), strict=True):
-            totals[g][int(comp)] = totals[g].get(int(comp), 0) + int(hist[comp, cell]) * weights[cell]
-        done += 1
-        if progress is not None:
-            progress(done, len(items))
+    shards = run_tasks(shard_term, (space, all_terms), items, scheduler, jobs, name="lkspace-census")
+    with task("census", total=len(items)) as step:
+        for pos, hist in shards:
+            g = items[pos][0]
+            weights = cell_weights(len(all_terms[g].n_choices), kinds)
+            for comp, cell in zip(*np.nonzero(hist), strict=True):
+                totals[g][int(comp)] = totals[g].get(int(comp), 0) + int(hist[comp, cell]) * weights[cell]
+            done += 1
+            step.advance()
+            if progress is not None:
+                progress(done, len(items))
     by: dict[int, int] = {}
     for part in totals:
         for comp, n in part.items():

@@ -151,9 +151,7 @@ class Jobs:
     """The jobs of one studio."""
 
     def __init__(self) -> None:
-        self._ctx = context()
-        if hasattr(self._ctx, "set_forkserver_preload"):
-            self._ctx.set_forkserver_preload(PRELOAD)
+        self._ctx = context(PRELOAD)
         self._jobs: dict[int, Job] = {}
         self._ids = itertools.count(1)
         self._lock = threading.Lock()
