@@ -31,8 +31,8 @@ from ..errors import CatalogError, UsageError
 from ..io.atomic import atomic_path
 from ..model.scaffold import Scaffold
 from ..progress import Step, task
-from .reader import catalog_files, read_metadata
 from .schema import METADATA_KEY
+from .verify import file_metadata, open_catalog
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -76,7 +76,7 @@ def identify_catalog(
 
     path = os.fspath(path)
     totals: dict[str, Any] = {"rows": 0, "named": 0, "names": {}}
-    files = catalog_files(path)
+    files = list(open_catalog(path).files)
     total = sum(pq.read_metadata(f).num_rows for f in files)
     with task("identifying designs", total) as step:
         if is_dask(scheduler):
@@ -137,7 +137,7 @@ def _identify_file(
     table = pq.read_table(file)
     if "labels" not in table.column_names:
         raise CatalogError(f"{file}: no 'labels' column to identify")
-    meta = read_metadata(file)
+    meta = file_metadata(file)[0]
     if meta.get("identified"):
         step.advance(table.num_rows)
         return None
@@ -160,5 +160,5 @@ def _identify_file(
     meta["identified"] = True
     table = table.replace_schema_metadata({**(table.schema.metadata or {}), METADATA_KEY: json.dumps(meta).encode()})
     with atomic_path(file, suffix=".parquet.tmp") as tmp:
-        pq.write_table(table, tmp, compression="zstd")
+        pq.write_table(table, tmp, compression="zstd", write_page_checksum=True)
     return found

@@ -23,7 +23,6 @@ from __future__ import annotations
 
 import json
 import os
-import secrets
 from typing import Any
 
 import pyarrow.parquet as pq
@@ -34,7 +33,7 @@ from ..errors import CatalogError, UsageError, require
 from .jobs import run_parts, write_part_remote
 from .plan import Plan
 from .schema import METADATA_KEY
-from .transaction import MANIFEST, part_name
+from .transaction import MANIFEST, new_run, part_name
 
 
 def remote_url(path: Any) -> str | None:
@@ -51,23 +50,31 @@ def _fs(url: str) -> tuple[Any, str]:
     return fs, root
 
 
-def _kept_parts(fs: Any, root: str, signature: dict[str, Any], fingerprint: str) -> dict[str, dict[str, Any]]:
-    """Parts already in the folder ``root`` that belong to this run (footer metadata) and read to the end."""
-    import hashlib
+def _kept_parts(
+    fs: Any, root: str, signature: dict[str, Any], fingerprint: str
+) -> tuple[str, dict[str, dict[str, Any]]]:
+    """Return ``(run id, parts)``: the parts in the folder ``root`` of the one earlier run of these settings.
 
-    kept: dict[str, dict[str, Any]] = {}
+    A part is kept when its footer metadata is of this run's settings and plan and it
+    reads to the end; of several earlier runs, the one with the most such parts.
+    """
+    import hashlib
+    import io
+
+    by_run: dict[str, dict[str, dict[str, Any]]] = {}
     for path in sorted(fs.glob(f"{root}/part-*.parquet")):
         try:
             with fs.open(path, "rb") as fh:
                 data = fh.read()
-            import io
-
             meta = json.loads(pq.read_metadata(io.BytesIO(data)).metadata[METADATA_KEY])
             pq.read_table(io.BytesIO(data))
         except (OSError, ValueError, KeyError, TypeError):
             continue
         shard = meta.get("shard") or {}
-        if shard.get("plan") != fingerprint or any(meta.get(k) != v for k, v in signature.items()):
+        run = shard.get("run")
+        if not isinstance(run, str) or shard.get("plan") != fingerprint:
+            continue
+        if any(meta.get(k) != v for k, v in signature.items()):
             continue
         entry = {
             "rows": meta["rows"],
@@ -76,8 +83,11 @@ def _kept_parts(fs: Any, root: str, signature: dict[str, Any], fingerprint: str)
             "file": os.path.basename(path),
             "sha256": hashlib.sha256(data).hexdigest(),
         }
-        kept.setdefault(str(shard["index"]), entry)
-    return kept
+        by_run.setdefault(run, {}).setdefault(str(shard["index"]), entry)
+    if not by_run:
+        return new_run(), {}
+    run = max(by_run, key=lambda r: len(by_run[r]))
+    return run, by_run[run]
 
 
 def write_remote(
@@ -115,14 +125,14 @@ def write_remote(
             raise CatalogError(f"{url}: is a folder; give a new name for a one-file catalog")
         state["files"] = None
         return [write_part_remote(state, 0)[1]], 0
-    kept = _kept_parts(fs, root, meta, plan.fingerprint) if resume and fs.isdir(root) else {}
+    run_id, kept = _kept_parts(fs, root, meta, plan.fingerprint) if resume and fs.isdir(root) else (new_run(), {})
     if fs.exists(f"{root}/{MANIFEST}"):
         fs.rm(f"{root}/{MANIFEST}")  # from here on the folder reads as incomplete
     if not kept and fs.isdir(root):
         for old in fs.glob(f"{root}/part-*.parquet"):
             fs.rm(old)
     fs.makedirs(root, exist_ok=True)
-    run_id = secrets.token_hex(4)
+    state["run"] = run_id
     state["files"] = [kept[str(i)]["file"] if str(i) in kept else part_name(i, run_id) for i in range(n)]
     parts = dict(kept)
     todo = [i for i in range(n) if str(i) not in kept]

@@ -15,7 +15,6 @@ from __future__ import annotations
 
 import contextlib
 import os
-import secrets
 from collections.abc import Callable
 from dataclasses import asdict, dataclass, replace
 from typing import Any, TypeAlias
@@ -45,6 +44,7 @@ from .transaction import (
     catalog_target,
     file_sha256,
     load_manifest,
+    new_run,
     part_name,
     prune_build,
     remove_temporaries,
@@ -303,8 +303,7 @@ class _Run:
         else:
             remove_path(build)
             os.mkdir(build)
-            run_id = secrets.token_hex(4)
-            self.parts = seed_build(self.target, build, self.signature, run_id) if resume else {}
+            run_id, self.parts = seed_build(self.target, build, self.signature) if resume else (new_run(), {})
         prune_build(build, self.parts)
         manifest = {**self.signature, "run": run_id, "parts": self.parts}
         save_manifest(build, manifest)
@@ -317,6 +316,7 @@ class _Run:
             "walk": self.walk,
             "folder": build,
             "files": [part_name(i, run_id) for i in range(n)],
+            "run": run_id,
             "meta": self.meta,
             "plan": self.plan.fingerprint,
             "ranges": self.plan.ranges,

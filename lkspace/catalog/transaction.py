@@ -161,24 +161,34 @@ def prune_build(folder: str, parts: dict[str, dict[str, Any]]) -> None:
             remove_path(os.path.join(folder, entry))
 
 
-def seed_build(target: Target, build: str, signature: dict[str, Any], run: str) -> dict[str, dict[str, Any]]:
+def new_run() -> str:
+    """Return a new run id: the catalog's identity, in its part names and in each part's footer."""
+    import secrets
+
+    return secrets.token_hex(4)
+
+
+def seed_build(target: Target, build: str, signature: dict[str, Any]) -> tuple[str, dict[str, dict[str, Any]]]:
     """Start a build from the finished catalog at the target, if it is of the same run settings.
 
-    Its parts are linked (or copied) into ``build`` under this run's names after their
-    checksums are verified; returns them as manifest entries.
+    Returns ``(run id, parts)``: the build takes over the old catalog's run id (its parts'
+    footers name it) and its parts whose checksums verify, linked (or copied) into
+    ``build``; a new run id and no parts when there is no such catalog.
     """
     old = load_manifest(target.path) if os.path.isdir(target.path) else None
-    if old is None or {k: old.get(k) for k in signature} != signature:
-        return {}
+    if old is None or {k: old.get(k) for k in signature} != signature or not isinstance(old.get("run"), str):
+        return new_run(), {}
     import shutil
 
     seeded = {}
     for index, entry in verified_parts(target.path, old).items():
-        name = part_name(int(index), run)
-        src, dst = os.path.join(target.path, str(entry["file"])), os.path.join(build, name)
+        name = str(entry["file"])
+        if name != part_name(int(index), old["run"]):
+            continue
+        src, dst = os.path.join(target.path, name), os.path.join(build, name)
         try:
             os.link(src, dst)
         except OSError:
             shutil.copy2(src, dst)
-        seeded[index] = {**entry, "file": name}
-    return seeded
+        seeded[index] = entry
+    return old["run"], seeded

@@ -30,6 +30,7 @@ COMMANDS = {
     "export": "export:export_cmd",
     "identify": "identify:identify_cmd",
     "atlas": "atlas:atlas_cmd",
+    "verify": "verify:verify_cmd",
     "studio": "studio:studio_cmd",
 }
 """Command name -> ``module:attribute`` under :mod:`lkspace.cli`."""
