@@ -160,7 +160,8 @@ def test_cli_catalog_with_nested_metadata(tmp_path, capsys):
 
     cat = tmp_path / "c.parquet"
     table = pa.table({"labels": [[1, 1, 1, 1, 0]]})
-    meta = {"scaffold": {"name": "figure-eight", "content_hash": lkspace.load("figure-eight").content_hash()}}
+    scaffold = {"name": "figure-eight", "content_hash": lkspace.load("figure-eight").content_hash()}
+    meta = {"format_version": 1, "scaffold": scaffold, "label_set": [0, 1], "rows": 1}  # the least a catalog holds
     pq.write_table(table.replace_schema_metadata({"lkspace": json.dumps(meta)}), cat)
     code, out, err = run(capsys, "export", str(cat), "--row", "0", "-o", str(tmp_path / "f.ply"), "--json")
     assert code == 0, err
