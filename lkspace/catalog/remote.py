@@ -25,15 +25,16 @@ import json
 import os
 from typing import Any
 
+import pyarrow as pa
 import pyarrow.parquet as pq
 
 from ..design.space import DesignSpace
 from ..engine import is_dask
-from ..errors import CatalogError, UsageError, require
+from ..errors import CatalogError, ExportError, UsageError, require
 from .jobs import run_parts, write_part_remote
 from .plan import Plan
 from .schema import METADATA_KEY
-from .transaction import MANIFEST, new_run, part_name
+from .transaction import MANIFEST, PART_NAME, new_run, part_name
 
 
 def remote_url(path: Any) -> str | None:
@@ -45,9 +46,43 @@ def remote_url(path: Any) -> str | None:
 
 
 def _fs(url: str) -> tuple[Any, str]:
+    """Return ``(file system, path)`` of ``url``; an unknown protocol is a usage error."""
     fsspec = require("fsspec", "dask", f"writing to {url}")
+    protocol = url.split("://", 1)[0]
+    try:
+        fsspec.get_filesystem_class(protocol)
+    except ValueError:
+        raise UsageError(
+            f"{url}: unknown protocol {protocol!r}; give a local path or an fsspec URL (s3://, gs://, memory://, ...)"
+        ) from None
+    except ImportError as exc:
+        raise CatalogError(f"{url}: {protocol}:// needs a package that is not installed ({exc})") from None
     fs, root = fsspec.core.url_to_fs(url)
     return fs, root
+
+
+def check_remote(url: str) -> None:
+    """Check the catalog URL ``url`` before any work: a known protocol, and nothing there lkspace did not write."""
+    fs, root = _fs(url)
+    if not fs.exists(root):
+        return
+    if fs.isdir(root):
+        names = sorted(os.path.basename(str(p).rstrip("/")) for p in fs.ls(root, detail=False))
+        strange = [n for n in names if n != MANIFEST and not PART_NAME.fullmatch(n)]
+        if not names or strange:
+            what = f"holds {strange[0]!r}, which is not part of an lkspace catalog" if strange else "is empty"
+            raise ExportError(f"{url}: {what}; lkspace replaces only catalogs it wrote: choose another -o")
+        return
+    try:
+        with fs.open(root, "rb") as fh:
+            raw = (pq.read_metadata(fh).metadata or {}).get(METADATA_KEY)
+        meta = json.loads(raw) if raw is not None else None
+    except (OSError, ValueError, pa.ArrowException):
+        meta = None
+    if not isinstance(meta, dict) or "format_version" not in meta:
+        raise ExportError(
+            f"{url}: is not an lkspace catalog; lkspace replaces only catalogs it wrote: choose another -o"
+        )
 
 
 def _kept_parts(

@@ -36,7 +36,7 @@ from .jobs import ignored_signals, run_parts
 from .lock import catalog_lock
 from .plan import Plan, check_jobs, make_plan
 from .reader import read_metadata
-from .remote import remote_url, write_remote
+from .remote import check_remote, remote_url, write_remote
 from .schema import FORMAT_VERSION, design_schema, residue_schema
 from .transaction import (
     CatalogInterrupted,
@@ -203,6 +203,8 @@ def write_catalog(
         target = catalog_target(path)
     elif identify:
         raise CatalogError("--identify rewrites the files of a local catalog; write to a local path", usage=True)
+    else:
+        check_remote(remote)
     with interrupt_signals():  # planning loads compiled kernels: a signal now stops the run cleanly too
         try:
             plan = make_plan(space, mode, components, max_designs, sample, shards, yes)

@@ -280,7 +280,7 @@ def export_cmd(
     from ..geometry.realization import realize
 
     ctx = Context(as_json)
-    output_target(output)  # checked before any work (export checks it again)
+    output_target(output, (mesh, twist_spec, null_spec))  # checked before any work (export checks it again)
     ext = os.path.splitext(output)[1].lower()
     look = None
     if ext in PICTURES:
