@@ -17,7 +17,7 @@ of all labels is written beside it.
 Run:
 
     python experiments/bench_catalog_verify.py --label after --catalog /tmp/bench/cube.parquet
-    PYTHONPATH=/tmp/old-tree python experiments/bench_catalog_verify.py --label before \
+    cd /tmp && PYTHONPATH=/tmp/old-tree python REPO/experiments/bench_catalog_verify.py --label before \
         --catalog /tmp/bench/cube.parquet --subprocess-only
 """
 
@@ -92,7 +92,9 @@ def main() -> None:
         "# Checking catalogs on read: cost on the cube catalog (`enumerate cube --labels -2..2`)",
         "",
         "Written by `experiments/bench_catalog_verify.py`; medians of warm runs (files in the page cache)",
-        "on a shared, loaded 2-core machine.  `before`: the tree without checks; `after`: with them.",
+        "on a shared, loaded 2-core machine.  `before*`: the tree before the checks (commit 816fe93, run with",
+        "PYTHONPATH set to it, from outside the repository), measured before and after `after` to show the",
+        "machine's noise; `after`: with the checks.  Catalog written by the `after` code (page checksums).",
         "",
         "| figure | " + " | ".join(data) + " |",
         "|---|" + "---|" * len(data),
