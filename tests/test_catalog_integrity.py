@@ -16,6 +16,8 @@ import numpy as np
 import pyarrow as pa
 import pyarrow.parquet as pq
 import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
 
 import lkspace
 from lkspace.errors import CatalogError
@@ -230,3 +232,43 @@ def test_verify_on_a_plain_parquet_file(tmp_path, capsys):
     code, _, err = run(capsys, "verify", plain)
     assert code == 1
     one_line_error(err, "not an lkspace catalog")
+
+
+@settings(max_examples=40, deadline=None, derandomize=True, database=None,
+          suppress_health_check=[HealthCheck.function_scoped_fixture])  # fmt: skip
+@given(part=st.integers(0, 2), where=st.floats(0, 1, exclude_max=True), bit=st.integers(0, 7), cut=st.booleans())
+def test_any_flipped_bit_or_cut_of_a_part_is_refused(written, tmp_path, part, where, bit, cut):
+    """Property: one changed bit anywhere in a part (or a part cut short there) never reads."""
+    cat = tmp_path / f"{part}-{where}-{bit}-{cut}.parquet"
+    shutil.copytree(written / "a.parquet", cat)
+    victim = cat / parts(cat)[part]
+    data = bytearray(victim.read_bytes())
+    at = int(where * len(data))
+    if cut:
+        del data[at:]
+    else:
+        data[at] ^= 1 << bit
+    victim.write_bytes(bytes(data))
+    with pytest.raises(CatalogError, match=victim.name):
+        lkspace.read_catalog(cat)
+    with pytest.raises(CatalogError, match=victim.name):
+        lkspace.verify_catalog(cat)
+
+
+@settings(max_examples=40, deadline=None, derandomize=True, database=None,
+          suppress_health_check=[HealthCheck.function_scoped_fixture])  # fmt: skip
+@given(where=st.floats(0, 1, exclude_max=True), bit=st.integers(0, 7))
+def test_a_flipped_bit_of_a_one_file_catalog_never_reads_as_other_rows(written, tmp_path, where, bit):
+    """Property: without a manifest, a changed bit is refused or changes nothing that is read."""
+    one = tmp_path / f"{where}-{bit}.parquet"
+    data = bytearray((written / "one.parquet").read_bytes())
+    data[int(where * len(data))] ^= 1 << bit
+    one.write_bytes(bytes(data))
+    original = lkspace.read_catalog(written / "one.parquet")
+    try:
+        cat = lkspace.read_catalog(one)
+    except CatalogError as exc:
+        assert one.name in str(exc)
+        return
+    assert np.array_equal(cat.labels, original.labels)
+    assert cat.frame.equals(original.frame)

@@ -31,7 +31,7 @@ from ..errors import CatalogError, UsageError
 from ..io.atomic import atomic_path
 from ..model.scaffold import Scaffold
 from ..progress import Step, task
-from .schema import METADATA_KEY
+from .schema import METADATA_KEY, metadata_digest
 from .verify import file_metadata, open_catalog
 
 if TYPE_CHECKING:
@@ -158,6 +158,7 @@ def _identify_file(
             table = table.drop_columns([name])
         table = table.append_column(pa.field(name, type_), column)
     meta["identified"] = True
+    meta["digest"] = metadata_digest(meta)
     table = table.replace_schema_metadata({**(table.schema.metadata or {}), METADATA_KEY: json.dumps(meta).encode()})
     with atomic_path(file, suffix=".parquet.tmp") as tmp:
         pq.write_table(table, tmp, compression="zstd", write_page_checksum=True)

@@ -35,7 +35,7 @@ import pyarrow as pa
 import pyarrow.parquet as pq
 
 from ..errors import CatalogError
-from .schema import METADATA_KEY
+from .schema import METADATA_KEY, expected_schema, metadata_digest
 from .transaction import MANIFEST, file_sha256
 
 FORMAT_VERSIONS = (1,)
@@ -127,19 +127,22 @@ def file_metadata(file: str) -> tuple[dict[str, Any], int]:
     """
     try:
         info = pq.read_metadata(file)
+        raw = (info.metadata or {}).get(METADATA_KEY)
+        schema = info.schema.to_arrow_schema()
     except FileNotFoundError:
         raise
-    except (OSError, pa.ArrowException) as exc:
+    except (OSError, ValueError, pa.ArrowException) as exc:  # ValueError: names that are not UTF-8
         reason = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
         raise CatalogError(f"{file}: damaged or not Parquet (truncated?): its footer does not read: {reason}") from None
-    raw = (info.metadata or {}).get(METADATA_KEY)
     if raw is None:
         raise CatalogError(f"{file}: no 'lkspace' metadata; not an lkspace catalog")
     meta = parse_metadata(raw, file)
+    if "digest" in meta and meta["digest"] != metadata_digest(meta):
+        raise CatalogError(f"{file}: damaged: its 'lkspace' metadata does not match the digest it was written with")
     rows = meta.get("rows")
     if isinstance(rows, bool) or not isinstance(rows, int) or rows != info.num_rows:
         raise CatalogError(f"{file}: damaged: its metadata says {rows!r} rows, the file holds {info.num_rows:,}")
-    _check_width(file, info.schema.to_arrow_schema(), meta)
+    _check_columns(file, schema.remove_metadata(), meta)
     return meta, rows
 
 
@@ -149,15 +152,19 @@ def shard_of(meta: dict[str, Any]) -> dict[str, Any]:
     return shard if isinstance(shard, dict) else {}
 
 
-def _check_width(file: str, schema: pa.Schema, meta: dict[str, Any]) -> None:
-    """Raise unless a label column is there and ``key`` is as wide as the scaffold has edges."""
-    edges = meta["scaffold"].get("edges")
-    if "key" in schema.names:
-        width = schema.field("key").type.byte_width if pa.types.is_fixed_size_binary(schema.field("key").type) else -1
-        if width != edges:
-            raise CatalogError(f"{file}: its key column is {width} bytes wide, but the scaffold has {edges} edges")
-    elif "labels" not in schema.names:
-        raise CatalogError(f"{file}: no 'key' or 'labels' column; not an lkspace catalog")
+def _check_columns(file: str, schema: pa.Schema, meta: dict[str, Any]) -> None:
+    """Raise unless ``schema`` is the one a catalog of ``meta`` has (``--identify`` columns after it)."""
+    from .identified import COLUMNS
+
+    try:
+        expected = expected_schema(meta)
+    except (KeyError, TypeError, ValueError, pa.ArrowException):
+        raise CatalogError(f"{file}: the 'lkspace' metadata has no usable scaffold edges or mode (damaged)") from None
+    head = pa.schema(list(schema)[: len(expected)])
+    extra = list(schema)[len(expected) :]
+    if not head.equals(expected) or any(COLUMNS.get(f.name) != f.type for f in extra):
+        found = ", ".join(f"{f.name}: {f.type}" for f in schema)
+        raise CatalogError(f"{file}: damaged or not an lkspace catalog: its columns ({found}) are not a catalog's")
 
 
 def open_catalog(path: str | os.PathLike[str]) -> CatalogParts:

@@ -11,7 +11,7 @@ import pyarrow as pa
 import pyarrow.parquet as pq
 
 from ..io.atomic import atomic_path
-from .schema import METADATA_KEY, ROW_GROUP
+from .schema import METADATA_KEY, ROW_GROUP, metadata_digest
 
 
 class CatalogWriter:
@@ -55,6 +55,7 @@ class CatalogWriter:
         """Finish the file; the ``lkspace`` metadata (with ``summary``) goes into its footer."""
         self._flush()
         meta = {**self.metadata, **(summary or {}), "rows": self.rows}
+        meta["digest"] = metadata_digest(meta)
         self._writer.add_key_value_metadata({METADATA_KEY: json.dumps(meta).encode()})
         self._writer.close()
         self._ctx.__exit__(None, None, None)
