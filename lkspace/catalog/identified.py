@@ -31,7 +31,7 @@ from ..errors import CatalogError, UsageError
 from ..io.atomic import atomic_path
 from ..model.scaffold import Scaffold
 from ..progress import Step, task
-from .schema import METADATA_KEY, metadata_digest
+from .schema import IDENTIFY_COLUMNS, METADATA_KEY, metadata_digest
 from .verify import file_metadata, open_catalog
 
 if TYPE_CHECKING:
@@ -39,17 +39,6 @@ if TYPE_CHECKING:
 
 IDENTIFY_CHUNK = 64
 """Rows identified per call and process between progress updates (a few seconds of work)."""
-
-COLUMNS = {
-    "knot_name": pa.string(),
-    "crossings": pa.int32(),
-    "mirror": pa.bool_(),
-    "split": pa.bool_(),
-    "jones": pa.string(),
-    "linking_matrix": pa.string(),
-    "identify_error": pa.string(),
-    "identify_status": pa.string(),
-}
 
 
 def _column(values: Iterable[Any], type_: pa.DataType) -> pa.Array:
@@ -152,7 +141,7 @@ def _identify_file(
 
     found = pd.concat(pieces, ignore_index=True) if pieces else identify_batch(scaffold, labels, progress=False)
     found = found.rename(columns={"error": "identify_error", "status": "identify_status"})
-    for name, type_ in COLUMNS.items():
+    for name, type_ in IDENTIFY_COLUMNS.items():
         column = _column(found[name].tolist() if name in found else [None] * table.num_rows, type_)
         if name in table.column_names:
             table = table.drop_columns([name])

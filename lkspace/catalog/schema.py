@@ -53,6 +53,18 @@ FORMAT_VERSION = 1
 ROW_GROUP = 262_144
 METADATA_KEY = b"lkspace"
 
+IDENTIFY_COLUMNS = {
+    "knot_name": pa.string(),
+    "crossings": pa.int32(),
+    "mirror": pa.bool_(),
+    "split": pa.bool_(),
+    "jones": pa.string(),
+    "linking_matrix": pa.string(),
+    "identify_error": pa.string(),
+    "identify_status": pa.string(),
+}
+"""Columns ``--identify`` adds after the others (:mod:`lkspace.catalog.identified`), with their types."""
+
 
 def metadata_digest(meta: dict[str, Any]) -> str:
     """Return the SHA-256 of ``meta`` without its ``digest`` (canonical JSON): a file's footer records it.

@@ -7,8 +7,9 @@ footers:
 
 - a **file**: its footer reads (a truncated file's does not); its ``lkspace`` metadata is
   a JSON object of a known ``format_version``; its ``rows`` are the rows the file holds;
-  it is a whole catalog (not one part of a folder); its label columns are as wide as
-  the scaffold has edges;
+  its metadata matches the ``digest`` recorded with it; it is a whole catalog (not one
+  part of a folder); its columns are a catalog's (names and types, ``key`` as wide as
+  the scaffold has edges);
 - a **folder**: its manifest ``_lkspace.json`` is such a JSON object, complete, listing
   parts ``0 .. n-1`` with their rows and SHA-256; the Parquet files in the folder are
   exactly the listed ones (a missing part, or an extra one that pandas would read as
@@ -35,7 +36,7 @@ import pyarrow as pa
 import pyarrow.parquet as pq
 
 from ..errors import CatalogError
-from .schema import METADATA_KEY, expected_schema, metadata_digest
+from .schema import IDENTIFY_COLUMNS, METADATA_KEY, expected_schema, metadata_digest
 from .transaction import MANIFEST, file_sha256
 
 FORMAT_VERSIONS = (1,)
@@ -154,17 +155,20 @@ def shard_of(meta: dict[str, Any]) -> dict[str, Any]:
 
 def _check_columns(file: str, schema: pa.Schema, meta: dict[str, Any]) -> None:
     """Raise unless ``schema`` is the one a catalog of ``meta`` has (``--identify`` columns after it)."""
-    from .identified import COLUMNS
-
     try:
         expected = expected_schema(meta)
     except (KeyError, TypeError, ValueError, pa.ArrowException):
         raise CatalogError(f"{file}: the 'lkspace' metadata has no usable scaffold edges or mode (damaged)") from None
-    head = pa.schema(list(schema)[: len(expected)])
-    extra = list(schema)[len(expected) :]
-    if not head.equals(expected) or any(COLUMNS.get(f.name) != f.type for f in extra):
-        found = ", ".join(f"{f.name}: {f.type}" for f in schema)
-        raise CatalogError(f"{file}: damaged or not an lkspace catalog: its columns ({found}) are not a catalog's")
+    fields = list(schema)
+    for i, field in enumerate(fields):
+        want = expected.field(i).type if i < len(expected) else IDENTIFY_COLUMNS.get(field.name)
+        if (i < len(expected) and field.name != expected.field(i).name) or field.type != want:
+            raise CatalogError(
+                f"{file}: damaged or not an lkspace catalog: column {i} is {field.name!r} ({field.type}), "
+                f"not a catalog's {expected.field(i).name if i < len(expected) else 'identify column'}"
+            )
+    if len(fields) < len(expected):
+        raise CatalogError(f"{file}: damaged or not an lkspace catalog: no column {expected.field(len(fields)).name!r}")
 
 
 def open_catalog(path: str | os.PathLike[str]) -> CatalogParts:
