@@ -11,6 +11,8 @@ from __future__ import annotations
 import json
 import os
 import shutil
+import subprocess
+import sys
 
 import numpy as np
 import pyarrow as pa
@@ -100,6 +102,9 @@ def test_swapped_parts(cat, capsys, tmp_path):
     second.rename(first)
     (tmp_path / "tmp").rename(second)
     refused_everywhere(capsys, tmp_path, cat, first.name, "swapped")
+    code, _, err = run(capsys, "identify", cat, "--row", ROW_IN_PART_1)
+    assert code == 1
+    one_line_error(err, first.name, "swapped")
 
 
 def test_part_of_another_catalog(cat, written, capsys, tmp_path):
@@ -132,6 +137,10 @@ def test_missing_part(cat, capsys, tmp_path):
     refused_everywhere(capsys, tmp_path, cat, victim.name, "missing")
     with pytest.raises(CatalogError, match="missing"):
         Browser(str(cat))
+    studio = [sys.executable, "-m", "lkspace", "studio", str(cat), "--no-browser", "--port", "0"]
+    done = subprocess.run(studio, capture_output=True, text=True, timeout=120)  # refused before serving
+    assert done.returncode == 1
+    one_line_error(done.stderr, victim.name, "missing")
 
 
 def test_extra_part(cat, written, capsys, tmp_path):
