@@ -281,3 +281,25 @@ def test_a_flipped_bit_of_a_one_file_catalog_never_reads_as_other_rows(written, 
         return
     assert np.array_equal(cat.labels, original.labels)
     assert cat.frame.equals(original.frame)
+
+
+@pytest.mark.parametrize(
+    "edit, words",
+    [
+        (lambda m: {**m, "scaffold": {**m["scaffold"], "data": [1, 2]}}, ["scaffold in its 'lkspace' metadata"]),
+        (lambda m: {**m, "scaffold": {"name": 5, "edges": 6}}, ["scaffold in its 'lkspace' metadata"]),
+        (lambda m: {**m, "scaffold": {**m["scaffold"], "edges": "6"}}, ["no usable scaffold edges"]),
+        (lambda m: {**m, "scaffold": {**m["scaffold"], "content_hash": "0"}}, ["differs from the one"]),
+        (lambda m: {**m, "rows": 86}, ["says 86 rows"]),
+        (lambda m: {**m, "label_set": [-1, 0, 2]}, ["digest"]),  # edited, digest kept
+    ],
+)
+def test_edited_metadata_of_a_one_file_catalog(written, tmp_path, capsys, edit, words):
+    one = tmp_path / "one.parquet"
+    meta = json.loads(pq.read_metadata(written / "one.parquet").metadata[b"lkspace"])
+    changed = edit(meta if "digest" in words else {k: v for k, v in meta.items() if k != "digest"})
+    shutil.copy(written / "one.parquet", one)
+    rewrite_footer(one, json.dumps(changed).encode())
+    code, _, err = run(capsys, "export", one, "--row", 3, "-o", tmp_path / "x.obj")
+    assert code == 1
+    one_line_error(err, one.name, *words)

@@ -21,7 +21,7 @@ import pyarrow as pa
 import pyarrow.parquet as pq
 from numpy.typing import ArrayLike
 
-from ..errors import CatalogError
+from ..errors import CatalogError, LkspaceError
 from ..io.scaffold_json import scaffold_from_dict
 from ..io.sources import load
 from ..model.scaffold import Scaffold
@@ -50,7 +50,10 @@ def catalog_scaffold(metadata: dict[str, Any], path: str) -> Scaffold:
     """Return the scaffold of a catalog: stored in its ``metadata``, else loaded by name; hash checked."""
     info = metadata.get("scaffold", {})
     data = info.get("data")
-    scaffold = scaffold_from_dict(data, info.get("name", "catalog")) if data else load(info.get("name", ""))
+    try:
+        scaffold = scaffold_from_dict(data, info.get("name", "catalog")) if data else load(info.get("name", ""))
+    except LkspaceError as exc:
+        raise CatalogError(f"{path}: the scaffold in its 'lkspace' metadata: {exc}") from None
     if info.get("content_hash") not in (None, scaffold.content_hash()):
         raise CatalogError(f"{path}: the scaffold {scaffold.name!r} differs from the one the catalog was written for")
     return scaffold
