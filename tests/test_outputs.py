@@ -158,3 +158,10 @@ def test_url_replaces_only_its_own_catalogs(capsys):
     assert code == 2 and fs.cat("/outputs-test/notes.parquet") == b"mine"
     one_line_error(err, "not an lkspace catalog")
     fs.rm("/outputs-test", recursive=True)
+
+
+def test_python_export_never_writes_over_its_input(mesh):
+    before = (mesh / "m.obj").read_bytes()
+    with pytest.raises(ExportError, match="is the input"):
+        lkspace.export(mesh / "m.obj", mesh / "hard.obj", 1)
+    assert (mesh / "m.obj").read_bytes() == before

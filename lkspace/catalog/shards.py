@@ -193,6 +193,7 @@ def write_catalog(
     CatalogInterrupted
         Ctrl-C or SIGTERM: workers stopped, temporaries removed, finished parts kept.
     """
+    source = os.fspath(space) if isinstance(space, str | os.PathLike) else None
     if not isinstance(space, DesignSpace):
         space = make_space(space, label_set, symmetry, no_zero)
     check_jobs(jobs)
@@ -200,7 +201,7 @@ def write_catalog(
     check_scheduler(engine)
     remote = remote_url(path)
     if remote is None:
-        target = catalog_target(path)
+        target = catalog_target(path, (source,))
     elif identify:
         raise CatalogError("--identify rewrites the files of a local catalog; write to a local path", usage=True)
     else:

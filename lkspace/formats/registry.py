@@ -166,7 +166,8 @@ def export(
     from ..geometry.fabrication import check_options
 
     check_options(thickness, clearance, units or "mm", scale)
-    target = output_target(path)  # checked before any work: extension, folder, device
+    source = os.fspath(design) if isinstance(design, str | os.PathLike) else None
+    target = output_target(path, (source,))  # checked before any work: extension, folder, device, not the input
     ext = os.path.splitext(os.fspath(path))[1].lower()
     if diagram and ext not in PICTURES:
         raise ExportError(f"{path}: a diagram is drawn as {' or '.join(PICTURES)}, not {ext}")
