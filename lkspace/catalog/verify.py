@@ -245,9 +245,9 @@ def _open_folder(folder: str) -> CatalogParts:
         meta, rows = file_metadata(file)
         shard = shard_of(meta)
         other = shard.get("run", run)
-        if other != run or shard.get("plan") != manifest.get("plan"):
+        if other != run:
             raise CatalogError(f"{file}: a part of another catalog (run {other}, not {run}): replaced")
-        if any(meta.get(k) != manifest.get(k) for k in SIGNATURE):
+        if shard.get("plan") != manifest.get("plan") or any(meta.get(k) != manifest.get(k) for k in SIGNATURE):
             raise CatalogError(f"{file}: a part of another catalog (scaffold, label set or settings differ)")
         if shard.get("index") != i or shard.get("count") != count:
             raise CatalogError(
