@@ -11,6 +11,7 @@ works on a scaffold also takes a path or a built-in name:
 :func:`count_designs`        exact counts of a design space, without listing it
 :func:`write_catalog`        a design space written to a Parquet catalog
 :func:`read_catalog`         a catalog back, labels as one ``(n, n_edges) int8`` array
+:func:`verify_catalog`       a catalog checked whole (every part's checksum) before pandas reads it
 :func:`solve`                designs with exactly N components (CP-SAT)
 :func:`realize`              strands as 3D curves (:class:`Realization`)
 :func:`export`               strands to ``.obj``, ``.ply``, ``.glb`` or ``.png``
@@ -40,6 +41,7 @@ if TYPE_CHECKING:
     from .catalog.reader import Catalog, read_catalog
     from .catalog.shards import CatalogWritten, write_catalog
     from .catalog.symmetric import symmetric_designs
+    from .catalog.verify import CatalogCheck, verify_catalog
     from .design.counting import DesignCount, count_designs
     from .formats.registry import export
     from .geometry.realization import GeometryParams, Realization, realize
@@ -65,6 +67,8 @@ _LAZY = {
     "CatalogWritten": "catalog.shards",
     "read_catalog": "catalog.reader",
     "Catalog": "catalog.reader",
+    "verify_catalog": "catalog.verify",
+    "CatalogCheck": "catalog.verify",
     "solve": "inverse.pipeline",
     "SolveResult": "inverse.pipeline",
     "Solution": "inverse.pipeline",
@@ -89,6 +93,8 @@ __all__ = [
     "CatalogWritten",
     "read_catalog",
     "Catalog",
+    "verify_catalog",
+    "CatalogCheck",
     "solve",
     "SolveResult",
     "Solution",

@@ -160,7 +160,7 @@ def test_read_only_folder_is_one_line(tmp_path, capsys):
 
 
 def test_symlink_is_followed_and_kept(tmp_path, capsys):
-    (tmp_path / "real.parquet").write_bytes(b"old")
+    assert run(capsys, "enumerate", "tetrahedron", "--labels", "-2,2", "-o", tmp_path / "real.parquet")[0] == 0
     os.symlink("real.parquet", tmp_path / "link.parquet")
     assert run(capsys, "enumerate", "tetrahedron", "--labels", "-1,1", "-o", tmp_path / "link.parquet")[0] == 0
     assert os.path.islink(tmp_path / "link.parquet") and len(pd.read_parquet(tmp_path / "real.parquet")) == 12

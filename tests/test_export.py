@@ -158,10 +158,16 @@ def test_cli_catalog_with_nested_metadata(tmp_path, capsys):
     import pyarrow as pa
     import pyarrow.parquet as pq
 
+    from lkspace.catalog.schema import design_schema
+
     cat = tmp_path / "c.parquet"
-    table = pa.table({"labels": [[1, 1, 1, 1, 0]]})
-    meta = {"scaffold": {"name": "figure-eight", "content_hash": lkspace.load("figure-eight").content_hash()}}
-    pq.write_table(table.replace_schema_metadata({"lkspace": json.dumps(meta)}), cat)
+    row = {"labels": [[1, 1, 1, 1, 0]], "key": [bytes([1, 1, 1, 1, 0])], "components": [1], "orbit_size": [1],
+           "holds_together": [True], "n_zero": [1], "n_odd": [4], "n_even": [1], "abs_sum": [4], "abs_max": [1],
+           "residue_class": [0], "strand_lengths": [[10]]}  # fmt: skip
+    table = pa.table(row, schema=design_schema(5, False))
+    scaffold = {"name": "figure-eight", "content_hash": lkspace.load("figure-eight").content_hash(), "edges": 5}
+    meta = {"format_version": 1, "scaffold": scaffold, "label_set": [0, 1], "mode": "designs", "rows": 1}
+    pq.write_table(table.replace_schema_metadata({"lkspace": json.dumps(meta)}), cat)  # the scaffold by name only
     code, out, err = run(capsys, "export", str(cat), "--row", "0", "-o", str(tmp_path / "f.ply"), "--json")
     assert code == 0, err
     assert json.loads(out)["components"] == 1

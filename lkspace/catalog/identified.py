@@ -31,25 +31,14 @@ from ..errors import CatalogError, UsageError
 from ..io.atomic import atomic_path
 from ..model.scaffold import Scaffold
 from ..progress import Step, task
-from .reader import catalog_files, read_metadata
-from .schema import METADATA_KEY
+from .schema import IDENTIFY_COLUMNS, METADATA_KEY, metadata_digest
+from .verify import file_metadata, open_catalog
 
 if TYPE_CHECKING:
     import pandas as pd
 
 IDENTIFY_CHUNK = 64
 """Rows identified per call and process between progress updates (a few seconds of work)."""
-
-COLUMNS = {
-    "knot_name": pa.string(),
-    "crossings": pa.int32(),
-    "mirror": pa.bool_(),
-    "split": pa.bool_(),
-    "jones": pa.string(),
-    "linking_matrix": pa.string(),
-    "identify_error": pa.string(),
-    "identify_status": pa.string(),
-}
 
 
 def _column(values: Iterable[Any], type_: pa.DataType) -> pa.Array:
@@ -76,7 +65,7 @@ def identify_catalog(
 
     path = os.fspath(path)
     totals: dict[str, Any] = {"rows": 0, "named": 0, "names": {}}
-    files = catalog_files(path)
+    files = list(open_catalog(path).files)
     total = sum(pq.read_metadata(f).num_rows for f in files)
     with task("identifying designs", total) as step:
         if is_dask(scheduler):
@@ -137,7 +126,7 @@ def _identify_file(
     table = pq.read_table(file)
     if "labels" not in table.column_names:
         raise CatalogError(f"{file}: no 'labels' column to identify")
-    meta = read_metadata(file)
+    meta = file_metadata(file)[0]
     if meta.get("identified"):
         step.advance(table.num_rows)
         return None
@@ -152,13 +141,14 @@ def _identify_file(
 
     found = pd.concat(pieces, ignore_index=True) if pieces else identify_batch(scaffold, labels, progress=False)
     found = found.rename(columns={"error": "identify_error", "status": "identify_status"})
-    for name, type_ in COLUMNS.items():
+    for name, type_ in IDENTIFY_COLUMNS.items():
         column = _column(found[name].tolist() if name in found else [None] * table.num_rows, type_)
         if name in table.column_names:
             table = table.drop_columns([name])
         table = table.append_column(pa.field(name, type_), column)
     meta["identified"] = True
+    meta["digest"] = metadata_digest(meta)
     table = table.replace_schema_metadata({**(table.schema.metadata or {}), METADATA_KEY: json.dumps(meta).encode()})
     with atomic_path(file, suffix=".parquet.tmp") as tmp:
-        pq.write_table(table, tmp, compression="zstd")
+        pq.write_table(table, tmp, compression="zstd", write_page_checksum=True)
     return found

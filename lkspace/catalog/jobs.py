@@ -68,7 +68,7 @@ def write_part_with(st: dict[str, Any], i: int) -> tuple[int, dict[str, Any]]:
     if st.get("remote") is not None:
         return write_part_remote(st, i)
     path = os.path.join(st["folder"], st["files"][i])
-    meta = {**st["meta"], "shard": {"index": i, "count": len(st["files"]), "plan": st["plan"]}}
+    meta = {**st["meta"], "shard": {"index": i, "count": len(st["files"]), "plan": st["plan"], "run": st["run"]}}
     ids = st["ranges"][i] if st["ranges"] is not None else None
     batches = space_batches(st["space"], st["mode"], ids, *st["walk"])
     summary = write_batches(path, st["schema"], meta, batches, st.get("on_rows"))
@@ -80,7 +80,8 @@ def write_part_remote(st: dict[str, Any], i: int) -> tuple[int, dict[str, Any]]:
     fsspec = require("fsspec", "dask", f"writing to {st['remote']}")
     fs, root = fsspec.core.url_to_fs(st["remote"])
     dest = root if st["files"] is None else f"{root}/{st['files'][i]}"
-    meta = {**st["meta"], "shard": {"index": i, "count": st["count"], "plan": st["plan"]}}
+    shard = {"index": i, "count": st["count"], "plan": st["plan"]}
+    meta = {**st["meta"], "shard": shard if st["files"] is None else {**shard, "run": st["run"]}}
     ids = st["ranges"][i] if st["ranges"] is not None else None
     with tempfile.TemporaryDirectory(prefix="lkspace-part-") as tmp:
         local = os.path.join(tmp, "part.parquet")

@@ -10,7 +10,6 @@ list cell into a Python object.
 
 from __future__ import annotations
 
-import json
 import os
 from dataclasses import dataclass
 from functools import cached_property
@@ -22,73 +21,42 @@ import pyarrow as pa
 import pyarrow.parquet as pq
 from numpy.typing import ArrayLike
 
-from ..errors import CatalogError
+from ..errors import CatalogError, LkspaceError
 from ..io.scaffold_json import scaffold_from_dict
 from ..io.sources import load
 from ..model.scaffold import Scaffold
 from ..strands.tracing import Trace, trace
-from .schema import METADATA_KEY
+from .transaction import load_manifest
+from .verify import damaged, open_catalog
 
 LABEL_COLUMNS = ("labels", "key")
 """Columns read into :attr:`Catalog.labels` rather than into the frame."""
 
 
-MANIFEST = "_lkspace.json"
-"""The manifest of a sharded catalog: its settings and its parts (with their SHA-256)."""
-
 READ_ATTEMPTS = 3
 """Times :func:`read_catalog` reads a folder again when it was replaced by a new run while being read."""
 
 
-def catalog_files(path: str | os.PathLike) -> list[str]:
-    """Return the Parquet file of a catalog, or the parts of a sharded catalog folder, in order.
-
-    A folder's parts are the ones its manifest lists (when it lists them), else every
-    ``*.parquet`` not starting with ``.`` or ``_``.
-    """
-    path = os.fspath(path)
-    if os.path.isdir(path):
-        parts = _manifest_parts(path)
-        if parts is None:
-            parts = sorted(p for p in os.listdir(path) if p.endswith(".parquet") and not p.startswith((".", "_")))
-        if not parts:
-            raise CatalogError(f"{path}: no Parquet parts in this folder")
-        return [os.path.join(path, p) for p in parts]
-    if not os.path.exists(path):
-        raise CatalogError(f"{path}: no such catalog")
-    return [path]
-
-
-def _manifest_parts(folder: str) -> list[str] | None:
-    """Return the part names the manifest of `folder` lists, in order; ``None`` when it lists none."""
-    try:
-        with open(os.path.join(folder, MANIFEST), encoding="utf-8") as fh:
-            manifest = json.load(fh)
-    except (OSError, ValueError):
-        return None
-    parts = manifest.get("parts") if isinstance(manifest, dict) else None
-    if not isinstance(parts, dict):
-        return None
-    if not manifest.get("complete") or len(parts) != manifest.get("shards"):
-        raise CatalogError(f"{folder}: an unfinished catalog ({len(parts)} of {manifest.get('shards')} parts)")
-    return [str(parts[k]["file"]) for k in sorted(parts, key=int)]
-
-
 def read_metadata(path: str | os.PathLike) -> dict[str, Any]:
-    """Return the ``lkspace`` metadata of a catalog file (or of the first part of a folder).
+    """Return the ``lkspace`` metadata of a catalog (of its first part, for a folder), its structure checked.
 
-    It is read from the file footer, which holds the run's totals as well.
+    It is read from the file footer, which holds the file's totals as well; the checks
+    are :func:`~lkspace.catalog.verify.open_catalog`'s.
     """
-    file = catalog_files(path)[0]
+    return open_catalog(path).metadata
+
+
+def catalog_scaffold(metadata: dict[str, Any], path: str) -> Scaffold:
+    """Return the scaffold of a catalog: stored in its ``metadata``, else loaded by name; hash checked."""
+    info = metadata.get("scaffold", {})
+    data = info.get("data")
     try:
-        meta = pq.read_metadata(file).metadata or {}
-    except FileNotFoundError:
-        raise
-    except (OSError, pa.ArrowInvalid) as exc:
-        raise CatalogError(f"{file}: not a readable Parquet file: {exc}") from None
-    if METADATA_KEY not in meta:
-        raise CatalogError(f"{file}: no 'lkspace' metadata; not an lkspace catalog")
-    return json.loads(meta[METADATA_KEY])
+        scaffold = scaffold_from_dict(data, info.get("name", "catalog")) if data else load(info.get("name", ""))
+    except LkspaceError as exc:
+        raise CatalogError(f"{path}: the scaffold in its 'lkspace' metadata: {exc}") from None
+    if info.get("content_hash") not in (None, scaffold.content_hash()):
+        raise CatalogError(f"{path}: the scaffold {scaffold.name!r} differs from the one the catalog was written for")
+    return scaffold
 
 
 @dataclass(frozen=True, eq=False, repr=False)
@@ -134,14 +102,7 @@ class Catalog:
     @cached_property
     def scaffold(self) -> Scaffold:
         """The catalog's scaffold: stored in its metadata, else loaded by name; hash checked."""
-        info = self.metadata.get("scaffold", {})
-        data = info.get("data")
-        scaffold = scaffold_from_dict(data, info.get("name", "catalog")) if data else load(info.get("name", ""))
-        if info.get("content_hash") not in (None, scaffold.content_hash()):
-            raise CatalogError(
-                f"{self.path}: the scaffold {scaffold.name!r} differs from the one the catalog was written for"
-            )
-        return scaffold
+        return catalog_scaffold(self.metadata, self.path)
 
     def trace(self, row: int) -> Trace:
         """Trace the design in row ``row``: its :class:`~lkspace.strands.tracing.Trace`."""
@@ -170,6 +131,10 @@ def _labels_of(table: pa.Table) -> np.ndarray:
 def read_catalog(path: str | os.PathLike, columns: list[str] | None = None) -> Catalog:
     """Read a catalog (a file or a folder of parts) written by ``lkspace enumerate``.
 
+    The catalog is checked first (:mod:`lkspace.catalog.verify`): its structure, every
+    part's SHA-256 and, as they are read, the data pages' checksums; a damaged,
+    swapped, missing, extra or foreign part is a :class:`~lkspace.errors.CatalogError`.
+
     Parameters
     ----------
     path : str or os.PathLike
@@ -185,38 +150,44 @@ def read_catalog(path: str | os.PathLike, columns: list[str] | None = None) -> C
     >>> len(cat), cat.labels.shape, int(cat.frame.orbit_size.sum())
     (12, (12, 6), 64)
     """
+    path = os.fspath(path)
     for attempt in range(READ_ATTEMPTS):
+        run = _run_of(path)
         try:
-            return _read(os.fspath(path), columns)
-        except FileNotFoundError:  # a part vanished: a new run replaced the folder while we read it
-            if attempt == READ_ATTEMPTS - 1 or not os.path.exists(path):
+            return _read(path, columns)
+        except (FileNotFoundError, CatalogError):  # a new run may have replaced the folder while we read it
+            if attempt == READ_ATTEMPTS - 1 or not os.path.exists(path) or _run_of(path) == run:
                 raise
     raise AssertionError("unreachable")  # pragma: no cover
 
 
-SIGNATURE = ("format_version", "scaffold", "label_set", "symmetry", "mode", "filters", "sample", "seed")
-"""Metadata every part of one catalog shares (parts that differ come from different runs)."""
+def _run_of(path: str) -> object:
+    """Return the run id in the manifest of the folder ``path`` (``None``: a file, or no readable manifest)."""
+    manifest = load_manifest(path) if os.path.isdir(path) else None
+    return None if manifest is None else manifest.get("run")
 
 
 def _read(path: str, columns: list[str] | None) -> Catalog:
-    metadata = read_metadata(path)
-    files = catalog_files(path)
-    for file in files[1:]:
-        other = read_metadata(file)
-        if any(other.get(k) != metadata.get(k) for k in SIGNATURE):
-            raise CatalogError(f"{file}: a part of another catalog (scaffold, label set or settings differ)")
-    schema = pq.read_schema(files[0])
+    parts = open_catalog(path)
+    parts.verify_all()
+    schema = pq.read_schema(parts.files[0])
     names = [n for n in schema.names if n not in LABEL_COLUMNS and (columns is None or n in columns)]
     unknown = sorted(set(columns or []) - set(schema.names))
     if unknown:
         raise CatalogError(f"{path}: no column(s) {unknown}; columns are {schema.names}")
     label_column = "key" if "key" in schema.names else "labels"
+    tables = []
+    for file in parts.files:
+        try:
+            tables.append(pq.read_table(file, columns=[*names, label_column], page_checksum_verification=True))
+        except FileNotFoundError:
+            raise
+        except (OSError, pa.ArrowException) as exc:
+            raise damaged(file, exc) from None
     try:
-        table = pa.concat_tables(pq.read_table(f, columns=[*names, label_column]) for f in files)
-    except FileNotFoundError:
-        raise
-    except (OSError, pa.ArrowInvalid) as exc:
-        raise CatalogError(f"{path}: cannot read catalog: {exc}") from None
+        table = pa.concat_tables(tables)
+    except pa.ArrowException as exc:
+        raise CatalogError(f"{path}: its parts do not share one schema: {exc}") from None
     labels = _labels_of(table)
     frame = table.select(names).to_pandas(types_mapper=pd.ArrowDtype)
-    return Catalog(frame, labels, metadata, path)
+    return Catalog(frame, labels, parts.metadata, path)

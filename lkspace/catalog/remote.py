@@ -23,18 +23,18 @@ from __future__ import annotations
 
 import json
 import os
-import secrets
 from typing import Any
 
+import pyarrow as pa
 import pyarrow.parquet as pq
 
 from ..design.space import DesignSpace
 from ..engine import is_dask
-from ..errors import CatalogError, UsageError, require
+from ..errors import CatalogError, ExportError, UsageError, require
 from .jobs import run_parts, write_part_remote
 from .plan import Plan
 from .schema import METADATA_KEY
-from .transaction import MANIFEST, part_name, same_settings
+from .transaction import MANIFEST, PART_NAME, new_run, part_name, same_settings
 
 
 def remote_url(path: Any) -> str | None:
@@ -46,28 +46,70 @@ def remote_url(path: Any) -> str | None:
 
 
 def _fs(url: str) -> tuple[Any, str]:
+    """Return ``(file system, path)`` of ``url``; an unknown protocol is a usage error."""
     fsspec = require("fsspec", "dask", f"writing to {url}")
+    protocol = url.split("://", 1)[0]
+    try:
+        fsspec.get_filesystem_class(protocol)
+    except ValueError:
+        raise UsageError(
+            f"{url}: unknown protocol {protocol!r}; give a local path or an fsspec URL (s3://, gs://, memory://, ...)"
+        ) from None
+    except ImportError as exc:
+        raise CatalogError(f"{url}: {protocol}:// needs a package that is not installed ({exc})") from None
     fs, root = fsspec.core.url_to_fs(url)
     return fs, root
 
 
-def _kept_parts(fs: Any, root: str, signature: dict[str, Any], fingerprint: str) -> dict[str, dict[str, Any]]:
-    """Parts already in the folder ``root`` that belong to this run (footer metadata) and read to the end."""
-    import hashlib
+def check_remote(url: str) -> None:
+    """Check the catalog URL ``url`` before any work: a known protocol, and nothing there lkspace did not write."""
+    fs, root = _fs(url)
+    if not fs.exists(root):
+        return
+    if fs.isdir(root):
+        names = sorted(os.path.basename(str(p).rstrip("/")) for p in fs.ls(root, detail=False))
+        strange = [n for n in names if n != MANIFEST and not PART_NAME.fullmatch(n)]
+        if not names or strange:
+            what = f"holds {strange[0]!r}, which is not part of an lkspace catalog" if strange else "is empty"
+            raise ExportError(f"{url}: {what}; lkspace replaces only catalogs it wrote: choose another -o")
+        return
+    try:
+        with fs.open(root, "rb") as fh:
+            raw = (pq.read_metadata(fh).metadata or {}).get(METADATA_KEY)
+        meta = json.loads(raw) if raw is not None else None
+    except (OSError, ValueError, pa.ArrowException):
+        meta = None
+    if not isinstance(meta, dict) or "format_version" not in meta:
+        raise ExportError(
+            f"{url}: is not an lkspace catalog; lkspace replaces only catalogs it wrote: choose another -o"
+        )
 
-    kept: dict[str, dict[str, Any]] = {}
+
+def _kept_parts(
+    fs: Any, root: str, signature: dict[str, Any], fingerprint: str
+) -> tuple[str, dict[str, dict[str, Any]]]:
+    """Return ``(run id, parts)``: the parts in the folder ``root`` of the one earlier run of these settings.
+
+    A part is kept when its footer metadata is of this run's settings and plan and it
+    reads to the end; of several earlier runs, the one with the most such parts.
+    """
+    import hashlib
+    import io
+
+    by_run: dict[str, dict[str, dict[str, Any]]] = {}
     for path in sorted(fs.glob(f"{root}/part-*.parquet")):
         try:
             with fs.open(path, "rb") as fh:
                 data = fh.read()
-            import io
-
             meta = json.loads(pq.read_metadata(io.BytesIO(data)).metadata[METADATA_KEY])
             pq.read_table(io.BytesIO(data))
         except (OSError, ValueError, KeyError, TypeError):
             continue
         shard = meta.get("shard") or {}
-        if shard.get("plan") != fingerprint or not same_settings(meta, signature):
+        run = shard.get("run")
+        if not isinstance(run, str) or shard.get("plan") != fingerprint:
+            continue
+        if not same_settings(meta, signature):
             continue
         entry = {
             "rows": meta["rows"],
@@ -76,8 +118,11 @@ def _kept_parts(fs: Any, root: str, signature: dict[str, Any], fingerprint: str)
             "file": os.path.basename(path),
             "sha256": hashlib.sha256(data).hexdigest(),
         }
-        kept.setdefault(str(shard["index"]), entry)
-    return kept
+        by_run.setdefault(run, {}).setdefault(str(shard["index"]), entry)
+    if not by_run:
+        return new_run(), {}
+    run = max(by_run, key=lambda r: len(by_run[r]))
+    return run, by_run[run]
 
 
 def write_remote(
@@ -115,14 +160,14 @@ def write_remote(
             raise CatalogError(f"{url}: is a folder; give a new name for a one-file catalog")
         state["files"] = None
         return [write_part_remote(state, 0)[1]], 0
-    kept = _kept_parts(fs, root, meta, plan.fingerprint) if resume and fs.isdir(root) else {}
+    run_id, kept = _kept_parts(fs, root, meta, plan.fingerprint) if resume and fs.isdir(root) else (new_run(), {})
     if fs.exists(f"{root}/{MANIFEST}"):
         fs.rm(f"{root}/{MANIFEST}")  # from here on the folder reads as incomplete
     if not kept and fs.isdir(root):
         for old in fs.glob(f"{root}/part-*.parquet"):
             fs.rm(old)
     fs.makedirs(root, exist_ok=True)
-    run_id = secrets.token_hex(4)
+    state["run"] = run_id
     state["files"] = [kept[str(i)]["file"] if str(i) in kept else part_name(i, run_id) for i in range(n)]
     parts = dict(kept)
     todo = [i for i in range(n) if str(i) not in kept]

@@ -15,7 +15,6 @@ from __future__ import annotations
 
 import contextlib
 import os
-import secrets
 from collections.abc import Callable
 from dataclasses import asdict, dataclass, replace
 from typing import Any, TypeAlias
@@ -38,7 +37,7 @@ from .jobs import ignored_signals, run_parts
 from .lock import catalog_lock
 from .plan import Plan, check_jobs, make_plan
 from .reader import read_metadata
-from .remote import remote_url, write_remote
+from .remote import check_remote, remote_url, write_remote
 from .schema import FORMAT_VERSION, design_schema, residue_schema
 from .transaction import (
     CatalogInterrupted,
@@ -46,6 +45,7 @@ from .transaction import (
     catalog_target,
     file_sha256,
     load_manifest,
+    new_run,
     part_name,
     prune_build,
     remove_temporaries,
@@ -196,6 +196,7 @@ def write_catalog(
     CatalogInterrupted
         Ctrl-C or SIGTERM: workers stopped, temporaries removed, finished parts kept.
     """
+    source = os.fspath(space) if isinstance(space, str | os.PathLike) else None
     if not isinstance(space, DesignSpace):
         space = make_space(space, label_set, symmetry, no_zero)
     check_jobs(jobs)
@@ -205,9 +206,11 @@ def write_catalog(
         context()  # starts the fork server now: it is ready when the pool is made (a wait Ctrl-C cannot cut)
     remote = remote_url(path)
     if remote is None:
-        target = catalog_target(path)
+        target = catalog_target(path, (source,))
     elif identify:
         raise CatalogError("--identify rewrites the files of a local catalog; write to a local path", usage=True)
+    else:
+        check_remote(remote)
     with interrupt_signals():  # planning loads compiled kernels: a signal now stops the run cleanly too
         try:
             plan = make_plan(space, mode, components, max_designs, sample, shards, yes)
@@ -308,8 +311,7 @@ class _Run:
         else:
             remove_path(build)
             os.mkdir(build)
-            run_id = secrets.token_hex(4)
-            self.parts = seed_build(self.target, build, self.signature, run_id) if resume else {}
+            run_id, self.parts = seed_build(self.target, build, self.signature) if resume else (new_run(), {})
         prune_build(build, self.parts)
         manifest = {**self.signature, "run": run_id, "parts": self.parts}
         save_manifest(build, manifest)
@@ -322,6 +324,7 @@ class _Run:
             "walk": self.walk,
             "folder": build,
             "files": [part_name(i, run_id) for i in range(n)],
+            "run": run_id,
             "meta": self.meta,
             "plan": self.plan.fingerprint,
             "ranges": self.plan.ranges,

@@ -21,13 +21,14 @@ from __future__ import annotations
 import hashlib
 import json
 import os
+import re
 import stat
 from dataclasses import dataclass
 from typing import Any
 
 from ..errors import ExportError
 from ..io.atomic import remove_path, write_text
-from ..io.paths import output_folder
+from ..io.paths import not_an_input, only_extension, output_folder
 
 MANIFEST = "_lkspace.json"
 """The manifest of a sharded catalog (pandas and pyarrow skip names starting with ``_``)."""
@@ -75,32 +76,73 @@ class Target:
         return self._beside("old")
 
 
-def catalog_target(output: str | os.PathLike[str]) -> Target:
+def catalog_target(output: str | os.PathLike[str], inputs: tuple[str | None, ...] = ()) -> Target:
     """Check ``-o`` for a catalog before any work: return its :class:`Target`.
 
-    A symlink is followed (its target is replaced, the link kept).  Refused, each with one
-    line: an empty name, an extension other than ``.parquet``, a device, FIFO or socket,
-    a folder that holds no lkspace catalog, a missing or read-only folder.
+    A symlink is followed (its target is replaced, the link kept).  Only a catalog
+    lkspace wrote is replaced (:func:`foreign_reason`).  Refused, each with one line: an
+    empty name, a name that is only ``.parquet``, an extension other than ``.parquet``,
+    a device, FIFO or socket, anything that is not an lkspace catalog, one of ``inputs``,
+    a missing or read-only folder.
     """
     text = os.fspath(output)
     if not text.strip():
         raise ExportError("-o: the catalog name is empty")
     bare = text.rstrip("/" + os.sep) or text
+    only_extension(bare, (".parquet",))
     ext = os.path.splitext(os.path.basename(bare))[1].lower()
     if ext not in EXTENSIONS:
         raise ExportError(
             f"{text}: a catalog is written as Parquet; give a name ending in .parquet (not {ext!r}); "
             "pandas converts it to CSV or JSON afterwards"
         )
+    not_an_input(bare, inputs)
     path = os.path.realpath(bare)
     if os.path.lexists(path):
         mode = os.stat(path).st_mode
-        if stat.S_ISDIR(mode) and os.listdir(path) and not os.path.isfile(os.path.join(path, MANIFEST)):
-            raise ExportError(f"{text}: is a folder that holds no lkspace catalog; choose another -o")
         if not stat.S_ISDIR(mode) and not stat.S_ISREG(mode):
             raise ExportError(f"{text}: is a device, FIFO or socket, not a file lkspace may replace")
+        reason = foreign_reason(path)
+        if reason is not None:
+            raise ExportError(f"{text}: {reason}; lkspace replaces only catalogs it wrote: choose another -o")
     output_folder(os.path.dirname(path), text)
     return Target(path, text)
+
+
+PART_NAME = re.compile(r"part-\d{5}-[0-9a-f]+\.parquet")
+"""Names of the parts of a catalog folder (:func:`part_name`)."""
+
+
+def foreign_reason(path: str) -> str | None:
+    """Return why the existing file or folder ``path`` is not a catalog lkspace wrote, or ``None`` if it is.
+
+    A folder is one when it holds a manifest ``_lkspace.json`` (a JSON object with a
+    ``format_version`` and ``parts``) and nothing but part files and lkspace's own
+    temporaries; a file when it is Parquet with ``lkspace`` metadata (a JSON object with a
+    ``format_version``).  A damaged catalog that no longer reads is not recognised.
+    """
+    if os.path.isdir(path):
+        entries = os.listdir(path)
+        if not entries:
+            return "is an empty folder, not an lkspace catalog"
+        manifest = load_manifest(path)
+        if manifest is None or "format_version" not in manifest or not isinstance(manifest.get("parts"), dict):
+            return "is a folder that holds no lkspace catalog (no lkspace manifest _lkspace.json)"
+        for entry in sorted(entries):
+            if entry != MANIFEST and not PART_NAME.fullmatch(entry) and not entry.startswith(".part-"):
+                return f"is a folder holding {entry!r}, which is not part of an lkspace catalog"
+        return None
+    import pyarrow as pa
+    import pyarrow.parquet as pq
+
+    try:
+        raw = (pq.read_metadata(path).metadata or {}).get(b"lkspace")
+        meta = json.loads(raw) if raw is not None else None
+    except (OSError, ValueError, pa.ArrowException):
+        return "is a file that is not an lkspace catalog (not a readable Parquet file)"
+    if not isinstance(meta, dict) or "format_version" not in meta:
+        return "is a Parquet file that is not an lkspace catalog (no 'lkspace' metadata)"
+    return None
 
 
 def remove_temporaries(target: Target, keep_build: bool) -> None:
@@ -170,24 +212,34 @@ def same_settings(old: dict[str, Any], signature: dict[str, Any]) -> bool:
     return all(old.get(k) == v for k, v in signature.items() if k in old or k not in LATER_KEYS)
 
 
-def seed_build(target: Target, build: str, signature: dict[str, Any], run: str) -> dict[str, dict[str, Any]]:
+def new_run() -> str:
+    """Return a new run id: the catalog's identity, in its part names and in each part's footer."""
+    import secrets
+
+    return secrets.token_hex(4)
+
+
+def seed_build(target: Target, build: str, signature: dict[str, Any]) -> tuple[str, dict[str, dict[str, Any]]]:
     """Start a build from the finished catalog at the target, if it is of the same run settings.
 
-    Its parts are linked (or copied) into ``build`` under this run's names after their
-    checksums are verified; returns them as manifest entries.
+    Returns ``(run id, parts)``: the build takes over the old catalog's run id (its parts'
+    footers name it) and its parts whose checksums verify, linked (or copied) into
+    ``build``; a new run id and no parts when there is no such catalog.
     """
     old = load_manifest(target.path) if os.path.isdir(target.path) else None
-    if old is None or not same_settings(old, signature):
-        return {}
+    if old is None or not same_settings(old, signature) or not isinstance(old.get("run"), str):
+        return new_run(), {}
     import shutil
 
     seeded = {}
     for index, entry in verified_parts(target.path, old).items():
-        name = part_name(int(index), run)
-        src, dst = os.path.join(target.path, str(entry["file"])), os.path.join(build, name)
+        name = str(entry["file"])
+        if name != part_name(int(index), old["run"]):
+            continue
+        src, dst = os.path.join(target.path, name), os.path.join(build, name)
         try:
             os.link(src, dst)
         except OSError:
             shutil.copy2(src, dst)
-        seeded[index] = {**entry, "file": name}
-    return seeded
+        seeded[index] = entry
+    return old["run"], seeded

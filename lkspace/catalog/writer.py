@@ -11,7 +11,7 @@ import pyarrow as pa
 import pyarrow.parquet as pq
 
 from ..io.atomic import atomic_path
-from .schema import METADATA_KEY, ROW_GROUP
+from .schema import METADATA_KEY, ROW_GROUP, metadata_digest
 
 
 class CatalogWriter:
@@ -21,6 +21,7 @@ class CatalogWriter:
     under its final name only when :meth:`close` succeeds (bounded memory: one row group).
     The ``lkspace`` metadata is in the Arrow schema (what pyarrow, pandas and Dask show)
     and, with the run's totals added, in the file footer (what :func:`read_metadata` reads).
+    Every data page carries a CRC-32 checksum, which readers verify.
     """
 
     def __init__(self, path: str, schema: pa.Schema, metadata: dict[str, Any]) -> None:
@@ -29,7 +30,7 @@ class CatalogWriter:
         self.schema = schema.with_metadata({METADATA_KEY: json.dumps(self.metadata).encode()})
         self._ctx = atomic_path(path, suffix=".parquet.tmp")
         self._tmp = self._ctx.__enter__()
-        self._writer = pq.ParquetWriter(self._tmp, self.schema, compression="zstd")
+        self._writer = pq.ParquetWriter(self._tmp, self.schema, compression="zstd", write_page_checksum=True)
         self._pending: list[pa.RecordBatch] = []
         self._n_pending = 0
         self.rows = 0
@@ -54,6 +55,7 @@ class CatalogWriter:
         """Finish the file; the ``lkspace`` metadata (with ``summary``) goes into its footer."""
         self._flush()
         meta = {**self.metadata, **(summary or {}), "rows": self.rows}
+        meta["digest"] = metadata_digest(meta)
         self._writer.add_key_value_metadata({METADATA_KEY: json.dumps(meta).encode()})
         self._writer.close()
         self._ctx.__exit__(None, None, None)

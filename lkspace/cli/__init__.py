@@ -32,6 +32,7 @@ COMMANDS = {
     "atlas": "atlas:atlas_cmd",
     "surfaces": "surfaces:surfaces_cmd",
     "motifs": "motifs:motifs_cmd",
+    "verify": "verify:verify_cmd",
     "studio": "studio:studio_cmd",
 }
 """Command name -> ``module:attribute`` under :mod:`lkspace.cli`."""

@@ -6,7 +6,6 @@ import os
 
 import click
 
-from ..errors import UsageError
 from ..knots.budget import TIME_LIMIT
 from .common import (
     Context,
@@ -90,11 +89,11 @@ def atlas_cmd(
     """
     from ..knots.recognition import check_identifiable
     from ..target.atlas import atlas, atlas_of_catalog
-    from ..target.gallery import write_gallery
+    from ..target.gallery import atlas_folder, write_gallery
 
     ctx = Context(as_json)
-    if folder is not None and os.path.exists(folder) and not os.path.isdir(folder):
-        raise UsageError(f"-o {folder}: not a folder")
+    if folder is not None:
+        atlas_folder(folder, (mesh,))  # before any work
     scaffold = None
     if is_catalog(mesh):
         data = atlas_of_catalog(mesh)

@@ -81,7 +81,7 @@ def scaffold_cmd(name: str, output: str | None, as_json: bool) -> None:
     target = None
     if output is not None:
         with usage_errors():
-            target = output_file(output, (".obj", ".json"))
+            target = output_file(output, (".obj", ".json"), (name,))
     scaffold = load_mesh(ctx, name)
     if output is None or target is None:
         if as_json:

@@ -181,7 +181,7 @@ def enumerate_cmd(
     The representative of each design is the orbit member smallest in (t mod K per
     edge, then t per edge), lexicographically in edge order.
     """
-    from ..catalog.remote import remote_url
+    from ..catalog.remote import check_remote, remote_url
     from ..catalog.shards import write_catalog
     from ..catalog.transaction import CatalogInterrupted, catalog_target
     from ..engine import check_scheduler, resolve_scheduler
@@ -189,8 +189,11 @@ def enumerate_cmd(
     ctx = Context(as_json)
     engine = resolve_scheduler(scheduler)
     check_scheduler(engine)
-    if output is not None and not count_only and remote_url(output) is None:
-        catalog_target(output)  # a bad -o fails before any work
+    if output is not None and not count_only:  # a bad -o fails before any work
+        if remote_url(output) is None:
+            catalog_target(output, (mesh,))
+        else:
+            check_remote(output)
     if sample is not None and mode != "spanning-trees":
         raise UsageError("--sample applies to --mode spanning-trees only")
     if identify and (output is None or count_only):

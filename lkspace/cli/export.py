@@ -35,43 +35,43 @@ def is_catalog(path: str | None) -> TypeGuard[str]:
 def catalog_row(path: str, row: int) -> tuple[Scaffold, np.ndarray]:
     """Return ``(scaffold, labels (n_edges,) int64)`` of row ``row`` of the catalog at ``path``.
 
-    Only the Parquet footers and the one row group holding the row are read (not the
-    whole label column), for a single file and a sharded folder alike.
+    The catalog is checked first (:func:`lkspace.catalog.verify.open_catalog`: manifest
+    and every part's footer), then the SHA-256 of the part holding the row; only that
+    part's row group holding the row is read (its page checksums verified).
     """
-    import pandas as pd
     import pyarrow as pa
     import pyarrow.parquet as pq
 
-    from ..catalog.reader import Catalog, catalog_files, read_metadata
+    from ..catalog.reader import catalog_scaffold
+    from ..catalog.verify import damaged, open_catalog
 
-    meta = read_metadata(path)
-    first = 0
-    for file in catalog_files(path):
-        try:
-            parquet = pq.ParquetFile(file)
-        except (OSError, pa.ArrowInvalid) as exc:
-            raise CatalogError(f"{file}: not a readable Parquet file: {exc}") from None
-        info = parquet.metadata
-        for group in range(info.num_row_groups):
-            size = info.row_group(group).num_rows
-            if first <= row < first + size:
-                names = parquet.schema_arrow.names
-                column = "key" if "key" in names else "labels"
-                if column not in names:
-                    raise CatalogError(f"{file}: no 'key' or 'labels' column")
-                cell = parquet.read_row_group(group, columns=[column]).column(0)[row - first].as_py()
-                values = np.frombuffer(cell, np.int8) if column == "key" else np.array(cell)
-                labels = values.astype(np.int64)
-                scaffold = Catalog(pd.DataFrame(index=[0]), labels[None], meta, path).scaffold
-                if len(labels) != scaffold.n_edges:
-                    raise CatalogError(
-                        f"{path} row {row}: {len(labels)} labels, but {scaffold.name} has {scaffold.n_edges} edges"
-                    )
-                return scaffold, labels
-            first += size
-    if first == 0:
+    parts = open_catalog(path)
+    if parts.n_rows == 0:
         raise UsageError(f"{path}: the catalog has no rows")
-    raise UsageError(f"{path}: row {row} out of range 0..{first - 1}")
+    try:
+        part, at = parts.locate(row)
+    except IndexError:
+        raise UsageError(f"{path}: row {row} out of range 0..{parts.n_rows - 1}") from None
+    parts.verify(part)
+    file = parts.files[part]
+    try:
+        parquet = pq.ParquetFile(file, page_checksum_verification=True)
+        names = parquet.schema_arrow.names
+        column = "key" if "key" in names else "labels"
+        for group in range(parquet.metadata.num_row_groups):
+            size = parquet.metadata.row_group(group).num_rows
+            if at < size:
+                cell = parquet.read_row_group(group, columns=[column]).column(0)[at].as_py()
+                break
+            at -= size
+    except (OSError, pa.ArrowException) as exc:
+        raise damaged(file, exc) from None
+    values = np.frombuffer(cell, np.int8) if column == "key" else np.array(cell)
+    labels = values.astype(np.int64)
+    scaffold = catalog_scaffold(parts.metadata, path)
+    if len(labels) != scaffold.n_edges:
+        raise CatalogError(f"{path} row {row}: {len(labels)} labels, but {scaffold.name} has {scaffold.n_edges} edges")
+    return scaffold, labels
 
 
 def design_options(func: F) -> F:
@@ -280,7 +280,7 @@ def export_cmd(
     from ..geometry.realization import realize
 
     ctx = Context(as_json)
-    output_target(output)  # checked before any work (export checks it again)
+    output_target(output, (mesh, twist_spec, null_spec))  # checked before any work (export checks it again)
     ext = os.path.splitext(output)[1].lower()
     look = None
     if ext in PICTURES:

@@ -216,7 +216,7 @@ def solve_cmd(
         raise UsageError("solve: give --components N, --type NAME or --linking-matrix M")
     if chirality != "any" or signed or processes != 1:
         raise UsageError("--chirality, --signed and --processes apply to --type/--linking-matrix only")
-    target = None if output is None else output_file(output, (".json",))  # checked before any work
+    target = None if output is None else output_file(output, (".json",), (mesh,))  # checked before any work
     scaffold = load_mesh(ctx, mesh)
     labels = label_set(labels_spec)
     with usage_errors():

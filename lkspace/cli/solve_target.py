@@ -42,7 +42,7 @@ def target_cmd(
         raise UsageError("--signed applies to --linking-matrix only")
     if chirality != "any" and type_name is None:
         raise UsageError("--chirality applies to --type only")
-    target_path = None if output is None else output_file(output, (".json",))
+    target_path = None if output is None else output_file(output, (".json",), (mesh,))
     scaffold = load_mesh(ctx, mesh)
     check_identifiable(scaffold)
     labels = label_set(labels_spec)

@@ -36,7 +36,7 @@ def studio_cmd(mesh: str | None, port: int, host: str, no_browser: bool) -> None
         import uvicorn  # noqa: F401
     except ImportError as exc:
         raise MissingDependencyError(exc.name or "starlette", "studio", "the studio's web server") from None
-    from ..catalog.reader import Catalog, read_metadata
+    from ..catalog.reader import catalog_scaffold
     from ..studio.app import Studio
     from ..studio.browse import Browser
     from ..studio.server import LOCAL, serve
@@ -44,10 +44,8 @@ def studio_cmd(mesh: str | None, port: int, host: str, no_browser: bool) -> None
 
     studio = Studio()
     if is_catalog(mesh):
-        import pandas as pd
-
-        studio.browser = Browser(mesh)
-        scaffold = Catalog(pd.DataFrame(index=[0]), None, read_metadata(mesh), mesh).scaffold  # type: ignore[arg-type]
+        studio.browser = Browser(mesh)  # the catalog's structure checked here, its parts' bytes as they are read
+        scaffold = catalog_scaffold(studio.browser.metadata, mesh)
         studio.initial = studio.registry.hold(scaffold, f"catalog {mesh}").key
     elif mesh is not None and os.path.lexists(mesh):
         studio.initial = studio.registry.open_file(mesh).key  # the one file the studio reads

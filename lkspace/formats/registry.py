@@ -32,7 +32,7 @@ from numpy.typing import ArrayLike
 from ..errors import ExportError, TooLargeError
 from ..geometry.limits import MAX_POINTS, MAX_RELATIVE
 from ..geometry.realization import GeometryParams, Realization, realize
-from ..io.paths import output_file
+from ..io.paths import only_extension, output_file
 from ..io.sources import ScaffoldSource
 from ..progress import task
 
@@ -67,20 +67,21 @@ file runs into gigabytes and minutes.
 """
 
 
-def output_target(path: str | os.PathLike[str]) -> str:
+def output_target(path: str | os.PathLike[str], inputs: tuple[str | None, ...] = ()) -> str:
     """Check the output ``path`` before any work; return the file to write (a symlink resolved).
 
     The extension picks the format (one of :data:`FORMATS`); the checks of
     :func:`lkspace.io.paths.output_file` follow (folder exists and is writable, not a
-    device, a folder or a FIFO).
+    device, a folder or a FIFO, not one of ``inputs``, not a name that is only an extension).
     """
     text = os.fspath(path)
+    only_extension(text, FORMATS)
     ext = os.path.splitext(text)[1].lower()
     if text.strip() and ext not in WRITERS:
         raise ExportError(
             f"{text}: unknown output format {ext or '(no extension)'!r}; the extension picks one of {', '.join(FORMATS)}"
         )
-    return output_file(text, FORMATS)
+    return output_file(text, FORMATS, inputs)
 
 
 def point_budget(path: str | os.PathLike[str], tubes: bool) -> tuple[int, str]:
@@ -165,7 +166,8 @@ def export(
     from ..geometry.fabrication import check_options
 
     check_options(thickness, clearance, units or "mm", scale)
-    target = output_target(path)  # checked before any work: extension, folder, device
+    source = os.fspath(design) if isinstance(design, str | os.PathLike) else None
+    target = output_target(path, (source,))  # checked before any work: extension, folder, device, not the input
     ext = os.path.splitext(os.fspath(path))[1].lower()
     if diagram and ext not in PICTURES:
         raise ExportError(f"{path}: a diagram is drawn as {' or '.join(PICTURES)}, not {ext}")

@@ -2,13 +2,16 @@
 
 Inputs must be regular files (a FIFO or a device would block or never end); outputs
 must be writable files in an existing folder, never a device or a folder, and a symlink
-is followed (the file it points to is replaced, the link kept).
+is followed (the file it points to is replaced, the link kept).  An output is never one
+of the command's inputs (the same file by any name: a symlink or a hard link too), and
+never a name that is only an extension (``.obj`` would be a hidden file).
 """
 
 from __future__ import annotations
 
 import os
 import stat
+from collections.abc import Iterable
 
 from ..errors import ExportError, ScaffoldError
 
@@ -31,18 +34,23 @@ def input_file(path: str | os.PathLike[str], what: str = "input") -> str:
     return text
 
 
-def output_file(path: str | os.PathLike[str], extensions: tuple[str, ...] = ()) -> str:
+def output_file(
+    path: str | os.PathLike[str], extensions: tuple[str, ...] = (), inputs: Iterable[str | None] = ()
+) -> str:
     """Return the file to write for output ``path``: checked, with a symlink resolved.
 
     ``extensions`` (lower case, with the dot) are the ones the format may have; another
     extension is an error naming them.  The folder must exist and be writable; an
-    existing target must be a regular file.
+    existing target must be a regular file and none of ``inputs`` (paths the command
+    reads; names of no file are ignored).
     """
     text = os.fspath(path)
     if not text.strip():
         raise ExportError("output path is empty")
     if text.endswith(("/", os.sep)):
         raise ExportError(f"{text}: output path names a folder; give a file name")
+    only_extension(text, extensions)
+    not_an_input(text, inputs)
     target = os.path.realpath(text)
     if os.path.lexists(target):
         mode = os.stat(target).st_mode
@@ -68,3 +76,27 @@ def output_folder(folder: str, shown: str | None = None) -> None:
         raise ExportError(f"{name}: {folder} is not a folder")
     if not os.access(folder, os.W_OK | os.X_OK):
         raise ExportError(f"{name}: cannot write in folder {folder} (permission denied)")
+
+
+def only_extension(path: str, extensions: Iterable[str]) -> None:
+    """Raise if the file name of ``path`` is only one of ``extensions`` (``.parquet``: a hidden file, no name)."""
+    name = os.path.basename(path.rstrip("/" + os.sep)).lower()
+    if name in extensions:
+        raise ExportError(f"{path}: a name that is only an extension; give a name such as design{name}")
+
+
+def same_file(a: str, b: str) -> bool:
+    """Whether ``a`` and ``b`` are the same existing file or folder (through symlinks and hard links)."""
+    try:
+        return os.path.samefile(a, b)
+    except (OSError, ValueError):
+        return False
+
+
+def not_an_input(output: str, inputs: Iterable[str | None]) -> None:
+    """Raise if ``output`` is one of ``inputs`` (by any name); ``None`` and names of no file are skipped."""
+    for source in inputs:
+        if source is not None and same_file(output, source):
+            raise ExportError(
+                f"{output}: is the input {source}; lkspace never writes over its input: choose another output"
+            )

@@ -16,7 +16,7 @@ from typing import Any
 
 import numpy as np
 
-from ..catalog.reader import catalog_files, read_metadata
+from ..catalog.verify import open_catalog
 from ..errors import CatalogError, UsageError
 
 OPS = ("==", "!=", "<", "<=", ">", ">=", "contains")
@@ -33,8 +33,8 @@ class Browser:
 
     def __init__(self, path: str) -> None:
         self.path = path
-        self.metadata = read_metadata(path)
-        self._files = catalog_files(path)
+        self._parts = open_catalog(path)  # the structure: a bad catalog is refused at once
+        self.metadata = self._parts.metadata
         self._table: Any = None
         self._error: str | None = None
         self._filtered: tuple[str, Any] | None = None
@@ -48,17 +48,24 @@ class Browser:
         import pyarrow as pa
         import pyarrow.dataset as ds
 
+        from ..catalog.verify import damaged
+
         t0 = time.perf_counter()
         try:
-            dataset = ds.dataset(self._files, format="parquet")
+            self._parts.verify_all()  # every part's SHA-256, then pages' checksums as they are read
+            checked = ds.ParquetFragmentScanOptions(page_checksum_verification=True)
+            fmt = ds.ParquetFileFormat(default_fragment_scan_options=checked)
+            dataset = ds.dataset(list(self._parts.files), format=fmt)
             schema = dataset.schema
             scalars = [f.name for f in schema if not pa.types.is_nested(f.type) and f.name != "key"]
             extra = ["key"] if "key" in schema.names else ["labels"]
             table = dataset.to_table(columns=scalars + extra).combine_chunks()  # one chunk: a take is O(rows taken)
             self._table = table.append_column("row", pa.array(np.arange(table.num_rows, dtype=np.int64)))
             self.columns = ["row", *scalars]
-        except (OSError, pa.ArrowInvalid) as exc:
-            self._error = f"{self.path}: cannot read catalog: {exc}"
+        except CatalogError as exc:
+            self._error = str(exc)
+        except (OSError, pa.ArrowException) as exc:
+            self._error = str(damaged(self.path, exc))
         self.load_seconds = time.perf_counter() - t0
         self._ready.set()
 

@@ -12,6 +12,7 @@ import os
 import re
 from typing import Any
 
+from ..errors import ExportError
 from ..io.atomic import atomic_path, write_text
 from ..model.scaffold import Scaffold
 
@@ -32,6 +33,44 @@ def write_gallery(folder: str, data: dict[str, Any], scaffold: Scaffold | None, 
     _parquet(os.path.join(folder, "atlas.parquet"), data)
     write_text(os.path.join(folder, "README.md"), markdown(data))
     return ["atlas.parquet", "README.md", *written]
+
+
+def atlas_folder(folder: str, inputs: tuple[str | None, ...] = ()) -> None:
+    """Check ``-o`` of an atlas before any work: a new or empty folder, or one holding an atlas lkspace wrote.
+
+    A folder holding one of ``inputs`` is refused too (the atlas would write over it).
+    """
+    if os.path.exists(folder) and not os.path.isdir(folder):
+        raise ExportError(f"-o {folder}: not a folder")
+    real = os.path.realpath(folder)
+    for source in inputs:
+        if source is not None and os.path.exists(source):
+            inside = os.path.realpath(source)
+            if inside == real or inside.startswith(real.rstrip(os.sep) + os.sep):
+                raise ExportError(f"-o {folder}: holds the input {source}, which the atlas could overwrite")
+    if os.path.isdir(folder) and os.listdir(folder) and not _holds_atlas(folder):
+        raise ExportError(
+            f"-o {folder}: a folder that holds no lkspace atlas (atlas.parquet or cache.jsonl); "
+            "lkspace writes only into new or empty folders or its own atlas: choose another -o"
+        )
+
+
+def _holds_atlas(folder: str) -> bool:
+    """Whether ``folder`` holds an atlas written by lkspace (its ``atlas.parquet`` or its cache's header)."""
+    import pyarrow as pa
+    import pyarrow.parquet as pq
+
+    try:
+        if b"lkspace-atlas" in (pq.read_metadata(os.path.join(folder, "atlas.parquet")).metadata or {}):
+            return True
+    except (OSError, pa.ArrowException):
+        pass
+    try:
+        with open(os.path.join(folder, "cache.jsonl"), encoding="utf-8") as fh:
+            header = json.loads(fh.readline())
+    except (OSError, ValueError):
+        return False
+    return isinstance(header, dict) and {"scaffold", "hash", "labels"} <= set(header)
 
 
 def picture(scaffold: Scaffold, labels: list[int], path: str, title: str) -> None:

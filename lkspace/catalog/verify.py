@@ -1,0 +1,332 @@
+"""Opening a catalog for reading: checking that it is the catalog it says it is.
+
+Every reader of lkspace (:func:`~lkspace.catalog.reader.read_catalog`, ``export`` and
+``identify --row``, the studio's catalog browser, ``atlas CATALOG``) opens a catalog
+with :func:`open_catalog`, which checks, reading only the manifest and the Parquet
+footers:
+
+- a **file**: its footer reads (a truncated file's does not); its ``lkspace`` metadata is
+  a JSON object of a known ``format_version``; its ``rows`` are the rows the file holds;
+  its metadata matches the ``digest`` recorded with it; it is a whole catalog (not one
+  part of a folder); its columns are a catalog's (names and types, ``key`` as wide as
+  the scaffold has edges);
+- a **folder**: its manifest ``_lkspace.json`` is such a JSON object, complete, listing
+  parts ``0 .. n-1`` with their rows and SHA-256; the Parquet files in the folder are
+  exactly the listed ones (a missing part, or an extra one that pandas would read as
+  well, is refused); each part's footer names this catalog's run, its own part number
+  and the part count, the manifest's settings and the manifest's rows (a swapped,
+  renamed or foreign part is refused).
+
+:meth:`CatalogParts.verify` then checks a part's bytes against the SHA-256 the manifest
+recorded (a bit flip anywhere): ``read_catalog``, the browser and :func:`verify_catalog`
+check every part, ``--row`` the part it reads.  Data pages also carry CRC-32 checksums
+that pyarrow verifies as lkspace reads them (the only check of a one-file catalog's
+rows).  Each refusal is a :class:`~lkspace.errors.CatalogError` of one line naming the
+file and what is wrong.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+from dataclasses import dataclass
+from typing import Any
+
+import pyarrow as pa
+import pyarrow.parquet as pq
+
+from ..errors import CatalogError
+from .schema import IDENTIFY_COLUMNS, METADATA_KEY, expected_schema, metadata_digest
+from .transaction import MANIFEST, file_sha256
+
+FORMAT_VERSIONS = (1,)
+"""Catalog format versions this lkspace reads."""
+
+SIGNATURE = ("format_version", "scaffold", "label_set", "symmetry", "mode", "filters", "sample", "seed")
+"""Metadata every part of one catalog shares with its manifest."""
+
+
+@dataclass(frozen=True, eq=False)
+class CatalogParts:
+    """A catalog whose structure was checked: its files in order and what each holds.
+
+    Attributes
+    ----------
+    path : str
+        The catalog file or folder.
+    files : tuple of str
+        The catalog file, or the parts of a folder in order.
+    rows : tuple of int
+        Rows of each file (footer and manifest agree).
+    metadata : dict
+        The ``lkspace`` metadata of the first file (with that file's totals).
+    checksums : tuple of str, optional
+        The manifest's SHA-256 of each part; ``None`` for a one-file catalog.
+    """
+
+    path: str
+    files: tuple[str, ...]
+    rows: tuple[int, ...]
+    metadata: dict[str, Any]
+    checksums: tuple[str, ...] | None
+
+    @property
+    def n_rows(self) -> int:
+        """Rows of the whole catalog."""
+        return sum(self.rows)
+
+    def locate(self, row: int) -> tuple[int, int]:
+        """Return ``(part, row within the part)`` of catalog row ``row`` (``IndexError`` past the end)."""
+        first = 0
+        for part, n in enumerate(self.rows):
+            if row < first + n:
+                return part, row - first
+            first += n
+        raise IndexError(row)
+
+    def verify(self, part: int) -> None:
+        """Check the bytes of ``part`` against the manifest's SHA-256 (nothing to check for one file)."""
+        if self.checksums is not None and file_sha256(self.files[part]) != self.checksums[part]:
+            raise CatalogError(
+                f"{self.files[part]}: damaged: its SHA-256 is not the one the manifest recorded "
+                "(changed bytes, or a file put in its place)"
+            )
+
+    def verify_all(self) -> None:
+        """Check every part's SHA-256."""
+        for part in range(len(self.files)):
+            self.verify(part)
+
+
+def parse_metadata(raw: bytes | str, where: str) -> dict[str, Any]:
+    """Parse ``lkspace`` metadata (or a manifest) from ``where``: a JSON object of a known format version."""
+    try:
+        data = json.loads(raw)
+    except (UnicodeDecodeError, ValueError):
+        raise CatalogError(
+            f"{where}: the 'lkspace' metadata is not valid JSON (damaged, or not written by lkspace)"
+        ) from None
+    if not isinstance(data, dict):
+        raise CatalogError(f"{where}: the 'lkspace' metadata is not a JSON object (damaged, or not written by lkspace)")
+    version = data.get("format_version")
+    if isinstance(version, bool) or version not in FORMAT_VERSIONS:
+        known = ", ".join(map(str, FORMAT_VERSIONS))
+        raise CatalogError(
+            f"{where}: catalog format_version {version!r} is not one this lkspace reads ({known}); "
+            "a newer lkspace wrote it, or it is damaged"
+        )
+    if not isinstance(data.get("scaffold"), dict) or not isinstance(data.get("label_set"), list):
+        raise CatalogError(f"{where}: the 'lkspace' metadata has no scaffold or label_set (damaged)")
+    return data
+
+
+def file_metadata(file: str) -> tuple[dict[str, Any], int]:
+    """Return the ``lkspace`` footer metadata of the Parquet ``file`` and its rows, checked as one file.
+
+    ``FileNotFoundError`` propagates (a catalog replaced while read); anything else wrong
+    is a :class:`~lkspace.errors.CatalogError`.
+    """
+    try:
+        info = pq.read_metadata(file)
+        raw = (info.metadata or {}).get(METADATA_KEY)
+        schema = info.schema.to_arrow_schema()
+    except FileNotFoundError:
+        raise
+    except (OSError, ValueError, pa.ArrowException) as exc:  # ValueError: names that are not UTF-8
+        reason = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
+        raise CatalogError(f"{file}: damaged or not Parquet (truncated?): its footer does not read: {reason}") from None
+    if raw is None:
+        raise CatalogError(f"{file}: no 'lkspace' metadata; not an lkspace catalog")
+    meta = parse_metadata(raw, file)
+    if "digest" in meta and meta["digest"] != metadata_digest(meta):
+        raise CatalogError(f"{file}: damaged: its 'lkspace' metadata does not match the digest it was written with")
+    rows = meta.get("rows")
+    if isinstance(rows, bool) or not isinstance(rows, int) or rows != info.num_rows:
+        raise CatalogError(f"{file}: damaged: its metadata says {rows!r} rows, the file holds {info.num_rows:,}")
+    _check_columns(file, schema.remove_metadata(), meta)
+    return meta, rows
+
+
+def shard_of(meta: dict[str, Any]) -> dict[str, Any]:
+    """Return the ``shard`` entry of part metadata (``{index, count, plan, run}``; empty when absent)."""
+    shard = meta.get("shard")
+    return shard if isinstance(shard, dict) else {}
+
+
+def _check_columns(file: str, schema: pa.Schema, meta: dict[str, Any]) -> None:
+    """Raise unless ``schema`` is the one a catalog of ``meta`` has (``--identify`` columns after it)."""
+    try:
+        expected = expected_schema(meta)
+    except (KeyError, TypeError, ValueError, pa.ArrowException):
+        raise CatalogError(f"{file}: the 'lkspace' metadata has no usable scaffold edges or mode (damaged)") from None
+    fields = list(schema)
+    for i, field in enumerate(fields):
+        want = expected.field(i).type if i < len(expected) else IDENTIFY_COLUMNS.get(field.name)
+        if (i < len(expected) and field.name != expected.field(i).name) or field.type != want:
+            raise CatalogError(
+                f"{file}: damaged or not an lkspace catalog: column {i} is {field.name!r} ({field.type}), "
+                f"not a catalog's {expected.field(i).name if i < len(expected) else 'identify column'}"
+            )
+    if len(fields) < len(expected):
+        raise CatalogError(f"{file}: damaged or not an lkspace catalog: no column {expected.field(len(fields)).name!r}")
+
+
+def open_catalog(path: str | os.PathLike[str]) -> CatalogParts:
+    """Open the catalog file or folder at ``path`` and check its structure (module docstring).
+
+    Raises
+    ------
+    CatalogError
+        One line naming the file and what is wrong with it.
+    """
+    path = os.fspath(path)
+    if os.path.isdir(path):
+        return _open_folder(path)
+    if not os.path.exists(path):
+        raise CatalogError(f"{path}: no such catalog")
+    meta, rows = file_metadata(path)
+    shard = shard_of(meta)
+    if shard.get("count", 1) != 1:
+        raise CatalogError(
+            f"{path}: part {shard.get('index')} of a catalog of {shard.get('count')} parts, not a whole catalog; "
+            "open the folder it belongs to"
+        )
+    return CatalogParts(path, (path,), (rows,), meta, None)
+
+
+def _manifest(folder: str) -> dict[str, Any]:
+    where = os.path.join(folder, MANIFEST)
+    try:
+        with open(where, "rb") as fh:
+            raw = fh.read()
+    except FileNotFoundError:
+        raise CatalogError(
+            f"{folder}: no manifest {MANIFEST}: not a finished lkspace catalog "
+            "(an interrupted run is finished by the same command with --resume)"
+        ) from None
+    except OSError as exc:
+        raise CatalogError(f"{where}: cannot read: {exc.strerror}") from None
+    manifest = parse_metadata(raw, where)
+    parts, count = manifest.get("parts"), manifest.get("shards")
+    if not isinstance(parts, dict) or not isinstance(count, int) or isinstance(count, bool) or count < 1:
+        raise CatalogError(f"{where}: no part list (damaged manifest)")
+    if not manifest.get("complete") or len(parts) != count:
+        raise CatalogError(f"{folder}: an unfinished catalog ({len(parts)} of {count} parts)")
+    if sorted(parts) != sorted(str(i) for i in range(count)):
+        raise CatalogError(f"{where}: the parts are not numbered 0..{count - 1} (damaged manifest)")
+    for index, entry in parts.items():
+        ok = isinstance(entry, dict) and isinstance(entry.get("sha256"), str)
+        name, rows = entry.get("file") if ok else None, entry.get("rows") if ok else None
+        if not (isinstance(name, str) and name == os.path.basename(name) and name.endswith(".parquet")):
+            ok = False
+        if not ok or isinstance(rows, bool) or not isinstance(rows, int) or rows < 0:
+            raise CatalogError(f"{where}: the entry of part {index} is malformed (damaged manifest)")
+    return manifest
+
+
+def _open_folder(folder: str) -> CatalogParts:
+    manifest = _manifest(folder)
+    count = int(manifest["shards"])
+    entries = [manifest["parts"][str(i)] for i in range(count)]
+    listed = [str(e["file"]) for e in entries]
+    present = {p for p in os.listdir(folder) if p.endswith(".parquet") and not p.startswith((".", "_"))}
+    for i, name in enumerate(listed):
+        if name not in present:
+            raise CatalogError(f"{os.path.join(folder, name)}: missing: the manifest lists it as part {i} of {count}")
+    extra = sorted(present - set(listed))
+    if extra:
+        raise CatalogError(
+            f"{os.path.join(folder, extra[0])}: not a part of this catalog (its manifest does not list it, "
+            "but pandas and Dask would read it): remove it"
+        )
+    run, metadata = manifest.get("run"), None
+    for i, entry in enumerate(entries):
+        file = os.path.join(folder, listed[i])
+        meta, rows = file_metadata(file)
+        shard = shard_of(meta)
+        other = shard.get("run", run)
+        if other != run:
+            raise CatalogError(f"{file}: a part of another catalog (run {other}, not {run}): replaced")
+        if shard.get("plan") != manifest.get("plan") or any(meta.get(k) != manifest.get(k) for k in SIGNATURE):
+            raise CatalogError(f"{file}: a part of another catalog (scaffold, label set or settings differ)")
+        if shard.get("index") != i or shard.get("count") != count:
+            raise CatalogError(
+                f"{file}: holds part {shard.get('index')} of {shard.get('count')}, but the manifest lists it as "
+                f"part {i} of {count}: parts swapped or renamed"
+            )
+        if rows != entry["rows"]:
+            raise CatalogError(f"{file}: holds {rows:,} rows, the manifest says {entry['rows']:,}: replaced or damaged")
+        metadata = metadata or meta
+    assert metadata is not None  # count >= 1
+    files = tuple(os.path.join(folder, name) for name in listed)
+    rows_of = tuple(int(e["rows"]) for e in entries)
+    return CatalogParts(folder, files, rows_of, metadata, tuple(str(e["sha256"]) for e in entries))
+
+
+@dataclass(frozen=True)
+class CatalogCheck:
+    """What :func:`verify_catalog` found: an intact catalog's size and identity."""
+
+    path: str
+    rows: int
+    parts: int
+    format_version: int
+    scaffold: str
+    run: str | None
+    checks: str
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON form (``lkspace verify --json``)."""
+        return {k: getattr(self, k) for k in self.__dataclass_fields__}
+
+
+def verify_catalog(path: str | os.PathLike[str]) -> CatalogCheck:
+    """Check a catalog completely before reading it with pandas, pyarrow or Dask.
+
+    The structure as :func:`open_catalog` checks it, then every part's SHA-256 (a folder)
+    or every data page's CRC-32 (a file written with page checksums).  Returns a
+    :class:`CatalogCheck`; raises :class:`~lkspace.errors.CatalogError` (one line) otherwise.
+
+    Examples
+    --------
+    >>> import lkspace, tempfile, os
+    >>> out = os.path.join(tempfile.mkdtemp(), "t.parquet")
+    >>> _ = lkspace.write_catalog("tetrahedron", out, label_set="-2,2", shards=2)
+    >>> lkspace.verify_catalog(out).parts
+    2
+    """
+    parts = open_catalog(path)
+    if parts.checksums is not None:
+        parts.verify_all()
+        checks = "manifest, part footers, SHA-256 of every part"
+    else:
+        read_pages(parts.files[0])
+        checks = "footer, CRC-32 of every data page"
+    shard = shard_of(parts.metadata)
+    return CatalogCheck(
+        path=parts.path,
+        rows=parts.n_rows,
+        parts=len(parts.files),
+        format_version=int(parts.metadata["format_version"]),
+        scaffold=str(parts.metadata["scaffold"].get("name")),
+        run=shard.get("run"),
+        checks=checks,
+    )
+
+
+def read_pages(file: str) -> None:
+    """Read every data page of ``file``, verifying the page checksums it carries."""
+    try:
+        parquet = pq.ParquetFile(file, page_checksum_verification=True)
+        for group in range(parquet.metadata.num_row_groups):
+            parquet.read_row_group(group)
+    except FileNotFoundError:
+        raise
+    except (OSError, pa.ArrowException) as exc:
+        raise damaged(file, exc) from None
+
+
+def damaged(file: str, exc: BaseException) -> CatalogError:
+    """Return the one-line error for data of ``file`` that pyarrow could not read (``exc``)."""
+    reason = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
+    return CatalogError(f"{file}: damaged: {reason}")
