@@ -12,6 +12,7 @@ works on a scaffold also takes a path or a built-in name:
 :func:`read_catalog`     a catalog back, labels as one ``(n, n_edges) int8`` array
 :func:`solve`            designs with exactly N components (CP-SAT)
 :func:`realize`          strands as 3D curves (:class:`Realization`)
+:func:`relax`            the curves drawn tight, link type kept
 :func:`export`           strands to ``.obj``, ``.ply``, ``.glb`` or ``.png``
 :func:`identify`         the knot or link type (extra ``[knots]``)
 =======================  ===============================================================
@@ -41,6 +42,7 @@ if TYPE_CHECKING:
     from .design.counting import DesignCount, count_designs
     from .formats.registry import export
     from .geometry.realization import GeometryParams, Realization, realize
+    from .geometry.relax import relax
     from .inverse.pipeline import Solution, SolveResult, solve
     from .io.sources import load
     from .knots.recognition import Identification, identify
@@ -68,6 +70,7 @@ _LAZY = {
     "realize": "geometry.realization",
     "Realization": "geometry.realization",
     "GeometryParams": "geometry.realization",
+    "relax": "geometry.relax",
     "export": "formats.registry",
     "identify": "knots.recognition",
     "Identification": "knots.recognition",
@@ -91,6 +94,7 @@ __all__ = [
     "realize",
     "Realization",
     "GeometryParams",
+    "relax",
     "export",
     "identify",
     "Identification",

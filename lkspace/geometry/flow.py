@@ -38,6 +38,9 @@ FOLD = 1.5
 RESAMPLE_EVERY = 5
 """Iterations between uniform resamplings."""
 
+PATIENCE = 400
+"""A growing flow stops when its best ropelength has not dropped by 0.1 % in this many iterations."""
+
 
 @dataclass(frozen=True)
 class FlowOptions:
@@ -161,6 +164,7 @@ def rope_flow(curves: list[np.ndarray], options: FlowOptions, label: str = "rela
     h = diameter / options.points_per_diameter
     pts_list = [resample_closed(np.asarray(c, np.float64), h) for c in curves]
     best: FlowResult | None = None
+    improved = 0
     started = time.monotonic()
     it = 0
     with task(label, total=options.iterations) as step:
@@ -180,7 +184,11 @@ def rope_flow(curves: list[np.ndarray], options: FlowOptions, label: str = "rela
             if options.grow > 0:
                 rope = float(lengths.sum()) / thick
                 if best is None or rope < best.ropelength:
+                    if best is None or rope < 0.999 * best.ropelength:
+                        improved = it
                     best = FlowResult([p.copy() for p in pts_list], 2 * thick, rope, it)
+                if it - improved > PATIENCE:
+                    break
                 if gap >= 0.98 * diameter and thick >= 0.49 * diameter:
                     diameter *= 1 + options.grow
             move = _step(points, ring, radius, i, j, d, diameter, h, options.pull)
@@ -231,8 +239,8 @@ def _step(
     return move * scale[:, None]
 
 
-SMOOTH_ITERATIONS = 100
-"""Iterations of the default smoothing."""
+SMOOTH_ITERATIONS, SMOOTH_PULL = 60, 0.1
+"""Iterations and curve-shortening weight of the default smoothing (a light touch: the strands keep to their faces)."""
 
 
 def smooth_curves(curves: list[np.ndarray], diameter: float) -> list[np.ndarray]:
@@ -242,7 +250,9 @@ def smooth_curves(curves: list[np.ndarray], diameter: float) -> list[np.ndarray]
     the curves move less than ``SMOOTH_ITERATIONS * diameter / 32`` (mostly far less)
     from the construction, so each strand still follows its face.
     """
-    return rope_flow(curves, FlowOptions(diameter=diameter, iterations=SMOOTH_ITERATIONS), "smoothing").curves
+    return rope_flow(
+        curves, FlowOptions(diameter=diameter, pull=SMOOTH_PULL, iterations=SMOOTH_ITERATIONS), "smoothing"
+    ).curves
 
 
 def rope_thickness(curves: list[np.ndarray], points: int = 100) -> float:

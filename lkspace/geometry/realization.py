@@ -207,6 +207,8 @@ def realize(
     points = _assemble(corners, _edge_points(scaffold, fr, tr, ports, edges, params), edges)
     curves, closed, strand_of, copy_of = _strand_curves(scaffold, tr, points, edges, a_pt, c_pt, translations)
     if params.smooth and not dim and closed.all():
+        if check:  # the flow keeps the link type of an embedding: the construction must be one
+            _clearance(scaffold, curves, closed, opts, check)
         curves = smooth_curves(curves, SMOOTH_DIAMETER * opts.radius)
     real = _measured(scaffold, tr, curves, closed, strand_of, copy_of, opts, params, check, measure, translations)
     if relax:
@@ -365,16 +367,7 @@ def _measured(
     translations: np.ndarray,
 ) -> Realization:
     """Measure the clearance, refuse a self-intersection (``check``), choose the tube radius."""
-    min_sep = opts.min_separation
-    min_dist, closest = check_embedding(curves, closed, min_sep, opts.scale) if measure else (float("inf"), {})
-    if closest:
-        closest["place"] = place_name(scaffold, closest["point"])
-    if check and min_dist < min_sep:
-        raise GeometryError(
-            f"{scaffold.name}: strands {closest['curves'][0]} and {closest['curves'][1]} come within "
-            f"{min_dist:.3g} (< min_separation {min_sep:.3g}) near {closest['place']}; the geometry would "
-            "self-intersect (try a smaller --radius or --normal-offset)"
-        )
+    min_dist, closest = _clearance(scaffold, curves, closed, opts, check) if measure else (float("inf"), {})
     if params.tube_radius is not None:
         tube = params.tube_radius
     else:  # thin enough to stay clear of the other strands and not to fold where a curve bends
@@ -391,8 +384,25 @@ def _measured(
         opts.normal_offset,
         opts.margin,
         float(tube),
-        min_sep,
+        opts.min_separation,
         float(min_dist),
         closest,
         translations,
     )
+
+
+def _clearance(
+    scaffold: Scaffold, curves: list[np.ndarray], closed: np.ndarray, opts: Resolved, check: bool
+) -> tuple[float, dict[str, Any]]:
+    """Smallest distance between distinct pieces and where; refuse a self-intersection when ``check``."""
+    min_sep = opts.min_separation
+    min_dist, closest = check_embedding(curves, closed, min_sep, opts.scale)
+    if closest:
+        closest["place"] = place_name(scaffold, closest["point"])
+    if check and min_dist < min_sep:
+        raise GeometryError(
+            f"{scaffold.name}: strands {closest['curves'][0]} and {closest['curves'][1]} come within "
+            f"{min_dist:.3g} (< min_separation {min_sep:.3g}) near {closest['place']}; the geometry would "
+            "self-intersect (try a smaller --radius or --normal-offset)"
+        )
+    return min_dist, closest

@@ -13,13 +13,16 @@ does not keep.
 from __future__ import annotations
 
 from dataclasses import replace
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ..errors import GeometryError
 from .clearance import check_embedding
 from .flow import FlowOptions, rope_flow, rope_thickness
-from .realization import Realization
+
+if TYPE_CHECKING:
+    from .realization import Realization
 
 RELAX_TIME = 10.0
 """Default seconds of relaxation."""
