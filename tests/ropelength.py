@@ -95,7 +95,7 @@ def ropelength(curves: list[tuple[np.ndarray, bool]], n_points: int = 6000) -> d
     tree = cKDTree(pts)
     best = np.inf
     radius = min(2 * rc, 0.05 * total)
-    while not np.isfinite(best) and radius < 4 * total:
+    while not np.isfinite(best) and radius < 4 * rc:  # farther pairs cannot limit the thickness
         pairs = tree.query_pairs(radius, output_type="ndarray")
         if len(pairs):
             i, j = pairs[:, 0], pairs[:, 1]
@@ -107,7 +107,7 @@ def ropelength(curves: list[tuple[np.ndarray, bool]], n_points: int = 6000) -> d
             if crit.any():
                 best = float(np.linalg.norm(pts[i[crit]] - pts[j[crit]], axis=1).min())
         radius *= 2
-    half = best / 2
+    half = best / 2  # inf when no approach is closer than twice the curvature radius
     thickness = min(rc, half)
     return {
         "length": total,
