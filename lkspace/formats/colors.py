@@ -1,4 +1,9 @@
-"""Strand colours: a fixed palette of 12, then golden-ratio hues."""
+"""Strand colours: 24 well-separated colours, given to strands by a stable key.
+
+A strand's key is the smallest face it visits (:func:`strand_keys`): editing a twist
+elsewhere leaves most strands' keys, and so their colours, unchanged.  Keys map to palette
+slots by ``key mod 24``, the next free slot on a clash; past 24 strands, golden-ratio hues.
+"""
 
 from __future__ import annotations
 
@@ -20,13 +25,48 @@ PALETTE = np.array(
         [0.40, 0.40, 0.40],
         [0.55, 0.80, 0.20],
         [0.00, 0.30, 0.55],
+        [0.53, 0.34, 0.57],
+        [0.75, 0.00, 0.20],
+        [0.00, 0.53, 0.34],
+        [0.96, 0.65, 0.00],
+        [0.38, 0.31, 0.59],
+        [0.70, 0.27, 0.42],
+        [0.53, 0.18, 0.09],
+        [0.55, 0.71, 0.00],
+        [0.40, 0.27, 0.13],
+        [0.89, 0.35, 0.13],
+        [0.17, 0.24, 0.15],
+        [0.63, 0.79, 0.95],
     ]
 )
+"""(24, 3) RGB in ``[0, 1]``: a ColorBrewer set, then Kelly's colours of maximum contrast."""
 
 
 def colors(n: int) -> np.ndarray:
-    """(n, 3) float64 distinct colours in ``[0, 1]`` (a fixed palette, then golden-ratio hues)."""
+    """(n, 3) float64 distinct colours in ``[0, 1]`` (the palette, then golden-ratio hues)."""
     if n <= len(PALETTE):
         return PALETTE[:n].copy()
     extra = [colorsys.hsv_to_rgb((0.618034 * k) % 1.0, 0.75, 0.9) for k in range(n - len(PALETTE))]
     return np.vstack([PALETTE, np.array(extra)])
+
+
+def keyed_colors(keys: np.ndarray) -> np.ndarray:
+    """(n, 3) colours for strands with integer ``keys`` (module docstring): stable across edits."""
+    keys = np.asarray(keys, np.int64)
+    if len(keys) > len(PALETTE):
+        return colors(len(keys))
+    out = np.zeros((len(keys), 3))
+    used: set[int] = set()
+    for k in np.argsort(keys, kind="stable"):
+        slot = int(keys[k]) % len(PALETTE)
+        while slot in used:
+            slot = (slot + 1) % len(PALETTE)
+        used.add(slot)
+        out[k] = PALETTE[slot]
+    return out
+
+
+def arc_colors(fractions: np.ndarray) -> np.ndarray:
+    """(n, 3) colours cycling through the hues along a strand (``fractions`` of its length in ``[0, 1)``)."""
+    hues = np.asarray(fractions, np.float64) % 1.0
+    return np.array([colorsys.hsv_to_rgb(h, 0.8, 0.85) for h in hues]).reshape(-1, 3)
