@@ -196,13 +196,14 @@ def realize(
         np.zeros((1, dim), np.int64) if translations is None else np.asarray(translations, np.int64).reshape(-1, dim)
     )
     ports = _Ports.of(scaffold, tr)
-    edges = _edge_plan(scaffold, fr, tr, ports, params)
-    estimate = (float(edges.n_edge.sum()) + len(ports.x) * opts.corner_samples) * len(translations)
+    counts = _edge_counts(scaffold, tr, ports, params)
+    estimate = (float(counts.sum()) + len(ports.x) * opts.corner_samples) * len(translations)
     if estimate > max_points:
         raise TooLargeError(
             f"{scaffold.name}: the curves would have about {estimate:,.0f} points > {max_points:,} ({bound}); "
             "use smaller twists (or a smaller block)"
         )
+    edges = _edge_plan(counts)
     corners, a_pt, c_pt = _corner_turns(fr, ports, opts.corner_samples)
     points = _assemble(corners, _edge_points(scaffold, fr, tr, ports, edges, params), edges)
     curves, closed, strand_of, copy_of = _strand_curves(scaffold, tr, points, edges, a_pt, c_pt, translations)
@@ -265,13 +266,17 @@ class _EdgePlan:
     sigma: np.ndarray  # (n_points,) in [0, 1)
 
 
-def _edge_plan(scaffold: Scaffold, fr: Tracks, tr: Trace, ports: _Ports, params: GeometryParams) -> _EdgePlan:
+def _edge_counts(scaffold: Scaffold, tr: Trace, ports: _Ports, params: GeometryParams) -> np.ndarray:
+    """Points on each step's edge piece, ``(n_steps,) float64`` (floats: huge twists are refused, not cast)."""
     e = scaffold.side_edge[ports.y // 2]
     k = scaffold.edge_degrees[e]
     t = np.where(k > 1, tr.labels[e], 0)
     turns = np.abs(t.astype(np.float64)) / k  # floats: -2**63 has no int64 abs
-    n_edge = np.where(ports.z >= 0, params.edge_samples + np.ceil(params.samples_per_turn * turns), 0)
-    n_edge = n_edge.astype(np.int64)
+    return np.where(ports.z >= 0, params.edge_samples + np.ceil(params.samples_per_turn * turns), 0.0)
+
+
+def _edge_plan(counts: np.ndarray) -> _EdgePlan:
+    n_edge = counts.astype(np.int64)
     piece = np.repeat(np.arange(len(n_edge)), n_edge)
     offsets = np.concatenate([[0], np.cumsum(n_edge)])
     sigma = (np.arange(len(piece)) - offsets[piece]) / np.maximum(n_edge[piece], 1)
