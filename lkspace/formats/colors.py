@@ -1,8 +1,9 @@
 """Strand colours: 24 well-separated colours, given to strands by a stable key.
 
-A strand's key is the smallest face it visits (:func:`strand_keys`): editing a twist
-elsewhere leaves most strands' keys, and so their colours, unchanged.  Keys map to palette
-slots by ``key mod 24``, the next free slot on a clash; past 24 strands, golden-ratio hues.
+A strand's key is the smallest face it visits (``lkspace.formats.render.strand_keys``):
+strands take the palette's colours in the order of their keys, so the colours do not
+depend on how the tracer numbered the strands, and an edit that leaves the strands'
+order of keys alone leaves their colours alone.  Past 24 strands, golden-ratio hues.
 """
 
 from __future__ import annotations
@@ -53,17 +54,9 @@ def colors(n: int) -> np.ndarray:
 def keyed_colors(keys: np.ndarray) -> np.ndarray:
     """(n, 3) colours for strands with integer ``keys`` (module docstring): stable across edits."""
     keys = np.asarray(keys, np.int64)
-    if len(keys) > len(PALETTE):
-        return colors(len(keys))
-    out = np.zeros((len(keys), 3))
-    used: set[int] = set()
-    for k in np.argsort(keys, kind="stable"):
-        slot = int(keys[k]) % len(PALETTE)
-        while slot in used:
-            slot = (slot + 1) % len(PALETTE)
-        used.add(slot)
-        out[k] = PALETTE[slot]
-    return out
+    rank = np.empty(len(keys), np.int64)
+    rank[np.argsort(keys, kind="stable")] = np.arange(len(keys))
+    return colors(len(keys))[rank]
 
 
 def arc_colors(fractions: np.ndarray) -> np.ndarray:

@@ -225,11 +225,12 @@ def render(
     ax.set_xlim(center[0] - half, center[0] + half)
     ax.set_ylim(center[1] - half, center[1] + half)
     ax.set_zlim(center[2] - half, center[2] + half)
-    ax.set_box_aspect((1, 1, 1), zoom=fill_zoom(every, center, half, view))
     ax.set_axis_off()
     if title:
         ax.set_title(title, fontsize=12)
     fig.subplots_adjust(0, 0, 1, 1)
+    ax.set_box_aspect((1, 1, 1), zoom=1.0)
+    ax.set_box_aspect((1, 1, 1), zoom=fill_zoom(ax, every, look, radius))
     return fig
 
 
@@ -281,13 +282,18 @@ def _screen_axes(view: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return right, np.cross(view, right)
 
 
-def fill_zoom(points: np.ndarray, center: np.ndarray, half: float, view: np.ndarray) -> float:
-    """Zoom of matplotlib's 3D box so that ``points`` fill the picture (1 fits the whole box)."""
-    right, up = _screen_axes(view)
-    corners = center + half * np.array([[x, y, z] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)])
-    box = [np.ptp(corners @ a) for a in (right, up)]
-    data = [max(np.ptp(points @ a), 1e-12) for a in (right, up)]
-    return float(np.clip(0.92 * min(box[0] / data[0], box[1] / data[1]), 1.0, 4.0))
+def fill_zoom(ax: Any, points: np.ndarray, look: Look, radius: float = 0.0) -> float:
+    """Zoom of the 3D axes (set at zoom 1) that makes ``points`` (tubes of ``radius``) fill 92% of the picture."""
+    from mpl_toolkits.mplot3d import proj3d
+
+    ax.apply_aspect()
+    x, y, _ = proj3d.proj_transform(points[:, 0], points[:, 1], points[:, 2], ax.get_proj())
+    pixels = ax.transData.transform(np.column_stack([x, y]))
+    ox, _, _ = proj3d.proj_transform(np.array([0.0, radius]), np.zeros(2), np.zeros(2), ax.get_proj())
+    tube = abs(float(np.diff(ax.transData.transform(np.column_stack([ox, np.zeros(2)]))[:, 0])[0]))
+    reach = np.abs(pixels - np.array([look.width, look.height]) / 2).max(axis=0) + tube
+    factor = 0.92 * min(look.width / 2 / max(reach[0], 1e-9), look.height / 2 / max(reach[1], 1e-9))
+    return float(np.clip(factor, 0.5, 6.0))
 
 
 def clear_view(curves: list[np.ndarray], radius: float) -> tuple[float, float]:
