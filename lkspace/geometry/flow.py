@@ -94,11 +94,16 @@ class FlowResult:
 
 
 def resample_closed(curve: np.ndarray, spacing: float, least: int = 12) -> np.ndarray:
-    """``(m, 3)`` points evenly spaced by arc length along the closed polyline ``curve``."""
+    """``(m, 3)`` points about ``spacing`` apart, evenly by arc length, along the closed polyline ``curve``."""
+    length = float(_lengths([curve])[0])
+    return resample_count(curve, max(least, int(round(length / spacing))))
+
+
+def resample_count(curve: np.ndarray, n: int) -> np.ndarray:
+    """``(n, 3)`` points evenly spaced by arc length along the closed polyline ``curve``."""
     pts = np.vstack([curve, curve[:1]])
     cum = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(pts, axis=0), axis=1))])
-    m = max(least, int(round(cum[-1] / spacing)))
-    s = np.linspace(0.0, cum[-1], m, endpoint=False)
+    s = np.linspace(0.0, cum[-1], max(n, 3), endpoint=False)
     return np.column_stack([np.interp(s, cum, pts[:, i]) for i in range(3)])
 
 
@@ -243,16 +248,24 @@ SMOOTH_ITERATIONS, SMOOTH_PULL = 60, 0.1
 """Iterations and curve-shortening weight of the default smoothing (a light touch: the strands keep to their faces)."""
 
 
+SMOOTH_MAX_POINTS = 50_000
+"""Curves that would need more flow points than this are left as constructed (the flow would take seconds)."""
+
+
 def smooth_curves(curves: list[np.ndarray], diameter: float) -> list[np.ndarray]:
     """Round the corners of closed ``curves`` and spread their distinct pieces to ``diameter``.
 
     A short :func:`rope_flow` without growth: an isotopy (the link type is kept), and
     the curves move less than ``SMOOTH_ITERATIONS * diameter / 32`` (mostly far less)
-    from the construction, so each strand still follows its face.
+    from the construction, so each strand still follows its face.  The curves come back
+    evenly spaced at ``diameter / 8`` (the construction's sampling is not kept: finer
+    points on the flow's polyline would show its vertices as kinks); curves needing more
+    than :data:`SMOOTH_MAX_POINTS` flow points in all are returned unchanged.
     """
-    return rope_flow(
-        curves, FlowOptions(diameter=diameter, pull=SMOOTH_PULL, iterations=SMOOTH_ITERATIONS), "smoothing"
-    ).curves
+    options = FlowOptions(diameter=diameter, pull=SMOOTH_PULL, iterations=SMOOTH_ITERATIONS)
+    if float(_lengths(curves).sum()) * options.points_per_diameter / diameter > SMOOTH_MAX_POINTS:
+        return curves
+    return rope_flow(curves, options, "smoothing").curves
 
 
 def rope_thickness(curves: list[np.ndarray], points: int = 100) -> float:
