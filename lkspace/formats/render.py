@@ -234,8 +234,8 @@ def render(
     return fig
 
 
-TUBE_SIDES = 16
-"""Facets around a pictured tube."""
+TUBE_SIDES, THICK_SIDES = 16, 32
+"""Facets around a pictured tube; around a thick one (radius over 2% of the drawing, a relaxed rope)."""
 
 
 def strand_keys(real: Realization) -> np.ndarray:
@@ -261,13 +261,15 @@ def shaded_tubes(
     else:
         palette = keyed_colors(strand_keys(real))[real.strand_of]
     gradient = not look.palette and real.block is None and real.trace.components == 1 and bool(real.closed.all())
+    extent = float(np.ptp(np.vstack(real.curves), axis=0).max())
+    sides, spacing = (THICK_SIDES, 0.3 * radius) if radius > 0.02 * extent else (TUBE_SIDES, 0.6 * radius)
     all_tris, all_cols = [], []
-    for (v, nrm, f), rgb in zip(tube_meshes(real, radius, TUBE_SIDES, 0.6 * radius), palette, strict=True):
+    for (v, nrm, f), rgb in zip(tube_meshes(real, radius, sides, spacing), palette, strict=True):
         fn = nrm[f].mean(axis=1)
         fn /= np.maximum(np.linalg.norm(fn, axis=1, keepdims=True), 1e-12)
         lam = np.clip(fn @ light, 0, 1)
         spec = np.clip(fn @ ((light + view) / np.linalg.norm(light + view)), 0, 1) ** 24
-        base_rgb = arc_colors(f[:, 0] // TUBE_SIDES / max(len(v) // TUBE_SIDES, 1)) if gradient else rgb[None]
+        base_rgb = arc_colors(f[:, 0] // sides / max(len(v) // sides, 1)) if gradient else rgb[None]
         shade = np.clip(base_rgb * (0.3 + 0.7 * lam[:, None]) + 0.3 * spec[:, None], 0, 1)
         facing = fn @ view > -0.2
         all_tris.append(v[f[facing]])
