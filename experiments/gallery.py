@@ -59,18 +59,24 @@ def entries() -> list[Entry]:
         e("cubes-vertex.png", "cubes:vertex", "1", "fig:hinge_types (a): cubes joined only at a vertex cannot hang together.",
           expect="falls apart"),
         e("trefoil.png", "dihedron:3", "1", "fig:prime_knots (a): a two-sided triangle gives the trefoil 3_1.",
-          check="identify", expect="3_1", draw=["--view", "-90,50"]),
+          check="identify", expect="3_1"),
+        e("trefoil-relaxed.png", "dihedron:3", "1", "The same trefoil relaxed (`--relax`): drawn tight without changing the type.",
+          check="identify", expect="3_1", draw=["--relax"]),
         e("knot-5-1.png", "dihedron:5", "1", "fig:prime_knots (c, d): a two-sided pentagon gives 5_1 (and a heptagon 7_1: "
           "`lkspace identify dihedron:7 --twist 1`).", check="identify",
           expect="5_1", draw=["--diagram"]),
         e("figure-eight.png", "figure-eight", None, "fig:prime_knots (b): two triangles in front, a quadrilateral behind: "
-          "the figure-eight knot 4_1.", check="identify", expect="4_1", draw=["--view", "-90,60"]),
+          "the figure-eight knot 4_1.", check="identify", expect="4_1"),
+        e("figure-eight-relaxed.png", "figure-eight", None, "The figure-eight knot relaxed (`--relax`).", check="identify",
+          expect="4_1", draw=["--relax"]),
         e("borromean.png", "tetrahedron", "1", "fig:prime_links (a): every edge of a tetrahedron twisted once gives the "
           "Borromean rings.", check="identify", expect="L6a4"),
+        e("borromean-relaxed.png", "tetrahedron", "1", "The Borromean rings relaxed (`--relax`).", check="identify",
+          expect="L6a4", draw=["--relax"]),
         e("borromean-diagram.png", "tetrahedron", "1", "The Borromean rings as a link diagram, components coloured.",
           check="identify", expect="L6a4", draw=["--diagram"]),
         e("whitehead.png", "whitehead", None, "fig:prime_links (b): a square fanned into four triangles, no back: the "
-          "Whitehead link.", check="identify", expect="L5a1", draw=["--view", "-90,60"]),
+          "Whitehead link.", check="identify", expect="L5a1"),
         e("solomon.png", "dihedron:4", "1", "fig:prime_links (c): a two-sided square gives the Solomon link T(2,4).",
           check="identify", expect="L4a1", draw=["--diagram"]),
         e("torus-2-8.png", "dihedron:8", "1", "fig:prime_links (d): the (2,8) torus link from a two-sided polygon "

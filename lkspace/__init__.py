@@ -14,6 +14,7 @@ works on a scaffold also takes a path or a built-in name:
 :func:`verify_catalog`       a catalog checked whole (every part's checksum) before pandas reads it
 :func:`solve`                designs with exactly N components (CP-SAT)
 :func:`realize`              strands as 3D curves (:class:`Realization`)
+:func:`relax`                the curves drawn tight, link type kept
 :func:`export`               strands to ``.obj``, ``.ply``, ``.glb`` or ``.png``
 :func:`identify`             the knot or link type (extra ``[knots]``)
 ===========================  ===============================================================
@@ -45,6 +46,7 @@ if TYPE_CHECKING:
     from .design.counting import DesignCount, count_designs
     from .formats.registry import export
     from .geometry.realization import GeometryParams, Realization, realize
+    from .geometry.relax import relax
     from .inverse.pipeline import Solution, SolveResult, solve
     from .io.sources import load
     from .knots.recognition import Identification, identify
@@ -75,6 +77,7 @@ _LAZY = {
     "realize": "geometry.realization",
     "Realization": "geometry.realization",
     "GeometryParams": "geometry.realization",
+    "relax": "geometry.relax",
     "export": "formats.registry",
     "identify": "knots.recognition",
     "Identification": "knots.recognition",
@@ -101,6 +104,7 @@ __all__ = [
     "realize",
     "Realization",
     "GeometryParams",
+    "relax",
     "export",
     "identify",
     "Identification",

@@ -30,7 +30,8 @@ def test_twist_profile_and_spacing_weight():
 
 @pytest.mark.parametrize("k, t", [(3, 1), (4, 3), (5, 2)])
 def test_book_spine_carries_evenly_spaced_regular_helices(k, t):
-    real = realize(f"book:{k}", t, params=GeometryParams(samples_per_turn=400, edge_samples=400))
+    # the construction (smoothing off): its helices are exact
+    real = realize(f"book:{k}", t, params=GeometryParams(samples_per_turn=400, edge_samples=400, smooth=False))
     pts = np.vstack(real.curves)
     owner = np.repeat(np.arange(real.n_curves), [len(c) for c in real.curves])
     near = np.hypot(pts[:, 0], pts[:, 1]) < 0.2  # on the spine (the z axis)
@@ -73,8 +74,11 @@ def hausdorff_to(real, mapped: np.ndarray) -> float:
     return float(cKDTree(dense).query(mapped)[0].max())
 
 
+@pytest.mark.parametrize("smooth, tolerance", [(False, 0.003), (True, 0.015)])
 @pytest.mark.parametrize("name", ["cube", "tetrahedron", "dihedron:5", "book:4", "truncated-octahedron"])
-def test_symmetric_designs_realize_symmetrically(name):
+def test_symmetric_designs_realize_symmetrically(name, smooth, tolerance):
+    # the construction is symmetric up to its sampling; the smoothing flow acts on samples
+    # placed from each curve's start, so it keeps the symmetry to about a point spacing
     scaffold = lkspace.load(name)
     group = symmetry_group(scaffold)
     rng = np.random.default_rng(7)
@@ -91,9 +95,9 @@ def test_symmetric_designs_realize_symmetrically(name):
                     orbit.append(int(x))
                     x = perm[x]
                 labels[orbit] = rng.integers(-2, 3)
-        real = realize(scaffold, labels)
+        real = realize(scaffold, labels, params=GeometryParams(smooth=smooth))
         mapped = np.vstack(real.curves) @ group.matrices[g].T + group.translations[g]
-        assert hausdorff_to(real, mapped) < 0.003 * real.scale  # the sampling, not the geometry
+        assert hausdorff_to(real, mapped) < tolerance * real.scale  # the sampling, not the geometry
         checked += 1
     assert checked > 0
 

@@ -139,3 +139,32 @@ def test_diagram_png_colours_each_component(tmp_path):
     saturated = rgb[(rgb.max(axis=2) - rgb.min(axis=2)) > 0.4]
     hues = {tuple(np.round(p, 1)) for p in saturated}
     assert len(saturated) > 1000 and len(hues) >= 3  # three rings, three colours
+
+
+def _lab(rgb: np.ndarray) -> np.ndarray:
+    """sRGB in [0, 1] -> CIELAB (D65), written out here (no colour library)."""
+    lin = np.where(rgb > 0.04045, ((rgb + 0.055) / 1.055) ** 2.4, rgb / 12.92)
+    xyz = lin @ np.array([[0.4124, 0.3576, 0.1805], [0.2126, 0.7152, 0.0722], [0.0193, 0.1192, 0.9505]]).T
+    f = xyz / np.array([0.9505, 1.0, 1.089])
+    f = np.where(f > 0.008856, np.cbrt(f), 7.787 * f + 16 / 116)
+    return np.column_stack([116 * f[:, 1] - 16, 500 * (f[:, 0] - f[:, 1]), 200 * (f[:, 1] - f[:, 2])])
+
+
+def test_default_palette_keeps_24_strands_apart_and_follows_the_strand_keys():
+    from lkspace.formats.colors import PALETTE, keyed_colors
+    from lkspace.formats.render import strand_keys
+
+    lab = _lab(PALETTE)
+    gaps = np.linalg.norm(lab[:, None] - lab[None], axis=2) + np.eye(len(lab)) * 1e9
+    assert len(PALETTE) >= 24 and gaps.min() > 30  # clearly different colours, pairwise
+    assert np.all((lab[:, 0] > 20) & (lab[:, 0] < 85))  # none vanishes on white or black
+    # colours go by the keys' order, whatever the strands' numbering
+    np.testing.assert_array_equal(keyed_colors(np.array([9, 2, 5])), PALETTE[[2, 0, 1]])
+    real = realize("cube", 2)  # six face loops: each strand's key is the face it runs in
+    keys = strand_keys(real)
+    faces = lkspace.load("cube").corner_face
+    tr = real.trace
+    for k in range(tr.components):
+        steps = tr.steps[tr.strand_starts[k] : tr.strand_starts[k + 1]]
+        assert keys[k] == min(int(faces[p // 2]) for p in steps)
+    assert sorted(keys.tolist()) == list(range(6))

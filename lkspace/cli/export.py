@@ -236,6 +236,11 @@ def fabrication_options(func: F) -> F:
     type=Finite(0, low_open=True),
     help="Axial length of one full helix turn, > 0 (default: the twist spreads over the whole edge).",
 )
+@click.option(
+    "--relax",
+    is_flag=True,
+    help="Relax the strands toward a tight shape without changing the link type (finite scaffolds; up to 10 s).",
+)
 @fabrication_options
 @picture_options
 @json_option
@@ -253,6 +258,7 @@ def export_cmd(
     block: str | None,
     helix_radius: float | None,
     pitch: float | None,
+    relax: bool,
     thickness: float | None,
     clearance: float | None,
     units: str | None,
@@ -271,6 +277,7 @@ def export_cmd(
     Examples:
       lkspace export dihedron:3 --twist 1 -o trefoil.png
       lkspace export dihedron:3 --twist 1 --diagram -o trefoil.svg
+      lkspace export dihedron:3 --twist 1 --relax -o tight-trefoil.png
       lkspace export tetrahedron --twist 1 -o borromean.glb
       lkspace export cube --twist 2 -o chainmail.stl --thickness 0.1 --clearance 0.05 --scale 10
       lkspace export honeycomb:cP --twist 2,1,1 --block 2x2x2 -o block.png --size 480x480
@@ -300,9 +307,11 @@ def export_cmd(
     if sizes is not None:
         from ..geometry.block import realize_block
 
+        if relax:
+            raise UsageError("--relax works on finite scaffolds, not on a --block of a periodic one")
         real = realize_block(scaffold, labels, nulls, params, sizes, max_points=max_points, bound=bound)
     else:
-        real = realize(scaffold, labels, nulls, params, max_points=max_points, bound=bound)
+        real = realize(scaffold, labels, nulls, params, max_points=max_points, bound=bound, relax=relax)
     pieces = None
     if ext in (".stl", ".3mf"):
         from ..geometry.fabrication import printable

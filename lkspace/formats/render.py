@@ -20,6 +20,7 @@ import numpy as np
 
 from ..errors import UsageError, require
 from ..geometry.realization import Realization
+from .colors import arc_colors, keyed_colors
 from .colors import colors as default_colors
 from .tubes import tube_meshes
 
@@ -195,8 +196,11 @@ def render(
     frame = real.block.frame() if real.block is not None else []
     every = np.vstack([pts, *polys, *frame]) if (polys or frame) else pts
     extent = np.ptp(every, axis=0)
-    elev = look.elev if look.elev is not None else (55.0 if extent[2] < 0.25 * extent.max() else 24.0)
-    azim = look.azim if look.azim is not None else -58.0
+    if look.azim is None and look.elev is None and real.block is None and real.curves:
+        azim, elev = clear_view(real.curves, radius)
+    else:
+        elev = look.elev if look.elev is not None else (55.0 if extent[2] < 0.25 * extent.max() else 24.0)
+        azim = look.azim if look.azim is not None else -58.0
     ax.view_init(elev=elev, azim=azim)
     e, a = np.radians(elev), np.radians(azim)
     view = np.array([np.cos(e) * np.cos(a), np.cos(e) * np.sin(a), np.sin(e)])
@@ -211,23 +215,7 @@ def render(
     if frame:
         ax.add_collection3d(Line3DCollection(frame, colors=[(0.2, 0.2, 0.25, 0.7)], linewidths=1.0))
     if real.curves:
-        spacing = 1.2 * radius
-        all_tris, all_cols = [], []
-        if real.block is not None:  # a block: every thread run has its colour
-            palette = look.colors(real.n_curves)
-        else:  # translates share their strand's colour
-            palette = look.colors(int(real.strand_of.max()) + 1 if len(real.strand_of) else 1)[real.strand_of]
-        for (v, nrm, f), rgb in zip(tube_meshes(real, radius, 10, spacing), palette, strict=True):
-            fn = nrm[f].mean(axis=1)
-            fn /= np.maximum(np.linalg.norm(fn, axis=1, keepdims=True), 1e-12)
-            lam = np.clip(fn @ light, 0, 1)
-            spec = np.clip(fn @ ((light + view) / np.linalg.norm(light + view)), 0, 1) ** 24
-            shade = np.clip(rgb[None] * (0.35 + 0.65 * lam[:, None]) + 0.35 * spec[:, None], 0, 1)
-            facing = fn @ view > -0.2
-            all_tris.append(v[f[facing]])
-            all_cols.append(shade[facing])
-        tris = np.concatenate(all_tris)
-        cols = np.concatenate(all_cols)
+        tris, cols = shaded_tubes(real, look, radius, view, light)
         order = np.argsort(tris.mean(axis=1) @ view)  # far first: painter's algorithm
         ax.add_collection3d(
             Poly3DCollection(tris[order], facecolors=cols[order], edgecolors=cols[order], linewidths=0.25)
@@ -237,9 +225,110 @@ def render(
     ax.set_xlim(center[0] - half, center[0] + half)
     ax.set_ylim(center[1] - half, center[1] + half)
     ax.set_zlim(center[2] - half, center[2] + half)
-    ax.set_box_aspect((1, 1, 1), zoom=1.25)
     ax.set_axis_off()
     if title:
         ax.set_title(title, fontsize=12)
     fig.subplots_adjust(0, 0, 1, 1)
+    ax.set_box_aspect((1, 1, 1), zoom=1.0)
+    ax.set_box_aspect((1, 1, 1), zoom=fill_zoom(ax, every, look, radius))
     return fig
+
+
+TUBE_SIDES, THICK_SIDES = 16, 32
+"""Facets around a pictured tube; around a thick one (radius over 2% of the drawing, a relaxed rope)."""
+
+
+def strand_keys(real: Realization) -> np.ndarray:
+    """(n_strands,) int64: the smallest face each strand visits (its stable colour key)."""
+    tr = real.trace
+    faces = real.scaffold.corner_face[tr.steps // 2]
+    starts = tr.strand_starts[:-1]
+    return np.minimum.reduceat(faces, starts) if len(faces) else np.zeros(0, np.int64)
+
+
+def shaded_tubes(
+    real: Realization, look: Look, radius: float, view: np.ndarray, light: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
+    """Front-facing tube triangles ``(m, 3, 3)`` and their shaded colours ``(m, 3)``.
+
+    Colours: the look's palette if given; else one colour per strand by its stable key
+    (translates share it; every thread run of a block has its own), and a single closed
+    strand cycles through the hues along its length so that its crossings read.
+    """
+    if look.palette or real.block is not None:
+        base = look.colors(real.n_curves if real.block is not None else int(real.strand_of.max()) + 1)
+        palette = base if real.block is not None else base[real.strand_of]
+    else:
+        palette = keyed_colors(strand_keys(real))[real.strand_of]
+    gradient = not look.palette and real.block is None and real.trace.components == 1 and bool(real.closed.all())
+    extent = float(np.ptp(np.vstack(real.curves), axis=0).max())
+    sides, spacing = (THICK_SIDES, 0.3 * radius) if radius > 0.02 * extent else (TUBE_SIDES, 0.6 * radius)
+    all_tris, all_cols = [], []
+    for (v, nrm, f), rgb in zip(tube_meshes(real, radius, sides, spacing), palette, strict=True):
+        fn = nrm[f].mean(axis=1)
+        fn /= np.maximum(np.linalg.norm(fn, axis=1, keepdims=True), 1e-12)
+        lam = np.clip(fn @ light, 0, 1)
+        spec = np.clip(fn @ ((light + view) / np.linalg.norm(light + view)), 0, 1) ** 24
+        base_rgb = arc_colors(f[:, 0] // sides / max(len(v) // sides, 1)) if gradient else rgb[None]
+        shade = np.clip(base_rgb * (0.3 + 0.7 * lam[:, None]) + 0.3 * spec[:, None], 0, 1)
+        facing = fn @ view > -0.2
+        all_tris.append(v[f[facing]])
+        all_cols.append(shade[facing])
+    return np.concatenate(all_tris), np.concatenate(all_cols)
+
+
+def _screen_axes(view: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Two unit vectors spanning the picture plane of view direction ``view`` (z stays up)."""
+    right = np.cross([0.0, 0.0, 1.0], view)
+    right = right / np.linalg.norm(right) if np.linalg.norm(right) > 1e-9 else np.array([1.0, 0.0, 0.0])
+    return right, np.cross(view, right)
+
+
+def fill_zoom(ax: Any, points: np.ndarray, look: Look, radius: float = 0.0) -> float:
+    """Zoom of the 3D axes (set at zoom 1) that makes ``points`` (tubes of ``radius``) fill 92% of the picture."""
+    from mpl_toolkits.mplot3d import proj3d
+
+    ax.apply_aspect()
+    x, y, _ = proj3d.proj_transform(points[:, 0], points[:, 1], points[:, 2], ax.get_proj())
+    pixels = ax.transData.transform(np.column_stack([x, y]))
+    ox, _, _ = proj3d.proj_transform(np.array([0.0, radius]), np.zeros(2), np.zeros(2), ax.get_proj())
+    tube = abs(float(np.diff(ax.transData.transform(np.column_stack([ox, np.zeros(2)]))[:, 0])[0]))
+    reach = np.abs(pixels - np.array([look.width, look.height]) / 2).max(axis=0) + tube
+    factor = 0.92 * min(look.width / 2 / max(reach[0], 1e-9), look.height / 2 / max(reach[1], 1e-9))
+    return float(np.clip(factor, 0.5, 6.0))
+
+
+def clear_view(curves: list[np.ndarray], radius: float) -> tuple[float, float]:
+    """``(azimuth, elevation)`` in degrees among 48 directions where the strands overlap least in projection.
+
+    A view scores the share of point pairs of distinct pieces (other curve, or far along
+    one) that project within two tube diameters of each other: the fewer, the cleaner the
+    crossings read.  Ties go to the wider picture.
+    """
+    from scipy.spatial import cKDTree
+
+    from ..geometry.clearance import samples
+
+    closed = np.ones(len(curves), bool)
+    total = sum(float(np.linalg.norm(np.diff(c, axis=0), axis=1).sum()) for c in curves)
+    pts, arc, owner, lengths = samples(curves, closed, max(total / 600, 1e-12))
+    best, choice = (np.inf, 0.0), (-58.0, 24.0)
+    for elev in (20.0, 40.0, 60.0, 80.0):
+        for azim in np.arange(-180.0, 180.0, 30.0):
+            e, a = np.radians(elev), np.radians(azim)
+            view = np.array([np.cos(e) * np.cos(a), np.cos(e) * np.sin(a), np.sin(e)])
+            right, up = _screen_axes(view)
+            flat = np.column_stack([pts @ right, pts @ up])
+            pairs = cKDTree(flat).query_pairs(4 * radius, output_type="ndarray")
+            along = np.abs(arc[pairs[:, 0]] - arc[pairs[:, 1]]) if len(pairs) else np.zeros(0)
+            if len(pairs):
+                o = owner[pairs[:, 0]]
+                along = np.minimum(along, lengths[o] - along)
+                far = (o != owner[pairs[:, 1]]) | (along > 8 * radius)
+                overlap = float(far.sum())
+            else:
+                overlap = 0.0
+            score = (overlap, -float(np.ptp(flat[:, 0]) * np.ptp(flat[:, 1])))
+            if score < best:
+                best, choice = score, (float(azim), elev)
+    return choice

@@ -53,85 +53,14 @@ from ..model.scaffold import Scaffold
 from ..strands.ports import port_model
 from ..strands.tracing import Trace, trace
 from .clearance import check_embedding, tightest_bend
+from .flow import smooth_curves
 from .helix import edge_angles, even_offsets, helix_windows, twist_profile
-from .limits import MAX_POINTS, MAX_SAMPLES, check_lengths, check_winding
-from .tracks import bezier_controls, default_scale, lattice_shift, place_name, side_tracks
+from .limits import MAX_POINTS, check_winding
+from .params import SMOOTH_DIAMETER, TUBE, GeometryParams, Resolved
+from .tracks import Tracks, bezier_controls, lattice_shift, place_name, side_tracks
 
 if TYPE_CHECKING:
     from .block import Block
-
-
-NEAR_ANGLE = np.pi / 6
-"""Faces meeting at an edge at less than this angle get the default normal offset."""
-
-
-@dataclass(frozen=True)
-class GeometryParams:
-    """Realization parameters; ``None`` entries are scaled from the mesh.
-
-    Attributes
-    ----------
-    radius : float or None
-        The **inset**: in-face distance ``rho`` of the tracks from their edge (default
-        ``0.12 * scale``); a strand follows its face as the polygon inset by ``rho``.
-    normal_offset : float or None
-        Offset ``h`` of the tracks along the face normal.  Default ``0.35 * radius`` on
-        edges where two faces meet at less than :data:`NEAR_ANGLE` (a two-sided polygon),
-        0 elsewhere; a value given applies on every edge.
-    margin : float or None
-        Length at each edge end kept straight for the corner turns (default
-        ``0.28 * scale``; longer at acute corners, at most ``0.42`` of the edge).
-    tube_radius : float or None
-        Radius of exported tubes (default ``0.03 * scale``, shrunk to ``0.45`` of the
-        minimum separation found and to ``0.9`` of the tightest bend of a curve).
-    min_separation : float or None
-        Refuse geometry whose distinct pieces come closer (default ``0.01 * scale``).
-    helix_radius : float or None
-        Distance of the evenly spaced helix strands from the edge axis (default: the
-        mean distance of the edge's tracks, about ``radius``); see :mod:`~lkspace.geometry.helix`.
-    pitch : float or None
-        Axial length of one full turn of an edge's helix (default: the twist spreads
-        over the whole edge).
-    samples_per_turn : int
-        Polyline points per full helix turn.
-    edge_samples : int
-        Points on an edge piece besides those of the turns.
-    corner_samples : int
-        Points on each corner turn.
-    """
-
-    radius: float | None = None
-    normal_offset: float | None = None
-    margin: float | None = None
-    tube_radius: float | None = None
-    min_separation: float | None = None
-    helix_radius: float | None = None
-    pitch: float | None = None
-    samples_per_turn: int = 32
-    edge_samples: int = 24
-    corner_samples: int = 12
-
-    def check(self) -> None:
-        """Raise :class:`GeometryError` (a usage error) naming a parameter that is not usable.
-
-        Lengths must be finite; ``radius``, ``margin``, ``tube_radius`` and
-        ``min_separation`` positive, ``normal_offset`` at least 0; the sample counts
-        integers in ``1..MAX_SAMPLES`` (``corner_samples`` from 2).
-        """
-        for name in ("radius", "normal_offset", "margin", "tube_radius", "min_separation", "helix_radius", "pitch"):
-            value = getattr(self, name)
-            if value is None:
-                continue
-            low = 0.0 if name == "normal_offset" else None
-            if not np.isfinite(value) or (value < 0 if low is not None else value <= 0):
-                wanted = "a finite number >= 0" if low is not None else "a finite number > 0"
-                raise GeometryError(f"geometry parameter {name} must be {wanted}, got {value}", usage=True)
-        for name, least in (("samples_per_turn", 1), ("edge_samples", 1), ("corner_samples", 2)):
-            value = getattr(self, name)
-            if not isinstance(value, int | np.integer) or not least <= value <= MAX_SAMPLES:
-                raise GeometryError(
-                    f"geometry parameter {name} must be an integer in {least}..{MAX_SAMPLES}", usage=True
-                )
 
 
 @dataclass(frozen=True, eq=False, repr=False)
@@ -217,6 +146,7 @@ def realize(
     max_points: int = MAX_POINTS,
     bound: str = "MAX_POINTS",
     measure: bool = True,
+    relax: bool = False,
 ) -> Realization:
     """Realize the strands of ``scaffold`` under twist ``labels`` as 3D polylines.
 
@@ -239,6 +169,8 @@ def realize(
     measure : bool
         Measure the clearance (:func:`check_embedding`); ``False`` skips it and the check
         (``min_distance`` is ``inf``), for previews that measure later.
+    relax : bool
+        Relax the curves toward a tight shape (:func:`~lkspace.geometry.relax.relax`).
 
     Returns
     -------
@@ -251,81 +183,119 @@ def realize(
     (1, True, True)
     """
     scaffold = load(scaffold)
+    opts = Resolved.of(scaffold, params or GeometryParams())
     params = params or GeometryParams()
-    params.check()
     tr = result if result is not None else trace(scaffold, labels, nulls)
-    scale = default_scale(scaffold)
-    rho = params.radius if params.radius is not None else 0.12 * scale
-    h = params.normal_offset if params.normal_offset is not None else 0.35 * rho
-    margin = params.margin if params.margin is not None else 0.28 * scale
-    min_sep = params.min_separation if params.min_separation is not None else 0.01 * scale
-    for name, value in (("radius", rho), ("margin", margin), ("min_separation", min_sep)):
-        if not np.isfinite(value) or value <= 0:
-            raise GeometryError(f"geometry parameter {name} must be positive, got {value}")
-    lengths = {"radius": rho, "normal_offset": h, "margin": margin, "tube_radius": params.tube_radius or 0.0}
-    lengths["helix_radius"] = params.helix_radius or 0.0
-    check_lengths(scaffold.name, lengths, scale)
-    fr = side_tracks(scaffold, rho, h, margin, NEAR_ANGLE if params.normal_offset is None else None)
+    fr = side_tracks(scaffold, opts.radius, opts.normal_offset, opts.margin, opts.near_angle)
     if check:
-        check_winding(scaffold, fr.pa, fr.pb, fr.margin, tr.labels, min_sep)
-    model = port_model(scaffold)
-    cp = model.corner_partner
-    twist = tr.labels
-    degrees = scaffold.edge_degrees
+        check_winding(scaffold, fr.pa, fr.pb, fr.margin, tr.labels, opts.min_separation)
+    if translations is not None and not scaffold.dim:
+        raise GeometryError(f"{scaffold.name}: translated copies need a periodic scaffold")
     dim = scaffold.dim
-
-    steps = tr.steps
-    n_steps = len(steps)
-    strand_of_step = np.repeat(np.arange(tr.components), np.diff(tr.strand_starts))
-    x = steps
-    y = cp[x]
-    z = tr.edge_partner[y]  # -1 at a cut
-    # lattice copy of every step: accumulate the translation of each edge link
-    if dim:
-        st = scaffold.side_translation
-        delta = np.where((z >= 0)[:, None], st[y // 2] - st[np.maximum(z, 0) // 2], 0)
-        cum = np.cumsum(delta, axis=0)
-        before = cum - delta
-        base = before[tr.strand_starts[:-1]]
-        copy_t = before - base[strand_of_step]
-        step_shift = lattice_shift(scaffold, copy_t)
-    else:
-        step_shift = np.zeros((n_steps, 3))
-
-    # corner turns: Bézier from the port x's track end to port y's track start
-    nc = max(2, int(params.corner_samples))
-    a_pt = fr.port_point[x] + step_shift
-    c_pt = fr.port_point[y] + step_shift
-    q_pt = bezier_controls(a_pt, fr.port_dir[x], c_pt, -fr.port_dir[y])
-    u = np.arange(nc) / nc
-    b0, b1, b2 = (1 - u) ** 2, 2 * u * (1 - u), u**2
-    corner_pts = (
-        b0[None, :, None] * a_pt[:, None] + b1[None, :, None] * q_pt[:, None] + b2[None, :, None] * c_pt[:, None]
-    )  # (n_steps, nc, 3)
-
-    # edge pieces: the helix from port y to port z
-    ys = y // 2
-    e = scaffold.side_edge[ys]
-    k = degrees[e]
-    t = np.where(k > 1, twist[e], 0)  # a lone strand's full turns about an empty axis are a curl: drawn straight
-    has_edge = z >= 0
-    turns = np.abs(t.astype(np.float64)) / k  # floats: -2**63 has no int64 abs
-    n_edge = np.where(has_edge, params.edge_samples + np.ceil(params.samples_per_turn * turns), 0)
-    n_copies = 1 if translations is None else max(1, np.size(translations) // max(dim, 1))
-    estimate = (float(n_edge.sum()) + n_steps * nc) * n_copies
+    translations = (
+        np.zeros((1, dim), np.int64) if translations is None else np.asarray(translations, np.int64).reshape(-1, dim)
+    )
+    ports = _Ports.of(scaffold, tr)
+    counts = _edge_counts(scaffold, tr, ports, params)
+    estimate = (float(counts.sum()) + len(ports.x) * opts.corner_samples) * len(translations)
     if estimate > max_points:
         raise TooLargeError(
             f"{scaffold.name}: the curves would have about {estimate:,.0f} points > {max_points:,} ({bound}); "
             "use smaller twists (or a smaller block)"
         )
-    n_edge = n_edge.astype(np.int64)
-    piece = np.repeat(np.arange(n_steps), n_edge)
+    edges = _edge_plan(counts)
+    corners, a_pt, c_pt = _corner_turns(fr, ports, opts.corner_samples)
+    points = _assemble(corners, _edge_points(scaffold, fr, tr, ports, edges, params), edges)
+    curves, closed, strand_of, copy_of = _strand_curves(scaffold, tr, points, edges, a_pt, c_pt, translations)
+    if params.smooth and not dim and closed.all():
+        if check:  # the flow keeps the link type of an embedding: the construction must be one
+            _clearance(scaffold, curves, closed, opts, check)
+        curves = smooth_curves(curves, SMOOTH_DIAMETER * opts.radius)
+    real = _measured(scaffold, tr, curves, closed, strand_of, copy_of, opts, params, check, measure, translations)
+    if relax:
+        from .relax import relax as relax_curves
+
+        real = relax_curves(real)
+    return real
+
+
+@dataclass(frozen=True, eq=False)
+class _Ports:
+    """Per step of the trace: the ports it joins and the lattice shift of its copy."""
+
+    x: np.ndarray  # (n_steps,) port where the corner turn starts
+    y: np.ndarray  # (n_steps,) port where it ends and the edge piece starts
+    z: np.ndarray  # (n_steps,) port where the edge piece ends (-1 at a cut)
+    shift: np.ndarray  # (n_steps, 3)
+
+    @staticmethod
+    def of(scaffold: Scaffold, tr: Trace) -> _Ports:
+        model = port_model(scaffold)
+        x = tr.steps
+        y = model.corner_partner[x]
+        z = tr.edge_partner[y]
+        if not scaffold.dim:
+            return _Ports(x, y, z, np.zeros((len(x), 3)))
+        # lattice copy of every step: accumulate the translation of each edge link
+        strand_of_step = np.repeat(np.arange(tr.components), np.diff(tr.strand_starts))
+        st = scaffold.side_translation
+        delta = np.where((z >= 0)[:, None], st[y // 2] - st[np.maximum(z, 0) // 2], 0)
+        before = np.cumsum(delta, axis=0) - delta
+        base = before[tr.strand_starts[:-1]]
+        return _Ports(x, y, z, lattice_shift(scaffold, before - base[strand_of_step]))
+
+
+def _corner_turns(fr: Tracks, ports: _Ports, nc: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Bézier turns from each port x's track end to port y's track start: ``(n_steps, nc, 3)``, ends a, c."""
+    a_pt = fr.port_point[ports.x] + ports.shift
+    c_pt = fr.port_point[ports.y] + ports.shift
+    q_pt = bezier_controls(a_pt, fr.port_dir[ports.x], c_pt, -fr.port_dir[ports.y])
+    u = np.arange(nc) / nc
+    b0, b1, b2 = (1 - u) ** 2, 2 * u * (1 - u), u**2
+    pts = b0[None, :, None] * a_pt[:, None] + b1[None, :, None] * q_pt[:, None] + b2[None, :, None] * c_pt[:, None]
+    return pts, a_pt, c_pt
+
+
+@dataclass(frozen=True, eq=False)
+class _EdgePlan:
+    """Sampling of the edge pieces: points per step and, per point, its step and parameter."""
+
+    n_edge: np.ndarray  # (n_steps,) int64
+    piece: np.ndarray  # (n_points,) step of each edge point
+    offsets: np.ndarray  # (n_steps + 1,)
+    sigma: np.ndarray  # (n_points,) in [0, 1)
+
+
+def _edge_counts(scaffold: Scaffold, tr: Trace, ports: _Ports, params: GeometryParams) -> np.ndarray:
+    """Points on each step's edge piece, ``(n_steps,) float64`` (floats: huge twists are refused, not cast)."""
+    e = scaffold.side_edge[ports.y // 2]
+    k = scaffold.edge_degrees[e]
+    t = np.where(k > 1, tr.labels[e], 0)
+    turns = np.abs(t.astype(np.float64)) / k  # floats: -2**63 has no int64 abs
+    return np.where(ports.z >= 0, params.edge_samples + np.ceil(params.samples_per_turn * turns), 0.0)
+
+
+def _edge_plan(counts: np.ndarray) -> _EdgePlan:
+    n_edge = counts.astype(np.int64)
+    piece = np.repeat(np.arange(len(n_edge)), n_edge)
     offsets = np.concatenate([[0], np.cumsum(n_edge)])
-    sig = (np.arange(len(piece)) - offsets[piece]) / np.maximum(n_edge[piece], 1)
-    fwd = ((y % 2 == 0) == scaffold.side_forward[ys])[piece]  # port y at end a
+    sigma = (np.arange(len(piece)) - offsets[piece]) / np.maximum(n_edge[piece], 1)
+    return _EdgePlan(n_edge, piece, offsets, sigma)
+
+
+def _edge_points(
+    scaffold: Scaffold, fr: Tracks, tr: Trace, ports: _Ports, plan: _EdgePlan, params: GeometryParams
+) -> np.ndarray:
+    """Return the helices from port y to port z of every step, ``(n_points, 3)`` (module docstring)."""
+    ys = ports.y // 2
+    e = scaffold.side_edge[ys]
+    degrees = scaffold.edge_degrees
+    t = np.where(degrees[e] > 1, tr.labels[e], 0)  # a lone strand's full turns about an empty axis: drawn straight
+    piece, sig = plan.piece, plan.sigma
+    fwd = ((ports.y % 2 == 0) == scaffold.side_forward[ys])[piece]  # port y at end a
     ep = e[piece]
     slot = scaffold.radial.side_slot[ys][piece]
-    start, width = helix_windows(scaffold, fr, twist, params.pitch)
+    start, width = helix_windows(scaffold, fr, tr.labels, params.pitch)
     g = twist_profile((sig - start[ep]) / width[ep])
     xs = np.where(fwd, slot + t[piece] * g, slot - t[piece] * g)
     fa, fb = fr.margin[ep, 0], fr.margin[ep, 1]
@@ -339,49 +309,99 @@ def realize(
             scaffold.side_edge[scaffold.radial.edge_sides], fr.slot_radius, minlength=scaffold.n_edges
         ) / np.maximum(degrees, 1)
     phi, rad = edge_angles(fr, scaffold, ep, xs, sig, theta0, helix_radius)
-    edge_pts = (
+    return (
         fr.pa[ep]
         + par[:, None] * (fr.pb[ep] - fr.pa[ep])
         + fr.side_shift[ys][piece]
-        + step_shift[piece]
+        + ports.shift[piece]
         + rad[:, None] * (np.cos(phi)[:, None] * fr.u1[ep] + np.sin(phi)[:, None] * fr.u2[ep])
     )
 
-    # assemble: per step, the corner turn then its edge piece
-    per_step = nc + n_edge
-    pos = np.concatenate([[0], np.cumsum(per_step)])
-    total = int(pos[-1])
-    points = np.empty((total, 3))
-    corner_index = pos[:-1, None] + np.arange(nc)[None, :]
-    points[corner_index.reshape(-1)] = corner_pts.reshape(-1, 3)
-    edge_index = pos[piece] + nc + (np.arange(len(piece)) - offsets[piece])
-    points[edge_index] = edge_pts
+
+def _assemble(corners: np.ndarray, edge_pts: np.ndarray, plan: _EdgePlan) -> np.ndarray:
+    """All points in trace order: per step, its corner turn then its edge piece, ``(n, 3)``."""
+    n_steps, nc = corners.shape[:2]
+    pos = np.concatenate([[0], np.cumsum(nc + plan.n_edge)])
+    points = np.empty((int(pos[-1]), 3))
+    points[(pos[:-1, None] + np.arange(nc)[None, :]).reshape(-1)] = corners.reshape(-1, 3)
+    points[pos[plan.piece] + nc + (np.arange(len(plan.piece)) - plan.offsets[plan.piece])] = edge_pts
+    return points
+
+
+def _strand_curves(
+    scaffold: Scaffold,
+    tr: Trace,
+    points: np.ndarray,
+    plan: _EdgePlan,
+    a_pt: np.ndarray,
+    c_pt: np.ndarray,
+    translations: np.ndarray,
+) -> tuple[list[np.ndarray], np.ndarray, np.ndarray, np.ndarray]:
+    """Cut the points into one polyline per strand and copy: ``(curves, closed, strand_of, copy_of)``."""
+    nc = (len(points) - int(plan.n_edge.sum())) // max(len(plan.n_edge), 1)  # points per corner turn
+    pos = np.concatenate([[0], np.cumsum(nc + plan.n_edge)])
+    periods = tr.periods if scaffold.dim else np.zeros((tr.components, 0), np.int64)
     curves, closed_flags, strand_of, copy_of = [], [], [], []
-    periods = tr.periods if dim else np.zeros((tr.components, 0), np.int64)
-    if translations is not None and not dim:
-        raise GeometryError(f"{scaffold.name}: translated copies need a periodic scaffold")
-    translations = (
-        np.zeros((1, dim), np.int64) if translations is None else np.asarray(translations, np.int64).reshape(-1, dim)
-    )
-    copy_shift = lattice_shift(scaffold, translations)
-    for c_i, shift in enumerate(copy_shift):
+    for c_i, shift in enumerate(lattice_shift(scaffold, translations)):
         for s_i in range(tr.components):
-            lo, hi = pos[tr.strand_starts[s_i]], pos[tr.strand_starts[s_i + 1]]
-            pts = points[lo:hi]
+            first, last = tr.strand_starts[s_i], tr.strand_starts[s_i + 1] - 1
+            pts = points[pos[first] : pos[last + 1]]
             is_closed = bool(tr.closed[s_i]) and not np.any(periods[s_i] != 0)
             if not tr.closed[s_i]:
-                last = tr.strand_starts[s_i + 1] - 1
                 pts = np.vstack([pts, c_pt[last]])
             elif not is_closed:  # one period of an infinite thread
-                last = tr.strand_starts[s_i + 1] - 1
-                first = tr.strand_starts[s_i]
                 pts = np.vstack([pts, a_pt[first] + lattice_shift(scaffold, periods[s_i][None])[0]])
             curves.append(pts + shift)
             closed_flags.append(is_closed)
             strand_of.append(s_i)
             copy_of.append(c_i)
-    closed = np.array(closed_flags, bool)
-    min_dist, closest = check_embedding(curves, closed, min_sep, scale) if measure else (float("inf"), {})
+    return curves, np.array(closed_flags, bool), np.array(strand_of, np.int64), np.array(copy_of, np.int64)
+
+
+def _measured(
+    scaffold: Scaffold,
+    tr: Trace,
+    curves: list[np.ndarray],
+    closed: np.ndarray,
+    strand_of: np.ndarray,
+    copy_of: np.ndarray,
+    opts: Resolved,
+    params: GeometryParams,
+    check: bool,
+    measure: bool,
+    translations: np.ndarray,
+) -> Realization:
+    """Measure the clearance, refuse a self-intersection (``check``), choose the tube radius."""
+    min_dist, closest = _clearance(scaffold, curves, closed, opts, check) if measure else (float("inf"), {})
+    if params.tube_radius is not None:
+        tube = params.tube_radius
+    else:  # thin enough to stay clear of the other strands and not to fold where a curve bends
+        tube = min(TUBE * opts.scale, 0.45 * min_dist, 0.9 * tightest_bend(curves, closed)[0])
+    return Realization(
+        scaffold,
+        tr,
+        curves,
+        closed,
+        strand_of,
+        copy_of,
+        opts.scale,
+        opts.radius,
+        opts.normal_offset,
+        opts.margin,
+        float(tube),
+        opts.min_separation,
+        float(min_dist),
+        closest,
+        translations,
+    )
+
+
+def _clearance(
+    scaffold: Scaffold, curves: list[np.ndarray], closed: np.ndarray, opts: Resolved, check: bool
+) -> tuple[float, dict[str, Any]]:
+    """Smallest distance between distinct pieces and where; refuse a self-intersection when ``check``."""
+    min_sep = opts.min_separation
+    min_dist, closest = check_embedding(curves, closed, min_sep, opts.scale)
     if closest:
         closest["place"] = place_name(scaffold, closest["point"])
     if check and min_dist < min_sep:
@@ -390,24 +410,4 @@ def realize(
             f"{min_dist:.3g} (< min_separation {min_sep:.3g}) near {closest['place']}; the geometry would "
             "self-intersect (try a smaller --radius or --normal-offset)"
         )
-    if params.tube_radius is not None:
-        tube = params.tube_radius
-    else:  # thin enough to stay clear of the other strands and not to fold where a curve bends
-        tube = min(0.03 * scale, 0.45 * min_dist, 0.9 * tightest_bend(curves, closed)[0])
-    return Realization(
-        scaffold,
-        tr,
-        curves,
-        closed,
-        np.array(strand_of, np.int64),
-        np.array(copy_of, np.int64),
-        scale,
-        float(rho),
-        float(h),
-        float(margin),
-        float(tube),
-        float(min_sep),
-        float(min_dist),
-        closest,
-        translations,
-    )
+    return min_dist, closest

@@ -193,7 +193,8 @@ def identify(
                 f"> {MAX_CROSSINGS:,} (MAX_CROSSINGS): too large to identify; use smaller twists"
             )
         step.note("realizing")
-        real = realize(scaffold, tr.labels, nulls, params, result=tr)
+        # the construction polylines (smoothing off unless asked): isotopic to the smoothed strands, cheaper
+        real = realize(scaffold, tr.labels, nulls, params or GeometryParams(smooth=False), result=tr)
         step.note("diagram")
         diagram = project_generic(real.curves, seed)
         head = {

@@ -1,0 +1,128 @@
+"""Smooth default strands and ``--relax``: ropelength measured on the exported OBJ by an
+independent helper (tests/ropelength.py), link types checked before and after."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import lkspace
+from lkspace.errors import GeometryError
+from lkspace.geometry.flow import FlowOptions, rope_flow
+
+from .cli_calls import one_line_error, run
+from .ropelength import curvature_radii, read_obj_polylines, ropelength
+from .test_geometry import gauss_linking
+
+# mesh, twist, type, least ropelength known (ropelength literature: length / tube radius)
+DESIGNS = {
+    "trefoil": ("dihedron:3", "1", "3_1", 32.74),
+    "figure-eight": ("figure-eight", "0,-1,-1,-1,-1", "4_1", 42.09),
+    "5_1": ("dihedron:5", "1", "5_1", 47.20),
+    "hopf": ("dihedron:4", "0,0,-1,-1", "L2a1", 25.13),
+    "borromean": ("tetrahedron", "1", "L6a4", 58.01),
+}
+
+
+def labels_of(twist: str) -> int | list[int]:
+    values = [int(x) for x in twist.split(",")]
+    return values[0] if len(values) == 1 else values
+
+
+def exported(capsys, tmp_path, mesh, twist, *extra):
+    path = tmp_path / "curves.obj"
+    code, _, err = run(capsys, "export", mesh, f"--twist={twist}", "-o", path, *extra)
+    assert code == 0, err
+    return read_obj_polylines(path)
+
+
+def test_ropelength_helper_on_known_curves():
+    t = np.linspace(0, 2 * np.pi, 400, endpoint=False)
+    circle = np.column_stack([np.cos(t), np.sin(t), 0 * t])
+    one = ropelength([(circle, True)], n_points=800)
+    assert one["ropelength"] == pytest.approx(2 * np.pi, rel=1e-3)  # thickness 1: the curvature radius
+    assert curvature_radii(circle, True) == pytest.approx(1, rel=1e-3)
+    # tight Hopf link: unit circles through each other's centres, 1 apart: thickness 1/2, ropelength 8 pi
+    other = np.column_stack([1 + np.cos(t), 0 * t, np.sin(t)])
+    hopf = ropelength([(circle, True), (other, True)], n_points=1600)
+    assert hopf["half_distance"] == pytest.approx(0.5, rel=1e-2)
+    assert hopf["ropelength"] == pytest.approx(8 * np.pi, rel=1e-2)
+
+
+@pytest.mark.parametrize("design", DESIGNS)
+def test_default_export_is_smooth_and_within_three_times_the_least(capsys, tmp_path, design):
+    mesh, twist, _, least = DESIGNS[design]
+    curves = exported(capsys, tmp_path, mesh, twist)
+    measured = ropelength(curves)
+    assert measured["ropelength"] <= 3 * least, measured
+    # the cusps are gone: the tightest bend is at least three times wider than the construction's
+    raw = lkspace.realize(mesh, labels_of(twist), params=lkspace.GeometryParams(smooth=False))
+    assert measured["curvature_radius"] > 3 * min(curvature_radii(c, True).min() for c in raw.curves)
+
+
+@pytest.mark.parametrize("design", DESIGNS)
+def test_smoothing_keeps_the_link_type(capsys, tmp_path, design):
+    pytest.importorskip("snappy")
+    from lkspace.knots.recognition import identify_curves
+
+    mesh, twist, name, _ = DESIGNS[design]
+    curves = [c for c, _ in exported(capsys, tmp_path, mesh, twist)]
+    assert identify_curves(curves)["name"] == name
+    raw = lkspace.realize(mesh, labels_of(twist), params=lkspace.GeometryParams(smooth=False))
+    for i in range(len(curves)):  # linking numbers by the Gauss integral, an independent invariant
+        for j in range(i):
+            assert round(gauss_linking(curves[i], curves[j])) == round(gauss_linking(raw.curves[i], raw.curves[j]))
+
+
+@pytest.mark.parametrize("design", ["trefoil", "hopf", "5_1"])
+def test_relax_tightens_and_keeps_the_type(design):
+    pytest.importorskip("snappy")
+    from lkspace.knots.recognition import identify_curves
+
+    mesh, twist, name, least = DESIGNS[design]
+    before = lkspace.realize(mesh, labels_of(twist))
+    after = lkspace.relax(before, iterations=1500)
+    measured = ropelength([(c, True) for c in after.curves])
+    assert least * 0.99 <= measured["ropelength"] <= 1.25 * least, measured
+    assert identify_curves(before.curves)["name"] == identify_curves(after.curves)["name"] == name
+    assert after.min_distance > after.min_separation
+    assert 0 < after.tube_radius <= measured["thickness"] * 1.05  # the tube fills the rope, no more
+
+
+@pytest.mark.slow
+def test_export_relax_through_the_cli(capsys, tmp_path):
+    mesh, twist, _, least = DESIGNS["borromean"]
+    measured = ropelength(exported(capsys, tmp_path, mesh, twist, "--relax"))
+    assert measured["ropelength"] <= 1.25 * least
+
+
+def test_flow_never_passes_strands_through_each_other():
+    # two rings linked once, squeezed by a rope far thicker than their gap: the pushes are
+    # capped, so they stay linked (Gauss integral) however hard the flow pushes
+    t = np.linspace(0, 2 * np.pi, 200, endpoint=False)
+    a = np.column_stack([np.cos(t), np.sin(t), 0 * t])
+    b = np.column_stack([1 + np.cos(t), 0 * t, np.sin(t)])
+    out = rope_flow([a, b], FlowOptions(diameter=3.0, pull=0.5, iterations=300)).curves
+    assert abs(round(gauss_linking(out[0], out[1]))) == 1
+
+
+def test_relax_refuses_periodic_scaffolds(capsys, tmp_path):
+    real = lkspace.realize("honeycomb:cP", [2, 1, 1])
+    with pytest.raises(GeometryError, match="finite scaffolds"):
+        lkspace.relax(real)
+    code, _, err = run(
+        capsys, "export", "honeycomb:cP", "--twist", "2,1,1", "--block", "2x2x2", "--relax", "-o", tmp_path / "b.obj"
+    )
+    assert code == 2
+    one_line_error(err, "--relax", "finite")
+    assert not (tmp_path / "b.obj").exists()
+
+
+@pytest.mark.parametrize("relax", [[], ["--relax"]])
+@pytest.mark.parametrize("mesh", ["whitehead", "figure-eight"])
+def test_prints_pass_at_one_millimetre(capsys, tmp_path, mesh, relax):
+    # refused before the smoothing: bends tighter than a 1 mm tube at scale 20
+    path = tmp_path / "print.stl"
+    code, out, err = run(capsys, "export", mesh, "--thickness", 1, "--units", "mm", "--scale", 20, "-o", path, *relax)
+    assert code == 0 and path.stat().st_size > 0, err
+    assert "smallest gap" in out
