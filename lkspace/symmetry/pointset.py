@@ -185,6 +185,8 @@ class Matcher:
 
     def probe(self, qs: np.ndarray, probes: np.ndarray) -> np.ndarray:
         """(m,) bool: which ``qs (m, 3, 3)`` map every probe site onto a site of its class."""
+        if not len(qs):  # a batch whose candidates were all found already
+            return np.zeros(0, dtype=bool)
         pts, classes = self.sites.points, self.sites.classes
         images = np.einsum("mij,pj->mpi", qs, pts[probes])
         dist, idx = self.tree.query(images.reshape(-1, 3), distance_upper_bound=TOLERANCE)
