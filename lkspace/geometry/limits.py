@@ -13,7 +13,15 @@ from ..errors import GeometryError
 from ..model.scaffold import Scaffold
 from .helix import RAMP
 
-__all__ = ["MAX_POINTS", "MAX_RELATIVE", "MAX_SAMPLES", "check_lengths", "check_winding"]
+__all__ = [
+    "MAX_CHECK_SAMPLES",
+    "MAX_POINTS",
+    "MAX_RELATIVE",
+    "MAX_SAMPLES",
+    "check_lengths",
+    "check_samples",
+    "check_winding",
+]
 
 MAX_POINTS = 4_000_000
 """Most polyline points :func:`~lkspace.geometry.realization.realize` builds (all curves and copies together).
@@ -29,6 +37,38 @@ MAX_RELATIVE = 1.0
 
 MAX_SAMPLES = 1000
 """Largest ``samples_per_turn``, ``edge_samples`` and ``corner_samples``."""
+
+
+MAX_CHECK_SAMPLES = 10_000_000
+"""Most samples the embedding check (:func:`~lkspace.geometry.clearance.check_embedding`) may take.
+
+It samples every ``min_separation / 2`` along the strands, about the total length of the
+face sides plus ``2 pi x radius`` per unit of twist; a mesh whose sides are long next to
+its shortest edge (a 100,000-gon, a needle-thin face) would need billions.
+"""
+
+
+def check_samples(scaffold: Scaffold, labels: np.ndarray, radius: float, min_sep: float) -> None:
+    """Refuse, before any geometry, strands too long for the embedding check at ``min_sep`` (a usage error).
+
+    The strands run along every face side once (their length is about the sum of the
+    side lengths) and wind ``|t|`` turns of radius about ``radius`` around an edge of twist ``t``.
+    """
+    corners = scaffold.corner_positions
+    starts = scaffold.face_starts
+    nxt = np.arange(len(corners)) + 1
+    nxt[starts[1:] - 1] = starts[:-1]  # each face's last corner closes onto its first
+    sides = float(np.linalg.norm(corners[nxt] - corners, axis=1).sum())
+    multi = scaffold.edge_degrees > 1
+    turns = float(np.abs(np.asarray(labels, np.float64))[multi].sum())
+    samples = (sides + 2 * np.pi * radius * turns) / (0.5 * min_sep)
+    if not samples <= MAX_CHECK_SAMPLES:
+        raise GeometryError(
+            f"{scaffold.name}: strands about {sides:.4g} long checked every {0.5 * min_sep:.3g} need about "
+            f"{samples:.3g} samples > {MAX_CHECK_SAMPLES:,} (MAX_CHECK_SAMPLES): the sides are too long next to "
+            "the shortest edge; use a coarser mesh",
+            usage=True,
+        )
 
 
 def check_lengths(name: str, lengths: dict[str, float], scale: float) -> None:
