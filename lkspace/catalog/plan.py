@@ -18,8 +18,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..design.counting import class_weights
-from ..design.space import DesignSpace, count_text
+from ..design.space import DesignSpace
 from ..errors import CatalogError, TooLargeError, UsageError
+from ..model.counts import count_text
 
 PART_ROWS = 1_000_000
 """Designs per part of a sharded catalog (about): a walk with more rows becomes a folder."""

@@ -18,6 +18,7 @@ from numpy.typing import ArrayLike
 
 from ..errors import LabelError, TooLargeError
 from ..io.sources import ScaffoldSource, load
+from ..model.counts import count_text
 from ..model.scaffold import Scaffold
 from ..model.specs import LabelSetSpec, parse_label_set
 from ..model.validation import validate_labels
@@ -366,23 +367,6 @@ def check_count_digits(scaffold: Scaffold, n_labels: int) -> None:
             f"{scaffold.name}: {n_labels}^{scaffold.n_edges} label assignments (about 10^{digits:,.0f}) are past "
             f"10^{MAX_COUNT_DIGITS} (MAX_COUNT_DIGITS), too many to count or list; use a smaller scaffold or label set"
         )
-
-
-def count_text(n: int) -> str:
-    """``n`` for a message: ``"1,234,567"``, or ``"8.9e+5123"`` past 15 digits (never a huge decimal string).
-
-    Examples
-    --------
-    >>> count_text(1234567), count_text(5**7320)
-    ('1,234,567', '2.9e+5116')
-    """
-    if n < 10**15:
-        return f"{n:,}"
-    shift = max(n.bit_length() - 53, 0)
-    exponent = math.log10(n >> shift) + shift * math.log10(2)
-    whole = math.floor(exponent)
-    mantissa = f"{10 ** (exponent - whole):.2g}"
-    return f"1e+{whole + 1}" if mantissa == "10" else f"{mantissa}e+{whole}"
 
 
 def make_space(

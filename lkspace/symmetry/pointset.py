@@ -94,6 +94,14 @@ def gap_clusters(values: np.ndarray, tol: float) -> np.ndarray:
     return ids
 
 
+def first_seen_order(ids: np.ndarray) -> np.ndarray:
+    """Renumber ``ids (n,)`` as ``(n,) int64`` 0, 1, ... in the order each id first occurs."""
+    _, first, inverse = np.unique(ids, return_index=True, return_inverse=True)
+    rank = np.empty(len(first), np.int64)
+    rank[np.argsort(first)] = np.arange(len(first))
+    return rank[inverse.reshape(-1)]
+
+
 def find_sites(x: np.ndarray, invariants: list[np.ndarray]) -> Sites:
     """Weld positions ``x`` (standard position) into sites; class them by radius and ``invariants``.
 
@@ -104,14 +112,15 @@ def find_sites(x: np.ndarray, invariants: list[np.ndarray]) -> Sites:
     from scipy.sparse.csgraph import connected_components
     from scipy.spatial import cKDTree
 
-    pairs = cKDTree(x).query_pairs(TOLERANCE, output_type="ndarray")
-    n = len(x)
+    distinct, copy_of = np.unique(x, axis=0, return_inverse=True)  # exact copies first: pairs stay linear
+    copy_of = copy_of.reshape(-1)
+    pairs = cKDTree(distinct).query_pairs(TOLERANCE, output_type="ndarray")
+    n = len(distinct)
     if len(pairs):
         graph = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(n, n))
-        _, of_vertex = connected_components(graph, directed=False)
-        of_vertex = of_vertex.astype(np.int64)
-    else:
-        of_vertex = np.arange(n, dtype=np.int64)
+        _, near = connected_components(graph, directed=False)
+        copy_of = near[copy_of]
+    of_vertex = first_seen_order(copy_of)
     n_sites = int(of_vertex.max()) + 1
     copies = np.bincount(of_vertex, minlength=n_sites).astype(np.float64)
     points = np.zeros((n_sites, 3))
