@@ -43,6 +43,8 @@ UNITS: dict[str, tuple[str, float]] = {
 
 MAX_SCALE = 1e9
 """Largest ``--scale``: coordinates stay far inside float32 (the STL and 3MF precision)."""
+MIN_SCALE = 1 / MAX_SCALE
+"""Smallest ``--scale``: smaller coordinates lose their digits in float32 (5e-324 made every point 0)."""
 
 MAX_GAP_SAMPLES = 3_000_000
 """Most centreline samples the clearance check takes (coarser sampling beyond)."""
@@ -106,8 +108,8 @@ def check_options(thickness: float | None, clearance: float | None, units: str, 
         raise GeometryError(f"--clearance must be a finite number >= 0, got {clearance}", usage=True)
     if units not in UNITS:
         raise GeometryError(f"--units {units!r}: expected one of {', '.join(UNITS)}", usage=True)
-    if not (np.isfinite(scale) and 0 < scale <= MAX_SCALE):
-        raise GeometryError(f"--scale must be a number in (0, {MAX_SCALE:g}], got {scale}", usage=True)
+    if not (np.isfinite(scale) and MIN_SCALE <= scale <= MAX_SCALE):
+        raise GeometryError(f"--scale must be a number in [{MIN_SCALE:g}, {MAX_SCALE:g}], got {scale}", usage=True)
 
 
 def printable(

@@ -35,6 +35,9 @@ any geometry: ``edge_samples + samples_per_turn * |t| / K`` per edge piece plus
 MAX_RELATIVE = 1.0
 """Largest ``radius``, ``normal_offset``, ``margin`` and ``tube_radius``, in shortest edge lengths."""
 
+MIN_RELATIVE = 1e-9
+"""Smallest nonzero ``radius``, ``normal_offset``, ``tube_radius``, ``helix_radius`` and ``pitch``, in shortest edge lengths."""
+
 MAX_SAMPLES = 1000
 """Largest ``samples_per_turn``, ``edge_samples`` and ``corner_samples``."""
 
@@ -69,6 +72,20 @@ def check_samples(scaffold: Scaffold, labels: np.ndarray, radius: float, min_sep
             "the shortest edge; use a coarser mesh",
             usage=True,
         )
+
+
+def check_small(name: str, lengths: dict[str, float | None], scale: float) -> None:
+    """Refuse (a usage error) any nonzero of ``lengths`` below :data:`MIN_RELATIVE` x ``scale`` on scaffold ``name``.
+
+    Such lengths vanish next to the mesh (a pitch of 5e-324 divided to infinity).
+    """
+    for what, value in lengths.items():
+        if value is not None and 0 < value < MIN_RELATIVE * scale:
+            raise GeometryError(
+                f"geometry parameter {what} {value:g} is below {MIN_RELATIVE:g} x the shortest edge of "
+                f"{name} ({MIN_RELATIVE * scale:.4g}); too small to draw",
+                usage=True,
+            )
 
 
 def check_lengths(name: str, lengths: dict[str, float], scale: float) -> None:

@@ -54,7 +54,7 @@ from ..strands.ports import port_model
 from ..strands.tracing import Trace, trace
 from .clearance import check_embedding, tightest_bend
 from .helix import edge_angles, even_offsets, helix_windows, twist_profile
-from .limits import MAX_POINTS, MAX_SAMPLES, check_lengths, check_samples, check_winding
+from .limits import MAX_POINTS, MAX_SAMPLES, check_lengths, check_samples, check_small, check_winding
 from .tracks import bezier_controls, default_scale, lattice_shift, place_name, side_tracks
 
 if TYPE_CHECKING:
@@ -265,6 +265,7 @@ def realize(
     lengths = {"radius": rho, "normal_offset": h, "margin": margin, "tube_radius": params.tube_radius or 0.0}
     lengths["helix_radius"] = params.helix_radius or 0.0
     check_lengths(scaffold.name, lengths, scale)
+    check_small(scaffold.name, {**lengths, "pitch": params.pitch}, scale)
     if measure:
         check_samples(scaffold, tr.labels, rho, min_sep)
     fr = side_tracks(scaffold, rho, h, margin, NEAR_ANGLE if params.normal_offset is None else None)
