@@ -266,11 +266,11 @@ def realize(
     lengths["helix_radius"] = params.helix_radius or 0.0
     check_lengths(scaffold.name, lengths, scale)
     check_small(scaffold.name, {**lengths, "pitch": params.pitch}, scale)
-    if measure:
-        check_samples(scaffold, tr.labels, rho, min_sep)
     fr = side_tracks(scaffold, rho, h, margin, NEAR_ANGLE if params.normal_offset is None else None)
     if check:
         check_winding(scaffold, fr.pa, fr.pb, fr.margin, tr.labels, min_sep)
+    if measure:
+        check_samples(scaffold, tr.labels, rho, min_sep)
     model = port_model(scaffold)
     cp = model.corner_partner
     twist = tr.labels

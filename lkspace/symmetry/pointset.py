@@ -112,15 +112,19 @@ def find_sites(x: np.ndarray, invariants: list[np.ndarray]) -> Sites:
     from scipy.sparse.csgraph import connected_components
     from scipy.spatial import cKDTree
 
-    distinct, copy_of = np.unique(x, axis=0, return_inverse=True)  # exact copies first: pairs stay linear
-    copy_of = copy_of.reshape(-1)
-    pairs = cKDTree(distinct).query_pairs(TOLERANCE, output_type="ndarray")
-    n = len(distinct)
+    x_all = x
+    x, copy_of = np.unique(x_all, axis=0, return_inverse=True)  # exact copies first: pairs stay linear
+
+    pairs = cKDTree(x).query_pairs(TOLERANCE, output_type="ndarray")
+    n = len(x)
     if len(pairs):
         graph = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(n, n))
-        _, near = connected_components(graph, directed=False)
-        copy_of = near[copy_of]
-    of_vertex = first_seen_order(copy_of)
+        _, of_vertex = connected_components(graph, directed=False)
+        of_vertex = of_vertex.astype(np.int64)
+    else:
+        of_vertex = np.arange(n, dtype=np.int64)
+    of_vertex = first_seen_order(of_vertex[copy_of.reshape(-1)])  # sites of the copies, numbered in vertex order
+    x = x_all
     n_sites = int(of_vertex.max()) + 1
     copies = np.bincount(of_vertex, minlength=n_sites).astype(np.float64)
     points = np.zeros((n_sites, 3))
