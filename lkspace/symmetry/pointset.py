@@ -85,6 +85,14 @@ def standard_position(vertices: np.ndarray) -> np.ndarray:
     return x / rms if rms > 0 else x
 
 
+def first_seen_order(ids: np.ndarray) -> np.ndarray:
+    """Renumber ``ids (n,)`` as ``(n,) int64`` 0, 1, ... in the order each id first occurs."""
+    _, first, inverse = np.unique(ids, return_index=True, return_inverse=True)
+    rank = np.empty(len(first), np.int64)
+    rank[np.argsort(first)] = np.arange(len(first))
+    return rank[inverse.reshape(-1)]
+
+
 def gap_clusters(values: np.ndarray, tol: float) -> np.ndarray:
     """Return ``(n,) int64`` cluster ids of ``values``: sorted values closer than ``tol`` chain together."""
     order = np.argsort(values, kind="stable")
@@ -94,26 +102,17 @@ def gap_clusters(values: np.ndarray, tol: float) -> np.ndarray:
     return ids
 
 
-def first_seen_order(ids: np.ndarray) -> np.ndarray:
-    """Renumber ``ids (n,)`` as ``(n,) int64`` 0, 1, ... in the order each id first occurs."""
-    _, first, inverse = np.unique(ids, return_index=True, return_inverse=True)
-    rank = np.empty(len(first), np.int64)
-    rank[np.argsort(first)] = np.arange(len(first))
-    return rank[inverse.reshape(-1)]
-
-
 def find_sites(x: np.ndarray, invariants: list[np.ndarray]) -> Sites:
     """Weld positions ``x`` (standard position) into sites; class them by radius and ``invariants``.
 
     ``invariants`` are ``(n_vertices,)`` float arrays kept by every symmetry (e.g. vertex
     degrees); a site's value is the sum over its vertices.
     """
+    x_all = x
+    x, copy_of = np.unique(x_all, axis=0, return_inverse=True)  # exact copies first: pairs stay linear
     from scipy.sparse import coo_matrix
     from scipy.sparse.csgraph import connected_components
     from scipy.spatial import cKDTree
-
-    x_all = x
-    x, copy_of = np.unique(x_all, axis=0, return_inverse=True)  # exact copies first: pairs stay linear
 
     pairs = cKDTree(x).query_pairs(TOLERANCE, output_type="ndarray")
     n = len(x)
