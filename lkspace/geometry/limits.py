@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..errors import GeometryError
+from ..errors import GeometryError, TooLargeError
 from ..model.scaffold import Scaffold
 from .helix import RAMP
 
@@ -52,7 +52,7 @@ its shortest edge (a 100,000-gon, a needle-thin face) would need billions.
 
 
 def check_samples(scaffold: Scaffold, labels: np.ndarray, radius: float, min_sep: float) -> None:
-    """Refuse, before any geometry, strands too long for the embedding check at ``min_sep`` (a usage error).
+    """Refuse strands too long for the embedding check at ``min_sep`` (:class:`~lkspace.errors.TooLargeError`).
 
     The strands run along every face side once (their length is about the sum of the
     side lengths) and wind ``|t|`` turns of radius about ``radius`` around an edge of twist ``t``.
@@ -66,11 +66,10 @@ def check_samples(scaffold: Scaffold, labels: np.ndarray, radius: float, min_sep
     turns = float(np.abs(np.asarray(labels, np.float64))[multi].sum())
     samples = (sides + 2 * np.pi * radius * turns) / (0.5 * min_sep)
     if not samples <= MAX_CHECK_SAMPLES:
-        raise GeometryError(
+        raise TooLargeError(
             f"{scaffold.name}: strands about {sides:.4g} long checked every {0.5 * min_sep:.3g} need about "
             f"{samples:.3g} samples > {MAX_CHECK_SAMPLES:,} (MAX_CHECK_SAMPLES): the sides are too long next to "
-            "the shortest edge; use a coarser mesh",
-            usage=True,
+            "the shortest edge; use a coarser mesh"
         )
 
 

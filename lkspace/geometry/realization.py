@@ -269,8 +269,6 @@ def realize(
     fr = side_tracks(scaffold, rho, h, margin, NEAR_ANGLE if params.normal_offset is None else None)
     if check:
         check_winding(scaffold, fr.pa, fr.pb, fr.margin, tr.labels, min_sep)
-    if measure:
-        check_samples(scaffold, tr.labels, rho, min_sep)
     model = port_model(scaffold)
     cp = model.corner_partner
     twist = tr.labels
@@ -321,6 +319,8 @@ def realize(
             f"{scaffold.name}: the curves would have about {estimate:,.0f} points > {max_points:,} ({bound}); "
             "use smaller twists (or a smaller block)"
         )
+    if measure:
+        check_samples(scaffold, tr.labels, rho, min_sep)
     n_edge = n_edge.astype(np.int64)
     piece = np.repeat(np.arange(n_steps), n_edge)
     offsets = np.concatenate([[0], np.cumsum(n_edge)])
