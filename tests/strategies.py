@@ -44,6 +44,72 @@ def traceable_scaffolds(**kwargs):
     return scaffolds(**kwargs).filter(_traceable)
 
 
+# ---- inputs at and past the bounds (tests/test_fuzz_bounds.py) ---------------------------
+# Each strategy below makes input that is cheap to write but expensive if lkspace does not
+# check its size first: huge polygons, unused vertices, supercells, parameters, floats.
+
+EXTREME_FLOATS = ["5e-324", "1e-300", "2.3e-308", "1e-12", "1e300", "1.7976931348623157e308"]
+"""Option values at the edges of float64: subnormal, tiny, huge (nan and inf are refused by type)."""
+
+LENGTH_OPTIONS = ["--thickness", "--clearance", "--scale", "--inset", "--pitch", "--helix-radius", "--tube-radius",
+                  "--normal-offset"]  # fmt: skip
+"""Numeric options of ``lkspace export`` that take a length or a factor."""
+
+MATHTEXT_PIECES = ["$", "\\$", "\\frac{", "}", "{", "^", "_", "\\sqrt", "\\alpha", "\\foo", "x", " ", "\\", "\\left(",
+                   "\\right)", "\\mathrm{", "2", "%", "#", "&"]  # fmt: skip
+
+
+@st.composite
+def mathtext_titles(draw) -> str:
+    """A picture title made of mathtext pieces: often broken (odd braces, unknown commands), sometimes fine."""
+    return "".join(draw(st.lists(st.sampled_from(MATHTEXT_PIECES), min_size=1, max_size=8)))
+
+
+def polygon_obj(n_sides: int, two_sided: bool) -> bytes:
+    """An OBJ of one regular ``n_sides``-gon (and its reverse when ``two_sided``): big, cheap to write."""
+    angles = 2 * np.pi * np.arange(n_sides) / n_sides
+    lines = [f"v {np.cos(a):.9f} {np.sin(a):.9f} 0" for a in angles]
+    lines.append("f " + " ".join(str(i + 1) for i in range(n_sides)))
+    if two_sided:
+        lines.append("f " + " ".join(str(i + 1) for i in reversed(range(n_sides))))
+    return ("\n".join(lines) + "\n").encode()
+
+
+def unused_vertices_obj(n_unused: int, coincident: bool) -> bytes:
+    """An OBJ of one triangle and ``n_unused`` vertices in no face (all at one point, or on a line)."""
+    spare = "v 0 0 0\n" * n_unused if coincident else "".join(f"v {i} 5 5\n" for i in range(n_unused))
+    return ("v 0 0 0\nv 1 0 0\nv 0 1 0\n" + spare + "f 1 2 3\n").encode()
+
+
+def strip_obj(n_quads: int) -> bytes:
+    """An OBJ strip of ``n_quads`` quads in a row (``3 n + 1`` edges), slightly bent so it has no symmetry."""
+    lines = [f"v {i} {y} {0.001 * (i % 7)}" for i in range(n_quads + 1) for y in (0, 1)]
+    lines += [f"f {2 * i + 1} {2 * i + 3} {2 * i + 4} {2 * i + 2}" for i in range(n_quads)]
+    return ("\n".join(lines) + "\n").encode()
+
+
+SUPERCELL_BASES = {"tiling:square": 2, "tiling:hexagonal": 2, "honeycomb:cP": 3, "honeycomb:cI": 3}
+"""Periodic built-ins and their dimension, for supercell specs."""
+
+
+@st.composite
+def oversized_supercells(draw) -> str:
+    """A supercell ``NAME@AxB[xC]`` with more faces than ``MAX_SUPERCELL_FACES`` (sizes up to 10^12 cells)."""
+    name = draw(st.sampled_from(sorted(SUPERCELL_BASES)))
+    dim = SUPERCELL_BASES[name]
+    sizes = [draw(st.integers(1, 10**4)) for _ in range(dim)]
+    sizes[draw(st.integers(0, dim - 1))] = draw(st.integers(200_001, 10**12))  # past the bound alone
+    return f"{name}@{'x'.join(map(str, sizes))}"
+
+
+@st.composite
+def oversized_families(draw) -> str:
+    """``dihedron:N``, ``book:K`` or ``kaleidocycle:K`` past ``MAX_FAMILY_PARAMETER`` (1000)."""
+    family = draw(st.sampled_from(["dihedron", "book", "kaleidocycle"]))
+    n = draw(st.one_of(st.integers(1001, 10**6), st.sampled_from([10**18, 10**100])))
+    return f"{family}:{2 * (n // 2) if family == 'kaleidocycle' else n}"
+
+
 # ---- bad input for the command line (tests/test_fuzz_cli.py) ------------------------------
 # Each strategy below makes input that is certainly bad: a valid base with one defect.
 

@@ -13,7 +13,7 @@ from lkspace.design.counting import burnside_total, count_space
 from lkspace.design.space import canonical_form, make_space
 from lkspace.design.spanning import all_spanning_trees, dual_edges
 from lkspace.design.walk import walk_blocks
-from lkspace.errors import LabelError
+from lkspace.errors import LabelError, TooLargeError
 
 from .brute_orbits import brute_orbits
 from .test_symmetry import cubic_honeycomb, square_tiling
@@ -200,5 +200,5 @@ def test_count_by_cycle_index_for_a_space_too_big_to_list():
     expected = (5**30 + 24 * 5**6 + 20 * 5**10 + 15 * 5**16) // 60
     totals = count_space(space).to_dict()
     assert totals["designs"] == expected and totals["by_components"] is None
-    with pytest.raises(LabelError, match="too many"):
+    with pytest.raises(TooLargeError, match="too many"):
         next(design_batches(space))

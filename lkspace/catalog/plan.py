@@ -20,6 +20,7 @@ import numpy as np
 from ..design.counting import class_weights
 from ..design.space import DesignSpace
 from ..errors import CatalogError, TooLargeError, UsageError
+from ..model.counts import count_text
 
 PART_ROWS = 1_000_000
 """Designs per part of a sharded catalog (about): a walk with more rows becomes a folder."""
@@ -132,12 +133,12 @@ def make_plan(
     needed = -(-rows // PART_ROWS)
     if needed > MAX_PARTS:
         raise TooLargeError(
-            f"{space.scaffold.name}: about {rows:,} rows ({_gb(size)}) is past what lkspace writes "
+            f"{space.scaffold.name}: about {count_text(rows)} rows ({_gb(size)}) is past what lkspace writes "
             f"({MAX_PARTS * PART_ROWS:,} rows); use --count-only, filters or a smaller label set"
         )
     if not yes and (rows > ROW_LIMIT or size > BYTE_LIMIT):
         raise TooLargeError(
-            f"{space.scaffold.name}: about {rows:,} rows ({_gb(size)}) to write, past {ROW_LIMIT:,} rows "
+            f"{space.scaffold.name}: about {count_text(rows)} rows ({_gb(size)}) to write, past {ROW_LIMIT:,} rows "
             f"or {_gb(BYTE_LIMIT)}; pass --yes to go ahead (or use --count-only, filters or a smaller label set)"
         )
     whole_walk = mode == "designs" and max_designs is None

@@ -87,6 +87,7 @@ def _run(args: list[str]) -> int:
         warnings.showwarning = _show_warning
         try:
             cli.main(args=args, prog_name="lkspace", standalone_mode=False)
+            sys.stdout.flush()  # a full disk at stdout fails here, inside the error handling
         except LkspaceError as exc:
             return _fail(as_json, type(exc).__name__, str(exc), exc.exit_code)
         except (click.exceptions.Abort, KeyboardInterrupt) as exc:  # click turns KeyboardInterrupt into Abort
@@ -95,7 +96,8 @@ def _run(args: list[str]) -> int:
             return _fail(as_json, "UsageError", exc.format_message(), exc.exit_code or 2)
         except click.exceptions.Exit as exc:
             return exc.exit_code
-        except BrokenPipeError:
+        except BrokenPipeError:  # the reader left (``| head``): stop quietly, as other tools do
+            _drop_stdout()
             return 1
         except OSError as exc:  # a full disk, a lost mount: the system's words, the file named
             where = f"{exc.filename}: " if exc.filename else ""
@@ -144,8 +146,27 @@ def _fail(as_json: bool, kind: str, message: str, code: int) -> int:
     line = " ".join(message.split())
     click.echo(f"lkspace: error: {line}", err=True)
     if as_json:
-        sys.stdout.write(json.dumps({"error": {"type": kind, "message": line, "exit_code": code}}) + "\n")
+        try:
+            sys.stdout.write(json.dumps({"error": {"type": kind, "message": line, "exit_code": code}}) + "\n")
+            sys.stdout.flush()
+        except OSError:  # stdout itself is what failed: the stderr line has said so
+            _drop_stdout()
     return code
+
+
+def _drop_stdout() -> None:
+    """Point stdout's file descriptor at the null device, so the exit flush of what is left says nothing."""
+    try:
+        fd = sys.stdout.fileno()
+    except (
+        OSError,
+        ValueError,
+        AttributeError,
+    ):  # no file behind stdout (tests capture it): nothing is flushed at exit
+        return
+    null = os.open(os.devnull, os.O_WRONLY)
+    os.dup2(null, fd)
+    os.close(null)
 
 
 def _show_warning(message: Warning | str, category: type[Warning], *_args: object, **_kwargs: object) -> None:

@@ -135,7 +135,12 @@ def emit(ctx: Context, payload: dict[str, Any], human: Callable[[], object] | No
     """Print ``payload`` as one JSON object (``--json``) or call ``human()`` (``None``: JSON only)."""
     if ctx.as_json:
         out = {**ctx.notes, **payload}
-        sys.stdout.write(json.dumps(out, default=_jsonable) + "\n")
+        text = json.dumps(out, default=_jsonable) + "\n"
+        try:
+            sys.stdout.write(text)
+            sys.stdout.flush()
+        except OSError as exc:  # a full disk or a closed pipe at stdout: say where (EPIPE stays BrokenPipeError)
+            raise OSError(exc.errno, exc.strerror, "standard output") from None
     else:
         assert human is not None, "emit: no human-readable output given for a command without --json"
         human()

@@ -291,9 +291,10 @@ def export_cmd(
     ext = os.path.splitext(output)[1].lower()
     look = None
     if ext in PICTURES:
-        from ..formats.render import look_of
+        from ..formats.render import check_title, look_of
 
         look = look_of(view, size, background, colors)
+        check_title(title)
     elif diagram or any(v is not None for v in (view, size, background, colors)):
         raise UsageError(
             f"--view, --size, --background, --colors and --diagram are for pictures (.png, .svg), not {ext}"

@@ -16,8 +16,9 @@ from functools import cached_property
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ..errors import LabelError
+from ..errors import LabelError, TooLargeError
 from ..io.sources import ScaffoldSource, load
+from ..model.counts import count_text
 from ..model.scaffold import Scaffold
 from ..model.specs import LabelSetSpec, parse_label_set
 from ..model.validation import validate_labels
@@ -26,6 +27,9 @@ from ..symmetry.group import check_label_set, check_mode, symmetry_group
 from .orbit_kernels import orbit_minima, stabilizer_ids
 
 MAX_CLASSES = 1 << 21
+MAX_COUNT_DIGITS = 4000
+"""Most decimal digits of ``|SET| ** n_edges``: every count of a space (designs, assignments,
+orbit sizes) is written exactly, and Python writes integers of at most 4,300 digits."""
 WALK_MODES = ("designs", "residues", "spanning-trees")
 """Row kinds of a walk: one per design, per residue-class orbit, per dual spanning-tree class."""
 
@@ -74,6 +78,7 @@ class DesignSpace:
             raise LabelError(
                 f"labels must lie in -127..127 for a catalog, got {labels.min()}..{labels.max()}", usage=True
             )
+        check_count_digits(self.scaffold, len(labels))
         object.__setattr__(self, "label_set", labels)
         check_mode(self.mode)
         check_label_set(labels, self.mode)
@@ -300,8 +305,8 @@ def class_orbits(space: DesignSpace) -> ClassOrbits:
     n_res, values, _, _, lookup = space.residue_table
     n_cls = space.n_classes
     if n_cls > MAX_CLASSES:
-        raise LabelError(
-            f"{space.scaffold.name}: {n_cls} residue classes (label set {space.label_set.tolist()}) are too many to walk "
+        raise TooLargeError(
+            f"{space.scaffold.name}: {count_text(n_cls)} residue classes (label set {space.label_set.tolist()}) are too many to walk "
             f"(limit {MAX_CLASSES}); use --mode spanning-trees or a smaller label set"
         )
     dims = tuple(n_res.tolist())
@@ -348,6 +353,24 @@ def canonical_form(space: DesignSpace, labels: ArrayLike) -> tuple[np.ndarray, i
     best = keys[order[0]]
     stab = int(np.sum(np.all(keys == best[None, :], axis=1)))
     return images[order[0]].astype(np.int8), space.n_actions // stab
+
+
+def count_digits(n_labels: int, n_edges: int) -> float:
+    """Decimal digits of ``n_labels ** n_edges`` (a float, without building the number)."""
+    return n_edges * math.log10(max(n_labels, 1))
+
+
+def check_count_digits(scaffold: Scaffold, n_labels: int) -> None:
+    """Refuse a space whose ``|SET| ** n_edges`` has more than :data:`MAX_COUNT_DIGITS` digits (before any work).
+
+    Raises :class:`~lkspace.errors.TooLargeError` (a usage error) naming the size.
+    """
+    digits = count_digits(n_labels, scaffold.n_edges)
+    if digits > MAX_COUNT_DIGITS:
+        raise TooLargeError(
+            f"{scaffold.name}: {n_labels}^{scaffold.n_edges} label assignments (about 10^{digits:,.0f}) are past "
+            f"10^{MAX_COUNT_DIGITS} (MAX_COUNT_DIGITS), too many to count or list; use a smaller scaffold or label set"
+        )
 
 
 def make_space(

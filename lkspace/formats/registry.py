@@ -27,6 +27,7 @@ import math
 import os
 from typing import TYPE_CHECKING, Any
 
+import numpy as np
 from numpy.typing import ArrayLike
 
 from ..errors import ExportError, TooLargeError
@@ -95,6 +96,24 @@ def point_budget(path: str | os.PathLike[str], tubes: bool) -> tuple[int, str]:
             MAX_POINTS, MAX_TUBE_VERTICES // TUBE_SIDES
         ), "MAX_TUBE_VERTICES / 12 for tubes; polylines allow more"
     return MAX_POINTS, "MAX_POINTS"
+
+
+PICTURE_RING_SPACING = 1.2
+"""A 3D picture's tubes get a ring of vertices every 1.2 tube radii along the curves (:mod:`.render`)."""
+
+
+def check_picture_rings(real: Realization, radius: float) -> None:
+    """Refuse a picture whose tubes, a ring every 1.2 ``radius``, would pass :data:`MAX_TUBE_VERTICES`.
+
+    A tiny tube radius on long curves means rings beyond count; refused before drawing.
+    """
+    length = sum(float(np.linalg.norm(np.diff(c, axis=0), axis=1).sum()) for c in real.curves)
+    rings = length / (PICTURE_RING_SPACING * radius) + len(real.curves)
+    if rings * TUBE_SIDES > MAX_TUBE_VERTICES:
+        raise TooLargeError(
+            f"tubes of radius {radius:.3g} along {length:.4g} of curves need about {rings * TUBE_SIDES:.3g} "
+            f"vertices > {MAX_TUBE_VERTICES:,} (MAX_TUBE_VERTICES); use a larger tube radius or thickness"
+        )
 
 
 def export(
@@ -171,6 +190,10 @@ def export(
     ext = os.path.splitext(os.fspath(path))[1].lower()
     if diagram and ext not in PICTURES:
         raise ExportError(f"{path}: a diagram is drawn as {' or '.join(PICTURES)}, not {ext}")
+    if ext in PICTURES:
+        from .render import check_title
+
+        check_title(title)
     with task(f"export {os.path.basename(os.fspath(path))}") as step:
         if not isinstance(design, Realization):
             step.note("realizing")
@@ -188,6 +211,8 @@ def export(
                 f"{path}: tubes of {points:,} curve points need {points * TUBE_SIDES:,} vertices "
                 f"> {MAX_TUBE_VERTICES:,} (MAX_TUBE_VERTICES); write polylines (.obj or .ply without --tubes)"
             )
+        if ext in PICTURES and not diagram:
+            check_picture_rings(real, radius if radius is not None else real.tube_radius)
         if (pieces is None and ext in PRINTABLE) or (clearance is not None and (tubes or ext == ".glb")):
             from ..geometry.fabrication import printable
 

@@ -41,6 +41,9 @@ VIEWS: dict[str, tuple[float, float]] = {
 MAX_SIZE = 4000
 """Largest width or height of a picture, in pixels."""
 
+MAX_TITLE = 1000
+"""Longest picture title, in characters."""
+
 
 @dataclass(frozen=True)
 class Look:
@@ -138,6 +141,29 @@ def look_of(view: str | None, size: str | None, background: str | None, colors: 
     else:
         bg = "transparent"
     return Look(azim, elev, width, height, bg, parse_colors(colors))
+
+
+def check_title(title: str | None) -> None:
+    """Refuse a picture title that cannot be drawn (a usage error): too long, or broken mathtext.
+
+    Text between an even number of unescaped ``$`` signs is matplotlib mathtext; it is
+    parsed here, before any work, so ``$\\frac{$`` fails with one line naming the title.
+    """
+    if title is None:
+        return
+    if len(title) > MAX_TITLE:
+        raise UsageError(f"title of {len(title):,} characters: at most {MAX_TITLE} (MAX_TITLE)")
+    require("matplotlib", "render", "pictures")
+    from matplotlib import cbook
+    from matplotlib.mathtext import MathTextParser
+
+    if not cbook.is_math_text(title):
+        return
+    try:
+        MathTextParser("path").parse(title)
+    except ValueError as exc:
+        why = " ".join(str(exc).split())[:120]
+        raise UsageError(f"title {title[:60]!r}: broken mathtext ({why}); write a literal dollar as \\$") from None
 
 
 def new_figure(look: Look) -> Figure:

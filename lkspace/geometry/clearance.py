@@ -19,6 +19,16 @@ CHUNK = 50_000
 """Samples whose neighbours the coarse pass of :func:`check_embedding` examines at once (bounds its memory)."""
 
 
+def sample_tree(points: np.ndarray) -> cKDTree:
+    """Return a KD-tree of curve samples ``(n, 3)``, built without compacted nodes.
+
+    Compacted nodes (scipy's default) make ``query_pairs`` at about the sampling step
+    pathologically slow on samples along straight or planar runs: 59 s instead of 3 s
+    for 3 million samples of the cube's strands.
+    """
+    return cKDTree(points, compact_nodes=False)
+
+
 def resample(curve: np.ndarray, closed: bool, spacing: float) -> tuple[np.ndarray, np.ndarray, float]:
     """Points every ``spacing`` along a polyline: ``(points (m, 3), arclength (m,), length)``."""
     pts = np.vstack([curve, curve[:1]]) if closed else curve
@@ -124,14 +134,14 @@ def check_embedding(
             }
 
     pts, arc, owner, lengths = samples(curves, closed, min_separation / 2.0)
-    pairs = cKDTree(pts).query_pairs(min_separation, output_type="ndarray")
+    pairs = sample_tree(pts).query_pairs(min_separation, output_type="ndarray")
     if len(pairs):
         keep = pieces_apart(owner, arc, lengths, closed, pairs[:, 0], pairs[:, 1], 4 * min_separation, joins)
         consider(pts, owner, pairs[keep, 0], pairs[keep, 1])
     spacing = max(min_separation / 2.0, 0.02 * scale)
     pts, arc, owner, lengths = samples(curves, closed, spacing)
     k = min(48, len(pts))
-    tree = cKDTree(pts)
+    tree = sample_tree(pts)
     for lo in range(0, len(pts), CHUNK):  # in chunks: k neighbours per sample take ~3 kB each
         hi = min(lo + CHUNK, len(pts))
         _, nb = tree.query(pts[lo:hi], k=k, distance_upper_bound=0.3 * scale)

@@ -24,11 +24,10 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.spatial import cKDTree
 
 from ..errors import GeometryError
 from .block import join_curves
-from .clearance import pieces_apart, samples, tightest_bend
+from .clearance import pieces_apart, sample_tree, samples, tightest_bend
 from .realization import Realization
 from .tracks import place_name
 
@@ -44,11 +43,15 @@ UNITS: dict[str, tuple[str, float]] = {
 
 MAX_SCALE = 1e9
 """Largest ``--scale``: coordinates stay far inside float32 (the STL and 3MF precision)."""
+MIN_SCALE = 1 / MAX_SCALE
+"""Smallest ``--scale``: smaller coordinates lose their digits in float32 (5e-324 made every point 0)."""
 
 MAX_GAP_SAMPLES = 3_000_000
 """Most centreline samples the clearance check takes (coarser sampling beyond)."""
 MAX_GAP_PAIRS = 5_000_000
 """The search for the smallest gap (to report it) stops widening past this many sample pairs."""
+REACH_STEPS = 30
+"""The sampling step is at least 1 / REACH_STEPS of thickness + clearance (a tiny clearance or a huge one)."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -105,8 +108,8 @@ def check_options(thickness: float | None, clearance: float | None, units: str, 
         raise GeometryError(f"--clearance must be a finite number >= 0, got {clearance}", usage=True)
     if units not in UNITS:
         raise GeometryError(f"--units {units!r}: expected one of {', '.join(UNITS)}", usage=True)
-    if not (np.isfinite(scale) and 0 < scale <= MAX_SCALE):
-        raise GeometryError(f"--scale must be a number in (0, {MAX_SCALE:g}], got {scale}", usage=True)
+    if not (np.isfinite(scale) and MIN_SCALE <= scale <= MAX_SCALE):
+        raise GeometryError(f"--scale must be a number in [{MIN_SCALE:g}, {MAX_SCALE:g}], got {scale}", usage=True)
 
 
 def printable(
@@ -158,9 +161,10 @@ def check_gaps(
     want = 2 * radius + clearance
     total = sum(float(np.linalg.norm(np.diff(np.vstack([c, c[:1]]) if cl else c, axis=0), axis=1).sum())
                 for c, cl in zip(curves, closed, strict=True))  # fmt: skip
-    spacing = max(min(radius, clearance if clearance > 0 else radius) / 3, total / MAX_GAP_SAMPLES)
+    # at most REACH_STEPS samples per search radius: the pairs grow with samples, not with want / spacing
+    spacing = max(min(radius, clearance if clearance > 0 else radius) / 3, want / REACH_STEPS, total / MAX_GAP_SAMPLES)
     pts, arc, owner, lengths = samples(curves, closed, spacing)
-    tree = cKDTree(pts)
+    tree = sample_tree(pts)
     reach = want + spacing + radius
     exclusion = max(4 * want, np.pi * (radius + spacing))
     while True:  # widen the search until a gap is found (a number to report), within bounds
@@ -168,8 +172,8 @@ def check_gaps(
         keep = np.zeros(0, bool)
         if len(pairs):
             keep = pieces_apart(owner, arc, lengths, closed, pairs[:, 0], pairs[:, 1], exclusion)
-        if np.any(keep) or reach > 0.5 * max(lengths.max(), want) or len(pairs) > MAX_GAP_PAIRS:
-            break
+        if np.any(keep) or reach > 0.5 * max(lengths.max(), want) or 8 * len(pairs) > MAX_GAP_PAIRS:
+            break  # (doubling the radius may multiply the pairs by 8)
         reach *= 2
     if not np.any(keep):
         return None

@@ -9,11 +9,19 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..errors import GeometryError
+from ..errors import GeometryError, TooLargeError
 from ..model.scaffold import Scaffold
 from .helix import RAMP
 
-__all__ = ["MAX_POINTS", "MAX_RELATIVE", "MAX_SAMPLES", "check_lengths", "check_winding"]
+__all__ = [
+    "MAX_CHECK_SAMPLES",
+    "MAX_POINTS",
+    "MAX_RELATIVE",
+    "MAX_SAMPLES",
+    "check_lengths",
+    "check_samples",
+    "check_winding",
+]
 
 MAX_POINTS = 4_000_000
 """Most polyline points :func:`~lkspace.geometry.realization.realize` builds (all curves and copies together).
@@ -27,8 +35,56 @@ any geometry: ``edge_samples + samples_per_turn * |t| / K`` per edge piece plus
 MAX_RELATIVE = 1.0
 """Largest ``radius``, ``normal_offset``, ``margin`` and ``tube_radius``, in shortest edge lengths."""
 
+MIN_RELATIVE = 1e-9
+"""Smallest nonzero ``radius``, ``normal_offset``, ``tube_radius``, ``helix_radius`` and ``pitch``, in shortest edge lengths."""
+
 MAX_SAMPLES = 1000
 """Largest ``samples_per_turn``, ``edge_samples`` and ``corner_samples``."""
+
+
+MAX_CHECK_SAMPLES = 10_000_000
+"""Most samples the embedding check (:func:`~lkspace.geometry.clearance.check_embedding`) may take.
+
+It samples every ``min_separation / 2`` along the strands, about the total length of the
+face sides plus ``2 pi x radius`` per unit of twist; a mesh whose sides are long next to
+its shortest edge (a 100,000-gon, a needle-thin face) would need billions.
+"""
+
+
+def check_samples(scaffold: Scaffold, labels: np.ndarray, radius: float, min_sep: float) -> None:
+    """Refuse strands too long for the embedding check at ``min_sep`` (:class:`~lkspace.errors.TooLargeError`).
+
+    The strands run along every face side once (their length is about the sum of the
+    side lengths) and wind ``|t|`` turns of radius about ``radius`` around an edge of twist ``t``.
+    """
+    corners = scaffold.corner_positions
+    starts = scaffold.face_starts
+    nxt = np.arange(len(corners)) + 1
+    nxt[starts[1:] - 1] = starts[:-1]  # each face's last corner closes onto its first
+    sides = float(np.linalg.norm(corners[nxt] - corners, axis=1).sum())
+    multi = scaffold.edge_degrees > 1
+    turns = float(np.abs(np.asarray(labels, np.float64))[multi].sum())
+    samples = (sides + 2 * np.pi * radius * turns) / (0.5 * min_sep)
+    if not samples <= MAX_CHECK_SAMPLES:
+        raise TooLargeError(
+            f"{scaffold.name}: strands about {sides:.4g} long checked every {0.5 * min_sep:.3g} need about "
+            f"{samples:.3g} samples > {MAX_CHECK_SAMPLES:,} (MAX_CHECK_SAMPLES): the sides are too long next to "
+            "the shortest edge; use a coarser mesh"
+        )
+
+
+def check_small(name: str, lengths: dict[str, float | None], scale: float) -> None:
+    """Refuse (a usage error) any nonzero of ``lengths`` below :data:`MIN_RELATIVE` x ``scale`` on scaffold ``name``.
+
+    Such lengths vanish next to the mesh (a pitch of 5e-324 divided to infinity).
+    """
+    for what, value in lengths.items():
+        if value is not None and 0 < value < MIN_RELATIVE * scale:
+            raise GeometryError(
+                f"geometry parameter {what} {value:g} is below {MIN_RELATIVE:g} x the shortest edge of "
+                f"{name} ({MIN_RELATIVE * scale:.4g}); too small to draw",
+                usage=True,
+            )
 
 
 def check_lengths(name: str, lengths: dict[str, float], scale: float) -> None:

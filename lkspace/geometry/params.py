@@ -8,7 +8,7 @@ import numpy as np
 
 from ..errors import GeometryError
 from ..model.scaffold import Scaffold
-from .limits import MAX_SAMPLES, check_lengths
+from .limits import MAX_SAMPLES, check_lengths, check_small
 from .tracks import default_scale
 
 NEAR_ANGLE = np.pi / 6
@@ -136,5 +136,6 @@ class Resolved:
         lengths = {"radius": rho, "normal_offset": h, "margin": margin, "tube_radius": params.tube_radius or 0.0}
         lengths["helix_radius"] = params.helix_radius or 0.0
         check_lengths(scaffold.name, lengths, scale)
+        check_small(scaffold.name, {**lengths, "pitch": params.pitch}, scale)
         near = NEAR_ANGLE if params.normal_offset is None else None
         return Resolved(scale, float(rho), float(h), float(margin), float(min_sep), near, max(2, params.corner_samples))

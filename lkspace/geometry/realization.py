@@ -55,7 +55,7 @@ from ..strands.tracing import Trace, trace
 from .clearance import check_embedding, tightest_bend
 from .flow import smooth_curves
 from .helix import edge_angles, even_offsets, helix_windows, twist_profile
-from .limits import MAX_POINTS, check_winding
+from .limits import MAX_POINTS, check_samples, check_winding
 from .params import SMOOTH_DIAMETER, TUBE, GeometryParams, Resolved
 from .tracks import Tracks, bezier_controls, lattice_shift, place_name, side_tracks
 
@@ -203,6 +203,8 @@ def realize(
             f"{scaffold.name}: the curves would have about {estimate:,.0f} points > {max_points:,} ({bound}); "
             "use smaller twists (or a smaller block)"
         )
+    if measure:
+        check_samples(scaffold, tr.labels, opts.radius, opts.min_separation)
     edges = _edge_plan(counts)
     corners, a_pt, c_pt = _corner_turns(fr, ports, opts.corner_samples)
     points = _assemble(corners, _edge_points(scaffold, fr, tr, ports, edges, params), edges)

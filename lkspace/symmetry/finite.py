@@ -16,12 +16,15 @@ otherwise only the identity is kept, with a :class:`~lkspace.errors.LkspaceWarni
 
 from __future__ import annotations
 
+import contextlib
+import math
 import warnings
 from collections.abc import Iterator
 
 import numpy as np
 
 from ..errors import LkspaceWarning, TooLargeError
+from ..model.counts import count_text
 from ..model.scaffold import Scaffold
 from ..progress import task
 from .pointset import Sites, SiteSearch, find_sites, standard_position
@@ -311,8 +314,12 @@ def ambiguous_lifts(scaffold: Scaffold, structure: Structure, size: int, toleran
     from .motions import MAX_AUTOMORPHISMS, automorphism_count, candidate_vertex_perms, finite_motions
 
     identity = np.arange(scaffold.n_vertices, dtype=np.int64)
-    count = automorphism_count(scaffold)
-    if count <= MAX_AUTOMORPHISMS and count * (size + scaffold.n_faces) <= MAX_GROUP_ENTRIES:
+    unused = scaffold.n_vertices - len(np.unique(scaffold.corners))
+    count = None  # unknown: past MAX_AUTOMORPHISMS
+    if math.factorial(min(unused, 20)) <= MAX_AUTOMORPHISMS:  # vertices in no face are interchangeable
+        with contextlib.suppress(ValueError):  # igraph's count past 4,300 digits is text Python will not read
+            count = automorphism_count(scaffold)
+    if count is not None and count <= MAX_AUTOMORPHISMS and count * (size + scaffold.n_faces) <= MAX_GROUP_ENTRIES:
         seen = set()
         for sigma, q, _, _ in finite_motions(scaffold, candidate_vertex_perms(scaffold), tolerance):
             perm = structure.edge_permutation(sigma)
@@ -324,7 +331,8 @@ def ambiguous_lifts(scaffold: Scaffold, structure: Structure, size: int, toleran
         return
     warnings.warn(
         f"{scaffold.name}: coincident vertices and faces leave the symmetry search ambiguous "
-        f"({count} incidence automorphisms); using the identity only (weld the mesh to find its symmetries)",
+        f"({f'more than {MAX_AUTOMORPHISMS}' if count is None else count_text(count)} incidence automorphisms); "
+        "using the identity only (weld the mesh to find its symmetries)",
         LkspaceWarning,
         stacklevel=2,
     )

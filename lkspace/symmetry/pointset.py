@@ -95,6 +95,14 @@ def standard_position(vertices: np.ndarray) -> np.ndarray:
     return x / rms if rms > 0 else x
 
 
+def first_seen_order(ids: np.ndarray) -> np.ndarray:
+    """Renumber ``ids (n,)`` as ``(n,) int64`` 0, 1, ... in the order each id first occurs."""
+    _, first, inverse = np.unique(ids, return_index=True, return_inverse=True)
+    rank = np.empty(len(first), np.int64)
+    rank[np.argsort(first)] = np.arange(len(first))
+    return rank[inverse.reshape(-1)]
+
+
 def gap_clusters(values: np.ndarray, tol: float) -> np.ndarray:
     """Return ``(n,) int64`` cluster ids of ``values``: sorted values closer than ``tol`` chain together."""
     order = np.argsort(values, kind="stable")
@@ -111,6 +119,8 @@ def find_sites(x: np.ndarray, invariants: list[np.ndarray], tolerance: float = W
     degrees, exact); a site's value is the sum over its vertices.  Radii closer than ten
     ``tolerance`` chain into one class (a rounded mesh keeps its classes whole).
     """
+    x_all = x
+    x, copy_of = np.unique(x_all, axis=0, return_inverse=True)  # exact copies first: pairs stay linear
     from scipy.sparse import coo_matrix
     from scipy.sparse.csgraph import connected_components
     from scipy.spatial import cKDTree
@@ -123,6 +133,8 @@ def find_sites(x: np.ndarray, invariants: list[np.ndarray], tolerance: float = W
         of_vertex = of_vertex.astype(np.int64)
     else:
         of_vertex = np.arange(n, dtype=np.int64)
+    of_vertex = first_seen_order(of_vertex[copy_of.reshape(-1)])  # sites of the copies, numbered in vertex order
+    x = x_all
     n_sites = int(of_vertex.max()) + 1
     copies = np.bincount(of_vertex, minlength=n_sites).astype(np.float64)
     points = np.zeros((n_sites, 3))
@@ -202,6 +214,8 @@ class Matcher:
 
     def probe(self, qs: np.ndarray, probes: np.ndarray) -> np.ndarray:
         """(m,) bool: which ``qs (m, 3, 3)`` map every probe site onto a site of its class."""
+        if not len(qs):  # a batch whose candidates were all found already
+            return np.zeros(0, dtype=bool)
         pts, classes = self.sites.points, self.sites.classes
         images = np.einsum("mij,pj->mpi", qs, pts[probes])
         dist, idx = self.tree.query(images.reshape(-1, 3), distance_upper_bound=SLACK * self.sites.tolerance)
