@@ -262,3 +262,59 @@ def test_the_page_sees_what_trace_and_realize_say(name, data):
     else:
         with pytest.raises(lkspace.LkspaceError):
             lkspace.realize(sc, labels, nulls)
+
+
+def curves_of(answer):
+    points = np.frombuffer(base64.b64decode(answer["curves"]["points"]), "<f4").reshape(-1, 3)
+    return np.split(points, np.cumsum(answer["curves"]["counts"])[:-1])
+
+
+@pytest.mark.parametrize(("name", "labels"), [("dihedron:3", [1, 1, 1]), ("dihedron:4", [0, 0, -1, -1])])
+def test_relaxed_design_differs_keeps_components_and_is_cached(client, name, labels):
+    plain = post(client, "design", {"key": name, "labels": labels}).json()
+    started = len(client.studio.jobs._jobs)
+    answer = post(client, "design", {"key": name, "labels": labels, "relax": True})
+    assert answer.status_code == 200, answer.text
+    tight = answer.json()
+    assert tight["relaxed"] and not plain["relaxed"] and tight["clearance"]["ok"]
+    assert tight["labels"] == plain["labels"] == labels
+    assert tight["components"] == plain["components"] == lkspace.trace(name, labels).components
+    assert tight["curves"]["strand"] == plain["curves"]["strand"] and len(tight["curves"]["counts"]) == plain["components"]
+    before, after = curves_of(plain), curves_of(tight)
+    moved = [np.abs(a - b).max() for a, b in zip(before, after, strict=True) if a.shape == b.shape]
+    assert len(moved) < len(before) or min(moved) > 1e-3  # every strand moved (or was resampled)
+    assert len(client.studio.jobs._jobs) == started + 1  # one relax worker
+    again = post(client, "design", {"key": name, "labels": labels, "relax": True}).json()
+    assert again["curves"]["points"] == tight["curves"]["points"]
+    assert len(client.studio.jobs._jobs) == started + 1  # the cache kept the relaxed curves: no new worker
+    assert post(client, "design", {"key": name, "labels": labels}).json()["curves"] == plain["curves"]
+
+
+def test_relax_refuses_periodic_and_open_strands_in_one_line(client):
+    answer = post(client, "design", {"key": "honeycomb:cP", "labels": [1, 1, 1], "block": [2, 2, 2], "relax": True})
+    assert answer.status_code == 400
+    message = answer.json()["error"]["message"]
+    assert "finite scaffolds only" in message and "\n" not in message
+    answer = post(client, "design", {"key": "dihedron:3", "labels": [1, 1, 1], "nulls": [0], "relax": True})
+    assert answer.status_code == 400 and "closed strands" in answer.json()["error"]["message"]
+    assert post(client, "design", {"key": "dihedron:3", "relax": "yes"}).status_code == 400
+
+
+def test_a_newer_relaxation_cancels_the_older(client):
+    import threading
+
+    first: list = []
+    before = client.studio.jobs.latest.get("relax")
+    slow = threading.Thread(
+        target=lambda: first.append(post(client, "design", {"key": "icosahedron", "labels": [1] * 30, "relax": True}))
+    )
+    slow.start()
+    end = time.monotonic() + 60
+    while client.studio.jobs.latest.get("relax") is before:  # until the icosahedron's worker runs
+        assert time.monotonic() < end
+        time.sleep(0.02)
+    older = client.studio.jobs.latest["relax"]
+    newer = post(client, "design", {"key": "tetrahedron", "labels": [1] * 6, "relax": True})  # not cached
+    slow.join(60)
+    assert newer.status_code == 200 and older.state == "cancelled"
+    assert first[0].status_code == 409 and "newer design" in first[0].json()["error"]["message"]
