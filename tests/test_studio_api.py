@@ -275,14 +275,14 @@ def test_relaxed_design_differs_keeps_components_and_is_cached(client, name, lab
     started = len(client.studio.jobs._jobs)
     answer = post(client, "design", {"key": name, "labels": labels, "relax": True})
     assert answer.status_code == 200, answer.text
-    tight = answer.json()
+    tight = json.loads(answer.text, parse_constant=lambda c: pytest.fail(f"{c} is not JSON the page can read"))
     assert tight["relaxed"] and not plain["relaxed"] and tight["clearance"]["ok"]
     assert tight["labels"] == plain["labels"] == labels
     assert tight["components"] == plain["components"] == lkspace.trace(name, labels).components
     assert tight["curves"]["strand"] == plain["curves"]["strand"] and len(tight["curves"]["counts"]) == plain["components"]
-    before, after = curves_of(plain), curves_of(tight)
-    moved = [np.abs(a - b).max() for a, b in zip(before, after, strict=True) if a.shape == b.shape]
-    assert len(moved) < len(before) or min(moved) > 1e-3  # every strand moved (or was resampled)
+    for before, after in zip(curves_of(plain), curves_of(tight), strict=True):  # every strand moved
+        gaps = np.linalg.norm(after[:, None] - before[None], axis=2).min(axis=1)  # relaxed point to default curve
+        assert gaps.max() > 0.05 * np.linalg.norm(before - before.mean(axis=0), axis=1).max()
     assert len(client.studio.jobs._jobs) == started + 1  # one relax worker
     again = post(client, "design", {"key": name, "labels": labels, "relax": True}).json()
     assert again["curves"]["points"] == tight["curves"]["points"]

@@ -194,9 +194,9 @@ def design(
             real = relaxer(real)
             cache.put(relaxed_key, real)
     out["relaxed"] = relaxer is not None
-    if relaxer is not None:  # the relaxation measured its curves
-        sep = real.min_separation
-        out["clearance"] = {"min_distance": real.min_distance, "min_separation": sep, "ok": real.min_distance >= sep}
+    if relaxer is not None:  # the relaxation measured its curves (no distinct pieces near: infinite, sent as null)
+        best, sep = real.min_distance, real.min_separation
+        out["clearance"] = {"min_distance": best if np.isfinite(best) else None, "min_separation": sep, "ok": best >= sep}
     counts = np.array([len(c) for c in real.curves], np.int64)
     out["curves"] = {
         "points": pack(np.vstack(real.curves) if real.curves else np.zeros((0, 3))),
