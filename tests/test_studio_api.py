@@ -279,7 +279,9 @@ def test_relaxed_design_differs_keeps_components_and_is_cached(client, name, lab
     assert tight["relaxed"] and not plain["relaxed"] and tight["clearance"]["ok"]
     assert tight["labels"] == plain["labels"] == labels
     assert tight["components"] == plain["components"] == lkspace.trace(name, labels).components
-    assert tight["curves"]["strand"] == plain["curves"]["strand"] and len(tight["curves"]["counts"]) == plain["components"]
+    assert (
+        tight["curves"]["strand"] == plain["curves"]["strand"] and len(tight["curves"]["counts"]) == plain["components"]
+    )
     for before, after in zip(curves_of(plain), curves_of(tight), strict=True):  # every strand moved
         gaps = np.linalg.norm(after[:, None] - before[None], axis=2).min(axis=1)  # relaxed point to default curve
         assert gaps.max() > 0.05 * np.linalg.norm(before - before.mean(axis=0), axis=1).max()

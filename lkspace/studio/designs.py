@@ -196,7 +196,11 @@ def design(
     out["relaxed"] = relaxer is not None
     if relaxer is not None:  # the relaxation measured its curves (no distinct pieces near: infinite, sent as null)
         best, sep = real.min_distance, real.min_separation
-        out["clearance"] = {"min_distance": best if np.isfinite(best) else None, "min_separation": sep, "ok": best >= sep}
+        out["clearance"] = {
+            "min_distance": best if np.isfinite(best) else None,
+            "min_separation": sep,
+            "ok": best >= sep,
+        }
     counts = np.array([len(c) for c in real.curves], np.int64)
     out["curves"] = {
         "points": pack(np.vstack(real.curves) if real.curves else np.zeros((0, 3))),
