@@ -272,7 +272,7 @@ def curves_of(answer):
 @pytest.mark.parametrize(("name", "labels"), [("dihedron:3", [1, 1, 1]), ("dihedron:4", [0, 0, -1, -1])])
 def test_relaxed_design_differs_keeps_components_and_is_cached(client, name, labels):
     plain = post(client, "design", {"key": name, "labels": labels}).json()
-    started = len(client.studio.jobs._jobs)
+    previous = client.studio.jobs.latest.get("relax")
     answer = post(client, "design", {"key": name, "labels": labels, "relax": True})
     assert answer.status_code == 200, answer.text
     tight = json.loads(answer.text, parse_constant=lambda c: pytest.fail(f"{c} is not JSON the page can read"))
@@ -285,10 +285,11 @@ def test_relaxed_design_differs_keeps_components_and_is_cached(client, name, lab
     for before, after in zip(curves_of(plain), curves_of(tight), strict=True):  # every strand moved
         gaps = np.linalg.norm(after[:, None] - before[None], axis=2).min(axis=1)  # relaxed point to default curve
         assert gaps.max() > 0.05 * np.linalg.norm(before - before.mean(axis=0), axis=1).max()
-    assert len(client.studio.jobs._jobs) == started + 1  # one relax worker
+    worker = client.studio.jobs.latest["relax"]
+    assert worker is not previous and worker.state == "done"  # relaxed by a worker
     again = post(client, "design", {"key": name, "labels": labels, "relax": True}).json()
     assert again["curves"]["points"] == tight["curves"]["points"]
-    assert len(client.studio.jobs._jobs) == started + 1  # the cache kept the relaxed curves: no new worker
+    assert client.studio.jobs.latest["relax"] is worker  # the cache kept the relaxed curves: no new worker
     assert post(client, "design", {"key": name, "labels": labels}).json()["curves"] == plain["curves"]
 
 
