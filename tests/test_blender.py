@@ -380,3 +380,39 @@ def test_edit_mode_set_twist_cut_and_live_move(blender):
     nulls = [d.value for d in obj.data.attributes["lk_null"].data]
     assert [obj.data.loops[i].edge_index for i, cut in enumerate(nulls) if cut] == [0, 0]
     assert len(bpy.data.meshes) == 1  # the temporary copies read in Edit Mode are gone
+
+
+def curve_points(curve):
+    spline = curve.data.splines[0]
+    co = np.zeros(4 * len(spline.points))
+    spline.points.foreach_get("co", co)
+    return co.reshape(-1, 4)[:, :3]
+
+
+def test_relax_checkbox_builds_relaxed_strands(blender, tmp_path):
+    obj = add_object(blender, "tet", TETRAHEDRON, [(0, 1, 2), (0, 3, 1), (0, 2, 3), (1, 3, 2)])
+    pairs = {p: 1 for p in edge_pairs(obj)}  # the Borromean rings
+    set_twists(obj, pairs)
+    assert bpy.ops.lkspace.regenerate() == {"FINISHED"} and not obj.lkspace.relaxed
+    plain = {c["lk_strand"]: curve_points(c) for c in strand_curves(obj)}
+    blender.scene.lkspace.relax = True
+    assert bpy.ops.lkspace.regenerate() == {"FINISHED"} and obj.lkspace.relaxed
+    _, scaffold, labels, result = independent(obj, tmp_path, pairs)
+    assert_same_strands(obj, result)  # same components, each around the same faces
+    tight = {c["lk_strand"]: curve_points(c) for c in strand_curves(obj)}
+    want = lkspace.relax(lkspace.realize(scaffold, labels))
+    assert sorted(len(p) for p in tight.values()) == sorted(len(c) for c in want.curves)
+    for k, after in tight.items():  # every strand moved: some relaxed point is far from the default curve
+        before = plain[k]
+        gaps = np.linalg.norm(after[:, None] - before[None], axis=2).min(axis=1)
+        assert gaps.max() > 0.05 * np.linalg.norm(before - before.mean(axis=0), axis=1).max()
+    assert all(c.data.splines[0].use_cyclic_u for c in strand_curves(obj))
+    cut = np.zeros(12, bool)  # a null side: open strands, which relax refuses in one line; the curves stay
+    cut[0] = True
+    attr = obj.data.attributes.get("lk_null") or obj.data.attributes.new("lk_null", "BOOLEAN", "CORNER")
+    attr.data.foreach_set("value", cut.tolist())
+    obj.data.update()
+    with pytest.raises(RuntimeError, match="closed strands"):
+        bpy.ops.lkspace.regenerate()
+    assert "closed strands" in obj.lkspace.message and "\n" not in obj.lkspace.message
+    assert len(strand_curves(obj)) == result.components

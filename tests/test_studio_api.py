@@ -262,3 +262,62 @@ def test_the_page_sees_what_trace_and_realize_say(name, data):
     else:
         with pytest.raises(lkspace.LkspaceError):
             lkspace.realize(sc, labels, nulls)
+
+
+def curves_of(answer):
+    points = np.frombuffer(base64.b64decode(answer["curves"]["points"]), "<f4").reshape(-1, 3)
+    return np.split(points, np.cumsum(answer["curves"]["counts"])[:-1])
+
+
+@pytest.mark.parametrize(("name", "labels"), [("dihedron:3", [1, 1, 1]), ("dihedron:4", [0, 0, -1, -1])])
+def test_relaxed_design_differs_keeps_components_and_is_cached(client, name, labels):
+    plain = post(client, "design", {"key": name, "labels": labels}).json()
+    previous = client.studio.jobs.latest.get("relax")
+    answer = post(client, "design", {"key": name, "labels": labels, "relax": True})
+    assert answer.status_code == 200, answer.text
+    tight = json.loads(answer.text, parse_constant=lambda c: pytest.fail(f"{c} is not JSON the page can read"))
+    assert tight["relaxed"] and not plain["relaxed"] and tight["clearance"]["ok"]
+    assert tight["labels"] == plain["labels"] == labels
+    assert tight["components"] == plain["components"] == lkspace.trace(name, labels).components
+    assert (
+        tight["curves"]["strand"] == plain["curves"]["strand"] and len(tight["curves"]["counts"]) == plain["components"]
+    )
+    for before, after in zip(curves_of(plain), curves_of(tight), strict=True):  # every strand moved
+        gaps = np.linalg.norm(after[:, None] - before[None], axis=2).min(axis=1)  # relaxed point to default curve
+        assert gaps.max() > 0.05 * np.linalg.norm(before - before.mean(axis=0), axis=1).max()
+    worker = client.studio.jobs.latest["relax"]
+    assert worker is not previous and worker.state == "done"  # relaxed by a worker
+    again = post(client, "design", {"key": name, "labels": labels, "relax": True}).json()
+    assert again["curves"]["points"] == tight["curves"]["points"]
+    assert client.studio.jobs.latest["relax"] is worker  # the cache kept the relaxed curves: no new worker
+    assert post(client, "design", {"key": name, "labels": labels}).json()["curves"] == plain["curves"]
+
+
+def test_relax_refuses_periodic_and_open_strands_in_one_line(client):
+    answer = post(client, "design", {"key": "honeycomb:cP", "labels": [1, 1, 1], "block": [2, 2, 2], "relax": True})
+    assert answer.status_code == 400
+    message = answer.json()["error"]["message"]
+    assert "finite scaffolds only" in message and "\n" not in message
+    answer = post(client, "design", {"key": "dihedron:3", "labels": [1, 1, 1], "nulls": [0], "relax": True})
+    assert answer.status_code == 400 and "closed strands" in answer.json()["error"]["message"]
+    assert post(client, "design", {"key": "dihedron:3", "relax": "yes"}).status_code == 400
+
+
+def test_a_newer_relaxation_cancels_the_older(client):
+    import threading
+
+    first: list = []
+    before = client.studio.jobs.latest.get("relax")
+    slow = threading.Thread(
+        target=lambda: first.append(post(client, "design", {"key": "icosahedron", "labels": [1] * 30, "relax": True}))
+    )
+    slow.start()
+    end = time.monotonic() + 60
+    while client.studio.jobs.latest.get("relax") is before:  # until the icosahedron's worker runs
+        assert time.monotonic() < end
+        time.sleep(0.02)
+    older = client.studio.jobs.latest["relax"]
+    newer = post(client, "design", {"key": "tetrahedron", "labels": [1] * 6, "relax": True})  # not cached
+    slow.join(60)
+    assert newer.status_code == 200 and older.state == "cancelled"
+    assert first[0].status_code == 409 and "newer design" in first[0].json()["error"]["message"]

@@ -235,3 +235,37 @@ def test_periodic_block(studio, browser):
     wait_redraw(page, n)
     assert len(page.evaluate("window.studio.state.design.curves.copy")) == 4 * 3
     page.close()
+
+
+def test_relaxed_toggle_redraws_and_shows_the_refusal(studio, browser):
+    url, _, _ = studio
+    labels = [0, 0, -1, -1]  # the Hopf link
+    plain = lkspace.realize("dihedron:4", labels)
+    tight = lkspace.relax(plain)
+    page = browser.new_page(viewport={"width": 900, "height": 700})
+    errors = []
+    page.on("pageerror", lambda e: errors.append(str(e)))
+    page.goto(url + "#s=dihedron:4&t=0,0,-1,-1")
+    ready(page)
+    assert page.evaluate("window.studio.state.shown.counts") == [len(c) for c in plain.curves]
+    page.check("#relaxed")
+    page.wait_for_function("document.getElementById('relax-status').textContent.startsWith('relaxed')", timeout=60000)
+    shown = page.evaluate("window.studio.state.shown")
+    assert shown["counts"] == [len(c) for c in tight.curves] != [len(c) for c in plain.curves]
+    assert shown["strand"] == plain.strand_of.tolist() and page.inner_text("#components") == "2"
+    n = redraws(page)
+    page.uncheck("#relaxed")
+    wait_redraw(page, n)
+    assert page.evaluate("window.studio.state.shown.counts") == [len(c) for c in plain.curves]
+    assert page.inner_text("#relax-status") == ""
+    page.close()
+    page = browser.new_page(viewport={"width": 900, "height": 700})  # periodic: the server's reason, one line
+    page.on("pageerror", lambda e: errors.append(str(e)))
+    page.goto(url + "#s=honeycomb:cP&t=1,1,1&b=2x2x2")
+    ready(page)
+    page.check("#relaxed")
+    page.wait_for_function("document.getElementById('relax-status').textContent.startsWith('relax:')", timeout=60000)
+    assert "finite scaffolds only" in page.inner_text("#relax-status")
+    assert len(page.evaluate("window.studio.state.shown.counts")) == 4 * 8  # the default curves stay drawn
+    assert not errors
+    page.close()

@@ -13,7 +13,7 @@ import math
 import os
 from collections.abc import Awaitable, Callable
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from starlette.applications import Starlette
 from starlette.exceptions import HTTPException
@@ -23,12 +23,15 @@ from starlette.routing import Mount, Route
 from starlette.staticfiles import StaticFiles
 
 from .. import __version__
-from ..errors import LkspaceError, TooLargeError, UsageError
+from ..errors import GeometryError, LkspaceError, TooLargeError, UsageError
 from ..scaffolds import DEFAULT
 from .browse import Browser
 from .designs import EXPORTS, Cache, clearance, design, export_bytes, parse_block, parse_labels, parse_nulls
-from .jobs import Jobs
+from .jobs import Jobs, relaxed
 from .scaffolds import MAX_UPLOAD, Registry, builtin_choices, dumps
+
+if TYPE_CHECKING:
+    from ..geometry.realization import Realization
 
 STATIC = os.path.join(os.path.dirname(__file__), "static")
 """The page and its vendored three.js build (shipped in the wheel)."""
@@ -55,6 +58,12 @@ class BadRequest(UsageError):
     """A request the endpoints cannot read (not JSON, too large, fields missing)."""
 
     status = 400
+
+
+class Superseded(UsageError):
+    """A relaxation stopped because a newer design asked for one (its answer would be stale)."""
+
+    status = 409
 
 
 class NotJson(BadRequest):
@@ -185,9 +194,23 @@ def orbits(studio: Studio, body: dict[str, Any]) -> dict[str, Any]:
 
 
 def redraw(studio: Studio, body: dict[str, Any]) -> dict[str, Any]:
-    """Trace and realize a design (no clearance measurement)."""
+    """Trace and realize a design (no clearance measurement); ``relax: true`` for the relaxed curves."""
     held, labels, nulls, block = design_args(studio, body)
-    return design(held.scaffold, labels, nulls, block, studio.cache, held.key)
+    relax = body.get("relax", False)
+    if not isinstance(relax, bool):
+        raise BadRequest("relax: true or false")
+    relaxer = (lambda real: relax_in_worker(studio, real)) if relax else None
+    return design(held.scaffold, labels, nulls, block, studio.cache, held.key, relaxer)
+
+
+def relax_in_worker(studio: Studio, real: Realization) -> Realization:
+    """Return ``real`` relaxed by a worker (a newer relaxation cancels this one: :class:`Superseded`)."""
+    state = studio.jobs.wait(studio.jobs.start("relax", real))
+    if state["state"] == "cancelled":
+        raise Superseded("relax stopped: a newer design asked to be relaxed")
+    if state["state"] == "error":
+        raise GeometryError(state["error"], usage=True)
+    return relaxed(real, state["result"])
 
 
 def measure(studio: Studio, body: dict[str, Any]) -> dict[str, Any]:

@@ -4,7 +4,8 @@ Every answer comes from :func:`lkspace.trace` and :func:`lkspace.realize`; curve
 as base64 ``float32`` arrays so a redraw of ~100,000 points costs a few milliseconds.
 The redraw realizes without measuring the clearance (``measure=False``); the page asks for
 the measurement (:func:`clearance`) right after, so a design appears at once and its
-embedding verdict follows.
+embedding verdict follows.  Asked with a ``relaxer`` (the studio's relax job), the curves
+are the relaxed ones (:func:`lkspace.relax`), kept apart from the default ones in the cache.
 """
 
 from __future__ import annotations
@@ -16,6 +17,7 @@ import tempfile
 import threading
 import time
 from collections import OrderedDict
+from collections.abc import Callable
 from typing import Any
 
 import numpy as np
@@ -114,7 +116,7 @@ def nearest_edge(scaffold: Scaffold, point: np.ndarray) -> int:
 
 
 class Cache:
-    """The last few realizations, keyed by scaffold, labels, nulls and block (for the clearance and exports)."""
+    """The last few realizations, keyed by scaffold, labels, nulls, block and relaxed or not (for the clearance and reuse)."""
 
     def __init__(self, size: int = 8) -> None:
         self._items: OrderedDict[bytes, Realization] = OrderedDict()
@@ -122,10 +124,12 @@ class Cache:
         self._lock = threading.Lock()
 
     @staticmethod
-    def key(key: str, labels: np.ndarray, nulls: np.ndarray | None, block: np.ndarray | None) -> bytes:
-        """Return the cache key of a design."""
+    def key(
+        key: str, labels: np.ndarray, nulls: np.ndarray | None, block: np.ndarray | None, relaxed: bool = False
+    ) -> bytes:
+        """Return the cache key of a design (its default or its ``relaxed`` curves)."""
         parts = [key.encode(), labels.tobytes(), b"-" if nulls is None else nulls.tobytes()]
-        return b"|".join([*parts, b"-" if block is None else block.tobytes()])
+        return b"|".join([*parts, b"-" if block is None else block.tobytes(), b"relaxed" if relaxed else b"-"])
 
     def get(self, key: bytes) -> Realization | None:
         """Return the realization under ``key``, if kept."""
@@ -142,9 +146,19 @@ class Cache:
 
 
 def design(
-    scaffold: Scaffold, labels: np.ndarray, nulls: np.ndarray | None, block: np.ndarray | None, cache: Cache, key: str
+    scaffold: Scaffold,
+    labels: np.ndarray,
+    nulls: np.ndarray | None,
+    block: np.ndarray | None,
+    cache: Cache,
+    key: str,
+    relaxer: Callable[[Realization], Realization] | None = None,
 ) -> dict[str, Any]:
-    """Return the page's view of a design: the trace's summary and the strand curves (or the error, on its edge)."""
+    """Return the page's view of a design: the trace's summary and the strand curves (or the error, on its edge).
+
+    With ``relaxer``, the curves are ``relaxer(realization)`` (kept in the cache); its
+    errors (a refused scaffold, a relaxation stopped by a newer one) propagate.
+    """
     t0 = time.perf_counter()
     tr = trace(scaffold, labels, nulls)
     kinds, lengths = tr.strand_kinds, tr.strand_lengths.tolist()
@@ -166,13 +180,27 @@ def design(
         out["infinite_threads"] = kinds.count("thread")
         out["lift_index"] = tr.holding.lift_index
     t1 = time.perf_counter()
-    try:
-        real = realize(scaffold, tr.labels, nulls, None, block, True, tr, MAX_STUDIO_POINTS, "the studio's", False)
-    except (GeometryError, TooLargeError) as exc:
-        out["failure"] = {"message": str(exc), "edge": edge_named(scaffold, str(exc))}
-        out["timing"] = {"trace": t1 - t0, "realize": time.perf_counter() - t1}
-        return out
-    cache.put(Cache.key(key, tr.labels, nulls, block), real)
+    relaxed_key = Cache.key(key, tr.labels, nulls, block, True)
+    real = cache.get(relaxed_key) if relaxer is not None else None
+    if real is None:
+        try:
+            real = realize(scaffold, tr.labels, nulls, None, block, True, tr, MAX_STUDIO_POINTS, "the studio's", False)
+        except (GeometryError, TooLargeError) as exc:
+            out["failure"] = {"message": str(exc), "edge": edge_named(scaffold, str(exc))}
+            out["timing"] = {"trace": t1 - t0, "realize": time.perf_counter() - t1}
+            return out
+        cache.put(Cache.key(key, tr.labels, nulls, block), real)
+        if relaxer is not None:
+            real = relaxer(real)
+            cache.put(relaxed_key, real)
+    out["relaxed"] = relaxer is not None
+    if relaxer is not None:  # the relaxation measured its curves (no distinct pieces near: infinite, sent as null)
+        best, sep = real.min_distance, real.min_separation
+        out["clearance"] = {
+            "min_distance": best if np.isfinite(best) else None,
+            "min_separation": sep,
+            "ok": best >= sep,
+        }
     counts = np.array([len(c) for c in real.curves], np.int64)
     out["curves"] = {
         "points": pack(np.vstack(real.curves) if real.curves else np.zeros((0, 3))),

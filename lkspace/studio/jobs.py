@@ -1,22 +1,23 @@
-"""Identify and solve in worker processes: never blocking an edit, cancelled by terminating.
+"""Identify, relax and solve in worker processes: never blocking an edit, cancelled by terminating.
 
 Each job runs :func:`run_job` in a fresh process of lkspace's worker context
 (:func:`lkspace.workers.context`; the fork server preloads the heavy modules, so a job
 starts in milliseconds after the first).  Progress of the library's long steps
 (:mod:`lkspace.progress`) and the result come back through a queue the server drains
-when the page polls.  A new identify cancels the one before it (its result would be
-stale); a solve runs until it ends or the page cancels it.
+when the page polls.  A new identify or relax cancels the one before it (its result would
+be stale); a solve runs until it ends or the page cancels it.
 """
 
 from __future__ import annotations
 
+import base64
 import itertools
 import queue as queues
 import threading
 import time
 from collections.abc import Callable
-from dataclasses import dataclass, field
-from typing import Any
+from dataclasses import dataclass, field, replace
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -25,11 +26,23 @@ from ..model.scaffold import Scaffold
 from ..progress import Step, install
 from ..workers import context, ignore_interrupts
 
-PRELOAD = ["lkspace.studio.jobs", "lkspace.strands.tracing", "lkspace.inverse.pipeline", "lkspace.knots.recognition"]
+if TYPE_CHECKING:
+    from ..geometry.realization import Realization
+
+PRELOAD = [
+    "lkspace.studio.jobs",
+    "lkspace.strands.tracing",
+    "lkspace.inverse.pipeline",
+    "lkspace.knots.recognition",
+    "lkspace.geometry.relax",
+]
 """Modules the fork server imports once, so jobs start without importing them."""
 
 IDENTIFY_SECONDS = 30.0
 """Time limit of one identification."""
+
+REPLACED = ("identify", "relax")
+"""Job kinds of which only the newest matters: starting one cancels the one before."""
 
 MAX_JOBS = 64
 """Finished jobs remembered (the oldest are forgotten)."""
@@ -75,7 +88,33 @@ def solve_payload(scaffold: Scaffold, options: dict[str, Any]) -> dict[str, Any]
     return out
 
 
-TASKS: dict[str, Callable[..., dict[str, Any]]] = {"identify": identify_payload, "solve": solve_payload}
+def relax_payload(real: Realization) -> dict[str, Any]:
+    """Return the curves of ``real`` relaxed (:func:`lkspace.relax`): ``points`` (base64 ``float64``), ``counts``, tube, clearance."""
+    from ..geometry.relax import relax
+
+    out = relax(real)
+    return {
+        "points": base64.b64encode(np.vstack(out.curves).astype("<f8").tobytes()).decode("ascii"),
+        "counts": [len(c) for c in out.curves],
+        "tube_radius": out.tube_radius,
+        "min_distance": out.min_distance,
+        "closest": out.closest,
+    }
+
+
+def relaxed(real: Realization, payload: dict[str, Any]) -> Realization:
+    """Return ``real`` with the curves of a :func:`relax_payload`."""
+    points = np.frombuffer(base64.b64decode(payload["points"]), "<f8").reshape(-1, 3)
+    curves = np.split(points, np.cumsum(payload["counts"])[:-1])
+    fields = {k: payload[k] for k in ("tube_radius", "min_distance", "closest")}
+    return replace(real, curves=[c.copy() for c in curves], **fields)
+
+
+TASKS: dict[str, Callable[..., dict[str, Any]]] = {
+    "identify": identify_payload,
+    "solve": solve_payload,
+    "relax": relax_payload,
+}
 """Job kinds -> the function a worker runs."""
 
 
@@ -155,12 +194,12 @@ class Jobs:
         self._jobs: dict[int, Job] = {}
         self._ids = itertools.count(1)
         self._lock = threading.Lock()
-        self._latest_identify: Job | None = None
+        self.latest: dict[str, Job] = {}
 
     def start(self, kind: str, *args: Any) -> Job:
-        """Start a ``kind`` job; a new identify cancels the previous one."""
-        if kind == "identify" and self._latest_identify is not None:
-            self._latest_identify.cancel()
+        """Start a ``kind`` job; a new identify or relax cancels the previous one (:data:`REPLACED`)."""
+        if kind in REPLACED and kind in self.latest:
+            self.latest[kind].cancel()
         channel = self._ctx.Queue()
         process = self._ctx.Process(target=run_job, args=(kind, args, channel), daemon=True)  # type: ignore[attr-defined]
         process.start()
@@ -170,9 +209,15 @@ class Jobs:
             finished = [j for j in self._jobs.values() if j.state != "running"]
             for old in finished[: max(0, len(self._jobs) - MAX_JOBS)]:
                 del self._jobs[old.id]
-        if kind == "identify":
-            self._latest_identify = job
+        if kind in REPLACED:
+            self.latest[kind] = job
         return job
+
+    def wait(self, job: Job, pause: float = 0.05) -> dict[str, Any]:
+        """Return the JSON view of ``job`` once it has ended (done, error or cancelled by a newer one)."""
+        while (state := job.poll())["state"] == "running":
+            time.sleep(pause)
+        return state
 
     def get(self, job_id: object) -> Job | None:
         """Return the job with id ``job_id``, if known."""

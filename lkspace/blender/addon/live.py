@@ -4,7 +4,8 @@
 curves; the result (components, holding together, or the error) is kept on the object's
 ``lkspace`` properties for the panel and for scripts.  The handler regenerates the active
 mesh after an edit when the scene's ``lkspace.live`` toggle is on and the mesh, its
-labels or its null sides changed since the last build (:func:`state_key`).
+labels or its null sides changed since the last build (:func:`state_key`).  With the
+scene's ``lkspace.relax`` on, the curves are relaxed (:func:`lkspace.relax`).
 """
 
 from __future__ import annotations
@@ -28,35 +29,43 @@ BUSY: set[str] = set()
 """Objects being regenerated now (their own updates must not start another round)."""
 
 
-def state_key(design: MeshDesign, labels: np.ndarray, nulls: np.ndarray, obj: Any) -> str:
-    """Return a digest of everything the strands depend on: mesh, labels, nulls and placement."""
+def state_key(design: MeshDesign, labels: np.ndarray, nulls: np.ndarray, obj: Any, relax: bool = False) -> str:
+    """Return a digest of everything the strands depend on: mesh, labels, nulls, placement, relaxed or not."""
     h = hashlib.sha256(design.scaffold.content_hash().encode())
-    for arr in (labels, nulls, np.array(obj.matrix_world, np.float64)):
+    for arr in (labels, nulls, np.array(obj.matrix_world, np.float64), np.array([relax])):
         h.update(np.ascontiguousarray(arr).tobytes())
     return h.hexdigest()[:16]
 
 
-def regenerate(obj: Any, scene: Any, force: bool = True, measure: bool | None = None) -> bool:
+def regenerate(
+    obj: Any, scene: Any, force: bool = True, measure: bool | None = None, relax: bool | None = None
+) -> bool:
     """Rebuild the strand curves of mesh object ``obj``; return whether it worked.
 
-    Errors of lkspace (a mesh it cannot use, strands that would touch) are not raised:
-    they go to ``obj.lkspace.message`` and the old curves stay.  ``force=False`` skips the
-    work when nothing changed since the last build.  ``measure`` checks the clearance
-    between strands (``lkspace.realize``'s check; it also thins the tubes to fit); by
-    default only meshes of at most :data:`MEASURE_FACES` faces are measured.
+    Errors of lkspace (a mesh it cannot use, strands that would touch, a relaxation it
+    refuses) are not raised: they go to ``obj.lkspace.message`` and the old curves stay.
+    ``force=False`` skips the work when nothing changed since the last build.  ``measure``
+    checks the clearance between strands (``lkspace.realize``'s check; it also thins the
+    tubes to fit); by default only meshes of at most :data:`MEASURE_FACES` faces are
+    measured.  ``relax`` builds the curves of :func:`lkspace.relax` (default: the scene's
+    ``lkspace.relax``).
     """
     result = obj.lkspace
+    if relax is None:
+        settings = getattr(scene, "lkspace", None)
+        relax = bool(settings.relax) if settings is not None else False
     BUSY.add(obj.name)
     try:
         design, labels, nulls = meshio.read_design(obj)
-        key = state_key(design, labels, nulls, obj)
+        key = state_key(design, labels, nulls, obj, relax)
         if measure is None:
             measure = design.scaffold.n_faces <= MEASURE_FACES
         if not force and key == result.key and (result.measured or not measure):
             return True
         traced = trace(design.scaffold, labels, nulls)
-        real = realize(design.scaffold, labels, nulls, result=traced, measure=measure)
+        real = realize(design.scaffold, labels, nulls, result=traced, measure=measure, relax=relax)
         strands.build(obj, real, scene)
+        result.relaxed = relax
         result.components = traced.components
         result.holds_together = traced.holds_together
         result.open_strands = int(np.sum(~traced.closed))

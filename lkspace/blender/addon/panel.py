@@ -36,6 +36,7 @@ class LkspaceSettings(bpy.types.PropertyGroup):
     components: bpy.props.IntProperty(name="Components", default=1, min=1)  # type: ignore[valid-type]
     time_limit: bpy.props.FloatProperty(name="Time limit", default=20.0, min=0.5, description="Seconds for Solve")  # type: ignore[valid-type]
     live: bpy.props.BoolProperty(name="Live", default=True, update=live_toggled, description="Regenerate on edits")  # type: ignore[valid-type]
+    relax: bpy.props.BoolProperty(name="Relax", description="Strands drawn tight (lkspace.relax, up to ~10 s)")  # type: ignore[valid-type]
     engine: bpy.props.EnumProperty(name="Engine", items=ENGINES)  # type: ignore[valid-type]
 
 
@@ -48,6 +49,7 @@ class LkspaceResult(bpy.types.PropertyGroup):
     knot: bpy.props.StringProperty(name="Knot or link")  # type: ignore[valid-type]
     message: bpy.props.StringProperty(name="Message")  # type: ignore[valid-type]
     measured: bpy.props.BoolProperty(name="Clearance measured")  # type: ignore[valid-type]
+    relaxed: bpy.props.BoolProperty(name="Relaxed")  # type: ignore[valid-type]
     key: bpy.props.StringProperty(name="State")  # type: ignore[valid-type]
 
 
@@ -106,6 +108,7 @@ class LKSPACE_PT_design(bpy.types.Panel):  # noqa: N801
         read = layout.box()
         row = read.row(align=True)
         row.prop(settings, "live")
+        row.prop(settings, "relax")
         row.operator("lkspace.regenerate", text="Regenerate")
         result = obj.lkspace
         if result.message:
@@ -113,7 +116,7 @@ class LKSPACE_PT_design(bpy.types.Panel):  # noqa: N801
                 read.label(text=line, icon="ERROR")
         elif result.key:
             together = "holds together" if result.holds_together else "falls apart"
-            read.label(text=f"{result.components} component(s), {together}")
+            read.label(text=f"{result.components} component(s), {together}{', relaxed' if result.relaxed else ''}")
             if result.open_strands:
                 read.label(text=f"{result.open_strands} open strand(s)")
             if not result.measured:

@@ -84,6 +84,20 @@ async function update(t0) {
   S.ready = true;
   if (!d.failure) S.measureTimer = setTimeout(() => measure(seq, body), 200);
   scheduleIdentify(body);
+  $('relax-status').textContent = '';
+  S.shown = d.curves || null;
+  if ($('relaxed').checked && !d.failure) relaxDraw(seq, body);
+}
+
+// ---- relaxed curves: asked for after the default ones are drawn; an answer for an older design is dropped
+async function relaxDraw(seq, body) {
+  $('relax-status').textContent = 'relaxing…';
+  let d;
+  try { d = await api('design', { ...body, relax: true }); } catch (err) { if (seq === S.seq) $('relax-status').textContent = 'relax: ' + err.message; return; }
+  if (seq !== S.seq || !$('relaxed').checked) return; // stale: the design or the toggle changed meanwhile
+  view.setStrands(d.curves); view.render(); S.shown = d.curves;
+  const c = d.clearance;
+  $('relax-status').textContent = `relaxed in ${d.timing.realize.toFixed(1)} s, clearance ${c.min_distance === null ? '—' : c.min_distance.toFixed(3)}${c.ok ? '' : ' (too close)'}`;
 }
 
 async function measure(seq, body) {
@@ -219,6 +233,7 @@ $('orbit').onchange = async () => { // edge orbits: a symmetry search, asked for
 $('undo').onclick = () => restore(S.undo, S.redo);
 $('redo').onclick = () => restore(S.redo, S.undo);
 $('fit').onclick = () => view.fit();
+$('relaxed').onchange = () => update(performance.now());
 $('numbers').onchange = () => { view.showNumbers = $('numbers').checked; view.render(); };
 $('builtin').onchange = () => loadScaffold($('builtin').value);
 $('block').addEventListener('change', () => {
