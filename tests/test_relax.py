@@ -85,7 +85,7 @@ def test_relax_tightens_and_keeps_the_type(design):
     measured = ropelength([(c, True) for c in after.curves])
     assert least * 0.99 <= measured["ropelength"] <= 1.25 * least, measured
     assert identify_curves(before.curves)["name"] == identify_curves(after.curves)["name"] == name
-    assert after.min_distance > after.min_separation
+    assert 2 * after.tube_radius <= after.min_distance < np.inf  # measured (the Hopf link's was inf: out of reach)
     assert 0 < after.tube_radius <= measured["thickness"] * 1.05  # the tube fills the rope, no more
 
 

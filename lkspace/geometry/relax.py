@@ -79,7 +79,10 @@ def relax(
     factor = size / _spread(flowed.curves, new_centre)
     relaxed = [(c - new_centre) * factor + centre for c in flowed.curves]
     rope = 0.5 * flowed.diameter * factor
-    min_dist, closest = check_embedding(relaxed, realization.closed, realization.min_separation, realization.scale)
+    # the pieces of a tight rope sit about a rope diameter apart, which may pass the design's
+    # scale: the coarse pass reaches 0.3 x the scale given, so give it at least 10 rope radii
+    reach = max(realization.scale, 10 * rope)
+    min_dist, closest = check_embedding(relaxed, realization.closed, realization.min_separation, reach)
     return replace(
         realization,
         curves=relaxed,
