@@ -157,3 +157,19 @@ def test_census_stops_between_shards_and_within_one(jobs):
     assert proc.returncode == 130, err
     errors = [line for line in err.splitlines() if line.strip() and not line.startswith("lkspace: census:")]
     assert errors == ["lkspace: error: interrupted"], err
+
+
+def test_ctrl_c_after_a_cp_sat_search_is_still_ours():
+    """CP-SAT left SIGINT at the default action after a search: the next Ctrl-C killed the program silently."""
+    script = (
+        "import os, signal, lkspace\n"
+        "r = lkspace.solve('cube', 3, count=2, fast_path=False)\n"
+        "assert r.method == 'cp-sat', r\n"
+        "try:\n"
+        "    os.kill(os.getpid(), signal.SIGINT)\n"
+        "    __import__('time').sleep(5)\n"
+        "except KeyboardInterrupt:\n"
+        "    print('caught')\n"
+    )
+    proc = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=HANG)
+    assert (proc.returncode, proc.stdout.strip()) == (0, "caught"), proc.stderr

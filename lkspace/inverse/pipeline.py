@@ -290,6 +290,9 @@ def solve_cp_sat(
     if hint is not None:
         dm.hint(hint)
     solver = cp_model.CpSolver()
+    # CP-SAT would catch Ctrl-C itself and leave SIGINT at the default action when done (the
+    # next Ctrl-C then killed the program without a word): search_interruptibly stops it instead
+    solver.parameters.catch_sigint_signal = False
     solver.parameters.num_workers = int(workers)
     solver.parameters.random_seed = int(seed)
     degrees = scaffold.edge_degrees
@@ -306,7 +309,7 @@ def solve_cp_sat(
         if step is not None:
             step.note(f"CP-SAT search: {len(solutions)}/{count} design(s) so far")
         with heartbeat(step) if step is not None else contextlib.nullcontext():
-            code = solver.solve(dm.model)
+            code = search_interruptibly(solver, dm.model)
         search_time += solver.wall_time
         if code in (cp_model.OPTIMAL, cp_model.FEASIBLE):
             residues = dm.residues_from(solver.boolean_value)
@@ -326,3 +329,22 @@ def solve_cp_sat(
             break
     stats["search_time"] = round(search_time, 6)
     return SolveResult(status, solutions, "cp-sat", time.perf_counter() - t0, "", exhausted, stats)
+
+
+def search_interruptibly(solver: Any, model: Any) -> int:
+    """Run ``solver.solve(model)`` in a thread; Ctrl-C or SIGTERM in this thread stops the search and goes on up.
+
+    Python's signal handlers run in the main thread only between bytecodes, never inside a
+    C++ search: waiting here in short joins keeps them running.
+    """
+    codes: list[int] = []
+    search = threading.Thread(target=lambda: codes.append(solver.solve(model)), name="cp-sat", daemon=True)
+    search.start()
+    try:
+        while search.is_alive():
+            search.join(0.05)
+    except BaseException:
+        solver.stop_search()
+        search.join()
+        raise
+    return codes[0]
