@@ -140,7 +140,7 @@ def test_solve_time_limit_covers_every_stage_and_shows_progress(tmp_path):
     assert data["status"] in ("unknown", "feasible") and data["wall_time"] < limit + 30
     if data["status"] == "unknown":
         assert "time limit" in data["reason"], data
-    assert "lkspace: solving honeycomb:cI@9x9x9 for 7 component(s)" in proc.stderr
+    assert "lkspace: solving honeycomb:cI@9x9x9 for 7 components" in proc.stderr
 
 
 # --- identify ----------------------------------------------------------------------------
