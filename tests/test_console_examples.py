@@ -9,7 +9,7 @@ command before it.  Markers for what varies:
 - a line ``...`` alone stands for any number of lines (none included);
 - ``[...]`` inside a line stands for any text on that line (timings, paths, long JSON);
 - a command with no output lines below it must succeed; what it prints is not compared;
-- progress lines (``lkspace: STEP: ... (N s)``, printed only on a slow run) are left out.
+- progress lines are off (``LKSPACE_PROGRESS=0``): they depend on the machine's speed.
 
 HTML comments on the lines before a block's fence steer it:
 
@@ -34,8 +34,6 @@ SKIP = re.compile(r"<!-- console: skip \((.*?)\) -->")
 SETUP = re.compile(r"<!-- console: setup: (.*?) -->")
 SEPARATOR = "@@console-example@@"
 STATUS = "@@console-status@@"
-PROGRESS = re.compile(r"lkspace: .*\(\d+ s\)")
-"""A progress line (on stderr after a second or two): it depends on the machine's speed."""
 
 
 def _blocks():
@@ -74,16 +72,16 @@ def _pattern(expected):
 
 def _run(setup, commands, folder):
     """Run the block in ``folder``; return ``(output, exit status)`` of each command."""
-    lines = ["exec 2>&1", *setup]
-    for command, _ in commands:
-        lines += [f"echo {SEPARATOR}", command, "__status=$?", f"echo {STATUS} $__status"]
-        lines.append("(exit $__status)")  # so that ``echo $?`` shows the status of the command
+    lines = ["exec 2>&1", *setup, "__status=0"]
+    for command, _ in commands:  # ``(exit $__status)``: ``echo $?`` shows the command before
+        lines += [f"echo {SEPARATOR}", "(exit $__status)", command, "__status=$?", f"echo {STATUS} $__status"]
     env = {
         **os.environ,
         "PATH": f"{pathlib.Path(sys.executable).parent}{os.pathsep}{os.environ['PATH']}",
         "COLUMNS": "100",
         "PYTHONUNBUFFERED": "1",
         "NO_COLOR": "1",
+        "LKSPACE_PROGRESS": "0",
     }
     done = subprocess.run(
         ["bash", "-c", "\n".join(lines)],
@@ -97,8 +95,7 @@ def _run(setup, commands, folder):
     results = []
     for chunk in done.stdout.split(SEPARATOR + "\n")[1:]:
         text, _, status = chunk.rpartition(STATUS + " ")
-        kept = [line.rstrip() for line in text.rstrip("\n").split("\n") if not PROGRESS.fullmatch(line)]
-        output = "\n".join(kept)
+        output = "\n".join(line.rstrip() for line in text.rstrip("\n").split("\n"))
         results.append((output + "\n" if output else "", int(status)))
     return results
 
