@@ -56,7 +56,9 @@ class Step:
 
     @property
     def done(self) -> str:
-        """Work done so far as text: ``"1,200"`` or ``"1,200/5,000"``."""
+        """Work done so far as text: ``"1,200"`` or ``"1,200/5,000"``; ``""`` for a step that counts nothing."""
+        if not self.completed and not self.total:
+            return ""
         return f"{self.completed:,.0f}" + (f"/{self.total:,.0f}" if self.total else "")
 
     def advance(self, amount: float = 1) -> None:
@@ -115,8 +117,8 @@ class PlainReporter:
         if now - self._last.get(id(step), 0.0) < PLAIN_EVERY:
             return
         self._last[id(step)] = now
-        note = f", {step.text}" if step.text else ""
-        self._write(f"lkspace: {step.description}: {step.done}{note} ({step.elapsed:.0f} s)\n")
+        what = ", ".join(part for part in (step.done, step.text) if part) or "working"
+        self._write(f"lkspace: {step.description}: {what} ({step.elapsed:.0f} s)\n")
 
     def close(self, step: Step) -> None:
         """Forget ``step``."""

@@ -70,7 +70,7 @@ def test_scaffold_writes_file(capsys, tmp_path):
 
 def test_human_output(capsys):
     code, out, _ = run(capsys, "trace", "cube", "--twist", "1")
-    assert code == 0 and "4 component(s)" in out
+    assert code == 0 and "4 components" in out
 
 
 @pytest.mark.parametrize(

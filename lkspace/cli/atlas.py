@@ -127,7 +127,9 @@ def atlas_cmd(
         for t in data["types"]:
             simplest = ",".join(map(str, t["simplest"]))
             table = f" ({t['table']})" if t.get("table") else ""
-            click.echo(f"  {t['name']:<24}{table:<19} {t['designs']:>8,} designs  simplest {simplest}")
+            click.echo(
+                f"  {t['name']:<24}{table:<19} {t['designs']:>8,} {'design ' if t['designs'] == 1 else 'designs'}  simplest {simplest}"
+            )
         if folder:
             click.echo(f"wrote {', '.join(files)} to {folder}")
 

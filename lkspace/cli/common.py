@@ -17,6 +17,7 @@ from ..io.sources import load
 from ..model.scaffold import Scaffold
 from ..model.specs import parse_label_set, parse_labels, parse_nulls
 from ..scaffolds import DEFAULT
+from ..words import rounded
 
 
 class Context:
@@ -131,11 +132,15 @@ def label_set(spec: str) -> np.ndarray:
         return parse_label_set(spec)
 
 
-def emit(ctx: Context, payload: dict[str, Any], human: Callable[[], object] | None) -> None:
-    """Print ``payload`` as one JSON object (``--json``) or call ``human()`` (``None``: JSON only)."""
+def emit(ctx: Context, payload: dict[str, Any], human: Callable[[], object] | None, exact: bool = False) -> None:
+    """Print ``payload`` as one JSON object (``--json``) or call ``human()`` (``None``: JSON only).
+
+    Floats are measured values: JSON carries them to 12 significant digits (``0.042``, not
+    ``0.041999999999999996``); ``exact`` keeps every digit (coordinates of a scaffold).
+    """
     if ctx.as_json:
         out = {**ctx.notes, **payload}
-        text = json.dumps(out, default=_jsonable) + "\n"
+        text = json.dumps(out if exact else rounded(out), default=_jsonable) + "\n"
         try:
             sys.stdout.write(text)
             sys.stdout.flush()
@@ -152,7 +157,7 @@ def _jsonable(value: object) -> int | float | list[Any]:
     if isinstance(value, np.floating):
         return float(value)
     if isinstance(value, np.ndarray):
-        return value.tolist()
+        return value.tolist() if value.dtype.kind != "f" else rounded(value.tolist())
     raise TypeError(f"not JSON serializable: {type(value).__name__}")
 
 

@@ -14,6 +14,7 @@ from ..io.paths import output_file
 from ..io.scaffold_json import format_scaffold_json, scaffold_to_dict
 from ..model.scaffold import Scaffold
 from ..strands.tracing import trace
+from ..words import plural
 from .common import (
     Context,
     emit,
@@ -85,7 +86,9 @@ def scaffold_cmd(name: str, output: str | None, as_json: bool) -> None:
     scaffold = load_mesh(ctx, name)
     if output is None or target is None:
         if as_json:
-            emit(ctx, {"scaffold": scaffold.name, "written": None, "data": scaffold_to_dict(scaffold)}, None)
+            emit(
+                ctx, {"scaffold": scaffold.name, "written": None, "data": scaffold_to_dict(scaffold)}, None, exact=True
+            )
         else:
             click.echo(format_scaffold_json(scaffold), nl=False)
         return
@@ -170,8 +173,9 @@ def info_cmd(mesh: str | None, list_edges: bool, as_json: bool) -> None:
         from rich.table import Table
 
         table = Table(title=f"{scaffold.name}", show_header=False, box=None)
-        for key, value in data.items():
-            if value is not None and not isinstance(value, list) and key != "symmetry_note":
+        hidden = {"symmetry_note", "n_edges"} | ({"symmetry_group_order"} if "group" in data else set())
+        for key, value in data.items():  # n_edges and the group order repeat "edges" and "group"
+            if value is not None and not isinstance(value, list) and key not in hidden:
                 shown = f"{value:.3g}" if key == "symmetry_tolerance" else str(value)
                 table.add_row(key.replace("_", " "), shown)
         _console().print(table)
@@ -210,13 +214,13 @@ def trace_cmd(mesh: str | None, twist_spec: str | None, null_spec: str | None, a
 
         con = _console()
         con.print(
-            f"{scaffold.name}: {result.components} component(s), "
+            f"{scaffold.name}: {plural(result.components, 'component')}, "
             f"{'holds together' if result.holds_together else 'falls apart'}"
         )
         if scaffold.periodic:
             con.print(
                 f"threads per module: {data['threads_per_module']} "
-                f"({data['closed_loops']} closed loops, {data['infinite_threads']} infinite threads)"
+                f"({plural(data['closed_loops'], 'closed loop')}, {plural(data['infinite_threads'], 'infinite thread')})"
             )
         table = Table("strand", "kind", "length", "period", "faces")
         for k, s in enumerate(data["strands"]):

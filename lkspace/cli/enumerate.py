@@ -11,6 +11,7 @@ from ..catalog.plan import MAX_JOBS, MAX_SHARDS
 from ..design.space import WALK_MODES, DesignSpace, make_space
 from ..errors import UsageError
 from ..symmetry.group import MODES as SYMMETRY_MODES
+from ..words import plural
 from .common import (
     Context,
     emit,
@@ -270,7 +271,7 @@ def enumerate_cmd(
         table.add_row("designs", f"{payload['designs']:,}")
         table.add_row("assignments", f"{payload['assignments']:,}")
         for k, v in (payload["by_components"] or {}).items():
-            table.add_row(f"  {k} component(s)", f"{v:,}")
+            table.add_row(f"  {plural(int(k), 'component')}", f"{v:,}")
         table.add_row("written", str(payload.get("written") or "- (count only; give -o FILE to write)"))
         if "identified" in payload:
             top = ", ".join(f"{k} ({v})" for k, v in list(payload["identified"]["names"].items())[:6])

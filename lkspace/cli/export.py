@@ -11,6 +11,7 @@ import numpy as np
 
 from ..errors import CatalogError, TooLargeError, UsageError
 from ..model.scaffold import Scaffold
+from ..words import plural
 from .common import Context, emit, json_option, labels_of, load_mesh, nulls_of, weld_option
 from .numbers import Finite
 
@@ -345,14 +346,15 @@ def export_cmd(
     if thickness is not None and pieces is None:  # the tube that was written
         data["tube_radius"] = thickness / 2 / scale
     human = (
-        f"wrote {output}: {real.n_curves} strand(s) of {scaffold.name}, "
-        f"minimum distance between strands {real.min_distance:.3g} (tube radius {data['tube_radius']:.3g})"
+        f"wrote {output}: {plural(real.n_curves, 'strand')} of {scaffold.name}, "
+        f"minimum distance between {'strands' if real.n_curves > 1 else 'distant parts of the strand'} "
+        f"{real.min_distance:.3g} (tube radius {data['tube_radius']:.3g})"
     )
     if pieces is not None:
         data["fabrication"] = pieces.summary()
         gap = f"> {pieces.clearance + pieces.radius:.4g}" if pieces.min_gap is None else f"{pieces.min_gap:.4g}"
         human = (
-            f"wrote {output}: {len(pieces.curves)} piece(s) of {scaffold.name}, thickness {2 * pieces.radius:.4g} "
+            f"wrote {output}: {plural(len(pieces.curves), 'piece')} of {scaffold.name}, thickness {2 * pieces.radius:.4g} "
             f"{pieces.units}, smallest gap {gap} {pieces.units} (clearance {pieces.clearance:.4g})"
         )
     emit(ctx, data, lambda: click.echo(human))

@@ -5,6 +5,7 @@ from __future__ import annotations
 import click
 import numpy as np
 
+from ..words import plural
 from .common import Context, emit, json_option
 from .export import design_options, params_of, resolve_design
 from .numbers import Finite
@@ -71,11 +72,13 @@ def identify_cmd(
         name = result["name"] or "unknown"
         if result["status"] != "identified":
             click.echo(f"{scaffold.name}: {result['status']}")
+        if result["status"].startswith("unknown: time limit"):
+            click.echo(f"  raise --time-limit (now {time_limit:g} s; 0: no limit) to let it finish")
         chir = ""
         if result.get("mirror") is not None:
             chir = " (mirror of the table diagram)" if result["mirror"] else " (as in the table)"
         table = f" [{result['table']}]" if result.get("table") and result["name"] else ""
-        click.echo(f"{scaffold.name}: {result['components']} component(s): {name}{chir}{table}")
+        click.echo(f"{scaffold.name}: {plural(result['components'], 'component')}: {name}{chir}{table}")
         if result.get("crossings") is not None:
             click.echo(f"  crossings of the simplified diagram: {result['crossings']}")
         else:

@@ -9,6 +9,7 @@ import numpy as np
 
 from ..errors import UsageError
 from ..model.scaffold import Scaffold
+from ..words import plural
 from .common import Context, emit, symmetry_tolerance, usage_errors
 
 
@@ -70,7 +71,7 @@ def run_invariant(
         designs = payload["designs"]
         table.add_row("designs", "-" if designs is None else f"{designs:,}")
         for k, v in (payload["by_components"] or {}).items():
-            table.add_row(f"  {k} component(s)", f"{v:,}")
+            table.add_row(f"  {plural(int(k), 'component')}", f"{v:,}")
         table.add_row("written", str(payload.get("written") or "- (count only; give -o FILE to write)"))
         if payload.get("note"):
             table.add_row("note", str(payload["note"]))

@@ -8,6 +8,7 @@ import click
 import numpy as np
 
 from ..errors import UsageError
+from ..words import plural
 from .common import Context, emit, json_option, label_set, labels_option, load_mesh, usage_errors
 
 
@@ -119,13 +120,13 @@ def motifs_cmd(
     payload = {"supercell": sc.name, "edges": sc.n_edges, "symmetry": symmetry, "classes": rows}
 
     def human() -> None:
-        click.echo(f"{sc.name}: {len(rows)} design(s)")
+        click.echo(f"{sc.name}: {plural(len(rows), 'design')}")
         for i, r in enumerate(rows):
             what = f"motif {r['motif']}" if r["motif"] is not None else f"labels {r['labels']}"
             together = "holds together" if r["holds_together"] else "falls apart"
             click.echo(
-                f"  {i}: {what} ({r['motifs']} motif(s)): {r['components']} component(s), "
-                f"{r['n_infinite']} infinite thread(s), {together}"
+                f"  {i}: {what} ({plural(r['motifs'], 'motif')}): {plural(r['components'], 'component')}, "
+                f"{plural(r['n_infinite'], 'infinite thread')}, {together}"
             )
 
     emit(ctx, payload, human)

@@ -10,6 +10,7 @@ import click
 from .. import io
 from ..errors import UsageError
 from ..io.paths import output_file
+from ..words import plural
 from .common import (
     Context,
     emit,
@@ -260,7 +261,7 @@ def solve_cmd(
         if result.reason:
             line += f" ({result.reason})"
         click.echo(
-            f"{line} — {len(result.solutions)} design(s) with {components} component(s) "
+            f"{line} — {plural(len(result.solutions), 'design')} with {plural(components, 'component')} "
             f"[{result.method}, {result.wall_time:.3f} s]"
         )
         for k, sol in enumerate(result.solutions):

@@ -7,6 +7,7 @@ from typing import Any
 import click
 
 from ..errors import UsageError
+from ..words import plural
 from .common import Context, emit, json_option, load_mesh
 
 
@@ -86,14 +87,14 @@ def surfaces_cmd(
         faces = "its own faces" if own_faces else f"faces of length <= {max_length}, {per_edge} per edge"
         click.echo(
             f"{graph}: {n} vertices, {len(edges)} edges; {faces}: "
-            f"{len(rows)} face set(s) up to automorphism, {payload['structures']:,} strand structure(s)"
+            f"{plural(len(rows), 'face set')} up to automorphism, {plural(payload['structures'], 'strand structure')}"
         )
         for i, r in enumerate(rows):
             sizes = sorted(len(f) for f in r["faces"])
-            extra = "" if r["designs"] is None else f", {r['designs']:,} designs"
+            extra = "" if r["designs"] is None else f", {plural(r['designs'], 'design')}"
             click.echo(
-                f"  {i}: {len(sizes)} faces {sizes}, {r['covers']} cover(s), symmetry {r['symmetry']}, "
-                f"{r['radial_orders']} radial order(s), {r['structures']:,} structures{extra}"
+                f"  {i}: {len(sizes)} faces {sizes}, {plural(r['covers'], 'cover')}, symmetry {r['symmetry']}, "
+                f"{plural(r['radial_orders'], 'radial order')}, {plural(r['structures'], 'structure')}{extra}"
             )
 
     emit(ctx, payload, human)

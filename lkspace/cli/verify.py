@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import click
 
+from ..words import plural
 from .common import Context, emit, json_option
 
 
@@ -31,7 +32,7 @@ def verify_cmd(catalog: str, as_json: bool) -> None:
         ctx,
         found.to_dict(),
         lambda: click.echo(
-            f"{catalog}: intact: {found.rows:,} rows in {found.parts} part(s) of {found.scaffold}, "
+            f"{catalog}: intact: {found.rows:,} rows in {plural(found.parts, 'part')} of {found.scaffold}, "
             f"format version {found.format_version} (checked: {found.checks})"
         ),
     )

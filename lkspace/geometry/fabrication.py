@@ -21,6 +21,7 @@ pieces and the nearest scaffold vertex or edge.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -186,7 +187,27 @@ def check_gaps(
         what = f"pieces {owner[i[b]]} and {owner[j[b]]}" if owner[i[b]] != owner[j[b]] else f"piece {owner[i[b]]}"
         raise GeometryError(
             f"{real.scaffold.name}: {what} leave a gap of {max(gap, 0.0):.4g} < clearance {clearance:.4g} "
-            f"(thickness {2 * radius:.4g}) near {place_name(real.scaffold, mid)}; use a smaller --thickness or "
-            "--clearance, or a larger --scale"
+            f"(thickness {2 * radius:.4g}) near {place_name(real.scaffold, mid)}; "
+            + gap_fixes(gap + 2 * radius, 2 * radius, clearance, scale)
         )
     return gap
+
+
+def gap_fixes(centre: float, thickness: float, clearance: float, scale: float) -> str:
+    """Say which options can open a gap: ``centre`` is the distance of the two centrelines.
+
+    The gap is ``centre - thickness`` and ``centre`` grows with ``--scale``, so a thinner tube
+    helps only while ``centre > clearance``; a larger scale or a smaller clearance always can.
+
+    >>> gap_fixes(0.3, 0.1, 0.5, 1.0)
+    'no --thickness reaches clearance 0.5 at --scale 1 (the centrelines are 0.3 apart); use --scale 2 or more, or --clearance 0.2 or less'
+    """
+    need_scale = math.ceil(100 * scale * (clearance + thickness) / max(centre, 1e-12)) / 100
+    fits = math.floor(100 * max(centre - thickness, 0.0)) / 100  # rounded down: it must still fit
+    other = f"--scale {need_scale:g} or more, or --clearance {fits:g} or less"
+    if centre <= clearance:
+        return (
+            f"no --thickness reaches clearance {clearance:g} at --scale {scale:g} "
+            f"(the centrelines are {centre:.2g} apart); use {other}"
+        )
+    return f"use --thickness {math.floor(100 * (centre - clearance)) / 100:g} or less, {other}"

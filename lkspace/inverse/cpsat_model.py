@@ -77,6 +77,7 @@ import scipy.sparse.csgraph
 from ..errors import LabelError
 from ..model.scaffold import Scaffold
 from ..strands.ports import port_model
+from ..words import plural
 from .query import Query, allowed_labels, label_cost, representatives
 
 if TYPE_CHECKING:
@@ -260,10 +261,11 @@ def build_model(scaffold: Scaffold, query: Query, deadline: float | None = None)
     if m == 0 and need != 0 or m > 0 and not 1 <= need <= m:
         dm.decided = "infeasible"
         dm.reason = (
-            f"the allowed labels fix every edge mod K: always {n_fixed_cycles} component(s)"
+            f"the allowed labels fix every edge mod K: always {plural(n_fixed_cycles, 'component')}"
             if m == 0
-            else f"{n_fixed_cycles} component(s) are fixed and {m} free path(s) remain: "
-            f"only {n_fixed_cycles + 1}..{n_fixed_cycles + m} component(s) are possible"
+            else f"{plural(n_fixed_cycles, 'component is', 'components are')} fixed and "
+            f"{plural(m, 'free path remains', 'free paths remain')}: "
+            f"only {n_fixed_cycles + 1}..{n_fixed_cycles + m} components are possible"
         )
         return dm
     model = cp_model.CpModel()

@@ -25,6 +25,7 @@ from ..progress import Step, task
 from ..strands.tracing import trace
 from ..symmetry.edge_orbits import invariant_edge_orbits
 from ..symmetry.group import symmetry_group
+from ..words import plural
 from .constructive import spanning_designs
 from .cpsat_model import build_model
 from .query import Query
@@ -179,7 +180,7 @@ def solve(
     query = Query(int(components), label_set, bool(no_zero), dict(fixes or {}), dict(parities or {}), objective, orbits)
     fast_path = fast_path and invariant is None  # the constructions know nothing of symmetry
     deadline = None if not time_limit else t0 + time_limit
-    with task(f"solving {scaffold.name} for {query.components} component(s)") as step:
+    with task(f"solving {scaffold.name} for {plural(query.components, 'component')}") as step:
         step.note("symmetry" if distinct_up_to != "none" else "fast path")
         actions = symmetry_actions(scaffold, distinct_up_to, label_set, tolerance)
         if fast_path and (count == 1 or distinct_up_to == "none"):

@@ -91,7 +91,7 @@ def run_in_time(func: Callable[[Callable[[str], None]], T], time_limit: float | 
         finally:
             os._exit(0)
     send.close()
-    stage = "starting"
+    stage = "starting the worker"
     deadline = time.monotonic() + time_limit
     try:
         while True:

@@ -1,0 +1,78 @@
+"""Messages in the user's words: plurals, hints that say what to do, no repeated or raw numbers."""
+
+import json
+import re
+
+import pytest
+
+from lkspace.geometry.fabrication import gap_fixes
+from lkspace.words import plural, rounded
+
+from .cli_calls import run
+
+
+def test_plural_and_rounded():
+    assert [plural(n, "component") for n in (0, 1, 2, 1234)] == [
+        "0 components", "1 component", "2 components", "1,234 components",
+    ]  # fmt: skip
+    assert plural(1, "component is", "components are") == "1 component is"
+    assert rounded({"a": [0.041999999999999996, 2], "b": "x", "c": 1e-20 / 3}) == {
+        "a": [0.042, 2], "b": "x", "c": 3.33333333333e-21,
+    }  # fmt: skip
+
+
+def test_trace_and_solve_count_in_words(capsys):
+    code, out, _ = run(capsys, "trace", "dihedron:3", "--twist", "1")
+    assert code == 0 and out.startswith("dihedron:3: 1 component, holds together"), out
+    code, out, _ = run(capsys, "solve", "tetrahedron", "--components", "1")
+    assert code == 0 and "— 1 design with 1 component [" in out, out
+    assert "(s)" not in out
+
+
+def test_info_shows_each_count_once(capsys):
+    code, out, _ = run(capsys, "info", "cube")
+    assert code == 0
+    assert re.search(r"^ edges +12 *$", out, re.M), out
+    assert "n edges" not in out and "symmetry group order" not in out
+    code, out, _ = run(capsys, "info", "cube", "--json")
+    assert json.loads(out)["n_edges"] == 12  # the JSON keeps its fields
+
+
+@pytest.mark.parametrize(
+    ("centre", "thickness", "clearance", "scale", "want"),
+    [  # the gap is centre - thickness and centre grows with the scale
+        (0.3, 0.1, 0.5, 1.0, ["no --thickness", "--scale 2 or more", "--clearance 0.2 or less"]),
+        (0.6, 0.3, 0.1, 1.0, ["--thickness 0.5 or less", "--scale 0.67 or more", "--clearance 0.3 or less"]),
+    ],
+)
+def test_gap_fixes_name_what_can_work(centre, thickness, clearance, scale, want):
+    text = gap_fixes(centre, thickness, clearance, scale)
+    for part in want:
+        assert part in text, text
+
+
+def test_clearance_refusal_names_a_fix_that_works(capsys, tmp_path):
+    args = ["export", "cube", "--twist", "2", "-o", tmp_path / "c.stl", "--thickness", "0.1", "--clearance", "0.5"]
+    code, _, err = run(capsys, *args)
+    assert code == 1 and "no --thickness reaches clearance 0.5" in err, err
+    scale = re.search(r"--scale ([0-9.]+) or more", err)
+    assert scale, err
+    code, out, err = run(capsys, *args, "--scale", scale[1])  # the scale it names is enough
+    assert code == 0, err
+    assert "6 pieces of cube" in out
+
+
+def test_one_strand_has_no_distance_between_strands(capsys, tmp_path):
+    code, out, err = run(capsys, "export", "dihedron:3", "--twist", "1", "-o", tmp_path / "k.obj")
+    assert code == 0, err
+    assert "1 strand of dihedron:3" in out and "between strands" not in out, out
+
+
+def test_identify_time_limit_says_what_to_raise(capsys):
+    pytest.importorskip("spherogram")
+    from .test_budgets import BIG_KNOT
+
+    code, out, _ = run(capsys, "identify", "truncated-octahedron", "--twist", BIG_KNOT, "--time-limit", "0.3")
+    assert code == 0
+    assert "unknown: time limit 0.3 s reached (during " in out, out
+    assert "raise --time-limit (now 0.3 s; 0: no limit)" in out, out
