@@ -18,6 +18,7 @@ from ..design.space import DesignSpace
 from ..design.spanning import spanning_tree_rows
 from ..design.walk import Block, walk_blocks
 from ..kernels import kernel
+from ..model.scaffold import Scaffold
 from .columns import residue_rows_to_batch, strand_columns
 from .residue_rows import residue_batches
 from .schema import ROW_GROUP, design_schema
@@ -93,10 +94,17 @@ def design_batches(
     batch_rows: int | None = None,
 ) -> Iterator[pa.RecordBatch]:
     """Arrow record batches of designs (catalog schema), streamed class by class."""
-    batch_rows = batch_rows or ROW_GROUP
-    n_edges, periodic = space.scaffold.n_edges, space.scaffold.periodic
+    blocks = walk_blocks(space, class_ids, components)
+    yield from gather_blocks(blocks, space.scaffold, max_designs, batch_rows or ROW_GROUP)
+
+
+def gather_blocks(
+    blocks: Iterable[Block], scaffold: Scaffold, max_designs: int | None, batch_rows: int
+) -> Iterator[pa.RecordBatch]:
+    """Record batches of about ``batch_rows`` rows from design ``blocks``, stopping after ``max_designs`` rows."""
+    n_edges, periodic = scaffold.n_edges, scaffold.periodic
     pending, n_pending, n_total = [], 0, 0
-    for block in walk_blocks(space, class_ids, components):
+    for block in blocks:
         if max_designs is not None and n_total + len(block.labels) > max_designs:
             block = block.head(max_designs - n_total)
         pending.append(block)

@@ -22,7 +22,7 @@ from ..design.space import DesignSpace
 from ..errors import CatalogError
 from ..io.sources import ScaffoldSource, load
 from ..model.specs import LabelSetSpec, parse_label_set
-from .batches import blocks_to_batch
+from .batches import gather_blocks
 from .lock import catalog_lock
 from .schema import ROW_GROUP, design_schema
 from .shards import catalog_metadata
@@ -50,21 +50,7 @@ def invariant_batches(
     space: InvariantSpace, components: int | None = None, max_designs: int | None = None
 ) -> Iterator[pa.RecordBatch]:
     """Record batches (designs schema) of the symmetric designs of ``space``, about ``ROW_GROUP`` rows each."""
-    n_edges, periodic = space.scaffold.n_edges, space.scaffold.periodic
-    pending, n_pending, n_total = [], 0, 0
-    for block in invariant_blocks(space, components):
-        if max_designs is not None and n_total + len(block.labels) > max_designs:
-            block = block.head(max_designs - n_total)
-        pending.append(block)
-        n_pending += len(block.labels)
-        n_total += len(block.labels)
-        if n_pending >= ROW_GROUP:
-            yield blocks_to_batch(pending, n_edges, periodic)
-            pending, n_pending = [], 0
-        if max_designs is not None and n_total >= max_designs:
-            break
-    if pending:
-        yield blocks_to_batch(pending, n_edges, periodic)
+    yield from gather_blocks(invariant_blocks(space, components), space.scaffold, max_designs, ROW_GROUP)
 
 
 def symmetric_designs(
