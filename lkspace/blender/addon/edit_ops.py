@@ -15,6 +15,7 @@ import numpy as np
 from lkspace.blender.editing import fill_orbit, random_labels
 from lkspace.blender.meshdata import NULL, mesh_design
 from lkspace.errors import LkspaceError
+from lkspace.words import plural
 
 from . import live, meshio
 
@@ -126,7 +127,7 @@ class LKSPACE_OT_solve(MeshOperator):  # noqa: N801
         )
         if not result.solutions:
             raise LkspaceError(
-                f"{obj.name}: no design with {self.components} component(s) from labels {settings.label_set} "
+                f"{obj.name}: no design with {plural(self.components, 'component')} from labels {settings.label_set} "
                 f"({result.status}{': ' + result.reason if result.reason else ''})"
             )
         meshio.write_labels(obj, design, result.solutions[0].labels)

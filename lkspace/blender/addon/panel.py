@@ -115,10 +115,14 @@ class LKSPACE_PT_design(bpy.types.Panel):  # noqa: N801
             for line in wrap(result.message):
                 read.label(text=line, icon="ERROR")
         elif result.key:
+            from lkspace.words import plural  # here: lkspace may be missing when the panel is drawn
+
             together = "holds together" if result.holds_together else "falls apart"
-            read.label(text=f"{result.components} component(s), {together}{', relaxed' if result.relaxed else ''}")
+            read.label(
+                text=f"{plural(result.components, 'component')}, {together}{', relaxed' if result.relaxed else ''}"
+            )
             if result.open_strands:
-                read.label(text=f"{result.open_strands} open strand(s)")
+                read.label(text=plural(result.open_strands, "open strand"))
             if not result.measured:
                 read.label(text="Clearance not measured (large mesh): Regenerate checks it")
         row = read.row(align=True)
