@@ -101,7 +101,7 @@ def _run(setup, commands, folder):
     return results
 
 
-@pytest.mark.parametrize(("setup", "body"), _blocks())
+@pytest.mark.parametrize(("setup", "body"), list(_blocks()))
 def test_console_example(setup, body, tmp_path):
     commands = _commands(body)
     assert commands, "a console block without a $ command"
