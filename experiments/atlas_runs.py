@@ -1,6 +1,6 @@
 """Atlases of the built-in scaffolds for results/atlas/ (run: ``nice python experiments/atlas_runs.py``).
 
-Each space is identified with :func:`lkspace.target.atlas.atlas` (resumable cache under
+Each space is identified with :func:`lkspace.linktypes.atlas.atlas` (resumable cache under
 ``$ATLAS_CACHE``, default /tmp/lkspace-atlas-cache, never committed) and written to
 ``results/atlas/NAME/`` (README.md, atlas.parquet, a few PNGs).  Wall and CPU times go to
 ``results/atlas/runs.json``; ``results/atlas/README.md`` gets the table "which knots and
@@ -19,9 +19,9 @@ import time
 import numpy as np
 
 from lkspace import load
+from lkspace.linktypes.atlas import atlas, crossing_number, read_cache
+from lkspace.linktypes.gallery import write_gallery
 from lkspace.model.specs import parse_label_set
-from lkspace.target.atlas import atlas, crossing_number, read_cache
-from lkspace.target.gallery import write_gallery
 
 ROOT = os.path.join(os.path.dirname(__file__), "..", "results", "atlas")
 CACHE = os.environ.get("ATLAS_CACHE", "/tmp/lkspace-atlas-cache")
@@ -179,7 +179,7 @@ def book_family() -> list[str]:
 
 def single_cycle_table() -> list[str]:
     """The 32 single-cycle designs of the tetrahedron with labels -1..1 and their types."""
-    from lkspace.target.candidates import OrderedWalk
+    from lkspace.linktypes.candidates import OrderedWalk
 
     scaffold = load("tetrahedron")
     header = {"scaffold": "tetrahedron", "hash": scaffold.content_hash(), "labels": [-2, -1, 0, 1, 2],

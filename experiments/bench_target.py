@@ -16,11 +16,11 @@ import time
 import numpy as np
 
 from lkspace import identify, load
+from lkspace.linktypes.candidates import OrderedWalk
+from lkspace.linktypes.names import judge, parse_type
+from lkspace.linktypes.screen import Goal
+from lkspace.linktypes.search import solve_target
 from lkspace.model.specs import parse_label_set
-from lkspace.target.candidates import OrderedWalk
-from lkspace.target.names import judge, parse_type
-from lkspace.target.screen import Goal
-from lkspace.target.search import solve_target
 
 CASES = [
     ("tetrahedron", "5_2", "-2..2"),

@@ -14,11 +14,11 @@ from lkspace import identify, load
 pytest.importorskip("spherogram")
 pytest.importorskip("snappy")
 
-from lkspace.target.atlas import atlas  # noqa: E402
-from lkspace.target.linking import matches, parse_linking_matrix  # noqa: E402
-from lkspace.target.names import parse_type  # noqa: E402
-from lkspace.target.screen import Goal  # noqa: E402
-from lkspace.target.search import solve_target  # noqa: E402
+from lkspace.linktypes.atlas import atlas  # noqa: E402
+from lkspace.linktypes.linking import matches, parse_linking_matrix  # noqa: E402
+from lkspace.linktypes.names import parse_type  # noqa: E402
+from lkspace.linktypes.screen import Goal  # noqa: E402
+from lkspace.linktypes.search import solve_target  # noqa: E402
 
 from .cli_calls import run
 

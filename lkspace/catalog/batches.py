@@ -16,7 +16,7 @@ import pyarrow as pa
 from ..design.batch import concat_traces
 from ..design.space import DesignSpace
 from ..design.spanning import spanning_tree_rows
-from ..design.walk import Block, walk_blocks
+from ..design.walk import DesignBlock, walk_blocks
 from ..kernels import kernel
 from ..model.scaffold import Scaffold
 from .columns import residue_rows_to_batch, strand_columns
@@ -59,8 +59,8 @@ def label_stats(labels: np.ndarray) -> dict[str, np.ndarray]:
     return out
 
 
-def blocks_to_batch(blocks: list[Block], n_edges: int, periodic: bool) -> pa.RecordBatch:
-    """One record batch of the designs schema from :class:`~lkspace.design.walk.Block` s."""
+def blocks_to_batch(blocks: list[DesignBlock], n_edges: int, periodic: bool) -> pa.RecordBatch:
+    """One record batch of the designs schema from :class:`~lkspace.design.walk.DesignBlock` s."""
     schema = design_schema(n_edges, periodic)
     if not blocks:
         return pa.RecordBatch.from_pylist([], schema=schema)
@@ -99,7 +99,7 @@ def design_batches(
 
 
 def gather_blocks(
-    blocks: Iterable[Block], scaffold: Scaffold, max_designs: int | None, batch_rows: int
+    blocks: Iterable[DesignBlock], scaffold: Scaffold, max_designs: int | None, batch_rows: int
 ) -> Iterator[pa.RecordBatch]:
     """Record batches of about ``batch_rows`` rows from design ``blocks``, stopping after ``max_designs`` rows."""
     n_edges, periodic = scaffold.n_edges, scaffold.periodic

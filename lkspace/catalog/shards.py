@@ -41,7 +41,7 @@ from .remote import check_remote, remote_url, write_remote
 from .schema import FORMAT_VERSION, design_schema, residue_schema
 from .transaction import (
     CatalogInterrupted,
-    Target,
+    Destination,
     catalog_target,
     file_sha256,
     load_manifest,
@@ -254,7 +254,7 @@ class _Run:
     def __init__(
         self,
         space: DesignSpace,
-        target: Target,
+        target: Destination,
         plan: Plan,
         meta: dict[str, Any],
         schema: pa.Schema,

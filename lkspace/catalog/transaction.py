@@ -46,7 +46,7 @@ class CatalogInterrupted(KeyboardInterrupt):
 
 
 @dataclass(frozen=True)
-class Target:
+class Destination:
     """Where a catalog goes: ``path`` (symlinks resolved), and the names of its run's files beside it."""
 
     path: str
@@ -76,8 +76,8 @@ class Target:
         return self._beside("old")
 
 
-def catalog_target(output: str | os.PathLike[str], inputs: tuple[str | None, ...] = ()) -> Target:
-    """Check ``-o`` for a catalog before any work: return its :class:`Target`.
+def catalog_target(output: str | os.PathLike[str], inputs: tuple[str | None, ...] = ()) -> Destination:
+    """Check ``-o`` for a catalog before any work: return its :class:`Destination`.
 
     A symlink is followed (its target is replaced, the link kept).  Only a catalog
     lkspace wrote is replaced (:func:`foreign_reason`).  Refused, each with one line: an
@@ -106,7 +106,7 @@ def catalog_target(output: str | os.PathLike[str], inputs: tuple[str | None, ...
         if reason is not None:
             raise ExportError(f"{text}: {reason}; lkspace replaces only catalogs it wrote: choose another -o")
     output_folder(os.path.dirname(path), text)
-    return Target(path, text)
+    return Destination(path, text)
 
 
 PART_NAME = re.compile(r"part-\d{5}-[0-9a-f]+\.parquet")
@@ -145,7 +145,7 @@ def foreign_reason(path: str) -> str | None:
     return None
 
 
-def remove_temporaries(target: Target, keep_build: bool) -> None:
+def remove_temporaries(target: Destination, keep_build: bool) -> None:
     """Remove this target's leftover temporary files (and the build unless ``keep_build``)."""
     name = os.path.basename(target.path)
     prefixes = (f".{name}.lkspace-", f"..{name}.lkspace-build.")
@@ -219,7 +219,7 @@ def new_run() -> str:
     return secrets.token_hex(4)
 
 
-def seed_build(target: Target, build: str, signature: dict[str, Any]) -> tuple[str, dict[str, dict[str, Any]]]:
+def seed_build(target: Destination, build: str, signature: dict[str, Any]) -> tuple[str, dict[str, dict[str, Any]]]:
     """Start a build from the finished catalog at the target, if it is of the same run settings.
 
     Returns ``(run id, parts)``: the build takes over the old catalog's run id (its parts'

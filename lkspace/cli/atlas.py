@@ -88,8 +88,8 @@ def atlas_cmd(
       lkspace atlas designs.parquet --json
     """
     from ..knots.recognition import check_identifiable
-    from ..target.atlas import atlas, atlas_of_catalog
-    from ..target.gallery import atlas_folder, write_gallery
+    from ..linktypes.atlas import atlas, atlas_of_catalog
+    from ..linktypes.gallery import atlas_folder, write_gallery
 
     ctx = Context(as_json)
     if folder is not None:

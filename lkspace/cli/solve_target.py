@@ -33,10 +33,10 @@ def target_cmd(
 ) -> None:
     """Run the target search and print its answer (JSON fields in ``docs/cli.md``)."""
     from ..knots.recognition import check_identifiable
-    from ..target.linking import parse_linking_matrix
-    from ..target.names import parse_type
-    from ..target.screen import Goal
-    from ..target.search import solve_target
+    from ..linktypes.linking import parse_linking_matrix
+    from ..linktypes.names import parse_type
+    from ..linktypes.screen import Goal
+    from ..linktypes.search import solve_target
 
     if signed and linking_text is None:
         raise UsageError("--signed applies to --linking-matrix only")

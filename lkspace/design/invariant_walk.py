@@ -5,7 +5,7 @@ in mixed radix (last orbit fastest), expands each to edge labels and keeps it wh
 the smallest of its ``N``-orbit in (``t mod K`` per edge, then ``t`` per edge), counting its
 stabilizer in ``N`` on the way.  Kept rows are grouped by residue vector, each residue
 class traced once (:func:`~lkspace.design.batch.trace_batch`), and returned as
-:class:`~lkspace.design.walk.Block` s, the rows the catalog writer takes.
+:class:`~lkspace.design.walk.DesignBlock` s, the rows the catalog writer takes.
 """
 
 from __future__ import annotations
@@ -18,7 +18,7 @@ from ..errors import TooLargeError
 from ..kernels import kernel
 from .batch import holds_batch, trace_batch
 from .invariant import InvariantSpace
-from .walk import Block
+from .walk import DesignBlock
 
 CHUNK = 1 << 18
 """Fixed assignments per kernel call."""
@@ -99,7 +99,7 @@ def invariant_canonical(
     return m
 
 
-def invariant_blocks(space: InvariantSpace, components: int | None = None) -> Iterator[Block]:
+def invariant_blocks(space: InvariantSpace, components: int | None = None) -> Iterator[DesignBlock]:
     """Yield the symmetric designs of ``space`` (rows canonical under ``N``), a chunk at a time.
 
     Raises
@@ -138,8 +138,8 @@ def invariant_blocks(space: InvariantSpace, components: int | None = None) -> It
 
 def rows_block(
     space: InvariantSpace, labels: np.ndarray, orbit_sizes: np.ndarray, components: int | None
-) -> Block | None:
-    """Return a :class:`Block` of the rows ``labels (m, n_edges)``: their residue classes traced once each."""
+) -> DesignBlock | None:
+    """Return a :class:`DesignBlock` of the rows ``labels (m, n_edges)``: their residue classes traced once each."""
     base = space.base
     residues = labels.astype(np.int64) % base.moduli
     classes, row_class = np.unique(residues, axis=0, return_inverse=True)
@@ -152,7 +152,7 @@ def rows_block(
         labels, orbit_sizes, row_class = labels[keep], orbit_sizes[keep], row_class[keep]
     holds = holds_batch(base, traces, labels, row_class)
     codes = np.array([_class_code(space, r) for r in classes], np.int64)
-    return Block(codes, traces.slim(), row_class, labels, orbit_sizes.astype(np.int64), holds)
+    return DesignBlock(codes, traces.slim(), row_class, labels, orbit_sizes.astype(np.int64), holds)
 
 
 def _class_code(space: InvariantSpace, residues: np.ndarray) -> int:

@@ -162,7 +162,7 @@ def holds_together_rows(space: DesignSpace, residues: np.ndarray, info: ClassInf
 
 
 @dataclass
-class Block:
+class DesignBlock:
     """Designs of a run of representative classes (or a chunk of one large class).
 
     Attributes
@@ -185,9 +185,9 @@ class Block:
     orbit_sizes: np.ndarray
     holds_together: np.ndarray
 
-    def head(self, n: int) -> Block:
+    def head(self, n: int) -> DesignBlock:
         """Return the first ``n`` rows."""
-        return Block(
+        return DesignBlock(
             self.class_codes,
             self.traces,
             self.row_class[:n],
@@ -199,7 +199,7 @@ class Block:
 
 def walk_blocks(
     space: DesignSpace, class_ids: Iterable[int] | None = None, components: int | None = None
-) -> Iterator[Block]:
+) -> Iterator[DesignBlock]:
     """Yield the designs of the representative classes ``class_ids`` (default all), in order.
 
     Small classes go many to a compiled call (:mod:`lkspace.design.batch`); a class larger
@@ -220,10 +220,10 @@ def walk_blocks(
             continue
         labels, stab, row_class = expand_batch(space, run)
         holds = holds_batch(space, traces, labels, row_class)
-        yield Block(co.codes[run], traces.slim(), row_class, labels, space.n_actions // stab, holds)
+        yield DesignBlock(co.codes[run], traces.slim(), row_class, labels, space.n_actions // stab, holds)
 
 
-def _large_class(space: DesignSpace, c: int, traces: ClassTraces) -> Iterator[Block]:
+def _large_class(space: DesignSpace, c: int, traces: ClassTraces) -> Iterator[DesignBlock]:
     co = space.classes
     perms, signs = space.action
     inv = np.argsort(perms, axis=1)
@@ -243,7 +243,7 @@ def _large_class(space: DesignSpace, c: int, traces: ClassTraces) -> Iterator[Bl
         labels = out[:m]
         row_class = np.zeros(m, np.int64)
         holds = holds_batch(space, traces, labels, row_class)
-        yield Block(co.codes[[c]], traces.slim(), row_class, labels, space.n_actions // stab[:m], holds)
+        yield DesignBlock(co.codes[[c]], traces.slim(), row_class, labels, space.n_actions // stab[:m], holds)
 
 
 def residue_row(

@@ -29,11 +29,11 @@ from .realization import GeometryParams, Realization, realize
 STUB = 0.5
 """Runs of a thread inside a block shorter than this many shortest edges are left out."""
 
-__all__ = ["Block", "block_faces", "block_of", "clip_curves", "join_curves", "realize_block"]
+__all__ = ["CellBlock", "block_faces", "block_of", "clip_curves", "join_curves", "realize_block"]
 
 
 @dataclass(frozen=True, eq=False)
-class Block:
+class CellBlock:
     """A block of lattice cells.
 
     Attributes
@@ -117,15 +117,15 @@ def cell_vectors(basis: np.ndarray) -> np.ndarray:
     return cell
 
 
-def block_of(scaffold: Scaffold, sizes: ArrayLike, margin: float, shortest: float = 0.0) -> Block:
-    """Return the :class:`Block` of ``sizes`` cells of periodic ``scaffold`` (cells of :func:`cell_vectors`)."""
+def block_of(scaffold: Scaffold, sizes: ArrayLike, margin: float, shortest: float = 0.0) -> CellBlock:
+    """Return the :class:`CellBlock` of ``sizes`` cells of periodic ``scaffold`` (cells of :func:`cell_vectors`)."""
     if scaffold.lattice is None:
         raise GeometryError(f"{scaffold.name}: a block needs a periodic scaffold", usage=True)
     sizes = np.asarray(sizes, np.int64)
     basis = scaffold.lattice.basis
     cell = cell_vectors(basis)
     # the cell of translate 0 is centred on the lattice point nearest to its faces' middle
-    return Block(sizes, lattice_origin(scaffold) + 0.5 * (sizes - 1) @ cell, cell, float(margin), float(shortest))
+    return CellBlock(sizes, lattice_origin(scaffold) + 0.5 * (sizes - 1) @ cell, cell, float(margin), float(shortest))
 
 
 def lattice_origin(scaffold: Scaffold) -> np.ndarray:
@@ -135,7 +135,7 @@ def lattice_origin(scaffold: Scaffold) -> np.ndarray:
     return np.asarray(np.round(lattice.fractional(scaffold.corner_positions.mean(axis=0))) @ lattice.basis)
 
 
-def covering_translations(scaffold: Scaffold, block: Block, content: np.ndarray) -> np.ndarray:
+def covering_translations(scaffold: Scaffold, block: CellBlock, content: np.ndarray) -> np.ndarray:
     """(n, dim) int64: every lattice translation whose copy of ``content`` (points, ``(m, 3)``) can reach into ``block``.
 
     A copy is kept when the bounding box of its content, in block coordinates, meets the
@@ -210,7 +210,7 @@ def join_curves(
 
 
 def clip_curves(
-    curves: list[np.ndarray], closed: np.ndarray, block: Block
+    curves: list[np.ndarray], closed: np.ndarray, block: CellBlock
 ) -> tuple[list[np.ndarray], np.ndarray, np.ndarray]:
     """Cut polylines where they leave ``block`` (widened by its margin).
 
@@ -291,7 +291,7 @@ def clip_polygon(poly: np.ndarray, f: np.ndarray, half: np.ndarray) -> np.ndarra
     return pts
 
 
-def block_faces(scaffold: Scaffold, block: Block) -> list[np.ndarray]:
+def block_faces(scaffold: Scaffold, block: CellBlock) -> list[np.ndarray]:
     """Polygons (each ``(m, 3)``) of the translates' faces cut to the block: its cells, cut like the threads."""
     assert scaffold.lattice is not None
     corners = scaffold.corner_positions

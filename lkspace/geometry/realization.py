@@ -60,7 +60,7 @@ from .params import SMOOTH_DIAMETER, TUBE, GeometryParams, Resolved
 from .tracks import Tracks, bezier_controls, lattice_shift, place_name, side_tracks
 
 if TYPE_CHECKING:
-    from .block import Block
+    from .block import CellBlock
 
 
 @dataclass(frozen=True, eq=False, repr=False)
@@ -85,7 +85,7 @@ class Realization:
         Where it occurs: the two curves and the nearest scaffold element.
     translations : (n_copies, dim) int64
         Lattice translations of the copies (one zero row for a single copy).
-    block : Block or None
+    block : CellBlock or None
         Set by :func:`lkspace.geometry.block.realize_block`: the block of cells the
         curves were cut to (threads end on its faces; closed loops are whole).
     """
@@ -105,7 +105,7 @@ class Realization:
     min_distance: float
     closest: dict[str, Any] = field(default_factory=dict)
     translations: np.ndarray | None = None
-    block: Block | None = None
+    block: CellBlock | None = None
 
     def __repr__(self) -> str:
         points = sum(len(c) for c in self.curves)

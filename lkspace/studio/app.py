@@ -26,7 +26,7 @@ from .. import __version__
 from ..errors import GeometryError, LkspaceError, TooLargeError, UsageError
 from ..scaffolds import DEFAULT
 from .browse import Browser
-from .designs import EXPORTS, Cache, clearance, design, export_bytes, parse_block, parse_labels, parse_nulls
+from .designs import EXPORTS, Cache, clearance, design, export_bytes, labels_from_page, parse_block, parse_nulls
 from .jobs import Jobs, relaxed
 from .scaffolds import MAX_UPLOAD, Registry, builtin_choices, dumps
 
@@ -165,7 +165,7 @@ def design_args(studio: Studio, body: dict[str, Any]) -> tuple[Any, ...]:
     sc = held.scaffold
     return (
         held,
-        parse_labels(sc, body.get("labels")),
+        labels_from_page(sc, body.get("labels")),
         parse_nulls(sc, body.get("nulls")),
         parse_block(sc, body.get("block")),
     )

@@ -44,7 +44,7 @@ MAX_EXPORT_POINTS = 400_000
 """Most curve points of a downloaded file (tubes are 12 vertices a point)."""
 
 
-def parse_labels(scaffold: Scaffold, value: object) -> np.ndarray:
+def labels_from_page(scaffold: Scaffold, value: object) -> np.ndarray:
     """``(n_edges,) int64`` from the page's list (integers, or decimal strings for exact int64)."""
     if value is None:
         if scaffold.labels is None:

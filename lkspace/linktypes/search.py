@@ -1,8 +1,8 @@
 """Search a design space for a knot or link type or a linking matrix: ``lkspace solve --type/--linking-matrix``.
 
 Designs with the right number of components come simplest first
-(:class:`~lkspace.target.candidates.OrderedWalk`), are screened by cheap filters and, if
-they survive, identified (:func:`~lkspace.target.screen.screen`), in ``processes``
+(:class:`~lkspace.linktypes.candidates.OrderedWalk`), are screened by cheap filters and, if
+they survive, identified (:func:`~lkspace.linktypes.screen.screen`), in ``processes``
 worker processes.  Every match is **re-identified** in this process with another
 projection before it is reported.
 
@@ -102,7 +102,7 @@ def solve_target(
     Examples
     --------
     >>> from lkspace import load
-    >>> from lkspace.target.names import parse_type
+    >>> from lkspace.linktypes.names import parse_type
     >>> r = solve_target(load("dihedron:3"), Goal(1, parse_type("3_1")), label_set=np.arange(-1, 2))
     >>> r.status, r.solutions[0]["labels"], r.solutions[0]["name"]
     ('found', [-1, -1, -1], '3_1')

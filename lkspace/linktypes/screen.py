@@ -3,14 +3,14 @@
 The filters, each a proof that the design is *not* the target:
 
 1. **linking numbers** of the realized curves (exact, from the projection's crossing
-   signs), compared up to renumbering (:func:`lkspace.target.linking.matches`);
+   signs), compared up to renumbering (:func:`lkspace.linktypes.linking.matches`);
 2. **split**: a component that crosses nothing in the projection makes a link split;
 3. **crossings**: a projection with fewer crossings than the target's crossing number;
 4. **Jones polynomial** of the simplified diagram at ``sqrt t = 2/3``, which must equal
    the target's (or its mirror's, or another orientation's).
 
 A design passing all four is identified (:func:`lkspace.knots.recognition.identify`, with
-its time limit) and compared by name and chirality (:func:`lkspace.target.names.judge`).
+its time limit) and compared by name and chirality (:func:`lkspace.linktypes.names.judge`).
 A linking-matrix goal needs only the first filter: its verdict is exact.
 """
 
@@ -30,7 +30,7 @@ from ..knots.tables import JONES_POINT, knot_modules, laurent_value
 from ..model.scaffold import Scaffold
 from ..workers import ignore_interrupts
 from .linking import matches
-from .names import Target, judge
+from .names import LinkType, judge
 
 SIMPLIFY_MAX_CROSSINGS = 400
 """Projections with more crossings skip the simplify-and-Jones filter (identification has time budgets)."""
@@ -63,7 +63,7 @@ class Goal:
     """What the search wants: a type (``target``), a linking matrix (``linking``), or both."""
 
     components: int
-    target: Target | None = None
+    target: LinkType | None = None
     linking: np.ndarray | None = None
     signed: bool = False
 

@@ -2,7 +2,7 @@
 
 Every design (one per orbit of the rotation group: rotations keep the type and the
 chirality) is identified (:func:`lkspace.knots.recognition.identify`) in ``processes``
-worker processes, in the order of :class:`~lkspace.target.candidates.OrderedWalk`.
+worker processes, in the order of :class:`~lkspace.linktypes.candidates.OrderedWalk`.
 Designs are grouped by **type**: the name (``3_1``; both mirror images together, counted
 apart in ``chirality``), ``split: 0_1 + 3_1`` for a split link with named pieces, or
 ``unknown (N components)``.  Per type: designs, assignments (the orbit sizes summed),
@@ -10,7 +10,7 @@ the **simplest design** (smallest ``sum |t|``, then fewest non-zero labels, then
 smallest largest ``|t|``) and the table that named it.
 
 A design that differs from one already identified only on edges of degree 1 takes its
-type without a second identification (:func:`~lkspace.target.screen.type_labels`).
+type without a second identification (:func:`~lkspace.linktypes.screen.type_labels`).
 
 Resumable: each identified design is appended to ``cache.jsonl`` in the output folder
 (one JSON line, flushed at once; a torn last line is ignored), headed by a line naming
@@ -281,7 +281,7 @@ def _records(
 
     ``"cache"`` (a previous run), ``"identified"`` (identified now) or ``"reused"``: a design
     that differs from one identified before only on edges of degree 1 has its type
-    (:func:`~lkspace.target.screen.type_labels`).  Past ``deadline`` (``time.monotonic()``)
+    (:func:`~lkspace.linktypes.screen.type_labels`).  Past ``deadline`` (``time.monotonic()``)
     nothing more is identified: the rest is ``"skipped"`` (still counted).
     """
     late = False

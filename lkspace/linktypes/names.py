@@ -35,7 +35,7 @@ CHIRALITIES = ("any", "table", "mirror")
 
 
 @dataclass(frozen=True, eq=False)
-class Target:
+class LinkType:
     """A knot or link type to design.
 
     Attributes
@@ -142,10 +142,10 @@ def _amphichiral_knots() -> frozenset[str]:
     return frozenset(r["name"] for r in dki.link_list() if "amphicheiral" in str(r.get("symmetry_type") or ""))
 
 
-def _prime(name: str, chirality: str, typed: str) -> Target:
+def _prime(name: str, chirality: str, typed: str) -> LinkType:
     """Return the target of one prime (or trivial) name."""
     if name == "0_1":
-        return Target("0_1", "any", 1, 0, "knotinfo", frozenset({Fraction(1)}), None, True)
+        return LinkType("0_1", "any", 1, 0, "knotinfo", frozenset({Fraction(1)}), None, True)
     entries = table_entries().get(name)
     if entries:
         fps: set[Fraction] = set()
@@ -156,7 +156,7 @@ def _prime(name: str, chirality: str, typed: str) -> Target:
         linking = _abs_linking(json.loads(first["pd"])) if n > 1 else None
         amphi = name in _amphichiral_knots() if n == 1 and chirality != "any" else None
         table = "knotinfo" if n == 1 else "linkinfo"
-        return Target(name, chirality, n, int(first["crossings"]), table, frozenset(fps), linking, amphi)
+        return LinkType(name, chirality, n, int(first["crossings"]), table, frozenset(fps), linking, amphi)
     small = (ht_crossings(name) or 99) <= (10 if name.startswith("K") else 11)
     manifold = ht_manifold(name) if HT_NAME.fullmatch(name) and not small else None
     if manifold is None:
@@ -174,11 +174,11 @@ def _prime(name: str, chirality: str, typed: str) -> Target:
         amphi = -1 in meridian_isometries(manifold, manifold)
     crossings = ht_crossings(name) or 0
     linking = _abs_linking(pd) if n > 1 else None
-    return Target(name, chirality, n, crossings, "HTLinkExteriors", frozenset(_jones_values(pd)), linking, amphi)
+    return LinkType(name, chirality, n, crossings, "HTLinkExteriors", frozenset(_jones_values(pd)), linking, amphi)
 
 
-def parse_type(text: str, chirality: str = "any") -> Target:
-    """Parse a type name (see the module docstring) into a :class:`Target`.
+def parse_type(text: str, chirality: str = "any") -> LinkType:
+    """Parse a type name (see the module docstring) into a :class:`LinkType`.
 
     Raises :class:`~lkspace.errors.UsageError` for an unknown name or a chirality that
     contradicts an ``m`` prefix.
@@ -206,7 +206,7 @@ def parse_type(text: str, chirality: str = "any") -> Target:
     return _prime(_canonical(text), chirality, typed)
 
 
-def _sum(text: str, chirality: str, typed: str) -> Target:
+def _sum(text: str, chirality: str, typed: str) -> LinkType:
     """Return the target of a connected sum of knots: the Jones polynomial is the product of the factors'."""
     parts = [p.strip() for p in text.split("#")]
     chiral = []
@@ -227,10 +227,10 @@ def _sum(text: str, chirality: str, typed: str) -> Target:
     name = "#".join(sorted((p.name for p in primes), key=name_key))
     table = "+".join(sorted({p.table for p in primes}))
     factors = tuple(sorted(chiral, key=name_key)) if asked else ()
-    return Target(name, "table" if asked else "any", 1, 3, table, frozenset(fps), None, None, factors)
+    return LinkType(name, "table" if asked else "any", 1, 3, table, frozenset(fps), None, None, factors)
 
 
-def judge(target: Target, ident: dict[str, Any]) -> str:
+def judge(target: LinkType, ident: dict[str, Any]) -> str:
     """Compare an identification (``Identification.to_dict()``) with ``target``.
 
     Returns ``"match"``, ``"other"`` (proved a different type) or ``"undetermined"``
