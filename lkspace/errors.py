@@ -19,7 +19,11 @@ The tree::
     LkspaceWarning(UserWarning)       something suspicious but usable (e.g. faces that share no edge)
 
 Messages say what, where and what arrived, e.g.
-``"tetra.obj line 7: face vertex index 9 out of range 1..4"``.
+``"tetra.obj line 7: face vertex index 9 out of range 1..4"``.  The library speaks of its
+own parameters, never of command-line flags: an error about one argument passes
+``parameter="max_designs"`` and its message starts with that name
+(``"max_designs: must be at least 1, got 0"``); the command line, which knows the flag
+of each parameter (:mod:`lkspace.cli.flags`), shows the flag instead (``"--max-designs: ..."``).
 The command line turns any ``LkspaceError`` into one stderr line (and, under ``--json``,
 an ``{"error": {...}}`` object on stdout) with the error's :attr:`~LkspaceError.exit_code`:
 1 for bad data (files, scaffolds, catalogs), 2 for bad usage (options and arguments).
@@ -36,14 +40,17 @@ class LkspaceError(Exception):
 
     ``exit_code`` is the command line's exit status for it: 1 (bad data) unless the class
     or the ``usage=True`` keyword says the error is in how lkspace was called (2).
+    ``parameter`` names the argument at fault (as the Python API calls it); the message
+    then starts with that name, which the command line replaces by the flag.
     """
 
     exit_code = 1
 
-    def __init__(self, *args: object, usage: bool | None = None) -> None:
+    def __init__(self, *args: object, usage: bool | None = None, parameter: str | None = None) -> None:
         super().__init__(*args)
         if usage is not None:
             self.exit_code = 2 if usage else 1
+        self.parameter = parameter
 
 
 class UsageError(LkspaceError, ValueError):

@@ -76,3 +76,14 @@ def test_identify_time_limit_says_what_to_raise(capsys):
     assert code == 0
     assert "unknown: time limit 0.3 s reached (during " in out, out
     assert "raise --time-limit (now 0.3 s; 0: no limit)" in out, out
+
+
+def test_library_errors_name_parameters_and_the_cli_names_flags():
+    from lkspace.cli.flags import flag, in_flags
+    from lkspace.errors import UsageError
+
+    exc = UsageError("max_designs: must be at least 1, got 0", parameter="max_designs")
+    assert str(exc) == "max_designs: must be at least 1, got 0"
+    assert in_flags(exc) == "--max-designs: must be at least 1, got 0"
+    assert flag("label_set") == "--labels"
+    assert in_flags(UsageError("no parameter here")) == "no parameter here"

@@ -20,6 +20,7 @@ from .. import __version__
 from ..errors import LkspaceError, LkspaceWarning
 from ..progress import install, stderr_reporter
 from ..workers import INTERRUPTED, Terminated, exit_now, interrupt_signals
+from .flags import in_flags
 
 COMMANDS = {
     "scaffold": "core:scaffold_cmd",
@@ -89,7 +90,7 @@ def _run(args: list[str]) -> int:
             cli.main(args=args, prog_name="lkspace", standalone_mode=False)
             sys.stdout.flush()  # a full disk at stdout fails here, inside the error handling
         except LkspaceError as exc:
-            return _fail(as_json, type(exc).__name__, str(exc), exc.exit_code)
+            return _fail(as_json, type(exc).__name__, in_flags(exc), exc.exit_code)
         except (click.exceptions.Abort, KeyboardInterrupt) as exc:  # click turns KeyboardInterrupt into Abort
             return _interrupted(as_json, _interrupt_behind(exc))
         except click.ClickException as exc:
