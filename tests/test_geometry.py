@@ -10,8 +10,7 @@ from hypothesis import strategies as st
 import lkspace
 from lkspace.errors import GeometryError
 from lkspace.geometry.clearance import check_embedding
-from lkspace.geometry.realization import GeometryParams, realize
-from lkspace.geometry.tracks import smoothstep
+from lkspace.geometry.realization import GeometryParams, RealizeOptions, realize
 from lkspace.model.lattice import Lattice
 from lkspace.model.scaffold import Scaffold
 
@@ -112,12 +111,6 @@ def test_check_embedding_finds_a_crossing():
     assert d3 == np.inf and where3 == {}
 
 
-def test_smoothstep_symmetry():
-    u = np.linspace(0, 1, 11)
-    assert np.allclose(smoothstep(1 - u), 1 - smoothstep(u))
-    assert smoothstep(0.0) == 0 and smoothstep(1.0) == 1
-
-
 def test_open_strands_end_at_their_cut(tetra):
     real = realize(tetra, 1, nulls=[0])
     assert (~real.closed).sum() == 1
@@ -139,7 +132,7 @@ def square_torus() -> Scaffold:
 def test_periodic_block_of_translates(twists, n_open):
     sc = square_torus()
     block = [[i, j] for i in range(3) for j in range(3)]
-    real = realize(sc, twists, translations=block)
+    real = realize(sc, twists, options=RealizeOptions(translations=block))
     assert real.n_curves == 9 * lkspace.trace(sc, twists).components
     assert (~real.closed).sum() == 9 * n_open
     assert real.min_distance > real.min_separation

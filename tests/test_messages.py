@@ -41,8 +41,8 @@ def test_info_shows_each_count_once(capsys):
 @pytest.mark.parametrize(
     ("centre", "thickness", "clearance", "scale", "want"),
     [  # the gap is centre - thickness and centre grows with the scale
-        (0.3, 0.1, 0.5, 1.0, ["no --thickness", "--scale 2 or more", "--clearance 0.2 or less"]),
-        (0.6, 0.3, 0.1, 1.0, ["--thickness 0.5 or less", "--scale 0.67 or more", "--clearance 0.3 or less"]),
+        (0.3, 0.1, 0.5, 1.0, ["no `thickness`", "`scale` 2 or more", "`clearance` 0.2 or less"]),
+        (0.6, 0.3, 0.1, 1.0, ["`thickness` 0.5 or less", "`scale` 0.67 or more", "`clearance` 0.3 or less"]),
     ],
 )
 def test_gap_fixes_name_what_can_work(centre, thickness, clearance, scale, want):
