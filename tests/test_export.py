@@ -96,6 +96,14 @@ def test_tube_of_an_open_polyline_is_capped():
     assert mesh.is_watertight and mesh.volume == pytest.approx(np.pi * 0.01 * 1, rel=0.1)
 
 
+def test_every_writer_has_its_format_name():
+    from typing import get_args
+
+    from lkspace.formats.registry import WRITERS, Format
+
+    assert sorted(get_args(Format)) == sorted(ext[1:] for ext in WRITERS)
+
+
 def test_bad_extension_writes_nothing(tmp_path, borromean):
     with pytest.raises(ExportError, match="unknown output format"):
         export(borromean, tmp_path / "x.xyz")

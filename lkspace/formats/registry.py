@@ -27,7 +27,7 @@ import math
 import os
 from collections.abc import Iterator
 from contextlib import contextmanager
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Literal, cast
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -55,6 +55,8 @@ WRITERS = {
 }
 """Extension -> module of :mod:`lkspace.formats` whose ``write`` writes it."""
 FORMATS = tuple(WRITERS)
+Format = Literal["obj", "ply", "glb", "stl", "3mf", "png", "svg"]
+"""A format :func:`export` writes: an extension of :data:`WRITERS` without its dot."""
 PRINTABLE = (".stl", ".3mf")
 """Formats of solid, printable pieces."""
 PICTURES = (".png", ".svg")
@@ -148,7 +150,7 @@ def export(
     look: Look | None = None,
     diagram: bool = False,
     pieces: Printable | None = None,
-) -> str:
+) -> Format:
     """Write a design's strands to ``path``; the format follows the extension.
 
     Parameters
@@ -183,8 +185,8 @@ def export(
 
     Returns
     -------
-    str
-        The format written (``"obj"``, ...).
+    {"obj", "ply", "glb", "stl", "3mf", "png", "svg"}
+        The format written (:data:`Format`).
 
     Examples
     --------
@@ -246,4 +248,4 @@ def export(
         options: dict[str, Any] = {"tubes": tubes, "radius": radius, "show_mesh": show_mesh, "title": title}
         options.update(pieces=pieces, units=units, look=look, diagram=diagram)
         writer.write(real, target, **options)
-    return ext[1:]
+    return cast(Format, ext[1:])  # an extension of WRITERS: output_target checked it

@@ -30,6 +30,7 @@ import numpy as np
 from ..errors import GeometryError
 from .block import join_curves
 from .clearance import pieces_apart, sample_tree, samples, tightest_bend
+from .params import TUBE_BEND_SHARE
 from .realization import Realization
 from .tracks import place_name
 
@@ -155,7 +156,7 @@ def printable(
     scaled = [np.asarray(c, np.float64) * scale for c in curves]
     bend, piece, point = tightest_bend(scaled, closed)
     if thickness is None:  # the picture's tube, thinned where the curves bend tighter
-        radius = min(real.tube_radius * scale, 0.9 * bend)
+        radius = min(real.tube_radius * scale, TUBE_BEND_SHARE * bend)
     else:
         radius = 0.5 * thickness
     if bend < radius:

@@ -36,7 +36,13 @@ than ``min_separation``.
 Periodic scaffolds: a strand is unrolled through the face copies it visits (an edge link
 from side ``s`` to side ``s'`` moves to the copy shifted by ``side_translation[s] -
 side_translation[s']``); a strand with a non-zero period is realized over one period as
-an open polyline.  ``translations`` realizes a block of lattice translates at once.
+an open polyline.  :class:`~lkspace.geometry.params.RealizeOptions` ``translations``
+realizes a block of lattice translates at once.
+
+The construction itself (corner turns and edge helices) is in
+:mod:`~lkspace.geometry.construction`; the parameters, resolved once per mesh, in
+:mod:`~lkspace.geometry.params`; the bounds checked before anything is built in
+:mod:`~lkspace.geometry.limits`.
 """
 
 from __future__ import annotations
