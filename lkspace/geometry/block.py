@@ -30,6 +30,9 @@ from .realization import Realization, realize
 STUB = 0.5
 """Runs of a thread inside a block shorter than this many shortest edges are left out."""
 
+JOIN = 1e-6
+"""Periods of a thread are joined where one ends within this many shortest edges of another's start."""
+
 __all__ = ["CellBlock", "block_faces", "block_of", "clip_curves", "join_curves", "realize_block"]
 
 
@@ -352,7 +355,7 @@ def realize_block(
     options = RealizeOptions(translations=covering, trace=one.trace, max_points=max_points)
     real = realize(scaffold, labels, nulls, params, options=options)
     block = block_of(scaffold, sizes, margin, STUB * real.scale)
-    joined, joined_closed, members = join_curves(real.curves, real.closed, 1e-6 * real.scale)
+    joined, joined_closed, members = join_curves(real.curves, real.closed, JOIN * real.scale)
     pieces, closed, source = clip_curves(joined, joined_closed, block)
     first = np.array([members[s][0] for s in source], np.int64)
     return replace(

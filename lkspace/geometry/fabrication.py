@@ -28,7 +28,7 @@ from typing import Literal, TypeGuard, cast, get_args
 import numpy as np
 
 from ..errors import GeometryError
-from .block import join_curves
+from .block import JOIN, join_curves
 from .clearance import pieces_apart, sample_tree, samples, tightest_bend
 from .params import TUBE_BEND_SHARE
 from .realization import Realization
@@ -151,7 +151,7 @@ def printable(
     """
     clearance = 0.0 if clearance is None else float(clearance)
     check_options(thickness, clearance, units, scale)
-    curves, closed, members = join_curves(real.curves, real.closed, 1e-6 * real.scale)
+    curves, closed, members = join_curves(real.curves, real.closed, JOIN * real.scale)
     strand_of = real.strand_of[[m[0] for m in members]] if members else np.zeros(0, np.int64)
     scaled = [np.asarray(c, np.float64) * scale for c in curves]
     bend, piece, point = tightest_bend(scaled, closed)
