@@ -24,6 +24,8 @@ own parameters, never of command-line flags: an error about one argument passes
 ``parameter="max_designs"`` and its message starts with that name
 (``"max_designs: must be at least 1, got 0"``); the command line, which knows the flag
 of each parameter (:mod:`lkspace.cli.flags`), shows the flag instead (``"--max-designs: ..."``).
+A parameter named further on in a message is put in backquotes (``"use a smaller `thickness`"``),
+which the command line shows as its flag too (``"use a smaller --thickness"``).
 The command line turns any ``LkspaceError`` into one stderr line (and, under ``--json``,
 an ``{"error": {...}}`` object on stdout) with the error's :attr:`~LkspaceError.exit_code`:
 1 for bad data (files, scaffolds, catalogs), 2 for bad usage (options and arguments).

@@ -96,6 +96,14 @@ def test_tube_of_an_open_polyline_is_capped():
     assert mesh.is_watertight and mesh.volume == pytest.approx(np.pi * 0.01 * 1, rel=0.1)
 
 
+def test_every_writer_has_its_format_name():
+    from typing import get_args
+
+    from lkspace.formats.registry import WRITERS, Format
+
+    assert sorted(get_args(Format)) == sorted(ext[1:] for ext in WRITERS)
+
+
 def test_bad_extension_writes_nothing(tmp_path, borromean):
     with pytest.raises(ExportError, match="unknown output format"):
         export(borromean, tmp_path / "x.xyz")
@@ -230,9 +238,9 @@ def test_cli_export_periodic_block(tmp_path, capsys):
         (["--normal-offset", "-0.1"], ["--normal-offset", ">= 0"]),
         (["--radius", "inf"], ["--radius"]),
         (["--radius", "abc"], ["--radius", "not a number"]),
-        (["--radius", "1e300"], ["radius", "shortest edge"]),
-        (["--normal-offset", "1e300"], ["normal_offset", "shortest edge"]),
-        (["--tube-radius", "1e300", "--tubes"], ["tube_radius", "shortest edge"]),
+        (["--radius", "1e300"], ["--radius: 1e+300 exceeds", "shortest edge"]),
+        (["--normal-offset", "1e300"], ["--normal-offset: 1e+300 exceeds", "shortest edge"]),
+        (["--tube-radius", "1e300", "--tubes"], ["--tube-radius: 1e+300 exceeds", "shortest edge"]),
     ],
 )
 def test_export_float_options_are_checked(tmp_path, capsys, args, words):
@@ -314,14 +322,16 @@ def test_extreme_int64_twists_are_refused(tmp_path, capsys, command):
 def test_realize_and_export_library_bounds(tmp_path):
     from lkspace.errors import ExportError, GeometryError, LabelError, TooLargeError
     from lkspace.formats.registry import export
-    from lkspace.geometry.realization import GeometryParams, realize
+    from lkspace.geometry.realization import GeometryParams, RealizeOptions, realize
 
-    with pytest.raises(TooLargeError, match="MAX_POINTS"):
-        realize("cube", 1, max_points=100)
-    with pytest.raises(TooLargeError, match="MAX_POINTS"):
-        realize("dihedron:3", -(2**62), check=False)
+    with pytest.raises(TooLargeError, match="^max_points: the curves of cube would have about ") as bound:
+        realize("cube", 1, options=RealizeOptions(max_points=100))
+    assert bound.value.parameter == "max_points"
+    unchecked = RealizeOptions(embedding="measure")
+    with pytest.raises(TooLargeError, match="^max_points: "):
+        realize("dihedron:3", -(2**62), options=unchecked)
     with pytest.raises(LabelError, match="2\\*\\*63 - 1"):
-        realize("dihedron:3", -(2**63), check=False)
+        realize("dihedron:3", -(2**63), options=unchecked)
     with pytest.raises(GeometryError, match="radius") as info:
         realize("cube", 1, params=GeometryParams(radius=float("nan")))
     assert info.value.exit_code == 2

@@ -98,9 +98,9 @@ def test_bad_fabrication_options(tmp_path, capsys, args, words):
 
 
 def test_python_export_refuses_the_same_way(tmp_path):
-    with pytest.raises(GeometryError, match="--thickness must be") as bad:
+    with pytest.raises(GeometryError, match="^thickness: must be") as bad:
         export("cube", tmp_path / "c.stl", 2, thickness=-1.0)
-    assert bad.value.exit_code == 2
+    assert bad.value.exit_code == 2 and bad.value.parameter == "thickness"
     with pytest.raises(GeometryError, match=r"clearance 0\.5 .* near (edge|vertex)") as far:
         export("cube", tmp_path / "c.3mf", 2, thickness=0.1, clearance=0.5)
     assert far.value.exit_code == 1 and list(tmp_path.iterdir()) == []

@@ -10,8 +10,7 @@ from hypothesis import strategies as st
 import lkspace
 from lkspace.errors import GeometryError
 from lkspace.geometry.clearance import check_embedding
-from lkspace.geometry.realization import GeometryParams, realize
-from lkspace.geometry.tracks import smoothstep
+from lkspace.geometry.realization import GeometryParams, RealizeOptions, realize
 from lkspace.model.lattice import Lattice
 from lkspace.model.scaffold import Scaffold
 
@@ -96,8 +95,42 @@ def test_dihedron_parallel_strands_link_with_the_twist_sign():
 
 
 def test_collision_is_refused_with_the_place():
-    with pytest.raises(GeometryError, match=r"come within .* near (edge|vertex)"):
+    with pytest.raises(GeometryError, match=r"come within .* near (edge|vertex)") as bad:
         realize(lkspace.load("book:6"), 1, params=GeometryParams(radius=0.6))
+    assert "(try a smaller `radius` or `normal_offset`)" in str(bad.value)
+
+
+def test_embedding_check_modes():
+    """``"refuse"`` raises where ``"measure"`` reports the same distance; ``"later"`` does not measure."""
+    params = GeometryParams(radius=0.6, smooth=False)
+    with pytest.raises(GeometryError, match=r"come within ([0-9.e-]+) "):
+        realize("book:6", 1, params=params)
+    measured = realize("book:6", 1, params=params, options=RealizeOptions(embedding="measure"))
+    assert measured.min_distance < measured.min_separation and measured.closest["curves"]
+    later = realize("book:6", 1, params=params, options=RealizeOptions(embedding="later"))
+    assert later.min_distance == np.inf and later.closest == {}
+    assert all(np.array_equal(a, b) for a, b in zip(later.curves, measured.curves, strict=True))
+    with pytest.raises(GeometryError, match="^embedding: expected one of refuse, measure, later") as bad:
+        realize("book:6", 1, options=RealizeOptions(embedding="never"))  # type: ignore[arg-type]
+    assert bad.value.parameter == "embedding" and bad.value.exit_code == 2
+
+
+def test_options_are_checked_and_name_the_parameter():
+    for bad_value in (0, -5, 2.5):
+        with pytest.raises(GeometryError, match="^max_points: must be an integer >= 1") as bad:
+            realize("cube", 1, options=RealizeOptions(max_points=bad_value))  # type: ignore[arg-type]
+        assert bad.value.parameter == "max_points"
+    with pytest.raises(GeometryError, match="^translations: copies need a periodic scaffold; cube is finite"):
+        realize("cube", 1, options=RealizeOptions(translations=[[0, 0, 0]]))
+    with pytest.raises(GeometryError, match="^samples_per_turn: must be an integer in 1..1000, got 0") as bad:
+        realize("cube", 1, params=GeometryParams(samples_per_turn=0))
+    assert bad.value.parameter == "samples_per_turn" and bad.value.exit_code == 2
+
+
+def test_a_given_trace_is_reused():
+    tr = lkspace.trace("tetrahedron", 1)
+    real = realize("tetrahedron", None, options=RealizeOptions(trace=tr))
+    assert real.trace is tr and real.n_curves == 3
 
 
 def test_check_embedding_finds_a_crossing():
@@ -110,12 +143,6 @@ def test_check_embedding_finds_a_crossing():
     assert abs(d2 - (1 - 0.75**0.5)) < 0.02  # nearest: (0.866, .5, 0) to (1, .5, 0)
     d3, where3 = check_embedding([a, b + [5, 0, 0]], [True, True], 0.01, 1.0)
     assert d3 == np.inf and where3 == {}
-
-
-def test_smoothstep_symmetry():
-    u = np.linspace(0, 1, 11)
-    assert np.allclose(smoothstep(1 - u), 1 - smoothstep(u))
-    assert smoothstep(0.0) == 0 and smoothstep(1.0) == 1
 
 
 def test_open_strands_end_at_their_cut(tetra):
@@ -139,7 +166,7 @@ def square_torus() -> Scaffold:
 def test_periodic_block_of_translates(twists, n_open):
     sc = square_torus()
     block = [[i, j] for i in range(3) for j in range(3)]
-    real = realize(sc, twists, translations=block)
+    real = realize(sc, twists, options=RealizeOptions(translations=block))
     assert real.n_curves == 9 * lkspace.trace(sc, twists).components
     assert (~real.closed).sum() == 9 * n_open
     assert real.min_distance > real.min_separation

@@ -12,7 +12,7 @@ from lkspace.errors import GeometryError
 from lkspace.geometry.block import clip_curves, join_curves, realize_block
 from lkspace.geometry.clearance import resample
 from lkspace.geometry.helix import RAMP, spacing_weight, twist_profile
-from lkspace.geometry.realization import GeometryParams, realize
+from lkspace.geometry.realization import GeometryParams, RealizeOptions, realize
 from lkspace.symmetry.group import symmetry_group
 
 
@@ -115,8 +115,9 @@ def test_pitch_confines_the_twist_and_is_checked():
     free = realize("book:3", 1)
     tight = realize("book:3", 1, params=GeometryParams(pitch=0.2))
     assert tight.min_distance > 0 and free.n_curves == tight.n_curves
-    with pytest.raises(GeometryError, match="--pitch 5 needs"):
+    with pytest.raises(GeometryError, match="`pitch` 5 needs") as bad:
         realize("book:3", 2, params=GeometryParams(pitch=5.0))
+    assert bad.value.parameter == "pitch" and bad.value.exit_code == 2
 
 
 @pytest.mark.parametrize(
@@ -140,7 +141,7 @@ def test_block_is_cut_to_its_cells(name, labels, sizes):
     steps = np.array(np.meshgrid(*[[-1, 0, 1]] * scaffold.dim, indexing="ij")).reshape(scaffold.dim, -1).T
     more = np.unique((real.translations[:, None] + steps[None]).reshape(-1, scaffold.dim), axis=0)
     assert len(more) > len(real.translations)
-    wide = realize(scaffold, labels, translations=more, check=False)
+    wide = realize(scaffold, labels, options=RealizeOptions(embedding="measure", translations=more))
     joined, flags, _ = join_curves(wide.curves, wide.closed, 1e-6 * wide.scale)
     pieces, _, _ = clip_curves(joined, flags, block)
     lengths = sorted(float(np.linalg.norm(np.diff(c, axis=0), axis=1).sum()) for c in pieces)

@@ -41,8 +41,8 @@ def test_info_shows_each_count_once(capsys):
 @pytest.mark.parametrize(
     ("centre", "thickness", "clearance", "scale", "want"),
     [  # the gap is centre - thickness and centre grows with the scale
-        (0.3, 0.1, 0.5, 1.0, ["no --thickness", "--scale 2 or more", "--clearance 0.2 or less"]),
-        (0.6, 0.3, 0.1, 1.0, ["--thickness 0.5 or less", "--scale 0.67 or more", "--clearance 0.3 or less"]),
+        (0.3, 0.1, 0.5, 1.0, ["no `thickness`", "`scale` 2 or more", "`clearance` 0.2 or less"]),
+        (0.6, 0.3, 0.1, 1.0, ["`thickness` 0.5 or less", "`scale` 0.67 or more", "`clearance` 0.3 or less"]),
     ],
 )
 def test_gap_fixes_name_what_can_work(centre, thickness, clearance, scale, want):
@@ -87,3 +87,20 @@ def test_library_errors_name_parameters_and_the_cli_names_flags():
     assert in_flags(exc) == "--max-designs: must be at least 1, got 0"
     assert flag("label_set") == "--labels"
     assert in_flags(UsageError("no parameter here")) == "no parameter here"
+    quoted = UsageError(
+        "cube: `thickness` 2 folds (use a smaller `thickness` or a larger `scale`)", parameter="thickness"
+    )
+    assert in_flags(quoted) == "cube: --thickness 2 folds (use a smaller --thickness or a larger --scale)"
+    assert (
+        in_flags(UsageError("max_points: 5 > 1", parameter="max_points")) == "MAX_POINTS: 5 > 1"
+    )  # no flag: the bound
+
+
+def test_export_tube_bound_names_the_bound(capsys, tmp_path):
+    """The point bound of tubes is refused before the block is built, naming the bound (not ``max_points``)."""
+    args = ["export", "honeycomb:cP", "--twist", "1", "--block", "10x10x10", "-o", tmp_path / "b.glb"]
+    code, _, err = run(capsys, *args)
+    assert code == 2
+    assert err.startswith("lkspace: error: MAX_TUBE_VERTICES / 12 for tubes (polylines allow more): "), err
+    assert "points > 500,000" in err and err.count("\n") == 1, err
+    assert list(tmp_path.iterdir()) == []

@@ -15,6 +15,7 @@ pytest.importorskip("starlette")
 pytest.importorskip("uvicorn")
 httpx = pytest.importorskip("httpx")
 
+from lkspace.geometry.params import RealizeOptions  # noqa: E402
 from lkspace.io.scaffold_json import scaffold_from_dict  # noqa: E402
 from lkspace.studio.app import Studio  # noqa: E402
 from lkspace.studio.browse import Browser  # noqa: E402
@@ -256,7 +257,7 @@ def test_the_page_sees_what_trace_and_realize_say(name, data):
     assert [s["length"] for s in view["strands"]] == tr.strand_lengths.tolist()
     assert [s["kind"] for s in view["strands"]] == tr.strand_kinds
     if "curves" in view:
-        real = lkspace.realize(sc, labels, nulls, check=False)
+        real = lkspace.realize(sc, labels, nulls, options=RealizeOptions(embedding="measure"))
         points = np.frombuffer(base64.b64decode(view["curves"]["points"]), "<f4").reshape(-1, 3)
         assert np.allclose(points, np.vstack(real.curves), atol=1e-5)
     else:

@@ -285,6 +285,7 @@ def export_cmd(
       lkspace export designs.parquet --row 7 -o design7.png
     """
     from ..formats.registry import PICTURES, export, output_target, point_budget
+    from ..geometry.params import RealizeOptions
     from ..geometry.realization import realize
 
     ctx = Context(as_json)
@@ -302,7 +303,6 @@ def export_cmd(
         )
     if thickness is not None and tube_radius is not None:
         raise UsageError("--thickness (a diameter in output units) and --tube-radius are exclusive")
-    max_points, bound = point_budget(output, tubes)
     scaffold, labels, nulls = resolve_design(ctx, mesh, twist_spec, null_spec, row)
     params = params_of(radius, normal_offset, tube_radius, helix_radius, pitch)
     sizes = block_sizes(scaffold, block)
@@ -311,9 +311,11 @@ def export_cmd(
 
         if relax:
             raise UsageError("--relax works on finite scaffolds, not on a --block of a periodic one")
-        real = realize_block(scaffold, labels, nulls, params, sizes, max_points=max_points, bound=bound)
+        with point_budget(output, tubes) as max_points:
+            real = realize_block(scaffold, labels, nulls, params, sizes, max_points=max_points)
     else:
-        real = realize(scaffold, labels, nulls, params, max_points=max_points, bound=bound, relax=relax)
+        with point_budget(output, tubes) as max_points:
+            real = realize(scaffold, labels, nulls, params, relax=relax, options=RealizeOptions(max_points=max_points))
     pieces = None
     if ext in (".stl", ".3mf"):
         from ..geometry.fabrication import printable

@@ -2,19 +2,30 @@
 
 Library errors name the parameter at fault (``LkspaceError.parameter``) and start their
 message with it: ``"max_designs: must be at least 1, got 0"``.  The command line shows
-the flag a user typed instead: ``"--max-designs: must be at least 1, got 0"``.
+the flag a user typed instead: ``"--max-designs: must be at least 1, got 0"``.  A
+parameter named further on, in backquotes (``"use a smaller `thickness`"``), becomes its
+flag too (``"use a smaller --thickness"``).
 """
 
 from __future__ import annotations
 
+import re
+
 from ..errors import LkspaceError
+
+QUOTED = re.compile(r"`([a-z][a-z0-9_]*)`")
+"""A parameter named inside a message: a Python name in backquotes."""
 
 FLAGS = {
     "label_set": "--labels",
     "labels": "--twist",
     "nulls": "--null",
+    "max_points": "MAX_POINTS",
 }
-"""Parameters whose flag is not ``--`` and the name with dashes (``max_designs`` -> ``--max-designs``)."""
+"""Parameters whose flag is not ``--`` and the name with dashes (``max_designs`` -> ``--max-designs``).
+
+``max_points`` has no flag: the command line sets it from the bound :data:`~lkspace.geometry.limits.MAX_POINTS`.
+"""
 
 
 def flag(parameter: str) -> str:
@@ -23,8 +34,11 @@ def flag(parameter: str) -> str:
 
 
 def in_flags(exc: LkspaceError) -> str:
-    """Return the message of ``exc`` as the command line shows it: a leading parameter name becomes its flag."""
-    message = str(exc)
+    """Return the message of ``exc`` as the command line shows it: parameter names become their flags.
+
+    The leading name of the parameter at fault, and any name in backquotes.
+    """
+    message = QUOTED.sub(lambda m: flag(m[1]), str(exc))
     parameter = getattr(exc, "parameter", None)
     if parameter and message.startswith(parameter):
         return flag(parameter) + message[len(parameter) :]

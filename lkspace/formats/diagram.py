@@ -55,6 +55,7 @@ def simplified_pieces(real: Realization) -> tuple[list[Any], int]:
             f"{real.scaffold.name}: a knot diagram needs closed strands of a finite scaffold "
             "(open or periodic strands are not a link)",
             usage=True,
+            parameter="diagram",
         )
     spherogram = require("spherogram", "knots", "knot diagrams")
     from ..knots.diagram import project

@@ -25,14 +25,17 @@ from __future__ import annotations
 import importlib
 import math
 import os
-from typing import TYPE_CHECKING, Any
+from collections.abc import Iterator
+from contextlib import contextmanager
+from typing import TYPE_CHECKING, Any, Literal, cast
 
 import numpy as np
 from numpy.typing import ArrayLike
 
 from ..errors import ExportError, TooLargeError
 from ..geometry.limits import MAX_POINTS, MAX_RELATIVE
-from ..geometry.realization import GeometryParams, Realization, realize
+from ..geometry.params import GeometryParams, RealizeOptions
+from ..geometry.realization import Realization, realize
 from ..io.paths import only_extension, output_file
 from ..io.sources import ScaffoldSource
 from ..progress import task
@@ -52,6 +55,8 @@ WRITERS = {
 }
 """Extension -> module of :mod:`lkspace.formats` whose ``write`` writes it."""
 FORMATS = tuple(WRITERS)
+Format = Literal["obj", "ply", "glb", "stl", "3mf", "png", "svg"]
+"""A format :func:`export` writes: an extension of :data:`WRITERS` without its dot."""
 PRINTABLE = (".stl", ".3mf")
 """Formats of solid, printable pieces."""
 PICTURES = (".png", ".svg")
@@ -85,17 +90,28 @@ def output_target(path: str | os.PathLike[str], inputs: tuple[str | None, ...] =
     return output_file(text, FORMATS, inputs)
 
 
-def point_budget(path: str | os.PathLike[str], tubes: bool) -> tuple[int, str]:
-    """Most curve points worth realizing for an export to ``path``, and the bound's name.
+def needs_tubes(path: str | os.PathLike[str], tubes: bool) -> bool:
+    """Whether an export to ``path`` writes tubes: ``tubes``, or ``.glb``, printable formats and pictures."""
+    return tubes or os.path.splitext(os.fspath(path))[1].lower() in (".glb", *PRINTABLE, *PICTURES)
 
-    Tubes (``tubes``, ``.glb``, ``.stl``, ``.3mf``, pictures) allow :data:`MAX_TUBE_VERTICES` / :data:`TUBE_SIDES`.
+
+@contextmanager
+def point_budget(path: str | os.PathLike[str], tubes: bool) -> Iterator[int]:
+    """Yield the most curve points worth realizing for an export to ``path`` (``max_points`` of ``realize``).
+
+    Polylines allow :data:`MAX_POINTS`, tubes (:func:`needs_tubes`) :data:`MAX_TUBE_VERTICES` /
+    :data:`TUBE_SIDES`.  A refusal past it (an error about ``max_points``, raised inside
+    the ``with`` block) is raised again naming the bound, as the export has no ``max_points``.
     """
-    ext = os.path.splitext(os.fspath(path))[1].lower()
-    if tubes or ext in (".glb", *PRINTABLE, *PICTURES):
-        return min(
-            MAX_POINTS, MAX_TUBE_VERTICES // TUBE_SIDES
-        ), "MAX_TUBE_VERTICES / 12 for tubes; polylines allow more"
-    return MAX_POINTS, "MAX_POINTS"
+    tube = needs_tubes(path, tubes)
+    try:
+        yield min(MAX_POINTS, MAX_TUBE_VERTICES // TUBE_SIDES) if tube else MAX_POINTS
+    except TooLargeError as exc:
+        message = str(exc)
+        if exc.parameter != "max_points" or not message.startswith("max_points"):
+            raise
+        bound = f"MAX_TUBE_VERTICES / {TUBE_SIDES} for tubes (polylines allow more)" if tube else "MAX_POINTS"
+        raise TooLargeError(bound + message[len("max_points") :]) from None
 
 
 PICTURE_RING_SPACING = 1.2
@@ -134,7 +150,7 @@ def export(
     look: Look | None = None,
     diagram: bool = False,
     pieces: Printable | None = None,
-) -> str:
+) -> Format:
     """Write a design's strands to ``path``; the format follows the extension.
 
     Parameters
@@ -169,8 +185,8 @@ def export(
 
     Returns
     -------
-    str
-        The format written (``"obj"``, ...).
+    {"obj", "ply", "glb", "stl", "3mf", "png", "svg"}
+        The format written (:data:`Format`).
 
     Examples
     --------
@@ -181,7 +197,7 @@ def export(
     'stl'
     """
     if radius is not None and not (math.isfinite(radius) and radius > 0):
-        raise ExportError(f"tube radius must be a finite number > 0, got {radius}")
+        raise ExportError(f"radius: the tube radius must be a finite number > 0, got {radius}", parameter="radius")
     from ..geometry.fabrication import check_options
 
     check_options(thickness, clearance, units or "mm", scale)
@@ -189,7 +205,9 @@ def export(
     target = output_target(path, (source,))  # checked before any work: extension, folder, device, not the input
     ext = os.path.splitext(os.fspath(path))[1].lower()
     if diagram and ext not in PICTURES:
-        raise ExportError(f"{path}: a diagram is drawn as {' or '.join(PICTURES)}, not {ext}")
+        raise ExportError(
+            f"diagram: a diagram is drawn as {' or '.join(PICTURES)}, not {ext} ({path})", parameter="diagram"
+        )
     if ext in PICTURES:
         from .render import check_title
 
@@ -197,19 +215,22 @@ def export(
     with task(f"export {os.path.basename(os.fspath(path))}") as step:
         if not isinstance(design, Realization):
             step.note("realizing")
-        budget, bound = point_budget(path, tubes)
-        if not isinstance(design, Realization):
-            design = realize(design, labels, nulls, params, max_points=budget, bound=bound)
+            with point_budget(path, tubes) as max_points:
+                design = realize(design, labels, nulls, params, options=RealizeOptions(max_points=max_points))
         real = design
+        given = "radius" if radius is not None else "thickness"  # the parameter that sets the tube
         if radius is None and thickness is not None and ext not in PRINTABLE:
             radius = thickness / 2 / scale
         if radius is not None and radius > MAX_RELATIVE * real.scale:
-            raise ExportError(f"tube radius {radius:g} exceeds {MAX_RELATIVE:g} x the shortest edge ({real.scale:.4g})")
+            raise ExportError(
+                f"{given}: the tube radius {radius:g} exceeds {MAX_RELATIVE:g} x the shortest edge ({real.scale:.4g})",
+                parameter=given,
+            )
         points = sum(len(c) for c in real.curves)
-        if budget < MAX_POINTS and points * TUBE_SIDES > MAX_TUBE_VERTICES:
+        if needs_tubes(path, tubes) and points * TUBE_SIDES > MAX_TUBE_VERTICES:
             raise TooLargeError(
                 f"{path}: tubes of {points:,} curve points need {points * TUBE_SIDES:,} vertices "
-                f"> {MAX_TUBE_VERTICES:,} (MAX_TUBE_VERTICES); write polylines (.obj or .ply without --tubes)"
+                f"> {MAX_TUBE_VERTICES:,} (MAX_TUBE_VERTICES); write polylines (.obj or .ply without `tubes`)"
             )
         if ext in PICTURES and not diagram:
             check_picture_rings(real, radius if radius is not None else real.tube_radius)
@@ -227,4 +248,4 @@ def export(
         options: dict[str, Any] = {"tubes": tubes, "radius": radius, "show_mesh": show_mesh, "title": title}
         options.update(pieces=pieces, units=units, look=look, diagram=diagram)
         writer.write(real, target, **options)
-    return ext[1:]
+    return cast(Format, ext[1:])  # an extension of WRITERS: output_target checked it

@@ -1,7 +1,7 @@
 """``.stl`` solids: binary STL of closed tube meshes, one shell per printable piece.
 
 STL has no units and no objects: the 80-byte header says ``units=mm`` (or the
-``--units`` given) and the pieces are disjoint closed shells (a slicer or
+``units`` given) and the pieces are disjoint closed shells (a slicer or
 ``trimesh.Trimesh.split`` separates them).  Triangles are written with float32
 coordinates and their unit normals, all at once with a numpy structured array.
 """

@@ -1,7 +1,7 @@
 """``.3mf`` solids: a 3MF package (zip + XML) with one coloured mesh object per piece.
 
 Written directly: ``[Content_Types].xml``, ``_rels/.rels`` and ``3D/3dmodel.model`` with
-``<model unit="millimeter">`` (or the ``--units`` given), one ``<basematerials>`` colour
+``<model unit="millimeter">`` (or the ``units`` given), one ``<basematerials>`` colour
 per strand, one ``<object type="model">`` per printable piece and a ``<build>`` item for
 each.  Coordinates are written with 7 significant digits.
 """

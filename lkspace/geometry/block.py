@@ -24,10 +24,14 @@ from ..errors import GeometryError
 from ..io.sources import ScaffoldSource, load
 from ..model.scaffold import Scaffold
 from .limits import MAX_POINTS
-from .realization import GeometryParams, Realization, realize
+from .params import GeometryParams, RealizeOptions
+from .realization import Realization, realize
 
 STUB = 0.5
 """Runs of a thread inside a block shorter than this many shortest edges are left out."""
+
+JOIN = 1e-6
+"""Periods of a thread are joined where one ends within this many shortest edges of another's start."""
 
 __all__ = ["CellBlock", "block_faces", "block_of", "clip_curves", "join_curves", "realize_block"]
 
@@ -322,7 +326,6 @@ def realize_block(
     sizes: ArrayLike,
     *,
     max_points: int = MAX_POINTS,
-    bound: str = "MAX_POINTS",
 ) -> Realization:
     """Realize an ``sizes`` block of a periodic scaffold, cut to the block.
 
@@ -331,7 +334,8 @@ def realize_block(
     and the result cut by :func:`clip_curves`; the margin is the normal offset plus two
     tube radii, so that threads running in the block's surface stay whole; runs shorter
     than :data:`STUB` shortest edges are left out.  ``copy_of`` and ``strand_of`` of a
-    piece are those of its first period.
+    piece are those of its first period.  ``max_points`` bounds each realization
+    (:class:`~lkspace.geometry.params.RealizeOptions`).
 
     Examples
     --------
@@ -343,20 +347,15 @@ def realize_block(
     if not scaffold.periodic:
         raise GeometryError(f"{scaffold.name}: a block needs a periodic scaffold", usage=True)
     sizes = np.asarray(sizes, np.int64)
-    one = realize(scaffold, labels, nulls, params, max_points=max_points, bound=bound)  # one copy: how far it reaches
+    one = realize(
+        scaffold, labels, nulls, params, options=RealizeOptions(max_points=max_points)
+    )  # how far one copy reaches
     margin = one.normal_offset + 2 * one.tube_radius
-    real = realize(
-        scaffold,
-        labels,
-        nulls,
-        params,
-        result=one.trace,
-        translations=covering_translations(scaffold, block_of(scaffold, sizes, margin), np.vstack(one.curves)),
-        max_points=max_points,
-        bound=bound,
-    )
+    covering = covering_translations(scaffold, block_of(scaffold, sizes, margin), np.vstack(one.curves))
+    options = RealizeOptions(translations=covering, trace=one.trace, max_points=max_points)
+    real = realize(scaffold, labels, nulls, params, options=options)
     block = block_of(scaffold, sizes, margin, STUB * real.scale)
-    joined, joined_closed, members = join_curves(real.curves, real.closed, 1e-6 * real.scale)
+    joined, joined_closed, members = join_curves(real.curves, real.closed, JOIN * real.scale)
     pieces, closed, source = clip_curves(joined, joined_closed, block)
     first = np.array([members[s][0] for s in source], np.int64)
     return replace(

@@ -23,16 +23,21 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Literal, TypeGuard, cast, get_args
 
 import numpy as np
 
 from ..errors import GeometryError
-from .block import join_curves
+from .block import JOIN, join_curves
 from .clearance import pieces_apart, sample_tree, samples, tightest_bend
+from .params import TUBE_BEND_SHARE
 from .realization import Realization
 from .tracks import place_name
 
-UNITS: dict[str, tuple[str, float]] = {
+Units = Literal["um", "mm", "cm", "m", "in", "ft"]
+"""What one output unit is."""
+
+UNITS: dict[Units, tuple[str, float]] = {
     "um": ("micron", 1e-6),
     "mm": ("millimeter", 1e-3),
     "cm": ("centimeter", 1e-2),
@@ -40,12 +45,12 @@ UNITS: dict[str, tuple[str, float]] = {
     "in": ("inch", 0.0254),
     "ft": ("foot", 0.3048),
 }
-"""``--units`` choices: the 3MF unit name and the length in metres of one unit."""
+"""Per :data:`Units` choice: the 3MF unit name and the length in metres of one unit."""
 
 MAX_SCALE = 1e9
-"""Largest ``--scale``: coordinates stay far inside float32 (the STL and 3MF precision)."""
+"""Largest ``scale``: coordinates stay far inside float32 (the STL and 3MF precision)."""
 MIN_SCALE = 1 / MAX_SCALE
-"""Smallest ``--scale``: smaller coordinates lose their digits in float32 (5e-324 made every point 0)."""
+"""Smallest ``scale``: smaller coordinates lose their digits in float32 (5e-324 made every point 0)."""
 
 MAX_GAP_SAMPLES = 3_000_000
 """Most centreline samples the clearance check takes (coarser sampling beyond)."""
@@ -73,8 +78,8 @@ class Printable:
     min_gap : float or None
         The smallest surface gap measured (a lower bound), or ``None`` if every gap
         exceeds ``clearance + radius``.
-    units : str
-        A key of :data:`UNITS`.
+    units : {"um", "mm", "cm", "m", "in", "ft"}
+        What one output unit is (:data:`Units`).
     scale : float
         Output units per scaffold unit.
     """
@@ -85,7 +90,7 @@ class Printable:
     radius: float
     clearance: float
     min_gap: float | None
-    units: str
+    units: Units
     scale: float
 
     def summary(self) -> dict[str, object]:
@@ -101,16 +106,27 @@ class Printable:
         }
 
 
+def is_units(units: object) -> TypeGuard[Units]:
+    """Whether ``units`` is one of :data:`Units`."""
+    return units in get_args(Units)
+
+
 def check_options(thickness: float | None, clearance: float | None, units: str, scale: float) -> None:
-    """Refuse unusable fabrication options (usage errors naming the option)."""
+    """Refuse unusable fabrication options (usage errors naming the parameter)."""
     if thickness is not None and not (np.isfinite(thickness) and thickness > 0):
-        raise GeometryError(f"--thickness must be a finite number > 0, got {thickness}", usage=True)
+        raise GeometryError(
+            f"thickness: must be a finite number > 0, got {thickness}", usage=True, parameter="thickness"
+        )
     if clearance is not None and not (np.isfinite(clearance) and clearance >= 0):
-        raise GeometryError(f"--clearance must be a finite number >= 0, got {clearance}", usage=True)
-    if units not in UNITS:
-        raise GeometryError(f"--units {units!r}: expected one of {', '.join(UNITS)}", usage=True)
+        raise GeometryError(
+            f"clearance: must be a finite number >= 0, got {clearance}", usage=True, parameter="clearance"
+        )
+    if not is_units(units):
+        raise GeometryError(f"units: {units!r} is not one of {', '.join(UNITS)}", usage=True, parameter="units")
     if not (np.isfinite(scale) and MIN_SCALE <= scale <= MAX_SCALE):
-        raise GeometryError(f"--scale must be a number in [{MIN_SCALE:g}, {MAX_SCALE:g}], got {scale}", usage=True)
+        raise GeometryError(
+            f"scale: must be a number in [{MIN_SCALE:g}, {MAX_SCALE:g}], got {scale}", usage=True, parameter="scale"
+        )
 
 
 def printable(
@@ -135,22 +151,24 @@ def printable(
     """
     clearance = 0.0 if clearance is None else float(clearance)
     check_options(thickness, clearance, units, scale)
-    curves, closed, members = join_curves(real.curves, real.closed, 1e-6 * real.scale)
+    curves, closed, members = join_curves(real.curves, real.closed, JOIN * real.scale)
     strand_of = real.strand_of[[m[0] for m in members]] if members else np.zeros(0, np.int64)
     scaled = [np.asarray(c, np.float64) * scale for c in curves]
     bend, piece, point = tightest_bend(scaled, closed)
     if thickness is None:  # the picture's tube, thinned where the curves bend tighter
-        radius = min(real.tube_radius * scale, 0.9 * bend)
+        radius = min(real.tube_radius * scale, TUBE_BEND_SHARE * bend)
     else:
         radius = 0.5 * thickness
     if bend < radius:
         raise GeometryError(
-            f"{real.scaffold.name}: --thickness {2 * radius:.4g} exceeds twice the bend radius {bend:.4g} of piece "
+            f"{real.scaffold.name}: `thickness` {2 * radius:.4g} exceeds twice the bend radius {bend:.4g} of piece "
             f"{piece} near {place_name(real.scaffold, point / scale)}; the tube would fold into itself "
-            "(use a smaller --thickness or a larger --scale)"
+            "(use a smaller `thickness` or a larger `scale`)",
+            parameter="thickness",
         )
     min_gap = check_gaps(real, scaled, closed, radius, clearance, scale)
-    return Printable(scaled, closed, np.asarray(strand_of, np.int64), radius, clearance, min_gap, units, scale)
+    unit = cast(Units, units)  # checked by check_options
+    return Printable(scaled, closed, np.asarray(strand_of, np.int64), radius, clearance, min_gap, unit, scale)
 
 
 def check_gaps(
@@ -188,26 +206,28 @@ def check_gaps(
         raise GeometryError(
             f"{real.scaffold.name}: {what} leave a gap of {max(gap, 0.0):.4g} < clearance {clearance:.4g} "
             f"(thickness {2 * radius:.4g}) near {place_name(real.scaffold, mid)}; "
-            + gap_fixes(gap + 2 * radius, 2 * radius, clearance, scale)
+            + gap_fixes(gap + 2 * radius, 2 * radius, clearance, scale),
+            parameter="clearance",
         )
     return gap
 
 
 def gap_fixes(centre: float, thickness: float, clearance: float, scale: float) -> str:
-    """Say which options can open a gap: ``centre`` is the distance of the two centrelines.
+    """Say which parameters can open a gap: ``centre`` is the distance of the two centrelines.
 
-    The gap is ``centre - thickness`` and ``centre`` grows with ``--scale``, so a thinner tube
+    The gap is ``centre - thickness`` and ``centre`` grows with ``scale``, so a thinner tube
     helps only while ``centre > clearance``; a larger scale or a smaller clearance always can.
+    Parameters are named in backquotes (the command line shows their flags).
 
     >>> gap_fixes(0.3, 0.1, 0.5, 1.0)
-    'no --thickness reaches clearance 0.5 at --scale 1 (the centrelines are 0.3 apart); use --scale 2 or more, or --clearance 0.2 or less'
+    'no `thickness` reaches clearance 0.5 at `scale` 1 (the centrelines are 0.3 apart); use `scale` 2 or more, or `clearance` 0.2 or less'
     """
     need_scale = math.ceil(100 * scale * (clearance + thickness) / max(centre, 1e-12)) / 100
     fits = math.floor(100 * max(centre - thickness, 0.0)) / 100  # rounded down: it must still fit
-    other = f"--scale {need_scale:g} or more, or --clearance {fits:g} or less"
+    other = f"`scale` {need_scale:g} or more, or `clearance` {fits:g} or less"
     if centre <= clearance:
         return (
-            f"no --thickness reaches clearance {clearance:g} at --scale {scale:g} "
+            f"no `thickness` reaches clearance {clearance:g} at `scale` {scale:g} "
             f"(the centrelines are {centre:.2g} apart); use {other}"
         )
-    return f"use --thickness {math.floor(100 * (centre - clearance)) / 100:g} or less, {other}"
+    return f"use `thickness` {math.floor(100 * (centre - clearance)) / 100:g} or less, {other}"

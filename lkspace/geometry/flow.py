@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass
+from typing import Literal
 
 import numpy as np
 from scipy.spatial import cKDTree
@@ -159,8 +160,12 @@ def _lengths(curves: list[np.ndarray]) -> np.ndarray:
     return np.array([np.linalg.norm(np.diff(np.vstack([c, c[:1]]), axis=0), axis=1).sum() for c in curves])
 
 
-def rope_flow(curves: list[np.ndarray], options: FlowOptions, label: str = "relaxing") -> FlowResult:
+def rope_flow(
+    curves: list[np.ndarray], options: FlowOptions, label: Literal["relaxing", "smoothing"] = "relaxing"
+) -> FlowResult:
     """Run the rope flow (module docstring) on closed ``curves``; return the best rope found.
+
+    ``label`` names the task in the progress lines.
 
     With ``grow`` > 0 the result is the iterate of lowest ropelength among those where
     the rope fitted; with ``grow`` = 0 the last iterate.

@@ -105,9 +105,10 @@ def helix_windows(
     if len(bad):
         e = int(bad[np.argmax(width[bad])])
         raise GeometryError(
-            f"{scaffold.name}: --pitch {pitch:g} needs {pitch * turns[e] / (1 - 2 * RAMP):.4g} of edge "
+            f"{scaffold.name}: `pitch` {pitch:g} needs {pitch * turns[e] / (1 - 2 * RAMP):.4g} of edge "
             f"{scaffold.edge_name(e)} for its {turns[e]:.3g} turn(s), but the edge leaves {span[e]:.4g}; use a smaller pitch",
             usage=True,
+            parameter="pitch",
         )
     width = np.where(twisted, width, 1.0)
     return 0.5 * (1 - width), width

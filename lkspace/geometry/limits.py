@@ -19,6 +19,7 @@ __all__ = [
     "MAX_RELATIVE",
     "MAX_SAMPLES",
     "check_lengths",
+    "check_points",
     "check_samples",
     "check_winding",
 ]
@@ -51,6 +52,20 @@ its shortest edge (a 100,000-gon, a needle-thin face) would need billions.
 """
 
 
+def check_points(name: str, estimate: float, max_points: int) -> None:
+    """Refuse curves of about ``estimate`` points past ``max_points`` on scaffold ``name`` (:class:`~lkspace.errors.TooLargeError`).
+
+    The error names the parameter ``max_points``; a program that sets it from a bound of
+    its own (the command line: :data:`MAX_POINTS`) says that bound instead.
+    """
+    if estimate > max_points:
+        raise TooLargeError(
+            f"max_points: the curves of {name} would have about {estimate:,.0f} points > {max_points:,}; "
+            "use smaller twists (or a smaller block)",
+            parameter="max_points",
+        )
+
+
 def check_samples(scaffold: Scaffold, labels: np.ndarray, radius: float, min_sep: float) -> None:
     """Refuse strands too long for the embedding check at ``min_sep`` (:class:`~lkspace.errors.TooLargeError`).
 
@@ -81,9 +96,10 @@ def check_small(name: str, lengths: dict[str, float | None], scale: float) -> No
     for what, value in lengths.items():
         if value is not None and 0 < value < MIN_RELATIVE * scale:
             raise GeometryError(
-                f"geometry parameter {what} {value:g} is below {MIN_RELATIVE:g} x the shortest edge of "
+                f"{what}: {value:g} is below {MIN_RELATIVE:g} x the shortest edge of "
                 f"{name} ({MIN_RELATIVE * scale:.4g}); too small to draw",
                 usage=True,
+                parameter=what,
             )
 
 
@@ -92,9 +108,10 @@ def check_lengths(name: str, lengths: dict[str, float], scale: float) -> None:
     for what, value in lengths.items():
         if value > MAX_RELATIVE * scale:
             raise GeometryError(
-                f"geometry parameter {what} {value:g} exceeds {MAX_RELATIVE:g} x the shortest edge of "
+                f"{what}: {value:g} exceeds {MAX_RELATIVE:g} x the shortest edge of "
                 f"{name} ({MAX_RELATIVE * scale:.4g}); strands that far from their edge leave the scaffold",
                 usage=True,
+                parameter=what,
             )
 
 

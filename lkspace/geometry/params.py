@@ -1,15 +1,27 @@
-"""Realization parameters: what the user sets (:class:`GeometryParams`), resolved once per mesh (:class:`Resolved`)."""
+"""Realization parameters and options.
+
+:class:`GeometryParams` is the shape the user asks for (distances, sampling, smoothing);
+:class:`RealizeOptions` is how :func:`~lkspace.geometry.realization.realize` goes about it
+(copies, clearance checking, a trace to reuse, the point bound); :class:`Resolved` is the
+shape resolved once per mesh, defaults filled in from its scale, which every step of the
+realization reads.
+"""
 
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING, Literal
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ..errors import GeometryError
 from ..model.scaffold import Scaffold
-from .limits import MAX_SAMPLES, check_lengths, check_small
+from .limits import MAX_POINTS, MAX_SAMPLES, check_lengths, check_small
 from .tracks import default_scale
+
+if TYPE_CHECKING:
+    from ..strands.tracing import Trace
 
 NEAR_ANGLE = np.pi / 6
 """Faces meeting at an edge at less than this angle get the default normal offset."""
@@ -22,6 +34,66 @@ NORMAL_OFFSET = 0.35
 
 SMOOTH_DIAMETER = 1.5
 """Rope diameter of the default smoothing (:func:`~lkspace.geometry.flow.smooth_curves`), in insets."""
+
+TUBE_GAP_SHARE = 0.45
+"""The default tube radius is at most this share of the smallest distance between distinct pieces."""
+
+TUBE_BEND_SHARE = 0.9
+"""The default tube radius is at most this share of the tightest bend radius of a curve (else it folds)."""
+
+MIN_CORNER_SAMPLES = 2
+"""Fewest points on a corner turn: its two ends."""
+
+EmbeddingCheck = Literal["refuse", "measure", "later"]
+"""What :func:`~lkspace.geometry.realization.realize` does about the embedding of the curves.
+
+``"refuse"``
+    Measure the smallest distance between distinct pieces and raise
+    :class:`~lkspace.errors.GeometryError` below ``min_separation`` (the default).
+``"measure"``
+    Measure it (``min_distance``, ``closest``) but never refuse: geometry to look at.
+``"later"``
+    Skip the measurement (``min_distance`` is ``inf``), for previews that measure later;
+    twists too tight to embed are still refused, and so is a construction the smoothing
+    would start from.
+"""
+EMBEDDING_CHECKS: tuple[EmbeddingCheck, ...] = ("refuse", "measure", "later")
+
+
+@dataclass(frozen=True, eq=False)
+class RealizeOptions:
+    """How :func:`~lkspace.geometry.realization.realize` works, beyond the shape of :class:`GeometryParams`.
+
+    Attributes
+    ----------
+    embedding : {"refuse", "measure", "later"}
+        What to do about the embedding check (:data:`EmbeddingCheck`).
+    translations : (n_copies, dim) int, optional
+        Lattice translations of a block of copies (periodic scaffolds); default one copy.
+    trace : Trace, optional
+        A trace already computed for these labels and nulls (it is not traced again).
+    max_points : int
+        Refuse (:class:`~lkspace.errors.TooLargeError` naming ``max_points``, before
+        building anything) when the curves would have more points (default :data:`MAX_POINTS`).
+    """
+
+    embedding: EmbeddingCheck = "refuse"
+    translations: ArrayLike | None = None
+    trace: Trace | None = None
+    max_points: int = MAX_POINTS
+
+    def check(self) -> None:
+        """Raise :class:`~lkspace.errors.GeometryError` (a usage error) naming an option that is not usable."""
+        if self.embedding not in EMBEDDING_CHECKS:
+            raise GeometryError(
+                f"embedding: expected one of {', '.join(EMBEDDING_CHECKS)}, got {self.embedding!r}",
+                usage=True,
+                parameter="embedding",
+            )
+        if not isinstance(self.max_points, int | np.integer) or self.max_points < 1:
+            raise GeometryError(
+                f"max_points: must be an integer >= 1, got {self.max_points!r}", usage=True, parameter="max_points"
+            )
 
 
 @dataclass(frozen=True)
@@ -90,18 +162,21 @@ class GeometryParams:
             low = 0.0 if name == "normal_offset" else None
             if not np.isfinite(value) or (value < 0 if low is not None else value <= 0):
                 wanted = "a finite number >= 0" if low is not None else "a finite number > 0"
-                raise GeometryError(f"geometry parameter {name} must be {wanted}, got {value}", usage=True)
-        for name, least in (("samples_per_turn", 1), ("edge_samples", 1), ("corner_samples", 2)):
+                raise GeometryError(f"{name}: must be {wanted}, got {value}", usage=True, parameter=name)
+        for name, least in (("samples_per_turn", 1), ("edge_samples", 1), ("corner_samples", MIN_CORNER_SAMPLES)):
             value = getattr(self, name)
             if not isinstance(value, int | np.integer) or not least <= value <= MAX_SAMPLES:
                 raise GeometryError(
-                    f"geometry parameter {name} must be an integer in {least}..{MAX_SAMPLES}", usage=True
+                    f"{name}: must be an integer in {least}..{MAX_SAMPLES}, got {value!r}", usage=True, parameter=name
                 )
 
 
 @dataclass(frozen=True)
 class Resolved:
-    """Parameters of one realization, resolved once from :class:`GeometryParams` and the mesh.
+    """The shape of one realization, resolved once from :class:`GeometryParams` and the mesh.
+
+    Every step of :func:`~lkspace.geometry.realization.realize` reads these, never the
+    parameters as given.
 
     Attributes
     ----------
@@ -110,7 +185,10 @@ class Resolved:
     near_angle : float or None
         Faces meeting at less than this get the default normal offset (``None`` when
         ``normal_offset`` was given: it applies everywhere).
-    corner_samples : int
+    helix_radius, pitch, tube_radius : float or None
+        As given (``None``: from the mesh, see :class:`GeometryParams`).
+    samples_per_turn, edge_samples, corner_samples : int
+    smooth : bool
     """
 
     scale: float
@@ -119,7 +197,13 @@ class Resolved:
     margin: float
     min_separation: float
     near_angle: float | None
+    helix_radius: float | None
+    pitch: float | None
+    tube_radius: float | None
+    samples_per_turn: int
+    edge_samples: int
     corner_samples: int
+    smooth: bool
 
     @staticmethod
     def of(scaffold: Scaffold, params: GeometryParams) -> Resolved:
@@ -132,10 +216,23 @@ class Resolved:
         min_sep = params.min_separation if params.min_separation is not None else MIN_SEPARATION * scale
         for name, value in (("radius", rho), ("margin", margin), ("min_separation", min_sep)):
             if not np.isfinite(value) or value <= 0:
-                raise GeometryError(f"geometry parameter {name} must be positive, got {value}")
+                raise GeometryError(f"{name}: must be positive, got {value}", parameter=name)
         lengths = {"radius": rho, "normal_offset": h, "margin": margin, "tube_radius": params.tube_radius or 0.0}
         lengths["helix_radius"] = params.helix_radius or 0.0
         check_lengths(scaffold.name, lengths, scale)
         check_small(scaffold.name, {**lengths, "pitch": params.pitch}, scale)
-        near = NEAR_ANGLE if params.normal_offset is None else None
-        return Resolved(scale, float(rho), float(h), float(margin), float(min_sep), near, max(2, params.corner_samples))
+        return Resolved(
+            scale=scale,
+            radius=float(rho),
+            normal_offset=float(h),
+            margin=float(margin),
+            min_separation=float(min_sep),
+            near_angle=NEAR_ANGLE if params.normal_offset is None else None,
+            helix_radius=params.helix_radius,
+            pitch=params.pitch,
+            tube_radius=params.tube_radius,
+            samples_per_turn=int(params.samples_per_turn),
+            edge_samples=int(params.edge_samples),
+            corner_samples=int(params.corner_samples),
+            smooth=params.smooth,
+        )

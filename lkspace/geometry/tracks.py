@@ -17,11 +17,6 @@ from ..model.radial import perpendicular_frames
 from ..model.scaffold import Scaffold
 
 
-def smoothstep(u: np.ndarray) -> np.ndarray:
-    """``3u^2 - 2u^3``: 0 -> 0, 1 -> 1, zero slope at both ends, ``g(1 - u) = 1 - g(u)``."""
-    return u * u * (3.0 - 2.0 * u)
-
-
 def face_normals(scaffold: Scaffold) -> np.ndarray:
     """(n_faces, 3) float64: unit normals by Newell's method over the corner order."""
     p = scaffold.corner_positions
@@ -124,7 +119,8 @@ def side_tracks(scaffold: Scaffold, rho: float, h: float, margin: float, near_an
         k = edge_of[broken[0]]
         raise GeometryError(
             f"{scaffold.name}: edge {scaffold.edge_name(k)}: the normal offset {h:.3g} reorders the strands "
-            "around the edge; use a smaller normal offset"
+            "around the edge; use a smaller `normal_offset`",
+            parameter="normal_offset",
         )
     # margins: at least ``margin``, longer at acute corners so that the corner turn ends
     # before the helix starts (the inset corner lies rho * cot(alpha / 2) from the vertex)

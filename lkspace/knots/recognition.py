@@ -31,7 +31,8 @@ import pandas as pd
 from numpy.typing import ArrayLike
 
 from ..errors import LkspaceError, TooLargeError, UsageError
-from ..geometry.realization import GeometryParams, realize
+from ..geometry.params import GeometryParams, RealizeOptions
+from ..geometry.realization import realize
 from ..io.sources import ScaffoldSource, load
 from ..model.scaffold import Scaffold
 from ..progress import Step, task
@@ -194,7 +195,9 @@ def identify(
             )
         step.note("realizing")
         # the construction polylines (smoothing off unless asked): isotopic to the smoothed strands, cheaper
-        real = realize(scaffold, tr.labels, nulls, params or GeometryParams(smooth=False), result=tr)
+        real = realize(
+            scaffold, tr.labels, nulls, params or GeometryParams(smooth=False), options=RealizeOptions(trace=tr)
+        )
         step.note("diagram")
         diagram = project_generic(real.curves, seed)
         head = {

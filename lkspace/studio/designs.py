@@ -2,7 +2,7 @@
 
 Every answer comes from :func:`lkspace.trace` and :func:`lkspace.realize`; curves travel
 as base64 ``float32`` arrays so a redraw of ~100,000 points costs a few milliseconds.
-The redraw realizes without measuring the clearance (``measure=False``); the page asks for
+The redraw realizes without measuring the clearance (``embedding="later"``); the page asks for
 the measurement (:func:`clearance`) right after, so a design appears at once and its
 embedding verdict follows.  Asked with a ``relaxer`` (the studio's relax job), the curves
 are the relaxed ones (:func:`lkspace.relax`), kept apart from the default ones in the cache.
@@ -25,6 +25,7 @@ import numpy as np
 from ..errors import GeometryError, LabelError, TooLargeError, UsageError
 from ..formats.registry import FORMATS, export
 from ..geometry.clearance import check_embedding
+from ..geometry.params import RealizeOptions
 from ..geometry.realization import Realization, realize
 from ..io.scaffold_json import format_scaffold_json
 from ..model.scaffold import Scaffold
@@ -184,7 +185,8 @@ def design(
     real = cache.get(relaxed_key) if relaxer is not None else None
     if real is None:
         try:
-            real = realize(scaffold, tr.labels, nulls, None, block, True, tr, MAX_STUDIO_POINTS, "the studio's", False)
+            options = RealizeOptions(embedding="later", translations=block, trace=tr, max_points=MAX_STUDIO_POINTS)
+            real = realize(scaffold, tr.labels, nulls, options=options)
         except (GeometryError, TooLargeError) as exc:
             out["failure"] = {"message": str(exc), "edge": edge_named(scaffold, str(exc))}
             out["timing"] = {"trace": t1 - t0, "realize": time.perf_counter() - t1}
@@ -249,7 +251,7 @@ def export_bytes(scaffold: Scaffold, labels: np.ndarray, nulls: np.ndarray | Non
         return format_scaffold_json(scaffold, labels, nulls).encode(), name
     with tempfile.TemporaryDirectory(prefix="lkspace-studio-") as folder:
         path = os.path.join(folder, name)
-        real = realize(scaffold, labels, nulls, max_points=MAX_EXPORT_POINTS, bound="the studio's download bound")
+        real = realize(scaffold, labels, nulls, options=RealizeOptions(max_points=MAX_EXPORT_POINTS))
         export(real, path, title=scaffold.name if fmt == "png" else None)
         with open(path, "rb") as handle:
             return handle.read(), name

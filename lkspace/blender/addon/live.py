@@ -18,6 +18,7 @@ import numpy as np
 
 from lkspace.blender.meshdata import MeshDesign
 from lkspace.errors import LkspaceError
+from lkspace.geometry.params import RealizeOptions
 from lkspace.geometry.realization import realize
 from lkspace.strands.tracing import trace
 
@@ -63,7 +64,8 @@ def regenerate(
         if not force and key == result.key and (result.measured or not measure):
             return True
         traced = trace(design.scaffold, labels, nulls)
-        real = realize(design.scaffold, labels, nulls, result=traced, measure=measure, relax=relax)
+        options = RealizeOptions(embedding="refuse" if measure else "later", trace=traced)
+        real = realize(design.scaffold, labels, nulls, relax=relax, options=options)
         strands.build(obj, real, scene)
         result.relaxed = relax
         result.components = traced.components
