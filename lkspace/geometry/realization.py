@@ -48,7 +48,6 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ..errors import GeometryError, TooLargeError
-from ..io.sources import ScaffoldSource, load
 from ..model.scaffold import Scaffold
 from ..strands.ports import port_model
 from ..strands.tracing import Trace, trace
@@ -136,7 +135,7 @@ class Realization:
 
 
 def realize(
-    scaffold: ScaffoldSource,
+    scaffold: Scaffold,
     labels: ArrayLike | None = None,
     nulls: ArrayLike | None = None,
     params: GeometryParams | None = None,
@@ -152,7 +151,8 @@ def realize(
 
     Parameters
     ----------
-    scaffold : Scaffold, path or built-in name
+    scaffold : Scaffold
+        ``lkspace.realize`` also takes a path or a built-in name (:func:`lkspace.load`).
     labels, nulls : as for :func:`lkspace.trace` (default: the scaffold's own).
     params : GeometryParams, optional
     translations : (n_copies, dim) int, optional
@@ -178,11 +178,11 @@ def realize(
 
     Examples
     --------
-    >>> r = realize("dihedron:3", 1)
+    >>> import lkspace
+    >>> r = lkspace.realize("dihedron:3", 1)
     >>> r.n_curves, bool(r.closed[0]), r.min_distance > r.min_separation
     (1, True, True)
     """
-    scaffold = load(scaffold)
     opts = Resolved.of(scaffold, params or GeometryParams())
     params = params or GeometryParams()
     tr = result if result is not None else trace(scaffold, labels, nulls)

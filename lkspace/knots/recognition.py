@@ -32,7 +32,6 @@ from numpy.typing import ArrayLike
 
 from ..errors import LkspaceError, TooLargeError, UsageError
 from ..geometry.realization import GeometryParams, realize
-from ..io.sources import ScaffoldSource, load
 from ..model.scaffold import Scaffold
 from ..progress import Step, task
 from ..strands.tracing import trace
@@ -143,7 +142,7 @@ def check_identifiable(scaffold: Scaffold) -> None:
 
 
 def identify(
-    scaffold: ScaffoldSource,
+    scaffold: Scaffold,
     labels: ArrayLike | None = None,
     nulls: ArrayLike | None = None,
     params: GeometryParams | None = None,
@@ -155,8 +154,9 @@ def identify(
 
     Parameters
     ----------
-    scaffold : Scaffold, path or built-in name
-        A finite scaffold (periodic ones are refused, :func:`check_identifiable`).
+    scaffold : Scaffold
+        A finite scaffold (periodic ones are refused, :func:`check_identifiable`);
+        ``lkspace.identify`` also takes a path or a built-in name (:func:`lkspace.load`).
     labels, nulls : as for :func:`lkspace.trace`
     params : GeometryParams, optional
         Realization parameters.
@@ -175,11 +175,11 @@ def identify(
 
     Examples
     --------
-    >>> identify("dihedron:3", 1)
+    >>> import lkspace
+    >>> lkspace.identify("dihedron:3", 1)
     Identification(3_1: 1 components, 3 crossings)
     """
     t0 = time.monotonic()
-    scaffold = load(scaffold)
     check_identifiable(scaffold)
     with task(f"identifying {scaffold.name}") as step:
         step.note("tracing")
