@@ -334,7 +334,8 @@ def canonical_form(space: DesignSpace, labels: ArrayLike) -> tuple[np.ndarray, i
 
     Examples
     --------
-    >>> sp = make_space("tetrahedron", "-2,2")
+    >>> from lkspace import load
+    >>> sp = make_space(load("tetrahedron"), "-2,2")
     >>> canonical_form(sp, [2, 2, 2, 2, 2, -2])
     (array([-2,  2,  2,  2,  2,  2], dtype=int8), 6)
     """
