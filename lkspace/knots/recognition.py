@@ -315,6 +315,7 @@ def identify_batch(
 
     Examples
     --------
+    >>> from lkspace import load
     >>> identify_batch(load("dihedron:3"), [[1, 1, 1], [1, 0, 0]])["knot_name"].tolist()
     ['3_1', '0_1']
     """
