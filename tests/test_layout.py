@@ -205,6 +205,23 @@ def test_studio_uses_the_public_api_and_named_internals():
     )
 
 
+BOUNDARY = (
+    "lkspace.api",
+    "lkspace.io",
+    "lkspace.cli.",
+    "lkspace.studio.",
+    "lkspace.blender.",
+    "lkspace.catalog.reader",
+)
+"""The modules that may turn a path or a built-in name into a scaffold (``lkspace.io.sources``): the
+public API, io itself, the programs, and the catalog reader (a catalog stores its scaffold's name)."""
+
+
+def test_only_the_boundary_loads_scaffolds():
+    loading = sorted(a for a, b in import_graph().edges if b == "lkspace.io.sources" and not a.startswith(BOUNDARY))
+    assert loading == [], f"computing modules take a Scaffold; these load paths or names: {loading}"
+
+
 def label(package: str) -> str:
     """How docs/architecture.md names a package: ``design/``, ``api.py``, ``__init__.py`` (the root)."""
     if package == "lkspace":
