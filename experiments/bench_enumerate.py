@@ -53,13 +53,13 @@ def best(fn, repeat: int) -> tuple[float, float, object]:
 
 
 def run_case(case, repeat: int, skip_list: bool) -> dict:
-    from lkspace.catalog.shards import write_catalog
+    from lkspace import load, write_catalog
     from lkspace.design.counting import count_space
     from lkspace.design.space import make_space
 
     name, scaffold, labels, symmetry, jobs, kind = case
-    space = make_space(scaffold, labels, symmetry)
-    t_count, c_count, counted = best(lambda: count_space(make_space(scaffold, labels, symmetry)), repeat)
+    space = make_space(load(scaffold), labels, symmetry)
+    t_count, c_count, counted = best(lambda: count_space(make_space(load(scaffold), labels, symmetry)), repeat)
     out: dict = {
         "scaffold": scaffold,
         "labels": labels,
@@ -77,7 +77,7 @@ def run_case(case, repeat: int, skip_list: bool) -> dict:
 
             def listing():
                 shutil.rmtree(os.path.join(tmp, "c"), ignore_errors=True)
-                return write_catalog(make_space(scaffold, labels, symmetry), os.path.join(tmp, "c"), jobs=jobs)
+                return write_catalog(make_space(load(scaffold), labels, symmetry), os.path.join(tmp, "c"), jobs=jobs)
 
             t_list, c_list, written = best(listing, repeat)
         finally:
@@ -159,12 +159,12 @@ def main() -> None:
     ap.add_argument("--count-only", nargs="*", default=[], help="cases timed for counting only")
     args = ap.parse_args()
     sys.path.insert(0, os.path.abspath(args.code))
-    from lkspace.catalog.shards import write_catalog
+    from lkspace import load, write_catalog
     from lkspace.design.space import make_space
 
     warm = tempfile.mkdtemp()
     for sc in ("tetrahedron", "honeycomb:cP"):
-        write_catalog(make_space(sc, "-1..1"), os.path.join(warm, sc.replace(":", "") + ".parquet"))
+        write_catalog(make_space(load(sc), "-1..1"), os.path.join(warm, sc.replace(":", "") + ".parquet"))
     shutil.rmtree(warm)
     cases: dict = {}
     for case in CASES:

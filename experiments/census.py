@@ -41,6 +41,7 @@ import numpy as np
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, ROOT)
 
+from lkspace import load  # noqa: E402
 from lkspace.design.census import SHARD_CHOICES, census, shard_term, terms  # noqa: E402
 from lkspace.design.counting import burnside_total  # noqa: E402
 from lkspace.design.space import make_space  # noqa: E402
@@ -62,7 +63,7 @@ def save(name: str, data: dict) -> None:
 
 def parity(solid: str, jobs: int, budget: float) -> dict:
     """Census of ``solid`` for {0,1} and {-1,0,1} (one pass), checkpointed; stop after ``budget`` seconds."""
-    space = make_space(solid, "-1..1", "rotations")
+    space = make_space(load(solid), "-1..1", "rotations")
     all_terms = terms(space)
     items = []
     for g, t in enumerate(all_terms):
@@ -171,7 +172,7 @@ def parity_counts(space, all_terms, hists) -> dict:
 
 def parity_report(solid: str) -> None:
     """Rewrite ``results/census/parity-NAME.json`` from a finished checkpoint (all label sets)."""
-    space = make_space(solid, "-1..1", "rotations")
+    space = make_space(load(solid), "-1..1", "rotations")
     all_terms = terms(space)
     with open(os.path.join(CHECKPOINTS, f"parity-{solid}.json")) as fh:
         state = json.load(fh)
@@ -199,7 +200,7 @@ def lattice(jobs: int, families: list[str] | None = None) -> list[dict]:
         if families and family not in families:
             continue
         for shape in shapes:
-            space = make_space(f"{family}@{shape}", labels, "rotations")
+            space = make_space(load(f"{family}@{shape}"), labels, "rotations")
             t0 = time.perf_counter()
             found = census(space, "local", jobs)
             dt = time.perf_counter() - t0
@@ -233,7 +234,7 @@ def lattice_report(rows: list[dict]) -> None:
     from tests.brute_periodic import brute_group, burnside
 
     for r in rows:
-        space = make_space(r["scaffold"], r["labels"], "rotations")
+        space = make_space(load(r["scaffold"]), r["labels"], "rotations")
         # independent of lkspace.symmetry and of the census: a brute-force group, Burnside's total
         sizes = [int(x) for x in r["scaffold"].split("@")[1].split("x")]
         group = brute_group(space.scaffold, 2 * max(sizes))
@@ -343,7 +344,7 @@ def plan(sample: int = 1 << 21) -> None:
     """
     measured = []
     for name, labels in MEASURE:
-        space = make_space(name, labels, "rotations")
+        space = make_space(load(name), labels, "rotations")
         all_terms = terms(space)
         shard_term((space, all_terms), (0, 0, 1000))  # compiled outside the timing
         t0 = time.process_time()
@@ -356,7 +357,7 @@ def plan(sample: int = 1 << 21) -> None:
     c = float(np.median([1 / (m["vectors_per_cpu_second"] * m["ports"]) for m in measured]))
     rows = []
     for name, labels, what in BEYOND:
-        space = make_space(name, labels, "rotations")
+        space = make_space(load(name), labels, "rotations")
         vectors = sum(t.size for t in terms(space))
         ports = 2 * space.scaffold.n_corners
         rows.append(

@@ -95,7 +95,7 @@ def main() -> None:
         for size in sizes:
             full = f"{name}@{size}"
             t0 = time.perf_counter()
-            space = make_space(full, labels)
+            space = make_space(lkspace.load(full), labels)
             totals = count_space(space).to_dict()
             growth.append(
                 {

@@ -18,13 +18,12 @@ import time
 
 import numpy as np
 
-from lkspace import load
+from lkspace import load, trace
 from lkspace.design.embeddings import graph_surfaces
 from lkspace.design.graph_faces import named_graph
 from lkspace.design.invariant import make_invariant_space
 from lkspace.design.invariant_walk import invariant_blocks
 from lkspace.design.motifs import cell_map, check_tiles, motif_classes, tiling_matrix
-from lkspace.strands.tracing import trace
 from lkspace.symmetry.group import symmetry_group
 
 OUT = pathlib.Path(__file__).resolve().parents[1] / "results" / "structured"

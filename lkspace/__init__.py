@@ -1,7 +1,7 @@
 """lkspace: knots, links and chainmail designed by twist labels on polygon meshes.
 
 The public API, loaded on first use (``import lkspace`` stays fast); every function that
-works on a scaffold also takes a path or a built-in name:
+works on a scaffold also takes a path or a built-in name (:mod:`lkspace.api` loads it):
 
 ===========================  ===============================================================
 :func:`load`                 a scaffold from a built-in name or a ``.obj`` / ``.json`` file
@@ -38,19 +38,36 @@ from .model.lattice import Lattice
 from .model.scaffold import Scaffold
 
 if TYPE_CHECKING:
-    from .catalog.listing import designs
+    from . import api
+    from .catalog import listing, shards, symmetric
     from .catalog.reader import Catalog, read_catalog
-    from .catalog.shards import CatalogWritten, write_catalog
-    from .catalog.symmetric import symmetric_designs
+    from .catalog.shards import CatalogWritten
     from .catalog.verify import CatalogCheck, verify_catalog
-    from .design.counting import DesignCount, count_designs
-    from .formats.registry import export
-    from .geometry.realization import GeometryParams, Realization, realize
+    from .design import counting
+    from .design.counting import DesignCount
+    from .formats import registry
+    from .geometry import realization
+    from .geometry.params import RealizeOptions
+    from .geometry.realization import GeometryParams, Realization
     from .geometry.relax import relax
-    from .inverse.pipeline import Solution, SolveResult, solve
+    from .inverse import pipeline
+    from .inverse.pipeline import Solution, SolveResult
     from .io.sources import load
-    from .knots.recognition import Identification, identify
-    from .strands.tracing import Trace, trace
+    from .knots import recognition
+    from .knots.recognition import Identification
+    from .strands import tracing
+    from .strands.tracing import Trace
+
+    # what type checkers see: the functions of ``api.SCAFFOLD_FIRST`` as lkspace.__getattr__ hands them out
+    trace = api.loading(tracing.trace)
+    designs = api.loading(listing.designs)
+    symmetric_designs = api.loading(symmetric.symmetric_designs)
+    count_designs = api.loading(counting.count_designs)
+    write_catalog = api.loading(shards.write_catalog)
+    solve = api.loading(pipeline.solve)
+    realize = api.loading(realization.realize)
+    export = api.loading(registry.export)
+    identify = api.loading(recognition.identify)
 
 try:
     __version__ = version("lkspace")
@@ -77,6 +94,7 @@ _LAZY = {
     "realize": "geometry.realization",
     "Realization": "geometry.realization",
     "GeometryParams": "geometry.realization",
+    "RealizeOptions": "geometry.params",
     "relax": "geometry.relax",
     "export": "formats.registry",
     "identify": "knots.recognition",
@@ -104,6 +122,7 @@ __all__ = [
     "realize",
     "Realization",
     "GeometryParams",
+    "RealizeOptions",
     "relax",
     "export",
     "identify",
@@ -146,6 +165,10 @@ def __getattr__(name: str) -> Any:
     if name not in _LAZY:
         raise AttributeError(f"module 'lkspace' has no attribute {name!r}")
     value = getattr(importlib.import_module(f".{_LAZY[name]}", __name__), name)
+    from . import api
+
+    if name in api.SCAFFOLD_FIRST:  # a path or a built-in name is loaded here, at the boundary
+        value = api.loading(value, api.SCAFFOLD_FIRST[name])
     globals()[name] = value
     return value
 

@@ -35,6 +35,35 @@ def test_every_function_takes_a_scaffold_a_path_or_a_name(sources, tmp_path):
         assert written.designs == 12 and len(lkspace.read_catalog(tmp_path / "t.parquet")) == 12
 
 
+def test_paths_and_names_are_loaded_at_the_boundary():
+    import inspect
+
+    from lkspace import api
+    from lkspace.strands import tracing
+
+    assert lkspace.trace.__wrapped__ is tracing.trace
+    assert lkspace.trace(scaffold="cube", labels=1).components == 4  # the first argument by keyword too
+    for name in lkspace.__all__:
+        value = getattr(lkspace, name)
+        if not inspect.isfunction(value) or name == "load":
+            continue
+        first = next(iter(inspect.signature(value).parameters.values()))
+        assert ("Scaffold" in str(first.annotation)) == (name in api.SCAFFOLD_FIRST), name
+        if name in api.SCAFFOLD_FIRST:
+            inner = next(iter(inspect.signature(value.__wrapped__).parameters.values()))
+            assert "ScaffoldSource" in first.annotation and "ScaffoldSource" not in inner.annotation, name
+            assert value.__doc__ == value.__wrapped__.__doc__ and value.__name__ == name
+
+
+def test_write_catalog_never_writes_over_its_scaffold_file(tmp_path):
+    path = tmp_path / "t.json"
+    lkspace.io.write(lkspace.load("tetrahedron"), path)
+    before = path.read_bytes()
+    with pytest.raises(lkspace.LkspaceError, match="is the input"):
+        lkspace.write_catalog(path, path, "-1,1")
+    assert path.read_bytes() == before
+
+
 def pd_concat(frames):
     import pandas as pd
 

@@ -15,7 +15,7 @@ import pytest
 
 import lkspace.design.batch as batch
 import lkspace.design.walk as walk_mod
-from lkspace import trace
+from lkspace import load, trace
 from lkspace.catalog.batches import space_batches
 from lkspace.design.census import census
 from lkspace.design.counting import count_space
@@ -41,13 +41,15 @@ def table(space, mode="designs", components=None):
 @pytest.fixture(scope="module")
 def tiny_classes():
     """``honeycomb:oF`` with -1..1: 134,136 designs, one assignment per residue class."""
-    space = make_space("honeycomb:oF", "-1..1")
+    space = make_space(load("honeycomb:oF"), "-1..1")
     return space, table(space)
 
 
 @pytest.mark.parametrize("args", SPACES, ids=lambda a: f"{a[0]} {a[1]} {a[2]}")
 def test_rows_agree_with_trace(args, tiny_classes):
-    space, full = tiny_classes if args[:2] == ("honeycomb:oF", "-1..1") else (make_space(*args), None)
+    space, full = (
+        tiny_classes if args[:2] == ("honeycomb:oF", "-1..1") else (make_space(load(args[0]), *args[1:]), None)
+    )
     full = table(space) if full is None else full
     rng = np.random.default_rng(1)
     periodic = space.scaffold.periodic
@@ -76,18 +78,18 @@ PER_CLASS = [  # small enough for the per-class references
 
 @pytest.mark.parametrize("args", PER_CLASS[:5], ids=lambda a: f"{a[0]} {a[1]}")
 def test_batched_classes_equal_one_class_per_call(args, monkeypatch):
-    space = make_space(*args)
+    space = make_space(load(args[0]), *args[1:])
     batched = table(space)
     monkeypatch.setattr(batch, "BATCH_ASSIGNMENTS", 1)  # every class alone, through the per-class kernel
     monkeypatch.setattr(walk_mod, "BATCH_ASSIGNMENTS", 1)
     monkeypatch.setattr(walk_mod, "CHUNK", 100)  # and large classes in chunks
-    single = table(make_space(*args))
+    single = table(make_space(load(args[0]), *args[1:]))
     assert batched.equals(single)
 
 
 @pytest.mark.parametrize("args", PER_CLASS, ids=lambda a: f"{a[0]} {a[1]} {a[2]}")
 def test_residue_rows_equal_per_class_rows(args):
-    space = make_space(*args)
+    space = make_space(load(args[0]), *args[1:])
     got = table(space, "residues").to_pylist()
     co = space.classes
     want = [residue_row(space, co.indices[c], co.stabilizers[c]) for c in range(len(co.codes))]
@@ -117,7 +119,7 @@ def test_component_filter_and_max_designs(tiny_classes):
     ],
 )
 def test_counts_against_brute_force(args):
-    space = make_space(*args)
+    space = make_space(load(args[0]), *args[1:])
     reps, sizes = brute_orbits(space)
     comps = np.array([trace(space.scaffold, r).components for r in reps])
     want = {int(c): int(n) for c, n in zip(*np.unique(comps, return_counts=True), strict=True)}
@@ -130,14 +132,14 @@ def test_counts_against_brute_force(args):
 
 def test_census_beyond_class_limit(monkeypatch):
     """Past MAX_CLASSES the count splits by components through the census; equal to the class walk."""
-    space = make_space("honeycomb:oF", "-1..1")
+    space = make_space(load("honeycomb:oF"), "-1..1")
     want = count_space(space)
     import lkspace.design.counting as counting
 
     monkeypatch.setattr(counting, "MAX_CLASSES", 10)
-    got = count_space(make_space("honeycomb:oF", "-1..1"))
+    got = count_space(make_space(load("honeycomb:oF"), "-1..1"))
     assert got.by_components == want.by_components and got.assignments_covered == want.assignments_covered
-    two = count_space(make_space("honeycomb:oF", "-1..1"), components=2)
+    two = count_space(make_space(load("honeycomb:oF"), "-1..1"), components=2)
     assert two.by_components == {2: want.by_components[2]}
     assert two.assignments_covered == count_space(space, components=2).assignments_covered
 
@@ -147,7 +149,7 @@ def test_census_counts_the_same_in_short_compiled_calls(monkeypatch, scaffold, l
     """A shard walked in many short kernel calls (so that Ctrl-C is seen between them) counts what one call counts."""
     import lkspace.design.census as census_mod
 
-    space = make_space(scaffold, labels)
+    space = make_space(load(scaffold), labels)
     items = [(g, 0, t.size) for g, t in enumerate(census_mod.terms(space))]
     one_call = [census_mod.shard_term((space, census_mod.terms(space)), item) for item in items]
     ports = space.scaffold.n_corners * 2

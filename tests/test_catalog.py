@@ -10,10 +10,10 @@ import pandas as pd
 import pyarrow.parquet as pq
 import pytest
 
+from lkspace import load, write_catalog
 from lkspace.catalog.plan import split_classes
 from lkspace.catalog.reader import read_catalog, read_metadata
 from lkspace.catalog.schema import FORMAT_VERSION
-from lkspace.catalog.shards import write_catalog
 from lkspace.design.space import make_space
 from lkspace.errors import CatalogError, ExportError
 
@@ -21,7 +21,7 @@ from .cli_calls import run
 
 
 def test_single_file_catalog(tmp_path):
-    space = make_space("tetrahedron", "-2..2", "rotations")
+    space = make_space(load("tetrahedron"), "-2..2", "rotations")
     path = tmp_path / "t.parquet"
     totals = write_catalog(space, path)
     df = pd.read_parquet(path)
@@ -43,7 +43,7 @@ def test_single_file_catalog(tmp_path):
 
 
 def test_sharded_catalog_and_resume(tmp_path):
-    space = make_space("cube", "-1..1", "rotations")
+    space = make_space(load("cube"), "-1..1", "rotations")
     single = tmp_path / "one.parquet"
     write_catalog(space, single)
     folder = tmp_path / "many"
@@ -58,13 +58,13 @@ def test_sharded_catalog_and_resume(tmp_path):
     again = write_catalog(space, folder, shards=3, resume=True)
     assert again.shards_resumed == 2 and again.designs == 22815
     assert len(read_catalog(folder)) == 22815
-    other = write_catalog(make_space("cube", "-1..1", "isometries"), folder, shards=3, resume=True)
+    other = write_catalog(make_space(load("cube"), "-1..1", "isometries"), folder, shards=3, resume=True)
     assert other.shards_resumed == 0 and read_metadata(folder)["symmetry"] == "isometries"
     assert read_metadata(folder)["shard"]["count"] == 3
 
 
 def test_parallel_jobs(tmp_path):
-    space = make_space("cube", "-1..1", "isometries")
+    space = make_space(load("cube"), "-1..1", "isometries")
     totals = write_catalog(space, tmp_path / "p", jobs=2, shards=4)
     df = pd.read_parquet(tmp_path / "p")
     assert len(df) == totals.designs and df.orbit_size.sum() == 3**12
@@ -85,7 +85,7 @@ def test_not_a_catalog(tmp_path):
     (tmp_path / "junk").mkdir()
     (tmp_path / "junk" / "f.txt").write_text("x")
     with pytest.raises(ExportError, match="holds no lkspace catalog"):
-        write_catalog(make_space("tetrahedron", "-1..1"), tmp_path / "junk", shards=2)
+        write_catalog(make_space(load("tetrahedron"), "-1..1"), tmp_path / "junk", shards=2)
     assert os.listdir(tmp_path / "junk") == ["f.txt"]
 
 
@@ -164,7 +164,7 @@ def test_interrupted_run_leaves_no_partial_part_and_resumes(tmp_path, monkeypatc
     import lkspace.catalog.jobs as jobs
     from lkspace.catalog.transaction import CatalogInterrupted
 
-    space = make_space("cube", "-1..1", "rotations")
+    space = make_space(load("cube"), "-1..1", "rotations")
     folder = tmp_path / "run"
     real = jobs.space_batches
     calls = {"n": 0}

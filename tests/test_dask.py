@@ -14,7 +14,7 @@ import subprocess
 import pandas as pd
 import pytest
 
-from lkspace.catalog.shards import write_catalog
+from lkspace import load, write_catalog
 from lkspace.catalog.transaction import MANIFEST, load_manifest, save_manifest
 from lkspace.design.census import census
 from lkspace.design.counting import count_space
@@ -56,7 +56,7 @@ def test_resolve_scheduler(monkeypatch):
 
 
 def test_same_rows_from_every_scheduler(tmp_path, cluster):
-    space = make_space("honeycomb:hP", "-2..2")  # periodic, degrees 3 and 4
+    space = make_space(load("honeycomb:hP"), "-2..2")  # periodic, degrees 3 and 4
     one = write_catalog(space, tmp_path / "one.parquet")
     pool = write_catalog(space, tmp_path / "pool", shards=4, jobs=2)
     on_dask = write_catalog(space, tmp_path / "dask", shards=4, jobs=2, scheduler=cluster)
@@ -70,7 +70,7 @@ def test_same_rows_from_every_scheduler(tmp_path, cluster):
 
 
 def test_resume_on_dask(tmp_path, cluster):
-    space = make_space("cube", "-1..1")
+    space = make_space(load("cube"), "-1..1")
     first = write_catalog(space, tmp_path / "c", shards=3)
     # turn the finished catalog back into an interrupted build that lacks part 1
     build = tmp_path / ".c.lkspace-build"
@@ -98,7 +98,7 @@ def test_cli_local_cluster_survives_a_killed_worker(tmp_path):
     assert done.returncode == 0, done.stderr
     assert flag.exists()  # a worker really died
     assert json.loads(done.stdout)["designs"] == 22_815
-    write_catalog(make_space("cube", "-1..1"), tmp_path / "ref.parquet")
+    write_catalog(make_space(load("cube"), "-1..1"), tmp_path / "ref.parquet")
     same(tmp_path / "ref.parquet", out)
     manifest = load_manifest(str(out))
     assert sorted(os.listdir(out)) == sorted([MANIFEST, *(p["file"] for p in manifest["parts"].values())])
@@ -106,7 +106,7 @@ def test_cli_local_cluster_survives_a_killed_worker(tmp_path):
 
 def test_identify_pass_on_dask(tmp_path, cluster):
     pytest.importorskip("snappy")
-    space = make_space("tetrahedron", "-2,2")
+    space = make_space(load("tetrahedron"), "-2,2")
     local = write_catalog(space, tmp_path / "a", shards=2, identify=True)
     on_dask = write_catalog(space, tmp_path / "b", shards=2, identify=True, scheduler=cluster)
     assert local.identified == on_dask.identified and on_dask.identified["rows"] == 12
@@ -123,7 +123,7 @@ def test_memory_url_reads_back_with_pandas_and_dask(tmp_path):
     import fsspec
     import pyarrow.parquet as pq
 
-    space = make_space("honeycomb:cF", "-2..2")
+    space = make_space(load("honeycomb:cF"), "-2..2")
     local = write_catalog(space, tmp_path / "cf.parquet")
     folder = write_catalog(space, "memory://lk/cf", shards=3)
     single = write_catalog(space, "memory://lk/cf.parquet")
@@ -147,7 +147,7 @@ def test_memory_url_reads_back_with_pandas_and_dask(tmp_path):
 
 
 def test_census_on_dask_equals_local(cluster):
-    space = make_space("voronoi:cube-faces", "-1..1")
+    space = make_space(load("voronoi:cube-faces"), "-1..1")
     want = count_space(space).by_components
     assert census(space, cluster, 2, shard_choices=5000).by_components == want
 
@@ -165,7 +165,7 @@ def test_worker_started_with_the_lkspace_entry_point(tmp_path):
         try:
             with distributed.Client(lc) as client:
                 client.wait_for_workers(1, timeout=60)
-            space = make_space("cube", "-1..1")
+            space = make_space(load("cube"), "-1..1")
             assert (
                 census(space, lc.scheduler_address, 1, shard_choices=2000).by_components
                 == count_space(space).by_components

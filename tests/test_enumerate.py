@@ -8,6 +8,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import lkspace
+from lkspace import load
 from lkspace.catalog.batches import design_batches, residue_batches
 from lkspace.design.counting import burnside_total, count_space
 from lkspace.design.space import canonical_form, make_space
@@ -29,7 +30,7 @@ def walked(space, **kw):
 
 def test_tetrahedron_pm2_has_12_chainmails():
     """The paper: labels {+2, -2} on the tetrahedron give 12 distinct chainmails up to rotation."""
-    space = make_space("tetrahedron", "-2,2", "rotations")
+    space = make_space(load("tetrahedron"), "-2,2", "rotations")
     df = walked(space)
     assert len(df) == 12 == burnside_total(space) == count_space(space).designs
     assert df.orbit_size.sum() == 64
@@ -58,7 +59,7 @@ CASES = [
 
 @pytest.mark.parametrize("name, labels, mode", CASES)
 def test_walk_matches_brute_force(name, labels, mode):
-    space = make_space(name, labels, mode)
+    space = make_space(load(name), labels, mode)
     reps, sizes = brute_orbits(space)
     df = walked(space)
     got = np.array(df.labels.tolist(), np.int64).reshape(len(df), -1)
@@ -87,7 +88,7 @@ def test_periodic_matches_brute_force(sc, labels):
 
 @pytest.mark.parametrize("name, labels", [("cube", "-1..1"), ("book:3", "-2..2"), ("dihedron:6", "-1..1")])
 def test_rows_agree_with_the_tracer(name, labels, rng):
-    space = make_space(name, labels, "rotations")
+    space = make_space(load(name), labels, "rotations")
     df = walked(space)
     for i in rng.choice(len(df), size=min(60, len(df)), replace=False):
         row = df.iloc[int(i)]
@@ -100,7 +101,7 @@ def test_rows_agree_with_the_tracer(name, labels, rng):
 
 
 def test_cube_minus2_to_2_counts():
-    space = make_space("cube", "-2..2", "rotations")
+    space = make_space(load("cube"), "-2..2", "rotations")
     totals = count_space(space).to_dict()
     assert totals["designs"] == 10_194_250 == burnside_total(space)
     assert totals["assignments"] == totals["assignments_covered"] == 244_140_625
@@ -108,17 +109,17 @@ def test_cube_minus2_to_2_counts():
 
 
 def test_filters_apply_during_the_walk():
-    space = make_space("cube", "-1..1", "rotations")
+    space = make_space(load("cube"), "-1..1", "rotations")
     full = walked(space)
     one = walked(space, components=1)
     assert len(one) == int((full.components == 1).sum()) == count_space(space, 1).designs
-    nz = walked(make_space("cube", "-1..1", "rotations", no_zero=True))
+    nz = walked(make_space(load("cube"), "-1..1", "rotations", no_zero=True))
     assert len(nz) == int((full.n_zero == 0).sum())
     assert len(walked(space, max_designs=1000)) == 1000
 
 
 def test_residue_mode_sums():
-    space = make_space("cube", "-2..2", "rotations")
+    space = make_space(load("cube"), "-2..2", "rotations")
     import pandas as pd
 
     df = pd.concat([b.to_pandas() for b in residue_batches(space)])
@@ -130,7 +131,7 @@ def test_residue_mode_sums():
 
 
 def test_spanning_trees_give_single_components():
-    space = make_space("cube", "-1..1", "rotations")
+    space = make_space(load("cube"), "-1..1", "rotations")
     _, pairs = dual_edges(space)
     assert len(list(all_spanning_trees(6, pairs))) == 384  # spanning trees of the octahedron
     df = next(lkspace.designs("cube", "-1..1", mode="spanning-trees"))
@@ -143,18 +144,18 @@ def test_spanning_trees_give_single_components():
 
 def test_api_yields_dataframes_and_arrow():
     frames = list(lkspace.designs("tetrahedron", "-1..1", symmetry="isometries", batch_rows=50))
-    assert sum(len(f) for f in frames) == burnside_total(make_space("tetrahedron", "-1..1", "isometries"))
+    assert sum(len(f) for f in frames) == burnside_total(make_space(load("tetrahedron"), "-1..1", "isometries"))
     batch = next(lkspace.designs("tetrahedron", [-2, 2], as_arrow=True))
     assert batch.num_rows == 12
 
 
 def test_errors():
     with pytest.raises(LabelError, match="closed under negation"):
-        make_space("cube", "0..2", "isometries")
+        make_space(load("cube"), "0..2", "isometries")
     with pytest.raises(LabelError, match="unknown symmetry"):
-        make_space("cube", "0..2", "mirror")
+        make_space(load("cube"), "0..2", "mirror")
     with pytest.raises(LabelError, match="no labels"):
-        make_space("cube", "0", "rotations", no_zero=True)
+        make_space(load("cube"), "0", "rotations", no_zero=True)
 
 
 @settings(max_examples=40, deadline=None)
@@ -164,7 +165,7 @@ def test_errors():
     st.sampled_from(["rotations", "isometries"]),
 )
 def test_symmetric_relabelings_share_one_canonical_key(labels, g, mode):
-    space = make_space("cube", "-2..2", mode)
+    space = make_space(load("cube"), "-2..2", mode)
     perms, signs = space.action
     g %= len(signs)
     t = np.array(labels)
@@ -176,7 +177,7 @@ def test_symmetric_relabelings_share_one_canonical_key(labels, g, mode):
 
 
 def test_canonical_form_is_the_catalog_row():
-    space = make_space("book:3", "-1..1", "isometries")
+    space = make_space(load("book:3"), "-1..1", "isometries")
     df = walked(space)
     keys = set(df.key)
     rng = np.random.default_rng(3)
@@ -187,7 +188,7 @@ def test_canonical_form_is_the_catalog_row():
 
 
 def test_blocks_are_in_class_order():
-    space = make_space("tetrahedron", "-1..1", "rotations")
+    space = make_space(load("tetrahedron"), "-1..1", "rotations")
     codes = [int(c) for b in walk_blocks(space) for c in b.class_codes]
     assert codes == sorted(codes)
 
@@ -196,7 +197,7 @@ def test_count_by_cycle_index_for_a_space_too_big_to_list():
     """Dodecahedron, labels -2..2: Burnside from the rotation group's cycle types on the 30 edges
     (identity; 24 five-fold: 6 five-cycles; 20 three-fold: 10 three-cycles; 15 half-turns: 2 fixed
     edges and 14 two-cycles)."""
-    space = make_space("dodecahedron", "-2..2", "rotations")
+    space = make_space(load("dodecahedron"), "-2..2", "rotations")
     expected = (5**30 + 24 * 5**6 + 20 * 5**10 + 15 * 5**16) // 60
     totals = count_space(space).to_dict()
     assert totals["designs"] == expected and totals["by_components"] is None

@@ -10,12 +10,11 @@ import numpy as np
 import pytest
 
 import lkspace
+from lkspace import export, realize
 from lkspace.cli import main
 from lkspace.errors import ExportError
 from lkspace.formats.glb import glb_bytes
-from lkspace.formats.registry import export
 from lkspace.formats.tubes import tube
-from lkspace.geometry.realization import realize
 
 from .cli_calls import one_line_error, run
 
@@ -320,9 +319,8 @@ def test_extreme_int64_twists_are_refused(tmp_path, capsys, command):
 
 
 def test_realize_and_export_library_bounds(tmp_path):
+    from lkspace import GeometryParams, RealizeOptions
     from lkspace.errors import ExportError, GeometryError, LabelError, TooLargeError
-    from lkspace.formats.registry import export
-    from lkspace.geometry.realization import GeometryParams, RealizeOptions, realize
 
     with pytest.raises(TooLargeError, match="^max_points: the curves of cube would have about ") as bound:
         realize("cube", 1, options=RealizeOptions(max_points=100))

@@ -11,10 +11,9 @@ import zipfile
 import numpy as np
 import pytest
 
+from lkspace import export, realize
 from lkspace.errors import GeometryError
-from lkspace.formats.registry import export
 from lkspace.geometry.fabrication import printable
-from lkspace.geometry.realization import realize
 
 from .cli_calls import one_line_error, run
 

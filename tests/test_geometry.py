@@ -8,9 +8,9 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 import lkspace
+from lkspace import GeometryParams, RealizeOptions, realize
 from lkspace.errors import GeometryError
 from lkspace.geometry.clearance import check_embedding
-from lkspace.geometry.realization import GeometryParams, RealizeOptions, realize
 from lkspace.model.lattice import Lattice
 from lkspace.model.scaffold import Scaffold
 

@@ -8,11 +8,11 @@ import pytest
 from scipy.spatial import cKDTree
 
 import lkspace
+from lkspace import GeometryParams, RealizeOptions, load, realize
 from lkspace.errors import GeometryError
 from lkspace.geometry.block import clip_curves, join_curves, realize_block
 from lkspace.geometry.clearance import resample
 from lkspace.geometry.helix import RAMP, spacing_weight, twist_profile
-from lkspace.geometry.realization import GeometryParams, RealizeOptions, realize
 from lkspace.symmetry.group import symmetry_group
 
 
@@ -124,7 +124,7 @@ def test_pitch_confines_the_twist_and_is_checked():
     "name, labels, sizes", [("honeycomb:cP", [2, 1, 1], (2, 2, 2)), ("tiling:hexagonal", 1, (3, 2))]
 )
 def test_block_is_cut_to_its_cells(name, labels, sizes):
-    real = realize_block(name, labels, None, None, sizes)
+    real = realize_block(load(name), labels, None, None, sizes)
     block = real.block
     assert block is not None
     half = block.sizes / 2 + block.slack()

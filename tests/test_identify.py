@@ -16,10 +16,11 @@ pytest.importorskip("regina")
 pytest.importorskip("database_knotinfo")
 
 import lkspace  # noqa: E402
+from lkspace import identify  # noqa: E402
 from lkspace.cli import main  # noqa: E402
 from lkspace.errors import LkspaceError  # noqa: E402
 from lkspace.knots.diagram import project  # noqa: E402
-from lkspace.knots.recognition import identify, identify_batch, identify_curves  # noqa: E402
+from lkspace.knots.recognition import identify_batch, identify_curves  # noqa: E402
 
 
 def name_of(mesh, twists):
@@ -188,7 +189,7 @@ def test_any_dihedron_labelling_is_the_torus_link_of_its_sum(labels):
 @settings(max_examples=6, deadline=None)
 @given(st.lists(st.integers(-2, 2), min_size=6, max_size=6), st.integers(0, 10))
 def test_diagram_linking_numbers_match_the_gauss_integral(labels, seed):
-    from lkspace.geometry.realization import realize
+    from lkspace import realize
     from tests.test_geometry import gauss_linking
 
     real = realize(lkspace.load("tetrahedron"), np.array(labels))

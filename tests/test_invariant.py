@@ -11,8 +11,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from lkspace import load, read_catalog
-from lkspace.catalog.symmetric import symmetric_designs
+from lkspace import load, read_catalog, symmetric_designs
 from lkspace.design.invariant import make_invariant_space
 from lkspace.design.invariant_walk import invariant_blocks
 from lkspace.errors import UsageError

@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import json
+import os
+import subprocess
 
 import numpy as np
 import pytest
@@ -145,6 +147,47 @@ def test_unknown_extension_and_name(tmp_path):
         lkspace.load("book")
     with pytest.raises(ScaffoldError, match="expected book:N with an integer"):
         lkspace.load("book:x")
+
+
+def lkspace_in(folder, *args):
+    """Run the installed ``lkspace ARGS --json`` in ``folder``; return ``(exit status, JSON printed)``."""
+    proc = subprocess.run(["lkspace", *args, "--json"], cwd=folder, capture_output=True, text=True, timeout=120)
+    return proc.returncode, json.loads(proc.stdout)
+
+
+def test_a_builtin_name_means_the_builtin_in_every_folder(tmp_path):
+    """A file or folder named like a built-in does not shadow it; ``./NAME`` or an extension reads the file."""
+    (tmp_path / "cube").mkdir()
+    (tmp_path / "tetrahedron").write_text("not a mesh\n")
+    io.write(lkspace.load("tetrahedron"), tmp_path / "cube.obj")
+    code, data = lkspace_in(tmp_path, "info", "cube")
+    assert (code, data["scaffold"], data["n_edges"]) == (0, "cube", 12)
+    code, data = lkspace_in(tmp_path, "trace", "tetrahedron", "--twist", "1")
+    assert (code, data["components"]) == (0, 3)
+    code, data = lkspace_in(tmp_path, "info", "cube.obj")
+    assert (code, data["n_edges"]) == (0, 6)
+    code, data = lkspace_in(tmp_path, "info", "./tetrahedron")  # the file, which is no scaffold file
+    assert code != 0 and "unknown file type" in data["error"]["message"]
+    code, data = lkspace_in(tmp_path, "enumerate", "tetrahedron", "--labels", "-1,1", "--shards", "2", "-o", "book:2")
+    assert code == 0 and os.path.isdir(tmp_path / "book:2")
+    code, data = lkspace_in(tmp_path, "export", "book:2", "--twist", "1", "-o", "a.obj")  # not the catalog folder
+    assert (code, data["scaffold"]) == (0, "book:2")
+    code, data = lkspace_in(tmp_path, "export", "./book:2", "--row", "0", "-o", "b.obj")
+    assert (code, data["scaffold"], data["row"]) == (0, "tetrahedron", 0)
+
+
+def test_load_reads_builtin_names_before_files(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "cube").write_text("not a mesh\n")
+    assert lkspace.load("cube").n_edges == 12
+    with pytest.raises(ScaffoldError, match="unknown file type"):
+        lkspace.load("./cube")
+    with pytest.raises(ScaffoldError, match="unknown file type"):
+        lkspace.load(tmp_path / "cube")  # a pathlib.Path is always a file
+    io.write(lkspace.load("tetrahedron"), tmp_path / "mine.obj")
+    os.rename(tmp_path / "mine.obj", tmp_path / "mine")
+    with pytest.raises(ScaffoldError, match="unknown file type"):
+        lkspace.load("mine")  # no built-in name: the file of that name
 
 
 def test_write_is_atomic_on_failure(tmp_path):

@@ -10,8 +10,7 @@ import numpy as np
 import pytest
 
 import lkspace
-from lkspace.formats.registry import export
-from lkspace.geometry.realization import realize
+from lkspace import export, realize
 
 from .cli_calls import one_line_error, run
 

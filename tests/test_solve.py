@@ -9,10 +9,10 @@ import pytest
 
 import lkspace
 from lkspace import Lattice, Scaffold, trace
+from lkspace import solve as solve_design
 from lkspace.cli import main
 from lkspace.errors import LabelError, SolveVerificationError
 from lkspace.inverse.cpsat_model import build_model
-from lkspace.inverse.pipeline import solve as solve_design
 from lkspace.inverse.pipeline import verify
 from lkspace.inverse.query import Query
 from lkspace.model.specs import parse_label_set

@@ -14,8 +14,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from lkspace import Scaffold, load
-from lkspace.design.counting import count_designs
+from lkspace import Scaffold, count_designs, load
 from lkspace.design.space import make_space
 from lkspace.errors import UsageError
 from lkspace.inverse.pipeline import symmetry_actions
@@ -218,11 +217,11 @@ def without_tolerance(file):
 
 
 def test_catalogs_from_before_the_tolerance_still_read_and_resume(tmp_path, capsys):
+    from lkspace import write_catalog
     from lkspace.catalog.reader import read_catalog, read_metadata
-    from lkspace.catalog.shards import write_catalog
     from lkspace.catalog.transaction import file_sha256, load_manifest, save_manifest
 
-    space = make_space("tetrahedron", "-1..1")
+    space = make_space(load("tetrahedron"), "-1..1")
     one = tmp_path / "t.parquet"
     first = write_catalog(space, one)
     without_tolerance(one)

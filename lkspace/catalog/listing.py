@@ -7,7 +7,7 @@ from typing import TYPE_CHECKING
 
 from ..design.space import WALK_MODES, make_space
 from ..errors import LabelError
-from ..io.sources import ScaffoldSource
+from ..model.scaffold import Scaffold
 from ..model.specs import LabelSetSpec
 from .batches import design_batches, residue_batches, space_batches
 
@@ -17,7 +17,7 @@ if TYPE_CHECKING:
 
 
 def designs(
-    scaffold: ScaffoldSource,
+    scaffold: Scaffold,
     label_set: LabelSetSpec = "-2..2",
     symmetry: str = "rotations",
     *,
@@ -35,7 +35,8 @@ def designs(
 
     Parameters
     ----------
-    scaffold : Scaffold, path or built-in name
+    scaffold : Scaffold
+        ``lkspace.designs`` also takes a path or a built-in name (:func:`lkspace.load`).
     label_set : str or sequence of int
         The label set ``SET`` (``"-2..2"``, ``"-2,2"``, or a list).
     symmetry : {"rotations", "isometries", "none"}

@@ -27,7 +27,7 @@ from ..engine import check_scheduler, resolve_scheduler
 from ..errors import CatalogError
 from ..io.atomic import remove_path, replace_path
 from ..io.scaffold_json import scaffold_to_dict
-from ..io.sources import ScaffoldSource
+from ..model.scaffold import Scaffold
 from ..model.specs import LabelSetSpec
 from ..progress import task
 from ..symmetry.tolerance import resolve_tolerance
@@ -149,7 +149,7 @@ def catalog_metadata(
 
 
 def write_catalog(
-    space: DesignSpace | ScaffoldSource,
+    space: DesignSpace | Scaffold,
     path: str | os.PathLike[str],
     label_set: LabelSetSpec = "-2..2",
     symmetry: str = "rotations",
@@ -170,8 +170,9 @@ def write_catalog(
 ) -> CatalogWritten:
     """Walk a design space and write its catalog; return its totals (:class:`CatalogWritten`).
 
-    ``space`` is a :class:`~lkspace.design.space.DesignSpace`, or a scaffold (a path or a
-    built-in name) whose space is given by ``label_set``, ``symmetry`` and ``no_zero``.
+    ``space`` is a :class:`~lkspace.design.space.DesignSpace`, or a scaffold whose space is
+    given by ``label_set``, ``symmetry`` and ``no_zero`` (``lkspace.write_catalog`` also takes
+    a path or a built-in name, :func:`lkspace.load`).
 
     The catalog is a transaction: it is built beside ``path`` and put there only when
     complete (an old catalog at ``path`` stays readable until then), and a lock file stops
@@ -196,7 +197,6 @@ def write_catalog(
     CatalogInterrupted
         Ctrl-C or SIGTERM: workers stopped, temporaries removed, finished parts kept.
     """
-    source = os.fspath(space) if isinstance(space, str | os.PathLike) else None
     if not isinstance(space, DesignSpace):
         space = make_space(space, label_set, symmetry, no_zero)
     check_jobs(jobs)
@@ -206,7 +206,7 @@ def write_catalog(
         context()  # starts the fork server now: it is ready when the pool is made (a wait Ctrl-C cannot cut)
     remote = remote_url(path)
     if remote is None:
-        target = catalog_target(path, (source,))
+        target = catalog_target(path)
     elif identify:
         raise CatalogError("--identify rewrites the files of a local catalog; write to a local path", usage=True)
     else:

@@ -20,7 +20,7 @@ from ..design.invariant import InvariantSpace, make_invariant_space
 from ..design.invariant_walk import MAX_FIXED, invariant_blocks
 from ..design.space import DesignSpace
 from ..errors import CatalogError
-from ..io.sources import ScaffoldSource, load
+from ..model.scaffold import Scaffold
 from ..model.specs import LabelSetSpec, parse_label_set
 from .batches import gather_blocks
 from .lock import catalog_lock
@@ -35,15 +35,15 @@ if TYPE_CHECKING:
 
 
 def invariant_space(
-    scaffold: ScaffoldSource,
+    scaffold: Scaffold,
     subgroup: str,
     label_set: LabelSetSpec = "-2..2",
     symmetry: str = "rotations",
     no_zero: bool = False,
 ) -> InvariantSpace:
-    """Return the :class:`~lkspace.design.invariant.InvariantSpace` of user-level arguments (name or Scaffold, SET)."""
+    """Return the :class:`~lkspace.design.invariant.InvariantSpace` of user-level arguments (a label SET as text)."""
     labels = parse_label_set(label_set) if isinstance(label_set, str) else np.asarray(label_set, np.int64)
-    return make_invariant_space(load(scaffold), labels, symmetry, subgroup, no_zero)
+    return make_invariant_space(scaffold, labels, symmetry, subgroup, no_zero)
 
 
 def invariant_batches(
@@ -54,7 +54,7 @@ def invariant_batches(
 
 
 def symmetric_designs(
-    scaffold: ScaffoldSource,
+    scaffold: Scaffold,
     subgroup: str,
     label_set: LabelSetSpec = "-2..2",
     symmetry: str = "rotations",
@@ -67,7 +67,8 @@ def symmetric_designs(
 
     Parameters
     ----------
-    scaffold : Scaffold, path or built-in name
+    scaffold : Scaffold
+        ``lkspace.symmetric_designs`` also takes a path or a built-in name (:func:`lkspace.load`).
     subgroup : str
         A subgroup name (``"C3"``, ``"C4:face=0"``, ``"stabilizer:vertex=2"``, ``"rotations"``, ...;
         :mod:`lkspace.symmetry.subgroups`).

@@ -13,9 +13,10 @@ import click
 import numpy as np
 
 from ..errors import LabelError, LkspaceError, UsageError
-from ..io.sources import load
+from ..io.sources import load, reads_builtin
+from ..io.twists import parse_twist
 from ..model.scaffold import Scaffold
-from ..model.specs import parse_label_set, parse_labels, parse_nulls
+from ..model.specs import parse_label_set, parse_nulls
 from ..scaffolds import DEFAULT
 from ..words import rounded
 
@@ -58,8 +59,9 @@ def load_mesh(ctx: Context, mesh: str | None) -> Scaffold:
         mesh = DEFAULT
     weld = click.get_current_context(silent=True)
     tol = None if weld is None else weld.meta.get(WELD_KEY)
-    with usage_errors(not names_file(mesh)):
-        if tol is not None and not names_file(mesh):
+    reads_file = not reads_builtin(mesh) and names_file(mesh)
+    with usage_errors(not reads_file):
+        if tol is not None and not reads_file:
             raise UsageError(f"--weld: {mesh!r} is a built-in scaffold, not a file; welding applies to files")
         scaffold = load(mesh, weld=tol)
     ctx.notes["scaffold"] = scaffold.name
@@ -115,7 +117,7 @@ def labels_of(scaffold: Scaffold, spec: str | None) -> np.ndarray:
             raise LabelError(f"{scaffold.name}: no --twist given and the scaffold carries no twist labels", usage=True)
         return scaffold.labels
     with usage_errors(not names_file(spec)):
-        return parse_labels(scaffold, spec)
+        return parse_twist(scaffold, spec)
 
 
 def nulls_of(scaffold: Scaffold, spec: str | None) -> np.ndarray | None:

@@ -75,6 +75,8 @@ def scaffold_cmd(name: str, output: str | None, as_json: bool) -> None:
     \b
     A FILE is converted: 'lkspace scaffold mesh.obj --weld -o mesh.json' welds an OBJ
     with one vertex copy per face and writes the scaffold file.
+    A built-in name always means the built-in (in every command), even where a file
+    or folder of that name exists here: write ./cube or cube.obj to read a file.
     A .json file {"format": "lkspace-voronoi", "lattice": [...], "points": [...]}
     gives a Voronoi scaffold of your own generator points.
     """

@@ -10,6 +10,7 @@ import click
 import numpy as np
 
 from ..errors import CatalogError, TooLargeError, UsageError
+from ..io.sources import reads_builtin
 from ..model.scaffold import Scaffold
 from ..words import plural
 from .common import Context, emit, json_option, labels_of, load_mesh, nulls_of, weld_option
@@ -25,11 +26,13 @@ MAX_BLOCK_COPIES = 1000
 
 
 def is_catalog(path: str | None) -> TypeGuard[str]:
-    """Whether MESH names a Parquet catalog (a ``.parquet`` file or a folder of parts)."""
+    """Whether MESH names a Parquet catalog (a ``.parquet`` file or a folder of parts; a built-in name never)."""
     if path is None:
         return False
     if path.endswith(".parquet"):
         return True
+    if reads_builtin(path):  # a folder named like a built-in is written ./cube (lkspace.io.sources)
+        return False
     return os.path.isdir(path) and any(n.endswith(".parquet") for n in os.listdir(path))
 
 

@@ -7,6 +7,7 @@ import os
 import click
 
 from ..errors import MissingDependencyError
+from ..io.sources import reads_builtin
 from .common import Context, load_mesh
 
 
@@ -47,7 +48,7 @@ def studio_cmd(mesh: str | None, port: int, host: str, no_browser: bool) -> None
         studio.browser = Browser(mesh)  # the catalog's structure checked here, its parts' bytes as they are read
         scaffold = catalog_scaffold(studio.browser.metadata, mesh)
         studio.initial = studio.registry.hold(scaffold, f"catalog {mesh}").key
-    elif mesh is not None and os.path.lexists(mesh):
+    elif mesh is not None and not reads_builtin(mesh) and os.path.lexists(mesh):
         studio.initial = studio.registry.open_file(mesh).key  # the one file the studio reads
     else:
         scaffold = load_mesh(Context(False), mesh)

@@ -16,7 +16,7 @@ from typing import Any
 import numpy as np
 
 from ..engine import is_dask
-from ..io.sources import ScaffoldSource
+from ..model.scaffold import Scaffold
 from ..model.specs import LabelSetSpec
 from .batch import class_components, design_counts
 from .census import census
@@ -136,7 +136,7 @@ def count_space(
 
 
 def count_designs(
-    scaffold: ScaffoldSource,
+    scaffold: Scaffold,
     label_set: LabelSetSpec = "-2..2",
     symmetry: str = "rotations",
     *,
@@ -148,7 +148,8 @@ def count_designs(
 
     Parameters
     ----------
-    scaffold : Scaffold, path or built-in name
+    scaffold : Scaffold
+        ``lkspace.count_designs`` also takes a path or a built-in name (:func:`lkspace.load`).
     label_set : str or sequence of int
         ``"-2..2"``, ``"-2,-1,1,2"`` or integers.
     symmetry : {"rotations", "isometries", "none"}
@@ -161,7 +162,8 @@ def count_designs(
 
     Examples
     --------
-    >>> count_designs("cube", "-1..1")
+    >>> import lkspace
+    >>> lkspace.count_designs("cube", "-1..1")
     DesignCount(22,815 designs of 531,441 assignments; by components {1: 8800, 2: 9837, 3: 3534, 4: 641, 5: 2, 6: 1})
     """
     return count_space(make_space(scaffold, label_set, symmetry, no_zero, tolerance), components)

@@ -17,7 +17,6 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ..errors import LabelError, TooLargeError
-from ..io.sources import ScaffoldSource, load
 from ..model.counts import count_text
 from ..model.scaffold import Scaffold
 from ..model.specs import LabelSetSpec, parse_label_set
@@ -335,7 +334,8 @@ def canonical_form(space: DesignSpace, labels: ArrayLike) -> tuple[np.ndarray, i
 
     Examples
     --------
-    >>> sp = make_space("tetrahedron", "-2,2")
+    >>> from lkspace import load
+    >>> sp = make_space(load("tetrahedron"), "-2,2")
     >>> canonical_form(sp, [2, 2, 2, 2, 2, -2])
     (array([-2,  2,  2,  2,  2,  2], dtype=int8), 6)
     """
@@ -374,13 +374,13 @@ def check_count_digits(scaffold: Scaffold, n_labels: int) -> None:
 
 
 def make_space(
-    scaffold: ScaffoldSource,
+    scaffold: Scaffold,
     label_set: LabelSetSpec = "-2..2",
     symmetry: str = "rotations",
     no_zero: bool = False,
     tolerance: float | None = None,
 ) -> DesignSpace:
-    """Build a :class:`DesignSpace` from user-level arguments (name or Scaffold, label SET or array, tolerance)."""
-    sc = load(scaffold)
+    """Build a :class:`DesignSpace` from user-level arguments (label SET or array, tolerance)."""
+    sc = scaffold
     lab = parse_label_set(label_set) if isinstance(label_set, str) else np.asarray(label_set, np.int64)
     return DesignSpace(sc, lab, symmetry, no_zero, tolerance)

@@ -37,7 +37,7 @@ from ..geometry.limits import MAX_POINTS, MAX_RELATIVE
 from ..geometry.params import GeometryParams, RealizeOptions
 from ..geometry.realization import Realization, realize
 from ..io.paths import only_extension, output_file
-from ..io.sources import ScaffoldSource
+from ..model.scaffold import Scaffold
 from ..progress import task
 
 if TYPE_CHECKING:
@@ -133,7 +133,7 @@ def check_picture_rings(real: Realization, radius: float) -> None:
 
 
 def export(
-    design: Realization | ScaffoldSource,
+    design: Realization | Scaffold,
     path: str | os.PathLike[str],
     labels: ArrayLike | None = None,
     nulls: ArrayLike | None = None,
@@ -155,9 +155,10 @@ def export(
 
     Parameters
     ----------
-    design : Realization, Scaffold, path or built-in name
+    design : Realization or Scaffold
         Realized strands, or a scaffold realized here with ``labels``, ``nulls`` and
-        ``params`` (see :func:`lkspace.realize`).
+        ``params`` (see :func:`lkspace.realize`); ``lkspace.export`` also takes a path or
+        a built-in name (:func:`lkspace.load`).
     path : str or os.PathLike
         ``.obj``, ``.ply``, ``.glb``, ``.stl``, ``.3mf``, ``.png`` or ``.svg``.
     tubes : bool
@@ -191,9 +192,10 @@ def export(
     Examples
     --------
     >>> import tempfile, os
-    >>> export("tetrahedron", os.path.join(tempfile.mkdtemp(), "t.obj"), 1)
+    >>> import lkspace
+    >>> export(lkspace.load("tetrahedron"), os.path.join(tempfile.mkdtemp(), "t.obj"), 1)
     'obj'
-    >>> export("tetrahedron", os.path.join(tempfile.mkdtemp(), "t.stl"), 1, thickness=0.1, clearance=0.05)
+    >>> lkspace.export("tetrahedron", os.path.join(tempfile.mkdtemp(), "t.stl"), 1, thickness=0.1, clearance=0.05)
     'stl'
     """
     if radius is not None and not (math.isfinite(radius) and radius > 0):
@@ -201,8 +203,7 @@ def export(
     from ..geometry.fabrication import check_options
 
     check_options(thickness, clearance, units or "mm", scale)
-    source = os.fspath(design) if isinstance(design, str | os.PathLike) else None
-    target = output_target(path, (source,))  # checked before any work: extension, folder, device, not the input
+    target = output_target(path)  # checked before any work: extension, folder, device, not the input
     ext = os.path.splitext(os.fspath(path))[1].lower()
     if diagram and ext not in PICTURES:
         raise ExportError(

@@ -21,7 +21,6 @@ from numpy.typing import ArrayLike
 from scipy.spatial import cKDTree
 
 from ..errors import GeometryError
-from ..io.sources import ScaffoldSource, load
 from ..model.scaffold import Scaffold
 from .limits import MAX_POINTS
 from .params import GeometryParams, RealizeOptions
@@ -319,7 +318,7 @@ def block_faces(scaffold: Scaffold, block: CellBlock) -> list[np.ndarray]:
 
 
 def realize_block(
-    scaffold: ScaffoldSource,
+    scaffold: Scaffold,
     labels: ArrayLike | None,
     nulls: ArrayLike | None,
     params: GeometryParams | None,
@@ -339,11 +338,11 @@ def realize_block(
 
     Examples
     --------
-    >>> r = realize_block("honeycomb:cP", [2, 1, 1], None, None, (2, 2, 2))
+    >>> from lkspace import load
+    >>> r = realize_block(load("honeycomb:cP"), [2, 1, 1], None, None, (2, 2, 2))
     >>> bool(r.block is not None and all(r.block.inside(c).all() for c in r.curves))
     True
     """
-    scaffold = load(scaffold)
     if not scaffold.periodic:
         raise GeometryError(f"{scaffold.name}: a block needs a periodic scaffold", usage=True)
     sizes = np.asarray(sizes, np.int64)

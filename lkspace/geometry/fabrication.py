@@ -144,7 +144,7 @@ def printable(
 
     Examples
     --------
-    >>> from lkspace.geometry.realization import realize
+    >>> from lkspace import realize
     >>> p = printable(realize("tetrahedron", 1), thickness=0.1, clearance=0.05)
     >>> len(p.curves), p.radius, p.min_gap is None or p.min_gap >= 0.05
     (3, 0.05, True)

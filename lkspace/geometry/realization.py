@@ -54,7 +54,6 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ..errors import GeometryError
-from ..io.sources import ScaffoldSource, load
 from ..model.scaffold import Scaffold
 from ..strands.tracing import Trace, trace
 from .clearance import check_embedding, tightest_bend
@@ -150,7 +149,7 @@ class Realization:
 
 
 def realize(
-    scaffold: ScaffoldSource,
+    scaffold: Scaffold,
     labels: ArrayLike | None = None,
     nulls: ArrayLike | None = None,
     params: GeometryParams | None = None,
@@ -167,7 +166,8 @@ def realize(
 
     Parameters
     ----------
-    scaffold : Scaffold, path or built-in name
+    scaffold : Scaffold
+        ``lkspace.realize`` also takes a path or a built-in name (:func:`lkspace.load`).
     labels, nulls : as for :func:`lkspace.trace` (default: the scaffold's own).
     params : GeometryParams, optional
         The shape: distances, sampling, smoothing.
@@ -191,13 +191,13 @@ def realize(
 
     Examples
     --------
-    >>> r = realize("dihedron:3", 1)
+    >>> import lkspace
+    >>> r = lkspace.realize("dihedron:3", 1)
     >>> r.n_curves, bool(r.closed[0]), r.min_distance > r.min_separation
     (1, True, True)
-    >>> realize("dihedron:3", 1, options=RealizeOptions(embedding="later")).min_distance
+    >>> lkspace.realize("dihedron:3", 1, options=lkspace.RealizeOptions(embedding="later")).min_distance
     inf
     """
-    scaffold = load(scaffold)
     shape = Resolved.of(scaffold, params or GeometryParams())
     how = options or RealizeOptions()
     how.check()

@@ -18,7 +18,6 @@ from typing import Any, TypeAlias
 import numpy as np
 
 from ..errors import LabelError, SolveVerificationError, TooLargeError, UsageError
-from ..io.sources import ScaffoldSource, load
 from ..model.scaffold import Scaffold
 from ..model.specs import LabelSetSpec, parse_label_set
 from ..progress import Step, task
@@ -111,7 +110,7 @@ def _orbit(residues: np.ndarray, actions: list[EdgeAction], degrees: np.ndarray)
 
 
 def solve(
-    scaffold: ScaffoldSource,
+    scaffold: Scaffold,
     components: int,
     *,
     label_set: LabelSetSpec = "-2..2",
@@ -132,7 +131,8 @@ def solve(
 
     Parameters
     ----------
-    scaffold : Scaffold, path or built-in name
+    scaffold : Scaffold
+        ``lkspace.solve`` also takes a path or a built-in name (:func:`lkspace.load`).
     components : int
         The number N of strand components wanted.
     label_set : str or sequence of int
@@ -164,9 +164,10 @@ def solve(
 
     Examples
     --------
-    >>> solve("cube", 1, label_set="-1,1").status
+    >>> import lkspace
+    >>> lkspace.solve("cube", 1, label_set="-1,1").status
     'infeasible'
-    >>> r = solve("tetrahedron", 1, no_zero=True)
+    >>> r = lkspace.solve("tetrahedron", 1, no_zero=True)
     >>> r
     SolveResult(feasible, 1 solution(s) by fast-path in ...s)
     >>> r.solutions[0].components
@@ -174,7 +175,6 @@ def solve(
     """
     t0 = time.perf_counter()
     check_budget(count, time_limit)
-    scaffold = load(scaffold)
     label_set = parse_label_set(label_set) if isinstance(label_set, str) else np.unique(np.asarray(label_set, np.int64))
     orbits = None if invariant is None else invariant_edge_orbits(scaffold, invariant, tolerance)
     query = Query(int(components), label_set, bool(no_zero), dict(fixes or {}), dict(parities or {}), objective, orbits)

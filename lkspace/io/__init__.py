@@ -3,7 +3,8 @@
 :func:`~lkspace.io.sources.load` takes a scaffold, a path or a built-in name;
 :func:`~lkspace.io.files.read` and :func:`~lkspace.io.files.write` pick the format by
 extension; :mod:`~lkspace.io.atomic` writes every file under a temporary name first;
-:func:`weld` merges vertices closer than a tolerance (:mod:`lkspace.io.weld`).
+:func:`weld` merges vertices closer than a tolerance (:mod:`lkspace.io.weld`);
+:func:`~lkspace.io.twists.parse_twist` reads a ``--twist`` that may name a twist file.
 """
 
 from .files import read, write

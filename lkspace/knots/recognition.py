@@ -33,7 +33,6 @@ from numpy.typing import ArrayLike
 from ..errors import LkspaceError, TooLargeError, UsageError
 from ..geometry.params import GeometryParams, RealizeOptions
 from ..geometry.realization import realize
-from ..io.sources import ScaffoldSource, load
 from ..model.scaffold import Scaffold
 from ..progress import Step, task
 from ..strands.tracing import trace
@@ -144,7 +143,7 @@ def check_identifiable(scaffold: Scaffold) -> None:
 
 
 def identify(
-    scaffold: ScaffoldSource,
+    scaffold: Scaffold,
     labels: ArrayLike | None = None,
     nulls: ArrayLike | None = None,
     params: GeometryParams | None = None,
@@ -156,8 +155,9 @@ def identify(
 
     Parameters
     ----------
-    scaffold : Scaffold, path or built-in name
-        A finite scaffold (periodic ones are refused, :func:`check_identifiable`).
+    scaffold : Scaffold
+        A finite scaffold (periodic ones are refused, :func:`check_identifiable`);
+        ``lkspace.identify`` also takes a path or a built-in name (:func:`lkspace.load`).
     labels, nulls : as for :func:`lkspace.trace`
     params : GeometryParams, optional
         Realization parameters.
@@ -176,11 +176,11 @@ def identify(
 
     Examples
     --------
-    >>> identify("dihedron:3", 1)
+    >>> import lkspace
+    >>> lkspace.identify("dihedron:3", 1)
     Identification(3_1: 1 components, 3 crossings)
     """
     t0 = time.monotonic()
-    scaffold = load(scaffold)
     check_identifiable(scaffold)
     with task(f"identifying {scaffold.name}") as step:
         step.note("tracing")
@@ -318,6 +318,7 @@ def identify_batch(
 
     Examples
     --------
+    >>> from lkspace import load
     >>> identify_batch(load("dihedron:3"), [[1, 1, 1], [1, 0, 0]])["knot_name"].tolist()
     ['3_1', '0_1']
     """

@@ -1,14 +1,15 @@
 """Parsing twist labels, label sets and null edge-sides as users type them (``docs/formats.md``).
 
-* twist ``SPEC``: one integer (every edge), a comma list with one integer per edge in
-  edge order, or a path to a file naming edges by vertex pair (see :func:`read_twist_file`).
+* twist ``SPEC``: one integer (every edge) or a comma list with one integer per edge in
+  edge order (:func:`parse_labels`); the content of a twist file naming edges by vertex
+  pair (:func:`twist_labels_from_json`, :func:`twist_labels_from_lines`).  This module
+  reads no files: :func:`lkspace.io.twists.parse_twist` takes a ``SPEC`` that may be a path.
 * label ``SET``: ``-2..2`` (inclusive range) or a comma list ``-2,-1,1,2``.
 * null ``SPEC``: comma list of face-sides ``F.K`` (side ``K`` of face ``F``).
 """
 
 from __future__ import annotations
 
-import os
 import re
 from collections.abc import Sequence
 from typing import TypeAlias
@@ -16,7 +17,6 @@ from typing import TypeAlias
 import numpy as np
 
 from ..errors import LabelError
-from ..io.text import parse_json, read_text
 from .scaffold import Scaffold
 from .validation import MAX_LABEL_SET_SIZE, check_label
 
@@ -101,40 +101,54 @@ def edge_index(scaffold: Scaffold, name: str) -> int:
     return int(matches[0])
 
 
-def read_twist_file(scaffold: Scaffold, path: str) -> np.ndarray:
-    """Twist labels from a file naming edges.
+def is_integer(text: str) -> bool:
+    """Whether ``text`` (stripped) is an integer as a twist ``SPEC`` reads it: ``7``, ``-1``, ``+2``."""
+    return bool(_INT.match(text.strip()))
 
-    Either a JSON object ``{"3-7": 1, ...}`` (or a scaffold file with ``labels``), or text
-    lines ``EDGE T`` where ``EDGE`` is ``a-b``, ``a b``, an edge index or ``*`` (the default
-    for edges not named).  ``#`` starts a comment.  Every edge must get a label.
+
+def twist_labels_from_json(scaffold: Scaffold, data: object, name: str) -> np.ndarray:
+    """Twist labels from the parsed JSON of twist file ``name`` (:mod:`lkspace.io.twists` reads it).
+
+    Either an object ``{"3-7": 1, ...}`` naming edges (``"*"``: the default for edges not
+    named), a list of labels in edge order, or a scaffold file with ``labels``.
     """
-    name = os.path.basename(path)
-    text = read_text(path, "twist", LabelError)
+    if isinstance(data, list):
+        return labels_from_list(scaffold, data, name)
+    if not isinstance(data, dict):
+        raise LabelError(f"{name}: expected a JSON object {{EDGE: LABEL, ...}} or a list of labels")
+    for key in ("labels", "twists"):  # a scaffold file ("twists" is the older spelling)
+        if key in data:
+            if not isinstance(data[key], list):
+                raise LabelError(f"{name}: {key!r} must be a list of labels, got {type(data[key]).__name__}")
+            return labels_from_list(scaffold, data[key], f"{name} {key!r}")
     entries: list[tuple[str, str, str]] = []
-    if text.lstrip().startswith(("{", "[")):
-        data = parse_json(text, name, LabelError)
-        if isinstance(data, list):
-            return labels_from_list(scaffold, data, name)
-        if not isinstance(data, dict):
-            raise LabelError(f"{name}: expected a JSON object {{EDGE: LABEL, ...}} or a list of labels")
-        for key in ("labels", "twists"):  # a scaffold file ("twists" is the older spelling)
-            if key in data:
-                if not isinstance(data[key], list):
-                    raise LabelError(f"{name}: {key!r} must be a list of labels, got {type(data[key]).__name__}")
-                return labels_from_list(scaffold, data[key], f"{name} {key!r}")
-        for k, v in data.items():
-            if isinstance(v, bool) or not isinstance(v, int):
-                raise LabelError(f"{name} key {k!r}: label {str(v)[:40]!r} is not an integer")
-            entries.append((f"{name} key {k!r}", k, str(v)))
-    else:
-        for lineno, raw in enumerate(text.splitlines(), start=1):
-            line = raw.split("#", 1)[0].strip()
-            if not line:
-                continue
-            edge, _, value = line.rpartition(" ")
-            if not edge.strip():
-                raise LabelError(f"{name} line {lineno}: expected 'EDGE LABEL', got {raw.strip()!r}")
-            entries.append((f"{name} line {lineno}", edge.strip().rstrip(":"), value))
+    for k, v in data.items():
+        if isinstance(v, bool) or not isinstance(v, int):
+            raise LabelError(f"{name} key {k!r}: label {str(v)[:40]!r} is not an integer")
+        entries.append((f"{name} key {k!r}", k, str(v)))
+    return _labels_of_entries(scaffold, entries, name)
+
+
+def twist_labels_from_lines(scaffold: Scaffold, text: str, name: str) -> np.ndarray:
+    """Twist labels from the text of twist file ``name``: lines ``EDGE T``.
+
+    ``EDGE`` is ``a-b``, ``a b``, an edge index or ``*`` (the default for edges not named);
+    ``#`` starts a comment.  Every edge must get a label.
+    """
+    entries: list[tuple[str, str, str]] = []
+    for lineno, raw in enumerate(text.splitlines(), start=1):
+        line = raw.split("#", 1)[0].strip()
+        if not line:
+            continue
+        edge, _, value = line.rpartition(" ")
+        if not edge.strip():
+            raise LabelError(f"{name} line {lineno}: expected 'EDGE LABEL', got {raw.strip()!r}")
+        entries.append((f"{name} line {lineno}", edge.strip().rstrip(":"), value))
+    return _labels_of_entries(scaffold, entries, name)
+
+
+def _labels_of_entries(scaffold: Scaffold, entries: list[tuple[str, str, str]], name: str) -> np.ndarray:
+    """Labels of ``(where, EDGE, LABEL)`` entries of a twist file; every edge named or defaulted by ``*``."""
     labels = np.zeros(scaffold.n_edges, np.int64)
     named = np.zeros(scaffold.n_edges, bool)
     default = None
@@ -174,8 +188,8 @@ def labels_from_list(scaffold: Scaffold, values: Sequence[object], where: str = 
     return np.array(out, dtype=np.int64)
 
 
-def parse_labels(scaffold: Scaffold, spec: int | np.integer | str | os.PathLike[str]) -> np.ndarray:
-    """Twist ``SPEC`` (int, comma list, or path) -> ``(n_edges,) int64``.
+def parse_labels(scaffold: Scaffold, spec: int | np.integer | str) -> np.ndarray:
+    """Twist ``SPEC`` (int or comma list; a path: :func:`lkspace.io.twists.parse_twist`) -> ``(n_edges,) int64``.
 
     Examples
     --------
@@ -189,8 +203,6 @@ def parse_labels(scaffold: Scaffold, spec: int | np.integer | str | os.PathLike[
     shown = repr(spec) if len(spec) <= 60 else repr(spec[:60] + "...")
     if _INT.match(spec):
         return np.full(scaffold.n_edges, _to_label(spec, f"--twist {shown}"), np.int64)
-    if os.path.lexists(spec):
-        return read_twist_file(scaffold, spec)
     if "," in spec:
         parts = spec.split(",")
         if len(parts) != scaffold.n_edges:

@@ -28,7 +28,6 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ..io.sources import ScaffoldSource, load
 from ..model.scaffold import Scaffold, validate_labels, validate_nulls
 from ..progress import task
 from .holding_together import HoldingTogether, holding_together
@@ -233,12 +232,13 @@ def thread_direction(scaffold: Scaffold, period: np.ndarray) -> list[float] | No
     return np.round(np.sign(first) * vector, 12).tolist()
 
 
-def trace(scaffold: ScaffoldSource, labels: ArrayLike | None = None, nulls: ArrayLike | None = None) -> Trace:
+def trace(scaffold: Scaffold, labels: ArrayLike | None = None, nulls: ArrayLike | None = None) -> Trace:
     """Trace the strands of a scaffold under twist ``labels`` (and optional ``nulls``).
 
     Parameters
     ----------
-    scaffold : Scaffold, path or built-in name
+    scaffold : Scaffold
+        ``lkspace.trace`` also takes a path or a built-in name (:func:`lkspace.load`).
     labels : int or (n_edges,) int, optional
         Twist label per edge (a scalar labels every edge); default the scaffold's own.
     nulls : (n_corners,) bool or sequence of side indices, optional
@@ -246,12 +246,12 @@ def trace(scaffold: ScaffoldSource, labels: ArrayLike | None = None, nulls: Arra
 
     Examples
     --------
-    >>> [trace("tetrahedron", t).components for t in (0, 1, 2)]
+    >>> import lkspace
+    >>> [lkspace.trace("tetrahedron", t).components for t in (0, 1, 2)]
     [4, 3, 4]
-    >>> trace("cube", 1)
+    >>> lkspace.trace("cube", 1)
     Trace(cube: 4 components, holds together, lengths [6, 6, 6, 6])
     """
-    scaffold = load(scaffold)
     if labels is None:
         labels = scaffold.labels if scaffold.labels is not None else 0
     labels = validate_labels(scaffold, labels)

@@ -31,7 +31,7 @@ from .jobs import Jobs, relaxed
 from .scaffolds import MAX_UPLOAD, Registry, builtin_choices, dumps
 
 if TYPE_CHECKING:
-    from ..geometry.realization import Realization
+    from .. import Realization
 
 STATIC = os.path.join(os.path.dirname(__file__), "static")
 """The page and its vendored three.js build (shipped in the wheel)."""

@@ -22,15 +22,12 @@ from typing import Any
 
 import numpy as np
 
+from .. import Realization, RealizeOptions, Scaffold, export, realize, trace
 from ..errors import GeometryError, LabelError, TooLargeError, UsageError
-from ..formats.registry import FORMATS, export
+from ..formats.registry import FORMATS
 from ..geometry.clearance import check_embedding
-from ..geometry.params import RealizeOptions
-from ..geometry.realization import Realization, realize
 from ..io.scaffold_json import format_scaffold_json
-from ..model.scaffold import Scaffold
 from ..model.validation import validate_labels, validate_nulls
-from ..strands.tracing import trace
 
 MAX_STUDIO_POINTS = 600_000
 """Most curve points a redraw realizes, block copies included (as tubes, about 3 million vertices in the browser)."""

@@ -21,8 +21,8 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from .. import Scaffold
 from ..errors import LkspaceError
-from ..model.scaffold import Scaffold
 from ..progress import Step, install
 from ..workers import context, ignore_interrupts
 
@@ -64,7 +64,7 @@ class QueueReporter:
 
 def identify_payload(scaffold: Scaffold, labels: np.ndarray, nulls: np.ndarray | None) -> dict[str, Any]:
     """Return the knot or link type of a design (:func:`lkspace.identify`) as the page shows it."""
-    from ..knots.recognition import identify
+    from .. import identify
 
     found = identify(scaffold, labels, nulls, time_limit=IDENTIFY_SECONDS)
     return {
@@ -80,7 +80,7 @@ def identify_payload(scaffold: Scaffold, labels: np.ndarray, nulls: np.ndarray |
 
 def solve_payload(scaffold: Scaffold, options: dict[str, Any]) -> dict[str, Any]:
     """Designs answering a query (:func:`lkspace.solve`); ``options`` are its keyword arguments."""
-    from ..inverse.pipeline import solve
+    from .. import solve
 
     result = solve(scaffold, **options)
     out = result.to_dict()
@@ -90,7 +90,7 @@ def solve_payload(scaffold: Scaffold, options: dict[str, Any]) -> dict[str, Any]
 
 def relax_payload(real: Realization) -> dict[str, Any]:
     """Return the curves of ``real`` relaxed (:func:`lkspace.relax`): ``points`` (base64 ``float64``), ``counts``, tube, clearance."""
-    from ..geometry.relax import relax
+    from .. import relax
 
     out = relax(real)
     return {

@@ -17,13 +17,13 @@ from typing import Any
 
 import numpy as np
 
+from .. import Scaffold
 from .. import scaffolds as builtins
 from ..errors import ScaffoldError, TooLargeError, UsageError
 from ..io.obj import parse_obj
 from ..io.scaffold_json import scaffold_from_dict
 from ..io.sources import load
 from ..io.text import parse_json
-from ..model.scaffold import Scaffold
 
 MAX_UPLOAD = 8_000_000
 """Largest uploaded scaffold file, in bytes."""

@@ -65,13 +65,13 @@ class LKSPACE_OT_add_scaffold(bpy.types.Operator):  # noqa: N801
 def add_scaffold(context: Any, name: str, twist: str) -> Any:
     """Add scaffold ``name`` with twists ``twist`` (a finite one as a mesh, a periodic one refused); return it."""
     from lkspace.io.sources import load
-    from lkspace.model.specs import parse_labels
+    from lkspace.io.twists import parse_twist
 
     scaffold = load(name)
     if scaffold.periodic:
         raise LkspaceError(f"{name} is periodic: add a block of it with Add Periodic Block", usage=True)
     if twist.strip():
-        labels = parse_labels(scaffold, twist)
+        labels = parse_twist(scaffold, twist)
     elif scaffold.labels is not None:
         labels = scaffold.labels
     else:
@@ -107,13 +107,13 @@ def make_block(scene: Any, name: str, twist: str, block: str) -> Any:
     """Add a mesh object of the block's faces named ``name [block]`` with the block's strands; return it."""
     from lkspace.geometry.block import block_faces, realize_block
     from lkspace.io.sources import load
-    from lkspace.model.specs import parse_labels
+    from lkspace.io.twists import parse_twist
 
     scaffold = load(name)
     if not scaffold.periodic:
         raise LkspaceError(f"{name} is not periodic: a block is made of a tiling or honeycomb's cells", usage=True)
     sizes = parse_sizes(block, scaffold.dim)
-    real = realize_block(scaffold, parse_labels(scaffold, twist), None, None, sizes)
+    real = realize_block(scaffold, parse_twist(scaffold, twist), None, None, sizes)
     assert real.block is not None
     polygons = block_faces(scaffold, real.block)
     points = np.vstack(polygons) if polygons else np.zeros((0, 3))
