@@ -10,6 +10,7 @@ import pandas as pd
 import pyarrow.parquet as pq
 import pytest
 
+from lkspace.catalog.options import Execution
 from lkspace.catalog.plan import split_classes
 from lkspace.catalog.reader import read_catalog, read_metadata
 from lkspace.catalog.schema import FORMAT_VERSION
@@ -47,7 +48,7 @@ def test_sharded_catalog_and_resume(tmp_path):
     single = tmp_path / "one.parquet"
     write_catalog(space, single)
     folder = tmp_path / "many"
-    totals = write_catalog(space, folder, shards=3)
+    totals = write_catalog(space, folder, execution=Execution(shards=3))
     assert totals.shards == 3 and totals.designs == 22815
     a = pd.read_parquet(single).sort_values("key").reset_index(drop=True)
     b = pd.read_parquet(folder).sort_values("key").reset_index(drop=True)
@@ -55,17 +56,17 @@ def test_sharded_catalog_and_resume(tmp_path):
     parts = sorted(p for p in os.listdir(folder) if p.startswith("part-"))
     assert len(parts) == 3
     os.remove(folder / parts[1])  # a damaged finished catalog: --resume keeps the two good parts
-    again = write_catalog(space, folder, shards=3, resume=True)
+    again = write_catalog(space, folder, execution=Execution(shards=3, resume=True))
     assert again.shards_resumed == 2 and again.designs == 22815
     assert len(read_catalog(folder)) == 22815
-    other = write_catalog(make_space("cube", "-1..1", "isometries"), folder, shards=3, resume=True)
+    other = write_catalog(make_space("cube", "-1..1", "isometries"), folder, execution=Execution(shards=3, resume=True))
     assert other.shards_resumed == 0 and read_metadata(folder)["symmetry"] == "isometries"
     assert read_metadata(folder)["shard"]["count"] == 3
 
 
 def test_parallel_jobs(tmp_path):
     space = make_space("cube", "-1..1", "isometries")
-    totals = write_catalog(space, tmp_path / "p", jobs=2, shards=4)
+    totals = write_catalog(space, tmp_path / "p", execution=Execution(jobs=2, shards=4))
     df = pd.read_parquet(tmp_path / "p")
     assert len(df) == totals.designs and df.orbit_size.sum() == 3**12
     assert df.key.is_unique
@@ -85,7 +86,7 @@ def test_not_a_catalog(tmp_path):
     (tmp_path / "junk").mkdir()
     (tmp_path / "junk" / "f.txt").write_text("x")
     with pytest.raises(ExportError, match="holds no lkspace catalog"):
-        write_catalog(make_space("tetrahedron", "-1..1"), tmp_path / "junk", shards=2)
+        write_catalog(make_space("tetrahedron", "-1..1"), tmp_path / "junk", execution=Execution(shards=2))
     assert os.listdir(tmp_path / "junk") == ["f.txt"]
 
 
@@ -182,12 +183,12 @@ def test_interrupted_run_leaves_no_partial_part_and_resumes(tmp_path, monkeypatc
 
     monkeypatch.setattr(jobs, "space_batches", flaky)
     with pytest.raises(CatalogInterrupted, match="1 of 3 parts are finished"):
-        write_catalog(space, folder, shards=3)
+        write_catalog(space, folder, execution=Execution(shards=3))
     assert not folder.exists()  # nothing at the final name
     build = tmp_path / ".run.lkspace-build"
     assert sorted(p.split("-")[0] for p in os.listdir(build)) == ["_lkspace.json", "part"]  # no temporary part
     monkeypatch.setattr(jobs, "space_batches", real)
-    totals = write_catalog(space, folder, shards=3, resume=True)
+    totals = write_catalog(space, folder, execution=Execution(shards=3, resume=True))
     assert totals.shards_resumed == 1 and totals.designs == 22815
     assert pd.read_parquet(folder).orbit_size.sum() == 3**12
     assert sorted(os.listdir(tmp_path)) == ["run"]

@@ -13,7 +13,6 @@ import pytest
 
 import lkspace
 import lkspace.catalog.jobs as jobs
-import lkspace.catalog.shards as shards
 from lkspace.cli import main
 
 from .cli_calls import run
@@ -37,9 +36,8 @@ def interrupt_part(monkeypatch, n):
             return broken()
         return real(*args, **kwargs)
 
-    for module in (jobs, shards):
-        monkeypatch.setattr(module, "space_batches", flaky)
-    return lambda: [monkeypatch.setattr(module, "space_batches", real) for module in (jobs, shards)]
+    monkeypatch.setattr(jobs, "space_batches", flaky)  # every part's batches, in this process or a file of one
+    return lambda: monkeypatch.setattr(jobs, "space_batches", real)
 
 
 def rows(path):

@@ -29,6 +29,7 @@ from typing import Any
 from ..errors import ExportError
 from ..io.atomic import remove_path, write_text
 from ..io.paths import not_an_input, only_extension, output_folder
+from .records import Manifest, PartSummary
 
 MANIFEST = "_lkspace.json"
 """The manifest of a sharded catalog (pandas and pyarrow skip names starting with ``_``)."""
@@ -185,19 +186,19 @@ def save_manifest(folder: str, manifest: dict[str, Any]) -> None:
     write_text(os.path.join(folder, MANIFEST), json.dumps(manifest, indent=1))
 
 
-def verified_parts(folder: str, manifest: dict[str, Any]) -> dict[str, dict[str, Any]]:
+def verified_parts(folder: str, manifest: Manifest) -> dict[str, PartSummary]:
     """Return the finished parts recorded in ``manifest`` whose file in ``folder`` still has its SHA-256."""
     good = {}
-    for index, entry in (manifest.get("parts") or {}).items():
-        file = os.path.join(folder, str(entry.get("file", "")))
-        if os.path.isfile(file) and file_sha256(file) == entry.get("sha256"):
+    for index, entry in manifest.parts.items():
+        file = os.path.join(folder, str(entry.file))
+        if os.path.isfile(file) and file_sha256(file) == entry.sha256:
             good[index] = entry
     return good
 
 
-def prune_build(folder: str, parts: dict[str, dict[str, Any]]) -> None:
+def prune_build(folder: str, parts: dict[str, PartSummary]) -> None:
     """Remove from the build ``folder`` every file that is not the manifest or a part in ``parts``."""
-    keep = {MANIFEST} | {str(entry["file"]) for entry in parts.values()}
+    keep = {MANIFEST} | {str(entry.file) for entry in parts.values()}
     for entry in os.listdir(folder):
         if entry not in keep:
             remove_path(os.path.join(folder, entry))
@@ -219,22 +220,22 @@ def new_run() -> str:
     return secrets.token_hex(4)
 
 
-def seed_build(target: Destination, build: str, signature: dict[str, Any]) -> tuple[str, dict[str, dict[str, Any]]]:
+def seed_build(target: Destination, build: str, signature: dict[str, Any]) -> tuple[str, dict[str, PartSummary]]:
     """Start a build from the finished catalog at the target, if it is of the same run settings.
 
     Returns ``(run id, parts)``: the build takes over the old catalog's run id (its parts'
     footers name it) and its parts whose checksums verify, linked (or copied) into
     ``build``; a new run id and no parts when there is no such catalog.
     """
-    old = load_manifest(target.path) if os.path.isdir(target.path) else None
-    if old is None or not same_settings(old, signature) or not isinstance(old.get("run"), str):
+    old = Manifest.from_json(load_manifest(target.path)) if os.path.isdir(target.path) else None
+    if old is None or not same_settings(old.signature, signature):
         return new_run(), {}
     import shutil
 
     seeded = {}
     for index, entry in verified_parts(target.path, old).items():
-        name = str(entry["file"])
-        if name != part_name(int(index), old["run"]):
+        name = str(entry.file)
+        if not index.isdigit() or name != part_name(int(index), old.run):
             continue
         src, dst = os.path.join(target.path, name), os.path.join(build, name)
         try:
@@ -242,4 +243,4 @@ def seed_build(target: Destination, build: str, signature: dict[str, Any]) -> tu
         except OSError:
             shutil.copy2(src, dst)
         seeded[index] = entry
-    return old["run"], seeded
+    return old.run, seeded
