@@ -39,6 +39,7 @@ from .model.scaffold import Scaffold
 
 if TYPE_CHECKING:
     from .catalog.listing import designs
+    from .catalog.options import Execution, Selection
     from .catalog.reader import Catalog, read_catalog
     from .catalog.shards import CatalogWritten, write_catalog
     from .catalog.symmetric import symmetric_designs
@@ -67,6 +68,8 @@ _LAZY = {
     "DesignCount": "design.counting",
     "write_catalog": "catalog.shards",
     "CatalogWritten": "catalog.shards",
+    "Selection": "catalog.options",
+    "Execution": "catalog.options",
     "read_catalog": "catalog.reader",
     "Catalog": "catalog.reader",
     "verify_catalog": "catalog.verify",
@@ -94,6 +97,8 @@ __all__ = [
     "DesignCount",
     "write_catalog",
     "CatalogWritten",
+    "Selection",
+    "Execution",
     "read_catalog",
     "Catalog",
     "verify_catalog",

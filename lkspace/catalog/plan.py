@@ -104,8 +104,9 @@ class CatalogTooLarge(TooLargeError):
     """
 
     def __init__(self, estimate: str, allowable: bool) -> None:
-        remedy = "pass allow_large=True to go ahead (or " if allowable else ""
-        remedy += "count the designs, filter them or use a smaller label set" + (")" if allowable else "")
+        remedy = "count the designs, filter them or use a smaller label set"
+        if allowable:
+            remedy = f"pass allow_large=True to go ahead (or {remedy})"
         super().__init__(f"{estimate}; {remedy}", parameter="allow_large" if allowable else None)
         self.estimate = estimate
         self.allowable = allowable

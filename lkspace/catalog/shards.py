@@ -251,7 +251,7 @@ def write_catalog(
         except KeyboardInterrupt as exc:
             with ignored_signals():
                 remove_temporaries(target, keep_build=plan.parts > 1)
-            raise CatalogInterrupted(run.interrupted(), 128 + getattr(exc, "signum", 2)) from None
+            raise run.interrupted(128 + getattr(exc, "signum", 2)) from None
     totals = _totals(space, meta, summaries, os.fspath(path), plan.parts, kept)
     return replace(totals, identified=run.identified) if identify else totals
 
@@ -356,14 +356,13 @@ class _Run:
 
         self.identified = identify_catalog(path, self.space.scaffold, processes=self.jobs, scheduler=self.scheduler)
 
-    def interrupted(self) -> str:
-        """Return the line that says what an interrupt left and how to go on."""
+    def interrupted(self, exit_code: int) -> CatalogInterrupted:
+        """Return the interrupt that says what the run left (and whether it can be resumed)."""
         if self.plan.parts == 1:
-            return f"interrupted; nothing was written to {self.target.shown} (an old catalog there is unchanged)"
-        return (
-            f"interrupted; {len(self.parts)} of {self.plan.parts} parts are finished in {self.target.build}: "
-            "run the same command with --resume to finish"
-        )
+            left = f"interrupted; nothing was written to {self.target.shown} (an old catalog there is unchanged)"
+            return CatalogInterrupted(left, exit_code)
+        left = f"interrupted; {len(self.parts)} of {self.plan.parts} parts are finished in {self.target.build}"
+        return CatalogInterrupted(left, exit_code, resumable=True)
 
 
 def _matching(part: str, meta: dict[str, Any]) -> tuple[dict[str, Any], PartSummary] | None:

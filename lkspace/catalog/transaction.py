@@ -39,11 +39,18 @@ EXTENSIONS = (".parquet", "")
 
 
 class CatalogInterrupted(KeyboardInterrupt):
-    """A run stopped by Ctrl-C (SIGINT) or SIGTERM after cleaning up; ``exit_code`` is 128 + the signal."""
+    """A run stopped by Ctrl-C (SIGINT) or SIGTERM after cleaning up; ``exit_code`` is 128 + the signal.
 
-    def __init__(self, message: str, exit_code: int = 130) -> None:
-        super().__init__(message)
+    ``left`` says what the run left (``"interrupted; 4 of 11 parts are finished in ..."``);
+    ``resumable`` whether running it again with ``resume=True`` keeps those parts (the
+    message then says so).
+    """
+
+    def __init__(self, left: str, exit_code: int = 130, resumable: bool = False) -> None:
+        super().__init__(f"{left}: run it again with resume=True to finish" if resumable else left)
+        self.left = left
         self.exit_code = exit_code
+        self.resumable = resumable
 
 
 @dataclass(frozen=True)

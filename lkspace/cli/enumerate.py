@@ -252,11 +252,17 @@ def enumerate_cmd(
                 identify=identify,
                 allow_large=yes,
             )
-        except CatalogTooLarge as exc:  # the way ahead, in flags
-            ahead = "pass --yes to go ahead (or use --count-only, " if exc.allowable else "use --count-only, "
-            raise TooLargeError(
-                f"{exc.estimate}; {ahead}filters or a smaller label set{')' if exc.allowable else ''}"
+        except CatalogInterrupted as exc:
+            if not exc.resumable:
+                raise
+            raise CatalogInterrupted(
+                f"{exc.left}: run the same command with --resume to finish", exc.exit_code
             ) from None
+        except CatalogTooLarge as exc:  # the way ahead, in flags
+            ahead = "use --count-only, filters or a smaller label set"
+            if exc.allowable:
+                ahead = f"pass --yes to go ahead (or {ahead})"
+            raise TooLargeError(f"{exc.estimate}; {ahead}") from None
         payload = written.to_dict()
         payload["written"] = payload.pop("output")
     payload["seconds"] = round(time.perf_counter() - started, 3)
