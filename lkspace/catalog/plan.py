@@ -107,7 +107,7 @@ class CatalogTooLarge(TooLargeError):
         remedy = "count the designs, filter them or use a smaller label set"
         if allowable:
             remedy = f"pass allow_large=True to go ahead (or {remedy})"
-        super().__init__(f"{estimate}; {remedy}", parameter="allow_large" if allowable else None)
+        super().__init__(f"{estimate}; {remedy}")
         self.estimate = estimate
         self.allowable = allowable
 

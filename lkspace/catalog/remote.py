@@ -64,8 +64,11 @@ def _fs(url: str) -> tuple[Any, str]:
     return fs, root
 
 
-def check_remote(url: str) -> None:
-    """Check the catalog URL ``url`` before any work: a known protocol, and nothing there lkspace did not write."""
+def check_remote(url: str, argument: str = "path") -> None:
+    """Check the catalog URL ``url`` before any work: a known protocol, and nothing there lkspace did not write.
+
+    Messages call the URL ``argument`` as the caller does (the command line: ``-o``).
+    """
     fs, root = _fs(url)
     if not fs.exists(root):
         return
@@ -74,7 +77,7 @@ def check_remote(url: str) -> None:
         strange = [n for n in names if n != MANIFEST and not PART_NAME.fullmatch(n)]
         if not names or strange:
             what = f"holds {strange[0]!r}, which is not part of an lkspace catalog" if strange else "is empty"
-            raise ExportError(f"{url}: {what}; lkspace replaces only catalogs it wrote: choose another -o")
+            raise ExportError(f"{url}: {what}; lkspace replaces only catalogs it wrote: choose another {argument}")
         return
     try:
         with fs.open(root, "rb") as fh:
@@ -84,7 +87,7 @@ def check_remote(url: str) -> None:
         meta = None
     if not isinstance(meta, dict) or "format_version" not in meta:
         raise ExportError(
-            f"{url}: is not an lkspace catalog; lkspace replaces only catalogs it wrote: choose another -o"
+            f"{url}: is not an lkspace catalog; lkspace replaces only catalogs it wrote: choose another {argument}"
         )
 
 

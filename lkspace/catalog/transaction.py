@@ -84,8 +84,12 @@ class Destination:
         return self._beside("old")
 
 
-def catalog_target(output: str | os.PathLike[str], inputs: tuple[str | None, ...] = ()) -> Destination:
-    """Check ``-o`` for a catalog before any work: return its :class:`Destination`.
+def catalog_target(
+    output: str | os.PathLike[str], inputs: tuple[str | None, ...] = (), argument: str = "path"
+) -> Destination:
+    """Check the output ``output`` of a catalog before any work: return its :class:`Destination`.
+
+    Messages call the output ``argument`` as the caller does (the command line: ``-o``).
 
     A symlink is followed (its target is replaced, the link kept).  Only a catalog
     lkspace wrote is replaced (:func:`foreign_reason`).  Refused, each with one line: an
@@ -95,7 +99,7 @@ def catalog_target(output: str | os.PathLike[str], inputs: tuple[str | None, ...
     """
     text = os.fspath(output)
     if not text.strip():
-        raise ExportError("-o: the catalog name is empty")
+        raise ExportError(f"{argument}: the catalog name is empty", parameter="path")
     bare = text.rstrip("/" + os.sep) or text
     only_extension(bare, (".parquet",))
     ext = os.path.splitext(os.path.basename(bare))[1].lower()
@@ -112,7 +116,7 @@ def catalog_target(output: str | os.PathLike[str], inputs: tuple[str | None, ...
             raise ExportError(f"{text}: is a device, FIFO or socket, not a file lkspace may replace")
         reason = foreign_reason(path)
         if reason is not None:
-            raise ExportError(f"{text}: {reason}; lkspace replaces only catalogs it wrote: choose another -o")
+            raise ExportError(f"{text}: {reason}; lkspace replaces only catalogs it wrote: choose another {argument}")
     output_folder(os.path.dirname(path), text)
     return Destination(path, text)
 

@@ -291,7 +291,7 @@ def verify_catalog(path: str | os.PathLike[str]) -> CatalogCheck:
     --------
     >>> import lkspace, tempfile, os
     >>> out = os.path.join(tempfile.mkdtemp(), "t.parquet")
-    >>> _ = lkspace.write_catalog("tetrahedron", out, label_set="-2,2", shards=2)
+    >>> _ = lkspace.write_catalog("tetrahedron", out, "-2,2", execution=lkspace.Execution(shards=2))
     >>> lkspace.verify_catalog(out).parts
     2
     """

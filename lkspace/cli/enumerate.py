@@ -195,9 +195,9 @@ def enumerate_cmd(
     check_scheduler(engine)
     if output is not None and not count_only:  # a bad -o fails before any work
         if remote_url(output) is None:
-            catalog_target(output, (mesh,))
+            catalog_target(output, (mesh,), "-o")
         else:
-            check_remote(output)
+            check_remote(output, "-o")
     if sample is not None and mode != "spanning-trees":
         raise UsageError("--sample applies to --mode spanning-trees only")
     url = None if output is None or count_only else remote_url(output)

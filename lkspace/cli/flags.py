@@ -10,7 +10,6 @@ from __future__ import annotations
 from ..errors import LkspaceError
 
 FLAGS = {
-    "allow_large": "--yes",
     "label_set": "--labels",
     "labels": "--twist",
     "nulls": "--null",
