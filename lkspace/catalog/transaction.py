@@ -11,8 +11,8 @@ For a target ``DIR/NAME`` (a ``.parquet`` file or a folder of parts) a run uses,
 
 When the build is complete it replaces the target (:func:`lkspace.io.atomic.replace_path`):
 readers see the old catalog or the new one.  An interrupted run leaves the build folder
-with its finished parts; ``--resume`` checks them against their checksums and redoes the
-rest.  Every other temporary name of the target starts with ``.NAME.lkspace-`` or
+with its finished parts; resuming (``resume=True``) checks them against their checksums
+and redoes the rest.  Every other temporary name of the target starts with ``.NAME.lkspace-`` or
 ``..NAME.lkspace-build.`` and is removed by the next run.
 """
 
