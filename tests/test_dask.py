@@ -115,8 +115,8 @@ def test_identify_pass_on_dask(tmp_path, cluster):
     space = make_space("tetrahedron", "-2,2")
     local = write_catalog(space, tmp_path / "a", identify=True, execution=Execution(shards=2))
     on_dask = write_catalog(space, tmp_path / "b", identify=True, execution=Execution(shards=2, scheduler=cluster))
-    assert local.identified == on_dask.identified and on_dask.identified["rows"] == 12
-    assert on_dask.identified["named"] >= 6  # L12a2007, L12n2205, L12n2211 (HTLinkExteriors): decided in a main thread
+    assert local.identified == on_dask.identified and on_dask.identified.rows == 12
+    assert on_dask.identified.named >= 6  # L12a2007, L12n2205, L12n2211 (HTLinkExteriors): decided in a main thread
     cols = ["key", "knot_name", "identify_error"]  # crossings: of a simplified diagram, may differ by process
     pd.testing.assert_frame_equal(rows(tmp_path / "a")[cols], rows(tmp_path / "b")[cols])
 

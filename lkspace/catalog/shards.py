@@ -20,7 +20,7 @@ import contextlib
 import os
 from collections.abc import Callable
 from dataclasses import asdict, dataclass, replace
-from typing import Any, TypeAlias
+from typing import TYPE_CHECKING, Any, TypeAlias
 
 import pyarrow as pa
 import pyarrow.parquet as pq
@@ -60,6 +60,9 @@ from .transaction import (
 )
 from .writer import write_batches
 
+if TYPE_CHECKING:
+    from .identified import Identified
+
 CANONICAL_RULE = (
     "orbit member smallest in (t mod K per edge, then t per edge), lexicographic in edge order; see docs/catalog.md"
 )
@@ -88,8 +91,8 @@ class CatalogWritten:
     symmetry : str
     mode : {"designs", "residues", "spanning-trees"}
     label_set : list of int
-    identified : dict, optional
-        With ``identify=True``: ``{rows, named, names: {name: count}}``.
+    identified : Identified, optional
+        With ``identify=True``: rows identified, rows named, and rows by name.
     """
 
     designs: int
@@ -105,7 +108,7 @@ class CatalogWritten:
     label_set: list[int]
     mode: WalkMode
     format_version: int = FORMAT_VERSION
-    identified: dict[str, Any] | None = None
+    identified: Identified | None = None
 
     def __repr__(self) -> str:
         return f"CatalogWritten({self.designs:,} rows to {self.output} in {self.shards} part(s))"
@@ -274,7 +277,7 @@ class _Run:
         self.selection, self.identify, self.scheduler = selection, identify, scheduler
         self.signature = {**meta, "shards": plan.parts, "plan": plan.fingerprint, "identify": identify}
         self.parts: dict[str, PartSummary] = {}
-        self.identified: dict[str, Any] | None = None
+        self.identified: Identified | None = None
         self.jobs = 1
 
     def single(self, resume: bool, jobs: int, tick: Callable[[int], object]) -> tuple[list[PartSummary], int]:
