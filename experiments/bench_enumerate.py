@@ -53,7 +53,7 @@ def best(fn, repeat: int) -> tuple[float, float, object]:
 
 
 def run_case(case, repeat: int, skip_list: bool) -> dict:
-    from lkspace import load, write_catalog
+    from lkspace import Execution, load, write_catalog
     from lkspace.design.counting import count_space
     from lkspace.design.space import make_space
 
@@ -77,7 +77,9 @@ def run_case(case, repeat: int, skip_list: bool) -> dict:
 
             def listing():
                 shutil.rmtree(os.path.join(tmp, "c"), ignore_errors=True)
-                return write_catalog(make_space(load(scaffold), labels, symmetry), os.path.join(tmp, "c"), jobs=jobs)
+                return write_catalog(
+                    make_space(load(scaffold), labels, symmetry), os.path.join(tmp, "c"), execution=Execution(jobs=jobs)
+                )
 
             t_list, c_list, written = best(listing, repeat)
         finally:

@@ -40,6 +40,7 @@ from .model.scaffold import Scaffold
 if TYPE_CHECKING:
     from . import api
     from .catalog import listing, shards, symmetric
+    from .catalog.options import Execution, Selection
     from .catalog.reader import Catalog, read_catalog
     from .catalog.shards import CatalogWritten
     from .catalog.verify import CatalogCheck, verify_catalog
@@ -84,6 +85,8 @@ _LAZY = {
     "DesignCount": "design.counting",
     "write_catalog": "catalog.shards",
     "CatalogWritten": "catalog.shards",
+    "Selection": "catalog.options",
+    "Execution": "catalog.options",
     "read_catalog": "catalog.reader",
     "Catalog": "catalog.reader",
     "verify_catalog": "catalog.verify",
@@ -112,6 +115,8 @@ __all__ = [
     "DesignCount",
     "write_catalog",
     "CatalogWritten",
+    "Selection",
+    "Execution",
     "read_catalog",
     "Catalog",
     "verify_catalog",

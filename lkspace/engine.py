@@ -30,7 +30,7 @@ import sys
 from collections.abc import Callable, Iterator, Sequence
 from typing import Any
 
-from .errors import UsageError, require
+from .errors import MissingDependencyError, UsageError, require
 from .workers import context, ignore_interrupts
 
 SCHEDULERS = ("local", "dask")
@@ -61,7 +61,9 @@ def resolve_scheduler(spec: str | None) -> str:
     text = (spec if spec is not None else os.environ.get(ENV_ADDRESS, "") or "local").strip()
     if text in SCHEDULERS or text.startswith(("tcp://", "tls://", "ucx://", "inproc://")):
         return text
-    raise UsageError(f"--scheduler {text!r}: use local, dask or a scheduler address like tcp://HOST:8786")
+    raise UsageError(
+        f"scheduler {text!r}: use local, dask or a scheduler address like tcp://HOST:8786", parameter="scheduler"
+    )
 
 
 def is_dask(scheduler: str) -> bool:
@@ -78,7 +80,7 @@ def check_scheduler(scheduler: str) -> None:
     """
     if not is_dask(scheduler):
         return
-    distributed = import_distributed(f"--scheduler {scheduler}")
+    distributed = import_distributed(f"scheduler {scheduler}", "scheduler")
     if scheduler != "dask":
         with _connect(distributed, scheduler):
             pass
@@ -96,13 +98,18 @@ def _connect(distributed: Any, address: str) -> Iterator[Any]:
             _knock(address[len("tcp://") :])
         client = distributed.Client(address, timeout=f"{CONNECT_TIMEOUT}s")
     except (OSError, TimeoutError) as exc:
-        raise UsageError(f"--scheduler {address}: no Dask scheduler answers there ({exc})") from None
+        raise UsageError(
+            f"scheduler {address}: no Dask scheduler answers there ({exc})", parameter="scheduler"
+        ) from None
     with client:
         yield client
 
 
-def import_distributed(purpose: str) -> Any:
+def import_distributed(purpose: str, parameter: str | None = None) -> Any:
     """Import ``distributed`` (extra ``lkspace[dask]``) although SnapPy's module is also named ``snappy``.
+
+    Without the extra: :class:`~lkspace.errors.MissingDependencyError` for ``purpose``,
+    naming ``parameter`` (the argument that asked for Dask).
 
     ``distributed`` probes ``import snappy`` for python-snappy compression and fails on
     SnapPy (extra ``lkspace[knots]``), which has no ``compress``; so ``snappy`` is hidden
@@ -110,12 +117,15 @@ def import_distributed(purpose: str) -> Any:
     """
     if sys.modules.get("distributed") is not None:
         return sys.modules["distributed"]
-    require("dask", "dask", purpose)
     saved = sys.modules.get("snappy")
     if saved is None or not hasattr(saved, "compress"):
         sys.modules["snappy"] = None  # type: ignore[assignment]  # makes `import snappy` raise ImportError
     try:
+        require("dask", "dask", purpose)
         return require("distributed", "dask", purpose)
+    except MissingDependencyError as exc:
+        exc.parameter = parameter
+        raise
     finally:
         if saved is None:
             sys.modules.pop("snappy", None)
@@ -130,7 +140,7 @@ def dask_client(scheduler: str, jobs: int) -> Iterator[Any]:
     The LocalCluster's worker processes are forked from this process once ``distributed``
     is imported (:func:`import_distributed`; a fresh interpreter would trip on SnapPy).
     """
-    distributed = import_distributed(f"--scheduler {scheduler}")
+    distributed = import_distributed(f"scheduler {scheduler}", "scheduler")
     import dask
 
     settings = {
@@ -208,7 +218,7 @@ def run_tasks(
         finally:
             pool.join()
         return
-    distributed = import_distributed(f"--scheduler {scheduler}")
+    distributed = import_distributed(f"scheduler {scheduler}", "scheduler")
     with dask_client(scheduler, jobs) as client:
         if setup is not None:
             client.register_plugin(_setup_plugin(distributed, setup), name=f"{name}-setup")

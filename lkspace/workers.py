@@ -109,8 +109,10 @@ def _forked_child_defaults() -> None:
 def interrupt_signals() -> Iterator[None]:
     """Within the body, SIGTERM stops the run like Ctrl-C does (main thread only).
 
-    A process forked meanwhile gets the default SIGTERM and ignores SIGINT: the main
-    process stops it (:func:`_forked_child_defaults`).
+    For programs (the command line wraps every command in it); library functions never
+    install it, so a Python caller keeps its own SIGTERM handling.  A process forked
+    meanwhile gets the default SIGTERM and ignores SIGINT: the main process stops it
+    (:func:`_forked_child_defaults`).
     """
     if not in_main_thread():
         yield
@@ -123,6 +125,46 @@ def interrupt_signals() -> Iterator[None]:
         yield
     finally:
         signal.signal(signal.SIGTERM, old)
+
+
+@contextlib.contextmanager
+def ignored_signals() -> Iterator[None]:
+    """Within the body (a cleanup or a rename, milliseconds), SIGINT and SIGTERM are ignored (main thread only).
+
+    The caller's handlers are put back when the body ends.
+    """
+    if not in_main_thread():
+        yield
+        return
+    old = {s: signal.signal(s, signal.SIG_IGN) for s in (signal.SIGINT, signal.SIGTERM)}
+    try:
+        yield
+    finally:
+        for s, handler in old.items():
+            signal.signal(s, handler)
+
+
+@contextlib.contextmanager
+def deferred_signals() -> Iterator[None]:
+    """Within the body, SIGINT and SIGTERM wait; one that came is raised when the body ends (main thread only).
+
+    The caller's handlers are put back when the body ends; the signal is then raised as
+    ``KeyboardInterrupt`` (SIGINT) or :class:`Terminated` (SIGTERM).  The signal wins over
+    an error of the body (which it may have caused: a worker or the fork server stopped
+    by the same signal to the process group breaks the pool).
+    """
+    if not in_main_thread():
+        yield
+        return
+    caught: list[int] = []
+    old = {s: signal.signal(s, lambda signum, frame: caught.append(signum)) for s in (signal.SIGINT, signal.SIGTERM)}
+    try:
+        yield
+    finally:
+        for s, handler in old.items():
+            signal.signal(s, handler)
+        if caught:
+            raise Terminated() if caught[0] == signal.SIGTERM else KeyboardInterrupt()
 
 
 INTERRUPTED = (128 + signal.SIGINT, 128 + signal.SIGTERM)

@@ -4,18 +4,22 @@ from __future__ import annotations
 
 import json
 import os
+import signal
 
 import numpy as np
 import pandas as pd
 import pyarrow.parquet as pq
 import pytest
 
-from lkspace import load, write_catalog
-from lkspace.catalog.plan import split_classes
+from lkspace import Execution, Selection, load, write_catalog
+from lkspace.catalog import plan
+from lkspace.catalog.plan import CatalogTooLarge, split_classes
 from lkspace.catalog.reader import read_catalog, read_metadata
+from lkspace.catalog.records import Manifest
 from lkspace.catalog.schema import FORMAT_VERSION
+from lkspace.catalog.transaction import MANIFEST
 from lkspace.design.space import make_space
-from lkspace.errors import CatalogError, ExportError
+from lkspace.errors import CatalogError, ExportError, UsageError
 
 from .cli_calls import run
 
@@ -47,7 +51,7 @@ def test_sharded_catalog_and_resume(tmp_path):
     single = tmp_path / "one.parquet"
     write_catalog(space, single)
     folder = tmp_path / "many"
-    totals = write_catalog(space, folder, shards=3)
+    totals = write_catalog(space, folder, execution=Execution(shards=3))
     assert totals.shards == 3 and totals.designs == 22815
     a = pd.read_parquet(single).sort_values("key").reset_index(drop=True)
     b = pd.read_parquet(folder).sort_values("key").reset_index(drop=True)
@@ -55,17 +59,19 @@ def test_sharded_catalog_and_resume(tmp_path):
     parts = sorted(p for p in os.listdir(folder) if p.startswith("part-"))
     assert len(parts) == 3
     os.remove(folder / parts[1])  # a damaged finished catalog: --resume keeps the two good parts
-    again = write_catalog(space, folder, shards=3, resume=True)
+    again = write_catalog(space, folder, execution=Execution(shards=3, resume=True))
     assert again.shards_resumed == 2 and again.designs == 22815
     assert len(read_catalog(folder)) == 22815
-    other = write_catalog(make_space(load("cube"), "-1..1", "isometries"), folder, shards=3, resume=True)
+    other = write_catalog(
+        make_space(load("cube"), "-1..1", "isometries"), folder, execution=Execution(shards=3, resume=True)
+    )
     assert other.shards_resumed == 0 and read_metadata(folder)["symmetry"] == "isometries"
     assert read_metadata(folder)["shard"]["count"] == 3
 
 
 def test_parallel_jobs(tmp_path):
     space = make_space(load("cube"), "-1..1", "isometries")
-    totals = write_catalog(space, tmp_path / "p", jobs=2, shards=4)
+    totals = write_catalog(space, tmp_path / "p", execution=Execution(jobs=2, shards=4))
     df = pd.read_parquet(tmp_path / "p")
     assert len(df) == totals.designs and df.orbit_size.sum() == 3**12
     assert df.key.is_unique
@@ -85,7 +91,7 @@ def test_not_a_catalog(tmp_path):
     (tmp_path / "junk").mkdir()
     (tmp_path / "junk" / "f.txt").write_text("x")
     with pytest.raises(ExportError, match="holds no lkspace catalog"):
-        write_catalog(make_space(load("tetrahedron"), "-1..1"), tmp_path / "junk", shards=2)
+        write_catalog(make_space(load("tetrahedron"), "-1..1"), tmp_path / "junk", execution=Execution(shards=2))
     assert os.listdir(tmp_path / "junk") == ["f.txt"]
 
 
@@ -182,12 +188,64 @@ def test_interrupted_run_leaves_no_partial_part_and_resumes(tmp_path, monkeypatc
 
     monkeypatch.setattr(jobs, "space_batches", flaky)
     with pytest.raises(CatalogInterrupted, match="1 of 3 parts are finished"):
-        write_catalog(space, folder, shards=3)
+        write_catalog(space, folder, execution=Execution(shards=3))
     assert not folder.exists()  # nothing at the final name
     build = tmp_path / ".run.lkspace-build"
     assert sorted(p.split("-")[0] for p in os.listdir(build)) == ["_lkspace.json", "part"]  # no temporary part
     monkeypatch.setattr(jobs, "space_batches", real)
-    totals = write_catalog(space, folder, shards=3, resume=True)
+    totals = write_catalog(space, folder, execution=Execution(shards=3, resume=True))
     assert totals.shards_resumed == 1 and totals.designs == 22815
     assert pd.read_parquet(folder).orbit_size.sum() == 3**12
     assert sorted(os.listdir(tmp_path)) == ["run"]
+
+
+def test_library_errors_name_parameters_and_the_cli_names_flags(tmp_path, monkeypatch, capsys):
+    out = tmp_path / "t.parquet"
+    with pytest.raises(UsageError, match=r"^jobs 0: use 1\.\.256 worker processes$") as refused:
+        write_catalog("tetrahedron", out, "-1..1", execution=Execution(jobs=0))
+    assert refused.value.parameter == "jobs"
+    with pytest.raises(CatalogError, match=r"^shards applies to full design walks \(not with max_designs") as refused:
+        write_catalog("tetrahedron", out, "-1..1", selection=Selection(max_designs=5), execution=Execution(shards=2))
+    assert refused.value.parameter == "shards" and refused.value.exit_code == 2
+    code, _, err = run(
+        capsys, "enumerate", "tetrahedron", "--labels", "-1..1", "-o", out, "--max-designs", 5, "--shards", 2
+    )
+    assert code == 2 and "error: --shards applies to full design walks (not with --max-designs or other modes)" in err
+    monkeypatch.setattr(plan, "ROW_LIMIT", 10)  # the tetrahedron's 87 designs are now a large run
+    with pytest.raises(CatalogTooLarge, match="pass allow_large=True to go ahead") as refused:
+        write_catalog("tetrahedron", out, "-1..1")
+    assert refused.value.allowable and "--" not in str(refused.value) and not out.exists()
+    code, _, err = run(capsys, "enumerate", "tetrahedron", "--labels", "-1..1", "-o", out)
+    assert (
+        code == 2
+        and "past 10 rows" in err
+        and err.rstrip().endswith("pass --yes to go ahead (or use --count-only, filters or a smaller label set)")
+    )
+    assert write_catalog("tetrahedron", out, "-1..1", allow_large=True).designs == 87
+    assert run(capsys, "enumerate", "tetrahedron", "--labels", "-1..1", "-o", out, "--yes")[0] == 0
+
+
+def test_write_catalog_leaves_the_callers_signal_handlers_alone(tmp_path):
+    """The library installs no SIGTERM handler: the program (the command line) decides what SIGTERM does."""
+    seen = []
+
+    def progress(total):
+        return lambda rows: seen.append(signal.getsignal(signal.SIGTERM))
+
+    before = signal.getsignal(signal.SIGTERM)
+    write_catalog("cube", tmp_path / "c", "-1..1", execution=Execution(shards=2), progress=progress)
+    assert seen and all(handler is before for handler in seen)
+    assert signal.getsignal(signal.SIGTERM) is before
+
+
+def test_manifest_records_round_trip_byte_for_byte(tmp_path):
+    """A manifest read into records and written back is the same text: builds of earlier versions resume."""
+    write_catalog("cube", tmp_path / "c", "-1..1", selection=Selection(components=2), execution=Execution(shards=3))
+    text = (tmp_path / "c" / MANIFEST).read_text()
+    manifest = Manifest.from_json(json.loads(text))
+    assert manifest is not None and manifest.complete and sorted(manifest.parts) == ["0", "1", "2"]
+    assert json.dumps(manifest.to_json(), indent=1) == text
+    assert sum(p.rows for p in manifest.parts.values()) == len(pd.read_parquet(tmp_path / "c"))
+    assert (
+        Manifest.from_json({"run": "ab", "parts": {"0": {"rows": "x"}}}).parts == {}
+    )  # an unreadable part is not kept

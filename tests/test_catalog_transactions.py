@@ -13,7 +13,7 @@ import pytest
 
 import lkspace
 import lkspace.catalog.jobs as jobs
-import lkspace.catalog.shards as shards
+from lkspace.catalog.transaction import CatalogInterrupted
 from lkspace.cli import main
 
 from .cli_calls import run
@@ -37,9 +37,8 @@ def interrupt_part(monkeypatch, n):
             return broken()
         return real(*args, **kwargs)
 
-    for module in (jobs, shards):
-        monkeypatch.setattr(module, "space_batches", flaky)
-    return lambda: [monkeypatch.setattr(module, "space_batches", real) for module in (jobs, shards)]
+    monkeypatch.setattr(jobs, "space_batches", flaky)  # every part's batches, in this process or a file of one
+    return lambda: monkeypatch.setattr(jobs, "space_batches", real)
 
 
 def rows(path):
@@ -66,6 +65,20 @@ def test_interrupted_run_leaves_nothing_and_resumes_with_other_jobs(tmp_path, ca
     assert code == 0 and json.loads(got)["shards_resumed"] == 2
     pd.testing.assert_frame_equal(rows(out), reference)
     assert sorted(os.listdir(tmp_path)) == ["c.parquet"]
+
+
+def test_python_caller_is_cleaned_up_after_ctrl_c_and_told_how_to_resume(tmp_path, monkeypatch, reference):
+    out = tmp_path / "c.parquet"
+    restore = interrupt_part(monkeypatch, 2)
+    with pytest.raises(CatalogInterrupted, match=r"^interrupted; 1 of 3 parts are finished in .*resume=True") as stop:
+        lkspace.write_catalog("cube", out, "-1..1", execution=lkspace.Execution(shards=3))
+    assert stop.value.resumable and stop.value.exit_code == 130 and "--" not in str(stop.value)
+    assert sorted(os.listdir(tmp_path)) == [".c.parquet.lkspace-build"]  # the finished part, no temporaries, no lock
+    assert len(os.listdir(tmp_path / ".c.parquet.lkspace-build")) == 2  # the manifest and the one finished part
+    restore()
+    again = lkspace.write_catalog("cube", out, "-1..1", execution=lkspace.Execution(shards=3, resume=True))
+    assert again.shards_resumed == 1
+    pd.testing.assert_frame_equal(rows(out), reference)
 
 
 def test_rerun_keeps_the_old_catalog_until_the_new_is_complete(tmp_path, capsys, monkeypatch, reference):

@@ -10,11 +10,13 @@ import json
 import os
 import shutil
 import subprocess
+import sys
+from pathlib import Path
 
 import pandas as pd
 import pytest
 
-from lkspace import load, write_catalog
+from lkspace import Execution, load, write_catalog
 from lkspace.catalog.transaction import MANIFEST, load_manifest, save_manifest
 from lkspace.design.census import census
 from lkspace.design.counting import count_space
@@ -51,15 +53,16 @@ def test_resolve_scheduler(monkeypatch):
     monkeypatch.setenv("DASK_SCHEDULER_ADDRESS", "tcp://10.1.2.3:8786")
     assert resolve_scheduler(None) == "tcp://10.1.2.3:8786"
     assert resolve_scheduler("dask") == "dask"
-    with pytest.raises(UsageError, match="--scheduler 'yarn'"):
+    with pytest.raises(UsageError, match="^scheduler 'yarn'") as refused:
         resolve_scheduler("yarn")
+    assert refused.value.parameter == "scheduler"
 
 
 def test_same_rows_from_every_scheduler(tmp_path, cluster):
     space = make_space(load("honeycomb:hP"), "-2..2")  # periodic, degrees 3 and 4
     one = write_catalog(space, tmp_path / "one.parquet")
-    pool = write_catalog(space, tmp_path / "pool", shards=4, jobs=2)
-    on_dask = write_catalog(space, tmp_path / "dask", shards=4, jobs=2, scheduler=cluster)
+    pool = write_catalog(space, tmp_path / "pool", execution=Execution(shards=4, jobs=2))
+    on_dask = write_catalog(space, tmp_path / "dask", execution=Execution(shards=4, jobs=2, scheduler=cluster))
     assert one.designs == pool.designs == on_dask.designs == count_space(space).designs
     assert on_dask.by_components == one.by_components
     same(tmp_path / "one.parquet", tmp_path / "pool")
@@ -71,7 +74,7 @@ def test_same_rows_from_every_scheduler(tmp_path, cluster):
 
 def test_resume_on_dask(tmp_path, cluster):
     space = make_space(load("cube"), "-1..1")
-    first = write_catalog(space, tmp_path / "c", shards=3)
+    first = write_catalog(space, tmp_path / "c", execution=Execution(shards=3))
     # turn the finished catalog back into an interrupted build that lacks part 1
     build = tmp_path / ".c.lkspace-build"
     shutil.move(tmp_path / "c", build)
@@ -80,20 +83,22 @@ def test_resume_on_dask(tmp_path, cluster):
     manifest.pop("complete")
     os.remove(build / lost["file"])
     save_manifest(str(build), manifest)
-    again = write_catalog(space, tmp_path / "c", shards=3, resume=True, scheduler=cluster)
+    again = write_catalog(space, tmp_path / "c", execution=Execution(shards=3, resume=True, scheduler=cluster))
     assert again.shards_resumed == 2 and again.designs == first.designs
     assert not build.exists()
     assert len(pd.read_parquet(tmp_path / "c")) == first.designs
 
 
 def test_cli_local_cluster_survives_a_killed_worker(tmp_path):
-    """The first part to start kills its own worker process (SIGKILL); Dask runs it again elsewhere."""
+    """The first part to start kills its own worker process (SIGKILL, injected by tests/faults.py); Dask runs it again elsewhere."""
     flag = tmp_path / "killed"
-    env = {**os.environ, "LKSPACE_KILL_WORKER_ONCE": str(flag)}
     out = tmp_path / "cube"
-    cmd = ["lkspace", "enumerate", "cube", "--labels", "-1..1", "-o", str(out), "--shards", "4"]
+    cmd = [sys.executable, "-m", "tests.faults", str(flag), "enumerate", "cube", "--labels", "-1..1", "-o", str(out)]
     done = subprocess.run(
-        [*cmd, "--scheduler", "dask", "--jobs", "2", "--json"], env=env, capture_output=True, text=True
+        [*cmd, "--shards", "4", "--scheduler", "dask", "--jobs", "2", "--json"],
+        cwd=Path(__file__).parents[1],
+        capture_output=True,
+        text=True,
     )
     assert done.returncode == 0, done.stderr
     assert flag.exists()  # a worker really died
@@ -107,10 +112,10 @@ def test_cli_local_cluster_survives_a_killed_worker(tmp_path):
 def test_identify_pass_on_dask(tmp_path, cluster):
     pytest.importorskip("snappy")
     space = make_space(load("tetrahedron"), "-2,2")
-    local = write_catalog(space, tmp_path / "a", shards=2, identify=True)
-    on_dask = write_catalog(space, tmp_path / "b", shards=2, identify=True, scheduler=cluster)
-    assert local.identified == on_dask.identified and on_dask.identified["rows"] == 12
-    assert on_dask.identified["named"] >= 6  # L12a2007, L12n2205, L12n2211 (HTLinkExteriors): decided in a main thread
+    local = write_catalog(space, tmp_path / "a", identify=True, execution=Execution(shards=2))
+    on_dask = write_catalog(space, tmp_path / "b", identify=True, execution=Execution(shards=2, scheduler=cluster))
+    assert local.identified == on_dask.identified and on_dask.identified.rows == 12
+    assert on_dask.identified.named >= 6  # L12a2007, L12n2205, L12n2211 (HTLinkExteriors): decided in a main thread
     cols = ["key", "knot_name", "identify_error"]  # crossings: of a simplified diagram, may differ by process
     pd.testing.assert_frame_equal(rows(tmp_path / "a")[cols], rows(tmp_path / "b")[cols])
 
@@ -125,7 +130,7 @@ def test_memory_url_reads_back_with_pandas_and_dask(tmp_path):
 
     space = make_space(load("honeycomb:cF"), "-2..2")
     local = write_catalog(space, tmp_path / "cf.parquet")
-    folder = write_catalog(space, "memory://lk/cf", shards=3)
+    folder = write_catalog(space, "memory://lk/cf", execution=Execution(shards=3))
     single = write_catalog(space, "memory://lk/cf.parquet")
     assert folder.designs == single.designs == local.designs and folder.output == "memory://lk/cf"
     same(tmp_path / "cf.parquet", "memory://lk/cf")
@@ -139,11 +144,11 @@ def test_memory_url_reads_back_with_pandas_and_dask(tmp_path):
     assert json.loads(pq.read_schema(part).metadata[b"lkspace"])["label_set"] == [-2, -1, 0, 1, 2]
     # resume keeps the parts that are there
     fs.rm("/lk/cf/" + manifest["parts"]["2"]["file"])
-    again = write_catalog(space, "memory://lk/cf", shards=3, resume=True)
+    again = write_catalog(space, "memory://lk/cf", execution=Execution(shards=3, resume=True))
     assert again.shards_resumed == 2
     same(tmp_path / "cf.parquet", "memory://lk/cf")
     with pytest.raises(UsageError, match="memory://"):
-        write_catalog(space, "memory://lk/x", shards=2, jobs=2)
+        write_catalog(space, "memory://lk/x", execution=Execution(shards=2, jobs=2))
 
 
 def test_census_on_dask_equals_local(cluster):

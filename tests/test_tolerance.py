@@ -217,7 +217,7 @@ def without_tolerance(file):
 
 
 def test_catalogs_from_before_the_tolerance_still_read_and_resume(tmp_path, capsys):
-    from lkspace import write_catalog
+    from lkspace import Execution, write_catalog
     from lkspace.catalog.reader import read_catalog, read_metadata
     from lkspace.catalog.transaction import file_sha256, load_manifest, save_manifest
 
@@ -229,9 +229,11 @@ def test_catalogs_from_before_the_tolerance_still_read_and_resume(tmp_path, caps
     assert len(read_catalog(one).labels) == first.designs == 87
     code, _, err = run(capsys, "export", one, "--row", 5, "-o", tmp_path / "row5.obj")
     assert code == 0 and (tmp_path / "row5.obj").exists(), err
-    assert write_catalog(space, one, resume=True).shards_resumed == 1  # the old file is kept as it is
+    assert (
+        write_catalog(space, one, execution=Execution(resume=True)).shards_resumed == 1
+    )  # the old file is kept as it is
     # a sharded build from before: every part and the manifest without the key, part 1 lost
-    write_catalog(space, tmp_path / "c", shards=3)
+    write_catalog(space, tmp_path / "c", execution=Execution(shards=3))
     build = tmp_path / ".c.lkspace-build"
     (tmp_path / "c").rename(build)
     manifest = load_manifest(str(build))
@@ -242,6 +244,6 @@ def test_catalogs_from_before_the_tolerance_still_read_and_resume(tmp_path, caps
         entry["sha256"] = file_sha256(str(build / entry["file"]))
     (build / manifest["parts"].pop("1")["file"]).unlink()
     save_manifest(str(build), manifest)
-    again = write_catalog(space, tmp_path / "c", shards=3, resume=True)
+    again = write_catalog(space, tmp_path / "c", execution=Execution(shards=3, resume=True))
     assert again.shards_resumed == 2 and again.designs == 87
     assert len(read_catalog(tmp_path / "c").labels) == 87

@@ -21,6 +21,7 @@ import json
 import multiprocessing
 import os
 from collections.abc import Iterable
+from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -41,6 +42,32 @@ IDENTIFY_CHUNK = 64
 """Rows identified per call and process between progress updates (a few seconds of work)."""
 
 
+@dataclass(frozen=True)
+class Identified:
+    """What an identification pass found.
+
+    Attributes
+    ----------
+    rows : int
+        Rows identified (rows already identified are not counted again).
+    named : int
+        Rows with a knot or link name.
+    names : dict of str -> int
+        Rows by name (:func:`identify_catalog`: most frequent first).
+    """
+
+    rows: int = 0
+    named: int = 0
+    names: dict[str, int] = field(default_factory=dict)
+
+    def __add__(self, other: Identified) -> Identified:
+        """Both passes' totals (names in the order first seen)."""
+        names = dict(self.names)
+        for name, n in other.names.items():
+            names[name] = names.get(name, 0) + n
+        return Identified(self.rows + other.rows, self.named + other.named, names)
+
+
 def _column(values: Iterable[Any], type_: pa.DataType) -> pa.Array:
     cleaned = [None if v is None or (isinstance(v, float) and np.isnan(v)) else v for v in values]
     if type_ == pa.int32():
@@ -54,7 +81,7 @@ def _column(values: Iterable[Any], type_: pa.DataType) -> pa.Array:
 
 def identify_catalog(
     path: str | os.PathLike[str], scaffold: Scaffold, processes: int = 1, seed: int = 0, scheduler: str = "local"
-) -> dict[str, Any]:
+) -> Identified:
     """Add knot/link columns to every row of the catalog at ``path``; returns a summary.
 
     Progress (rows identified) is reported through :func:`lkspace.progress.task`.  With a
@@ -64,7 +91,7 @@ def identify_catalog(
     from ..engine import is_dask, run_tasks
 
     path = os.fspath(path)
-    totals: dict[str, Any] = {"rows": 0, "named": 0, "names": {}}
+    totals = Identified()
     files = list(open_catalog(path).files)
     total = sum(pq.read_metadata(f).num_rows for f in files)
     with task("identifying designs", total) as step:
@@ -73,13 +100,12 @@ def identify_catalog(
                 identify_part, (scaffold, seed), files, scheduler, processes, "lkspace-identify", load_knots
             )
             for i, summary in found:
-                _add(totals, summary)
+                totals += summary
                 step.advance(pq.read_metadata(files[i]).num_rows)
         else:
             for file in files:
-                _add(totals, _summary(_identify_file(file, scaffold, processes, seed, step)))
-    totals["names"] = dict(sorted(totals["names"].items(), key=lambda kv: -kv[1]))
-    return totals
+                totals += _summary(_identify_file(file, scaffold, processes, seed, step))
+    return replace(totals, names=dict(sorted(totals.names.items(), key=lambda kv: -kv[1])))
 
 
 def load_knots() -> None:
@@ -87,7 +113,7 @@ def load_knots() -> None:
     import snappy  # noqa: F401
 
 
-def identify_part(shared: tuple[Scaffold, int], file: str) -> dict[str, Any]:
+def identify_part(shared: tuple[Scaffold, int], file: str) -> Identified:
     """Dask task: identify the rows of one catalog file in one child process; return its summary.
 
     The child runs the identification in its main thread (a Dask task runs in a worker
@@ -103,18 +129,11 @@ def identify_part(shared: tuple[Scaffold, int], file: str) -> dict[str, Any]:
         return _summary(_identify_file(file, scaffold, 1, seed, step, isolate=True))
 
 
-def _summary(found: pd.DataFrame | None) -> dict[str, Any]:
+def _summary(found: pd.DataFrame | None) -> Identified:
     if found is None:
-        return {"rows": 0, "named": 0, "names": {}}
+        return Identified()
     known = found["knot_name"].dropna()
-    return {"rows": len(found), "named": len(known), "names": {str(k): int(n) for k, n in known.value_counts().items()}}
-
-
-def _add(totals: dict[str, Any], summary: dict[str, Any]) -> None:
-    totals["rows"] += summary["rows"]
-    totals["named"] += summary["named"]
-    for name, n in summary["names"].items():
-        totals["names"][name] = totals["names"].get(name, 0) + n
+    return Identified(len(found), len(known), {str(k): int(n) for k, n in known.value_counts().items()})
 
 
 def _identify_file(

@@ -2,7 +2,7 @@
 
 Workers are started with the ``forkserver`` method where there is one (Linux, macOS)
 and ``spawn`` elsewhere (Windows), never by forking a running program: each worker
-imports lkspace afresh, receives the run's state once (:func:`init_worker`) and writes
+imports lkspace afresh, receives the run's job once (:class:`PartsJob`) (:func:`init_worker`) and writes
 whole parts (:func:`write_part`).  Workers ignore SIGINT and leave the decisions to the
 main process, which on Ctrl-C or SIGTERM terminates them at once (queued parts never
 start) and removes their temporary files; a worker whose main process has died exits
@@ -11,43 +11,100 @@ within :data:`ORPHAN_POLL` seconds.
 
 from __future__ import annotations
 
-import contextlib
 import multiprocessing as mp
 import os
 import pickle
-import signal
 import tempfile
 import threading
 import time
 from collections.abc import Callable, Generator, Iterator
+from dataclasses import dataclass, replace
 from typing import Any
 
+import pyarrow as pa
+
+from ..design.space import DesignSpace
 from ..engine import is_dask, run_tasks
 from ..errors import require
-from ..workers import Terminated, context, ignore_interrupts, in_main_thread
+from ..workers import context, deferred_signals, ignore_interrupts
 from .batches import space_batches
 from .lock import pid_alive
+from .options import Selection
+from .records import PartSummary
 from .transaction import file_sha256
 from .writer import write_batches
-
-KILL_ONCE = "LKSPACE_KILL_WORKER_ONCE"
 
 ORPHAN_POLL = 0.5
 """Seconds between a worker's checks that the main process still runs."""
 
-_STATE: dict[str, Any] = {}
+
+@dataclass(frozen=True)
+class PartsJob:
+    """What every part of a run needs: sent once to each worker (pickled).
+
+    Attributes
+    ----------
+    space : DesignSpace
+    selection : Selection
+        Which rows the catalog holds.
+    schema : pyarrow.Schema
+        The catalog's columns.
+    meta : dict
+        The ``lkspace`` metadata common to every part (:func:`~lkspace.catalog.shards.catalog_metadata`).
+    plan : str
+        The plan's fingerprint (:attr:`~lkspace.catalog.plan.Plan.fingerprint`).
+    ranges : list of list of int, or None
+        Representative class ids of each part (``None``: one part, the whole walk).
+    count : int
+        Number of parts.
+    files : tuple of str, or None
+        The parts' file names (``None``: a one-file catalog on a URL).
+    run : str or None
+        The run id (``None``: a one-file catalog on a URL).
+    folder : str or None
+        The local build folder the parts go to; ``None`` when they go to ``remote``.
+    remote : str or None
+        The fsspec URL of a catalog written to an object store.
+    """
+
+    space: DesignSpace
+    selection: Selection
+    schema: pa.Schema
+    meta: dict[str, Any]
+    plan: str
+    ranges: list[list[int]] | None
+    count: int
+    files: tuple[str, ...] | None
+    run: str | None
+    folder: str | None = None
+    remote: str | None = None
+
+    def batches(self, i: int) -> Iterator[pa.RecordBatch]:
+        """Record batches of part ``i``."""
+        return selected_batches(self.space, self.selection, self.ranges[i] if self.ranges is not None else None)
 
 
-def init_worker(state: bytes, main_pid: int) -> None:
-    """Worker start: ignore SIGINT, take the run's state, exit when the main process is gone.
+def selected_batches(
+    space: DesignSpace, selection: Selection, class_ids: list[int] | None = None
+) -> Iterator[pa.RecordBatch]:
+    """Record batches of the rows ``selection`` picks from ``space`` (of the classes ``class_ids``; ``None``: all)."""
+    sel = selection
+    return space_batches(space, sel.mode, class_ids, sel.components, sel.max_designs, sel.sample, sel.seed)
+
+
+_JOB: list[PartsJob] = []
+"""In a pool worker: the run's job (set once by :func:`init_worker`)."""
+
+
+def init_worker(job: bytes, main_pid: int) -> None:
+    """Worker start: ignore SIGINT, take the run's job, exit when the main process is gone.
 
     The arguments are plain bytes and an int, so a worker started just before its main
     process stopped still starts cleanly (and then exits).
     """
     ignore_interrupts()
     threading.Thread(target=_exit_with, args=(main_pid,), daemon=True).start()
-    _STATE.clear()
-    _STATE.update(pickle.loads(state))
+    _JOB[:] = [pickle.loads(job)]
 
 
 def _exit_with(main_pid: int) -> None:
@@ -56,63 +113,47 @@ def _exit_with(main_pid: int) -> None:
     os._exit(1)  # an orphan: nobody will use what it writes
 
 
-def write_part(i: int) -> tuple[int, dict[str, Any]]:
-    """Write part ``i`` of the run in ``_STATE``; return ``(i, summary with file and sha256)``."""
-    return write_part_with(_STATE, i)
+def write_part(i: int) -> tuple[int, PartSummary]:
+    """In a pool worker: write part ``i`` of the job of :func:`init_worker`; return ``(i, summary)``."""
+    return write_part_with(_JOB[0], i)
 
 
-def write_part_with(st: dict[str, Any], i: int) -> tuple[int, dict[str, Any]]:
-    """Write part ``i`` of the run ``st`` (a Dask task, or :func:`write_part` in a pool worker)."""
-    if st.get("on_dask"):
-        fault_hook()
-    if st.get("remote") is not None:
-        return write_part_remote(st, i)
-    path = os.path.join(st["folder"], st["files"][i])
-    meta = {**st["meta"], "shard": {"index": i, "count": len(st["files"]), "plan": st["plan"], "run": st["run"]}}
-    ids = st["ranges"][i] if st["ranges"] is not None else None
-    batches = space_batches(st["space"], st["mode"], ids, *st["walk"])
-    summary = write_batches(path, st["schema"], meta, batches, st.get("on_rows"))
-    return i, {**summary, "file": st["files"][i], "sha256": file_sha256(path)}
+def write_part_with(job: PartsJob, i: int, on_rows: Callable[[int], object] | None = None) -> tuple[int, PartSummary]:
+    """Write part ``i`` of ``job``; return ``(i, summary with file and sha256)``.
+
+    A Dask task, :func:`write_part` in a pool worker, or a call in this process (which
+    passes ``on_rows(rows written)``).
+    """
+    if job.remote is not None:
+        return write_part_remote(job, i)
+    assert job.folder is not None and job.files is not None, "a local part needs its folder and file names"
+    path = os.path.join(job.folder, job.files[i])
+    meta = {**job.meta, "shard": {"index": i, "count": job.count, "plan": job.plan, "run": job.run}}
+    summary = write_batches(path, job.schema, meta, job.batches(i), on_rows)
+    return i, replace(summary, file=job.files[i], sha256=file_sha256(path))
 
 
-def write_part_remote(st: dict[str, Any], i: int) -> tuple[int, dict[str, Any]]:
+def write_part_remote(job: PartsJob, i: int) -> tuple[int, PartSummary]:
     """Write part ``i`` to a local temporary file, upload it under its final name (fsspec); return its summary."""
-    fsspec = require("fsspec", "dask", f"writing to {st['remote']}")
-    fs, root = fsspec.core.url_to_fs(st["remote"])
-    dest = root if st["files"] is None else f"{root}/{st['files'][i]}"
-    shard = {"index": i, "count": st["count"], "plan": st["plan"]}
-    meta = {**st["meta"], "shard": shard if st["files"] is None else {**shard, "run": st["run"]}}
-    ids = st["ranges"][i] if st["ranges"] is not None else None
+    assert job.remote is not None
+    fsspec = require("fsspec", "dask", f"writing to {job.remote}")
+    fs, root = fsspec.core.url_to_fs(job.remote)
+    dest = root if job.files is None else f"{root}/{job.files[i]}"
+    shard: dict[str, Any] = {"index": i, "count": job.count, "plan": job.plan}
+    meta = {**job.meta, "shard": shard if job.files is None else {**shard, "run": job.run}}
     with tempfile.TemporaryDirectory(prefix="lkspace-part-") as tmp:
         local = os.path.join(tmp, "part.parquet")
-        summary = write_batches(local, st["schema"], meta, space_batches(st["space"], st["mode"], ids, *st["walk"]))
+        summary = write_batches(local, job.schema, meta, job.batches(i))
         digest = file_sha256(local)
         fs.put_file(local, dest)
-    name = os.path.basename(dest) if st["files"] is None else st["files"][i]
-    return i, {**summary, "file": name, "sha256": digest}
-
-
-def fault_hook() -> None:
-    """Kill this worker once, for tests of lost workers (Dask runs only).
-
-    With ``$LKSPACE_KILL_WORKER_ONCE`` set to a path that does not exist yet, the first
-    part to start creates it and kills its own worker process (SIGKILL), as a lost
-    machine would.
-    """
-    flag = os.environ.get(KILL_ONCE)
-    if flag:
-        try:
-            fd = os.open(flag, os.O_CREAT | os.O_EXCL | os.O_WRONLY)
-        except FileExistsError:
-            return
-        os.close(fd)
-        os.kill(os.getpid(), signal.SIGKILL)
+    name = os.path.basename(dest) if job.files is None else job.files[i]
+    return i, replace(summary, file=name, sha256=digest)
 
 
 def run_parts(
-    state: dict[str, Any], todo: list[int], jobs: int, tick: Callable[[int], object], scheduler: str = "local"
-) -> Generator[tuple[int, dict[str, Any]], None, None]:
-    """Write the parts ``todo`` with ``jobs`` processes; yield ``(i, summary)`` as each finishes.
+    job: PartsJob, todo: list[int], jobs: int, tick: Callable[[int], object], scheduler: str = "local"
+) -> Generator[tuple[int, PartSummary], None, None]:
+    """Write the parts ``todo`` of ``job`` with ``jobs`` processes; yield ``(i, summary)`` as each finishes.
 
     ``tick(rows written so far)`` is called as rows are written (in this process) or at
     least every quarter second (rows of the finished parts, with workers).  An exception
@@ -121,9 +162,8 @@ def run_parts(
     """
     if is_dask(scheduler):
         rows_done = 0
-        shared = {**state, "on_dask": True}
-        for _, done in run_tasks(write_part_with, shared, todo, scheduler, jobs, name="lkspace-part"):
-            rows_done += int(done[1]["rows"])
+        for _, done in run_tasks(write_part_with, job, todo, scheduler, jobs, name="lkspace-part"):
+            rows_done += done[1].rows
             yield done
             tick(rows_done)
         return
@@ -134,16 +174,11 @@ def run_parts(
             rows[0] += n
             tick(rows[0])
 
-        _STATE.clear()
-        _STATE.update(state, on_rows=on_rows)
-        try:
-            for i in todo:
-                yield write_part(i)
-        finally:
-            _STATE.clear()
+        for i in todo:
+            yield write_part_with(job, i, on_rows)
         return
     rows_done = 0
-    payload = pickle.dumps(state)
+    payload = pickle.dumps(job)
     with deferred_signals():  # a pool half made cannot be stopped: finish making it, then stop
         pool = context().Pool(min(jobs, len(todo)), initializer=init_worker, initargs=(payload, os.getpid()))
     try:
@@ -155,7 +190,7 @@ def run_parts(
                     break
                 except mp.TimeoutError:
                     tick(rows_done)
-            rows_done += int(done[1]["rows"])
+            rows_done += done[1].rows
             yield done
             tick(rows_done)
         pool.close()
@@ -164,38 +199,3 @@ def run_parts(
         raise
     finally:
         pool.join()
-
-
-@contextlib.contextmanager
-def ignored_signals() -> Iterator[None]:
-    """Within the body (a cleanup or a rename, milliseconds), SIGINT and SIGTERM are ignored."""
-    if not in_main_thread():
-        yield
-        return
-    old = {s: signal.signal(s, signal.SIG_IGN) for s in (signal.SIGINT, signal.SIGTERM)}
-    try:
-        yield
-    finally:
-        for s, handler in old.items():
-            signal.signal(s, handler)
-
-
-@contextlib.contextmanager
-def deferred_signals() -> Iterator[None]:
-    """Within the body, SIGINT and SIGTERM wait; one that came is raised when the body ends.
-
-    The signal wins over an error of the body (which it may have caused: a worker or
-    the fork server stopped by the same signal to the process group breaks the pool).
-    """
-    if not in_main_thread():
-        yield
-        return
-    caught: list[int] = []
-    old = {s: signal.signal(s, lambda signum, frame: caught.append(signum)) for s in (signal.SIGINT, signal.SIGTERM)}
-    try:
-        yield
-    finally:
-        for s, handler in old.items():
-            signal.signal(s, handler)
-        if caught:
-            raise Terminated() if caught[0] == signal.SIGTERM else KeyboardInterrupt()

@@ -17,6 +17,7 @@ import socket
 import sys
 import time
 from collections.abc import Iterator
+from dataclasses import dataclass
 
 from ..errors import CatalogLockedError
 
@@ -43,32 +44,62 @@ def pid_alive(pid: int) -> bool:
     return True
 
 
-def _holder(lock: str) -> dict[str, object] | None:
-    """Return the lock's JSON, or ``None`` when it is empty or torn."""
+@dataclass(frozen=True)
+class LockHolder:
+    """Who holds a catalog's lock, as its lock file records it (JSON).
+
+    Attributes
+    ----------
+    pid : int
+        The writer's process id.
+    host : str
+        The writer's host name.
+    started : str
+        When it took the lock, ``YYYY-MM-DD HH:MM:SS`` local time.
+    """
+
+    pid: int
+    host: str
+    started: str
+
+    @classmethod
+    def this_process(cls) -> LockHolder:
+        """Return the record of this process, now."""
+        return cls(os.getpid(), socket.gethostname(), time.strftime("%Y-%m-%d %H:%M:%S"))
+
+    def to_json(self) -> str:
+        """Return the lock file's text."""
+        return json.dumps({"pid": self.pid, "host": self.host, "started": self.started})
+
+
+def _holder(lock: str) -> LockHolder | None:
+    """Return the lock's holder, or ``None`` when the file is empty, torn or not a lock record."""
     try:
         with open(lock, encoding="utf-8") as fh:
             data = json.load(fh)
     except (OSError, ValueError):
         return None
-    return data if isinstance(data, dict) else None
+    if not isinstance(data, dict):
+        return None
+    pid, host, started = data.get("pid"), data.get("host"), data.get("started")
+    if not isinstance(pid, int) or not isinstance(host, str):
+        return None
+    return LockHolder(pid, host, str(started))
 
 
-def _is_stale(lock: str, holder: dict[str, object] | None) -> bool:
+def _is_stale(lock: str, holder: LockHolder | None) -> bool:
     if holder is None:
         try:
             return time.time() - os.stat(lock).st_mtime > TORN_LOCK_SECONDS
         except FileNotFoundError:
             return True
-    pid = holder.get("pid")
-    return holder.get("host") == socket.gethostname() and isinstance(pid, int) and not pid_alive(pid)
+    return holder.host == socket.gethostname() and not pid_alive(holder.pid)
 
 
 @contextlib.contextmanager
 def catalog_lock(lock: str, target: str) -> Iterator[None]:
     """Hold the lock file ``lock`` of catalog ``target`` for the body; remove it afterwards."""
-    record = json.dumps(
-        {"pid": os.getpid(), "host": socket.gethostname(), "started": time.strftime("%Y-%m-%d %H:%M:%S")}
-    )
+    record = LockHolder.this_process().to_json()
     for _ in range(3):
         try:
             fd = os.open(lock, os.O_CREAT | os.O_EXCL | os.O_WRONLY, 0o644)
@@ -78,11 +109,7 @@ def catalog_lock(lock: str, target: str) -> Iterator[None]:
                 with contextlib.suppress(FileNotFoundError):
                     os.remove(lock)
                 continue
-            who = (
-                f"pid {holder.get('pid')} on {holder.get('host')}, started {holder.get('started')}"
-                if holder
-                else "a run that is starting"
-            )
+            who = f"pid {holder.pid} on {holder.host}, started {holder.started}" if holder else "a run that is starting"
             raise CatalogLockedError(
                 f"{target}: another lkspace run is writing this catalog ({who}); wait for it to finish, "
                 f"or delete {lock} if that run is gone"

@@ -1,12 +1,12 @@
 """The plan of a catalog run, made before any row is written: its size, its bounds, its parts.
 
-The plan depends on the design space and the filters only, never on ``--jobs``: the
+The plan depends on the design space and the selection only, never on ``jobs``: the
 representative residue classes are cut into contiguous runs of about
 :data:`PART_ROWS` designs (exact Burnside counts per class), one part each.  So a run
-interrupted with ``--jobs 4`` resumes with ``--jobs 1`` and finds the same parts.
+interrupted with 4 jobs resumes with 1 and finds the same parts.
 The estimate of rows and bytes is checked against :data:`ROW_LIMIT` and
-:data:`BYTE_LIMIT` (past them the caller must say ``yes``) and :data:`MAX_PARTS` (past
-it nothing is written at all).
+:data:`BYTE_LIMIT` (past them the caller must allow a large run, ``allow_large=True``)
+and :data:`MAX_PARTS` (past it nothing is written at all): :class:`CatalogTooLarge`.
 """
 
 from __future__ import annotations
@@ -21,24 +21,25 @@ from ..design.counting import class_weights
 from ..design.space import DesignSpace
 from ..errors import CatalogError, TooLargeError, UsageError
 from ..model.counts import count_text
+from .options import Selection
 
 PART_ROWS = 1_000_000
 """Designs per part of a sharded catalog (about): a walk with more rows becomes a folder."""
 
 MAX_JOBS = 256
-"""Largest ``--jobs``: worker processes beyond this only cost memory."""
+"""Largest ``jobs``: worker processes beyond this only cost memory."""
 
 ROW_LIMIT = 100_000_000
-"""Rows a run may write without ``--yes`` (``yes=True``)."""
+"""Rows a run may write unless it allows a large run (``allow_large=True``)."""
 
 BYTE_LIMIT = 2_000_000_000
-"""Estimated bytes a run may write without ``--yes`` (``yes=True``)."""
+"""Estimated bytes a run may write unless it allows a large run (``allow_large=True``)."""
 
 MAX_PARTS = 100_000
-"""Parts a catalog may have even with ``--yes`` (``MAX_PARTS * PART_ROWS`` rows): larger runs are refused."""
+"""Parts a catalog may have even with ``allow_large=True`` (``MAX_PARTS * PART_ROWS`` rows): larger runs are refused."""
 
 MAX_SHARDS = MAX_PARTS
-"""Largest ``--shards``."""
+"""Largest ``shards``."""
 
 
 def estimated_bytes(rows: int, n_edges: int) -> int:
@@ -91,61 +92,71 @@ def split_classes(weights: np.ndarray, n_shards: int) -> list[list[int]]:
     return [[c for c in range(bounds[i], bounds[i + 1]) if w[c] > 0] for i in range(n_shards)]
 
 
+class CatalogTooLarge(TooLargeError):
+    """A catalog run past a size bound.
+
+    Attributes
+    ----------
+    estimate : str
+        What the run would write: ``"cube: about 576,941,778 rows (3.1 GB) to write, past ..."``.
+    allowable : bool
+        Whether ``allow_large=True`` lets it go ahead (``False``: past :data:`MAX_PARTS`, refused).
+    """
+
+    def __init__(self, estimate: str, allowable: bool) -> None:
+        remedy = "count the designs, filter them or use a smaller label set"
+        if allowable:
+            remedy = f"pass allow_large=True to go ahead (or {remedy})"
+        super().__init__(f"{estimate}; {remedy}")
+        self.estimate = estimate
+        self.allowable = allowable
+
+
 def check_jobs(jobs: int) -> None:
     """Raise :class:`UsageError` unless ``1 <= jobs <=`` :data:`MAX_JOBS`."""
     if not 1 <= jobs <= MAX_JOBS:
-        raise UsageError(f"--jobs {jobs}: use 1..{MAX_JOBS} worker processes")
+        raise UsageError(f"jobs {jobs}: use 1..{MAX_JOBS} worker processes", parameter="jobs")
 
 
-def make_plan(
-    space: DesignSpace,
-    mode: str,
-    components: int | None = None,
-    max_designs: int | None = None,
-    sample: int | None = None,
-    shards: int | None = None,
-    yes: bool = False,
-) -> Plan:
+def make_plan(space: DesignSpace, selection: Selection, shards: int | None = None, allow_large: bool = False) -> Plan:
     """Estimate the run and cut it into parts; refuse it when it is past a bound.
 
     Raises
     ------
-    TooLargeError
-        The estimate is past :data:`ROW_LIMIT` or :data:`BYTE_LIMIT` and ``yes`` is false,
-        or past :data:`MAX_PARTS` parts.
+    CatalogTooLarge
+        The estimate is past :data:`ROW_LIMIT` or :data:`BYTE_LIMIT` and ``allow_large``
+        is false, or past :data:`MAX_PARTS` parts.
     """
     n_edges = space.scaffold.n_edges
+    mode, max_designs = selection.mode, selection.max_designs
     if shards is not None and not 1 <= shards <= MAX_SHARDS:
-        raise UsageError(f"--shards {shards}: use 1..{MAX_SHARDS} parts")
+        raise UsageError(f"shards {shards}: use 1..{MAX_SHARDS} parts", parameter="shards")
     weights: np.ndarray | None = None
     if mode == "designs":
-        weights = class_weights(space, components)
+        weights = class_weights(space, selection.components)
         rows = int(sum(weights))
     elif mode == "residues":
         rows = len(space.classes.codes)
     else:  # spanning trees: at most one row per tree listed or sampled
         from ..design.spanning import MAX_TREES
 
-        rows = sample if sample is not None else MAX_TREES
+        rows = selection.sample if selection.sample is not None else MAX_TREES
     if max_designs is not None:
         rows = min(rows, max_designs)
     size = estimated_bytes(rows, n_edges)
     needed = -(-rows // PART_ROWS)
+    about = f"{space.scaffold.name}: about {count_text(rows)} rows ({_gb(size)})"
     if needed > MAX_PARTS:
-        raise TooLargeError(
-            f"{space.scaffold.name}: about {count_text(rows)} rows ({_gb(size)}) is past what lkspace writes "
-            f"({MAX_PARTS * PART_ROWS:,} rows); use --count-only, filters or a smaller label set"
-        )
-    if not yes and (rows > ROW_LIMIT or size > BYTE_LIMIT):
-        raise TooLargeError(
-            f"{space.scaffold.name}: about {count_text(rows)} rows ({_gb(size)}) to write, past {ROW_LIMIT:,} rows "
-            f"or {_gb(BYTE_LIMIT)}; pass --yes to go ahead (or use --count-only, filters or a smaller label set)"
-        )
+        raise CatalogTooLarge(f"{about} is past what lkspace writes ({MAX_PARTS * PART_ROWS:,} rows)", False)
+    if not allow_large and (rows > ROW_LIMIT or size > BYTE_LIMIT):
+        raise CatalogTooLarge(f"{about} to write, past {ROW_LIMIT:,} rows or {_gb(BYTE_LIMIT)}", True)
     whole_walk = mode == "designs" and max_designs is None
     if shards is None:
         shards = max(1, needed) if whole_walk else 1
     if shards > 1 and not whole_walk:
-        raise CatalogError("--shards applies to full design walks (not with --max-designs or other modes)", usage=True)
+        raise CatalogError(
+            "shards applies to full design walks (not with max_designs or other modes)", usage=True, parameter="shards"
+        )
     if shards == 1 or weights is None:
         return Plan(rows, size, None)
     return Plan(rows, size, split_classes(weights, shards))

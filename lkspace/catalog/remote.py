@@ -15,7 +15,7 @@ run (settings, plan, part number) and that read to the end, and writes the rest.
 one-file catalog (up to a million rows) is uploaded in one piece.  Readers: pandas,
 pyarrow and ``dask.dataframe.read_parquet`` open the URL directly (names starting with
 ``_`` are skipped).  Two runs writing one URL at once are not detected (no lock): don't.
-``memory://`` lives in one process's memory, so it takes ``--jobs 1`` and the local
+``memory://`` lives in one process's memory, so it takes ``jobs=1`` and the local
 scheduler (tests, notebooks).
 """
 
@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import json
 import os
+from dataclasses import replace
 from typing import Any
 
 import pyarrow as pa
@@ -31,8 +32,10 @@ import pyarrow.parquet as pq
 from ..design.space import DesignSpace
 from ..engine import is_dask
 from ..errors import CatalogError, ExportError, UsageError, require
-from .jobs import run_parts, write_part_remote
+from .jobs import PartsJob, run_parts, write_part_remote
+from .options import Selection
 from .plan import Plan
+from .records import Manifest, PartSummary
 from .schema import METADATA_KEY
 from .transaction import MANIFEST, PART_NAME, new_run, part_name, same_settings
 
@@ -61,8 +64,11 @@ def _fs(url: str) -> tuple[Any, str]:
     return fs, root
 
 
-def check_remote(url: str) -> None:
-    """Check the catalog URL ``url`` before any work: a known protocol, and nothing there lkspace did not write."""
+def check_remote(url: str, argument: str = "path") -> None:
+    """Check the catalog URL ``url`` before any work: a known protocol, and nothing there lkspace did not write.
+
+    Messages call the URL ``argument`` as the caller does (the command line: ``-o``).
+    """
     fs, root = _fs(url)
     if not fs.exists(root):
         return
@@ -71,7 +77,7 @@ def check_remote(url: str) -> None:
         strange = [n for n in names if n != MANIFEST and not PART_NAME.fullmatch(n)]
         if not names or strange:
             what = f"holds {strange[0]!r}, which is not part of an lkspace catalog" if strange else "is empty"
-            raise ExportError(f"{url}: {what}; lkspace replaces only catalogs it wrote: choose another -o")
+            raise ExportError(f"{url}: {what}; lkspace replaces only catalogs it wrote: choose another {argument}")
         return
     try:
         with fs.open(root, "rb") as fh:
@@ -81,13 +87,11 @@ def check_remote(url: str) -> None:
         meta = None
     if not isinstance(meta, dict) or "format_version" not in meta:
         raise ExportError(
-            f"{url}: is not an lkspace catalog; lkspace replaces only catalogs it wrote: choose another -o"
+            f"{url}: is not an lkspace catalog; lkspace replaces only catalogs it wrote: choose another {argument}"
         )
 
 
-def _kept_parts(
-    fs: Any, root: str, signature: dict[str, Any], fingerprint: str
-) -> tuple[str, dict[str, dict[str, Any]]]:
+def _kept_parts(fs: Any, root: str, signature: dict[str, Any], fingerprint: str) -> tuple[str, dict[str, PartSummary]]:
     """Return ``(run id, parts)``: the parts in the folder ``root`` of the one earlier run of these settings.
 
     A part is kept when its footer metadata is of this run's settings and plan and it
@@ -96,7 +100,7 @@ def _kept_parts(
     import hashlib
     import io
 
-    by_run: dict[str, dict[str, dict[str, Any]]] = {}
+    by_run: dict[str, dict[str, PartSummary]] = {}
     for path in sorted(fs.glob(f"{root}/part-*.parquet")):
         try:
             with fs.open(path, "rb") as fh:
@@ -109,15 +113,10 @@ def _kept_parts(
         run = shard.get("run")
         if not isinstance(run, str) or shard.get("plan") != fingerprint:
             continue
-        if not same_settings(meta, signature):
+        totals = PartSummary.from_json(meta)
+        if totals is None or not same_settings(meta, signature):
             continue
-        entry = {
-            "rows": meta["rows"],
-            "by_components": meta["by_components"],
-            "assignments_covered": meta["assignments_covered"],
-            "file": os.path.basename(path),
-            "sha256": hashlib.sha256(data).hexdigest(),
-        }
+        entry = replace(totals, file=os.path.basename(path), sha256=hashlib.sha256(data).hexdigest())
         by_run.setdefault(run, {}).setdefault(str(shard["index"]), entry)
     if not by_run:
         return new_run(), {}
@@ -131,35 +130,22 @@ def write_remote(
     plan: Plan,
     meta: dict[str, Any],
     schema: Any,
-    mode: str,
-    walk: tuple[Any, ...],
+    selection: Selection,
     jobs: int,
     scheduler: str,
     resume: bool,
-) -> tuple[list[dict[str, Any]], int]:
+) -> tuple[list[PartSummary], int]:
     """Write the catalog of ``plan`` to ``url``; return the parts' summaries and how many were kept."""
     fs, root = _fs(url)
     if fs.protocol in ("memory", ("memory",)) and (jobs > 1 or is_dask(scheduler)):
-        raise UsageError(f"{url}: memory:// is private to this process; use --jobs 1 and --scheduler local")
+        raise UsageError(f"{url}: memory:// is private to this process; use jobs=1 and the local scheduler")
     single = plan.parts == 1 and url.endswith(".parquet")
     n = plan.parts
-    signature = {**meta, "shards": n}
-    state = {
-        "space": space,
-        "mode": mode,
-        "walk": walk,
-        "remote": url,
-        "meta": meta,
-        "plan": plan.fingerprint,
-        "ranges": plan.ranges,
-        "schema": schema,
-        "count": n,
-    }
+    job = PartsJob(space, selection, schema, meta, plan.fingerprint, plan.ranges, n, None, None, remote=url)
     if single:
         if fs.isdir(root):
             raise CatalogError(f"{url}: is a folder; give a new name for a one-file catalog")
-        state["files"] = None
-        return [write_part_remote(state, 0)[1]], 0
+        return [write_part_remote(job, 0)[1]], 0
     run_id, kept = _kept_parts(fs, root, meta, plan.fingerprint) if resume and fs.isdir(root) else (new_run(), {})
     if fs.exists(f"{root}/{MANIFEST}"):
         fs.rm(f"{root}/{MANIFEST}")  # from here on the folder reads as incomplete
@@ -167,17 +153,17 @@ def write_remote(
         for old in fs.glob(f"{root}/part-*.parquet"):
             fs.rm(old)
     fs.makedirs(root, exist_ok=True)
-    state["run"] = run_id
-    state["files"] = [kept[str(i)]["file"] if str(i) in kept else part_name(i, run_id) for i in range(n)]
+    files = tuple(str(kept[str(i)].file) if str(i) in kept else part_name(i, run_id) for i in range(n))
+    job = replace(job, files=files, run=run_id)
     parts = dict(kept)
     todo = [i for i in range(n) if str(i) not in kept]
-    for i, summary in run_parts(state, todo, jobs, lambda rows: None, scheduler):
+    for i, summary in run_parts(job, todo, jobs, lambda rows: None, scheduler):
         parts[str(i)] = summary
-    keep_files = {str(p["file"]) for p in parts.values()}
+    keep_files = {str(p.file) for p in parts.values()}
     for old in fs.glob(f"{root}/part-*.parquet"):
         if os.path.basename(old) not in keep_files:
             fs.rm(old)
-    manifest = {**signature, "run": run_id, "parts": parts, "complete": True}
+    manifest = Manifest({**meta, "shards": n}, run_id, parts, complete=True)
     with fs.open(f"{root}/{MANIFEST}", "w") as fh:  # last: the manifest marks the catalog complete
-        fh.write(json.dumps(manifest, indent=1))
+        fh.write(json.dumps(manifest.to_json(), indent=1))
     return [parts[str(i)] for i in range(n)], len(kept)

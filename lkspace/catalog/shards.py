@@ -8,7 +8,10 @@ target's lock (:mod:`~lkspace.catalog.lock`), builds the catalog beside the targ
 finished part's SHA-256), writes the parts in worker processes
 (:mod:`~lkspace.catalog.jobs`) and, when every part is there, puts the build in place of
 the target.  ``resume`` keeps the verified parts of an interrupted build and redoes the
-rest.
+rest.  Nothing here sets process-wide state: a program that wants SIGTERM to stop a run
+as Ctrl-C does installs that itself (the command line does,
+:func:`lkspace.workers.interrupt_signals`); a Python caller's Ctrl-C (KeyboardInterrupt)
+cleans up the same way.
 """
 
 from __future__ import annotations
@@ -17,7 +20,7 @@ import contextlib
 import os
 from collections.abc import Callable
 from dataclasses import asdict, dataclass, replace
-from typing import Any, TypeAlias
+from typing import TYPE_CHECKING, Any, TypeAlias
 
 import pyarrow as pa
 import pyarrow.parquet as pq
@@ -31,12 +34,13 @@ from ..model.scaffold import Scaffold
 from ..model.specs import LabelSetSpec
 from ..progress import task
 from ..symmetry.tolerance import resolve_tolerance
-from ..workers import context, interrupt_signals
-from .batches import space_batches
-from .jobs import ignored_signals, run_parts
+from ..workers import context, ignored_signals
+from .jobs import PartsJob, run_parts, selected_batches
 from .lock import catalog_lock
+from .options import Execution, Selection, WalkMode
 from .plan import Plan, check_jobs, make_plan
 from .reader import read_metadata
+from .records import Manifest, PartSummary
 from .remote import check_remote, remote_url, write_remote
 from .schema import FORMAT_VERSION, design_schema, residue_schema
 from .transaction import (
@@ -55,6 +59,9 @@ from .transaction import (
     verified_parts,
 )
 from .writer import write_batches
+
+if TYPE_CHECKING:
+    from .identified import Identified
 
 CANONICAL_RULE = (
     "orbit member smallest in (t mod K per edge, then t per edge), lexicographic in edge order; see docs/catalog.md"
@@ -81,10 +88,11 @@ class CatalogWritten:
         Parts written, and parts kept from an earlier run (``resume=True``).
     group_order, acting_order : int
         Order of the symmetry group, and number of distinct signed edge permutations.
-    symmetry, mode : str
+    symmetry : str
+    mode : {"designs", "residues", "spanning-trees"}
     label_set : list of int
-    identified : dict, optional
-        With ``identify=True``: ``{rows, named, names: {name: count}}``.
+    identified : Identified, optional
+        With ``identify=True``: rows identified, rows named, and rows by name.
     """
 
     designs: int
@@ -98,9 +106,9 @@ class CatalogWritten:
     acting_order: int
     symmetry: str
     label_set: list[int]
-    mode: str
+    mode: WalkMode
     format_version: int = FORMAT_VERSION
-    identified: dict[str, Any] | None = None
+    identified: Identified | None = None
 
     def __repr__(self) -> str:
         return f"CatalogWritten({self.designs:,} rows to {self.output} in {self.shards} part(s))"
@@ -114,15 +122,8 @@ class CatalogWritten:
         return out
 
 
-def catalog_metadata(
-    space: DesignSpace,
-    mode: str,
-    components: int | None,
-    max_designs: int | None,
-    sample: int | None,
-    seed: int,
-) -> dict[str, Any]:
-    """Return the ``lkspace`` metadata common to every part of a catalog (its signature for --resume)."""
+def catalog_metadata(space: DesignSpace, selection: Selection) -> dict[str, Any]:
+    """Return the ``lkspace`` metadata common to every part of a catalog (its signature for resuming)."""
     sc = space.scaffold
     return {
         "format_version": FORMAT_VERSION,
@@ -140,10 +141,10 @@ def catalog_metadata(
         "group_order": space.group_order,
         "acting_order": space.n_actions,
         "assignments": space.assignments,
-        "mode": mode,
-        "filters": {"components": components, "no_zero": space.no_zero, "max_designs": max_designs},
-        "sample": sample,
-        "seed": seed if sample is not None else None,
+        "mode": selection.mode,
+        "filters": {"components": selection.components, "no_zero": space.no_zero, "max_designs": selection.max_designs},
+        "sample": selection.sample,
+        "seed": selection.seed if selection.sample is not None else None,
         "canonical_rule": CANONICAL_RULE,
     }
 
@@ -155,52 +156,60 @@ def write_catalog(
     symmetry: str = "rotations",
     *,
     no_zero: bool = False,
-    mode: str = "designs",
-    components: int | None = None,
-    max_designs: int | None = None,
-    sample: int | None = None,
-    seed: int = 0,
-    jobs: int = 1,
-    shards: int | None = None,
-    resume: bool = False,
+    selection: Selection | None = None,
+    execution: Execution | None = None,
     identify: bool = False,
-    yes: bool = False,
+    allow_large: bool = False,
     progress: Progress | None = None,
-    scheduler: str | None = None,
 ) -> CatalogWritten:
     """Walk a design space and write its catalog; return its totals (:class:`CatalogWritten`).
 
-    ``space`` is a :class:`~lkspace.design.space.DesignSpace`, or a scaffold whose space is
-    given by ``label_set``, ``symmetry`` and ``no_zero`` (``lkspace.write_catalog`` also takes
-    a path or a built-in name, :func:`lkspace.load`).
+    Parameters
+    ----------
+    space : DesignSpace or Scaffold
+        A scaffold's space is given by ``label_set``, ``symmetry`` and ``no_zero``
+        (``lkspace.write_catalog`` also takes a path or a built-in name, :func:`lkspace.load`).
+    path : str or os.PathLike
+        The catalog: a ``.parquet`` file or folder, or an fsspec URL
+        (``s3://bucket/cat.parquet``, ``memory://cat``: see :mod:`lkspace.catalog.remote`).
+    selection : Selection, optional
+        Which rows (:class:`~lkspace.catalog.options.Selection`; default every design).
+    execution : Execution, optional
+        How the run executes (:class:`~lkspace.catalog.options.Execution`: ``jobs``,
+        ``shards``, ``scheduler``, ``resume``; default one process, local).
+    identify : bool
+        Add knot/link columns before the catalog is put in place.
+    allow_large : bool
+        Go ahead with a run estimated past :data:`~lkspace.catalog.plan.ROW_LIMIT` rows or
+        :data:`~lkspace.catalog.plan.BYTE_LIMIT` bytes (refused otherwise, before any work).
+    progress : callable, optional
+        ``progress(total)`` may return a callable taking the rows written so far.
 
     The catalog is a transaction: it is built beside ``path`` and put there only when
     complete (an old catalog at ``path`` stays readable until then), and a lock file stops
     a second run writing the same ``path``.  Up to :data:`~lkspace.catalog.plan.PART_ROWS`
     rows it is one Parquet file; larger design walks (or ``shards`` > 1) make a folder of
     parts with a manifest ``_lkspace.json`` that pandas and pyarrow open as one table.
-    ``jobs`` worker processes write the parts; ``resume=True`` keeps the parts of an
-    interrupted run whose checksums still match and redoes the rest.  ``identify=True``
-    adds knot/link columns before the catalog is put in place.  Runs estimated past
-    :data:`~lkspace.catalog.plan.ROW_LIMIT` rows need ``yes=True``.  ``progress(total)``
-    may return a callable taking the rows written so far.  ``scheduler`` says where the
-    parts are written (:mod:`lkspace.engine`: ``"local"``, ``"dask"`` or a Dask scheduler
-    address; default ``$DASK_SCHEDULER_ADDRESS`` or local).  ``path`` may be an fsspec URL
-    (``s3://bucket/cat.parquet``, ``memory://cat``): see :mod:`lkspace.catalog.remote`.
+    ``jobs`` worker processes write the parts; ``resume`` keeps the parts of an
+    interrupted run whose checksums still match and redoes the rest.
 
     Raises
     ------
     CatalogLockedError
         Another run is writing ``path``.
-    TooLargeError
+    CatalogTooLarge
         The run is past a documented bound (:mod:`lkspace.catalog.plan`).
     CatalogInterrupted
-        Ctrl-C or SIGTERM: workers stopped, temporaries removed, finished parts kept.
+        Ctrl-C (or SIGTERM, where the program makes it raise): workers stopped,
+        temporaries removed, finished parts kept.
     """
+    selection = selection or Selection()
+    execution = execution or Execution()
     if not isinstance(space, DesignSpace):
         space = make_space(space, label_set, symmetry, no_zero)
+    jobs, resume = execution.jobs, execution.resume
     check_jobs(jobs)
-    engine = resolve_scheduler(scheduler)
+    engine = resolve_scheduler(execution.scheduler)
     check_scheduler(engine)
     if jobs > 1 and engine == "local":
         context()  # starts the fork server now: it is ready when the pool is made (a wait Ctrl-C cannot cut)
@@ -208,26 +217,28 @@ def write_catalog(
     if remote is None:
         target = catalog_target(path)
     elif identify:
-        raise CatalogError("--identify rewrites the files of a local catalog; write to a local path", usage=True)
+        raise CatalogError(
+            "identify rewrites the files of a local catalog; write to a local path", usage=True, parameter="identify"
+        )
     else:
         check_remote(remote)
-    with interrupt_signals():  # planning loads compiled kernels: a signal now stops the run cleanly too
-        try:
-            plan = make_plan(space, mode, components, max_designs, sample, shards, yes)
-        except KeyboardInterrupt as exc:
-            shown = remote or target.shown
-            raise CatalogInterrupted(
-                f"interrupted; nothing was written to {shown}", 128 + getattr(exc, "signum", 2)
-            ) from None
-    meta = catalog_metadata(space, mode, components, max_designs, sample, seed)
+    try:  # planning loads compiled kernels: an interrupt now stops the run cleanly too
+        plan = make_plan(space, selection, execution.shards, allow_large)
+    except KeyboardInterrupt as exc:
+        shown = remote or target.shown
+        raise CatalogInterrupted(
+            f"interrupted; nothing was written to {shown}", 128 + getattr(exc, "signum", 2)
+        ) from None
+    meta = catalog_metadata(space, selection)
     periodic = space.scaffold.periodic
-    schema = design_schema(space.scaffold.n_edges, periodic) if mode == "designs" else residue_schema(periodic)
-    walk = (components, max_designs, sample, seed)
+    schema = (
+        design_schema(space.scaffold.n_edges, periodic) if selection.mode == "designs" else residue_schema(periodic)
+    )
     if remote is not None:
-        summaries, kept = write_remote(space, remote, plan, meta, schema, mode, walk, jobs, engine, resume)
+        summaries, kept = write_remote(space, remote, plan, meta, schema, selection, jobs, engine, resume)
         return _totals(space, meta, summaries, remote, plan.parts, kept)
-    run = _Run(space, target, plan, meta, schema, mode, walk, identify, engine)
-    with catalog_lock(target.lock, target.shown), interrupt_signals(), task("writing catalog", plan.rows) as step:
+    run = _Run(space, target, plan, meta, schema, selection, identify, engine)
+    with catalog_lock(target.lock, target.shown), task("writing catalog", plan.rows) as step:
         advance = progress(plan.rows) if progress is not None else None
 
         def tick(rows: int) -> None:
@@ -243,7 +254,7 @@ def write_catalog(
         except KeyboardInterrupt as exc:
             with ignored_signals():
                 remove_temporaries(target, keep_build=plan.parts > 1)
-            raise CatalogInterrupted(run.interrupted(), 128 + getattr(exc, "signum", 2)) from None
+            raise run.interrupted(128 + getattr(exc, "signum", 2)) from None
     totals = _totals(space, meta, summaries, os.fspath(path), plan.parts, kept)
     return replace(totals, identified=run.identified) if identify else totals
 
@@ -258,28 +269,28 @@ class _Run:
         plan: Plan,
         meta: dict[str, Any],
         schema: pa.Schema,
-        mode: str,
-        walk: tuple[Any, ...],
+        selection: Selection,
         identify: bool,
         scheduler: str = "local",
     ) -> None:
         self.space, self.target, self.plan, self.meta, self.schema = space, target, plan, meta, schema
-        self.mode, self.walk, self.identify, self.scheduler = mode, walk, identify, scheduler
+        self.selection, self.identify, self.scheduler = selection, identify, scheduler
         self.signature = {**meta, "shards": plan.parts, "plan": plan.fingerprint, "identify": identify}
-        self.parts: dict[str, dict[str, Any]] = {}
-        self.identified: dict[str, Any] | None = None
+        self.parts: dict[str, PartSummary] = {}
+        self.identified: Identified | None = None
         self.jobs = 1
 
-    def single(self, resume: bool, jobs: int, tick: Callable[[int], object]) -> tuple[list[dict[str, Any]], int]:
+    def single(self, resume: bool, jobs: int, tick: Callable[[int], object]) -> tuple[list[PartSummary], int]:
         """Write (or, resuming, keep) a one-file catalog."""
         self.jobs = jobs
         target, build = self.target, self.target.build
         part_meta = {**self.meta, "shard": {"index": 0, "count": 1, "plan": self.plan.fingerprint}}
         for candidate in (build, target.path) if resume else ():
-            if os.path.isfile(candidate) and _matches(candidate, part_meta):
-                summary = read_metadata(candidate)
-                tick(summary["rows"])
-                if self.identify and not summary.get("identified"):
+            found = _matching(candidate, part_meta)
+            if found is not None:
+                footer, summary = found
+                tick(summary.rows)
+                if self.identify and not footer.get("identified"):
                     self._identify(candidate)
                 if candidate == build:
                     with ignored_signals():
@@ -292,99 +303,96 @@ class _Run:
             rows[0] += n
             tick(rows[0])
 
-        batches = space_batches(self.space, self.mode, None, *self.walk)
-        summary = write_batches(build, self.schema, part_meta, batches, on_rows)
+        summary = write_batches(build, self.schema, part_meta, selected_batches(self.space, self.selection), on_rows)
         if self.identify:
             self._identify(build)
         with ignored_signals():
             replace_path(build, target.path, target.aside)
         return [summary], 0
 
-    def sharded(self, resume: bool, jobs: int, tick: Callable[[int], object]) -> tuple[list[dict[str, Any]], int]:
+    def sharded(self, resume: bool, jobs: int, tick: Callable[[int], object]) -> tuple[list[PartSummary], int]:
         """Write a folder of parts in the build, then put it in place."""
         build, n = self.target.build, self.plan.parts
         self.jobs = jobs
-        old = load_manifest(build) if resume and os.path.isdir(build) else None
-        if old is not None and same_settings(old, self.signature):
-            run_id = str(old["run"])
+        old = Manifest.from_json(load_manifest(build)) if resume and os.path.isdir(build) else None
+        if old is not None and same_settings(old.signature, self.signature):
+            run_id = old.run
             self.parts = verified_parts(build, old)
         else:
             remove_path(build)
             os.mkdir(build)
             run_id, self.parts = seed_build(self.target, build, self.signature) if resume else (new_run(), {})
         prune_build(build, self.parts)
-        manifest = {**self.signature, "run": run_id, "parts": self.parts}
-        save_manifest(build, manifest)
+        self._save(run_id)
         kept = len(self.parts)
-        base = sum(int(p["rows"]) for p in self.parts.values())
+        base = sum(p.rows for p in self.parts.values())
         tick(base)
-        state = {
-            "space": self.space,
-            "mode": self.mode,
-            "walk": self.walk,
-            "folder": build,
-            "files": [part_name(i, run_id) for i in range(n)],
-            "run": run_id,
-            "meta": self.meta,
-            "plan": self.plan.fingerprint,
-            "ranges": self.plan.ranges,
-            "schema": self.schema,
-        }
+        files = tuple(part_name(i, run_id) for i in range(n))
+        plan = self.plan
+        job = PartsJob(
+            self.space, self.selection, self.schema, self.meta, plan.fingerprint, plan.ranges, n, files, run_id, build
+        )
         todo = [i for i in range(n) if str(i) not in self.parts]
-        parts = run_parts(state, todo, jobs, lambda rows: tick(base + rows), self.scheduler)
+        parts = run_parts(job, todo, jobs, lambda rows: tick(base + rows), self.scheduler)
         with contextlib.closing(parts) as finished:
             for i, summary in finished:
                 self.parts[str(i)] = summary
-                save_manifest(build, manifest)
+                self._save(run_id)
         prune_build(build, self.parts)  # temporaries of a worker lost mid-part
-        manifest["complete"] = True  # every part is there
-        save_manifest(build, manifest)
+        self._save(run_id, complete=True)  # every part is there
         if self.identify:
             self._identify(build)
-            for entry in self.parts.values():
-                entry["sha256"] = file_sha256(os.path.join(build, str(entry["file"])))
-            save_manifest(build, manifest)
+            for index, entry in self.parts.items():
+                self.parts[index] = replace(entry, sha256=file_sha256(os.path.join(build, str(entry.file))))
+            self._save(run_id, complete=True)
         with ignored_signals():
             replace_path(build, self.target.path, self.target.aside)
         return [self.parts[str(i)] for i in range(n)], kept
+
+    def _save(self, run_id: str, complete: bool = False) -> None:
+        """Write the build's manifest: this run's settings and the parts finished so far."""
+        manifest = Manifest(self.signature, run_id, dict(self.parts), complete)
+        save_manifest(self.target.build, manifest.to_json())
 
     def _identify(self, path: str) -> None:
         from .identified import identify_catalog
 
         self.identified = identify_catalog(path, self.space.scaffold, processes=self.jobs, scheduler=self.scheduler)
 
-    def interrupted(self) -> str:
-        """Return the line that says what an interrupt left and how to go on."""
+    def interrupted(self, exit_code: int) -> CatalogInterrupted:
+        """Return the interrupt that says what the run left (and whether it can be resumed)."""
         if self.plan.parts == 1:
-            return f"interrupted; nothing was written to {self.target.shown} (an old catalog there is unchanged)"
-        return (
-            f"interrupted; {len(self.parts)} of {self.plan.parts} parts are finished in {self.target.build}: "
-            "run the same command with --resume to finish"
-        )
+            left = f"interrupted; nothing was written to {self.target.shown} (an old catalog there is unchanged)"
+            return CatalogInterrupted(left, exit_code)
+        left = f"interrupted; {len(self.parts)} of {self.plan.parts} parts are finished in {self.target.build}"
+        return CatalogInterrupted(left, exit_code, resumable=True)
 
 
-def _matches(part: str, meta: dict[str, Any]) -> bool:
-    """Whether the catalog file ``part`` has the metadata ``meta`` and reads to the end."""
+def _matching(part: str, meta: dict[str, Any]) -> tuple[dict[str, Any], PartSummary] | None:
+    """Return the footer metadata and totals of the catalog file ``part`` if it has the metadata ``meta`` and reads to the end."""
+    if not os.path.isfile(part):
+        return None
     try:
-        old = read_metadata(part)
-        if not same_settings(old, meta):
-            return False
+        footer = read_metadata(part)
+        summary = PartSummary.from_json(footer)
+        if summary is None or not same_settings(footer, meta):
+            return None
         pq.ParquetFile(part).read()
     except (CatalogError, OSError, pa.ArrowException):
-        return False
-    return True
+        return None
+    return footer, summary
 
 
 def _totals(
-    space: DesignSpace, meta: dict[str, Any], summaries: list[dict[str, Any]], path: str, shards: int, skipped: int
+    space: DesignSpace, meta: dict[str, Any], summaries: list[PartSummary], path: str, shards: int, skipped: int
 ) -> CatalogWritten:
     by: dict[int, int] = {}
-    covered = [int(s["assignments_covered"]) for s in summaries] or [0]
+    covered = [s.assignments_covered for s in summaries] or [0]
     for s in summaries:
-        for k, v in s["by_components"].items():
+        for k, v in s.by_components.items():
             by[int(k)] = by.get(int(k), 0) + v
     return CatalogWritten(
-        designs=sum(s["rows"] for s in summaries),
+        designs=sum(s.rows for s in summaries),
         assignments=space.assignments,
         assignments_covered=-1 if min(covered) < 0 else sum(covered),
         by_components=dict(sorted(by.items())),

@@ -24,6 +24,7 @@ from ..model.scaffold import Scaffold
 from ..model.specs import LabelSetSpec, parse_label_set
 from .batches import gather_blocks
 from .lock import catalog_lock
+from .options import Selection
 from .schema import ROW_GROUP, design_schema
 from .shards import catalog_metadata
 from .transaction import catalog_target
@@ -90,7 +91,7 @@ def symmetric_designs(
 def invariant_metadata(space: InvariantSpace, components: int | None, max_designs: int | None) -> dict[str, Any]:
     """Return the ``lkspace`` metadata of a symmetric catalog: the usual keys and ``invariant``."""
     plain = DesignSpace(space.scaffold, space.label_set, space.mode, space.no_zero)
-    meta = catalog_metadata(plain, "designs", components, max_designs, None, 0)
+    meta = catalog_metadata(plain, Selection(components=components, max_designs=max_designs))
     meta["acting_order"] = int(len(space.action[1]))
     meta["invariant"] = space.summary()
     meta["canonical_rule"] += "; under the normalizer of the invariant subgroup"
@@ -145,11 +146,11 @@ def write_invariant_catalog(
     with catalog_lock(target.lock, target.shown):
         summary = write_batches(target.path, schema, meta, invariant_batches(space, components, max_designs))
     return {
-        "designs": summary["rows"],
+        "designs": summary.rows,
         "assignments": space.assignments,
         "fixed_assignments": space.n_fixed,
-        "assignments_covered": summary["assignments_covered"],
-        "by_components": dict(sorted(summary["by_components"].items(), key=lambda kv: int(kv[0]))),
+        "assignments_covered": summary.assignments_covered,
+        "by_components": dict(sorted(summary.by_components.items(), key=lambda kv: int(kv[0]))),
         "output": os.fspath(path),
         "group_order": meta["group_order"],
         "acting_order": meta["acting_order"],

@@ -11,8 +11,8 @@ For a target ``DIR/NAME`` (a ``.parquet`` file or a folder of parts) a run uses,
 
 When the build is complete it replaces the target (:func:`lkspace.io.atomic.replace_path`):
 readers see the old catalog or the new one.  An interrupted run leaves the build folder
-with its finished parts; ``--resume`` checks them against their checksums and redoes the
-rest.  Every other temporary name of the target starts with ``.NAME.lkspace-`` or
+with its finished parts; resuming (``resume=True``) checks them against their checksums
+and redoes the rest.  Every other temporary name of the target starts with ``.NAME.lkspace-`` or
 ``..NAME.lkspace-build.`` and is removed by the next run.
 """
 
@@ -29,6 +29,7 @@ from typing import Any
 from ..errors import ExportError
 from ..io.atomic import remove_path, write_text
 from ..io.paths import not_an_input, only_extension, output_folder
+from .records import Manifest, PartSummary
 
 MANIFEST = "_lkspace.json"
 """The manifest of a sharded catalog (pandas and pyarrow skip names starting with ``_``)."""
@@ -38,11 +39,18 @@ EXTENSIONS = (".parquet", "")
 
 
 class CatalogInterrupted(KeyboardInterrupt):
-    """A run stopped by Ctrl-C (SIGINT) or SIGTERM after cleaning up; ``exit_code`` is 128 + the signal."""
+    """A run stopped by Ctrl-C (SIGINT) or SIGTERM after cleaning up; ``exit_code`` is 128 + the signal.
 
-    def __init__(self, message: str, exit_code: int = 130) -> None:
-        super().__init__(message)
+    ``left`` says what the run left (``"interrupted; 4 of 11 parts are finished in ..."``);
+    ``resumable`` whether running it again with ``resume=True`` keeps those parts (the
+    message then says so).
+    """
+
+    def __init__(self, left: str, exit_code: int = 130, resumable: bool = False) -> None:
+        super().__init__(f"{left}: run it again with resume=True to finish" if resumable else left)
+        self.left = left
         self.exit_code = exit_code
+        self.resumable = resumable
 
 
 @dataclass(frozen=True)
@@ -76,8 +84,12 @@ class Destination:
         return self._beside("old")
 
 
-def catalog_target(output: str | os.PathLike[str], inputs: tuple[str | None, ...] = ()) -> Destination:
-    """Check ``-o`` for a catalog before any work: return its :class:`Destination`.
+def catalog_target(
+    output: str | os.PathLike[str], inputs: tuple[str | None, ...] = (), argument: str = "path"
+) -> Destination:
+    """Check the output ``output`` of a catalog before any work: return its :class:`Destination`.
+
+    Messages call the output ``argument`` as the caller does (the command line: ``-o``).
 
     A symlink is followed (its target is replaced, the link kept).  Only a catalog
     lkspace wrote is replaced (:func:`foreign_reason`).  Refused, each with one line: an
@@ -87,7 +99,7 @@ def catalog_target(output: str | os.PathLike[str], inputs: tuple[str | None, ...
     """
     text = os.fspath(output)
     if not text.strip():
-        raise ExportError("-o: the catalog name is empty")
+        raise ExportError(f"{argument}: the catalog name is empty", parameter="path")
     bare = text.rstrip("/" + os.sep) or text
     only_extension(bare, (".parquet",))
     ext = os.path.splitext(os.path.basename(bare))[1].lower()
@@ -104,7 +116,7 @@ def catalog_target(output: str | os.PathLike[str], inputs: tuple[str | None, ...
             raise ExportError(f"{text}: is a device, FIFO or socket, not a file lkspace may replace")
         reason = foreign_reason(path)
         if reason is not None:
-            raise ExportError(f"{text}: {reason}; lkspace replaces only catalogs it wrote: choose another -o")
+            raise ExportError(f"{text}: {reason}; lkspace replaces only catalogs it wrote: choose another {argument}")
     output_folder(os.path.dirname(path), text)
     return Destination(path, text)
 
@@ -185,19 +197,19 @@ def save_manifest(folder: str, manifest: dict[str, Any]) -> None:
     write_text(os.path.join(folder, MANIFEST), json.dumps(manifest, indent=1))
 
 
-def verified_parts(folder: str, manifest: dict[str, Any]) -> dict[str, dict[str, Any]]:
+def verified_parts(folder: str, manifest: Manifest) -> dict[str, PartSummary]:
     """Return the finished parts recorded in ``manifest`` whose file in ``folder`` still has its SHA-256."""
     good = {}
-    for index, entry in (manifest.get("parts") or {}).items():
-        file = os.path.join(folder, str(entry.get("file", "")))
-        if os.path.isfile(file) and file_sha256(file) == entry.get("sha256"):
+    for index, entry in manifest.parts.items():
+        file = os.path.join(folder, str(entry.file))
+        if os.path.isfile(file) and file_sha256(file) == entry.sha256:
             good[index] = entry
     return good
 
 
-def prune_build(folder: str, parts: dict[str, dict[str, Any]]) -> None:
+def prune_build(folder: str, parts: dict[str, PartSummary]) -> None:
     """Remove from the build ``folder`` every file that is not the manifest or a part in ``parts``."""
-    keep = {MANIFEST} | {str(entry["file"]) for entry in parts.values()}
+    keep = {MANIFEST} | {str(entry.file) for entry in parts.values()}
     for entry in os.listdir(folder):
         if entry not in keep:
             remove_path(os.path.join(folder, entry))
@@ -219,22 +231,22 @@ def new_run() -> str:
     return secrets.token_hex(4)
 
 
-def seed_build(target: Destination, build: str, signature: dict[str, Any]) -> tuple[str, dict[str, dict[str, Any]]]:
+def seed_build(target: Destination, build: str, signature: dict[str, Any]) -> tuple[str, dict[str, PartSummary]]:
     """Start a build from the finished catalog at the target, if it is of the same run settings.
 
     Returns ``(run id, parts)``: the build takes over the old catalog's run id (its parts'
     footers name it) and its parts whose checksums verify, linked (or copied) into
     ``build``; a new run id and no parts when there is no such catalog.
     """
-    old = load_manifest(target.path) if os.path.isdir(target.path) else None
-    if old is None or not same_settings(old, signature) or not isinstance(old.get("run"), str):
+    old = Manifest.from_json(load_manifest(target.path)) if os.path.isdir(target.path) else None
+    if old is None or not same_settings(old.signature, signature):
         return new_run(), {}
     import shutil
 
     seeded = {}
     for index, entry in verified_parts(target.path, old).items():
-        name = str(entry["file"])
-        if name != part_name(int(index), old["run"]):
+        name = str(entry.file)
+        if not index.isdigit() or name != part_name(int(index), old.run):
             continue
         src, dst = os.path.join(target.path, name), os.path.join(build, name)
         try:
@@ -242,4 +254,4 @@ def seed_build(target: Destination, build: str, signature: dict[str, Any]) -> tu
         except OSError:
             shutil.copy2(src, dst)
         seeded[index] = entry
-    return old["run"], seeded
+    return old.run, seeded

@@ -30,7 +30,7 @@ from __future__ import annotations
 import json
 import os
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, Literal
 
 import pyarrow as pa
 import pyarrow.parquet as pq
@@ -263,9 +263,28 @@ def _open_folder(folder: str) -> CatalogParts:
     return CatalogParts(folder, files, rows_of, metadata, tuple(str(e["sha256"]) for e in entries))
 
 
+Checks = Literal["manifest, part footers, SHA-256 of every part", "footer, CRC-32 of every data page"]
+"""What :func:`verify_catalog` checked: a folder's part checksums, or a file's page checksums."""
+
+
 @dataclass(frozen=True)
 class CatalogCheck:
-    """What :func:`verify_catalog` found: an intact catalog's size and identity."""
+    """What :func:`verify_catalog` found: an intact catalog's size and identity.
+
+    Attributes
+    ----------
+    path : str
+        The catalog (a file or a folder).
+    rows, parts : int
+        Rows of the whole catalog, and its files (1 for a one-file catalog).
+    format_version : int
+    scaffold : str
+        The scaffold's name.
+    run : str or None
+        The run id of a folder's parts (``None`` for a one-file catalog).
+    checks : str
+        What was checked (:data:`Checks`).
+    """
 
     path: str
     rows: int
@@ -273,7 +292,7 @@ class CatalogCheck:
     format_version: int
     scaffold: str
     run: str | None
-    checks: str
+    checks: Checks
 
     def to_dict(self) -> dict[str, Any]:
         """JSON form (``lkspace verify --json``)."""
@@ -291,11 +310,12 @@ def verify_catalog(path: str | os.PathLike[str]) -> CatalogCheck:
     --------
     >>> import lkspace, tempfile, os
     >>> out = os.path.join(tempfile.mkdtemp(), "t.parquet")
-    >>> _ = lkspace.write_catalog("tetrahedron", out, label_set="-2,2", shards=2)
+    >>> _ = lkspace.write_catalog("tetrahedron", out, "-2,2", execution=lkspace.Execution(shards=2))
     >>> lkspace.verify_catalog(out).parts
     2
     """
     parts = open_catalog(path)
+    checks: Checks
     if parts.checksums is not None:
         parts.verify_all()
         checks = "manifest, part footers, SHA-256 of every part"

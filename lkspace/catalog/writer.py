@@ -11,6 +11,7 @@ import pyarrow as pa
 import pyarrow.parquet as pq
 
 from ..io.atomic import atomic_path
+from .records import PartSummary
 from .schema import METADATA_KEY, ROW_GROUP, metadata_digest
 
 
@@ -74,8 +75,8 @@ def write_batches(
     meta: dict[str, Any],
     batches: Iterable[pa.RecordBatch],
     on_rows: Callable[[int], object] | None = None,
-) -> dict[str, Any]:
-    """Write ``batches`` to ``path`` atomically; return the part summary (also stored in its footer)."""
+) -> PartSummary:
+    """Write ``batches`` to ``path`` atomically; return its totals (also stored in its footer)."""
     writer = CatalogWriter(path, schema, meta)
     by: dict[str, int] = {}
     covered = 0
@@ -92,6 +93,5 @@ def write_batches(
     except BaseException as exc:
         writer.abort(exc)
         raise
-    summary = {"by_components": by, "assignments_covered": covered}
-    writer.close(summary)
-    return {**summary, "rows": writer.rows}
+    writer.close({"by_components": by, "assignments_covered": covered})
+    return PartSummary(by, covered, writer.rows)

@@ -7,9 +7,10 @@ from typing import Any
 
 import click
 
+from ..catalog.options import WalkMode
 from ..catalog.plan import MAX_JOBS, MAX_SHARDS
 from ..design.space import WALK_MODES, DesignSpace, make_space
-from ..errors import UsageError
+from ..errors import CatalogError, TooLargeError, UsageError
 from ..symmetry.group import MODES as SYMMETRY_MODES
 from ..words import plural
 from .common import (
@@ -151,7 +152,7 @@ def enumerate_cmd(
     labels_spec: str,
     symmetry: str,
     output: str | None,
-    mode: str,
+    mode: WalkMode,
     components: int | None,
     no_zero: bool,
     max_designs: int | None,
@@ -182,21 +183,28 @@ def enumerate_cmd(
     The representative of each design is the orbit member smallest in (t mod K per
     edge, then t per edge), lexicographically in edge order.
     """
+    from ..catalog.options import Execution, Selection
+    from ..catalog.plan import CatalogTooLarge
     from ..catalog.remote import check_remote, remote_url
     from ..catalog.shards import write_catalog
     from ..catalog.transaction import CatalogInterrupted, catalog_target
-    from ..engine import check_scheduler, resolve_scheduler
+    from ..engine import check_scheduler, is_dask, resolve_scheduler
 
     ctx = Context(as_json)
     engine = resolve_scheduler(scheduler)
     check_scheduler(engine)
     if output is not None and not count_only:  # a bad -o fails before any work
         if remote_url(output) is None:
-            catalog_target(output, (mesh,))
+            catalog_target(output, (mesh,), "-o")
         else:
-            check_remote(output)
+            check_remote(output, "-o")
     if sample is not None and mode != "spanning-trees":
         raise UsageError("--sample applies to --mode spanning-trees only")
+    url = None if output is None or count_only else remote_url(output)
+    if output is not None and not count_only and (shards or 1) > 1 and (mode != "designs" or max_designs is not None):
+        raise CatalogError("--shards applies to full design walks (not with --max-designs or other modes)", usage=True)
+    if url is not None and url.startswith("memory://") and (jobs > 1 or is_dask(engine)):
+        raise UsageError(f"{url}: memory:// is private to this process; use --jobs 1 and --scheduler local")
     if identify and (output is None or count_only):
         raise UsageError("--identify names the rows of a written catalog: give -o CATALOG.parquet")
     if invariant is not None:
@@ -235,21 +243,26 @@ def enumerate_cmd(
         if output is None and not count_only:
             ctx.notes["note"] = "no -o given: counted, nothing written"
     else:
-        written = write_catalog(
-            space,
-            output,
-            mode=mode,
-            components=components,
-            max_designs=max_designs,
-            sample=sample,
-            seed=seed,
-            jobs=jobs,
-            shards=shards,
-            resume=resume,
-            identify=identify,
-            yes=yes,
-            scheduler=engine,
-        )
+        try:
+            written = write_catalog(
+                space,
+                output,
+                selection=Selection(mode, components, max_designs, sample, seed),
+                execution=Execution(jobs, shards, engine, resume),
+                identify=identify,
+                allow_large=yes,
+            )
+        except CatalogInterrupted as exc:
+            if not exc.resumable:
+                raise
+            raise CatalogInterrupted(
+                f"{exc.left}: run the same command with --resume to finish", exc.exit_code
+            ) from None
+        except CatalogTooLarge as exc:  # the way ahead, in flags
+            ahead = "use --count-only, filters or a smaller label set"
+            if exc.allowable:
+                ahead = f"pass --yes to go ahead (or {ahead})"
+            raise TooLargeError(f"{exc.estimate}; {ahead}") from None
         payload = written.to_dict()
         payload["written"] = payload.pop("output")
     payload["seconds"] = round(time.perf_counter() - started, 3)

@@ -1,0 +1,65 @@
+"""The options of a catalog run, as records: which rows (:class:`Selection`) and how it runs (:class:`Execution`).
+
+:func:`~lkspace.write_catalog` takes one of each; both default to the plain run (every
+design, one process)::
+
+    write_catalog("cube", "cube.parquet", "-1..1",
+                  selection=Selection(components=1),
+                  execution=Execution(jobs=2, shards=4, resume=True))
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Literal
+
+WalkMode = Literal["designs", "residues", "spanning-trees"]
+"""Row kinds of a walk: one per design, per residue-class orbit, per dual spanning-tree class."""
+
+
+@dataclass(frozen=True)
+class Selection:
+    """Which rows a catalog holds.
+
+    Attributes
+    ----------
+    mode : {"designs", "residues", "spanning-trees"}
+        One row per design, per residue-class orbit (topology), or per dual spanning tree.
+    components : int or None
+        Keep rows with this many components (``None``: all).
+    max_designs : int or None
+        Stop after this many rows (``None``: the whole walk).
+    sample : int or None
+        ``"spanning-trees"`` mode: sample this many uniform spanning trees instead of listing all.
+    seed : int
+        Random seed of ``sample``.
+    """
+
+    mode: WalkMode = "designs"
+    components: int | None = None
+    max_designs: int | None = None
+    sample: int | None = None
+    seed: int = 0
+
+
+@dataclass(frozen=True)
+class Execution:
+    """How a catalog run executes: processes, parts, where they run, and whether it resumes.
+
+    Attributes
+    ----------
+    jobs : int
+        Worker processes (1..:data:`~lkspace.catalog.plan.MAX_JOBS`); they write whole parts.
+    shards : int or None
+        Parts of the catalog (``None``: one per :data:`~lkspace.catalog.plan.PART_ROWS` designs).
+    scheduler : str or None
+        Where parts run (:mod:`lkspace.engine`): ``"local"``, ``"dask"`` or a Dask scheduler
+        address; ``None``: ``$DASK_SCHEDULER_ADDRESS`` or local.
+    resume : bool
+        Keep the verified parts of an interrupted run and write the rest.
+    """
+
+    jobs: int = 1
+    shards: int | None = None
+    scheduler: str | None = None
+    resume: bool = False
