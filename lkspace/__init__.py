@@ -34,8 +34,6 @@ from importlib.metadata import PackageNotFoundError, version
 from typing import TYPE_CHECKING, Any
 
 from .errors import CatalogError, LabelError, LkspaceError, MissingDependencyError, ScaffoldError
-from .model.lattice import Lattice
-from .model.scaffold import Scaffold
 
 if TYPE_CHECKING:
     from .catalog.listing import designs
@@ -50,6 +48,8 @@ if TYPE_CHECKING:
     from .inverse.pipeline import Solution, SolveResult, solve
     from .io.sources import load
     from .knots.recognition import Identification, identify
+    from .model.lattice import Lattice
+    from .model.scaffold import Scaffold
     from .strands.tracing import Trace, trace
 
 try:
@@ -58,6 +58,8 @@ except PackageNotFoundError:  # pragma: no cover - running from a source tree wi
     __version__ = "0+unknown"
 
 _LAZY = {
+    "Scaffold": "model.scaffold",
+    "Lattice": "model.lattice",
     "load": "io.sources",
     "trace": "strands.tracing",
     "Trace": "strands.tracing",

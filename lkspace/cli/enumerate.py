@@ -35,7 +35,6 @@ def _count_payload(
     scheduler: str = "local",
     jobs: int = 1,
 ) -> dict[str, Any]:
-    from ..catalog.listing import designs
     from ..design.counting import count_space
 
     if mode == "designs":
@@ -43,6 +42,8 @@ def _count_payload(
         if max_designs is not None:
             totals["designs"] = min(totals["designs"], max_designs)
         return totals
+    from ..catalog.listing import designs  # pyarrow and pandas: only where rows are listed to count them
+
     rows = 0
     by: dict[str, int] = {}
     for df in designs(
@@ -75,11 +76,12 @@ def _where_it_ran(
     A census and every part of a sharded, remote or identified catalog are Dask tasks; a
     one-file catalog and a count that needs no census run in this process.
     """
-    from ..catalog.remote import remote_url
     from ..engine import is_dask
 
     if not is_dask(engine):
         return None
+    from ..catalog.remote import remote_url
+
     if counted:
         on_dask = str(payload.get("note", "")).startswith("census")
     else:
@@ -182,8 +184,6 @@ def enumerate_cmd(
     The representative of each design is the orbit member smallest in (t mod K per
     edge, then t per edge), lexicographically in edge order.
     """
-    from ..catalog.remote import check_remote, remote_url
-    from ..catalog.shards import write_catalog
     from ..catalog.transaction import CatalogInterrupted, catalog_target
     from ..engine import check_scheduler, resolve_scheduler
 
@@ -191,6 +191,8 @@ def enumerate_cmd(
     engine = resolve_scheduler(scheduler)
     check_scheduler(engine)
     if output is not None and not count_only:  # a bad -o fails before any work
+        from ..catalog.remote import check_remote, remote_url  # pyarrow: only when a catalog is written
+
         if remote_url(output) is None:
             catalog_target(output, (mesh,))
         else:
@@ -235,6 +237,8 @@ def enumerate_cmd(
         if output is None and not count_only:
             ctx.notes["note"] = "no -o given: counted, nothing written"
     else:
+        from ..catalog.shards import write_catalog
+
         written = write_catalog(
             space,
             output,
