@@ -157,6 +157,16 @@ def test_count_only_loads_no_pandas_or_pyarrow():
     assert not {m for m in modules if m.split(".")[0] in ("pandas", "pyarrow")}
 
 
+def test_writing_a_catalog_loads_no_pandas(tmp_path):
+    out = tmp_path / "c.parquet"
+    modules, _ = imported_modules("enumerate", "honeycomb:cP", "--labels", "-1..1", "-o", str(out))
+    assert "pyarrow.parquet" in modules and not {m for m in modules if m.split(".")[0] == "pandas"}
+    import pyarrow.parquet as pq
+
+    table = pq.read_table(out)
+    assert table.num_rows == 10 and sum(table.column("orbit_size").to_pylist()) == 3**3
+
+
 def test_trace_json_matches_reference_on_random_meshes(capsys, tmp_path):
     """The CLI's JSON, on random non-manifold OBJ files, against the independent tracer."""
     import warnings
