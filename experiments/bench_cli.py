@@ -1,7 +1,8 @@
 """Benchmark: the command line as users run it, end to end, against the goals of issue 20.
 
 Each case is one ``lkspace ...`` command (the console script beside the interpreter) in a
-fresh process, with numba's compile cache warm: every case runs once untimed, then
+fresh process, with numba's compile cache and Python's bytecode cache warm (as a user has
+them; ``PYTHONDONTWRITEBYTECODE`` is dropped): every case runs once untimed, then
 ``--runs`` rounds run every case once each, in turn (so a change in the machine's load
 falls on all cases alike).  The reference cases ``python -c pass`` and
 ``python -c "import numpy"`` run in the same rounds; every figure is also given as a
@@ -68,7 +69,8 @@ def remove(path: str) -> None:
 def measure(code: Path, runs: int, quick: bool) -> dict:
     """Time every case (see the module docstring); return the figures with their provenance."""
     env = {**os.environ, "PYTHONPATH": str(code)}
-    env.pop("NUMBA_CACHE_DIR", None)  # the user's cache, warmed by the untimed round
+    for name in ("NUMBA_CACHE_DIR", "PYTHONDONTWRITEBYTECODE"):  # the user's caches, warmed by the untimed round
+        env.pop(name, None)
     cases = [(key, cmd, goal) for key, cmd, goal, in_quick in CASES if in_quick or not quick]
     samples: dict[str, list[dict]] = {key: [] for key, _, _ in cases}
     result = {**provenance(code), "runs": runs, "load_average_before": load_average()}
