@@ -10,10 +10,15 @@ another checkout of lkspace (``DIR/lkspace``), e.g. the code before the batched 
     python experiments/bench_enumerate.py --code /tmp/lkref --label before --repeat 1
     python experiments/bench_enumerate.py --label after --repeat 3
 
+Beside these in-process figures (start-up excluded), each case is also run as users run
+it: ``lkspace enumerate SCAFFOLD --labels L --symmetry S -o OUT --jobs J`` in a fresh
+process (warm numba cache; best of ``--repeat`` after one untimed run), given as well as a
+multiple of ``python -c "import numpy"`` timed in the same run (``--no-cli`` leaves it out).
+
 Each run stores its numbers under its label in ``results/bench_enumerate.json`` (other
-labels are kept) and rewrites ``results/bench_enumerate.md`` from all labels.  The
-machine is shared (2 cores, other jobs running): timings are the best of the runs, and
-the load average is recorded.
+labels are kept), with the commit, lkspace version, machine and load average before and
+after, and rewrites ``results/bench_enumerate.md`` from all labels.  The machine is shared
+(2 cores, other jobs running): timings are the best of the runs.
 """
 
 from __future__ import annotations
@@ -26,9 +31,13 @@ import shutil
 import sys
 import tempfile
 import time
+from pathlib import Path
+
+from benchkit import load_average, numpy_import, provenance, ratio, summary, timed
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 RESULTS = os.path.join(ROOT, "results")
+LKSPACE = os.path.join(os.path.dirname(sys.executable), "lkspace")
 
 CASES = [  # name, scaffold, labels, symmetry, jobs, what the classes are like
     ("oF", "honeycomb:oF", "-1..1", "rotations", 1, "tiny: 1 assignment per class, periodic"),
@@ -97,11 +106,41 @@ def run_case(case, repeat: int, skip_list: bool) -> dict:
     return out
 
 
+def run_cli(case, repeat: int, code: str, numpy: dict) -> dict:
+    """The case as ``lkspace enumerate ... -o OUT`` in fresh processes: best wall and CPU s, ratio to import numpy."""
+    name, scaffold, labels, symmetry, jobs, _ = case
+    env = {k: v for k, v in os.environ.items() if k not in ("NUMBA_CACHE_DIR", "PYTHONDONTWRITEBYTECODE")}
+    env["PYTHONPATH"] = code
+    tmp = tempfile.mkdtemp(prefix="lkspace-bench-cli-")
+    try:
+        samples = []
+        for i in range(repeat + 1):  # the first run warms the caches and is not kept
+            out = os.path.join(tmp, f"{name}-{i}.parquet")
+            cmd = [LKSPACE, "enumerate", scaffold, "--labels", labels, "--symmetry", symmetry, "-o", out]
+            sample = timed([*cmd, "--jobs", str(jobs)], env)
+            if i:
+                samples.append(sample)
+    finally:
+        shutil.rmtree(tmp)
+    figure = summary(samples)
+    return {
+        "cli_seconds": figure["best_s"],
+        "cli_cpu_seconds": figure["cpu_best_s"],
+        "cli_ratio_to_import_numpy": ratio(figure, numpy, "best_s"),
+    }
+
+
 def _pair(row: dict, what: str) -> str:
     wall, cpu = row.get(f"{what}_seconds"), row.get(f"{what}_cpu_seconds")
     if wall is None:
         return "-"
     return f"{wall} ({cpu})" if cpu is not None else str(wall)
+
+
+def _cli(row: dict) -> str:
+    if row.get("cli_seconds") is None:
+        return "-"
+    return f"{row['cli_seconds']} ({row['cli_ratio_to_import_numpy']}×)"
 
 
 def markdown(data: dict) -> str:
@@ -117,20 +156,27 @@ def markdown(data: dict) -> str:
         "machine was heavily loaded (load average 8-16 on 2 cores), so CPU seconds are the fairer",
         "comparison; rates are assignments per CPU second where measured, else per wall second and core.",
         "",
+        "`CLI s`: the same catalog written by `lkspace enumerate ... -o` in a fresh process (start-up,",
+        "imports, numba's cache, symmetry search included), best wall s and, in brackets, as a multiple of",
+        '`python -c "import numpy"` timed in the same run.',
+        "",
         "| case | classes | assignments | designs | " + " | ".join(f"list s ({lb})" for lb in labels) + " | "
-        "list assignments/s (" + labels[-1] + ") | " + " | ".join(f"count s ({lb})" for lb in labels) + " |",
-        "|---" * (5 + 2 * len(labels)) + "|",
+        "list assignments/s (" + labels[-1] + ") | " + " | ".join(f"count s ({lb})" for lb in labels) + " | "
+        "CLI s (" + labels[-1] + ") |",
+        "|---" * (6 + 2 * len(labels)) + "|",
     ]
-    cases = data[labels[-1]]["cases"]
+    cases = {name: row for lb in labels for name, row in data[lb]["cases"].items()}  # every label's cases
     for name, row in cases.items():
         lst = [_pair(data[lb]["cases"].get(name, {}), "list") for lb in labels]
         cnt = [_pair(data[lb]["cases"].get(name, {}), "count") for lb in labels]
-        rate = row.get("list_assignments_per_cpu_second") or row.get("list_assignments_per_second_per_core", "-")
+        last = data[labels[-1]]["cases"].get(name, {})
+        rate = last.get("list_assignments_per_cpu_second") or last.get("list_assignments_per_second_per_core")
+        rate = "-" if rate is None else f"{rate:,}"
         jobs = f", {row['jobs']} jobs" if row.get("jobs", 1) > 1 else ""
         lines.append(
             f"| {row['scaffold']} {row['labels']} {row['symmetry']}{jobs} | {row['classes']} | "
             f"{row['assignments']:,} | {row['designs']:,} | " + " | ".join(str(x) for x in lst) + f" | "
-            f"{rate:,} | " + " | ".join(str(x) for x in cnt) + " |"
+            f"{rate} | " + " | ".join(str(x) for x in cnt) + f" | {_cli(last)} |"
         )
     lines.append("")
     if {"before", "after"} <= set(data):
@@ -147,8 +193,13 @@ def markdown(data: dict) -> str:
         )
         lines.append("")
     for lb in labels:
-        m = data[lb]["machine"]
-        lines.append(f"- `{lb}`: {data[lb]['repeat']} run(s) each; load average at the end {m['load_average_at_end']}")
+        m, d = data[lb]["machine"], data[lb]
+        where = f"commit {d['commit']}, lkspace {d['lkspace']}, {m['cpus']} × {m.get('cpu')}; " if "commit" in d else ""
+        numpy = f"; `import numpy` {d['import_numpy']['best_s']} s" if "import_numpy" in d else ""
+        before = f"{d['load_average_before']} → " if "load_average_before" in d else ""
+        lines.append(
+            f"- `{lb}`: {where}{d['repeat']} run(s) each; load average {before}{m['load_average_at_end']}{numpy}"
+        )
     return "\n".join(lines) + "\n"
 
 
@@ -159,7 +210,10 @@ def main() -> None:
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--only", nargs="*", help="case names")
     ap.add_argument("--count-only", nargs="*", default=[], help="cases timed for counting only")
+    ap.add_argument("--no-cli", action="store_true", help="leave out the command line end to end")
     args = ap.parse_args()
+    args.provenance = {**provenance(Path(args.code).resolve()), "load_average_before": load_average()}
+    args.numpy = None if args.no_cli else numpy_import()
     sys.path.insert(0, os.path.abspath(args.code))
     from lkspace import load, write_catalog
     from lkspace.design.space import make_space
@@ -173,6 +227,8 @@ def main() -> None:
         if args.only and case[0] not in args.only:
             continue
         cases[case[0]] = run_case(case, args.repeat, case[0] in args.count_only)
+        if args.numpy is not None and case[0] not in args.count_only:
+            cases[case[0]].update(run_cli(case, args.repeat, os.path.abspath(args.code), args.numpy))
         print(case[0], json.dumps(cases[case[0]]), flush=True)
         record(args, cases)  # after every case: a long run stopped midway keeps what it measured
 
@@ -186,14 +242,22 @@ def record(args: argparse.Namespace, cases: dict) -> None:
             old = json.load(fh)
         data = {k: v for k, v in old.items() if isinstance(v, dict) and "cases" in v}
     previous = data.get(args.label, {}).get("cases", {})
+    prov = args.provenance
     data[args.label] = {
         "code": os.path.abspath(args.code),
+        "commit": prov["commit"],
+        "dirty": prov["dirty"],
+        "lkspace": prov["lkspace"],
+        "date": prov["date"],
         "repeat": args.repeat,
+        "import_numpy": args.numpy,
+        "load_average_before": prov["load_average_before"],
         "cases": {**previous, **cases},
         "machine": {
             "cpus": os.cpu_count(),
+            "cpu": prov["machine"]["cpu"],
             "python": platform.python_version(),
-            "load_average_at_end": [round(x, 1) for x in os.getloadavg()],
+            "load_average_at_end": load_average(),
         },
     }
     os.makedirs(RESULTS, exist_ok=True)

@@ -34,8 +34,6 @@ from importlib.metadata import PackageNotFoundError, version
 from typing import TYPE_CHECKING, Any
 
 from .errors import CatalogError, LabelError, LkspaceError, MissingDependencyError, ScaffoldError
-from .model.lattice import Lattice
-from .model.scaffold import Scaffold
 
 if TYPE_CHECKING:
     from . import api
@@ -56,6 +54,8 @@ if TYPE_CHECKING:
     from .io.sources import load
     from .knots import recognition
     from .knots.recognition import Identification
+    from .model.lattice import Lattice
+    from .model.scaffold import Scaffold
     from .strands import tracing
     from .strands.tracing import Trace
 
@@ -76,6 +76,8 @@ except PackageNotFoundError:  # pragma: no cover - running from a source tree wi
     __version__ = "0+unknown"
 
 _LAZY = {
+    "Scaffold": "model.scaffold",
+    "Lattice": "model.lattice",
     "load": "io.sources",
     "trace": "strands.tracing",
     "Trace": "strands.tracing",

@@ -6,9 +6,10 @@ import json
 import subprocess
 import sys
 
+import click
 import pytest
 
-from lkspace.cli import main
+from lkspace.cli import COMMANDS, SUMMARIES, cli, main
 
 from .cli_calls import run
 
@@ -121,6 +122,49 @@ def test_python_dash_m_entry_point():
         check=True,
     )
     assert json.loads(proc.stdout)["components"] == 6
+
+
+def imported_modules(*args):
+    """Names of the modules ``python -m lkspace ARGS`` imports (from ``-X importtime``), and its stdout."""
+    proc = subprocess.run([sys.executable, "-X", "importtime", "-m", "lkspace", *args], capture_output=True, text=True)
+    assert proc.returncode == 0, proc.stderr[-2000:]
+    lines = [line.split("|") for line in proc.stderr.splitlines() if line.startswith("import time:")]
+    return {cells[2].strip() for cells in lines if len(cells) == 3}, proc.stdout
+
+
+def test_help_lists_every_command_without_importing_numpy():
+    modules, out = imported_modules("--help")
+    assert "click" in modules and "lkspace.cli" in modules  # the list is read right
+    assert not {m for m in modules if m.split(".")[0] in ("numpy", "scipy", "numba", "pandas", "pyarrow")}
+    assert not {m for m in modules if m.startswith("lkspace.cli.") and m != "lkspace.cli.flags"}
+    listed = [line.split()[0] for line in out.split("Commands:")[1].splitlines() if line.strip()]
+    assert listed == list(COMMANDS)
+
+
+def test_help_summaries_are_the_commands_own():
+    ctx = click.Context(cli)
+    for name in COMMANDS:
+        command = cli.get_command(ctx, name)
+        for limit in (20, 45, 80, 200):
+            assert click.Command(name, help=SUMMARIES[name]).get_short_help_str(limit) == command.get_short_help_str(
+                limit
+            )
+
+
+def test_count_only_loads_no_pandas_or_pyarrow():
+    modules, out = imported_modules("enumerate", "cube", "--labels", "-1..1", "--count-only", "--json")
+    assert json.loads(out)["designs"] == 22815 and "numba" in modules
+    assert not {m for m in modules if m.split(".")[0] in ("pandas", "pyarrow")}
+
+
+def test_writing_a_catalog_loads_no_pandas(tmp_path):
+    out = tmp_path / "c.parquet"
+    modules, _ = imported_modules("enumerate", "honeycomb:cP", "--labels", "-1..1", "-o", str(out))
+    assert "pyarrow.parquet" in modules and not {m for m in modules if m.split(".")[0] == "pandas"}
+    import pyarrow.parquet as pq
+
+    table = pq.read_table(out)
+    assert table.num_rows == 10 and sum(table.column("orbit_size").to_pylist()) == 3**3
 
 
 def test_trace_json_matches_reference_on_random_meshes(capsys, tmp_path):

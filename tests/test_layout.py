@@ -109,7 +109,7 @@ ALLOWED = {
     "catalog": {"design", "engine", "errors", "io", "kernels", "knots", "model", "progress", "strands", "symmetry", "workers"},
     "linktypes": {"catalog", "design", "errors", "formats", "geometry", "io", "knots", "model", "progress", "strands", "workers"},
     "api": {"io"},
-    "lkspace": {"api", "errors", "model"},
+    "lkspace": {"api", "errors"},
     "studio": {"catalog", "errors", "formats", "geometry", "io", "lkspace", "model", "progress", "scaffolds", "symmetry", "workers"},
     "blender": {"errors", "formats", "geometry", "inverse", "io", "knots", "model", "strands", "symmetry", "words"},
     "dask_worker": {"engine"},

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import itertools
 import math
+import subprocess
+import sys
 
 import numpy as np
 import pytest
@@ -15,7 +17,7 @@ from lkspace import trace
 from lkspace.errors import ScaffoldError
 from lkspace.model.lattice import Lattice
 from lkspace.model.specs import parse_label_set
-from lkspace.scaffolds.periodic import voronoi_scaffold
+from lkspace.scaffolds.periodic import LATTICES, voronoi_scaffold, wigner_seitz, wigner_seitz_from_voronoi
 from lkspace.strands.holding_together import lattice_index
 
 
@@ -53,6 +55,23 @@ def test_wigner_seitz_cells(name, faces, edges, degrees):
     assert (s.n_faces, s.n_edges, set(s.edge_degrees.tolist())) == (faces, edges, degrees)
     # a face class of a 3D honeycomb is a wall between two cells: the cell has 2 * n_faces faces
     assert s.periodic
+
+
+@pytest.mark.parametrize("name", list(LATTICES))
+def test_shipped_cells_are_the_qhull_construction(name):
+    # the built-ins are read from data, which must be what Qhull builds (positions to 1e-12: another
+    # Qhull may round differently; the shipped positions are the ones catalogs' content hashes saw)
+    shipped, built = wigner_seitz(name), wigner_seitz_from_voronoi(name)
+    assert shipped.faces() == built.faces() and shipped.name == built.name == name
+    assert np.array_equal(shipped.corner_offsets, built.corner_offsets)
+    assert np.array_equal(shipped.lattice.basis, built.lattice.basis)
+    np.testing.assert_allclose(shipped.vertices, built.vertices, rtol=0, atol=1e-12)
+
+
+def test_loading_a_honeycomb_needs_no_scipy():
+    code = "import sys, lkspace; lkspace.load('honeycomb:oF@2x1x1').n_faces; print('scipy' in sys.modules)"
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
+    assert out.strip() == "False"
 
 
 def test_square_tiling_loops_weave_chainmail():

@@ -173,3 +173,18 @@ def test_face_keys_are_cycles_up_to_translation(data):
         for seq in (np.roll(corners[::d], -i, axis=0) for d in (1, -1) for i in range(m))
     )
     assert tuple(keys[0].tolist()) == smallest
+
+
+@pytest.mark.parametrize("name", ["honeycomb:oF", "honeycomb:cI@2x2x1", "tiling:hexagonal@3x2", "laves@2x1x1"])
+def test_kd_tree_and_pairwise_matching_find_one_group(name, monkeypatch):
+    # small scaffolds match vertices pair by pair (checked above against the brute force), large
+    # ones with scipy's KD-tree: forced both ways, every motion must come out the same
+    from lkspace.symmetry import periodic_search
+
+    scaffold = lkspace.load(name)
+    groups = []
+    for few in (scaffold.n_vertices, 0):
+        monkeypatch.setattr(periodic_search, "FEW_VERTICES", few)
+        group = periodic_search.periodic_symmetry(scaffold, 1e-6)
+        groups.append([(m.sigma.tolist(), m.offsets.tolist(), m.edge_perm.tolist()) for m in group.elements()])
+    assert len(groups[0]) > 1 and groups[0] == groups[1]

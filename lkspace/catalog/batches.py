@@ -19,7 +19,7 @@ from ..design.spanning import spanning_tree_rows
 from ..design.walk import DesignBlock, walk_blocks
 from ..kernels import kernel
 from ..model.scaffold import Scaffold
-from .columns import residue_rows_to_batch, strand_columns
+from .columns import numpy_column, residue_rows_to_batch, strand_columns
 from .residue_rows import residue_batches
 from .schema import ROW_GROUP, design_schema
 
@@ -73,14 +73,14 @@ def blocks_to_batch(blocks: list[DesignBlock], n_edges: int, periodic: bool) -> 
     codes = np.concatenate([b.class_codes for b in blocks]).astype(np.int64)
     cols = {
         "labels": pa.ListArray.from_arrays(
-            pa.array(np.arange(m + 1, dtype=np.int32) * n_edges), pa.array(labels.reshape(-1), pa.int8())
+            numpy_column(np.arange(m + 1, dtype=np.int32) * n_edges), numpy_column(labels.reshape(-1))
         ),
         "key": pa.FixedSizeBinaryArray.from_buffers(pa.binary(n_edges), m, [None, pa.py_buffer(labels.tobytes())]),
-        "components": pa.array(traces.components[row_class].astype(np.int16)),
-        "orbit_size": pa.array(np.concatenate([b.orbit_sizes for b in blocks]).astype(np.int64)),
-        "holds_together": pa.array(np.concatenate([b.holds_together for b in blocks])),
-        **{k: pa.array(v) for k, v in stats.items()},
-        "residue_class": pa.array(codes[row_class]),
+        "components": numpy_column(traces.components[row_class].astype(np.int16)),
+        "orbit_size": numpy_column(np.concatenate([b.orbit_sizes for b in blocks]).astype(np.int64)),
+        "holds_together": numpy_column(np.concatenate([b.holds_together for b in blocks])),
+        **{k: numpy_column(v) for k, v in stats.items()},
+        "residue_class": numpy_column(codes[row_class]),
         **strand_columns(traces, row_class, periodic),
     }
     return pa.RecordBatch.from_arrays([cols[f.name] for f in schema], schema=schema)

@@ -14,11 +14,27 @@ INT64_MAX = 2**63 - 1
 """Largest ``residue_class`` code stored; a larger one (a class of a big scaffold) is stored as null."""
 
 
+def numpy_column(values: np.ndarray) -> pa.Array:
+    """Return the ``(n,)`` numeric or bool array ``values`` as an Arrow array of its dtype (no nulls).
+
+    Built from the array's buffer: ``pa.array`` would first import pandas (to check for
+    pandas types), a quarter of a second that writing a catalog does not need.
+    """
+    values = np.ascontiguousarray(values)
+    if values.dtype == np.bool_:
+        bits = pa.py_buffer(np.packbits(values, bitorder="little"))
+        return pa.Array.from_buffers(pa.bool_(), len(values), [None, bits])
+    return pa.Array.from_buffers(pa.from_numpy_dtype(values.dtype), len(values), [None, pa.py_buffer(values)])
+
+
 def list_column(values: np.ndarray, counts: np.ndarray, type_: pa.ListType) -> pa.Array:
-    """Return a list column of Arrow type ``type_``: row ``i`` holds the next ``counts[i]`` of ``values``."""
+    """Return a list column of Arrow type ``type_``: row ``i`` holds the next ``counts[i]`` of ``values``.
+
+    ``values`` has the dtype of ``type_``'s elements.
+    """
     offsets = np.zeros(len(counts) + 1, np.int32)
     np.cumsum(counts, out=offsets[1:])
-    return pa.ListArray.from_arrays(pa.array(offsets), pa.array(values, type=type_.value_type))
+    return pa.ListArray.from_arrays(numpy_column(offsets), numpy_column(values), type=type_)
 
 
 def per_row_lists(values: np.ndarray, counts: np.ndarray, row_class: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -60,14 +76,15 @@ def strand_columns(traces: ClassTraces, row_class: np.ndarray, periodic: bool) -
         periods = traces.periods[mask]  # (total strands, dim)
         infinite = np.zeros(len(n_s), np.int16)
         np.add.at(infinite, np.repeat(np.arange(len(n_s)), n_s), np.any(periods != 0, axis=1))
-        cols["n_infinite"] = pa.array(infinite[row_class])
+        cols["n_infinite"] = numpy_column(infinite[row_class])
         flat_p, counts_p = per_row_lists(periods.reshape(-1), n_s * dim, row_class)
         inner = pa.ListArray.from_arrays(
-            pa.array(np.arange(len(flat_p) // max(dim, 1) + 1, dtype=np.int32) * dim), pa.array(flat_p, pa.int64())
+            numpy_column(np.arange(len(flat_p) // max(dim, 1) + 1, dtype=np.int32) * dim),
+            numpy_column(flat_p.astype(np.int64)),
         )
         offsets = np.zeros(len(counts) + 1, np.int32)
         np.cumsum(counts, out=offsets[1:])
-        cols["strand_periods"] = pa.ListArray.from_arrays(pa.array(offsets), inner)
+        cols["strand_periods"] = pa.ListArray.from_arrays(numpy_column(offsets), inner)
     return cols
 
 

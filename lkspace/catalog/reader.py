@@ -13,10 +13,9 @@ from __future__ import annotations
 import os
 from dataclasses import dataclass
 from functools import cached_property
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
-import pandas as pd
 import pyarrow as pa
 import pyarrow.parquet as pq
 from numpy.typing import ArrayLike
@@ -28,6 +27,9 @@ from ..model.scaffold import Scaffold
 from ..strands.tracing import Trace, trace
 from .transaction import load_manifest
 from .verify import damaged, open_catalog
+
+if TYPE_CHECKING:
+    import pandas as pd
 
 LABEL_COLUMNS = ("labels", "key")
 """Columns read into :attr:`Catalog.labels` rather than into the frame."""
@@ -92,6 +94,8 @@ class Catalog:
 
     def __getitem__(self, rows: slice | ArrayLike | pd.Series) -> Catalog:
         """Return the catalog restricted to ``rows``: a boolean mask, an index array or a slice."""
+        import pandas as pd
+
         if isinstance(rows, pd.Series) and pd.api.types.is_bool_dtype(rows.dtype):
             rows = rows.to_numpy(dtype=bool)  # Arrow-backed masks too
         elif not isinstance(rows, slice):
@@ -168,6 +172,8 @@ def _run_of(path: str) -> object:
 
 
 def _read(path: str, columns: list[str] | None) -> Catalog:
+    import pandas as pd  # here, not at the top: writing a catalog imports this module and needs no pandas
+
     parts = open_catalog(path)
     parts.verify_all()
     schema = pq.read_schema(parts.files[0])

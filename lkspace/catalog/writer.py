@@ -83,10 +83,10 @@ def write_batches(
     try:
         for batch in batches:
             writer.write(batch)
-            comps = batch.column("components").to_numpy()
+            comps = _values(batch.column("components"), np.int16)
             for c, n in zip(*np.unique(comps, return_counts=True), strict=True):
                 by[str(int(c))] = by.get(str(int(c)), 0) + int(n)
-            sizes = batch.column("orbit_size").to_numpy()
+            sizes = _values(batch.column("orbit_size"), np.int64)
             covered = -1 if covered < 0 or (sizes < 0).any() else covered + int(sizes.sum())  # -1: past 64 bits
             if on_rows is not None:
                 on_rows(batch.num_rows)
@@ -95,3 +95,10 @@ def write_batches(
         raise
     writer.close({"by_components": by, "assignments_covered": covered})
     return PartSummary(by, covered, writer.rows)
+
+
+def _values(column: pa.Array, dtype: type[np.integer]) -> np.ndarray:
+    """Return the null-free integer column ``column`` as a numpy view (``to_numpy`` would import pandas)."""
+    if column.null_count:
+        raise ValueError(f"column of {column.type} has nulls")  # the schemas' summed columns have none
+    return np.frombuffer(column.buffers()[1], dtype, len(column), column.offset * np.dtype(dtype).itemsize)

@@ -38,6 +38,23 @@ COMMANDS = {
 }
 """Command name -> ``module:attribute`` under :mod:`lkspace.cli`."""
 
+SUMMARIES = {
+    "scaffold": "Write the built-in scaffold NAME (or convert FILE, .obj or .json) to a file.",
+    "info": "Show counts, edge-degree histogram, boundary and non-manifold edges, symmetry of MESH.",
+    "trace": "Trace the strands of MESH labelled by --twist.",
+    "enumerate": "Walk the design space of MESH: one row per design up to symmetry.",
+    "solve": "Find twist labels on MESH giving exactly --components strands (or a --type), or prove none exist.",
+    "export": "Realize the strands of MESH labelled by --twist and write them to -o FILE.",
+    "identify": "Name the knot or link that MESH labelled by --twist realizes.",
+    "atlas": "List every knot and link type the designs of MESH with labels SET realize.",
+    "surfaces": "Choose cycles of GRAPH as faces, each edge on --per-edge faces; list the results up to automorphism.",
+    "motifs": "Repeat a motif (labels on a block of cells) over a supercell of the periodic MESH.",
+    "verify": "Check that CATALOG is whole and unaltered: manifest, every part's footer and checksum.",
+    "studio": "Open the studio: edit twist labels of MESH in the browser and see the strands at once.",
+}
+"""Command name -> the first paragraph of its help, which ``lkspace --help`` lists without
+importing the command (its module imports numpy); ``tests/test_cli.py`` keeps them equal."""
+
 
 class LazyGroup(click.Group):
     """A click group whose commands are imported on first use."""
@@ -45,6 +62,15 @@ class LazyGroup(click.Group):
     def list_commands(self, ctx: click.Context) -> list[str]:
         """Return the command names, in the order of ``COMMANDS`` (without importing them)."""
         return list(COMMANDS)
+
+    def format_commands(self, ctx: click.Context, formatter: click.HelpFormatter) -> None:
+        """List the commands as click does, their summaries from ``SUMMARIES`` (a command without one is imported)."""
+        commands = [
+            click.Command(n, help=SUMMARIES[n]) if n in SUMMARIES else self.get_command(ctx, n) for n in COMMANDS
+        ]
+        limit = formatter.width - 6 - max(map(len, COMMANDS))
+        with formatter.section("Commands"):
+            formatter.write_dl([(c.name or "", c.get_short_help_str(limit)) for c in commands if c is not None])
 
     def get_command(self, ctx: click.Context, cmd_name: str) -> click.Command | None:
         """Import and return the command ``cmd_name``; ``None`` if there is no such command."""

@@ -36,7 +36,6 @@ def _count_payload(
     scheduler: str = "local",
     jobs: int = 1,
 ) -> dict[str, Any]:
-    from ..catalog.listing import designs
     from ..design.counting import count_space
 
     if mode == "designs":
@@ -44,6 +43,8 @@ def _count_payload(
         if max_designs is not None:
             totals["designs"] = min(totals["designs"], max_designs)
         return totals
+    from ..catalog.listing import designs  # pyarrow and pandas: only where rows are listed to count them
+
     rows = 0
     by: dict[str, int] = {}
     for df in designs(
@@ -76,11 +77,12 @@ def _where_it_ran(
     A census and every part of a sharded, remote or identified catalog are Dask tasks; a
     one-file catalog and a count that needs no census run in this process.
     """
-    from ..catalog.remote import remote_url
     from ..engine import is_dask
 
     if not is_dask(engine):
         return None
+    from ..catalog.remote import remote_url
+
     if counted:
         on_dask = str(payload.get("note", "")).startswith("census")
     else:
@@ -183,24 +185,23 @@ def enumerate_cmd(
     The representative of each design is the orbit member smallest in (t mod K per
     edge, then t per edge), lexicographically in edge order.
     """
-    from ..catalog.options import Execution, Selection
-    from ..catalog.plan import CatalogTooLarge
-    from ..catalog.remote import check_remote, remote_url
-    from ..catalog.shards import write_catalog
     from ..catalog.transaction import CatalogInterrupted, catalog_target
     from ..engine import check_scheduler, is_dask, resolve_scheduler
 
     ctx = Context(as_json)
     engine = resolve_scheduler(scheduler)
     check_scheduler(engine)
+    url = None
     if output is not None and not count_only:  # a bad -o fails before any work
-        if remote_url(output) is None:
+        from ..catalog.remote import check_remote, remote_url  # pyarrow: only when a catalog is written
+
+        url = remote_url(output)
+        if url is None:
             catalog_target(output, (mesh,), "-o")
         else:
             check_remote(output, "-o")
     if sample is not None and mode != "spanning-trees":
         raise UsageError("--sample applies to --mode spanning-trees only")
-    url = None if output is None or count_only else remote_url(output)
     if output is not None and not count_only and (shards or 1) > 1 and (mode != "designs" or max_designs is not None):
         raise CatalogError("--shards applies to full design walks (not with --max-designs or other modes)", usage=True)
     if url is not None and url.startswith("memory://") and (jobs > 1 or is_dask(engine)):
@@ -243,6 +244,10 @@ def enumerate_cmd(
         if output is None and not count_only:
             ctx.notes["note"] = "no -o given: counted, nothing written"
     else:
+        from ..catalog.options import Execution, Selection
+        from ..catalog.plan import CatalogTooLarge
+        from ..catalog.shards import write_catalog
+
         try:
             written = write_catalog(
                 space,

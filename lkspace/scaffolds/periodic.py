@@ -1,7 +1,8 @@
 """Periodic scaffolds: Wigner–Seitz tilings and honeycombs, Voronoi scaffolds, supercells.
 
 A periodic scaffold is the quotient of an infinite periodic polygon complex by its
-lattice (see :mod:`lkspace.model.scaffold`).  Cells are computed with scipy's Voronoi (Qhull):
+lattice (see :mod:`lkspace.model.scaffold`).  Cells are computed with scipy's Voronoi (Qhull;
+the built-in tilings and honeycombs are shipped precomputed, :func:`wigner_seitz`):
 
 * 2D (``tiling:*``): the faces are the Voronoi cells (tiles) of the lattice points in the
   xy plane; every edge is shared by two tiles.
@@ -160,9 +161,22 @@ def quotient_scaffold(lattice: Lattice, polygons: Iterable[np.ndarray], name: st
 
 
 def wigner_seitz(name: str) -> Scaffold:
-    """Return the built-in Wigner–Seitz tiling or honeycomb ``name`` (see the module docstring)."""
+    """Return the built-in Wigner–Seitz tiling or honeycomb ``name`` (see the module docstring).
+
+    The cell is read from :mod:`lkspace.scaffolds.wigner_seitz_cells`, which holds what
+    :func:`wigner_seitz_from_voronoi` computes (the tests check that they agree): loading a
+    built-in needs no Qhull.
+    """
     if name not in LATTICES:
         raise ScaffoldError(f"unknown periodic scaffold {name!r}; known: {', '.join(LATTICES)}")
+    from .wigner_seitz_cells import CELLS
+
+    vertices, faces, offsets = CELLS[name]
+    return Scaffold.from_faces(vertices, faces, lattice=LATTICES[name](), offsets=offsets, name=name)
+
+
+def wigner_seitz_from_voronoi(name: str) -> Scaffold:
+    """Compute the built-in Wigner–Seitz scaffold ``name`` with Qhull (the data of :func:`wigner_seitz`)."""
     lattice = LATTICES[name]()
     return quotient_scaffold(lattice, voronoi_polygons(lattice, np.zeros((1, 3))), name)
 

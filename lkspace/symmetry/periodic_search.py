@@ -43,6 +43,9 @@ SAMPLE = 16
 """Vertices checked on every candidate motion before the full check."""
 CHUNK = 1024
 """Candidate translations sample-checked at once."""
+FEW_VERTICES = 64
+"""Scaffolds with at most this many vertices are matched by comparing every pair (numpy), not with
+scipy's KD-tree, whose import costs more than their whole search."""
 
 
 @dataclass(frozen=True)
@@ -86,8 +89,6 @@ class PeriodicSearch:
     """Candidate motions of one periodic scaffold, checked as the module docstring says."""
 
     def __init__(self, scaffold: Scaffold, tol: float) -> None:
-        from scipy.spatial import cKDTree
-
         assert scaffold.lattice is not None, "a periodic search needs a lattice"
         self.scaffold = scaffold
         self.tol = tol
@@ -95,7 +96,11 @@ class PeriodicSearch:
         self.pinv = np.linalg.pinv(self.basis)
         self.positions = scaffold.vertices
         self.fractional = self.positions @ self.pinv
-        self.tree = cKDTree(_wrap(self.fractional), boxsize=1.0)
+        self.tree = None
+        if scaffold.n_vertices > FEW_VERTICES:
+            from scipy.spatial import cKDTree
+
+            self.tree = cKDTree(_wrap(self.fractional), boxsize=1.0)
         kinds = np.column_stack(
             [
                 np.bincount(scaffold.corners, minlength=scaffold.n_vertices),
@@ -118,11 +123,20 @@ class PeriodicSearch:
     def match(self, images: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Vertex, lattice offset and ``ok`` of points ``images (..., 3)`` (``ok``: a vertex within ``tol``)."""
         frac = images @ self.pinv
-        _, sigma = self.tree.query(_wrap(frac))
+        sigma = self.tree.query(_wrap(frac))[1] if self.tree is not None else self._nearest(frac)
         offsets = np.rint(frac - self.fractional[sigma]).astype(np.int64)
         landed = self.positions[sigma] + offsets @ self.basis
         ok = np.all(np.abs(landed - images) <= self.tol, axis=-1)
         return sigma, offsets, ok
+
+    def _nearest(self, frac: np.ndarray) -> np.ndarray:
+        """(...,) int64: the vertex nearest each point ``frac (..., dim)`` in lattice coordinates modulo the lattice.
+
+        The KD-tree's answer (the same periodic distance), by comparing every pair.
+        """
+        diff = frac[..., None, :] - self.fractional
+        diff -= np.round(diff)
+        return np.argmin(np.einsum("...ij,...ij->...i", diff, diff), axis=-1)
 
     def candidates(self, q: np.ndarray, targets: np.ndarray) -> np.ndarray:
         """(m,) int64: the ``targets`` whose ``tau = p_j - Q p_anchor`` maps the sample vertices onto vertices."""
@@ -256,6 +270,8 @@ def _translation_group(search: PeriodicSearch) -> tuple[list[PeriodicMotion], np
 
 def _orbits(n_vertices: int, generators: list[PeriodicMotion]) -> np.ndarray:
     """(n_vertices,) int64: the orbit label of each vertex under the translations ``generators``."""
+    if not generators:  # the identity alone: every vertex is its own orbit (and scipy stays unloaded)
+        return np.arange(n_vertices, dtype=np.int64)
     from scipy.sparse import coo_matrix
     from scipy.sparse.csgraph import connected_components
 
