@@ -24,6 +24,8 @@ own parameters, never of command-line flags: an error about one argument passes
 ``parameter="max_designs"`` and its message starts with that name
 (``"max_designs: must be at least 1, got 0"``); the command line, which knows the flag
 of each parameter (:mod:`lkspace.cli.flags`), shows the flag instead (``"--max-designs: ..."``).
+Other parameters a message names (a hint such as ``"use symmetry='none'"``) are listed in
+``mentions``; the command line writes them as flags too (``"use --symmetry none"``).
 The command line turns any ``LkspaceError`` into one stderr line (and, under ``--json``,
 an ``{"error": {...}}`` object on stdout) with the error's :attr:`~LkspaceError.exit_code`:
 1 for bad data (files, scaffolds, catalogs), 2 for bad usage (options and arguments).
@@ -41,16 +43,25 @@ class LkspaceError(Exception):
     ``exit_code`` is the command line's exit status for it: 1 (bad data) unless the class
     or the ``usage=True`` keyword says the error is in how lkspace was called (2).
     ``parameter`` names the argument at fault (as the Python API calls it); the message
-    then starts with that name, which the command line replaces by the flag.
+    then starts with that name, which the command line replaces by the flag.  ``mentions``
+    names other parameters the message refers to, as ``name`` or ``name=value``
+    (:func:`lkspace.cli.flags.in_flags` shows them as ``--flag`` and ``--flag value``).
     """
 
     exit_code = 1
 
-    def __init__(self, *args: object, usage: bool | None = None, parameter: str | None = None) -> None:
+    def __init__(
+        self,
+        *args: object,
+        usage: bool | None = None,
+        parameter: str | None = None,
+        mentions: tuple[str, ...] = (),
+    ) -> None:
         super().__init__(*args)
         if usage is not None:
             self.exit_code = 2 if usage else 1
         self.parameter = parameter
+        self.mentions = mentions
 
 
 class UsageError(LkspaceError, ValueError):

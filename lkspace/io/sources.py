@@ -44,7 +44,9 @@ def load(source: ScaffoldSource, *, weld: float | bool | None = None) -> Scaffol
     text = os.fspath(source)
     if scaffolds.is_builtin_name(text) and not os.path.lexists(text):
         if weld is not None and weld is not False:
-            raise ScaffoldError(f"{text!r}: --weld applies to files, not to built-in scaffolds", usage=True)
+            raise ScaffoldError(
+                f"{text!r}: weld applies to files, not to built-in scaffolds", usage=True, mentions=("weld",)
+            )
         return scaffolds.builtin(text)
     if os.path.lexists(text) or os.path.splitext(text)[1] or os.sep in text:
         return read(text, weld)

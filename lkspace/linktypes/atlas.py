@@ -206,7 +206,8 @@ def atlas(
         if n > MAX_DESIGNS:
             raise TooLargeError(
                 f"{scaffold.name}: {n:,} designs with labels {label_set.tolist()} > {MAX_DESIGNS:,} (MAX_DESIGNS); "
-                "an atlas would identify them all: give --stop-after S for the simplest ones, or a smaller label set"
+                "an atlas would identify them all: give stop_after=S for the simplest ones, or a smaller label set",
+                mentions=("stop_after",),
             )
     header = {
         "scaffold": scaffold.name,

@@ -264,7 +264,8 @@ class Elements:
                         raise TooLargeError(
                             f"{self.name}: the symmetry group has more than {len(self.rows) - 1} elements on "
                             f"{self.size} vertices and edges: its tables would pass {MAX_GROUP_ENTRIES} "
-                            "entries; use --symmetry none"
+                            "entries; use symmetry='none'",
+                            mentions=("symmetry",),
                         )
             frontier = new
 
