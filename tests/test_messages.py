@@ -9,6 +9,7 @@ import pytest
 import lkspace
 from lkspace.geometry.fabrication import gap_fixes
 from lkspace.linktypes.names import parse_type
+from lkspace.model.specs import parse_labels
 from lkspace.words import plural, rounded
 
 from .cli_calls import run
@@ -120,6 +121,12 @@ def test_library_errors_name_parameters_and_the_cli_names_flags():
             ["solve", "cube", "--type", "m3_1", "--chirality", "table"],
             "type_name 'm3_1' asks for the mirror image but chirality is table",
             "--type 'm3_1' asks for the mirror image but --chirality is table",
+        ),
+        (
+            lambda: parse_labels(lkspace.load("cube"), "1,2"),
+            ["trace", "cube", "--twist", "1,2"],
+            "labels '1,2': expected 12 twist labels (one per edge of cube), got 2",
+            "--twist '1,2': expected 12 twist labels (one per edge of cube), got 2",
         ),
         (
             lambda: next(lkspace.designs("tetrahedron", "2", mode="spanning-trees")),

@@ -77,10 +77,10 @@ def label_cost(labels: np.ndarray, objective: Objective | None) -> np.ndarray:
 
 
 def allowed_labels(scaffold: Scaffold, query: Query) -> list[np.ndarray]:
-    """Labels each edge may carry after ``--labels``, ``--no-zero``, fixes and parities.
+    """Labels each edge may carry after ``label_set``, ``no_zero``, ``fixes`` and ``parities``.
 
     Returns a list of ``n_edges`` sorted ``(k,) int64`` arrays; an empty one means no
-    design exists.  A fix that contradicts ``--no-zero`` or a parity raises
+    design exists.  A fix that contradicts ``no_zero`` or a parity raises
     :class:`~lkspace.errors.LabelError` (the query contradicts itself).
     """
     base = np.unique(np.asarray(query.label_set, np.int64))
