@@ -4,7 +4,7 @@ The tree::
 
     LkspaceError                      base of everything lkspace raises on purpose
     ├── UsageError(ValueError)        an option or argument that cannot be used (exit 2)
-    │   └── TooLargeError             work past a documented bound (asks for --yes or a smaller input)
+    │   └── TooLargeError             work past a documented bound (says how to go ahead or what to make smaller)
     ├── ScaffoldError(ValueError)     a scaffold that cannot be built or read
     │   └── RadialOrderError          two face-sides of an edge (K >= 3) at the same angle
     ├── LabelError(ValueError)        twist labels, label sets, null edge-sides
@@ -24,8 +24,9 @@ own parameters, never of command-line flags: an error about one argument passes
 ``parameter="max_designs"`` and its message starts with that name
 (``"max_designs: must be at least 1, got 0"``); the command line, which knows the flag
 of each parameter (:mod:`lkspace.cli.flags`), shows the flag instead (``"--max-designs: ..."``).
-A parameter named further on in a message is put in backquotes (``"use a smaller `thickness`"``),
-which the command line shows as its flag too (``"use a smaller --thickness"``).
+A parameter named further on in a message is put in backquotes, alone or with a value
+(``"use a smaller `thickness`"``, ``"use `symmetry='none'`"``), which the command line
+shows as its flag too (``"use a smaller --thickness"``, ``"use --symmetry none"``).
 The command line turns any ``LkspaceError`` into one stderr line (and, under ``--json``,
 an ``{"error": {...}}`` object on stdout) with the error's :attr:`~LkspaceError.exit_code`:
 1 for bad data (files, scaffolds, catalogs), 2 for bad usage (options and arguments).

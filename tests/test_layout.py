@@ -82,9 +82,9 @@ LAYERS = (
     ("linktypes",),
     ("api",),
     ("lkspace",),
-    ("studio", "blender", "dask_worker"),
+    ("studio", "dask_worker"),
     ("cli",),
-    ("__main__",),
+    ("blender", "__main__"),
 )
 """The packages of lkspace from the bottom up (a top-level module such as ``api`` counts as a package;
 ``lkspace`` is the package root, ``__init__.py``): a package imports only from layers below its own."""
@@ -107,11 +107,14 @@ ALLOWED = {
     "knots": {"errors", "geometry", "io", "model", "progress", "strands", "workers"},
     "formats": {"errors", "geometry", "io", "knots", "model", "progress"},
     "catalog": {"design", "engine", "errors", "io", "kernels", "knots", "model", "progress", "strands", "symmetry", "workers"},
-    "linktypes": {"catalog", "design", "errors", "formats", "geometry", "io", "knots", "model", "progress", "strands", "workers"},
+    "linktypes": {
+        "catalog", "design", "errors", "formats", "geometry", "io", "knots", "model", "progress", "strands", "symmetry",
+        "workers",
+    },
     "api": {"io"},
     "lkspace": {"api", "errors"},
     "studio": {"catalog", "errors", "formats", "geometry", "io", "lkspace", "model", "progress", "scaffolds", "symmetry", "workers"},
-    "blender": {"errors", "formats", "geometry", "inverse", "io", "knots", "model", "strands", "symmetry", "words"},
+    "blender": {"cli", "errors", "formats", "geometry", "inverse", "io", "knots", "model", "strands", "symmetry", "words"},
     "dask_worker": {"engine"},
     "cli": {
         "catalog", "design", "engine", "errors", "formats", "geometry", "inverse", "io", "knots", "linktypes",

@@ -2,10 +2,14 @@
 
 import json
 import re
+from functools import partial
 
 import pytest
 
+import lkspace
 from lkspace.geometry.fabrication import gap_fixes
+from lkspace.linktypes.names import parse_type
+from lkspace.model.specs import parse_labels
 from lkspace.words import plural, rounded
 
 from .cli_calls import run
@@ -104,3 +108,76 @@ def test_export_tube_bound_names_the_bound(capsys, tmp_path):
     assert err.startswith("lkspace: error: MAX_TUBE_VERTICES / 12 for tubes (polylines allow more): "), err
     assert "points > 500,000" in err and err.count("\n") == 1, err
     assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize(
+    ("call", "args", "python", "cli"),
+    [
+        (
+            partial(lkspace.solve, "cube", 1, no_zero=True, fixes={0: 0}),
+            ["solve", "cube", "-n", "1", "--no-zero", "--fix", "0=0"],
+            "fixes 0-1=0 contradicts `no_zero`",
+            "--fix 0-1=0 contradicts --no-zero",
+        ),
+        (
+            partial(lkspace.solve, "cube", 1, distinct_up_to="mirrors"),
+            ["solve", "cube", "-n", "1", "--distinct-up-to", "mirrors"],
+            "distinct_up_to 'mirrors': expected rotations, isometries or none",
+            None,  # click checks the choice on the command line
+        ),
+        (
+            partial(lkspace.count_designs, "tetrahedron", "0..1", "isometries"),
+            ["enumerate", "tetrahedron", "--labels", "0..1", "--symmetry", "isometries", "--count-only"],
+            "symmetry='isometries' maps label t to -t under reflections, but the label set [0, 1] lacks [-1]; "
+            "use a set closed under negation or `symmetry='rotations'`",
+            "--symmetry isometries maps label t to -t under reflections, but the label set [0, 1] lacks [-1]; "
+            "use a set closed under negation or --symmetry rotations",
+        ),
+        (
+            partial(parse_type, "m3_1", "table"),
+            ["solve", "cube", "--type", "m3_1", "--chirality", "table"],
+            "type_name 'm3_1' asks for the mirror image but `chirality` is table",
+            "--type 'm3_1' asks for the mirror image but --chirality is table",
+        ),
+        (
+            lambda: parse_labels(lkspace.load("cube"), "1,2"),
+            ["trace", "cube", "--twist", "1,2"],
+            "labels '1,2': expected 12 twist labels (one per edge of cube), got 2",
+            "--twist '1,2': expected 12 twist labels (one per edge of cube), got 2",
+        ),
+        (
+            lambda: next(lkspace.designs("tetrahedron", "2", mode="spanning-trees")),
+            ["enumerate", "tetrahedron", "--labels", "2", "--mode", "spanning-trees", "-o", "-"],
+            "mode='spanning-trees' needs odd labels; [2] has none",
+            "--mode spanning-trees needs odd labels; [2] has none",
+        ),
+    ],
+)
+def test_errors_name_parameters_in_python_and_flags_on_the_command_line(capsys, call, args, python, cli):
+    from lkspace.errors import LkspaceError
+
+    with pytest.raises(LkspaceError) as caught:
+        call()
+    assert str(caught.value) == python
+    assert caught.value.parameter == python.split(" ")[0].split("=")[0].split(":")[0]
+    if cli is None:
+        return
+    code, _, err = run(capsys, *args)
+    assert code != 0
+    assert err.strip().splitlines()[-1] == f"lkspace: error: {cli}"
+
+
+def test_parameters_in_backquotes_become_flags():
+    from lkspace.cli.flags import in_flags
+    from lkspace.errors import UsageError
+
+    exc = UsageError(
+        "subgroup 'C5': no rotation; use `symmetry='none'`, `weld=TOL` or `count_only=True` (not symmetry_x)",
+        parameter="subgroup",
+    )
+    assert (
+        in_flags(exc)
+        == "--invariant 'C5': no rotation; use --symmetry none, --weld TOL or --count-only (not symmetry_x)"
+    )
+    assert in_flags(UsageError("counts: x", parameter="count")) == "counts: x"  # a word, not a prefix
+    assert in_flags(UsageError("pathological.parquet: x", parameter="path")) == "pathological.parquet: x"

@@ -213,3 +213,29 @@ def test_finite_search_needs_no_automorphism_listing(name, monkeypatch):
 def test_books_with_many_pages():
     g = symmetry_group(lkspace.load("book:9"))  # 9! * 2 incidence automorphisms: too many to list
     assert (g.order, g.n_rotations) == (36, 18)
+
+
+def test_groups_and_port_models_are_kept_beside_the_scaffold_not_in_it():
+    import dataclasses
+    import gc
+    import pickle
+    import weakref
+    from functools import cached_property
+
+    from lkspace.design.space import make_space
+    from lkspace.strands.ports import port_model
+
+    sc = lkspace.load("cube")
+    group = symmetry_group(sc)
+    assert symmetry_group(sc) is group and port_model(sc) is port_model(sc)  # found once per scaffold
+    own = {f.name for f in dataclasses.fields(Scaffold)}
+    own |= {name for name, value in vars(Scaffold).items() if isinstance(value, cached_property)}
+    assert set(vars(sc)) <= own, set(vars(sc)) - own  # only the scaffold's own fields and derived data
+    space = make_space(sc, "-1..1")
+    copy = pickle.loads(pickle.dumps(space))  # a worker process gets the space with its group
+    assert copy.group.order == 48 and copy.group_order == 24
+    assert symmetry_group(lkspace.load("cube")) is not group  # another scaffold, its own search
+    gone = weakref.ref(sc)
+    del sc, space, group
+    gc.collect()
+    assert gone() is None  # the caches do not keep a scaffold alive

@@ -47,7 +47,9 @@ def main(argv: list[str] | None = None) -> int:
         render_design(args.mesh, args.twist, args.output, args.size, args.engine, args.samples, args.block)
         return 0
     except LkspaceError as exc:
-        print(f"error: {exc}", file=sys.stderr)
+        from ..cli.flags import in_flags  # this command line's flags are lkspace's
+
+        print(f"error: {in_flags(exc)}", file=sys.stderr)
         return exc.exit_code
     except KeyboardInterrupt:
         return 130

@@ -28,10 +28,10 @@ def fill_orbit(scaffold: Scaffold, labels: ArrayLike, edge: int, mode: str = "ro
     >>> fill_orbit(lkspace.load("cube"), [2] + [0] * 11, 0).tolist()
     [2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2]
     """
-    from ..symmetry.group import symmetry_group
+    from ..symmetry.group import check_mode, symmetry_group
 
     out = np.array(labels, np.int64)
-    perms, signs = symmetry_group(scaffold).action(mode)
+    perms, signs = symmetry_group(scaffold).action(check_mode(mode))
     t = int(out[edge])
     images = perms[:, edge]
     values = signs * t

@@ -30,7 +30,7 @@ def render_design(
     try:
         width, height = (int(x) for x in size.lower().split("x"))
     except ValueError:
-        raise LkspaceError(f"--size {size!r}: expected WxH such as 480x480", usage=True) from None
+        raise LkspaceError(f"size {size!r}: expected WxH such as 480x480", usage=True, parameter="size") from None
     bpy.ops.wm.read_factory_settings(use_empty=True)
     if not hasattr(bpy.types.Scene, "lkspace"):
         addon.register()

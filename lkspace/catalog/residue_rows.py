@@ -29,7 +29,7 @@ INT64_MAX = 2**63 - 1
 
 def _exact_sizes(space: DesignSpace, indices: np.ndarray, classes: np.ndarray) -> list[int]:
     """Return the assignments per row (class size x classes in the orbit), exact Python ints."""
-    n_opts = space.residue_table[2]
+    n_opts = space.residue_table.n_opts
     e = np.arange(indices.shape[1])
     sizes = n_opts[e[None, :], indices]
     return [int(np.prod([int(x) for x in row], dtype=object)) * int(n) for row, n in zip(sizes, classes, strict=True)]
@@ -53,7 +53,7 @@ def residue_batch(space: DesignSpace, class_ids: np.ndarray, components: int | N
     classes = space.n_actions // (co.stab_ptr[class_ids + 1] - co.stab_ptr[class_ids])
     designs = design_counts(space, class_ids)
     if counts_fit_int64(space):
-        orbit = np.prod(space.residue_table[2][e[None, :], indices], axis=1) * classes
+        orbit = np.prod(space.residue_table.n_opts[e[None, :], indices], axis=1) * classes
         designs = np.asarray(designs, np.int64)
     else:
         big = [s if s <= INT64_MAX else -1 for s in _exact_sizes(space, indices, classes)]

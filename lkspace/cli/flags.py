@@ -3,8 +3,9 @@
 Library errors name the parameter at fault (``LkspaceError.parameter``) and start their
 message with it: ``"max_designs: must be at least 1, got 0"``.  The command line shows
 the flag a user typed instead: ``"--max-designs: must be at least 1, got 0"``.  A
-parameter named further on, in backquotes (``"use a smaller `thickness`"``), becomes its
-flag too (``"use a smaller --thickness"``).
+parameter named further on stands in backquotes, alone or with a value
+(``"use a smaller `thickness`"``, ``"use `symmetry='none'`"``), and becomes its flag too
+(``"use a smaller --thickness"``, ``"use --symmetry none"``).
 """
 
 from __future__ import annotations
@@ -13,13 +14,17 @@ import re
 
 from ..errors import LkspaceError
 
-QUOTED = re.compile(r"`([a-z][a-z0-9_]*)`")
-"""A parameter named inside a message: a Python name in backquotes."""
+QUOTED = re.compile(r"`([a-z][a-z0-9_]*)(?:=([^`]*))?`")
+"""A parameter named inside a message: a Python name in backquotes, with an optional ``=value``."""
 
 FLAGS = {
+    "fixes": "--fix",
     "label_set": "--labels",
     "labels": "--twist",
     "nulls": "--null",
+    "parities": "--parity",
+    "subgroup": "--invariant",
+    "type_name": "--type",
     "max_points": "MAX_POINTS",
 }
 """Parameters whose flag is not ``--`` and the name with dashes (``max_designs`` -> ``--max-designs``).
@@ -36,10 +41,19 @@ def flag(parameter: str) -> str:
 def in_flags(exc: LkspaceError) -> str:
     """Return the message of ``exc`` as the command line shows it: parameter names become their flags.
 
-    The leading name of the parameter at fault, and any name in backquotes.
+    The leading name of the parameter at fault (as a word, optionally ``name=value``), and
+    every name in backquotes; ``name=value`` becomes the flag and the value, unquoted.
     """
-    message = QUOTED.sub(lambda m: flag(m[1]), str(exc))
+    message = QUOTED.sub(lambda m: _as_flag(m[1], m[2]), str(exc))
     parameter = getattr(exc, "parameter", None)
-    if parameter and message.startswith(parameter):
-        return flag(parameter) + message[len(parameter) :]
+    if parameter:
+        leading = re.compile("^" + re.escape(parameter) + r"(?:=('[^']*'|[^\s,;:)]+))?(?!\w)")
+        message = leading.sub(lambda m: _as_flag(parameter, m[1]), message, count=1)
     return message
+
+
+def _as_flag(name: str, value: str | None) -> str:
+    """``name`` or ``name=True`` -> ``--flag``; ``name='v'`` or ``name=v`` -> ``--flag v``."""
+    if value is None or value == "True":
+        return flag(name)
+    return flag(name) + " " + value.strip("'\"")

@@ -45,7 +45,7 @@ def run_invariant(
         if max_designs is not None and payload["designs"] is not None:
             payload["designs"] = min(payload["designs"], max_designs)
         payload.update(
-            group_order=space.group.mode_order(symmetry), written=None, symmetry=symmetry, label_set=labels.tolist()
+            group_order=space.group.mode_order(space.mode), written=None, symmetry=symmetry, label_set=labels.tolist()
         )
         if output is None and not count_only:
             ctx.notes["note"] = "no -o given: counted, nothing written"

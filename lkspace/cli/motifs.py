@@ -75,7 +75,7 @@ def motifs_cmd(
     """
     from ..design.motifs import cell_map, check_tiles, gradient_labels, motif_classes, tiling_matrix
     from ..strands.tracing import trace
-    from ..symmetry.group import check_label_set, symmetry_group
+    from ..symmetry.group import check_label_set, check_mode, symmetry_group
 
     ctx = Context(as_json)
     base = load_mesh(ctx, mesh)
@@ -99,7 +99,7 @@ def motifs_cmd(
             check_tiles(tiling, sizes)
             labels = label_set(labels_spec)
             check_label_set(labels, symmetry)
-        perms, signs = symmetry_group(sc).action(symmetry)
+        perms, signs = symmetry_group(sc).action(check_mode(symmetry))
         found = [
             (c.motif, c.labels, c.motifs) for c in motif_classes(base_edge, cell, tiling, labels.tolist(), perms, signs)
         ]

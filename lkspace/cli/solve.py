@@ -200,6 +200,8 @@ def solve_cmd(
       lkspace solve octahedron --linking-matrix "0,1,0;1,0,1;0,1,0" --labels -1..1
     """
     from ..inverse.pipeline import solve
+    from ..inverse.query import check_objective
+    from ..symmetry.group import check_mode
 
     ctx = Context(as_json)
     if type_name is not None or linking_text is not None:
@@ -235,8 +237,8 @@ def solve_cmd(
         fixes=fixes,
         parities=parities,
         count=count,
-        distinct_up_to=distinct_up_to,
-        objective=None if objective == "none" else objective,
+        distinct_up_to=check_mode(distinct_up_to),
+        objective=check_objective(None if objective == "none" else objective),
         time_limit=time_limit or None,
         workers=workers,
         seed=seed,

@@ -161,7 +161,7 @@ def edge_strands(space: DesignSpace, port_strand: np.ndarray) -> tuple[np.ndarra
 
 def class_sizes(space: DesignSpace, indices: np.ndarray) -> np.ndarray:
     """(n_c,) float64: assignments per class (float: only for batching decisions)."""
-    n_opts = space.residue_table[2]
+    n_opts = space.residue_table.n_opts
     e = np.arange(indices.shape[1])
     return np.prod(n_opts[e[None, :], indices].astype(np.float64), axis=1)
 
@@ -180,7 +180,8 @@ def stabilizer_csr(space: DesignSpace, class_ids: np.ndarray, identity: bool) ->
 def expand_batch(space: DesignSpace, class_ids: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Canonical rows of the (small) representative classes ``class_ids``: labels, stabilizer sizes, batch class."""
     co = space.classes
-    _, _, n_opts, opts, _ = space.residue_table
+    table = space.residue_table
+    n_opts, opts = table.n_opts, table.opts
     perms, signs = space.action
     inv = np.ascontiguousarray(np.argsort(perms, axis=1))
     indices = np.ascontiguousarray(co.indices[class_ids])
@@ -216,7 +217,7 @@ def batches_of(space: DesignSpace, class_ids: Sequence[int] | np.ndarray) -> Ite
 
 def counts_fit_int64(space: DesignSpace) -> bool:
     """Whether every class's Burnside sum fits in int64 (else counts are exact Python ints)."""
-    n_opts = space.residue_table[2]
+    n_opts = space.residue_table.n_opts
     bound = math.prod(int(x) for x in n_opts.max(axis=1)) * space.n_actions
     return bound < INT64_SAFE
 
@@ -233,7 +234,8 @@ def cycle_csr(space: DesignSpace) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
 
 def has_zero_table(space: DesignSpace) -> np.ndarray:
     """(n_edges, max_r) bool: whether label 0 is among a residue's options on an edge."""
-    _, _, n_opts, opts, _ = space.residue_table
+    table = space.residue_table
+    n_opts, opts = table.n_opts, table.opts
     return np.any((opts == 0) & (np.arange(opts.shape[2]) < n_opts[:, :, None]), axis=2)
 
 
@@ -244,7 +246,7 @@ def design_counts(space: DesignSpace, class_ids: np.ndarray) -> np.ndarray:
     ptr, ids = stabilizer_csr(space, class_ids, identity=True)
     c_ptr, c_head, c_even = cycle_csr(space)
     indices = np.ascontiguousarray(space.classes.indices[class_ids])
-    n_opts = space.residue_table[2]
+    n_opts = space.residue_table.n_opts
     return burnside_classes(indices, n_opts, has_zero_table(space), ptr, ids, c_ptr, c_head, c_even)
 
 
@@ -283,7 +285,8 @@ def concat_traces(parts: list[ClassTraces]) -> ClassTraces:
 
 def representative_table(space: DesignSpace) -> np.ndarray:
     """(n_edges, max_r) int8: per edge and residue, the option with the smallest ``|t|`` (ties: positive)."""
-    n_res, _, n_opts, opts, _ = space.residue_table
+    table = space.residue_table
+    n_res, n_opts, opts = table.n_res, table.n_opts, table.opts
     out = np.zeros(n_opts.shape, np.int8)
     for e in range(len(n_res)):
         for i in range(int(n_res[e])):

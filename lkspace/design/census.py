@@ -30,8 +30,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass, field
-from typing import Any
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -79,7 +78,6 @@ class Census:
     group_order: int
     residue_vectors: int
     shards: int
-    seconds_by_term: dict[str, float] = field(default_factory=dict)
 
     @property
     def designs(self) -> int:
@@ -89,7 +87,8 @@ class Census:
 
 def value_kinds(space: DesignSpace) -> np.ndarray:
     """Return the distinct label counts (> 1) of residue classes: the exponents a census keeps."""
-    n_res, _, n_opts, _, _ = space.residue_table
+    table = space.residue_table
+    n_res, n_opts = table.n_res, table.n_opts
     vals = sorted({int(n_opts[e, i]) for e in range(len(n_res)) for i in range(int(n_res[e]))} - {1})
     if len(vals) > MAX_VALUE_KINDS:
         raise LabelError(f"a census keeps at most {MAX_VALUE_KINDS} distinct class sizes apart; {vals}")
@@ -98,7 +97,8 @@ def value_kinds(space: DesignSpace) -> np.ndarray:
 
 def terms(space: DesignSpace) -> list[Term]:
     """One :class:`Term` per distinct signed edge permutation of the group (identity first)."""
-    n_res, values, n_opts, opts, lookup = space.residue_table
+    table = space.residue_table
+    n_res, values, n_opts, opts, lookup = table.n_res, table.values, table.n_opts, table.opts, table.lookup
     kinds = value_kinds(space).tolist()
     perms, signs = space.action
     zero_idx = lookup[:, 0]
@@ -231,13 +231,3 @@ def census(
             raise ArithmeticError(f"census of {space.scaffold.name}: {n} is not divisible by {n_g}")  # a bug if so
     result = {c: n // n_g for c, n in sorted(by.items()) if n}
     return Census(result, dict(sorted(totals[0].items())), space.group_order, space.n_classes, len(items))
-
-
-def census_payload(space: DesignSpace, result: Census) -> dict[str, Any]:
-    """JSON fields of a census (``by_components`` keyed by strings)."""
-    return {
-        "designs": result.designs,
-        "by_components": {str(k): v for k, v in result.by_components.items()},
-        "residue_vectors": result.residue_vectors,
-        "shards": result.shards,
-    }

@@ -121,7 +121,7 @@ def count_space(
     comps = class_components(space)
     keep = np.arange(len(comps)) if components is None else np.flatnonzero(comps == components)
     counts = design_counts(space, keep)
-    n_opts = space.residue_table[2]
+    n_opts = space.residue_table.n_opts
     e = np.arange(space.scaffold.n_edges)
     if counts.dtype != object:
         sizes = np.prod(n_opts[e[None, :], co.indices[keep]], axis=1) * co.orbit_sizes[keep]

@@ -178,7 +178,7 @@ def covers(space: CycleSpace, per_edge: int) -> Iterator[tuple[int, ...]]:
         steps[0] += 1
         if steps[0] > MAX_STEPS:
             raise TooLargeError(
-                f"the cover search passed {MAX_STEPS:,} steps over {len(cycle_edges)} cycles; lower --max-length"
+                f"the cover search passed {MAX_STEPS:,} steps over {len(cycle_edges)} cycles; lower `max_length`",
             )
         open_edges = np.flatnonzero(need > 0)
         if not len(open_edges):

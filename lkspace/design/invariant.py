@@ -40,14 +40,14 @@ Counting without listing is Burnside over ``N``: ``|Fix(H) / N| = (1/|N|) sum_g 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from functools import cached_property
 
 import numpy as np
 
 from ..model.scaffold import Scaffold
-from ..symmetry.edge_orbits import orbit_options, signed_components
-from ..symmetry.group import SymmetryGroup, check_label_set, check_mode, symmetry_group
+from ..symmetry.edge_orbits import SignedOrbits, orbit_options, signed_components
+from ..symmetry.group import SymmetryGroup, SymmetryMode, check_label_set, check_mode, symmetry_group
 from ..symmetry.subgroups import GroupTable, parse_subgroup
 from .space import DesignSpace
 
@@ -60,8 +60,8 @@ class InvariantSpace:
     ----------
     scaffold : Scaffold
     label_set : (n_labels,) int64
-    mode : str
-        ``--symmetry``: ``"rotations"``, ``"isometries"`` or ``"none"`` (whose group's
+    mode : SymmetryMode
+        ``"rotations"``, ``"isometries"`` or ``"none"`` (whose group's
         normalizer of ``H`` identifies designs).
     subgroup : str
         The subgroup's name (:func:`~lkspace.symmetry.subgroups.parse_subgroup`).
@@ -73,18 +73,20 @@ class InvariantSpace:
 
     scaffold: Scaffold
     label_set: np.ndarray
-    mode: str
+    mode: SymmetryMode
     subgroup: str
     no_zero: bool = False
     tolerance: float | None = None
-    base: DesignSpace = field(init=False)
 
     def __post_init__(self) -> None:
         check_mode(self.mode)
-        base = DesignSpace(self.scaffold, self.label_set, "none", self.no_zero)
-        check_label_set(base.label_set, self.mode)
-        object.__setattr__(self, "label_set", base.label_set)
-        object.__setattr__(self, "base", base)
+        check_label_set(self.base.label_set, self.mode)
+        object.__setattr__(self, "label_set", self.base.label_set)  # sorted, unique: normalised as built
+
+    @cached_property
+    def base(self) -> DesignSpace:
+        """The design space of all assignments (mode ``"none"``): the label set checked, residues, moduli."""
+        return DesignSpace(self.scaffold, self.label_set, "none", self.no_zero)
 
     @cached_property
     def group(self) -> SymmetryGroup:
@@ -114,15 +116,15 @@ class InvariantSpace:
         return np.ascontiguousarray(perms[first]), np.ascontiguousarray(signs[first])
 
     @cached_property
-    def orbits(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """``(orbit, rel, forced_zero)`` of ``H`` on the edges (:func:`signed_components`)."""
+    def orbits(self) -> SignedOrbits:
+        """The signed edge orbits of ``H`` (:func:`signed_components`)."""
         g = self.group
         return signed_components(g.edge_perms[self.elements], g.edge_signs[self.elements], self.scaffold.n_edges)
 
     @cached_property
     def options(self) -> list[np.ndarray]:
         """Per ``H``-orbit, the labels of its representative edge."""
-        return orbit_options(*self.orbits, self.base.walk_labels)
+        return orbit_options(self.orbits, self.base.walk_labels)
 
     @property
     def n_orbits(self) -> int:
@@ -139,11 +141,6 @@ class InvariantSpace:
         """``|SET| ** n_edges``, all assignments (exact)."""
         return self.base.assignments
 
-    def expand(self, orbit_labels: np.ndarray) -> np.ndarray:
-        """Edge labels ``(..., n_edges)`` of the fixed assignments with representative labels ``(..., n_orbits)``."""
-        orbit, rel, _ = self.orbits
-        return np.asarray(orbit_labels)[..., orbit] * rel
-
     def count_designs(self) -> int:
         """Designs (orbits of ``N`` on the fixed assignments), exact, by Burnside over ``N``."""
         g = self.group
@@ -151,8 +148,8 @@ class InvariantSpace:
         perms, signs = self.action
         total = 0
         for p, s in zip(perms, signs, strict=True):
-            orbit, rel, forced = signed_components(np.vstack([hp, p]), np.append(hs, s), self.scaffold.n_edges)
-            total += math.prod(len(o) for o in orbit_options(orbit, rel, forced, self.base.walk_labels))
+            fixed = signed_components(np.vstack([hp, p]), np.append(hs, s), self.scaffold.n_edges)
+            total += math.prod(len(o) for o in orbit_options(fixed, self.base.walk_labels))
         return total // len(signs)
 
     def summary(self) -> dict[str, object]:
@@ -191,6 +188,6 @@ def make_invariant_space(
     >>> sp.n_orbits, sp.n_fixed, sp.count_designs()
     (4, 81, 54)
     """
-    space = InvariantSpace(scaffold, np.asarray(label_set, np.int64), mode, subgroup, no_zero, tolerance)
+    space = InvariantSpace(scaffold, np.asarray(label_set, np.int64), check_mode(mode), subgroup, no_zero, tolerance)
     _ = space.elements  # parse the name now: a bad one fails here, before any work
     return space

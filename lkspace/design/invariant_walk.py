@@ -115,7 +115,7 @@ def invariant_blocks(space: InvariantSpace, components: int | None = None) -> It
         )
     if n_fixed == 0:
         return
-    orbit, rel, _ = space.orbits
+    orbit, rel = space.orbits.orbit, space.orbits.rel
     n_opts = np.array([len(o) for o in space.options], np.int64)
     opts = np.zeros((len(n_opts), int(n_opts.max())), np.int64)
     for i, o in enumerate(space.options):
@@ -157,6 +157,6 @@ def rows_block(
 
 def _class_code(space: InvariantSpace, residues: np.ndarray) -> int:
     """Return the ``residue_class`` code of a residue vector (-1 past 64 bits)."""
-    lookup = space.base.residue_table[4]
+    lookup = space.base.residue_table.lookup
     code = space.base.class_code(lookup[np.arange(len(residues)), residues])
     return code if code < 2**63 else -1

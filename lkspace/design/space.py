@@ -10,8 +10,9 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from functools import cached_property
+from typing import Literal, TypeAlias, get_args
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -22,15 +23,16 @@ from ..model.scaffold import Scaffold
 from ..model.specs import LabelSetSpec, parse_label_set
 from ..model.validation import validate_labels
 from ..strands.walk import walk
-from ..symmetry.group import check_label_set, check_mode, symmetry_group
+from ..symmetry.group import SymmetryGroup, SymmetryMode, check_label_set, check_mode, symmetry_group
 from .orbit_kernels import orbit_minima, stabilizer_ids
 
 MAX_CLASSES = 1 << 21
 MAX_COUNT_DIGITS = 4000
 """Most decimal digits of ``|SET| ** n_edges``: every count of a space (designs, assignments,
 orbit sizes) is written exactly, and Python writes integers of at most 4,300 digits."""
-WALK_MODES = ("designs", "residues", "spanning-trees")
+WalkMode: TypeAlias = Literal["designs", "residues", "spanning-trees"]
 """Row kinds of a walk: one per design, per residue-class orbit, per dual spanning-tree class."""
+WALK_MODES: tuple[WalkMode, ...] = get_args(WalkMode)
 
 
 @dataclass(frozen=True, eq=False)
@@ -45,6 +47,31 @@ class ClassInfo:
 
 
 @dataclass(frozen=True, eq=False)
+class ResidueTable:
+    """The residues ``t mod K`` the walk labels reach on each edge, and the labels of each.
+
+    Attributes
+    ----------
+    n_res : (n_edges,) int64
+        Number of residues the walk labels reach on each edge.
+    values : (n_edges, max_r) int64
+        The residues, sorted (zero-padded).
+    n_opts : (n_edges, max_r) int64
+        Number of walk labels in each residue class.
+    opts : (n_edges, max_r, max_o) int64
+        Those labels (zero-padded).
+    lookup : (n_edges, max_K) int64
+        Residue value -> its index in ``values``, -1 where not reached.
+    """
+
+    n_res: np.ndarray
+    values: np.ndarray
+    n_opts: np.ndarray
+    opts: np.ndarray
+    lookup: np.ndarray
+
+
+@dataclass(frozen=True, eq=False)
 class DesignSpace:
     """A scaffold, a label set and a symmetry mode: the space ``lkspace enumerate`` walks.
 
@@ -53,7 +80,7 @@ class DesignSpace:
     scaffold : Scaffold
     label_set : (n_labels,) int64
         The label set ``SET`` (sorted, unique).
-    mode : str
+    mode : SymmetryMode
         ``"rotations"``, ``"isometries"`` or ``"none"``.
     no_zero : bool
         Leave label 0 out of the walk (a filter: ``assignments`` still counts ``|SET|^edges``).
@@ -64,10 +91,9 @@ class DesignSpace:
 
     scaffold: Scaffold
     label_set: np.ndarray
-    mode: str = "rotations"
+    mode: SymmetryMode = "rotations"
     no_zero: bool = False
     tolerance: float | None = None
-    group_order: int = field(init=False)
 
     def __post_init__(self) -> None:
         labels = np.unique(np.asarray(self.label_set, dtype=np.int64))
@@ -81,10 +107,19 @@ class DesignSpace:
         object.__setattr__(self, "label_set", labels)
         check_mode(self.mode)
         check_label_set(labels, self.mode)
-        group = symmetry_group(self.scaffold, self.tolerance) if self.mode != "none" else None
-        object.__setattr__(self, "group_order", group.mode_order(self.mode) if group else 1)
+        _ = self.group  # the symmetry search runs here: a scaffold past its bounds fails at once
         if len(self.walk_labels) == 0:
-            raise LabelError("--no-zero leaves no labels to walk")
+            raise LabelError("no_zero leaves no labels to walk", parameter="no_zero")
+
+    @cached_property
+    def group(self) -> SymmetryGroup | None:
+        """The scaffold's symmetry group (kept with the space, also in worker processes); ``None`` for mode ``"none"``."""
+        return None if self.mode == "none" else symmetry_group(self.scaffold, self.tolerance)
+
+    @property
+    def group_order(self) -> int:
+        """Order of the group of :attr:`mode` (1 for ``"none"``)."""
+        return self.group.mode_order(self.mode) if self.group is not None else 1
 
     @cached_property
     def walk_labels(self) -> np.ndarray:
@@ -94,10 +129,10 @@ class DesignSpace:
     @cached_property
     def action(self) -> tuple[np.ndarray, np.ndarray]:
         """``(perms (n_g, n_edges), signs (n_g,))``: distinct signed edge permutations, identity first."""
-        if self.mode == "none":
+        if self.group is None:
             n = self.scaffold.n_edges
             return np.arange(n, dtype=np.int64)[None, :], np.ones(1, np.int64)
-        return symmetry_group(self.scaffold, self.tolerance).action(self.mode)
+        return self.group.action(self.mode)
 
     @property
     def n_actions(self) -> int:
@@ -116,22 +151,8 @@ class DesignSpace:
         return np.asarray(self.scaffold.edge_degrees, np.int64)
 
     @cached_property
-    def residue_table(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-        """Per edge: residues reached (sorted), label options per residue, lookup value -> index.
-
-        Returns
-        -------
-        n_res : (n_edges,) int64
-            Number of residues ``t mod K`` the walk labels reach on each edge.
-        values : (n_edges, max_r) int64
-            The residues, sorted (zero-padded).
-        n_opts : (n_edges, max_r) int64
-            Number of walk labels in each residue class.
-        opts : (n_edges, max_r, max_o) int64
-            Those labels (zero-padded).
-        lookup : (n_edges, max_K) int64
-            Residue value -> its index in ``values``, -1 where not reached.
-        """
+    def residue_table(self) -> ResidueTable:
+        """Per edge: residues reached (sorted), label options per residue, lookup value -> index."""
         k = self.moduli
         n_e = len(k)
         per_k = {}
@@ -152,12 +173,12 @@ class DesignSpace:
             for i, o in enumerate(options):
                 n_opts[e, i] = len(o)
                 opts[e, i, : len(o)] = o
-        return n_res, values, n_opts, opts, lookup
+        return ResidueTable(n_res, values, n_opts, opts, lookup)
 
     @property
     def n_classes(self) -> int:
         """Number of residue classes: the product over edges of the residues reached (exact)."""
-        return math.prod(self.residue_table[0].tolist())
+        return math.prod(self.residue_table.n_res.tolist())
 
     @cached_property
     def classes(self) -> ClassOrbits:
@@ -182,7 +203,8 @@ class DesignSpace:
 
     def design_count(self, indices: np.ndarray, stabilizer: Sequence[int] | np.ndarray) -> int:
         """Designs in the class with residue ``indices (n_edges,)`` fixed by the actions ``stabilizer``."""
-        _, _, n_opts, opts, _ = self.residue_table
+        table = self.residue_table
+        n_opts, opts = table.n_opts, table.opts
         e_range = np.arange(len(indices))
         counts = n_opts[e_range, indices]
         has_zero = np.any((opts[e_range, indices] == 0) & (np.arange(opts.shape[2]) < counts[:, None]), axis=1)
@@ -197,7 +219,7 @@ class DesignSpace:
 
         Returns ``(indices (n_edges,) int64, stabilizer (n_h,) int64)`` without listing classes.
         """
-        n_res, values, _, _, lookup = self.residue_table
+        values, lookup = self.residue_table.values, self.residue_table.lookup
         k = self.moduli
         perms, signs = self.action
         idx = lookup[np.arange(len(k)), np.asarray(residues) % k]
@@ -211,7 +233,7 @@ class DesignSpace:
         return best, self._stabilizer(best)
 
     def _stabilizer(self, indices: np.ndarray) -> np.ndarray:
-        _, values, _, _, lookup = self.residue_table
+        values, lookup = self.residue_table.values, self.residue_table.lookup
         k = self.moduli
         perms, signs = self.action
         val = values[np.arange(len(k)), indices]
@@ -221,7 +243,7 @@ class DesignSpace:
 
     def representative_labels(self, indices: np.ndarray) -> np.ndarray:
         """(n_edges,) int8: per edge the option of the class with the smallest ``|t|`` (ties: positive)."""
-        _, _, n_opts, opts, _ = self.residue_table
+        n_opts, opts = self.residue_table.n_opts, self.residue_table.opts
         out = np.empty(len(indices), np.int8)
         for e, i in enumerate(indices.tolist()):
             o = opts[e, i, : n_opts[e, i]]
@@ -230,19 +252,15 @@ class DesignSpace:
 
     def class_code(self, indices: np.ndarray) -> int:
         """Mixed-radix code of a class (edge 0 most significant); exact Python int."""
-        n_res = self.residue_table[0].tolist()
+        n_res = self.residue_table.n_res.tolist()
         code = 0
         for i, r in zip(indices.tolist(), n_res, strict=True):
             code = code * r + i
         return code
 
-    def class_size(self, c: int) -> int:
-        """Label assignments in representative class ``c`` (exact)."""
-        return self.size_of(self.classes.indices[c])
-
     def size_of(self, indices: np.ndarray) -> int:
         """Label assignments in the class with residue ``indices`` (exact)."""
-        n_opts = self.residue_table[2]
+        n_opts = self.residue_table.n_opts
         return math.prod(n_opts[np.arange(len(indices)), indices].tolist())
 
     @cached_property
@@ -301,12 +319,13 @@ class ClassOrbits:
 
 def class_orbits(space: DesignSpace) -> ClassOrbits:
     """Find the representatives (lexicographically smallest residue vector) of the class orbits."""
-    n_res, values, _, _, lookup = space.residue_table
+    table = space.residue_table
+    n_res, values, lookup = table.n_res, table.values, table.lookup
     n_cls = space.n_classes
     if n_cls > MAX_CLASSES:
         raise TooLargeError(
             f"{space.scaffold.name}: {count_text(n_cls)} residue classes (label set {space.label_set.tolist()}) are too many to walk "
-            f"(limit {MAX_CLASSES}); use --mode spanning-trees or a smaller label set"
+            f"(limit {MAX_CLASSES}); use `mode='spanning-trees'` or a smaller label set",
         )
     dims = tuple(n_res.tolist())
     k = space.moduli
@@ -344,7 +363,7 @@ def canonical_form(space: DesignSpace, labels: ArrayLike) -> tuple[np.ndarray, i
         raise LabelError(f"labels {t.tolist()} are not all in the label set {space.walk_labels.tolist()}")
     perms, signs = space.action
     k = space.moduli
-    lookup = space.residue_table[4]
+    lookup = space.residue_table.lookup
     images = np.empty((len(signs), len(t)), np.int64)
     images[np.arange(len(signs))[:, None], perms] = signs[:, None] * t[None, :]
     res = lookup[np.arange(len(t))[None, :], images % k[None, :]]
@@ -380,7 +399,10 @@ def make_space(
     no_zero: bool = False,
     tolerance: float | None = None,
 ) -> DesignSpace:
-    """Build a :class:`DesignSpace` from user-level arguments (label SET or array, tolerance)."""
+    """Build a :class:`DesignSpace` from user-level arguments (label SET or array, tolerance).
+
+    ``symmetry`` is checked here (:func:`~lkspace.symmetry.group.check_mode`).
+    """
     sc = scaffold
     lab = parse_label_set(label_set) if isinstance(label_set, str) else np.asarray(label_set, np.int64)
-    return DesignSpace(sc, lab, symmetry, no_zero, tolerance)
+    return DesignSpace(sc, lab, check_mode(symmetry), no_zero, tolerance)

@@ -69,7 +69,7 @@ def all_spanning_trees(n_nodes: int, pairs: np.ndarray, limit: int = MAX_TREES) 
         if len(chosen) == n_nodes - 1:
             count += 1
             if count > limit:
-                raise LabelError(f"more than {limit} spanning trees; use --sample N")
+                raise LabelError(f"more than {limit} spanning trees; use `sample=N`")
             yield tuple(chosen)
             return
         if i == m or m - i < n_nodes - 1 - len(chosen):
@@ -103,13 +103,16 @@ def spanning_tree_rows(
     sc = space.scaffold
     ids, pairs = dual_edges(space)
     k = space.moduli
-    lookup = space.residue_table[4]
+    lookup = space.residue_table.lookup
     if np.any(lookup[np.arange(len(k)), 0] < 0):
         raise LabelError(
-            f"--mode spanning-trees needs even labels (t = 0 mod K); {space.walk_labels.tolist()} has none"
+            f"mode='spanning-trees' needs even labels (t = 0 mod K); {space.walk_labels.tolist()} has none",
+            parameter="mode",
         )
     if len(ids) and np.any(lookup[ids, 1] < 0):
-        raise LabelError(f"--mode spanning-trees needs odd labels; {space.walk_labels.tolist()} has none")
+        raise LabelError(
+            f"mode='spanning-trees' needs odd labels; {space.walk_labels.tolist()} has none", parameter="mode"
+        )
     if len(ids) == 0 and sc.n_faces > 1:
         raise LabelError(f"{sc.name}: the dual graph has no edges of degree 2; no spanning trees")
     trees: Iterator[tuple[int, ...]]

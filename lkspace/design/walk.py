@@ -227,7 +227,7 @@ def _large_class(space: DesignSpace, c: int, traces: ClassTraces) -> Iterator[De
     co = space.classes
     perms, signs = space.action
     inv = np.argsort(perms, axis=1)
-    _, _, n_opts_t, opts_t, _ = space.residue_table
+    n_opts_t, opts_t = space.residue_table.n_opts, space.residue_table.opts
     e = np.arange(space.scaffold.n_edges)
     n_opts = n_opts_t[e, co.indices[c]]
     opts = np.ascontiguousarray(opts_t[e, co.indices[c]])
@@ -251,7 +251,7 @@ def residue_row(
 ) -> dict[str, Any]:
     """Return the ``--mode residues`` row of the class orbit of ``indices`` (a representative)."""
     e = np.arange(len(indices))
-    residues = space.residue_table[1][e, indices]
+    residues = space.residue_table.values[e, indices]
     info = info or space.class_info(residues)
     labels = space.representative_labels(indices)
     holds = bool(holds_together_rows(space, residues, info, labels[None, :])[0])

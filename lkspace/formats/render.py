@@ -77,10 +77,12 @@ def parse_view(text: str | None) -> tuple[float | None, float | None]:
         return VIEWS[key]
     m = re.fullmatch(r"\s*(-?[0-9.]+)\s*,\s*(-?[0-9.]+)\s*", text)
     if not m:
-        raise UsageError(f"--view {text!r}: expected AZIMUTH,ELEVATION in degrees or one of {', '.join(VIEWS)}")
+        raise UsageError(
+            f"view {text!r}: expected AZIMUTH,ELEVATION in degrees or one of {', '.join(VIEWS)}", parameter="view"
+        )
     azim, elev = float(m.group(1)), float(m.group(2))
     if not (np.isfinite(azim) and np.isfinite(elev) and -90 <= elev <= 90):
-        raise UsageError(f"--view {text!r}: the elevation must lie in -90..90 degrees")
+        raise UsageError(f"view {text!r}: the elevation must lie in -90..90 degrees", parameter="view")
     return azim, elev
 
 
@@ -90,16 +92,16 @@ def parse_size(text: str | None, default: tuple[int, int] = (900, 900)) -> tuple
         return default
     m = re.fullmatch(r"\s*([0-9]{1,6})\s*(?:[xX]\s*([0-9]{1,6}))?\s*", text)
     if not m:
-        raise UsageError(f"--size {text!r}: expected WIDTHxHEIGHT in pixels, e.g. 480x480")
+        raise UsageError(f"size {text!r}: expected WIDTHxHEIGHT in pixels, e.g. 480x480", parameter="size")
     w = int(m.group(1))
     h = int(m.group(2) or m.group(1))
     if not (16 <= w <= MAX_SIZE and 16 <= h <= MAX_SIZE):
-        raise UsageError(f"--size {text!r}: width and height must lie in 16..{MAX_SIZE} pixels")
+        raise UsageError(f"size {text!r}: width and height must lie in 16..{MAX_SIZE} pixels", parameter="size")
     return w, h
 
 
-def parse_color(text: str, option: str) -> tuple[float, float, float]:
-    """Parse a matplotlib colour (name, ``#rrggbb``, ``0.5`` grey) -> RGB in ``[0, 1]``."""
+def parse_color(text: str, parameter: str) -> tuple[float, float, float]:
+    """Parse a matplotlib colour (name, ``#rrggbb``, ``0.5`` grey) -> RGB in ``[0, 1]`` (``parameter``: whose)."""
     require("matplotlib", "render", "colours")
     from matplotlib.colors import to_rgb
 
@@ -107,7 +109,8 @@ def parse_color(text: str, option: str) -> tuple[float, float, float]:
         r, g, b = to_rgb(text.strip())
     except ValueError:
         raise UsageError(
-            f"{option} {text!r}: not a colour (a name such as 'navy', '#1f77b4' or a grey '0.8')"
+            f"{parameter} {text!r}: not a colour (a name such as 'navy', '#1f77b4' or a grey '0.8')",
+            parameter=parameter,
         ) from None
     return float(r), float(g), float(b)
 
@@ -127,8 +130,8 @@ def parse_colors(text: str | None) -> tuple[tuple[float, float, float], ...] | N
         return tuple((float(cmap(k)[0]), float(cmap(k)[1]), float(cmap(k)[2])) for k in ks)
     parts = [p for p in name.split(",") if p.strip()]
     if not parts:
-        raise UsageError("--colors: give a comma list of colours or a colormap name")
-    return tuple(parse_color(p, "--colors") for p in parts)
+        raise UsageError("colors: give a comma list of colours or a colormap name", parameter="colors")
+    return tuple(parse_color(p, "colors") for p in parts)
 
 
 def look_of(view: str | None, size: str | None, background: str | None, colors: str | None) -> Look:
@@ -137,7 +140,7 @@ def look_of(view: str | None, size: str | None, background: str | None, colors: 
     width, height = parse_size(size)
     bg = "white" if background is None else background.strip()
     if bg.lower() != "transparent":
-        parse_color(bg, "--background")
+        parse_color(bg, "background")
     else:
         bg = "transparent"
     return Look(azim, elev, width, height, bg, parse_colors(colors))

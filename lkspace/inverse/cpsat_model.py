@@ -78,7 +78,7 @@ from ..errors import LabelError
 from ..model.scaffold import Scaffold
 from ..strands.ports import port_model
 from ..words import plural
-from .query import Query, allowed_labels, label_cost, representatives
+from .query import Query, SolveStatus, allowed_labels, label_cost, representatives
 
 if TYPE_CHECKING:
     from ortools.sat.python import cp_model
@@ -119,7 +119,7 @@ class DesignModel:
     fixed_residues: np.ndarray
     n_fixed_cycles: int
     n_nodes: int
-    decided: str | None = None
+    decided: SolveStatus | None = None
     reason: str = ""
     links: list[tuple[int, int, int, int]] = field(default_factory=list)
     route_vars: RouteVars = field(default_factory=lambda: ([], [], {}, []))
@@ -132,7 +132,7 @@ class DesignModel:
         """
         labels = np.array([self.choices[e][int(r)] for e, r in enumerate(residues)], np.int64)
         if self.query.invariant_orbits is not None:
-            orbit, rel, _ = self.query.invariant_orbits
+            orbit, rel = self.query.invariant_orbits.orbit, self.query.invariant_orbits.rel
             first = np.unique(orbit, return_index=True)[1]
             labels = rel * labels[first[orbit]]
         return labels
@@ -299,7 +299,7 @@ def build_model(scaffold: Scaffold, query: Query, deadline: float | None = None)
             model.add_exactly_one([lit for _, lit in lits])
         dm.residue_literals[e] = lits
     if query.invariant_orbits is not None:
-        _tie_orbits(dm, *query.invariant_orbits[:2])
+        _tie_orbits(dm, query.invariant_orbits.orbit, query.invariant_orbits.rel)
     arcs = []
     starts = [model.new_bool_var(f"start{u}") for u in range(m)]
     ends = [model.new_bool_var(f"end{u}") for u in range(m)]

@@ -23,11 +23,11 @@ from ..model.specs import LabelSetSpec, parse_label_set
 from ..progress import Step, task
 from ..strands.tracing import trace
 from ..symmetry.edge_orbits import invariant_edge_orbits
-from ..symmetry.group import symmetry_group
+from ..symmetry.group import SymmetryMode, symmetry_group
 from ..words import plural
 from .constructive import spanning_designs
 from .cpsat_model import build_model
-from .query import Query
+from .query import Objective, Query, SolveStatus
 
 MAX_COUNT = 10_000
 """Most designs one :func:`solve` call may ask for (``--count``): each is a solve-and-exclude round."""
@@ -60,7 +60,7 @@ class SolveResult:
     ``"fast-path"``, ``"cp-sat"`` or ``"presolve"`` (decided before search).
     """
 
-    status: str
+    status: SolveStatus
     solutions: list[Solution]
     method: str
     wall_time: float
@@ -118,8 +118,8 @@ def solve(
     fixes: Mapping[int, int] | None = None,
     parities: Mapping[int, int] | None = None,
     count: int = 1,
-    distinct_up_to: str = "none",
-    objective: str | None = None,
+    distinct_up_to: SymmetryMode = "none",
+    objective: Objective | None = None,
     time_limit: float | None = None,
     workers: int = 0,
     seed: int = 0,
@@ -190,7 +190,7 @@ def solve(
             found, optimal = spanning_designs(scaffold, query, count, seed, budget, deadline, step)
             if len(found) == count and (objective is None or optimal):
                 sols = [verify(scaffold, t, query.components) for t in found]
-                status = "optimal" if objective is not None else "feasible"
+                status: SolveStatus = "optimal" if objective is not None else "feasible"
                 return SolveResult(status, sols, "fast-path", time.perf_counter() - t0)
         else:
             found = []
@@ -219,9 +219,11 @@ def check_budget(count: int, time_limit: float | None) -> None:
     """Refuse a ``count`` outside ``1..MAX_COUNT`` or a time limit that is not a finite number >= 0."""
     if not 1 <= count <= MAX_COUNT:
         error = UsageError if count < 1 else TooLargeError
-        raise error(f"--count {count}: ask for 1..{MAX_COUNT:,} designs per call (MAX_COUNT)")
+        raise error(f"count {count}: ask for 1..{MAX_COUNT:,} designs per call (MAX_COUNT)", parameter="count")
     if time_limit is not None and not (math.isfinite(time_limit) and time_limit >= 0):
-        raise UsageError(f"--time-limit {time_limit}: expected a finite number of seconds >= 0 (0: no limit)")
+        raise UsageError(
+            f"time_limit {time_limit}: expected a finite number of seconds >= 0 (0: no limit)", parameter="time_limit"
+        )
 
 
 @contextlib.contextmanager
@@ -246,15 +248,21 @@ LOCAL_SEARCH_SECONDS = 30.0
 
 
 def symmetry_actions(
-    scaffold: Scaffold, mode: str, label_set: np.ndarray, tolerance: float | None = None
+    scaffold: Scaffold, mode: SymmetryMode, label_set: np.ndarray, tolerance: float | None = None
 ) -> list[EdgeAction]:
     """Edge actions ``(perm (n_edges,) int64, sign)`` of the non-identity symmetries for ``mode`` (``tolerance``: the search's)."""
     if mode == "none":
         return []
     if mode not in ("rotations", "isometries"):
-        raise LabelError(f"--distinct-up-to {mode!r}: expected rotations, isometries or none", usage=True)
+        raise LabelError(
+            f"distinct_up_to {mode!r}: expected rotations, isometries or none", usage=True, parameter="distinct_up_to"
+        )
     if mode == "isometries" and not np.array_equal(np.sort(-label_set), label_set):
-        raise LabelError("--distinct-up-to isometries: the label set must be closed under negation", usage=True)
+        raise LabelError(
+            "distinct_up_to='isometries': the label set must be closed under negation",
+            usage=True,
+            parameter="distinct_up_to",
+        )
     perms, signs = symmetry_group(scaffold, tolerance).action(mode)
     return [(perm, int(sign)) for perm, sign in zip(perms[1:], signs[1:], strict=True)]  # identity first
 
@@ -298,7 +306,7 @@ def solve_cp_sat(
     solver.parameters.random_seed = int(seed)
     degrees = scaffold.edge_degrees
     solutions: list[Solution] = []
-    status = "unknown"
+    status: SolveStatus = "unknown"
     exhausted = False
     search_time = 0.0
     while len(solutions) < count:

@@ -3,14 +3,21 @@
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Literal, TypeAlias, get_args
 
 import numpy as np
 
 from ..errors import LabelError
 from ..model.scaffold import Scaffold
 
-OBJECTIVES = (None, "min-abs", "min-nonzero")
-STATUSES = ("optimal", "feasible", "infeasible", "unknown")
+if TYPE_CHECKING:
+    from ..symmetry.edge_orbits import SignedOrbits
+
+Objective: TypeAlias = Literal["min-abs", "min-nonzero"]
+"""What a solve minimizes: the sum of ``|t|``, or the number of non-zero labels."""
+OBJECTIVES: tuple[Objective | None, ...] = (None, *get_args(Objective))
+SolveStatus: TypeAlias = Literal["optimal", "feasible", "infeasible", "unknown"]
+"""A solve's answer: optimal or feasible designs, none (proved), or time ran out before either."""
 
 
 @dataclass(frozen=True)
@@ -30,8 +37,8 @@ class Query:
     parities : dict of int -> int
         Edge -> required parity of its label (0 even, 1 odd).
     objective : None, ``"min-abs"`` or ``"min-nonzero"``
-    invariant_orbits : (orbit, rel, forced_zero), optional
-        Only designs fixed by a subgroup (``solve --invariant``): the subgroup's signed edge
+    invariant_orbits : SignedOrbits, optional
+        Only designs fixed by a subgroup (``solve(invariant=...)``): the subgroup's signed edge
         orbits (:func:`~lkspace.symmetry.edge_orbits.signed_components`); every edge ``e``
         carries ``rel[e]`` times the label of its orbit's first edge.
     """
@@ -41,17 +48,25 @@ class Query:
     no_zero: bool = False
     fixes: dict[int, int] = field(default_factory=dict)
     parities: dict[int, int] = field(default_factory=dict)
-    objective: str | None = None
-    invariant_orbits: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
+    objective: Objective | None = None
+    invariant_orbits: SignedOrbits | None = None
 
     def __post_init__(self) -> None:
-        if self.objective not in OBJECTIVES:
-            raise LabelError(f"objective {self.objective!r}: expected one of min-abs, min-nonzero or none")
+        check_objective(self.objective)
         if int(self.components) < 1:
-            raise LabelError(f"--components {self.components}: need at least 1")
+            raise LabelError(f"components {self.components}: need at least 1", parameter="components")
 
 
-def label_cost(labels: np.ndarray, objective: str | None) -> np.ndarray:
+def check_objective(objective: str | None) -> Objective | None:
+    """Return ``objective`` if it is one of :data:`OBJECTIVES`; raise :class:`~lkspace.errors.LabelError` otherwise."""
+    if objective not in OBJECTIVES:
+        raise LabelError(
+            f"objective {objective!r}: expected one of min-abs, min-nonzero or none", parameter="objective"
+        )
+    return objective
+
+
+def label_cost(labels: np.ndarray, objective: Objective | None) -> np.ndarray:
     """Objective cost of each label ``(n,) int64`` (all 0 without objective)."""
     labels = np.asarray(labels, np.int64)
     if objective == "min-abs":
@@ -62,10 +77,10 @@ def label_cost(labels: np.ndarray, objective: str | None) -> np.ndarray:
 
 
 def allowed_labels(scaffold: Scaffold, query: Query) -> list[np.ndarray]:
-    """Labels each edge may carry after ``--labels``, ``--no-zero``, fixes and parities.
+    """Labels each edge may carry after ``label_set``, ``no_zero``, ``fixes`` and ``parities``.
 
     Returns a list of ``n_edges`` sorted ``(k,) int64`` arrays; an empty one means no
-    design exists.  A fix that contradicts ``--no-zero`` or a parity raises
+    design exists.  A fix that contradicts ``no_zero`` or a parity raises
     :class:`~lkspace.errors.LabelError` (the query contradicts itself).
     """
     base = np.unique(np.asarray(query.label_set, np.int64))
@@ -81,22 +96,22 @@ def allowed_labels(scaffold: Scaffold, query: Query) -> list[np.ndarray]:
     for e, t in query.fixes.items():
         name = scaffold.edge_name(e)
         if query.no_zero and t == 0:
-            raise LabelError(f"--fix {name}=0 contradicts --no-zero")
+            raise LabelError(f"fixes {name}=0 contradicts `no_zero`", parameter="fixes")
         if e in query.parities and t % 2 != query.parities[e]:
-            raise LabelError(f"--fix {name}={t} contradicts --parity {name}={'odd' if query.parities[e] else 'even'}")
+            parity = "odd" if query.parities[e] else "even"
+            raise LabelError(f"fixes {name}={t} contradicts `parities` {name}={parity}", parameter="fixes")
         out[e] = np.array([t], np.int64)
     for e, p in query.parities.items():
         out[e] = out[e][out[e] % 2 == p]
-    return out if query.invariant_orbits is None else symmetric_allowed(out, *query.invariant_orbits)
+    return out if query.invariant_orbits is None else symmetric_allowed(out, query.invariant_orbits)
 
 
-def symmetric_allowed(
-    allowed: list[np.ndarray], orbit: np.ndarray, rel: np.ndarray, forced_zero: np.ndarray
-) -> list[np.ndarray]:
+def symmetric_allowed(allowed: list[np.ndarray], orbits: SignedOrbits) -> list[np.ndarray]:
     """Restrict per-edge ``allowed`` labels to fixed assignments: ``rel[e] * u`` with one ``u`` per orbit.
 
     ``u`` must give an allowed label on every edge of its orbit (and be 0 on a forced-zero orbit).
     """
+    orbit, rel, forced_zero = orbits.orbit, orbits.rel, orbits.forced_zero
     out = list(allowed)
     for o in range(len(forced_zero)):
         edges = np.flatnonzero(orbit == o)
@@ -110,7 +125,7 @@ def symmetric_allowed(
     return out
 
 
-def representatives(labels: np.ndarray, k: int, objective: str | None) -> dict[int, int]:
+def representatives(labels: np.ndarray, k: int, objective: Objective | None) -> dict[int, int]:
     """Residue ``r`` -> the label reported for it: cheapest, then smallest ``|t|``, then positive."""
     best: dict[int, tuple[tuple[int, int, bool], int]] = {}
     costs = label_cost(labels, objective)
@@ -122,7 +137,7 @@ def representatives(labels: np.ndarray, k: int, objective: str | None) -> dict[i
     return {r: v[1] for r, v in sorted(best.items())}
 
 
-def cheapest_label(labels: np.ndarray, objective: str | None) -> tuple[int, int] | None:
+def cheapest_label(labels: np.ndarray, objective: Objective | None) -> tuple[int, int] | None:
     """Return ``(cost, label)`` of the cheapest label, ties to small ``|t|`` then positive; ``None`` if empty."""
     if len(labels) == 0:
         return None

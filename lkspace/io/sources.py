@@ -65,7 +65,7 @@ def load(source: ScaffoldSource, *, weld: float | bool | None = None) -> Scaffol
     text = os.fspath(source)
     if isinstance(source, str) and reads_builtin(text):
         if weld is not None and weld is not False:
-            raise ScaffoldError(f"{text!r}: --weld applies to files, not to built-in scaffolds", usage=True)
+            raise ScaffoldError(f"{text!r}: `weld` applies to files, not to built-in scaffolds", usage=True)
         return scaffolds.builtin(text)
     if isinstance(source, os.PathLike) or os.path.lexists(text) or os.path.splitext(text)[1] or os.sep in text:
         return read(text, weld)

@@ -100,6 +100,6 @@ def weld(
         if len(set(face)) != len(face):
             raise ScaffoldError(
                 f"face {f} collapses when welding with tolerance {tol:g}: two of its corners merge into "
-                f"one vertex ({source[1][f]} -> {face}); give a smaller --weld TOL"
+                f"one vertex ({source[1][f]} -> {face}); give a smaller `weld=TOL`",
             )
     return points[keep], faces

@@ -63,10 +63,6 @@ class Diagram:
         np.add.at(out, (b[mixed], a[mixed]), self.signs[mixed])
         return out // 2
 
-    def writhe(self) -> int:
-        """Return the writhe: the sum of the crossing signs."""
-        return int(self.signs.sum())
-
 
 def _segments(curves: Sequence[np.ndarray]) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     starts, ends, owner, index = [], [], [], []

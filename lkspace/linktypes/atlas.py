@@ -137,16 +137,31 @@ def crossing_number(name: str) -> int:
     return total
 
 
-_WORKER: dict[str, Any] = {}
+@dataclass(frozen=True, eq=False)
+class AtlasJob:
+    """What :func:`_record_row` needs in a (worker) process: the scaffold, identify's seed and time limit."""
+
+    scaffold: Scaffold
+    seed: int
+    time_limit: float | None
 
 
-def _init(scaffold: Scaffold, seed: int, time_limit: float | None) -> None:
-    ignore_interrupts()
-    _WORKER.update(scaffold=scaffold, seed=seed, time_limit=time_limit)
+_JOB: AtlasJob | None = None
+"""This process's job, set by :func:`_init` (or by :func:`atlas` for its own process)."""
+
+
+def _init(scaffold: Scaffold, seed: int, time_limit: float | None, worker: bool = True) -> None:
+    global _JOB
+    if worker:
+        ignore_interrupts()
+    _JOB = AtlasJob(scaffold, seed, time_limit)
 
 
 def _record_row(labels: np.ndarray) -> dict[str, Any]:
-    return record_of(_WORKER["scaffold"], np.asarray(labels, np.int64), _WORKER["seed"], _WORKER["time_limit"])
+    job = _JOB
+    if job is None:
+        raise RuntimeError("_record_row before _init")  # a bug in lkspace
+    return record_of(job.scaffold, np.asarray(labels, np.int64), job.seed, job.time_limit)
 
 
 def read_cache(path: str, header: dict[str, Any]) -> dict[tuple[int, ...], dict[str, Any]]:
@@ -206,7 +221,7 @@ def atlas(
         if n > MAX_DESIGNS:
             raise TooLargeError(
                 f"{scaffold.name}: {n:,} designs with labels {label_set.tolist()} > {MAX_DESIGNS:,} (MAX_DESIGNS); "
-                "an atlas would identify them all: give --stop-after S for the simplest ones, or a smaller label set"
+                "an atlas would identify them all: give `stop_after=S` for the simplest ones, or a smaller label set",
             )
     header = {
         "scaffold": scaffold.name,
@@ -286,7 +301,7 @@ def _records(
     """
     late = False
     pool = context().Pool(processes, _init, (scaffold, seed, time_limit)) if processes > 1 else None
-    _WORKER.update(scaffold=scaffold, seed=seed, time_limit=time_limit)
+    _init(scaffold, seed, time_limit, worker=False)
     known: dict[tuple[int, ...], dict[str, Any]] = {}
     walk = OrderedWalk(scaffold, label_set, None, no_zero=no_zero, deadline=deadline, tolerance=tolerance)
     try:

@@ -25,6 +25,7 @@ from ..design.space import DesignSpace
 from ..design.walk import walk_blocks
 from ..errors import LabelError
 from ..model.scaffold import Scaffold
+from ..symmetry.group import SymmetryMode
 
 MAX_SHELL_ROWS = 1 << 20
 """Most designs of one shell sorted together; a bigger shell is sorted in pieces of this size."""
@@ -80,13 +81,13 @@ class OrderedWalk:
         self.tolerance = tolerance
         self.label_set = np.unique(np.asarray(label_set, np.int64))
         if no_zero and 0 in self.fixes.values():
-            raise LabelError("--fix EDGE=0 contradicts --no-zero", usage=True)
+            raise LabelError("fixes EDGE=0 contradicts `no_zero`", usage=True, parameter="fixes")
         self.scaffold, self.components, self.no_zero, self.deadline = scaffold, components, no_zero, deadline
         self.complete = False
 
     def __iter__(self) -> Iterator[Candidates]:
         scaffold, label_set = self.scaffold, self.label_set
-        mode = "none" if self.fixes else "rotations"
+        mode: SymmetryMode = "none" if self.fixes else "rotations"
         free = np.ones(scaffold.n_edges, bool)
         free[list(self.fixes)] = False
         pinned = np.array(sorted(self.fixes.items()), np.int64).reshape(-1, 2)

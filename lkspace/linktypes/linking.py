@@ -19,7 +19,7 @@ from ..errors import UsageError
 MAX_COMPONENTS = 64
 
 
-def parse_linking_matrix(text: str) -> np.ndarray:
+def parse_linking_matrix(linking_matrix: str) -> np.ndarray:
     """Parse ``"0,1;1,0"`` (rows split by ``;``) or JSON ``"[[0,1],[1,0]]"`` into an ``(n, n) int64`` matrix.
 
     The matrix must be square, symmetric, with a zero diagonal.
@@ -29,23 +29,25 @@ def parse_linking_matrix(text: str) -> np.ndarray:
     >>> parse_linking_matrix("0,1;1,0").tolist()
     [[0, 1], [1, 0]]
     """
-    where = f"--linking-matrix {text[:60]!r}"
+    where = f"linking_matrix {linking_matrix[:60]!r}"
     try:
-        rows = json.loads(text) if text.strip().startswith("[") else [r.split(",") for r in text.split(";")]
+        text = linking_matrix.strip()
+        rows = json.loads(text) if text.startswith("[") else [r.split(",") for r in text.split(";")]
         matrix = np.array([[int(str(v).strip()) for v in row] for row in rows], dtype=np.int64)
     except (ValueError, TypeError, OverflowError):
         raise UsageError(
-            f"{where}: write integers, rows separated by ';' (e.g. 0,1;1,0) or JSON [[0,1],[1,0]]"
+            f"{where}: write integers, rows separated by ';' (e.g. 0,1;1,0) or JSON [[0,1],[1,0]]",
+            parameter="linking_matrix",
         ) from None
     n = len(matrix)
     if matrix.ndim != 2 or matrix.shape != (n, n) or n == 0:
-        raise UsageError(f"{where}: not a square matrix")
+        raise UsageError(f"{where}: not a square matrix", parameter="linking_matrix")
     if n > MAX_COMPONENTS:
-        raise UsageError(f"{where}: {n} components; at most {MAX_COMPONENTS}")
+        raise UsageError(f"{where}: {n} components; at most {MAX_COMPONENTS}", parameter="linking_matrix")
     if not np.array_equal(matrix, matrix.T):
-        raise UsageError(f"{where}: not symmetric (lk(a, b) = lk(b, a))")
+        raise UsageError(f"{where}: not symmetric (lk(a, b) = lk(b, a))", parameter="linking_matrix")
     if np.any(np.diag(matrix) != 0):
-        raise UsageError(f"{where}: the diagonal must be zero")
+        raise UsageError(f"{where}: the diagonal must be zero", parameter="linking_matrix")
     return matrix
 
 

@@ -22,7 +22,7 @@ import re
 from dataclasses import dataclass, field
 from fractions import Fraction
 from functools import lru_cache
-from typing import Any
+from typing import Any, Literal, TypeAlias, get_args
 
 import numpy as np
 
@@ -31,7 +31,11 @@ from ..knots.hoste import HT_NAME, ht_crossings, ht_manifold
 from ..knots.naming import name_key, one_based
 from ..knots.tables import JONES_POINT, knot_modules, laurent_value, tables
 
-CHIRALITIES = ("any", "table", "mirror")
+Chirality: TypeAlias = Literal["any", "table", "mirror"]
+"""Which chirality a target asks for: either, the table's diagram, or its mirror image."""
+CHIRALITIES: tuple[Chirality, ...] = get_args(Chirality)
+Verdict: TypeAlias = Literal["match", "other", "undetermined"]
+"""An identification against a target (:func:`judge`)."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -58,7 +62,7 @@ class LinkType:
     """
 
     name: str
-    chirality: str
+    chirality: Chirality
     components: int
     crossings: int
     table: str
@@ -142,7 +146,7 @@ def _amphichiral_knots() -> frozenset[str]:
     return frozenset(r["name"] for r in dki.link_list() if "amphicheiral" in str(r.get("symmetry_type") or ""))
 
 
-def _prime(name: str, chirality: str, typed: str) -> LinkType:
+def _prime(name: str, chirality: Chirality, typed: str) -> LinkType:
     """Return the target of one prime (or trivial) name."""
     if name == "0_1":
         return LinkType("0_1", "any", 1, 0, "knotinfo", frozenset({Fraction(1)}), None, True)
@@ -161,8 +165,9 @@ def _prime(name: str, chirality: str, typed: str) -> LinkType:
     manifold = ht_manifold(name) if HT_NAME.fullmatch(name) and not small else None
     if manifold is None:
         raise UsageError(
-            f"--type {typed!r}: no such knot or link type (names like 3_1, m3_1, 5_2, 11a_1, L6a4, "
-            "K14n10910, L13n4723 or 3_1#4_1: KnotInfo/LinkInfo and SnapPy's HTLinkExteriors)"
+            f"type_name {typed!r}: no such knot or link type (names like 3_1, m3_1, 5_2, 11a_1, L6a4, "
+            "K14n10910, L13n4723 or 3_1#4_1: KnotInfo/LinkInfo and SnapPy's HTLinkExteriors)",
+            parameter="type_name",
         )
     link = manifold.link()
     pd = one_based(link.PD_code())
@@ -177,7 +182,7 @@ def _prime(name: str, chirality: str, typed: str) -> LinkType:
     return LinkType(name, chirality, n, crossings, "HTLinkExteriors", frozenset(_jones_values(pd)), linking, amphi)
 
 
-def parse_type(text: str, chirality: str = "any") -> LinkType:
+def parse_type(type_name: str, chirality: str = "any") -> LinkType:
     """Parse a type name (see the module docstring) into a :class:`LinkType`.
 
     Raises :class:`~lkspace.errors.UsageError` for an unknown name or a chirality that
@@ -191,22 +196,26 @@ def parse_type(text: str, chirality: str = "any") -> LinkType:
     >>> parse_type("L6a4").components
     3
     """
-    typed = text
-    text = text.strip()
+    typed = type_name
+    text = type_name.strip()
     if chirality not in CHIRALITIES:
-        raise UsageError(f"--chirality {chirality!r}: expected one of {', '.join(CHIRALITIES)}")
+        raise UsageError(f"chirality {chirality!r}: expected one of {', '.join(CHIRALITIES)}", parameter="chirality")
+    asked: Chirality = chirality
     if not text:
-        raise UsageError("--type: empty name")
+        raise UsageError("type_name: empty name", parameter="type_name")
     if "#" in text:
-        return _sum(text, chirality, typed)
+        return _sum(text, asked, typed)
     if text.startswith("m") and len(text) > 1:
-        if chirality == "table":
-            raise UsageError(f"--type {typed!r} asks for the mirror image but --chirality is table")
-        text, chirality = text[1:], "mirror"
-    return _prime(_canonical(text), chirality, typed)
+        if asked == "table":
+            raise UsageError(
+                f"type_name {typed!r} asks for the mirror image but `chirality` is table",
+                parameter="type_name",
+            )
+        text, asked = text[1:], "mirror"
+    return _prime(_canonical(text), asked, typed)
 
 
-def _sum(text: str, chirality: str, typed: str) -> LinkType:
+def _sum(text: str, chirality: Chirality, typed: str) -> LinkType:
     """Return the target of a connected sum of knots: the Jones polynomial is the product of the factors'."""
     parts = [p.strip() for p in text.split("#")]
     chiral = []
@@ -215,7 +224,10 @@ def _sum(text: str, chirality: str, typed: str) -> LinkType:
         mirror = p.startswith("m") and len(p) > 1
         prime = _prime(_canonical(p[1:] if mirror else p), "any", typed)
         if prime.components != 1 or prime.name == "0_1":
-            raise UsageError(f"--type {typed!r}: a connected sum is written with non-trivial knots, e.g. 3_1#4_1")
+            raise UsageError(
+                f"type_name {typed!r}: a connected sum is written with non-trivial knots, e.g. 3_1#4_1",
+                parameter="type_name",
+            )
         if chirality == "mirror":
             mirror = not mirror
         chiral.append(("m" if mirror else "") + prime.name)
@@ -230,7 +242,7 @@ def _sum(text: str, chirality: str, typed: str) -> LinkType:
     return LinkType(name, "table" if asked else "any", 1, 3, table, frozenset(fps), None, None, factors)
 
 
-def judge(target: LinkType, ident: dict[str, Any]) -> str:
+def judge(target: LinkType, ident: dict[str, Any]) -> Verdict:
     """Compare an identification (``Identification.to_dict()``) with ``target``.
 
     Returns ``"match"``, ``"other"`` (proved a different type) or ``"undetermined"``

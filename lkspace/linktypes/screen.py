@@ -134,19 +134,33 @@ def screen(
     return {**out, **{k: ident.get(k) for k in keep}, "verdict": verdict, "reason": "identified"}
 
 
-_WORKER: dict[str, Any] = {}
+@dataclass(frozen=True, eq=False)
+class ScreenJob:
+    """What :func:`screen_row` needs in a (worker) process: the scaffold, the goal, identify's seed and time limit."""
+
+    scaffold: Scaffold
+    goal: Goal
+    seed: int
+    time_limit: float | None
+
+
+_JOB: ScreenJob | None = None
+"""This process's job, set by :func:`init_worker`."""
 
 
 def init_worker(scaffold: Scaffold, goal: Goal, seed: int, time_limit: float | None, worker: bool = True) -> None:
     """Keep what :func:`screen_row` needs in this (worker) process."""
+    global _JOB
     if worker:
         ignore_interrupts()
         if goal.target is not None:
             knot_modules()
-    _WORKER.update(scaffold=scaffold, goal=goal, seed=seed, time_limit=time_limit)
+    _JOB = ScreenJob(scaffold, goal, seed, time_limit)
 
 
 def screen_row(labels: np.ndarray) -> dict[str, Any]:
-    """:func:`screen` with the worker's scaffold and goal (for ``Pool.imap``)."""
-    w = _WORKER
-    return screen(w["scaffold"], np.asarray(labels, np.int64), w["goal"], w["seed"], w["time_limit"])
+    """:func:`screen` with the worker's scaffold and goal (for ``Pool.imap``; after :func:`init_worker`)."""
+    job = _JOB
+    if job is None:
+        raise RuntimeError("screen_row before init_worker")  # a bug in lkspace
+    return screen(job.scaffold, np.asarray(labels, np.int64), job.goal, job.seed, job.time_limit)

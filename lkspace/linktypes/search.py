@@ -17,7 +17,7 @@ import time
 from collections import Counter
 from collections.abc import Iterator, Mapping
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, Literal, TypeAlias
 
 import numpy as np
 
@@ -29,6 +29,8 @@ from ..workers import context
 from .candidates import OrderedWalk
 from .screen import Goal, init_worker, screen, screen_row
 
+TargetStatus: TypeAlias = Literal["found", "exhausted", "unknown"]
+"""A target search's answer: designs found, none in the space (proved), or not decided."""
 CHECK_SEED_SHIFT = 1009
 """Seed offset of the projection used to re-identify an answer (independent of the search's)."""
 
@@ -37,7 +39,7 @@ CHECK_SEED_SHIFT = 1009
 class TargetResult:
     """The answer: ``status``, ``solutions`` (dicts with ``labels``, ``components``, ``name`` ...) and counts."""
 
-    status: str
+    status: TargetStatus
     solutions: list[dict[str, Any]]
     goal: Goal
     wall_time: float
@@ -142,6 +144,7 @@ def solve_target(
             if len(solutions) >= count or timed_out:
                 break
     complete = walk.complete and not timed_out and len(solutions) < count
+    status: TargetStatus
     if solutions:
         status, reason = "found", ""
     elif complete and not undetermined:

@@ -201,15 +201,19 @@ def parse_labels(scaffold: Scaffold, spec: int | np.integer | str) -> np.ndarray
         return np.full(scaffold.n_edges, check_label(int(spec), "twist label"), np.int64)
     spec = str(spec).strip()
     shown = repr(spec) if len(spec) <= 60 else repr(spec[:60] + "...")
-    if _INT.match(spec):
-        return np.full(scaffold.n_edges, _to_label(spec, f"--twist {shown}"), np.int64)
-    if "," in spec:
+    if not _INT.match(spec) and "," not in spec:
+        raise LabelError(f"twist spec {shown} is neither an integer, a comma list, nor an existing file")
+    try:  # errors in the spec itself name the parameter: "labels '1,2': ..."
+        if _INT.match(spec):
+            return np.full(scaffold.n_edges, _to_label(spec, f"labels {shown}"), np.int64)
         parts = spec.split(",")
         if len(parts) != scaffold.n_edges:
-            return labels_from_list(scaffold, parts, f"--twist {shown}")  # the count error
-        values = [_to_label(p, f"--twist {shown}: label {i}") for i, p in enumerate(parts)]
-        return labels_from_list(scaffold, values, f"--twist {shown}")
-    raise LabelError(f"twist spec {shown} is neither an integer, a comma list, nor an existing file")
+            return labels_from_list(scaffold, parts, f"labels {shown}")  # the count error
+        values = [_to_label(p, f"labels {shown}: label {i}") for i, p in enumerate(parts)]
+        return labels_from_list(scaffold, values, f"labels {shown}")
+    except LabelError as exc:
+        exc.parameter = "labels"
+        raise
 
 
 def parse_nulls(scaffold: Scaffold, spec: str) -> np.ndarray:

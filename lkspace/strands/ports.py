@@ -21,6 +21,7 @@ The union of the two matchings is a disjoint union of cycles: the strands
 
 from __future__ import annotations
 
+import weakref
 from dataclasses import dataclass
 
 import numpy as np
@@ -86,10 +87,13 @@ def edge_partner(model: PortModel, degrees: np.ndarray, labels: np.ndarray) -> n
     return partner
 
 
+_PORT_MODELS: weakref.WeakKeyDictionary[Scaffold, PortModel] = weakref.WeakKeyDictionary()
+"""Each live scaffold's port model (a scaffold is compared by identity; its entry goes with it)."""
+
+
 def port_model(scaffold: Scaffold) -> PortModel:
-    """Return the scaffold's :class:`PortModel`, built once and kept with the scaffold."""
-    cached = scaffold.__dict__.get("_port_model")
+    """Return the scaffold's :class:`PortModel`, built once per scaffold (the scaffold itself stays as built)."""
+    cached = _PORT_MODELS.get(scaffold)
     if cached is None:
-        cached = build_port_model(scaffold)
-        object.__setattr__(scaffold, "_port_model", cached)
+        cached = _PORT_MODELS[scaffold] = build_port_model(scaffold)
     return cached

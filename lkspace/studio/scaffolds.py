@@ -62,7 +62,7 @@ class Held:
         from ..symmetry.edge_orbits import invariant_edge_orbits
 
         try:
-            orbit, _, _ = invariant_edge_orbits(self.scaffold, "rotations")
+            orbit = invariant_edge_orbits(self.scaffold, "rotations").orbit
         except Exception:  # noqa: BLE001 - a scaffold without a usable group: every edge alone
             return [[e] for e in range(self.scaffold.n_edges)]
         return [np.flatnonzero(orbit == o).tolist() for o in range(int(orbit.max()) + 1 if len(orbit) else 0)]

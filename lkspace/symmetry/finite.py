@@ -20,6 +20,7 @@ import contextlib
 import math
 import warnings
 from collections.abc import Iterator
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -37,8 +38,31 @@ MAX_GROUP_ENTRIES = 50_000_000
 Past it, :class:`~lkspace.errors.TooLargeError` (e.g. a two-sided 5,000-gon: 20,000 motions
 on 5,000 vertices); use ``--symmetry none``."""
 
-Lift = tuple[np.ndarray, np.ndarray, np.ndarray]
-"""A lifted motion: ``sigma (n_vertices,)``, ``Q (3, 3)``, edge permutation ``(n_edges,)``."""
+
+@dataclass(frozen=True, eq=False)
+class Lift:
+    """A symmetry as the search holds it: a rigid motion lifted to the incidence structure.
+
+    Attributes
+    ----------
+    sigma : (n_vertices,) int64
+        Image vertex of each vertex.
+    q : (3, 3) float64
+        Orthogonal part of the motion.
+    edge_perm : (n_edges,) int64
+        Image edge of each edge.
+    sites : (n_sites,) int64 or None
+        Image site of each site (:mod:`~lkspace.symmetry.pointset`); ``None`` outside the site search.
+    """
+
+    sigma: np.ndarray
+    q: np.ndarray
+    edge_perm: np.ndarray
+    sites: np.ndarray | None = None
+
+
+_RELEASED = np.empty(0, np.int64)
+"""What :func:`stack` leaves in place of a vertex permutation it has copied."""
 
 _MIX = np.uint64(0x9E3779B97F4A7C15)
 
@@ -197,22 +221,21 @@ Tables = tuple[np.ndarray, np.ndarray, np.ndarray]
 """Group tables: ``sigmas (m, n_vertices) int64``, ``Qs (m, 3, 3) float64``, ``edge_perms (m, n_edges) int64``."""
 
 
-def stack(lifts: list) -> Tables:
-    """Stack rows ``(sigma, Q, edge_perm, ...)`` into :data:`Tables`, one table at a time.
+def stack(lifts: list[Lift]) -> Tables:
+    """Stack lifted motions into :data:`Tables`, one table at a time.
 
-    Each row's arrays are released once copied (``lifts`` is emptied), so the peak is the
-    rows plus one table, not the rows plus all tables.
+    Each lift's arrays are released once copied (``lifts`` is emptied), so the peak is
+    the lifts plus one table, not the lifts plus all tables.
     """
     m = len(lifts)
-    qs = np.array([row[1] for row in lifts], np.float64).reshape(m, 3, 3)
-    sigmas = np.empty((m, len(lifts[0][0])), np.int64)
+    qs = np.array([row.q for row in lifts], np.float64).reshape(m, 3, 3)
+    sigmas = np.empty((m, len(lifts[0].sigma)), np.int64)
     for i, row in enumerate(lifts):
-        sigmas[i] = row[0]
-        lifts[i] = (None, None, row[2])
-    perms = np.empty((m, len(lifts[0][2])), np.int64)
+        sigmas[i] = row.sigma
+        lifts[i] = replace(row, sigma=_RELEASED, sites=None)
+    perms = np.empty((m, len(lifts[0].edge_perm)), np.int64)
     for i, row in enumerate(lifts):
-        perms[i] = row[2]
-        lifts[i] = None
+        perms[i] = row.edge_perm
     lifts.clear()
     return sigmas, qs, perms
 
@@ -230,43 +253,51 @@ class Elements:
         self.size = n_vertices + n_edges
         self.name = name
         identity = np.arange(search.sites.n_sites, dtype=np.int64)
-        self.rows: list[tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]] = [
-            (np.arange(n_vertices, dtype=np.int64), np.eye(3), np.arange(n_edges, dtype=np.int64), identity)
+        self.rows = [
+            Lift(np.arange(n_vertices, dtype=np.int64), np.eye(3), np.arange(n_edges, dtype=np.int64), identity)
         ]
         self.keys = {search.key(identity, True)}
-        self.generators: list[tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]] = []
+        self.generators: list[Lift] = []
         self.same = bool(np.array_equal(search.sites.of_vertex, np.arange(n_vertices)))
 
     def tables(self) -> Tables:
         """Return the elements as arrays ``(sigmas, Qs, edge_perms)``, built row by row (no second copy of the rows)."""
         return stack(self.rows)
 
-    def add_generator(self, row: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]) -> None:
-        """Add ``(sigma, Q, edge_perm, pi)`` and every product it makes with the elements found."""
+    def add_generator(self, row: Lift) -> None:
+        """Add a motion (with its ``sites``) and every product it makes with the elements found."""
         if self.same:
-            row = (row[0], row[1], row[2], row[0])
+            row = replace(row, sites=row.sigma)
         self.generators = self.generators + [row]
         frontier = list(self.rows)
         while frontier:
             new = []
             for h in frontier:
                 for g in self.generators:
-                    pi_ab = h[3][g[3][[self.search.a, self.search.b_or_a]]]
-                    key = self.search.key_of(pi_ab, bool(np.linalg.det(h[1]) * np.linalg.det(g[1]) > 0))
+                    h_sites, g_sites = _sites(h), _sites(g)
+                    pi_ab = h_sites[g_sites[[self.search.a, self.search.b_or_a]]]
+                    key = self.search.key_of(pi_ab, bool(np.linalg.det(h.q) * np.linalg.det(g.q) > 0))
                     if key in self.keys:
                         continue
                     self.keys.add(key)
-                    sigma = h[0][g[0]]
-                    pi = sigma if self.same else h[3][g[3]]  # one vertex per site, numbered alike: pi is sigma
-                    self.rows.append((sigma, h[1] @ g[1], h[2][g[2]], pi))
+                    sigma = h.sigma[g.sigma]
+                    pi = sigma if self.same else h_sites[g_sites]  # one vertex per site, numbered alike: pi is sigma
+                    self.rows.append(Lift(sigma, h.q @ g.q, h.edge_perm[g.edge_perm], pi))
                     new.append(self.rows[-1])
                     if len(self.rows) * self.size > MAX_GROUP_ENTRIES:
                         raise TooLargeError(
                             f"{self.name}: the symmetry group has more than {len(self.rows) - 1} elements on "
                             f"{self.size} vertices and edges: its tables would pass {MAX_GROUP_ENTRIES} "
-                            "entries; use --symmetry none"
+                            "entries; use `symmetry='none'`",
                         )
             frontier = new
+
+
+def _sites(lift: Lift) -> np.ndarray:
+    """Return the site permutation of a lift of the site search (each of its lifts has one)."""
+    if lift.sites is None:
+        raise ValueError("a motion without its site permutation")  # a bug in lkspace
+    return lift.sites
 
 
 def finite_lifts(scaffold: Scaffold, tolerance: float) -> Tables:
@@ -304,7 +335,7 @@ def finite_lifts(scaffold: Scaffold, tolerance: float) -> Tables:
                 sigma = lifter.lift(pi)
                 perm = None if sigma is None else structure.automorphism(sigma, bool(np.linalg.det(q) > 0))
                 if sigma is not None and perm is not None:
-                    found.add_generator((sigma, q, perm, pi))
+                    found.add_generator(Lift(sigma, q, perm, pi))
                     step.note(f"{len(found.rows)} motions found")
     return found.tables()
 
@@ -327,7 +358,7 @@ def ambiguous_lifts(scaffold: Scaffold, structure: Structure, size: int, toleran
             key = (sigma.tobytes(), proper)
             if perm is not None and key not in seen and structure.keeps_radial(sigma, perm, proper):
                 seen.add(key)
-                yield sigma, q, perm
+                yield Lift(sigma, q, perm)
         return
     warnings.warn(
         f"{scaffold.name}: coincident vertices and faces leave the symmetry search ambiguous "
@@ -336,4 +367,4 @@ def ambiguous_lifts(scaffold: Scaffold, structure: Structure, size: int, toleran
         LkspaceWarning,
         stacklevel=2,
     )
-    yield identity, np.eye(3), np.arange(scaffold.n_edges, dtype=np.int64)
+    yield Lift(identity, np.eye(3), np.arange(scaffold.n_edges, dtype=np.int64))

@@ -31,8 +31,10 @@ the geometry (the symmetry check is geometric).
 
 from __future__ import annotations
 
+import weakref
 from dataclasses import dataclass
 from functools import cached_property
+from typing import Literal, TypeAlias, get_args
 
 import numpy as np
 
@@ -42,8 +44,9 @@ from .finite import MAX_GROUP_ENTRIES, finite_lifts
 from .periodic_search import periodic_symmetry
 from .tolerance import resolve_tolerance
 
-#: Modes of ``--symmetry``.
-MODES = ("rotations", "isometries", "none")
+SymmetryMode: TypeAlias = Literal["rotations", "isometries", "none"]
+"""Which symmetries make two designs the same: the proper rotations, every isometry, or none."""
+MODES: tuple[SymmetryMode, ...] = get_args(SymmetryMode)
 
 
 @dataclass(frozen=True, eq=False)
@@ -85,12 +88,12 @@ class SymmetryGroup:
         """(n_elements,) int64: +1 for rotations, -1 for reflections (label ``t -> sign * t``)."""
         return np.where(self.proper, 1, -1).astype(np.int64)
 
-    def mode_order(self, mode: str) -> int:
+    def mode_order(self, mode: SymmetryMode) -> int:
         """Order of the group used by ``mode`` (``rotations``, ``isometries``, ``none``)."""
         check_mode(mode)
         return {"rotations": self.n_rotations, "isometries": self.order, "none": 1}[mode]
 
-    def action(self, mode: str) -> tuple[np.ndarray, np.ndarray]:
+    def action(self, mode: SymmetryMode) -> tuple[np.ndarray, np.ndarray]:
         """Distinct signed edge permutations of ``mode``'s group, identity first.
 
         Returns
@@ -117,7 +120,7 @@ class SymmetryGroup:
         return np.ascontiguousarray(perms[first]), np.ascontiguousarray(signs[first])
 
 
-def check_mode(mode: str) -> str:
+def check_mode(mode: str) -> SymmetryMode:
     """Return ``mode`` if it is one of :data:`MODES`; raise :class:`~lkspace.errors.LabelError` otherwise."""
     if mode not in MODES:
         raise LabelError(f"unknown symmetry mode {mode!r}; choose one of {', '.join(MODES)}", usage=True)
@@ -130,14 +133,19 @@ def check_label_set(labels: np.ndarray, mode: str) -> None:
         missing = sorted(set((-np.asarray(labels)).tolist()) - set(np.asarray(labels).tolist()))
         if missing:
             raise LabelError(
-                f"--symmetry isometries maps label t to -t under reflections, but the label set "
-                f"{np.asarray(labels).tolist()} lacks {missing}; use a set closed under negation or --symmetry rotations",
+                f"symmetry='isometries' maps label t to -t under reflections, but the label set "
+                f"{np.asarray(labels).tolist()} lacks {missing}; use a set closed under negation or `symmetry='rotations'`",
                 usage=True,
+                parameter="symmetry",
             )
 
 
+_GROUPS: weakref.WeakKeyDictionary[Scaffold, dict[float, SymmetryGroup]] = weakref.WeakKeyDictionary()
+"""Each live scaffold's symmetry groups by tolerance (a scaffold is compared by identity; its entry goes with it)."""
+
+
 def symmetry_group(scaffold: Scaffold, tolerance: float | None = None) -> SymmetryGroup:
-    """Return the rigid symmetry group of ``scaffold`` (cached on the scaffold object, per tolerance).
+    """Return the rigid symmetry group of ``scaffold`` (found once per scaffold and tolerance).
 
     ``tolerance`` (mesh units): how far a motion may move a vertex from the vertex it is
     matched with; ``None`` is the default rule of :mod:`lkspace.symmetry.tolerance`
@@ -153,11 +161,10 @@ def symmetry_group(scaffold: Scaffold, tolerance: float | None = None) -> Symmet
     20
     """
     tol = resolve_tolerance(scaffold, tolerance)
-    cache = scaffold.__dict__.setdefault("_symmetry_groups", {})
-    if tol not in cache:
-        cache[tol] = compute_group(scaffold, tol)
-    group: SymmetryGroup = cache[tol]
-    return group
+    found = _GROUPS.setdefault(scaffold, {})
+    if tol not in found:
+        found[tol] = compute_group(scaffold, tol)
+    return found[tol]
 
 
 def symmetry_orders(scaffold: Scaffold, tolerance: float | None = None) -> tuple[int, int]:
@@ -172,7 +179,7 @@ def symmetry_orders(scaffold: Scaffold, tolerance: float | None = None) -> tuple
     (16, 8)
     """
     tol = resolve_tolerance(scaffold, tolerance)
-    if scaffold.periodic and tol not in scaffold.__dict__.get("_symmetry_groups", {}):
+    if scaffold.periodic and tol not in _GROUPS.get(scaffold, {}):
         found = periodic_symmetry(scaffold, tol)
         return found.order, found.n_rotations
     group = symmetry_group(scaffold, tol)
@@ -218,7 +225,7 @@ def periodic_tables(scaffold: Scaffold, tolerance: float) -> Tables4:
     if found.order * size > MAX_GROUP_ENTRIES:
         raise TooLargeError(
             f"{scaffold.name}: its symmetry group has {found.order} motions on {size} vertices and edges: "
-            f"its tables would pass {MAX_GROUP_ENTRIES} entries; use --symmetry none"
+            f"its tables would pass {MAX_GROUP_ENTRIES} entries; use `symmetry='none'`",
         )
     sigmas = np.empty((found.order, scaffold.n_vertices), np.int64)
     qs = np.empty((found.order, 3, 3), np.float64)

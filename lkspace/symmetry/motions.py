@@ -67,7 +67,7 @@ def candidate_vertex_perms(scaffold: Scaffold) -> np.ndarray:
     if count > MAX_AUTOMORPHISMS:
         raise TooLargeError(
             f"{scaffold.name}: the incidence structure has {count} automorphisms (more than "
-            f"{MAX_AUTOMORPHISMS}); use --symmetry none"
+            f"{MAX_AUTOMORPHISMS}); use `symmetry='none'`",
         )
     n = graph.vcount()
     gens = np.array(graph.automorphism_group(color=colours), dtype=np.int64).reshape(-1, n)

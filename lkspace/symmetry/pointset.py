@@ -302,7 +302,7 @@ class SiteSearch:
         if total > MAX_FRAME_CANDIDATES:
             raise TooLargeError(
                 f"the symmetry search would try {total} candidate motions (more than {MAX_FRAME_CANDIDATES}): "
-                f"{len(images_a)} vertices look alike; use --symmetry none"
+                f"{len(images_a)} vertices look alike; use `symmetry='none'`",
             )
         base_t = frame(pts[a], pts[b]).T
         flip = np.diag([1.0, 1.0, -1.0])

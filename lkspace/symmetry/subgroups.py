@@ -44,8 +44,6 @@ from ..errors import UsageError
 from ..model.scaffold import Scaffold
 from .group import SymmetryGroup
 
-FEATURES = ("vertex", "edge", "face")
-
 
 class GroupTable:
     """Multiplication, inverses and orders of a :class:`SymmetryGroup`'s elements."""
@@ -142,7 +140,9 @@ _CYCLIC = re.compile(r"^C(\d+)$")
 def _feature(text: str, spec: str) -> tuple[str, int]:
     match = _FEATURE.match(text.strip())
     if not match:
-        raise UsageError(f"--invariant {spec!r}: expected vertex=V, edge=E or face=F after ':', got {text!r}")
+        raise UsageError(
+            f"subgroup {spec!r}: expected vertex=V, edge=E or face=F after ':', got {text!r}", parameter="subgroup"
+        )
     return match.group(1), int(match.group(2))
 
 
@@ -186,25 +186,29 @@ def _element_of_perm(text: str, scaffold: Scaffold, group: SymmetryGroup, table:
     try:
         sigma = np.array([int(x) for x in text.split(",")], np.int64)
     except ValueError:
-        raise UsageError(f"--invariant perm: {text!r} is not a comma list of vertex indices") from None
+        raise UsageError(
+            f"subgroup perm: {text!r} is not a comma list of vertex indices", parameter="subgroup"
+        ) from None
     if len(sigma) != scaffold.n_vertices:
         raise UsageError(
-            f"--invariant perm: {text!r} has {len(sigma)} images, {scaffold.name} has {scaffold.n_vertices} vertices"
+            f"subgroup perm: {text!r} has {len(sigma)} images, {scaffold.name} has {scaffold.n_vertices} vertices",
+            parameter="subgroup",
         )
     hits = np.flatnonzero(np.all(group.vertex_perms == sigma[None, :], axis=1))
     if not len(hits):
-        raise UsageError(f"--invariant perm: {text!r} is not a symmetry of {scaffold.name}")
+        raise UsageError(f"subgroup perm: {text!r} is not a symmetry of {scaffold.name}", parameter="subgroup")
     proper = hits[group.proper[hits]]
     if len(proper) > 1 or (not len(proper) and len(hits) > 1):
         raise UsageError(
-            f"--invariant perm: {len(hits)} symmetries of {scaffold.name} permute the vertices as {text!r}"
+            f"subgroup perm: {len(hits)} symmetries of {scaffold.name} permute the vertices as {text!r}",
+            parameter="subgroup",
         )
     return int(proper[0] if len(proper) else hits[0])
 
 
 def _cyclic(n: int, rest: str, spec: str, scaffold: Scaffold, group: SymmetryGroup, table: GroupTable) -> np.ndarray:
     if n < 1:
-        raise UsageError(f"--invariant {spec!r}: the order must be at least 1")
+        raise UsageError(f"subgroup {spec!r}: the order must be at least 1", parameter="subgroup")
     mask = group.proper.copy()
     if rest:
         mask &= fixing(scaffold, group, *_feature(rest, spec))
