@@ -14,15 +14,14 @@ compiled, each helper its body names is swapped for the helper's own compiled ve
 (itself compiled the same way, so helpers may call helpers) and numba links it in.  A
 kernel must name a helper imported into its module (``from .loops import join``), not as
 ``module.join``.  Numba's cache keys a kernel by its own file only; here the key also
-holds the source of every helper the kernel reaches, so editing a helper in another file
-recompiles the kernels that use it instead of loading stale code.
+holds the text of the files of every helper the kernel reaches, so editing a helper (or a
+constant beside it) in another file recompiles the kernels that use it instead of
+loading stale code.
 """
 
 from __future__ import annotations
 
 import functools
-import hashlib
-import inspect
 import types
 from collections.abc import Callable
 from typing import Any, TypeVar
@@ -53,7 +52,7 @@ def _helpers_named(py_func: Callable[..., Any]) -> dict[str, Callable[..., Any]]
 
 
 def _reached(py_func: Callable[..., Any]) -> list[Callable[..., Any]]:
-    """Every helper ``py_func`` reaches through calls, in a fixed order."""
+    """Return every helper ``py_func`` reaches through calls."""
     seen: dict[str, Callable[..., Any]] = {}
     todo = list(_helpers_named(py_func).values())
     while todo:
@@ -62,13 +61,15 @@ def _reached(py_func: Callable[..., Any]) -> list[Callable[..., Any]]:
         if key not in seen:
             seen[key] = h
             todo += _helpers_named(h).values()
-    return [seen[k] for k in sorted(seen)]
+    return list(seen.values())
 
 
 def _source(func: Callable[..., Any]) -> bytes:
+    """Return the text of the file defining ``func`` (its bytecode where the file is gone)."""
     try:
-        return inspect.getsource(func).encode()
-    except OSError:  # no source shipped: the bytecode stands in
+        with open(func.__code__.co_filename, "rb") as fh:
+            return fh.read()
+    except OSError:
         return func.__code__.co_code
 
 
@@ -90,6 +91,8 @@ def _keyed_cache_class() -> type:
 
 def _compile(py_func: Callable[..., Any]) -> Any:
     """Return the numba dispatcher of ``py_func`` (``cache=True``), its helpers compiled in."""
+    import hashlib
+
     import numba
 
     named = _helpers_named(py_func)
@@ -104,7 +107,8 @@ def _compile(py_func: Callable[..., Any]) -> Any:
     func.__qualname__ = py_func.__qualname__
     func.__doc__ = py_func.__doc__
     dispatcher = numba.njit(cache=True)(func)
-    digest = hashlib.sha256(b"\0".join(_source(h) for h in _reached(py_func))).hexdigest()
+    files = {h.__code__.co_filename: h for h in _reached(py_func)}
+    digest = hashlib.sha256(b"\0".join(_source(files[f]) for f in sorted(files))).hexdigest()
     dispatcher._cache = _keyed_cache_class()(func, digest)  # type: ignore[attr-defined]
     return dispatcher
 
