@@ -11,7 +11,8 @@ compiled one otherwise.
 Kernels share loops through **helpers**: :func:`helper` registers a function and returns
 it unchanged, so a kernel run as plain Python calls the plain helper.  When a kernel is
 compiled, each helper its body names is swapped for the helper's own compiled version
-(itself compiled the same way, so helpers may call helpers) and numba links it in.  A
+(itself compiled the same way, so helpers may call helpers), which numba inlines
+(``inline="always"``: no call overhead in inner loops).  A
 kernel must name a helper imported into its module (``from .loops import join``), not as
 ``module.join``.  Numba's cache keys a kernel by its own file only; here the key also
 holds the text of the files of every helper the kernel reaches, so editing a helper (or a
@@ -24,7 +25,7 @@ from __future__ import annotations
 import functools
 import types
 from collections.abc import Callable
-from typing import Any, TypeVar
+from typing import Any, Literal, TypeVar
 
 SMALL_WORK = 4096
 """Jobs below this many elementary steps run as plain Python (about 10 ms at most)."""
@@ -96,8 +97,9 @@ def _compile(py_func: Callable[..., Any]) -> Any:
     import numba
 
     named = _helpers_named(py_func)
+    inline: Literal["always", "never"] = "always" if py_func in _helpers else "never"  # no calls in inner loops
     if not named:
-        return numba.njit(cache=True)(py_func)
+        return numba.njit(cache=True, inline=inline)(py_func)
     namespace = dict(py_func.__globals__)
     for name, h in named.items():
         if _helpers[h] is None:
@@ -106,7 +108,7 @@ def _compile(py_func: Callable[..., Any]) -> Any:
     func = types.FunctionType(py_func.__code__, namespace, py_func.__name__, py_func.__defaults__, py_func.__closure__)
     func.__qualname__ = py_func.__qualname__
     func.__doc__ = py_func.__doc__
-    dispatcher = numba.njit(cache=True)(func)
+    dispatcher = numba.njit(cache=True, inline=inline)(func)
     files = {h.__code__.co_filename: h for h in _reached(py_func)}
     digest = hashlib.sha256(b"\0".join(_source(files[f]) for f in sorted(files))).hexdigest()
     dispatcher._cache = _keyed_cache_class()(func, digest)  # type: ignore[attr-defined]

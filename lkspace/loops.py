@@ -5,8 +5,8 @@
 * The canonical test: :func:`stabilizer_if_smallest`, whether labels are the smallest of
   their orbit under signed edge permutations, and how many of them fix the labels.  Action
   ``a`` maps labels ``t`` to ``signs[a] * t[inv_perms[a]]`` (:mod:`lkspace.symmetry.group`).
-* Union-find with lattice potentials: :func:`join` (strands joined into pieces; on a
-  periodic scaffold, the translations closed by cycles).
+* Union-find: :func:`find` (the root of a strand's piece) and :func:`join` (union by
+  size with lattice potentials: on a periodic scaffold, the translations closed by cycles).
 * The index of an integer lattice: :func:`lattice_index_rows`.
 
 Each works on arrays the caller allocates, so kernels call them in their inner loops
@@ -85,6 +85,14 @@ def stabilizer_if_smallest(
         if cmp == 0:
             stab += 1
     return stab
+
+
+@helper
+def find(parent: np.ndarray, a: int) -> int:
+    """Return the root of ``a`` in the forest ``parent`` (``parent[r] == r`` at a root)."""
+    while parent[a] != a:
+        a = parent[a]
+    return a
 
 
 @helper
