@@ -8,7 +8,7 @@ through one compiled call.  These kernels take a batch of classes as arrays:
   residues (the same traversal, so strands come in the same order);
 * :func:`expand_classes`: the canonical assignments of each class, and
   :func:`expand_class_range`: those of a part of one large class (both through the
-  helper :func:`canonical_rows`);
+  helpers :func:`class_options` and :func:`canonical_rows`);
 * :func:`rows_hold_together_lift`: whether each row holds together, finite or periodic (the
   infinite lift of :mod:`lkspace.strands.holding_together`: union-find with lattice
   potentials, then the index of the realizable translations), and
@@ -118,16 +118,13 @@ def expand_classes(
     """
     n_c, n_e = indices.shape
     work = np.empty((3, n_e), np.int64)
+    table = np.empty((n_e, opts.shape[2]), np.int64)
     m = 0
     for c in range(n_c):
-        size = 1
-        for j in range(n_e):
-            size *= n_opts[j, indices[c, j]]
+        size = class_options(indices[c], opts, n_opts, table, work[1])
         first = m
         m = canonical_rows(
-            indices[c],
-            opts,
-            n_opts,
+            table,
             inv_perms,
             signs,
             stab_ids,
@@ -163,16 +160,31 @@ def expand_class_range(
     Returns how many rows were written to ``out_labels`` and ``out_stab``.
     """
     work = np.empty((3, len(index)), np.int64)
-    return canonical_rows(
-        index, opts, n_opts, inv_perms, signs, actions, 0, len(actions), start, stop, out_labels, out_stab, 0, work
-    )
+    table = np.empty((len(index), opts.shape[2]), np.int64)
+    class_options(index, opts, n_opts, table, work[1])
+    return canonical_rows(table, inv_perms, signs, actions, 0, len(actions), start, stop, out_labels, out_stab, 0, work)
+
+
+@helper
+def class_options(
+    index: np.ndarray, opts: np.ndarray, n_opts: np.ndarray, table: np.ndarray, radices: np.ndarray
+) -> int:
+    """Copy the labels of the class ``index (n_edges,)`` to ``table`` and their counts to ``radices``; return the class size.
+
+    ``table[j, :radices[j]] = opts[j, index[j], :n_opts[j, index[j]]]`` (``residue_table`` layout).
+    """
+    size = 1
+    for j in range(len(index)):
+        radices[j] = n_opts[j, index[j]]
+        size *= radices[j]
+        for d in range(radices[j]):
+            table[j, d] = opts[j, index[j], d]
+    return size
 
 
 @helper
 def canonical_rows(
-    index: np.ndarray,
-    opts: np.ndarray,
-    n_opts: np.ndarray,
+    class_opts: np.ndarray,
     inv_perms: np.ndarray,
     signs: np.ndarray,
     actions: np.ndarray,
@@ -187,19 +199,18 @@ def canonical_rows(
 ) -> int:
     """Append the canonical ones of assignments ``start..stop`` of one class to row ``m`` on; return the new row count.
 
-    The class ``index (n_edges,)`` (residue index per edge) has the assignments putting
-    ``opts[j, index[j], d]`` on edge ``j``, ``d < n_opts[j, index[j]]``, numbered in mixed radix
-    (last edge fastest).  One is kept when it is the smallest under the stabilizer
+    The class's assignments put ``class_opts[j, d]`` on edge ``j`` for ``d < work[1, j]`` (the
+    caller fills ``work[1]`` with the label count per edge), numbered in mixed radix (last
+    edge fastest).  One is kept when it is the smallest under the stabilizer
     ``actions[lo:hi]`` (:func:`~lkspace.loops.stabilizer_if_smallest`): its labels go to
-    ``out_labels[m]``, its stabilizer size to ``out_stab[m]``.  ``work (3, n_edges) int64``: scratch.
+    ``out_labels[m]``, its stabilizer size to ``out_stab[m]``.  ``work (3, n_edges) int64``:
+    digits, radices, labels.
     """
-    n_e = len(index)
+    n_e = len(class_opts)
     digits, radices, labels = work[0], work[1], work[2]
-    for j in range(n_e):
-        radices[j] = n_opts[j, index[j]]
     set_digits(digits, radices, start)
     for j in range(n_e):
-        labels[j] = opts[j, index[j], digits[j]]
+        labels[j] = class_opts[j, digits[j]]
     no_moduli = radices[:0]  # the stabilizer keeps the residues: compare labels alone
     for _ in range(start, stop):
         stab = 1
@@ -216,10 +227,10 @@ def canonical_rows(
         while j >= 0:
             digits[j] += 1
             if digits[j] < radices[j]:
-                labels[j] = opts[j, index[j], digits[j]]
+                labels[j] = class_opts[j, digits[j]]
                 break
             digits[j] = 0
-            labels[j] = opts[j, index[j], 0]
+            labels[j] = class_opts[j, 0]
             j -= 1
     return m
 
