@@ -7,6 +7,9 @@
   ``a`` maps labels ``t`` to ``signs[a] * t[inv_perms[a]]`` (:mod:`lkspace.symmetry.group`).
 * Union-find: :func:`find` (the root of a strand's piece) and :func:`join` (union by
   size with lattice potentials: on a periodic scaffold, the translations closed by cycles).
+  Two of the hottest loops keep a step written out, measured faster so: the walk's
+  mixed-radix step in :func:`~lkspace.design.batch_kernels.canonical_rows` and ``join`` in
+  :func:`~lkspace.design.batch_kernels.rows_hold_together_lift`.
 * The index of an integer lattice: :func:`lattice_index_rows`.
 
 Each works on arrays the caller allocates, so kernels call them in their inner loops
