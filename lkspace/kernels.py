@@ -1,21 +1,118 @@
-"""Compiled kernels that cost nothing until they are needed.
+"""Compiled kernels that cost nothing until they are needed, and the helpers they share.
 
 A kernel is a plain Python function written in numba's nopython subset (numpy arrays,
-scalars, loops; no calls to other kernels).  :func:`kernel` wraps it in a
-:class:`Kernel`: calling the wrapper runs the numba-compiled version, importing numba and
-compiling (or loading numba's on-disk cache) on first use only, so commands that never
-reach a hot loop never pay numba's import.  :meth:`Kernel.run` takes the size of the job
-and runs the plain Python function when the job is too small for compilation to pay
-(a trace of a small scaffold), the compiled one otherwise.
+scalars, loops).  :func:`kernel` wraps it in a :class:`Kernel`: calling the wrapper runs
+the numba-compiled version, importing numba and compiling (or loading numba's on-disk
+cache) on first use only, so commands that never reach a hot loop never pay numba's
+import.  :meth:`Kernel.run` takes the size of the job and runs the plain Python function
+when the job is too small for compilation to pay (a trace of a small scaffold), the
+compiled one otherwise.
+
+Kernels share loops through **helpers**: :func:`helper` registers a function and returns
+it unchanged, so a kernel run as plain Python calls the plain helper.  When a kernel is
+compiled, each helper its body names is swapped for the helper's own compiled version
+(itself compiled the same way, so helpers may call helpers), which numba inlines
+(``inline="always"``: no call overhead in inner loops).  A
+kernel must name a helper imported into its module (``from .loops import join``), not as
+``module.join``.  Numba's cache keys a kernel by its own file only; here the key also
+holds the text of the files of every helper the kernel reaches, so editing a helper (or a
+constant beside it) in another file recompiles the kernels that use it instead of
+loading stale code.
 """
 
 from __future__ import annotations
 
+import functools
+import types
 from collections.abc import Callable
-from typing import Any
+from typing import Any, Literal, TypeVar
 
 SMALL_WORK = 4096
 """Jobs below this many elementary steps run as plain Python (about 10 ms at most)."""
+
+F = TypeVar("F", bound=Callable[..., Any])
+
+_helpers: dict[Callable[..., Any], Any] = {}
+"""Every helper, mapped to its numba dispatcher once one was needed (``None`` before)."""
+
+
+def helper(py_func: F) -> F:
+    """Register ``py_func`` as a helper kernels may call (use as a decorator); return it unchanged."""
+    _helpers[py_func] = None
+    return py_func
+
+
+def _is_helper(value: object) -> bool:
+    return isinstance(value, types.FunctionType) and value in _helpers
+
+
+def _helpers_named(py_func: Callable[..., Any]) -> dict[str, Callable[..., Any]]:
+    """Return the helpers the body of ``py_func`` names, keyed by the name it uses."""
+    names = py_func.__globals__
+    return {n: names[n] for n in py_func.__code__.co_names if _is_helper(names.get(n))}
+
+
+def _reached(py_func: Callable[..., Any]) -> list[Callable[..., Any]]:
+    """Return every helper ``py_func`` reaches through calls."""
+    seen: dict[str, Callable[..., Any]] = {}
+    todo = list(_helpers_named(py_func).values())
+    while todo:
+        h = todo.pop()
+        key = f"{h.__module__}.{h.__qualname__}"
+        if key not in seen:
+            seen[key] = h
+            todo += _helpers_named(h).values()
+    return list(seen.values())
+
+
+def _source(func: Callable[..., Any]) -> bytes:
+    """Return the text of the file defining ``func`` (its bytecode where the file is gone)."""
+    try:
+        with open(func.__code__.co_filename, "rb") as fh:
+            return fh.read()
+    except OSError:
+        return func.__code__.co_code
+
+
+@functools.cache
+def _keyed_cache_class() -> type:
+    """Return a numba function cache class whose index key also holds a digest of the helpers' sources."""
+    from numba.core.caching import FunctionCache
+
+    class HelperKeyedCache(FunctionCache):
+        def __init__(self, py_func: Callable[..., Any], digest: str) -> None:
+            super().__init__(py_func)
+            self._digest = digest
+
+        def _index_key(self, sig: Any, codegen: Any) -> tuple[Any, ...]:
+            return (*super()._index_key(sig, codegen), self._digest)
+
+    return HelperKeyedCache
+
+
+def _compile(py_func: Callable[..., Any]) -> Any:
+    """Return the numba dispatcher of ``py_func`` (``cache=True``), its helpers compiled in."""
+    import hashlib
+
+    import numba
+
+    named = _helpers_named(py_func)
+    inline: Literal["always", "never"] = "always" if py_func in _helpers else "never"  # no calls in inner loops
+    if not named:
+        return numba.njit(cache=True, inline=inline)(py_func)
+    namespace = dict(py_func.__globals__)
+    for name, h in named.items():
+        if _helpers[h] is None:
+            _helpers[h] = _compile(h)
+        namespace[name] = _helpers[h]
+    func = types.FunctionType(py_func.__code__, namespace, py_func.__name__, py_func.__defaults__, py_func.__closure__)
+    func.__qualname__ = py_func.__qualname__
+    func.__doc__ = py_func.__doc__
+    dispatcher = numba.njit(cache=True, inline=inline)(func)
+    files = {h.__code__.co_filename: h for h in _reached(py_func)}
+    digest = hashlib.sha256(b"\0".join(_source(files[f]) for f in sorted(files))).hexdigest()
+    dispatcher._cache = _keyed_cache_class()(func, digest)  # type: ignore[attr-defined]
+    return dispatcher
 
 
 class Kernel:
@@ -31,9 +128,7 @@ class Kernel:
     def compiled(self) -> Callable[..., Any]:
         """The numba dispatcher (``cache=True``: compiled once per machine)."""
         if self._compiled is None:
-            import numba
-
-            self._compiled = numba.njit(cache=True)(self.py_func)
+            self._compiled = _compile(self.py_func)
         return self._compiled
 
     def __call__(self, *args: Any) -> Any:

@@ -1,5 +1,9 @@
 """Compiled kernels and their plain-Python runs agree (small jobs skip numba entirely)."""
 
+import os
+import subprocess
+import sys
+
 import numpy as np
 from hypothesis import given, settings
 from hypothesis import strategies as st
@@ -64,3 +68,67 @@ def test_run_picks_plain_python_for_small_jobs_only():
     assert k.run(SMALL_WORK - 1, 21) == 42 and "not compiled" in repr(k)  # ran as plain Python
     assert k.run(SMALL_WORK, 4) == 8 and "(compiled)" in repr(k)
     assert k(5) == 10 == k.run(1, 5)  # once compiled, always compiled
+
+
+HELPERS_MODULE = """
+from lkspace.kernels import helper
+
+
+@helper
+def bump(x):
+    return x + STEP
+
+
+@helper
+def bump_all(a, out):
+    for i in range(len(a)):
+        out[i] = bump(a[i])
+"""
+
+KERNEL_MODULE = """
+import numpy as np
+
+from lkspace.kernels import kernel
+
+from .helpers import bump_all
+
+
+@kernel
+def bumped_sum(a):
+    out = np.empty_like(a)
+    bump_all(a, out)
+    return out.sum()
+"""
+
+RUN = """
+import sys
+import numpy as np
+from pkg.kern import bumped_sum
+a = np.arange(5)
+plain = bumped_sum.run(1, a)
+assert "numba" not in sys.modules  # the small job ran the plain helpers
+if sys.argv[1] == "compiled":
+    print(int(bumped_sum(a)), int(plain), bool(bumped_sum.compiled.stats.cache_hits), bool(bumped_sum.compiled.stats.cache_misses))
+else:
+    print(int(plain))
+"""
+
+
+def _run(tmp_path, mode):
+    env = {**os.environ, "NUMBA_CACHE_DIR": str(tmp_path / "cache"), "PYTHONPATH": str(tmp_path)}
+    done = subprocess.run([sys.executable, "-c", RUN, mode], env=env, capture_output=True, text=True, check=True)
+    return done.stdout.split()
+
+
+def test_kernels_call_helpers_plain_and_compiled_and_the_cache_follows_helper_edits(tmp_path):
+    pkg = tmp_path / "pkg"
+    pkg.mkdir()
+    (pkg / "__init__.py").write_text("")
+    (pkg / "helpers.py").write_text("STEP = 1\n" + HELPERS_MODULE)
+    (pkg / "kern.py").write_text(KERNEL_MODULE)
+    assert _run(tmp_path, "plain") == ["15"]  # 1 + 2 + 3 + 4 + 5, numba never imported
+    assert _run(tmp_path, "compiled") == ["15", "15", "False", "True"]  # compiled and saved
+    assert _run(tmp_path, "compiled") == ["15", "15", "True", "False"]  # a second process loads it
+    # a constant a helper reads changes in another file: the kernel's file is untouched, its cached code stale
+    (pkg / "helpers.py").write_text("STEP = 2\n" + HELPERS_MODULE)
+    assert _run(tmp_path, "compiled") == ["20", "20", "False", "True"]

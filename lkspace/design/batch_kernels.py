@@ -6,23 +6,27 @@ through one compiled call.  These kernels take a batch of classes as arrays:
 
 * :func:`trace_classes`: the strand walk of :mod:`lkspace.strands.walk` for each class's
   residues (the same traversal, so strands come in the same order);
-* :func:`expand_classes`: the canonical assignments of each class, as
-  :func:`lkspace.design.walk.canonical_block` finds them for one class;
+* :func:`expand_classes`: the canonical assignments of each class, and
+  :func:`expand_class_range`: those of a part of one large class (both through the
+  helpers :func:`class_options` and :func:`canonical_rows`);
 * :func:`rows_hold_together_lift`: whether each row holds together, finite or periodic (the
   infinite lift of :mod:`lkspace.strands.holding_together`: union-find with lattice
-  potentials, then the index of the realizable translations);
+  potentials, then the index of the realizable translations), and
+  :func:`rows_hold_together_finite`, the same for finite scaffolds over fewer links;
 
 The orbit kernels (representatives, stabilizers, Burnside counts) are in
 :mod:`lkspace.design.orbit_kernels`.
 
-Each kernel is self-contained (kernels do not call each other, :mod:`lkspace.kernels`).
+The loops they share with other kernels (mixed-radix counting, the canonical test,
+union-find, the lattice index) are the helpers of :mod:`lkspace.loops`.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-from ..kernels import kernel
+from ..kernels import helper, kernel
+from ..loops import find, lattice_index_rows, set_digits, stabilizer_if_smallest
 
 
 @kernel
@@ -107,55 +111,127 @@ def expand_classes(
 ) -> int:
     """Canonical assignments of every class ``indices (n_c, n_edges)``; return how many.
 
-    Each class's assignments are walked in mixed radix (last edge fastest) and kept when
-    lexicographically smallest under the class's stabilizer ``stab_ids[stab_ptr[c]:stab_ptr[c+1]]``
-    (identity left out): rows in ``out_labels``, stabilizer sizes in ``out_stab``, batch
-    class in ``out_class`` (sized for every assignment of the batch).
+    Each class's assignments go through :func:`canonical_rows` with the class's stabilizer
+    ``stab_ids[stab_ptr[c]:stab_ptr[c+1]]`` (identity left out): rows in ``out_labels``,
+    stabilizer sizes in ``out_stab``, batch class in ``out_class`` (sized for every
+    assignment of the batch).
     """
     n_c, n_e = indices.shape
-    digits = np.zeros(n_e, np.int64)
-    cur = np.zeros(n_e, np.int64)
-    cnt = np.zeros(n_e, np.int64)
+    work = np.empty((3, n_e), np.int64)
+    table = np.empty((n_e, opts.shape[2]), np.int64)
     m = 0
     for c in range(n_c):
-        size = 1
-        for j in range(n_e):
-            cnt[j] = n_opts[j, indices[c, j]]
+        size = class_options(indices[c], opts, n_opts, table, work[1])
+        first = m
+        m = canonical_rows(
+            table,
+            inv_perms,
+            signs,
+            stab_ids,
+            stab_ptr[c],
+            stab_ptr[c + 1],
+            0,
+            size,
+            out_labels,
+            out_stab,
+            m,
+            work,
+        )
+        out_class[first:m] = c
+    return m
+
+
+@kernel
+def expand_class_range(
+    index: np.ndarray,
+    opts: np.ndarray,
+    n_opts: np.ndarray,
+    inv_perms: np.ndarray,
+    signs: np.ndarray,
+    actions: np.ndarray,
+    start: int,
+    stop: int,
+    out_labels: np.ndarray,
+    out_stab: np.ndarray,
+) -> int:
+    """Canonical assignments ``start..stop`` of the class ``index (n_edges,)`` (a large class, in chunks).
+
+    ``actions``: the class's stabilizer, identity left out; see :func:`canonical_rows`.
+    Returns how many rows were written to ``out_labels`` and ``out_stab``.
+    """
+    work = np.empty((3, len(index)), np.int64)
+    table = np.empty((len(index), opts.shape[2]), np.int64)
+    class_options(index, opts, n_opts, table, work[1])
+    return canonical_rows(table, inv_perms, signs, actions, 0, len(actions), start, stop, out_labels, out_stab, 0, work)
+
+
+@helper
+def class_options(
+    index: np.ndarray, opts: np.ndarray, n_opts: np.ndarray, table: np.ndarray, radices: np.ndarray
+) -> int:
+    """Copy the labels of the class ``index (n_edges,)`` to ``table`` and their counts to ``radices``; return the class size.
+
+    ``table[j, :radices[j]] = opts[j, index[j], :n_opts[j, index[j]]]`` (``residue_table`` layout).
+    """
+    size = 1
+    for j in range(len(index)):
+        radices[j] = n_opts[j, index[j]]
+        size *= radices[j]
+        for d in range(radices[j]):
+            table[j, d] = opts[j, index[j], d]
+    return size
+
+
+@helper
+def canonical_rows(
+    class_opts: np.ndarray,
+    inv_perms: np.ndarray,
+    signs: np.ndarray,
+    actions: np.ndarray,
+    lo: int,
+    hi: int,
+    start: int,
+    stop: int,
+    out_labels: np.ndarray,
+    out_stab: np.ndarray,
+    m: int,
+    work: np.ndarray,
+) -> int:
+    """Append the canonical ones of assignments ``start..stop`` of one class to row ``m`` on; return the new row count.
+
+    The class's assignments put ``class_opts[j, d]`` on edge ``j`` for ``d < work[1, j]`` (the
+    caller fills ``work[1]`` with the label count per edge), numbered in mixed radix (last
+    edge fastest).  One is kept when it is the smallest under the stabilizer
+    ``actions[lo:hi]`` (:func:`~lkspace.loops.stabilizer_if_smallest`): its labels go to
+    ``out_labels[m]``, its stabilizer size to ``out_stab[m]``.  ``work (3, n_edges) int64``:
+    digits, radices, labels.
+    """
+    n_e = len(class_opts)
+    digits, radices, labels = work[0], work[1], work[2]
+    set_digits(digits, radices, start)
+    for j in range(n_e):
+        labels[j] = class_opts[j, digits[j]]
+    no_moduli = radices[:0]  # the stabilizer keeps the residues: compare labels alone
+    for _ in range(start, stop):
+        stab = 1
+        if hi > lo:
+            stab = stabilizer_if_smallest(labels, labels, no_moduli, inv_perms, signs, actions, lo, hi)
+        if stab:
+            for j in range(n_e):
+                out_labels[m, j] = labels[j]
+            out_stab[m] = stab
+            m += 1
+        # next_digits, with each changed label set as its digit changes: this loop runs once per
+        # assignment, and the shared step plus a second pass over the labels costs 1.5x the walk
+        j = n_e - 1
+        while j >= 0:
+            digits[j] += 1
+            if digits[j] < radices[j]:
+                labels[j] = class_opts[j, digits[j]]
+                break
             digits[j] = 0
-            cur[j] = opts[j, indices[c, j], 0]
-            size *= cnt[j]
-        for _ in range(size):
-            canon = True
-            stab = 1
-            for p in range(stab_ptr[c], stab_ptr[c + 1]):
-                h = stab_ids[p]
-                cmp = 0
-                s = signs[h]
-                for j in range(n_e):
-                    v = s * cur[inv_perms[h, j]]
-                    if v != cur[j]:
-                        cmp = -1 if v < cur[j] else 1
-                        break
-                if cmp < 0:
-                    canon = False
-                    break
-                if cmp == 0:
-                    stab += 1
-            if canon:
-                for j in range(n_e):
-                    out_labels[m, j] = cur[j]
-                out_stab[m] = stab
-                out_class[m] = c
-                m += 1
-            j = n_e - 1
-            while j >= 0:
-                digits[j] += 1
-                if digits[j] < cnt[j]:
-                    cur[j] = opts[j, indices[c, j], digits[j]]
-                    break
-                digits[j] = 0
-                cur[j] = opts[j, indices[c, j], 0]
-                j -= 1
+            labels[j] = class_opts[j, 0]
+            j -= 1
     return m
 
 
@@ -188,9 +264,9 @@ def rows_hold_together_lift(
     vec = np.zeros((n_max + len(edge_ports), dim), np.int64)
     basis = np.zeros((dim, dim), np.int64)
     has = np.zeros(dim, np.bool_)
+    v = np.zeros(dim, np.int64)
     pa = np.zeros(dim, np.int64)
     pb = np.zeros(dim, np.int64)
-    v = np.zeros(dim, np.int64)
     for i in range(m):
         c = row_class[i]
         n = components[c]
@@ -199,8 +275,6 @@ def rows_hold_together_lift(
         for k in range(n):
             parent[k] = k
             size[k] = 1
-            for j in range(dim):
-                pot[k, j] = 0
         n_vec = 0
         pieces = n
         for e in range(n_e):
@@ -209,6 +283,7 @@ def rows_hold_together_lift(
             x = edge_ports[edge_port_ptr[e]]
             for p in range(edge_port_ptr[e] + 1, edge_port_ptr[e + 1]):
                 y = edge_ports[p]
+                # lkspace.loops.join written out: as a call it costs this kernel 1.4x (measured)
                 a = port_strand[c, x]
                 b = port_strand[c, y]
                 for j in range(dim):
@@ -250,46 +325,7 @@ def rows_hold_together_lift(
             for j in range(dim):
                 vec[n_vec, j] = periods[c, k, j]
             n_vec += 1
-        # index of the lattice spanned by vec[:n_vec] (lkspace.strands.holding_together.echelon_index)
-        basis[:, :] = 0
-        has[:] = False
-        for r in range(n_vec):
-            for j in range(dim):
-                v[j] = vec[r, j]
-            for col in range(dim):
-                if v[col] == 0:
-                    continue
-                if not has[col]:
-                    for j in range(dim):
-                        basis[col, j] = v[j]
-                    has[col] = True
-                    break
-                g, b2 = basis[col, col], v[col]
-                x0, y0, x1, y1 = 1, 0, 0, 1
-                while b2 != 0:
-                    q = g // b2
-                    g, b2 = b2, g - q * b2
-                    x0, x1 = x1, x0 - q * x1
-                    y0, y1 = y1, y0 - q * y1
-                if g < 0:
-                    g, x0, y0 = -g, -x0, -y0
-                p1, q1 = basis[col, col] // g, v[col] // g
-                for j in range(dim):
-                    bj = basis[col, j]
-                    basis[col, j] = x0 * bj + y0 * v[j]
-                    v[j] = p1 * v[j] - q1 * bj
-                for jj in range(col + 1, dim):
-                    if has[jj] and basis[jj, jj] != 0:
-                        f = v[jj] // basis[jj, jj]
-                        for j in range(dim):
-                            v[j] -= f * basis[jj, j]
-        index = 1
-        for col in range(dim):
-            if not has[col]:
-                index = 0
-                break
-            index *= abs(basis[col, col])
-        out[i] = index == 1
+        out[i] = lattice_index_rows(vec, n_vec, basis, has, v) == 1
     return out
 
 
@@ -300,12 +336,12 @@ def rows_hold_together_finite(
     """(m,) bool for finite scaffolds: strands joined at nonzero-label edges form one piece.
 
     ``strands[ptr[c * n_edges + e]:ptr[c * n_edges + e + 1]]`` are the distinct strands of
-    batch class ``c`` through edge ``e`` (the per-class form of
-    :func:`lkspace.design.walk.rows_hold_together`).
+    batch class ``c`` through edge ``e``.
     """
     m, n_e = labels.shape
     out = np.ones(m, np.bool_)
-    parent = np.empty(max(1, int(components.max()) if len(components) else 1), np.int64)
+    n_max = max(1, int(components.max()) if len(components) else 1)
+    parent = np.empty(n_max, np.int64)
     for i in range(m):
         c = row_class[i]
         n = components[c]
@@ -318,13 +354,9 @@ def rows_hold_together_finite(
             if labels[i, e] == 0:
                 continue
             base = c * n_e + e
-            a = strands[ptr[base]]
-            while parent[a] != a:
-                a = parent[a]
+            a = find(parent, strands[ptr[base]])
             for p in range(ptr[base] + 1, ptr[base + 1]):
-                b = strands[p]
-                while parent[b] != b:
-                    b = parent[b]
+                b = find(parent, strands[p])
                 if a != b:
                     parent[b] = a
                     pieces -= 1

@@ -13,6 +13,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..kernels import kernel
+from ..loops import next_digits, set_digits
 
 
 @kernel
@@ -47,10 +48,7 @@ def census_range(
     visited = np.zeros(n_ports, np.bool_)
     digits = np.zeros(n_var, np.int64)
     exps = np.zeros(max(n_vals, 1), np.int64)
-    rest = first
-    for v in range(n_var - 1, -1, -1):
-        digits[v] = rest % n_choices[v]
-        rest //= n_choices[v]
+    set_digits(digits, n_choices, first)
     changed = 0  # variables 0..n_var-1 from `changed` on need their edge links rebuilt
     for _ in range(stop - first):
         for v in range(changed, n_var):
@@ -88,11 +86,4 @@ def census_range(
                 x = z
             comps += 1
         hist[comps, cell] += 1
-        v = n_var - 1
-        while v >= 0:
-            digits[v] += 1
-            if digits[v] < n_choices[v]:
-                break
-            digits[v] = 0
-            v -= 1
-        changed = max(v, 0)
+        changed = max(next_digits(digits, n_choices), 0)

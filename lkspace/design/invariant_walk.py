@@ -3,7 +3,7 @@
 The fixed assignments are a product over ``H``'s edge orbits; a compiled kernel walks it
 in mixed radix (last orbit fastest), expands each to edge labels and keeps it when it is
 the smallest of its ``N``-orbit in (``t mod K`` per edge, then ``t`` per edge), counting its
-stabilizer in ``N`` on the way.  Kept rows are grouped by residue vector, each residue
+stabilizer in ``N`` on the way (the helpers of :mod:`lkspace.loops`).  Kept rows are grouped by residue vector, each residue
 class traced once (:func:`~lkspace.design.batch.trace_batch`), and returned as
 :class:`~lkspace.design.walk.DesignBlock` s, the rows the catalog writer takes.
 """
@@ -16,6 +16,7 @@ import numpy as np
 
 from ..errors import TooLargeError
 from ..kernels import kernel
+from ..loops import next_digits, set_digits, stabilizer_if_smallest
 from .batch import holds_batch, trace_batch
 from .invariant import InvariantSpace
 from .walk import DesignBlock
@@ -48,54 +49,25 @@ def invariant_canonical(
     ``inv_perms (n_a, n_edges)``, ``signs (n_a,)``: the actions of ``N`` (identity first),
     the image of ``t`` being ``signs[a] * t[inv_perms[a]]``.
     """
-    n_o = len(n_opts)
     n_e = len(edge_orbit)
     n_a = len(signs)
-    digits = np.zeros(n_o, np.int64)
-    rest = start
-    for j in range(n_o - 1, -1, -1):
-        digits[j] = rest % n_opts[j]
-        rest //= n_opts[j]
+    digits = np.zeros(len(n_opts), np.int64)
+    set_digits(digits, n_opts, start)
     x = np.empty(n_e, np.int64)
     res = np.empty(n_e, np.int64)
+    actions = np.arange(n_a)
     m = 0
     for _ in range(start, stop):
         for j in range(n_e):
             x[j] = edge_rel[j] * opts[edge_orbit[j], digits[edge_orbit[j]]]
             res[j] = x[j] % moduli[j]
-        canon = True
-        stab = 1
-        for a in range(1, n_a):
-            s = signs[a]
-            cmp = 0
-            for j in range(n_e):
-                r = (s * x[inv_perms[a, j]]) % moduli[j]
-                if r != res[j]:
-                    cmp = -1 if r < res[j] else 1
-                    break
-            if cmp == 0:
-                for j in range(n_e):
-                    v = s * x[inv_perms[a, j]]
-                    if v != x[j]:
-                        cmp = -1 if v < x[j] else 1
-                        break
-            if cmp < 0:
-                canon = False
-                break
-            if cmp == 0:
-                stab += 1
-        if canon:
+        stab = stabilizer_if_smallest(x, res, moduli, inv_perms, signs, actions, 1, n_a)
+        if stab:
             for j in range(n_e):
                 out_labels[m, j] = x[j]
             out_stab[m] = stab
             m += 1
-        j = n_o - 1
-        while j >= 0:
-            digits[j] += 1
-            if digits[j] < n_opts[j]:
-                break
-            digits[j] = 0
-            j -= 1
+        next_digits(digits, n_opts)
     return m
 
 

@@ -11,6 +11,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..kernels import kernel
+from ..loops import next_digits, set_digits
 
 
 @kernel
@@ -70,10 +71,7 @@ def orbit_minima(
     n_g = len(signs)
     digits = np.zeros(n_e, np.int64)
     img = np.zeros(n_e, np.int64)
-    rest = first
-    for j in range(n_e - 1, -1, -1):
-        digits[j] = rest % n_res[j]
-        rest //= n_res[j]
+    set_digits(digits, n_res, first)
     for i in range(stop - first):
         code = first + i
         rep = True
@@ -93,13 +91,7 @@ def orbit_minima(
                 fix += 1
         is_rep[i] = rep
         n_fix[i] = fix
-        j = n_e - 1
-        while j >= 0:
-            digits[j] += 1
-            if digits[j] < n_res[j]:
-                break
-            digits[j] = 0
-            j -= 1
+        next_digits(digits, n_res)
 
 
 @kernel

@@ -39,114 +39,30 @@ from typing import Any
 
 import numpy as np
 
-from ..kernels import kernel
 from ..strands.tracing import trace
 from .batch import BATCH_ASSIGNMENTS, ClassTraces, batches_of, expand_batch, holds_batch, trace_batch
+from .batch_kernels import expand_class_range, rows_hold_together_finite
 from .space import ClassInfo, DesignSpace
 
 CHUNK = 1 << 20
 
 
-@kernel
-def canonical_block(
-    opts: np.ndarray,
-    n_opts: np.ndarray,
-    inv_perms: np.ndarray,
-    signs: np.ndarray,
-    start: int,
-    stop: int,
-    out_labels: np.ndarray,
-    out_stab: np.ndarray,
-) -> int:
-    """Keep the assignments ``start..stop`` of one class that are canonical; return how many.
-
-    Assignments are walked in mixed radix (last edge fastest); those lexicographically
-    smallest under the stabilizer ``(inv_perms, signs)`` (identity excluded) are kept: rows
-    in ``out_labels``, stabilizer sizes in ``out_stab``.
-    """
-    n_e = len(n_opts)
-    n_h = len(signs)
-    digits = np.zeros(n_e, np.int64)
-    cur = np.zeros(n_e, np.int64)
-    rest = start
-    for j in range(n_e - 1, -1, -1):
-        digits[j] = rest % n_opts[j]
-        rest //= n_opts[j]
-        cur[j] = opts[j, digits[j]]
-    m = 0
-    for _ in range(start, stop):
-        canon = True
-        stab = 1
-        for h in range(n_h):
-            cmp = 0
-            s = signs[h]
-            for j in range(n_e):
-                v = s * cur[inv_perms[h, j]]
-                if v != cur[j]:
-                    cmp = -1 if v < cur[j] else 1
-                    break
-            if cmp < 0:
-                canon = False
-                break
-            if cmp == 0:
-                stab += 1
-        if canon:
-            for j in range(n_e):
-                out_labels[m, j] = cur[j]
-            out_stab[m] = stab
-            m += 1
-        j = n_e - 1
-        while j >= 0:
-            digits[j] += 1
-            if digits[j] < n_opts[j]:
-                cur[j] = opts[j, digits[j]]
-                break
-            digits[j] = 0
-            cur[j] = opts[j, 0]
-            j -= 1
-    return m
-
-
-@kernel
-def rows_hold_together(
-    labels: np.ndarray, edge_ptr: np.ndarray, edge_strands: np.ndarray, n_strands: int
-) -> np.ndarray:
-    """(m,) bool: strands joined by winding at nonzero-label edges form one piece."""
-    m, n_e = labels.shape
-    out = np.ones(m, np.bool_)
-    if n_strands <= 1:
-        return out
-    parent = np.empty(n_strands, np.int64)
-    for i in range(m):
-        for k in range(n_strands):
-            parent[k] = k
-        pieces = n_strands
-        for e in range(n_e):
-            if labels[i, e] == 0:
-                continue
-            a = edge_strands[edge_ptr[e]]
-            while parent[a] != a:
-                a = parent[a]
-            for p in range(edge_ptr[e] + 1, edge_ptr[e + 1]):
-                b = edge_strands[p]
-                while parent[b] != b:
-                    b = parent[b]
-                if a != b:
-                    parent[b] = a
-                    pieces -= 1
-        out[i] = pieces == 1
-    return out
-
-
 def holds_together_rows(space: DesignSpace, residues: np.ndarray, info: ClassInfo, labels: np.ndarray) -> np.ndarray:
     """(m,) bool: whether each design of one residue class holds together.
 
-    Finite scaffolds: a numba union-find over the class's strands.  Periodic ones need
+    Finite scaffolds: a compiled union-find over the class's strands.  Periodic ones need
     the infinite lift (:mod:`lkspace.strands.holding_together`), which depends only on the residues
     and on which labels are zero: traced once per distinct zero pattern.
     """
     if not space.scaffold.periodic:
-        return rows_hold_together(labels, info.edge_ptr, info.edge_strands, info.components)
+        one_class = np.zeros(len(labels), np.int64)
+        return rows_hold_together_finite(
+            np.ascontiguousarray(labels, np.int8),
+            one_class,
+            np.array([info.components]),
+            info.edge_ptr,
+            info.edge_strands,
+        )
     nonzero = labels != 0
     if len(labels) == 1:
         patterns, inverse = nonzero, np.zeros(1, np.int64)
@@ -226,20 +142,19 @@ def walk_blocks(
 def _large_class(space: DesignSpace, c: int, traces: ClassTraces) -> Iterator[DesignBlock]:
     co = space.classes
     perms, signs = space.action
-    inv = np.argsort(perms, axis=1)
+    inv = np.ascontiguousarray(np.argsort(perms, axis=1))
+    signs = np.ascontiguousarray(signs)
     n_opts_t, opts_t = space.residue_table.n_opts, space.residue_table.opts
     e = np.arange(space.scaffold.n_edges)
-    n_opts = n_opts_t[e, co.indices[c]]
-    opts = np.ascontiguousarray(opts_t[e, co.indices[c]])
-    h = co.stabilizers[c][1:]
+    index = np.ascontiguousarray(co.indices[c])
+    n_opts = n_opts_t[e, index]
+    h = np.ascontiguousarray(co.stabilizers[c][1:], np.int64)
     size = math.prod(n_opts.tolist())
     for start in range(0, size, CHUNK):
         stop = min(size, start + CHUNK)
         out = np.empty((stop - start, len(e)), np.int8)
         stab = np.empty(stop - start, np.int64)
-        m = canonical_block(
-            opts, n_opts, np.ascontiguousarray(inv[h]), np.ascontiguousarray(signs[h]), start, stop, out, stab
-        )
+        m = expand_class_range(index, opts_t, n_opts_t, inv, signs, h, start, stop, out, stab)
         labels = out[:m]
         row_class = np.zeros(m, np.int64)
         holds = holds_batch(space, traces, labels, row_class)

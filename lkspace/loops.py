@@ -1,0 +1,185 @@
+"""The loops compiled kernels share (helpers of :mod:`lkspace.kernels`), each idea written once.
+
+* Mixed-radix counting: :func:`set_digits` and :func:`next_digits` (the last digit
+  runs fastest, as assignments and class codes are numbered).
+* The canonical test: :func:`stabilizer_if_smallest`, whether labels are the smallest of
+  their orbit under signed edge permutations, and how many of them fix the labels.  Action
+  ``a`` maps labels ``t`` to ``signs[a] * t[inv_perms[a]]`` (:mod:`lkspace.symmetry.group`).
+* Union-find: :func:`find` (the root of a strand's piece) and :func:`join` (union by
+  size with lattice potentials: on a periodic scaffold, the translations closed by cycles).
+  Two of the hottest loops keep a step written out, measured faster so: the walk's
+  mixed-radix step in :func:`~lkspace.design.batch_kernels.canonical_rows` and ``join`` in
+  :func:`~lkspace.design.batch_kernels.rows_hold_together_lift`.
+* The index of an integer lattice: :func:`lattice_index_rows`.
+
+Each works on arrays the caller allocates, so kernels call them in their inner loops
+without allocating.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .kernels import helper
+
+
+@helper
+def set_digits(digits: np.ndarray, radices: np.ndarray, number: int) -> None:
+    """Write ``number`` into ``digits`` in mixed radix ``radices`` (last digit least significant)."""
+    for j in range(len(radices) - 1, -1, -1):
+        digits[j] = number % radices[j]
+        number //= radices[j]
+
+
+@helper
+def next_digits(digits: np.ndarray, radices: np.ndarray) -> int:
+    """Add one to the mixed-radix number ``digits``; return the first position that changed.
+
+    Positions after it went back to 0; -1 means every digit did (the count wrapped around).
+    """
+    j = len(radices) - 1
+    while j >= 0:
+        digits[j] += 1
+        if digits[j] < radices[j]:
+            return j
+        digits[j] = 0
+        j -= 1
+    return -1
+
+
+@helper
+def stabilizer_if_smallest(
+    labels: np.ndarray,
+    residues: np.ndarray,
+    moduli: np.ndarray,
+    inv_perms: np.ndarray,
+    signs: np.ndarray,
+    actions: np.ndarray,
+    lo: int,
+    hi: int,
+) -> int:
+    """0 if an action ``actions[lo:hi]`` maps ``labels`` lower, else 1 + how many fix them.
+
+    Lower means lexicographically smaller in (``t mod moduli`` per edge, then ``t`` per edge),
+    ``residues`` holding ``labels mod moduli``.  Empty ``moduli`` compares ``t`` alone: enough
+    when every action keeps the residues (the stabilizer of a residue class).  The 1 counts
+    the identity, which ``actions[lo:hi]`` leaves out.
+    """
+    n = len(labels)
+    stab = 1
+    for p in range(lo, hi):
+        a = actions[p]
+        s = signs[a]
+        cmp = 0
+        if len(moduli):
+            for j in range(n):
+                r = (s * labels[inv_perms[a, j]]) % moduli[j]
+                if r != residues[j]:
+                    cmp = -1 if r < residues[j] else 1
+                    break
+        if cmp == 0:
+            for j in range(n):
+                v = s * labels[inv_perms[a, j]]
+                if v != labels[j]:
+                    cmp = -1 if v < labels[j] else 1
+                    break
+        if cmp < 0:
+            return 0
+        if cmp == 0:
+            stab += 1
+    return stab
+
+
+@helper
+def find(parent: np.ndarray, a: int) -> int:
+    """Return the root of ``a`` in the forest ``parent`` (``parent[r] == r`` at a root)."""
+    while parent[a] != a:
+        a = parent[a]
+    return a
+
+
+@helper
+def join(
+    parent: np.ndarray, size: np.ndarray, pot: np.ndarray, a: int, b: int, shift: np.ndarray, rel: np.ndarray
+) -> bool:
+    """Join the pieces of strands ``a`` and ``b``; return False when they were one piece already.
+
+    Union by size over ``parent`` and ``size``; ``pot[s] (dim,)`` is the lattice translation of
+    strand ``s``'s copy relative to its parent's, ``shift (dim,)`` that of ``b``'s copy
+    relative to ``a``'s (``dim`` may be 0: a finite scaffold).  ``rel`` receives the
+    translation of ``b``'s root copy relative to ``a``'s root copy: when they were one piece
+    already, the translation the link closes.
+    """
+    dim = len(shift)
+    for j in range(dim):
+        rel[j] = shift[j]
+    while parent[a] != a:
+        for j in range(dim):
+            rel[j] += pot[a, j]
+        a = parent[a]
+    while parent[b] != b:
+        for j in range(dim):
+            rel[j] -= pot[b, j]
+        b = parent[b]
+    if a == b:
+        return False
+    if size[a] >= size[b]:
+        parent[b] = a
+        for j in range(dim):
+            pot[b, j] = rel[j]
+        size[a] += size[b]
+    else:
+        parent[a] = b
+        for j in range(dim):
+            pot[a, j] = -rel[j]
+        size[b] += size[a]
+    return True
+
+
+@helper
+def lattice_index_rows(vectors: np.ndarray, n: int, basis: np.ndarray, has: np.ndarray, v: np.ndarray) -> int:
+    """Index in ``Z^dim`` of the subgroup generated by the rows ``vectors[:n]`` (0: infinite).
+
+    Rows are added one by one to an integer echelon basis (row ``c`` has pivot ``c``),
+    merging pivots with the extended Euclidean algorithm.  Scratch: ``basis (dim, dim)``,
+    ``has (dim,) bool``, ``v (dim,)``.
+    """
+    dim = vectors.shape[1]
+    basis[:, :] = 0
+    has[:] = False
+    for k in range(n):
+        for j in range(dim):
+            v[j] = vectors[k, j]
+        for c in range(dim):
+            if v[c] == 0:
+                continue
+            if not has[c]:
+                for j in range(dim):
+                    basis[c, j] = v[j]
+                has[c] = True
+                break
+            g, b = basis[c, c], v[c]  # extended gcd: g = basis[c, c] * x0 + v[c] * y0 >= 0
+            x0, y0, x1, y1 = 1, 0, 0, 1
+            while b != 0:
+                q = g // b
+                g, b = b, g - q * b
+                x0, x1 = x1, x0 - q * x1
+                y0, y1 = y1, y0 - q * y1
+            if g < 0:
+                g, x0, y0 = -g, -x0, -y0
+            p, q = basis[c, c] // g, v[c] // g
+            for j in range(dim):
+                bj = basis[c, j]
+                basis[c, j] = x0 * bj + y0 * v[j]
+                v[j] = p * v[j] - q * bj
+            for jj in range(c + 1, dim):  # keep entries small: reduce modulo later pivots
+                if has[jj] and basis[jj, jj] != 0:
+                    f = v[jj] // basis[jj, jj]
+                    for j in range(dim):
+                        v[j] -= f * basis[jj, j]
+    index = 1
+    for c in range(dim):
+        if not has[c]:
+            return 0
+        index *= abs(basis[c, c])
+    return index
