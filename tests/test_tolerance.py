@@ -109,7 +109,9 @@ def test_irregular_tetrahedron_is_told_how_to_fix_it(capsys):
     message = near.message("tet", group.n_rotations, group.order)
     assert message.startswith(f"tet has 12 rotations (24 isometries) if points {near.suggested:g} apart count as one")
     assert "but only 3 (6) within the tolerance 0.028: e.g. a 1/3 turn about the axis" in message
-    assert f"pass --tolerance {near.suggested:g}" in message and "correct the coordinates" in message
+    assert (
+        f"pass `tolerance={near.suggested:g}`" in message and "correct the coordinates" in message
+    )  # a flag on the CLI
     assert symmetry_group(sc, near.suggested).n_rotations == 12
     brute = brute_motions(v, tet.faces(), near.suggested)
     assert sum(p for _, p in brute) == 12 and len(brute) == 24

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 import lkspace
-from lkspace.errors import ScaffoldError
+from lkspace.errors import LkspaceWarning, ScaffoldError
 from lkspace.io.weld import DEFAULT_WELD, default_tolerance, weld
 
 from .cli_calls import run
@@ -71,7 +71,9 @@ def test_cli_warns_without_weld_and_joins_with_it(capsys, tmp_path):
     path.write_text(split_obj(lkspace.load("tetrahedron"), jitter=1e-9))
     code, out, err = run(capsys, "trace", str(path), "--twist", "1", "--json")
     assert code == 0 and json.loads(out)["components"] == 4
-    assert err.startswith("lkspace: warning: split.obj: its 4 faces share no edge") and "--weld" in err
+    assert err.startswith("lkspace: warning: split.obj: its 4 faces share no edge") and "load it with --weld" in err
+    with pytest.warns(LkspaceWarning, match="load it with `weld`$"):  # Python names the parameter of load
+        lkspace.load(path)
     code, out, err = run(capsys, "trace", str(path), "--twist", "1", "--weld", "--json")
     data = json.loads(out)
     assert code == 0 and err == "" and data["components"] == 3 and data["welded"]["vertices"] == 4

@@ -20,7 +20,7 @@ from .. import __version__
 from ..errors import LkspaceError, LkspaceWarning
 from ..progress import install, stderr_reporter
 from ..workers import INTERRUPTED, Terminated, exit_now, interrupt_signals
-from .flags import in_flags
+from .flags import flags_in, in_flags
 
 COMMANDS = {
     "scaffold": "core:scaffold_cmd",
@@ -198,7 +198,7 @@ def _drop_stdout() -> None:
 
 def _show_warning(message: Warning | str, category: type[Warning], *_args: object, **_kwargs: object) -> None:
     """Show a warning as one ``lkspace: warning:`` line on stderr."""
-    click.echo(f"lkspace: warning: {' '.join(str(message).split())}", err=True)
+    click.echo(f"lkspace: warning: {' '.join(flags_in(str(message)).split())}", err=True)
 
 
 if __name__ == "__main__":  # pragma: no cover

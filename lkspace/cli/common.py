@@ -19,6 +19,7 @@ from ..model.scaffold import Scaffold
 from ..model.specs import parse_label_set, parse_nulls
 from ..scaffolds import DEFAULT
 from ..words import rounded
+from .flags import flags_in
 
 
 class Context:
@@ -92,7 +93,7 @@ def symmetry_facts(scaffold: Scaffold) -> dict[str, Any]:
     tol = resolve_tolerance(scaffold, symmetry_tolerance())
     isometries, rotations = symmetry_orders(scaffold, tol)  # periodic: without the group's tables
     near = near_symmetry(scaffold, tol)
-    note = None if near is None else near.message(scaffold.name, rotations, isometries)
+    note = None if near is None else flags_in(near.message(scaffold.name, rotations, isometries))
     if note is not None:
         click.echo(f"lkspace: note: {note}", err=True)
     return {

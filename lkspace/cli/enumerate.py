@@ -24,6 +24,7 @@ from .common import (
     symmetry_facts,
     symmetry_tolerance,
 )
+from .flags import flags_in
 
 
 def _count_payload(
@@ -40,6 +41,8 @@ def _count_payload(
 
     if mode == "designs":
         totals = count_space(space, components, scheduler, jobs).to_dict()
+        if totals.get("note"):
+            totals["note"] = flags_in(totals["note"])
         if max_designs is not None:
             totals["designs"] = min(totals["designs"], max_designs)
         return totals

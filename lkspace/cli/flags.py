@@ -44,12 +44,17 @@ def in_flags(exc: LkspaceError) -> str:
     The leading name of the parameter at fault (as a word, optionally ``name=value``), and
     every name in backquotes; ``name=value`` becomes the flag and the value, unquoted.
     """
-    message = QUOTED.sub(lambda m: _as_flag(m[1], m[2]), str(exc))
+    message = flags_in(str(exc))
     parameter = getattr(exc, "parameter", None)
     if parameter:
         leading = re.compile("^" + re.escape(parameter) + r"(?:=('[^']*'|[^\s,;:)]+))?(?!\w)")
         message = leading.sub(lambda m: _as_flag(parameter, m[1]), message, count=1)
     return message
+
+
+def flags_in(text: str) -> str:
+    """Return ``text`` (a message, a note, a warning) with every backquoted parameter as its flag."""
+    return QUOTED.sub(lambda m: _as_flag(m[1], m[2]), text)
 
 
 def _as_flag(name: str, value: str | None) -> str:

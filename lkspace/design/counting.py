@@ -109,7 +109,7 @@ def count_space(
                 len(space.walk_labels) ** space.scaffold.n_edges,
                 None,
                 f"{space.n_classes:,} residue classes: too many to split the count by components in one "
-                "process; --jobs N or --scheduler dask splits them (a census, in shards)",
+                "process; `jobs=N` or `scheduler='dask'` splits them (a census, in shards)",
             )
         found = census(space, scheduler, jobs)
         by = found.by_components

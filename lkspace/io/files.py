@@ -43,7 +43,7 @@ def read(path: str | os.PathLike[str], weld: float | bool | None = None) -> Scaf
     if scaffold.n_faces > 1 and scaffold.edge_degrees.max() == 1 and not weld:
         warnings.warn(
             f"{os.path.basename(str(path))}: its {scaffold.n_faces} faces share no edge, so every face traces "
-            "on its own; if the file has one vertex copy per face, load it with --weld",
+            "on its own; if the file has one vertex copy per face, load it with `weld`",
             LkspaceWarning,
             stacklevel=2,
         )

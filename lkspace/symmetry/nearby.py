@@ -56,8 +56,8 @@ class NearSymmetry:
         return (
             f"{name} has {self.rotations} rotations ({self.isometries} isometries) if points {self.suggested:g} "
             f"apart count as one, but only {rotations} ({isometries}) within the tolerance "
-            f"{self.tolerance:.2g}: e.g. {self.example} misses by {self.miss:.2g}; pass --tolerance "
-            f"{self.suggested:g} to count them, or correct the coordinates (more decimals)"
+            f"{self.tolerance:.2g}: e.g. {self.example} misses by {self.miss:.2g}; pass "
+            f"`tolerance={self.suggested:g}` to count them, or correct the coordinates (more decimals)"
         )
 
 
