@@ -11,10 +11,10 @@ design, one process)::
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Literal
+from typing import TYPE_CHECKING
 
-WalkMode = Literal["designs", "residues", "spanning-trees"]
-"""Row kinds of a walk: one per design, per residue-class orbit, per dual spanning-tree class."""
+if TYPE_CHECKING:
+    from ..design.space import WalkMode
 
 
 @dataclass(frozen=True)

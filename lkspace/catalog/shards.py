@@ -25,7 +25,7 @@ from typing import TYPE_CHECKING, Any, TypeAlias
 import pyarrow as pa
 import pyarrow.parquet as pq
 
-from ..design.space import DesignSpace, make_space
+from ..design.space import DesignSpace, WalkMode, make_space
 from ..engine import check_scheduler, resolve_scheduler
 from ..errors import CatalogError
 from ..io.atomic import remove_path, replace_path
@@ -37,7 +37,7 @@ from ..symmetry.tolerance import resolve_tolerance
 from ..workers import context, ignored_signals
 from .jobs import PartsJob, run_parts, selected_batches
 from .lock import catalog_lock
-from .options import Execution, Selection, WalkMode
+from .options import Execution, Selection
 from .plan import Plan, check_jobs, make_plan
 from .reader import read_metadata
 from .records import Manifest, PartSummary

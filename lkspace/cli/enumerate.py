@@ -7,9 +7,8 @@ from typing import Any
 
 import click
 
-from ..catalog.options import WalkMode
 from ..catalog.plan import MAX_JOBS, MAX_SHARDS
-from ..design.space import WALK_MODES, DesignSpace, make_space
+from ..design.space import WALK_MODES, DesignSpace, WalkMode, make_space
 from ..errors import CatalogError, TooLargeError, UsageError
 from ..symmetry.group import MODES as SYMMETRY_MODES
 from ..words import plural
