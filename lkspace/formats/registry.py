@@ -100,17 +100,20 @@ def point_budget(path: str | os.PathLike[str], tubes: bool) -> Iterator[int]:
     """Yield the most curve points worth realizing for an export to ``path`` (``max_points`` of ``realize``).
 
     Polylines allow :data:`MAX_POINTS`, tubes (:func:`needs_tubes`) :data:`MAX_TUBE_VERTICES` /
-    :data:`TUBE_SIDES`.  A refusal past it (an error about ``max_points``, raised inside
-    the ``with`` block) is raised again naming the bound, as the export has no ``max_points``.
+    :data:`TUBE_SIDES`.  A refusal past the tubes' bound (an error about ``max_points``,
+    raised inside the ``with`` block) is raised again naming that bound; past
+    :data:`MAX_POINTS` it stays as it is (the command line shows ``max_points`` as its bound).
     """
-    tube = needs_tubes(path, tubes)
+    if not needs_tubes(path, tubes):
+        yield MAX_POINTS
+        return
     try:
-        yield min(MAX_POINTS, MAX_TUBE_VERTICES // TUBE_SIDES) if tube else MAX_POINTS
+        yield min(MAX_POINTS, MAX_TUBE_VERTICES // TUBE_SIDES)
     except TooLargeError as exc:
         message = str(exc)
         if exc.parameter != "max_points" or not message.startswith("max_points"):
             raise
-        bound = f"MAX_TUBE_VERTICES / {TUBE_SIDES} for tubes (polylines allow more)" if tube else "MAX_POINTS"
+        bound = f"MAX_TUBE_VERTICES / {TUBE_SIDES} for tubes (polylines allow more)"
         raise TooLargeError(bound + message[len("max_points") :]) from None
 
 
