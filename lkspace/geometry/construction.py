@@ -14,7 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..model.scaffold import Scaffold
-from ..strands.ports import port_model
+from ..strands.ports import edge_partner, port_model
 from ..strands.tracing import Trace
 from .helix import edge_angles, even_offsets, helix_windows, twist_profile
 from .params import Resolved
@@ -54,7 +54,7 @@ def build_curves(
     """Build the strands of ``tr`` on the tracks ``fr``, ``counts`` points per edge piece (:func:`edge_counts`)."""
     plan = _edge_plan(counts)
     corners, a_pt, c_pt = _corner_turns(fr, ports, shape.corner_samples)
-    points = _assemble(corners, _edge_points(scaffold, fr, tr, ports, plan, shape), plan)
+    points = _assemble(corners, _edge_points(scaffold, fr, tr.labels, ports, plan, shape), plan)
     return _strand_curves(scaffold, tr, points, plan, a_pt, c_pt, translations)
 
 
@@ -96,6 +96,50 @@ def _corner_turns(fr: Tracks, ports: Ports, nc: int) -> tuple[np.ndarray, np.nda
     return pts, a_pt, c_pt
 
 
+def corner_pieces(scaffold: Scaffold, fr: Tracks, shape: Resolved) -> np.ndarray:
+    """Every corner turn, ``(n_corners, corner_samples + 1, 3)``, both ends included.
+
+    Turn ``s`` runs inside its face from port ``2 s + 1`` (side ``s`` at its second
+    corner) to that port's corner partner; a strand may pass it either way.
+    """
+    n = scaffold.n_corners
+    x = 2 * np.arange(n) + 1
+    y = port_model(scaffold).corner_partner[x]
+    pts, _, c_pt = _corner_turns(fr, Ports(x, y, np.full(n, -1), np.zeros((n, 3))), shape.corner_samples)
+    return np.concatenate([pts, c_pt[:, None]], axis=1)
+
+
+def edge_pieces(scaffold: Scaffold, fr: Tracks, shape: Resolved, twist: int) -> tuple[np.ndarray, np.ndarray]:
+    """Every slot's edge piece when every edge has twist ``twist``, both ends included.
+
+    Piece ``j`` (a slot position of :class:`~lkspace.strands.ports.PortModel`) runs from
+    the slot's end-``a`` port to the end-``b`` port the twist takes it to.  A piece depends
+    on its own edge's twist only, so pieces of different twists can be mixed edge by edge.
+
+    Returns
+    -------
+    points : (n_points, 3) float64
+    offsets : (n_corners + 1,) int64
+        Piece ``j`` is ``points[offsets[j]:offsets[j + 1]]``.
+    """
+    model = port_model(scaffold)
+    labels = np.full(scaffold.n_edges, twist, np.int64)
+    y = model.port_a
+    z = edge_partner(model, scaffold.edge_degrees, labels)[y]
+    ports = Ports(model.corner_partner[y], y, z, np.zeros((len(y), 3)))
+    plan = _edge_plan(edge_counts(scaffold, labels, ports, shape))
+    inner = _edge_points(scaffold, fr, labels, ports, plan, shape)
+    sizes = plan.n_edge + 1
+    offsets = np.concatenate([[0], np.cumsum(sizes)])
+    points = np.empty((int(offsets[-1]), 3))
+    keep = np.ones(len(points), bool)
+    keep[offsets[1:] - 1] = False
+    points[keep] = inner
+    points[offsets[:-1]] = fr.port_point[y]  # exactly the ports, so pieces meet exactly
+    points[offsets[1:] - 1] = fr.port_point[z]
+    return points, offsets
+
+
 @dataclass(frozen=True, eq=False)
 class EdgePlan:
     """Sampling of the edge pieces: points per step and, per point, its step and parameter."""
@@ -106,11 +150,11 @@ class EdgePlan:
     sigma: np.ndarray  # (n_points,) in [0, 1)
 
 
-def edge_counts(scaffold: Scaffold, tr: Trace, ports: Ports, shape: Resolved) -> np.ndarray:
+def edge_counts(scaffold: Scaffold, labels: np.ndarray, ports: Ports, shape: Resolved) -> np.ndarray:
     """Points on each step's edge piece, ``(n_steps,) float64`` (floats: huge twists are refused, not cast)."""
     e = scaffold.side_edge[ports.y // 2]
     k = scaffold.edge_degrees[e]
-    t = np.where(k > 1, tr.labels[e], 0)
+    t = np.where(k > 1, labels[e], 0)
     turns = np.abs(t.astype(np.float64)) / k  # floats: -2**63 has no int64 abs
     return np.where(ports.z >= 0, shape.edge_samples + np.ceil(shape.samples_per_turn * turns), 0.0)
 
@@ -124,18 +168,18 @@ def _edge_plan(counts: np.ndarray) -> EdgePlan:
 
 
 def _edge_points(
-    scaffold: Scaffold, fr: Tracks, tr: Trace, ports: Ports, plan: EdgePlan, shape: Resolved
+    scaffold: Scaffold, fr: Tracks, labels: np.ndarray, ports: Ports, plan: EdgePlan, shape: Resolved
 ) -> np.ndarray:
     """Return the helices from port y to port z of every step, ``(n_points, 3)`` (module docstring)."""
     ys = ports.y // 2
     e = scaffold.side_edge[ys]
     degrees = scaffold.edge_degrees
-    t = np.where(degrees[e] > 1, tr.labels[e], 0)  # a lone strand's full turns about an empty axis: drawn straight
+    t = np.where(degrees[e] > 1, labels[e], 0)  # a lone strand's full turns about an empty axis: drawn straight
     piece, sig = plan.piece, plan.sigma
     fwd = ((ports.y % 2 == 0) == scaffold.side_forward[ys])[piece]  # port y at end a
     ep = e[piece]
     slot = scaffold.radial.side_slot[ys][piece]
-    start, width = helix_windows(scaffold, fr, tr.labels, shape.pitch)
+    start, width = helix_windows(scaffold, fr, labels, shape.pitch)
     g = twist_profile((sig - start[ep]) / width[ep])
     xs = np.where(fwd, slot + t[piece] * g, slot - t[piece] * g)
     fa, fb = fr.margin[ep, 0], fr.margin[ep, 1]

@@ -219,7 +219,7 @@ def _built(scaffold: Scaffold, tr: Trace, shape: Resolved, how: RealizeOptions) 
         check_winding(scaffold, fr.pa, fr.pb, fr.margin, tr.labels, shape.min_separation)
     translations = _translations(scaffold, how.translations)
     ports = Ports.of(scaffold, tr)
-    counts = edge_counts(scaffold, tr, ports, shape)
+    counts = edge_counts(scaffold, tr.labels, ports, shape)
     check_points(
         scaffold.name, (counts.sum() + len(ports.x) * shape.corner_samples) * len(translations), how.max_points
     )

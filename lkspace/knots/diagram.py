@@ -101,44 +101,12 @@ def project(curves: Sequence[np.ndarray], seed: int = 0, rotation: ArrayLike | N
     p0, p1, owner, index = _segments(curves)
     lengths = np.array([len(c) for c in curves])
     first = np.concatenate([[0], np.cumsum(lengths)])
-    a2, b2 = p0[:, :2], p1[:, :2]
-    mid = 0.5 * (a2 + b2)
-    half = 0.5 * np.linalg.norm(b2 - a2, axis=1)
-    pairs = cKDTree(mid).query_pairs(2 * half.max() + 1e-12, output_type="ndarray")
-    if len(pairs):
-        i, j = pairs[:, 0], pairs[:, 1]
-        same = owner[i] == owner[j]
-        n_own = lengths[owner[i]]
-        gap = np.abs(index[i] - index[j])
-        adjacent = same & ((gap == 1) | (gap == n_own - 1))
-        i, j = i[~adjacent], j[~adjacent]
-        near = np.linalg.norm(mid[i] - mid[j], axis=1) <= half[i] + half[j]
-        i, j = i[near], j[near]
-    else:
-        i = j = np.zeros(0, np.int64)
-    r = b2[i] - a2[i]
-    s_ = b2[j] - a2[j]
-    denom = r[:, 0] * s_[:, 1] - r[:, 1] * s_[:, 0]
-    qp = a2[j] - a2[i]
-    ok = np.abs(denom) > 1e-15
-    dsafe = np.where(ok, denom, 1.0)
-    u = (qp[:, 0] * s_[:, 1] - qp[:, 1] * s_[:, 0]) / dsafe
-    v = (qp[:, 0] * r[:, 1] - qp[:, 1] * r[:, 0]) / dsafe
-    hit = ok & (u >= 0) & (u < 1) & (v >= 0) & (v < 1)
-    i, j, u, v = i[hit], j[hit], u[hit], v[hit]
-    zi = p0[i, 2] + u * (p1[i, 2] - p0[i, 2])
-    zj = p0[j, 2] + v * (p1[j, 2] - p0[j, 2])
-    scale = float(np.ptp(np.vstack(curves), axis=0).max()) or 1.0
-    if len(i) and np.min(np.abs(zi - zj)) < 1e-9 * scale:
-        raise DiagramError("two strands meet in the projection at equal height: the curves intersect")
-    i_over = zi > zj
-    over = np.where(i_over, i, j)
-    under = np.where(i_over, j, i)
-    t_over = np.where(i_over, u, v)
-    t_under = np.where(i_over, v, u)
-    d_over = (b2 - a2)[over]
-    d_under = (b2 - a2)[under]
-    signs = np.sign(d_over[:, 0] * d_under[:, 1] - d_over[:, 1] * d_under[:, 0]).astype(np.int64)
+    i, j = near_pairs(p0, p1)
+    same = owner[i] == owner[j]
+    n_own = lengths[owner[i]]
+    gap = np.abs(index[i] - index[j])
+    adjacent = same & ((gap == 1) | (gap == n_own - 1))
+    over, under, t_over, t_under, signs = transverse(p0, p1, i[~adjacent], j[~adjacent])
     n_x = len(over)
     # passages: each crossing is passed twice (over, under); order them along components
     seg = np.concatenate([over, under])
@@ -165,6 +133,71 @@ def project(curves: Sequence[np.ndarray], seed: int = 0, rotation: ArrayLike | N
     # the over strand points 90 degrees clockwise of the under strand for a positive crossing
     free = [int(c) for c in range(len(curves)) if counts[c] == 0]
     return Diagram(pd.tolist(), signs, np.column_stack([owner[over], owner[under]]).astype(np.int64), len(curves), free)
+
+
+def near_pairs(p0: np.ndarray, p1: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Pairs ``i < j`` of segments ``p0 -> p1`` (``(n, 3)``) whose projections to ``xy`` may meet.
+
+    The test is on the circles around each projected segment: no crossing is missed.
+    """
+    a2, b2 = p0[:, :2], p1[:, :2]
+    mid = 0.5 * (a2 + b2)
+    half = 0.5 * np.linalg.norm(b2 - a2, axis=1)
+    if len(mid) < 2:
+        return np.zeros(0, np.int64), np.zeros(0, np.int64)
+    pairs = cKDTree(mid).query_pairs(2 * half.max() + 1e-12, output_type="ndarray")
+    if not len(pairs):
+        return np.zeros(0, np.int64), np.zeros(0, np.int64)
+    i, j = pairs[:, 0], pairs[:, 1]
+    near = np.linalg.norm(mid[i] - mid[j], axis=1) <= half[i] + half[j]
+    return i[near], j[near]
+
+
+def transverse(
+    p0: np.ndarray, p1: np.ndarray, i: np.ndarray, j: np.ndarray
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """The crossings, seen along ``z``, of segment pairs ``(i, j)`` of ``p0 -> p1`` (``(n, 3)``).
+
+    A segment holds its start and not its end (parameters in ``[0, 1)``), so a polyline's
+    vertex is crossed once.
+
+    Returns
+    -------
+    over, under : (n_crossings,) int64
+        The segment above (larger ``z``) and below.
+    t_over, t_under : (n_crossings,) float64
+        Where along each segment.
+    signs : (n_crossings,) int64
+        +1 right-handed (the under segment points to the left of the over one), -1 left.
+
+    Raises
+    ------
+    DiagramError
+        Two segments cross at equal height (the curves meet, or the view is not generic).
+    """
+    a2, b2 = p0[:, :2], p1[:, :2]
+    r = b2[i] - a2[i]
+    s_ = b2[j] - a2[j]
+    denom = r[:, 0] * s_[:, 1] - r[:, 1] * s_[:, 0]
+    qp = a2[j] - a2[i]
+    ok = np.abs(denom) > 1e-15
+    dsafe = np.where(ok, denom, 1.0)
+    u = (qp[:, 0] * s_[:, 1] - qp[:, 1] * s_[:, 0]) / dsafe
+    v = (qp[:, 0] * r[:, 1] - qp[:, 1] * r[:, 0]) / dsafe
+    hit = ok & (u >= 0) & (u < 1) & (v >= 0) & (v < 1)
+    i, j, u, v = i[hit], j[hit], u[hit], v[hit]
+    zi = p0[i, 2] + u * (p1[i, 2] - p0[i, 2])
+    zj = p0[j, 2] + v * (p1[j, 2] - p0[j, 2])
+    scale = float(np.ptp(np.vstack([p0, p1]), axis=0).max()) if len(p0) else 1.0
+    if len(i) and np.min(np.abs(zi - zj)) < 1e-9 * (scale or 1.0):
+        raise DiagramError("two strands meet in the projection at equal height: the curves intersect")
+    i_over = zi > zj
+    over = np.where(i_over, i, j)
+    under = np.where(i_over, j, i)
+    d_over = (b2 - a2)[over]
+    d_under = (b2 - a2)[under]
+    signs = np.sign(d_over[:, 0] * d_under[:, 1] - d_over[:, 1] * d_under[:, 0]).astype(np.int64)
+    return over, under, np.where(i_over, u, v), np.where(i_over, v, u), signs
 
 
 def project_generic(curves: Sequence[np.ndarray], seed: int = 0) -> Diagram:
