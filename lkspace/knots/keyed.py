@@ -1,0 +1,356 @@
+"""Identification keyed by invariants: SnapPy and the tables asked once per distinct key.
+
+Per design, compiled code (:func:`design_keys`) assembles the PD code from the labels
+(:mod:`lkspace.knots.labels_diagram`) and computes its **key**: the number of components,
+the sorted linking numbers of its pairs of components, and the Jones polynomial
+(:mod:`lkspace.knots.jones`, exact, free components included), hashed to 128 bits.  The
+first design of each key is named in full (:func:`lkspace.knots.naming.name_pd` on its
+own PD code: simplification, table lookup, SnapPy's check of the volume); the others
+share its name.
+
+A key is trusted only where it separates what the tables hold.  A design is named on its
+own (no sharing) when
+
+* the tables hold more than one type with that Jones polynomial and number of
+  components (KnotInfo's 5_1 and 10_132, say: HOMFLY-PT and SnapPy tell them apart, a
+  key cannot),
+* the Jones polynomial equals its mirror image's but the first design's name was chiral
+  (the key cannot tell a knot from its mirror image),
+* the first design ran out of time, or its diagram was too wide for the compiled Jones
+  polynomial (:data:`~lkspace.knots.jones` returns no answer).
+
+Beyond the tables (composite knots, split links, hyperbolic links SnapPy names) two types
+with equal keys would share a name; the whole spaces of the tetrahedron (-2..2), cube and
+octahedron (-1..1) were compared row by row with the geometric path and agree
+(``experiments/compare_keyed.py``).
+"""
+
+from __future__ import annotations
+
+import functools
+import json
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from fractions import Fraction
+from typing import Any
+
+import numpy as np
+
+from ..kernels import helper, kernel
+from ..model.scaffold import Scaffold
+from .budget import MAX_CROSSINGS
+from .tables import HOMFLY_MAX_CROSSINGS
+from .jones import jones_buffer_size, jones_into
+from .labels_diagram import DiagramTemplate, assemble_into, assemble_one, template, work_array
+
+_M1 = np.uint64(0x9E3779B97F4A7C15)
+_M2 = np.uint64(0xBF58476D1CE4E5B9)
+_M3 = np.uint64(0x94D049BB133111EB)
+
+
+@helper
+def _mix(h: np.uint64, v: int) -> np.uint64:
+    """One splitmix64 round of ``h`` with the value ``v`` (compiled: wrapping 64-bit arithmetic)."""
+    x = (h ^ np.uint64(v)) * _M1
+    x = (x ^ (x >> np.uint64(30))) * _M2
+    x = (x ^ (x >> np.uint64(27))) * _M3
+    return x ^ (x >> np.uint64(31))
+
+
+@kernel
+def design_keys(
+    corner_partner: np.ndarray,
+    port_a: np.ndarray,
+    port_b: np.ndarray,
+    slot_edge: np.ndarray,
+    slot_index: np.ndarray,
+    edge_starts: np.ndarray,
+    degrees: np.ndarray,
+    slot_of_a: np.ndarray,
+    slot_of_b: np.ndarray,
+    label_values: np.ndarray,
+    pass_offsets: np.ndarray,
+    pass_crossing: np.ndarray,
+    pass_other: np.ndarray,
+    pass_over: np.ndarray,
+    crossing_sign: np.ndarray,
+    vidx_2d: np.ndarray,
+    work: np.ndarray,
+    max_crossings: int,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Keys of many designs, ``vidx_2d`` ``(n_designs, n_edges)`` indices into ``label_values``.
+
+    Returns
+    -------
+    keys : (n_designs, 2) uint64
+        Two independent 64-bit hashes of (components, sorted linking numbers, Jones polynomial).
+    crossings : (n_designs,) int64
+        Crossings of the assembled diagram.
+    components : (n_designs,) int64
+    keyed : (n_designs,) bool
+        The Jones polynomial was computed (else the key is not set: too many crossings,
+        or a diagram too wide for the compiled state sum).
+    link_offsets : (n_designs + 1,) int64, link_values : (sum of components**2,) int64
+        Each design's linking matrix, row by row (the trace's component order).
+    """
+    n_designs = vidx_2d.shape[0]
+    size = len(crossing_sign)
+    pd = np.zeros((size, 4), np.int64)
+    signs = np.zeros(size, np.int64)
+    comps = np.zeros((size, 2), np.int64)
+    poly = np.zeros(jones_buffer_size(size, len(port_a)), np.int64)
+    keys = np.zeros((n_designs, 2), np.uint64)
+    crossings = np.zeros(n_designs, np.int64)
+    components = np.zeros(n_designs, np.int64)
+    keyed = np.zeros(n_designs, np.bool_)
+    link_offsets = np.zeros(n_designs + 1, np.int64)
+    link_values = np.zeros(16 * n_designs, np.int64)
+    for d in range(n_designs):
+        m, n_comp, n_free = assemble_into(
+            corner_partner,
+            port_a,
+            port_b,
+            slot_edge,
+            slot_index,
+            edge_starts,
+            degrees,
+            slot_of_a,
+            slot_of_b,
+            label_values,
+            pass_offsets,
+            pass_crossing,
+            pass_other,
+            pass_over,
+            crossing_sign,
+            vidx_2d[d],
+            pd,
+            signs,
+            comps,
+            work,
+        )
+        crossings[d] = m
+        components[d] = n_comp
+        base = link_offsets[d]
+        need = base + n_comp * n_comp
+        if need > len(link_values):
+            grown = np.zeros(2 * need, np.int64)
+            grown[:base] = link_values[:base]
+            link_values = grown
+        lk = link_values[base:need]
+        lk[:] = 0
+        for c in range(m):
+            a = comps[c, 0]
+            b = comps[c, 1]
+            if a != b:
+                lk[a * n_comp + b] += signs[c]
+                lk[b * n_comp + a] += signs[c]
+        for i in range(n_comp * n_comp):
+            lk[i] //= 2
+        link_offsets[d + 1] = need
+        if m > max_crossings:
+            continue
+        lowest, length = jones_into(pd[:m], signs[:m], n_free, poly)
+        if length < 0:
+            continue
+        pairs = np.zeros(max(n_comp * (n_comp - 1) // 2, 1), np.int64)
+        k = 0
+        for i in range(n_comp):
+            for j in range(i + 1, n_comp):
+                pairs[k] = lk[i * n_comp + j]
+                k += 1
+        pairs = np.sort(pairs[:k])
+        h1 = np.uint64(0x243F6A8885A308D3)
+        h2 = np.uint64(0x13198A2E03707344)
+        h1 = _mix(h1, n_comp)
+        h2 = _mix(h2, n_comp + 7)
+        for i in range(k):
+            h1 = _mix(h1, pairs[i])
+            h2 = _mix(h2, pairs[i] * 31 + 5)
+        h1 = _mix(h1, lowest)
+        h2 = _mix(h2, lowest * 17 + 3)
+        for i in range(length):
+            h1 = _mix(h1, poly[i])
+            h2 = _mix(h2, poly[i] * 131 + i)
+        keys[d, 0] = h1
+        keys[d, 1] = h2
+        keyed[d] = True
+    return keys, crossings, components, keyed, link_offsets, link_values[: link_offsets[n_designs]]
+
+
+@dataclass(frozen=True, eq=False)
+class DesignKeys:
+    """What :func:`keys_of` computed for a batch of designs (see :func:`design_keys`)."""
+
+    template: DiagramTemplate
+    vidx: np.ndarray
+    keys: np.ndarray
+    crossings: np.ndarray
+    components: np.ndarray
+    keyed: np.ndarray
+    link_offsets: np.ndarray
+    link_values: np.ndarray
+
+    def linking_matrix(self, d: int) -> list[list[int]]:
+        """Design ``d``'s linking matrix."""
+        c = int(self.components[d])
+        return self.link_values[self.link_offsets[d] : self.link_offsets[d + 1]].reshape(c, c).tolist()
+
+    def diagram(self, d: int) -> tuple[list[list[int]], int, np.ndarray]:
+        """Design ``d``'s PD code (1-based), components and crossing signs, assembled again."""
+        pd, signs, _, n_comp, _ = assemble_one(*self.template.arrays(), self.vidx[d], work_array(self.template))
+        return pd.tolist(), int(n_comp), signs
+
+
+def keys_of(scaffold: Scaffold, labels_2d: np.ndarray, seed: int = 0, label_values: Any = None) -> DesignKeys:
+    """Keys of ``labels_2d`` (``(n_designs, n_edges)``, twists within ``label_values``, default their own)."""
+    values = np.unique(labels_2d) if label_values is None else np.union1d(label_values, np.unique(labels_2d))
+    tmpl = template(scaffold, values, seed)
+    vidx = tmpl.value_index(labels_2d)
+    out = design_keys(*tmpl.arrays(), np.ascontiguousarray(vidx), work_array(tmpl), MAX_CROSSINGS)
+    return DesignKeys(tmpl, vidx, *out)
+
+
+@dataclass
+class KeyCache:
+    """Names found so far by key, shared by the batches of one run.
+
+    Attributes
+    ----------
+    named : dict
+        Key -> the row fields (``knot_name``, ``split``, ``mirror``, ``crossings``,
+        ``jones``, ``status``, ``error``) its designs share.  A first-level key is
+        ``(hash, hash)``; a second-level one adds the HOMFLY-PT polynomial.
+    own : set
+        Keys whose designs are not named alike (module docstring).
+    full : int
+        Designs named in full so far.
+    """
+
+    named: dict[tuple[Any, ...], dict[str, Any]] = field(default_factory=dict)
+    own: set[tuple[Any, ...]] = field(default_factory=set)
+    full: int = 0
+
+
+def candidates(jones: tuple[int, list[int]], n_components: int, homfly: str | None) -> set[tuple[str, bool]]:
+    """Table entries ``(name, mirror)`` with this Jones polynomial (and HOMFLY-PT polynomial, if given)."""
+    from .tables import JONES_POINT, tables
+
+    lowest, coeffs = jones
+    x = Fraction(JONES_POINT)
+    value = sum(c * x ** (lowest + i) for i, c in enumerate(coeffs))
+    mirror_value = sum(c * x ** -(lowest + i) for i, c in enumerate(coeffs))
+    index = tables()
+    found = set()
+    for mirror, v in ((False, value), (True, mirror_value)):
+        for e in index.get(v, []):
+            if e["components"] == n_components and (homfly is None or _table_homfly(e["pd"], mirror) == homfly):
+                found.add((str(e["name"]), mirror))
+    return found
+
+
+@functools.lru_cache(maxsize=4096)
+def _table_homfly(pd_text: str, mirror: bool) -> str | None:
+    """HOMFLY-PT polynomial (regina) of a table entry's PD code, or of its mirror image."""
+    from .tables import knot_modules
+
+    if not pd_text:
+        return None
+    regina = knot_modules()[1]
+    link = regina.Link.fromPD(json.loads(pd_text))
+    if mirror:
+        link.changeAll()
+    return str(link.homfly())
+
+
+def trusted(named: dict[str, Any], found: set[tuple[str, bool]]) -> bool:
+    """Whether every design with a key may take ``named`` (its first design's fields); ``found``: its :func:`candidates`."""
+    status = str(named.get("status"))
+    if status.startswith(("unknown: time limit", "unknown: diagram too large")) or named.get("error"):
+        return False
+    if not found:
+        return True  # beyond the tables: the key is all there is to go by (module docstring)
+    names = {name for name, _ in found}
+    mirrors = {mirror for _, mirror in found}
+    return names == {named.get("knot_name")} and (len(mirrors) == 1 or named.get("mirror") is None)
+
+
+def homfly_of(pd: list[list[int]]) -> str:
+    """HOMFLY-PT polynomial (regina, after regina's own simplification) of a PD code; ``"1"`` without crossings."""
+    from .tables import knot_modules
+
+    if not pd:
+        return "1"
+    link = knot_modules()[1].Link.fromPD(pd)
+    link.simplify()
+    return str(link.homfly())
+
+
+def share_names(
+    found: DesignKeys,
+    cache: KeyCache,
+    name_designs: Callable[[list[int]], list[dict[str, Any]]],
+) -> list[dict[str, Any] | None]:
+    """Row fields of every design of ``found``, shared by key where the key is trusted.
+
+    First level: the compiled key.  Designs of an untrusted key (or without one) get a
+    second-level key, the key and the HOMFLY-PT polynomial of their own diagram, trusted
+    when it separates the table entries.  ``name_designs(indices)`` names designs in
+    full (in worker processes, under the time limit): once per new key, then each design
+    of a key trusted at neither level.
+    """
+    first = [(int(a), int(b)) if ok else None for (a, b), ok in zip(found.keys.tolist(), found.keyed, strict=True)]
+    rows = _share(found, first, cache, name_designs, second=False)
+    left = [d for d, row in enumerate(rows) if row is None]
+    diagrams = {d: found.diagram(d) for d in left}
+    second: list[tuple[Any, ...] | None] = [None] * len(rows)
+    for d in left:
+        pd, n_comp, _ = diagrams[d]
+        if first[d] is not None and len(pd) <= HOMFLY_MAX_CROSSINGS:
+            second[d] = (*first[d], homfly_of(pd))
+    for d, row in enumerate(_share(found, second, cache, name_designs, second=True)):
+        if rows[d] is None:
+            rows[d] = row
+    own = [d for d in left if rows[d] is None]
+    for d, named in zip(own, name_designs(own), strict=True):
+        cache.full += 1
+        rows[d] = named
+    return rows
+
+
+def _share(
+    found: DesignKeys,
+    keys: list[tuple[Any, ...] | None],
+    cache: KeyCache,
+    name_designs: Callable[[list[int]], list[dict[str, Any]]],
+    second: bool,
+) -> list[dict[str, Any] | None]:
+    """One level of :func:`share_names`: name each new key's first design, share the trusted keys' names."""
+    rows: list[dict[str, Any] | None] = [None] * len(keys)
+    firsts: dict[tuple[Any, ...], int] = {}
+    for d, k in enumerate(keys):
+        if k is not None and k not in cache.named and k not in cache.own and k not in firsts:
+            firsts[k] = d
+    for (k, d), named in zip(firsts.items(), name_designs(list(firsts.values())), strict=True):
+        cache.full += 1
+        rows[d] = named
+        pd, n_comp, signs = found.diagram(d)
+        jones = jones_of(pd, signs, n_comp)
+        if jones is not None and trusted(named, candidates(jones, n_comp, k[2] if second else None)):
+            cache.named[k] = named
+        else:
+            cache.own.add(k)
+    for d, k in enumerate(keys):
+        if rows[d] is None and k is not None and k in cache.named:
+            rows[d] = cache.named[k]
+    return rows
+
+
+def jones_of(pd: list[list[int]], signs: np.ndarray, n_components: int) -> tuple[int, list[int]] | None:
+    """The Jones polynomial of a PD code (lowest exponent of ``x = sqrt(t)``, coefficients), or ``None`` if too wide."""
+    from .jones import jones
+
+    try:
+        lowest, coeffs = jones(pd, signs, n_components)
+    except ValueError:
+        return None
+    return int(lowest), list(coeffs)
