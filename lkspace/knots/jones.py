@@ -175,7 +175,8 @@ def jones_into(pd: np.ndarray, signs: np.ndarray, n_free: int, out: np.ndarray) 
     order = np.zeros(n, np.int64)
     if _smoothing_order(pd, end_crossing, order) > MAX_FRONTIER:
         return 0, -1
-    for c in order:
+    for step in range(n):
+        c = int(order[step])
         for q in range(width_now):
             slot_of_position[q] = -1
         for s in range(4):
