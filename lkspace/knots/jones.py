@@ -37,9 +37,6 @@ MAX_FRONTIER = 16
 MAX_STATE_WORDS = 1 << 23
 """Cap on states x coefficients held at once (64 MB of int64): beyond it, length -1."""
 
-_A_SMOOTHING = np.array([1, 0, 3, 2], np.int64)  # P[a, b] P[c, d]
-_B_SMOOTHING = np.array([3, 2, 1, 0], np.int64)  # P[a, d] P[b, c]
-
 
 @helper
 def jones_buffer_size(n_crossings: int, n_free: int = 0) -> int:
@@ -66,6 +63,14 @@ def _times_d(poly: np.ndarray, lo: int, hi: int) -> None:
         after = poly[i + 2] if i + 2 <= hi else 0
         poly[i] = -(before + after)
         before = here
+
+
+@helper
+def _column_is_zero(polys: np.ndarray, n_states: int, i: int) -> bool:
+    for si in range(n_states):
+        if polys[si, i] != 0:
+            return False
+    return True
 
 
 @helper
@@ -217,8 +222,10 @@ def jones_into(pd: np.ndarray, signs: np.ndarray, n_free: int, out: np.ndarray) 
             cap = 4 * n_states
             keys2 = np.zeros(cap, np.int64)
             polys2 = np.zeros((cap, width), np.int64)
-            keys2[:n_states] = keys[:n_states]
-            polys2[:n_states] = polys[:n_states]
+            for si in range(n_states):
+                keys2[si] = keys[si]
+                for i in range(lo, hi + 1):
+                    polys2[si, i] = polys[si, i]
             keys = keys2
             polys = polys2
             next_keys = np.zeros(cap, np.int64)
@@ -257,7 +264,7 @@ def jones_into(pd: np.ndarray, signs: np.ndarray, n_free: int, out: np.ndarray) 
                     outer_slot[s] = slot_of_position[r]
                     outer_end[s] = renumber[r]
             for smoothing in range(2):
-                inner = _A_SMOOTHING if smoothing == 0 else _B_SMOOTHING
+                flip = 1 if smoothing == 0 else 3  # slot s meets s ^ 1 (P[a, b] P[c, d]) or s ^ 3 (P[a, d] P[b, c])
                 new_key = base
                 visited = 0
                 for s in range(4):
@@ -266,7 +273,7 @@ def jones_into(pd: np.ndarray, signs: np.ndarray, n_free: int, out: np.ndarray) 
                     cur = s
                     while True:
                         visited |= 1 << cur
-                        nxt = inner[cur]
+                        nxt = cur ^ flip
                         visited |= 1 << nxt
                         if outer_slot[nxt] < 0:
                             break
@@ -282,7 +289,7 @@ def jones_into(pd: np.ndarray, signs: np.ndarray, n_free: int, out: np.ndarray) 
                     cur = s
                     while not (visited >> cur) & 1:
                         visited |= 1 << cur
-                        nxt = inner[cur]
+                        nxt = cur ^ flip
                         visited |= 1 << nxt
                         cur = outer_slot[nxt]
                 new_key &= keep_mask
@@ -296,7 +303,8 @@ def jones_into(pd: np.ndarray, signs: np.ndarray, n_free: int, out: np.ndarray) 
                     table[h] = t
                     slot_of_state[t] = h
                     next_keys[t] = new_key
-                    next_polys[t, max(lo - 6, 0) : min(hi + 7, width)] = 0
+                    for i in range(max(lo - 6, 0), min(hi + 7, width)):
+                        next_polys[t, i] = 0
                 shift = 1 if smoothing == 0 else -1
                 src = polys[si]
                 dst = next_polys[t]
@@ -322,9 +330,9 @@ def jones_into(pd: np.ndarray, signs: np.ndarray, n_free: int, out: np.ndarray) 
         width_now = width_next
         lo = next_lo
         hi = next_hi
-        while lo <= hi and not polys[:n_states, lo].any():
+        while lo <= hi and _column_is_zero(polys, n_states, lo):
             lo += 2
-        while lo <= hi and not polys[:n_states, hi].any():
+        while lo <= hi and _column_is_zero(polys, n_states, hi):
             hi -= 2
     bracket = np.zeros(width, np.int64)
     if n > 0:  # divide by d: bracket * (A^2 + A^-2) = -polys[0]
