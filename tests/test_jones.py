@@ -141,6 +141,22 @@ def test_random_diagrams_match_regina(seed, n_components):
     assert jones(d.pd, n_components=d.n_components) == expected  # signs read from the code
 
 
+def test_two_edge_and_free_components_match_regina():
+    t = np.linspace(0, 2 * np.pi, 60, endpoint=False)
+    circle = np.column_stack([np.cos(t), np.sin(t), 0 * t])
+    hopf = [circle, np.column_stack([1 + np.cos(t), 0 * t, np.sin(t)])]  # two components of 2 edges
+    trefoil = np.column_stack([np.sin(t) + 2 * np.sin(2 * t), np.cos(t) - 2 * np.cos(2 * t), -np.sin(3 * t)])
+    for curves in (
+        [*hopf, circle + [10, 0, 0]],
+        [trefoil + [0, -10, 0], circle + [10, 0, 0], circle + [20, 0, 0], *hopf[::-1]],
+    ):
+        for seed in range(3):
+            d = project(curves, seed=seed)
+            assert d.free_components and 2 in np.bincount(d.crossing_components.ravel()).tolist()  # a 2-edge one
+            expected = regina_jones(regina_link(d.pd, d.signs, d.n_components))
+            assert jones(d.pd, d.signs, d.n_components) == jones(d.pd, n_components=d.n_components) == expected
+
+
 def test_plain_python_helper_agrees_with_the_compiled_one():
     cases = [([[1, 5, 2, 4], [3, 1, 4, 6], [5, 3, 6, 2]], [1, 1, 1], 0), ([[4, 1, 3, 2], [2, 3, 1, 4]], [-1, -1], 2)]
     cases += [([[4, 2, 5, 1], [8, 6, 1, 5], [6, 3, 7, 4], [2, 7, 3, 8]], [-1, -1, 1, 1], 1), ([], [], 2)]
