@@ -158,9 +158,9 @@ def jones_into(pd: np.ndarray, signs: np.ndarray, n_free: int, out: np.ndarray) 
     width = 2 * offset + 1
     cap = 4
     keys = np.zeros(cap, np.int64)
-    polys = np.zeros((cap, width), np.int64)
+    polys = np.empty((cap, width), np.int64)  # row i read on lo..hi only, zeroed around it when made
     next_keys = np.zeros(cap, np.int64)
-    next_polys = np.zeros((cap, width), np.int64)
+    next_polys = np.empty((cap, width), np.int64)
     table = np.full(16, -1, np.int64)
     slot_of_state = np.zeros(cap, np.int64)
     n_states = 1
@@ -221,7 +221,7 @@ def jones_into(pd: np.ndarray, signs: np.ndarray, n_free: int, out: np.ndarray) 
         if 2 * n_states > cap:
             cap = 4 * n_states
             keys2 = np.zeros(cap, np.int64)
-            polys2 = np.zeros((cap, width), np.int64)
+            polys2 = np.empty((cap, width), np.int64)
             for si in range(n_states):
                 keys2[si] = keys[si]
                 for i in range(lo, hi + 1):
@@ -229,7 +229,7 @@ def jones_into(pd: np.ndarray, signs: np.ndarray, n_free: int, out: np.ndarray) 
             keys = keys2
             polys = polys2
             next_keys = np.zeros(cap, np.int64)
-            next_polys = np.zeros((cap, width), np.int64)
+            next_polys = np.empty((cap, width), np.int64)
             size = 16
             while size < 2 * cap:
                 size *= 2
