@@ -157,6 +157,18 @@ def test_two_edge_and_free_components_match_regina():
             assert jones(d.pd, d.signs, d.n_components) == jones(d.pd, n_components=d.n_components) == expected
 
 
+def test_a_component_over_everything_leaves_its_signs_free_and_the_answer_fixed():
+    t = np.linspace(0, 2 * np.pi, 60, endpoint=False)
+    trefoil = np.column_stack([np.sin(t) + 2 * np.sin(2 * t), np.cos(t) - 2 * np.cos(2 * t), -np.sin(3 * t)])
+    for centre, radius, n_crossings in (((0, 0, 5), 2.0, 9), ((0, -1, 5), 0.3, 5)):  # the small ring has 2 edges
+        ring = np.column_stack([radius * np.cos(t), radius * np.sin(t), 0 * t]) + centre
+        d = project([trefoil, ring], rotation=np.eye(3))
+        assert d.n_crossings == n_crossings and (d.crossing_components[:, 1] == 0).all()  # the ring is never under
+        expected = regina_jones(regina_link(d.pd, d.signs, 2))
+        assert expected == (-9, (1, 0, 0, 0, -1, 0, -1, 0, -1))  # a trefoil and a split circle
+        assert jones(d.pd, d.signs) == jones(d.pd) == expected
+
+
 def test_plain_python_helper_agrees_with_the_compiled_one():
     cases = [([[1, 5, 2, 4], [3, 1, 4, 6], [5, 3, 6, 2]], [1, 1, 1], 0), ([[4, 1, 3, 2], [2, 3, 1, 4]], [-1, -1], 2)]
     cases += [([[4, 2, 5, 1], [8, 6, 1, 5], [6, 3, 7, 4], [2, 7, 3, 8]], [-1, -1, 1, 1], 1), ([], [], 2)]
