@@ -11,17 +11,15 @@ link ``-x - x^5``, the positive (right-handed) trefoil ``x^2 + x^6 - x^8``; ``V 
 empty link.
 
 Algorithm: ``V = (-A^3)^(-writhe) <D>`` at ``A = x^(-1/2)``, the bracket smoothing
-``X[a, b, c, d]`` to ``A P[a, b] P[c, d] + A^-1 P[a, d] P[b, c]`` and every closed loop
-counting ``d = -A^2 - A^-2`` (one loop divided out at the end).  The crossings are
-smoothed one at a time in a greedy order (next, the crossing with most edges on the
-frontier): after each step the edges with one end smoothed and one not (the *frontier*,
-the same list for every state) are paired by the arcs smoothed so far, and each pairing
-(a *state*, encoded in an int64, 4 bits per frontier position) carries a Laurent
-polynomial in ``A``.  The frontier is capped at :data:`MAX_FRONTIER` open edges (and the
-state table at :data:`MAX_STATE_WORDS` coefficients): a wider diagram returns length -1 and
-the caller takes a slower path.  Coefficients are int64 with wrap-around: the state sum
-and the exact division by ``A^4 + 1`` are ring operations, valid modulo ``2^64``, and the
-final coefficients are small, so the answer is exact.
+``X[a, b, c, d]`` to ``A P[a, b] P[c, d] + A^-1 P[a, d] P[b, c]``, each closed loop counting
+``d = -A^2 - A^-2`` (one divided out at the end).  Crossings are smoothed one at a time in a
+greedy order (next, the one with most edges on the frontier); the *frontier*, the edges with
+one end smoothed, is the same for every state, and a state (its pairing by the arcs smoothed
+so far, an int64 with 4 bits per frontier position) carries a Laurent polynomial in ``A``.
+Past :data:`MAX_FRONTIER` open edges (or :data:`MAX_STATE_WORDS`), length is -1 and the caller
+takes a slower path.  Coefficients are int64 with wrap-around: the state sum and the exact
+division by ``A^4 + 1`` are ring operations, valid modulo ``2^64``, and the final
+coefficients are small, so the answer is exact.
 """
 
 from __future__ import annotations
@@ -71,6 +69,61 @@ def _column_is_zero(polys: np.ndarray, n_states: int, i: int) -> bool:
         if polys[si, i] != 0:
             return False
     return True
+
+
+@helper
+def _smoothed(flip: int, outer_slot: np.ndarray, outer_end: np.ndarray, key: int) -> tuple[int, int]:
+    """Smooth a crossing: return the state key with the new pairs added, and the loops closed.
+
+    Slot ``s`` meets slot ``s ^ flip`` inside the crossing (``flip`` 1: ``P[a, b] P[c, d]``;
+    3: ``P[a, d] P[b, c]``); outside, it meets slot ``outer_slot[s]``, or it ends at frontier
+    position ``outer_end[s]`` when that is -1.  Paths between two ends pair them in ``key``
+    (4 bits per position); the cycles left are closed loops.
+    """
+    visited = 0
+    for s in range(4):
+        if (visited >> s) & 1 or outer_slot[s] >= 0:
+            continue
+        cur = s
+        while True:
+            visited |= 1 << cur
+            nxt = cur ^ flip
+            visited |= 1 << nxt
+            if outer_slot[nxt] < 0:
+                break
+            cur = outer_slot[nxt]
+        a = outer_end[s]
+        b = outer_end[nxt]
+        key |= (b << (4 * a)) | (a << (4 * b))
+    loops = 0
+    for s in range(4):
+        if (visited >> s) & 1:
+            continue
+        loops += 1
+        cur = s
+        while not (visited >> cur) & 1:
+            visited |= 1 << cur
+            nxt = cur ^ flip
+            visited |= 1 << nxt
+            cur = outer_slot[nxt]
+    return key, loops
+
+
+@helper
+def _add_smoothed(dst: np.ndarray, src: np.ndarray, lo: int, hi: int, shift: int, loops: int) -> None:
+    """Add ``A^shift d^loops src`` to ``dst`` (``src`` nonzero on ``lo..hi`` in steps of 2, ``loops`` <= 2)."""
+    if loops == 0:
+        for i in range(lo, hi + 1, 2):
+            dst[i + shift] += src[i]
+    elif loops == 1:
+        for i in range(lo, hi + 1, 2):
+            dst[i + shift + 2] -= src[i]
+            dst[i + shift - 2] -= src[i]
+    else:
+        for i in range(lo, hi + 1, 2):
+            dst[i + shift + 4] += src[i]
+            dst[i + shift] += 2 * src[i]
+            dst[i + shift - 4] += src[i]
 
 
 @helper
@@ -126,7 +179,7 @@ def jones_into(pd: np.ndarray, signs: np.ndarray, n_free: int, out: np.ndarray) 
     pd : (n, 4) int64
         PD code, labels ``1..2n`` (see the module docstring); ``n`` may be 0.
     signs : (n,) int64
-        +1 / -1 per crossing (a 2-edge component does not fix them).
+        +1 / -1 per crossing (:func:`~lkspace.knots.pd_code.pd_signs` reads them from a code).
     n_free : int
         Components without any crossing (split unknotted circles).
     out : (jones_buffer_size(n, n_free),) int64
@@ -142,18 +195,20 @@ def jones_into(pd: np.ndarray, signs: np.ndarray, n_free: int, out: np.ndarray) 
         :data:`MAX_FRONTIER`), -2 for a malformed PD code or ``out`` too short.
     """
     n = pd.shape[0]
-    m = 2 * n
     if len(signs) != n or n_free < 0:
         return 0, -2
     if n == 0 and n_free == 0:
         return 0, 0
-    end_crossing = np.full((m, 2), -1, np.int64)
+    end_crossing = np.full((2 * n, 2), -1, np.int64)
     for c in range(n):
         for s in range(4):
             e = pd[c, s] - 1
-            if e < 0 or e >= m or end_crossing[e, 1] >= 0:
+            if e < 0 or e >= 2 * n or end_crossing[e, 1] >= 0:
                 return 0, -2
             end_crossing[e, 1 if end_crossing[e, 0] >= 0 else 0] = c
+    order = np.zeros(n, np.int64)
+    if _smoothing_order(pd, end_crossing, order) > MAX_FRONTIER:
+        return 0, -1
     offset = 5 * n + 2 * n_free + 8  # index of A^0: every partial exponent is within +-5n
     width = 2 * offset + 1
     cap = 4
@@ -165,11 +220,10 @@ def jones_into(pd: np.ndarray, signs: np.ndarray, n_free: int, out: np.ndarray) 
     slot_of_state = np.zeros(cap, np.int64)
     n_states = 1
     polys[0, offset] = 1
-    lo = offset
-    hi = offset
+    lo = hi = offset
     front = np.zeros(MAX_FRONTIER + 4, np.int64)
     next_front = np.zeros(MAX_FRONTIER + 4, np.int64)
-    position = np.full(m, -1, np.int64)
+    position = np.full(2 * n, -1, np.int64)
     slot_of_position = np.full(MAX_FRONTIER, -1, np.int64)
     renumber = np.full(MAX_FRONTIER, -1, np.int64)
     partner = np.zeros(MAX_FRONTIER, np.int64)
@@ -178,9 +232,6 @@ def jones_into(pd: np.ndarray, signs: np.ndarray, n_free: int, out: np.ndarray) 
     outer_slot = np.zeros(4, np.int64)
     outer_end = np.zeros(4, np.int64)
     width_now = 0
-    order = np.zeros(n, np.int64)
-    if _smoothing_order(pd, end_crossing, order) > MAX_FRONTIER:
-        return 0, -1
     for step in range(n):
         c = int(order[step])
         for q in range(width_now):
@@ -263,35 +314,8 @@ def jones_into(pd: np.ndarray, signs: np.ndarray, n_free: int, out: np.ndarray) 
                     r = partner[static[s]]
                     outer_slot[s] = slot_of_position[r]
                     outer_end[s] = renumber[r]
-            for smoothing in range(2):
-                flip = 1 if smoothing == 0 else 3  # slot s meets s ^ 1 (P[a, b] P[c, d]) or s ^ 3 (P[a, d] P[b, c])
-                new_key = base
-                visited = 0
-                for s in range(4):
-                    if (visited >> s) & 1 or outer_slot[s] >= 0:
-                        continue
-                    cur = s
-                    while True:
-                        visited |= 1 << cur
-                        nxt = cur ^ flip
-                        visited |= 1 << nxt
-                        if outer_slot[nxt] < 0:
-                            break
-                        cur = outer_slot[nxt]
-                    a = outer_end[s]
-                    b = outer_end[nxt]
-                    new_key |= (b << (4 * a)) | (a << (4 * b))
-                loops = 0
-                for s in range(4):
-                    if (visited >> s) & 1:
-                        continue
-                    loops += 1
-                    cur = s
-                    while not (visited >> cur) & 1:
-                        visited |= 1 << cur
-                        nxt = cur ^ flip
-                        visited |= 1 << nxt
-                        cur = outer_slot[nxt]
+            for flip in (1, 3):  # A P[a, b] P[c, d] (slot s meets s ^ 1), A^-1 P[a, d] P[b, c] (s ^ 3)
+                new_key, loops = _smoothed(flip, outer_slot, outer_end, base)
                 new_key &= keep_mask
                 h = _state_hash(new_key, mask)
                 while table[h] >= 0 and next_keys[table[h]] != new_key:
@@ -305,21 +329,8 @@ def jones_into(pd: np.ndarray, signs: np.ndarray, n_free: int, out: np.ndarray) 
                     next_keys[t] = new_key
                     for i in range(max(lo - 6, 0), min(hi + 7, width)):
                         next_polys[t, i] = 0
-                shift = 1 if smoothing == 0 else -1
-                src = polys[si]
-                dst = next_polys[t]
-                if loops == 0:
-                    for i in range(lo, hi + 1, 2):
-                        dst[i + shift] += src[i]
-                elif loops == 1:
-                    for i in range(lo, hi + 1, 2):
-                        dst[i + shift + 2] -= src[i]
-                        dst[i + shift - 2] -= src[i]
-                else:
-                    for i in range(lo, hi + 1, 2):
-                        dst[i + shift + 4] += src[i]
-                        dst[i + shift] += 2 * src[i]
-                        dst[i + shift - 4] += src[i]
+                shift = 2 - flip
+                _add_smoothed(next_polys[t], polys[si], lo, hi, shift, loops)
                 next_lo = min(next_lo, lo + shift - 2 * loops)
                 next_hi = max(next_hi, hi + shift + 2 * loops)
         for t in range(n_next):
