@@ -140,7 +140,8 @@ def main() -> None:
         "Projected random polygons (1-4 components, 6-40 vertices each; `experiments/bench_jones.py`),",
         "binned by crossing count.  `jones_into` runs inside a compiled loop; regina's `Link.jones()`",
         "on the same diagrams for scale.  Median and best of 5 runs per bin; then each diagram",
-        "timed alone (one call of the compiled loop: a few µs of call overhead included).",
+        "timed alone (one call of the compiled loop: a few µs of call overhead included; a max of",
+        "milliseconds is the process losing the CPU on this shared 2-core machine).",
         "",
         f"Machine: {record['provenance']['machine']}, load average {record['load_average']}, "
         f"commit {record['provenance']['commit']}; compile or cache load {compile_seconds:.2f} s.",
