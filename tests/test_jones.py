@@ -139,6 +139,12 @@ def test_random_diagrams_match_regina(seed, n_components):
     expected = regina_jones(regina_link(d.pd, d.signs, d.n_components))
     assert (lowest, tuple(out[:length].tolist())) == expected
     assert jones(d.pd, n_components=d.n_components) == expected  # signs read from the code
+    mirrored = project([c * [1, 1, -1] for c in polygons(seed, n_components)], seed=seed + 1)  # another diagram
+    out = np.zeros(jones_buffer_size(mirrored.n_crossings, len(mirrored.free_components)), np.int64)
+    code = np.asarray(mirrored.pd, np.int64).reshape(-1, 4)
+    lowest, length = jones_kernel(code, mirrored.signs, len(mirrored.free_components), out)
+    if length != -1:  # V(mirror)(x) = V(1/x), whatever the diagram
+        assert (-(lowest + length - 1), tuple(out[:length].tolist())[::-1]) == expected
 
 
 def test_two_edge_and_free_components_match_regina():
