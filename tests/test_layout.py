@@ -106,7 +106,7 @@ ALLOWED = {
     "design": {"engine", "errors", "kernels", "loops", "model", "progress", "strands", "symmetry"},
     "inverse": {"errors", "model", "progress", "strands", "symmetry", "words"},
     "geometry": {"errors", "model", "progress", "strands"},
-    "knots": {"errors", "geometry", "io", "model", "progress", "strands", "workers"},
+    "knots": {"errors", "geometry", "io", "kernels", "model", "progress", "strands", "workers"},
     "formats": {"errors", "geometry", "io", "knots", "model", "progress"},
     "catalog": {"design", "engine", "errors", "io", "kernels", "knots", "model", "progress", "strands", "symmetry", "workers"},
     "linktypes": {
