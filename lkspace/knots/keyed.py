@@ -231,8 +231,14 @@ class KeyCache:
     full: int = 0
 
 
-def candidates(jones: tuple[int, list[int]], n_components: int, homfly: str | None) -> set[tuple[str, bool]]:
-    """Table entries ``(name, mirror)`` with this Jones polynomial (and HOMFLY-PT polynomial, if given)."""
+def candidates(
+    jones: tuple[int, list[int]], n_components: int, homfly: str | None = None, crossings: int | None = None
+) -> set[tuple[str, bool]]:
+    """Table entries ``(name, mirror)`` with this Jones polynomial.
+
+    With ``homfly`` also this HOMFLY-PT polynomial, and with ``crossings`` (of a diagram of
+    the link) at most that crossing number.
+    """
     from .tables import JONES_POINT, tables
 
     lowest, coeffs = jones
@@ -243,7 +249,9 @@ def candidates(jones: tuple[int, list[int]], n_components: int, homfly: str | No
     found = set()
     for mirror, v in ((False, value), (True, mirror_value)):
         for e in index.get(v, []):
-            if e["components"] == n_components and (homfly is None or _table_homfly(e["pd"], mirror) == homfly):
+            if e["components"] != n_components or (crossings is not None and e["crossings"] > crossings):
+                continue
+            if homfly is None or _table_homfly(e["pd"], mirror) == homfly:
                 found.add((str(e["name"]), mirror))
     return found
 
@@ -274,15 +282,15 @@ def trusted(named: dict[str, Any], found: set[tuple[str, bool]]) -> bool:
     return names == {named.get("knot_name")} and (len(mirrors) == 1 or named.get("mirror") is None)
 
 
-def homfly_of(pd: list[list[int]]) -> str:
-    """HOMFLY-PT polynomial (regina, after regina's own simplification) of a PD code; ``"1"`` without crossings."""
+def homfly_of(pd: list[list[int]]) -> tuple[str, int]:
+    """HOMFLY-PT polynomial (regina) of a PD code and the crossings left by regina's simplification."""
     from .tables import knot_modules
 
     if not pd:
-        return "1"
+        return "1", 0
     link = knot_modules()[1].Link.fromPD(pd)
     link.simplify()
-    return str(link.homfly())
+    return str(link.homfly()), int(link.size())
 
 
 def share_names(
@@ -292,9 +300,10 @@ def share_names(
 ) -> list[dict[str, Any] | None]:
     """Row fields of every design of ``found``, shared by key where the key is trusted.
 
-    First level: the compiled key.  Designs of an untrusted key (or without one) get a
-    second-level key, the key and the HOMFLY-PT polynomial of their own diagram, trusted
-    when it separates the table entries.  ``name_designs(indices)`` names designs in
+    First level: the compiled key.  Designs of an untrusted key get a second-level key:
+    the key, the HOMFLY-PT polynomial of their own diagram and the crossings left by
+    simplifying it, trusted when these separate the table entries (a table entry with
+    more crossings than the design's simplified diagram is not the design's type).  ``name_designs(indices)`` names designs in
     full (in worker processes, under the time limit): once per new key, then each design
     of a key trusted at neither level.
     """
@@ -306,7 +315,7 @@ def share_names(
     for d in left:
         pd, n_comp, _ = diagrams[d]
         if first[d] is not None and len(pd) <= HOMFLY_MAX_CROSSINGS:
-            second[d] = (*first[d], homfly_of(pd))
+            second[d] = (*first[d], *homfly_of(pd))
     for d, row in enumerate(_share(found, second, cache, name_designs, second=True)):
         if rows[d] is None:
             rows[d] = row
@@ -335,7 +344,7 @@ def _share(
         rows[d] = named
         pd, n_comp, signs = found.diagram(d)
         jones = jones_of(pd, signs, n_comp)
-        if jones is not None and trusted(named, candidates(jones, n_comp, k[2] if second else None)):
+        if jones is not None and trusted(named, candidates(jones, n_comp, *(k[2:4] if second else ()))):
             cache.named[k] = named
         else:
             cache.own.add(k)

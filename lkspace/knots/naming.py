@@ -128,8 +128,13 @@ def name_pd(pd: list[list[int]], n_components: int, stage: Callable[[str], None]
     ``"3_1#4_1"`` (``prime: False``, ``factors``).  ``stage`` is told each stage as it
     starts (``"simplification"``, ``"table lookup"``, ``"knot Floer homology"``).
     """
-    spherogram, _, _ = knot_modules()
+    spherogram, regina, _ = knot_modules()
     out: dict[str, Any]
+    if pd:  # regina's greedy simplification first: milliseconds, and it leaves spherogram little to do
+        stage(f"simplification ({len(pd)} crossings)")
+        rough = regina.Link.fromPD(pd)
+        rough.simplify()
+        pd = [list(x) for x in rough.pdData()]
     if not pd:
         out = {
             "name": "0_1" if n_components == 1 else None,
