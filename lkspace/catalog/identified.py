@@ -1,10 +1,10 @@
 """Knot and link names for catalog rows: ``lkspace enumerate ... --identify``.
 
-Identification realizes and projects every design (tens of milliseconds each), so it
-runs as a second pass over a written catalog: each Parquet file (or each part of a
-sharded folder) is read, its designs are identified in ``processes`` worker processes
-(:func:`lkspace.knots.recognition.identify_batch`), and the file is rewritten atomically with
-these extra columns:
+Identification runs as a second pass over a written catalog: each Parquet file (or each
+part of a sharded folder) is read, its designs are identified by invariant key
+(:func:`lkspace.knots.recognition.identify_batch`: diagrams from labels, one full naming
+per distinct key, in ``processes`` worker processes), and the file is rewritten
+atomically with these extra columns:
 
 ``knot_name`` (string, null when unknown, split or open), ``crossings`` (int32, the
 simplified diagram's), ``mirror`` (bool, null when the table does not tell),
@@ -38,8 +38,8 @@ from .verify import file_metadata, open_catalog
 if TYPE_CHECKING:
     import pandas as pd
 
-IDENTIFY_CHUNK = 64
-"""Rows identified per call and process between progress updates (a few seconds of work)."""
+IDENTIFY_CHUNK = 20_000
+"""Rows identified per call between progress updates (a second or so once their keys are known)."""
 
 
 @dataclass(frozen=True)
@@ -140,6 +140,7 @@ def _identify_file(
     file: str, scaffold: Scaffold, processes: int, seed: int, step: Step, isolate: bool = False
 ) -> pd.DataFrame | None:
     """Identify the rows of one catalog file and rewrite it with the columns; ``None`` if it already has them."""
+    from ..knots.keyed import disk_cache
     from ..knots.recognition import identify_batch
 
     table = pq.read_table(file)
@@ -149,12 +150,18 @@ def _identify_file(
     if meta.get("identified"):
         step.advance(table.num_rows)
         return None
-    labels = np.array(table.column("labels").to_pylist(), dtype=np.int64).reshape(table.num_rows, scaffold.n_edges)
-    chunk = IDENTIFY_CHUNK * max(1, processes)
+    flat = table.column("labels").combine_chunks().flatten().to_numpy(zero_copy_only=False)
+    labels = np.asarray(flat, np.int64).reshape(table.num_rows, scaffold.n_edges)
+    cache = disk_cache()
+    values = np.unique(labels)
     pieces = []
-    for start in range(0, len(labels), chunk):
-        piece = labels[start : start + chunk]
-        pieces.append(identify_batch(scaffold, piece, processes=processes, seed=seed, progress=False, isolate=isolate))
+    for start in range(0, len(labels), IDENTIFY_CHUNK):
+        piece = labels[start : start + IDENTIFY_CHUNK]
+        pieces.append(
+            identify_batch(
+                scaffold, piece, processes, seed, False, isolate=isolate, cache=cache, label_values=values
+            )
+        )
         step.advance(len(piece))
     import pandas as pd
 

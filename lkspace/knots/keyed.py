@@ -29,6 +29,7 @@ from __future__ import annotations
 
 import functools
 import json
+import os
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from fractions import Fraction
@@ -42,6 +43,9 @@ from .budget import MAX_CROSSINGS
 from .tables import HOMFLY_MAX_CROSSINGS
 from .jones import jones_buffer_size, jones_into
 from .labels_diagram import DiagramTemplate, assemble_into, assemble_one, template, work_array
+
+KEY_VERSION = "k1"
+"""Version of the key's definition (hashes, invariants, trust rule): part of the disk cache's name."""
 
 _M1 = np.uint64(0x9E3779B97F4A7C15)
 _M2 = np.uint64(0xBF58476D1CE4E5B9)
@@ -212,23 +216,74 @@ def keys_of(scaffold: Scaffold, labels_2d: np.ndarray, seed: int = 0, label_valu
 
 @dataclass
 class KeyCache:
-    """Names found so far by key, shared by the batches of one run.
+    """Names found so far by key, shared by the batches of one run (and kept on disk).
 
     Attributes
     ----------
     named : dict
         Key -> the row fields (``knot_name``, ``split``, ``mirror``, ``crossings``,
         ``jones``, ``status``, ``error``) its designs share.  A first-level key is
-        ``(hash, hash)``; a second-level one adds the HOMFLY-PT polynomial.
+        ``(hash, hash)``; a second-level one adds the HOMFLY-PT polynomial and crossings.
     own : set
         Keys whose designs are not named alike (module docstring).
     full : int
         Designs named in full so far.
+    path : str or None
+        File the trusted keys are appended to and read from (:func:`disk_cache`); keys
+        depend on invariants only, so they hold for every scaffold.
     """
 
     named: dict[tuple[Any, ...], dict[str, Any]] = field(default_factory=dict)
     own: set[tuple[Any, ...]] = field(default_factory=set)
     full: int = 0
+    path: str | None = None
+
+    def remember(self, key: tuple[Any, ...], fields: dict[str, Any] | None) -> None:
+        """Trust ``key`` (its designs take ``fields``) or, with ``None``, not; appended to :attr:`path`."""
+        if fields is None:
+            self.own.add(key)
+        else:
+            self.named[key] = fields
+        if self.path is None:
+            return
+        line = json.dumps({"key": list(key), "fields": fields}) + "\n"
+        try:
+            fd = os.open(self.path, os.O_WRONLY | os.O_APPEND | os.O_CREAT, 0o644)
+            try:
+                os.write(fd, line.encode())
+            finally:
+                os.close(fd)
+        except OSError:
+            self.path = None  # a read-only cache folder: keep the names in memory only
+
+
+def disk_cache() -> KeyCache:
+    """A :class:`KeyCache` holding the keys trusted by earlier runs, appending new ones.
+
+    The file is ``names-by-key-<KEY_VERSION>-<lkspace version>.jsonl`` under ``$LKSPACE_CACHE``
+    (default ``~/.cache/lkspace``); a torn last line (an interrupted run) is skipped.
+    """
+    from .. import __version__
+
+    root = os.environ.get("LKSPACE_CACHE") or os.path.join(os.path.expanduser("~"), ".cache", "lkspace")
+    path = os.path.join(root, f"names-by-key-{KEY_VERSION}-{__version__}.jsonl")
+    cache = KeyCache(path=path)
+    try:
+        os.makedirs(root, exist_ok=True)
+        with open(path, encoding="utf-8") as fh:
+            for line in fh:
+                try:
+                    item = json.loads(line)
+                    key = tuple(item["key"])
+                    if item["fields"] is None:
+                        cache.own.add(key)
+                    else:
+                        cache.named[key] = item["fields"]
+                except (json.JSONDecodeError, KeyError, TypeError):
+                    continue
+    except OSError:
+        pass
+    return cache
 
 
 def candidates(
@@ -345,7 +400,9 @@ def _share(
         pd, n_comp, signs = found.diagram(d)
         jones = jones_of(pd, signs, n_comp)
         if jones is not None and trusted(named, candidates(jones, n_comp, *(k[2:4] if second else ()))):
-            cache.named[k] = named
+            cache.remember(k, named)
+        elif jones is not None:
+            cache.remember(k, None)
         else:
             cache.own.add(k)
     for d, k in enumerate(keys):

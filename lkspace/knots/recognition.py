@@ -39,7 +39,7 @@ from ..strands.tracing import trace
 from ..workers import context, ignore_interrupts
 from .budget import INLINE_CROSSINGS, MAX_CROSSINGS, TIME_LIMIT, TimeLimitReached, run_in_time, twist_crossings
 from .diagram import project, project_generic
-from .keyed import KeyCache, keys_of, share_names
+from .keyed import KeyCache, disk_cache, keys_of, share_names
 from .naming import name_pd
 from .tables import knot_modules, tables
 
@@ -317,7 +317,8 @@ def identify_batch(
         in a thread other than the main one (a Dask task): SnapPy's PARI works only in a
         process's main thread, and a thread would leave exteriors undecided.
     cache : KeyCache, optional
-        Names found by earlier calls (the chunks of one catalog share one).
+        Names found by earlier calls (default: :func:`~lkspace.knots.keyed.disk_cache`,
+        the keys trusted by earlier runs, kept under ``$LKSPACE_CACHE``).
     label_values : array of int, optional
         Twists the designs take (the label set); designs keep one diagram template
         across calls when given.
@@ -339,7 +340,7 @@ def identify_batch(
     """
     check_identifiable(scaffold)
     labels_2d = np.asarray(labels_2d, np.int64).reshape(-1, scaffold.n_edges)
-    cache = cache if cache is not None else KeyCache()
+    cache = cache if cache is not None else disk_cache()
     rows: list[dict[str, Any]] = []
     with _Namer(processes, isolate, time_limit) as namer, task("identifying", total=len(labels_2d)) as step:
         for start in range(0, len(labels_2d), BATCH):
@@ -398,15 +399,15 @@ class _Namer:
         self.pool: Any = None
 
     def __enter__(self) -> _Namer:
-        knot_modules()
-        tables()  # loaded here (workers load their own)
         _init_worker(self.time_limit)
         return self
 
     def name(self, items: list[tuple[list[list[int]], int]]) -> list[dict[str, Any]]:
-        """Row fields of each ``(pd, n_components)``, in order."""
+        """Row fields of each ``(pd, n_components)``, in order (the knot libraries load on first need)."""
         if not items:
             return []
+        knot_modules()
+        tables()  # loaded here (workers load their own)
         if self.processes > 1 or self.isolate:
             if self.pool is None:
                 self.pool = context().Pool(
