@@ -1,0 +1,95 @@
+"""Identification keyed by invariants: names shared by key, equal to the geometric path's.
+
+The reference is :func:`lkspace.knots.recognition.identify`: each design realized,
+projected and named on its own, no key and no template.
+"""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+
+from lkspace import load
+from lkspace.knots.keyed import KeyCache, candidates, disk_cache, keys_of, trusted
+from lkspace.knots.recognition import identify, identify_batch
+
+pytest.importorskip("snappy")
+
+
+def reference(scaffold, labels):
+    r = identify(scaffold, labels)
+    return r.name, r.mirror, r.components, r.linking_matrix
+
+
+@pytest.mark.parametrize("name, label_set", [("tetrahedron", (-2, 3)), ("octahedron", (-1, 2)), ("book:3", (-2, 3))])
+def test_keyed_names_equal_the_geometric_path(name, label_set):
+    scaffold = load(name)
+    labels = np.random.default_rng(11).integers(*label_set, size=(40, scaffold.n_edges))
+    cache = KeyCache()
+    found = identify_batch(scaffold, labels, cache=cache, progress=False)
+    for row, lab in zip(found.itertuples(), labels, strict=True):
+        got = (row.knot_name, row.mirror, row.components, json.loads(row.linking_matrix))
+        want = reference(scaffold, lab)
+        assert (got[0] if isinstance(got[0], str) else None, *got[1:]) == want, lab.tolist()
+
+
+def test_designs_with_one_key_are_named_once():
+    cube = load("cube")
+    # one design and its images under rotations and relabellings of the same type: the
+    # zero design's 6 unlinked loops, and single twists on different edges (a Hopf link each)
+    labels = np.zeros((13, 12), np.int64)
+    for e in range(12):
+        labels[e + 1, e] = 2
+    cache = KeyCache()
+    found = identify_batch(cube, labels, cache=cache, progress=False)
+    assert cache.full == 2  # the unlink of 6 and the Hopf link (+ 4 loops), each named once
+    assert found["status"].eq("identified").all()
+    assert len(set(found["linking_matrix"][1:])) > 1  # different components link, same type
+    assert len(cache.named) == 2
+
+
+def test_keys_are_invariants_of_the_link_not_of_the_diagram():
+    cube = load("cube")
+    labels = np.array([[1, -1, 2, 0, 0, 1, -2, 1, 0, 1, 1, -1]])
+    a = keys_of(cube, labels, seed=0)
+    b = keys_of(cube, labels, seed=9)
+    assert a.crossings[0] != b.crossings[0] or a.template.n_crossings != b.template.n_crossings
+    assert a.keys.tolist() == b.keys.tolist()
+
+
+def test_a_key_the_tables_share_is_not_trusted():
+    # 5_1 and 10_132 share the Jones polynomial (and HOMFLY-PT): the key cannot tell them apart
+    from lkspace.knots.jones import jones
+
+    pd_51 = [[1, 7, 2, 6], [3, 9, 4, 8], [5, 1, 6, 10], [7, 3, 8, 2], [9, 5, 10, 4]]
+    five_one = jones(pd_51)
+    found = candidates(five_one, 1)
+    assert {name for name, _ in found} == {"5_1", "10_132"}
+    assert not trusted({"knot_name": "5_1", "mirror": False, "status": "identified"}, found)
+    # a diagram of at most 9 crossings cannot be 10_132
+    assert {name for name, _ in candidates(five_one, 1, None, 9)} == {"5_1"}
+    # the trefoil's Jones polynomial is its own: trusted, and a wrong name is not
+    trefoil = jones([[1, 5, 2, 4], [3, 1, 4, 6], [5, 3, 6, 2]])
+    found = candidates(trefoil, 1)
+    assert trusted({"knot_name": "3_1", "mirror": False, "status": "identified"}, found)
+    assert not trusted({"knot_name": "4_1", "mirror": None, "status": "identified"}, found)
+    assert not trusted({"knot_name": "3_1", "mirror": False, "status": "unknown: time limit 1 s reached"}, found)
+
+
+def test_the_disk_cache_keeps_the_names_of_earlier_runs(tmp_path, monkeypatch):
+    monkeypatch.setenv("LKSPACE_CACHE", str(tmp_path))
+    tetra = load("tetrahedron")
+    labels = np.random.default_rng(3).integers(-2, 3, size=(30, 6))
+    first = disk_cache()
+    a = identify_batch(tetra, labels, cache=first, progress=False)
+    assert first.full > 0
+    (path,) = tmp_path.glob("names-by-key-*.jsonl")
+    with open(path, "a", encoding="utf-8") as fh:
+        fh.write('{"key": [1, 2], "fie')  # a run interrupted mid-line
+    again = disk_cache()
+    b = identify_batch(tetra, labels, cache=again, progress=False)
+    assert again.full < first.full  # only designs of keys trusted at no level are named again
+    assert set(first.named) <= set(again.named)
+    assert a.drop(columns="crossings").equals(b.drop(columns="crossings"))
