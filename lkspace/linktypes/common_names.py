@@ -30,9 +30,9 @@ COMMON: dict[str, tuple[str, ...]] = {
     "6_1": ("stevedore knot", "stevedore"),
     "6_2": ("Miller Institute knot",),
     "7_1": ("septafoil", "septafoil knot", "(2,7) torus knot", "(7,2) torus knot"),
-    "L2a1": ("Hopf link",),
-    "L4a1": ("Solomon link", "Solomon's knot", "(2,4) torus link", "(4,2) torus link"),
-    "L5a1": ("Whitehead link",),
+    "L2a1": ("Hopf link", "Hopf"),
+    "L4a1": ("Solomon link", "Solomon's knot", "Solomon", "(2,4) torus link", "(4,2) torus link"),
+    "L5a1": ("Whitehead link", "Whitehead"),
     "L6a3": ("(2,6) torus link", "(6,2) torus link"),
     "L6a4": ("Borromean rings", "Borromean link", "Borromean"),
 }
@@ -127,8 +127,8 @@ def resolve_type(text: str) -> tuple[str, Chirality]:
         n = int(next(g for g in m.groups() if g))
         if 1 <= n <= MAX_UNLINK:
             return ("0_1" if n == 1 else "split: " + " + ".join(["0_1"] * n)), "any"
-    close = difflib.get_close_matches(_key(text), list(ALIASES), n=3, cutoff=0.6)
-    shown = [_shown(k) for k in close]
+    close = difflib.get_close_matches(_key(text), list(ALIASES), n=6, cutoff=0.6)
+    shown = list(dict.fromkeys(_first_name(ALIASES[k]) for k in close))[:3]
     hint = f"; did you mean {' or '.join(repr(s) for s in shown)}?" if shown else ""
     raise UsageError(
         f"name {typed!r}: not a knot or link name (table names like 3_1, m3_1, 5_2, L6a4, 3_1#4_1, or common "
@@ -172,10 +172,7 @@ def _chiral_canonical(text: str) -> str:
     return ("m" if mirror else "") + _canonical(text[1:] if mirror else text)
 
 
-def _shown(key: str) -> str:
-    """The common name as written in the tables, for a normalized key."""
-    for words in (*COMMON.values(), *CHIRAL.values()):
-        for w in words:
-            if _key(w) == key:
-                return w
-    return key
+def _first_name(found: tuple[str, Chirality]) -> str:
+    """Return the common name shown for a type and chirality: ``("3_1", "mirror")`` -> ``"left-handed trefoil"``."""
+    name, side = found
+    return CHIRAL[name][side == "mirror"] if side != "any" else COMMON[name][0]

@@ -211,7 +211,9 @@ def parse_type(type_name: str, chirality: str = "any") -> LinkType:
     if common is not None:
         text, side = common
         if side != "any" and asked not in ("any", side):
-            raise UsageError(f"type_name {typed!r} names one chirality but `chirality` is {asked}", parameter="type_name")
+            raise UsageError(
+                f"type_name {typed!r} names one chirality but `chirality` is {asked}", parameter="type_name"
+            )
         asked = side if side != "any" else asked
         return _prime(text, asked, typed)
     if "#" in text:
