@@ -143,7 +143,11 @@ def test_lookup_plain_name_shows_both_chiralities_simplest_first():
     assert {d["chiral_name"] for d in both["designs"]} == {"3_1", "m3_1"}
     keys = [(d["sum_abs"], d["nonzero"]) for d in both["designs"]]
     assert keys == sorted(keys)
-    assert both["total"] == len(both["designs"])
+    assert both["simplest_kept"] == len(both["designs"])
+    assert both["designs_total"] == sum(
+        json.loads(lookup("3_1", "--scaffold", s.split()[0], "--json").stdout)["designs_total"]
+        for s in both["found_in"]
+    )
     assert len({(d["scaffold"], tuple(d["labels"])) for d in both["designs"]}) == len(both["designs"])
     one = lookup_json("3_1", "--scaffold", "dihedron:3")
     assert one["designs"] and {d["scaffold"] for d in one["designs"]} == {"dihedron:3"}
@@ -152,12 +156,16 @@ def test_lookup_plain_name_shows_both_chiralities_simplest_first():
 
 def test_lookup_json_fields():
     out = lookup_json("trefoil", "--limit", "1")
-    assert set(out) == {"query", "name", "chirality", "common_name", "atlas", "searched", "total", "designs"}
+    assert set(out) == {
+        "query", "name", "chirality", "common_name", "atlas", "searched", "found_in", "designs_total", "simplest_kept",
+        "designs",
+    }  # fmt: skip
     assert set(out["designs"][0]) == {
         "type", "common_name", "scaffold", "labels", "label_set", "sum_abs", "nonzero", "crossings", "mirror",
         "chiral_name", "designs_of_type", "command",
     }  # fmt: skip
-    assert out["query"] == "trefoil" and out["searched"] and out["total"] >= 2
+    assert out["query"] == "trefoil" and set(out["found_in"]) <= set(out["searched"])
+    assert out["designs_total"] >= out["simplest_kept"] >= 2
     assert out["atlas"] == str(ROOT / "lkspace" / "data" / "atlas.parquet")
 
 
@@ -232,10 +240,13 @@ def test_absent_type_exits_1_naming_the_spaces(small_atlas):
     assert proc.returncode == 1, proc.stderr
     line = proc.stderr.strip()
     assert line.count("\n") == 0 and line.startswith("lkspace: error: 4_1: no design in the atlas ")
-    assert "searched 1 spaces: dihedron:3 -1..1" in line and "experiments/build_atlas.py" in line
+    assert "searched 1 space: dihedron:3 -1..1" in line and "experiments/build_atlas.py" in line
     assert "--atlas" in line
     found = lookup_json("3_1", "--atlas", str(small_atlas))
-    assert found["searched"] == ["dihedron:3 -1..1"] and found["total"] == 2
+    assert found["searched"] == found["found_in"] == ["dihedron:3 -1..1"]
+    assert found["designs_total"] == found["simplest_kept"] == 2  # [1, 1, 1] and its mirror [-1, -1, -1]
+    mirror = lookup_json("m3_1", "--atlas", str(small_atlas))
+    assert mirror["designs_total"] == 1 and [d["labels"] for d in mirror["designs"]] == [[-1, -1, -1]]
 
 
 def test_lookup_help_and_run_stay_light():
@@ -255,3 +266,31 @@ def test_lookup_help_and_run_stay_light():
     assert "pyarrow.parquet" in run
     heavy = ("pandas", "snappy", "spherogram", "regina", "database_knotinfo", "numba", "igraph")
     assert not {m for m in run if m.split(".")[0] in heavy}
+
+
+def test_studio_answers_lookup_as_the_cli_does():
+    pytest.importorskip("starlette")
+    pytest.importorskip("uvicorn")
+    httpx = pytest.importorskip("httpx")
+    from lkspace.studio.app import Studio
+    from lkspace.studio.server import start_in_thread
+
+    url, stop = start_in_thread(Studio())
+    try:
+        with httpx.Client(base_url=url, timeout=60) as client:
+            answer = client.get("/api/lookup", params={"name": "Borromean rings", "limit": 3})
+            assert answer.status_code == 200
+            assert answer.json() == lookup_json("Borromean rings", "--limit", "3")
+            on = client.get("/api/lookup", params={"name": "m3_1", "scaffold": "dihedron:4"}).json()
+            assert on["designs"] and {(d["scaffold"], d["mirror"]) for d in on["designs"]} == {("dihedron:4", True)}
+            for params, status, start in [
+                ({"name": "borromian"}, 400, "name 'borromian': not a knot or link name"),
+                ({}, 400, "name: a knot or link type"),
+                ({"name": "3_1", "limit": "many"}, 400, "limit: an integer in 1..1000"),
+                ({"name": "3_1", "scaffold": "nowhere"}, 404, "3_1: no design in the atlas shipped with lkspace"),
+            ]:
+                bad = client.get("/api/lookup", params=params)
+                assert bad.status_code == status, bad.text
+                assert bad.json()["error"]["message"].startswith(start), bad.text
+    finally:
+        stop()

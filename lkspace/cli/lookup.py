@@ -53,15 +53,18 @@ def lookup_cmd(name: str, limit: int, scaffold: str | None, atlas_file: str | No
     def human() -> None:
         common = f" ({data['common_name']})" if data["common_name"] else ""
         asked = f"m{data['name']}" if data["chirality"] == "mirror" else data["name"]
+        spaces = f"{len(data['found_in'])} of {len(data['searched'])} spaces"
+        shown = len(data["designs"])
         click.echo(
-            f"{asked}{common}: {data['total']:,} designs in {len(data['searched'])} spaces"
-            + (f", the {len(data['designs'])} simplest:" if data["total"] > len(data["designs"]) else ":")
+            f"{asked}{common}: {data['designs_total']:,} designs in {spaces}; "
+            + (f"the simplest {shown}:" if shown > 1 else "the simplest:")
         )
+        rows = [("type", "scaffold", "labels", "sum|t|", "crossings", "identify again")]
         for d in data["designs"]:
-            crossings = "?" if d["crossings"] is None else d["crossings"]
-            click.echo(
-                f"  {d['chiral_name']:<10} {d['scaffold']:<14} labels {d['label_set']:<6} sum|t| {d['sum_abs']:<3} "
-                f"crossings {crossings:<3} $ {d['command']}"
-            )
+            crossings = "?" if d["crossings"] is None else str(d["crossings"])
+            rows.append((d["chiral_name"], d["scaffold"], d["label_set"], str(d["sum_abs"]), crossings, d["command"]))
+        widths = [max(len(r[i]) for r in rows) for i in range(len(rows[0]) - 1)]
+        for r in rows:
+            click.echo("  " + "  ".join(c.ljust(w) for c, w in zip(r, widths, strict=False)) + "  " + r[-1])
 
     emit(ctx, data, human)

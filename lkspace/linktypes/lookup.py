@@ -127,7 +127,10 @@ def lookup(name: str, atlas: str | None = None, *, limit: int = LIMIT, scaffold:
     (``split: 0_1 + 0_1``) or a common name (``"Borromean rings"``).  ``scaffold``: only
     that space's designs.  A design in two label sets of one scaffold is listed once.
 
-    Returns ``{query, name, chirality, common_name, atlas, searched, total, designs}``;
+    Returns ``{query, name, chirality, common_name, atlas, searched, found_in, designs_total,
+    simplest_kept, designs}``: ``designs_total`` counts the designs of the type (of the
+    chirality asked) in the spaces searched, ``simplest_kept`` the simplest of them the
+    atlas keeps (:mod:`~lkspace.linktypes.examples`), from which ``designs`` is drawn;
     ``designs`` (at most ``limit``, simplest first: sum |t|, non-zero labels,
     crossings, then scaffold and labels) holds ``{type, scaffold, labels, label_set, sum_abs, nonzero,
     crossings, mirror, chiral_name, designs_of_type, command}``.  Raises
@@ -148,6 +151,7 @@ def lookup(name: str, atlas: str | None = None, *, limit: int = LIMIT, scaffold:
             if key not in found:
                 found[key] = _design(row, ex)
     designs = sorted(found.values(), key=_simplest)
+    count = "designs" if chirality == "any" else f"chirality_{chirality}"
     answer = {
         "query": name,
         "name": wanted,
@@ -155,7 +159,9 @@ def lookup(name: str, atlas: str | None = None, *, limit: int = LIMIT, scaffold:
         "common_name": common_name(wanted, None if chirality == "any" else chirality == "mirror"),
         "atlas": os.path.abspath(atlas or SHIPPED),
         "searched": spaces,
-        "total": len(designs),
+        "found_in": list(dict.fromkeys(f"{r['scaffold']} {r['labels']}" for r in hits if r[count])),
+        "designs_total": sum(r[count] for r in hits),
+        "simplest_kept": len(designs),
         "designs": designs[:limit],
     }
     if not designs:
@@ -215,7 +221,8 @@ def _absent(wanted: str, chirality: Chirality, hits: list[dict[str, Any]], space
     where = "the atlas " + (atlas or "shipped with lkspace")
     shown = ", ".join(spaces[:12]) + (f" and {len(spaces) - 12} more" if len(spaces) > 12 else "")
     return (
-        f"{asked}: no design in {where}{told}; searched {len(spaces)} spaces: {shown or 'none'}; "
+        f"{asked}: no design in {where}{told}; searched {len(spaces)} space{'' if len(spaces) == 1 else 's'}: "
+        f"{shown or 'none'}; "
         "build a bigger atlas with experiments/build_atlas.py and pass it as `atlas`, or search one space "
         f"with lkspace solve MESH --type {asked.split(' ')[0]}"
     )
