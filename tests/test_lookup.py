@@ -120,6 +120,16 @@ def test_parse_type_understands_common_names():
         parse_type("left-handed trefoil", "table")
 
 
+def test_solve_type_takes_a_common_name():
+    pytest.importorskip("snappy")
+    args = [LKSPACE, "solve", "tetrahedron", "--type", "Borromean rings", "--labels", "-1..1", "--json"]
+    proc = subprocess.run(args, capture_output=True, text=True, env=ENV, timeout=300)
+    assert proc.returncode == 0, proc.stderr
+    out = json.loads(proc.stdout)
+    assert out["status"] == "found" and out["target"]["name"] == "L6a4"
+    assert [s["labels"] for s in out["solutions"]] == [[-1] * 6]
+
+
 def test_lookup_answers_are_identified_again():
     """The shipped atlas's answers, identified by the geometric path, are what lookup says."""
     pytest.importorskip("snappy")
