@@ -4,11 +4,15 @@ Each space is identified with :func:`lkspace.linktypes.atlas.atlas` into its own
 ``WORK/<scaffold>_<labels>/`` (the resumable ``cache.jsonl``, and ``atlas.json`` once the
 space is done); then every space of the run is merged into one Parquet file
 (:func:`lkspace.linktypes.lookup.write_index`).  A rerun reuses the finished spaces and
-resumes the others, so it is cheap; ``--merge-only`` just merges.
+resumes the others, so it is cheap; ``--merge-only`` just merges.  A partial space is
+reused as it is; delete its ``atlas.json`` to give it more time (the cache keeps what was
+identified).
 
 Labels: -2..2 where the space has at most ``--max-designs`` designs (up to rotation),
-else -1..1 where that fits; else the space is left out, unless ``--partial-seconds S``
-gives it S seconds with -1..1 (the simplest designs first: ``complete`` false).
+else -1..1 where that fits; else the space gets ``--partial-seconds S`` (default 300; 0:
+left out) with -1..1, its simplest designs first (``complete`` false).  A space past the
+atlas's own guard (:data:`~lkspace.linktypes.atlas.MAX_DESIGNS`, meant for interactive
+runs) but within ``--max-designs`` is walked whole under a time budget too long to end it.
 
 Run: ``nice python experiments/build_atlas.py --processes 2`` (every space; hours with
 per-design geometric identification), ``--quick`` (a few small spaces, about two minutes),
@@ -57,6 +61,10 @@ QUICK = [
 before the fast path."""
 
 
+UNBOUNDED = 1e9
+"""Seconds given to a space bigger than ``MAX_DESIGNS`` that is meant to be built whole (about 30 years)."""
+
+
 def slug(scaffold: str, labels: str) -> str:
     """``dihedron:3``, ``-2..2`` -> ``dihedron-3_-2..2``: the space's work folder."""
     return f"{scaffold.replace(':', '-')}_{labels}"
@@ -70,7 +78,7 @@ def plan(max_designs: int, partial: float) -> list[tuple[str, str, float | None]
         for labels in ("-2..2", "-1..1"):
             n = lkspace.count_designs(scaffold, parse_label_set(labels)).designs
             if n <= max_designs:
-                spaces.append((name, labels, None))
+                spaces.append((name, labels, None if n <= MAX_DESIGNS else UNBOUNDED))
                 break
         else:
             if partial > 0:
@@ -87,7 +95,7 @@ def build_space(work: str, name: str, labels: str, stop_after: float | None, pro
     if os.path.exists(done):
         with open(done, encoding="utf-8") as fh:
             data = json.load(fh)
-        if data.get("complete") or stop_after is not None:
+        if data.get("complete") or stop_after not in (None, UNBOUNDED):
             print(f"{name} {labels}: reused ({data['designs']:,} designs, {len(data['types'])} types)", flush=True)
             return data
     t0 = time.monotonic()
@@ -151,12 +159,13 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--spaces", help="exactly these spaces: SCAFFOLD=LABELS,... (labels as in --labels)")
     parser.add_argument("--max-designs", type=int, default=MAX_DESIGNS, help="most designs of a space built whole")
     parser.add_argument(
-        "--partial-seconds", type=float, default=0, help="seconds for a space past the budget (0: none)"
+        "--partial-seconds", type=float, default=300, help="seconds for a space past the budget (0: leave it out)"
     )
     parser.add_argument("--processes", type=int, default=1, help="worker processes identifying")
     parser.add_argument("--work", default=WORK, help="folder of the per-space results (resumable)")
     parser.add_argument("-o", "--output", default=SHIPPED, help="the index written (default: the shipped one)")
     parser.add_argument("--merge-only", action="store_true", help="merge the finished spaces of the plan, build none")
+    parser.add_argument("--plan", action="store_true", help="print the spaces the budget affords, build nothing")
     args = parser.parse_args(argv)
     if args.spaces:
         spaces = parse_spaces(args.spaces)
@@ -164,6 +173,11 @@ def main(argv: list[str] | None = None) -> int:
         spaces = [(name, labels, None) for name, labels in QUICK]
     else:
         spaces = plan(args.max_designs, args.partial_seconds)
+    if args.plan:
+        for name, labels, stop_after in spaces:
+            partial = stop_after is not None and stop_after != UNBOUNDED
+            print(f"{name} {labels}" + (f" (simplest first, {stop_after:g} s)" if partial else ""))
+        return 0
     results = []
     for name, labels, stop_after in spaces:
         done = os.path.join(args.work, slug(name, labels), "atlas.json")

@@ -185,6 +185,15 @@ def test_lookup_human_output():
     assert "lkspace identify tetrahedron --twist " in out
 
 
+def test_identify_shows_common_names():
+    pytest.importorskip("snappy")
+    run = [LKSPACE, "identify", "whitehead"]
+    human = subprocess.run(run, capture_output=True, text=True, env=ENV, timeout=300)
+    assert human.stdout.startswith("whitehead: 2 components: L5a1 (Whitehead link, as in the table) [linkinfo]\n")
+    left = subprocess.run([*run[:2], "dihedron:3", "--twist", "-1", "--json"], capture_output=True, text=True, env=ENV)
+    assert json.loads(left.stdout)["common_name"] == "left-handed trefoil"
+
+
 def test_unknown_name_exits_2_with_a_suggestion():
     proc = lookup("borromian", check=False)
     assert proc.returncode == 2
@@ -297,7 +306,11 @@ def test_studio_answers_lookup_as_the_cli_does():
                 ({"name": "borromian"}, 400, "name 'borromian': not a knot or link name"),
                 ({}, 400, "name: a knot or link type"),
                 ({"name": "3_1", "limit": "many"}, 400, "limit: an integer in 1..1000"),
-                ({"name": "3_1", "scaffold": "nowhere"}, 404, "3_1: no design in the atlas shipped with lkspace"),
+                (
+                    {"name": "3_1", "scaffold": "nowhere"},
+                    404,
+                    "3_1: no design in the atlas shipped with lkspace; searched 0 spaces: none (no space of scaffold 'nowhere')",
+                ),
             ]:
                 bad = client.get("/api/lookup", params=params)
                 assert bad.status_code == status, bad.text

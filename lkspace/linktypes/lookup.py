@@ -125,7 +125,8 @@ def lookup(name: str, atlas: str | None = None, *, limit: int = LIMIT, scaffold:
 
     ``name``: a table name (``5_2``, ``m3_1``: mirror images only), an atlas type
     (``split: 0_1 + 0_1``) or a common name (``"Borromean rings"``).  ``scaffold``: only
-    that space's designs.  A design in two label sets of one scaffold is listed once.
+    that space's designs.  A design in two label sets of one scaffold is listed once.  A
+    connected sum is looked up without the mirror marks of its factors.
 
     Returns ``{query, name, chirality, common_name, atlas, searched, found_in, designs_total,
     simplest_kept, designs}``: ``designs_total`` counts the designs of the type (of the
@@ -165,7 +166,7 @@ def lookup(name: str, atlas: str | None = None, *, limit: int = LIMIT, scaffold:
         "designs": designs[:limit],
     }
     if not designs:
-        raise TypeNotFound(_absent(wanted, chirality, hits, spaces, atlas), answer)
+        raise TypeNotFound(_absent(wanted, chirality, hits, spaces, atlas, scaffold), answer)
     return answer
 
 
@@ -210,7 +211,15 @@ def _design(row: dict[str, Any], ex: dict[str, Any]) -> dict[str, Any]:
     }
 
 
-def _absent(wanted: str, chirality: Chirality, hits: list[dict[str, Any]], spaces: list[str], atlas: str | None) -> str:
+def _absent(
+    wanted: str,
+    chirality: Chirality,
+    hits: list[dict[str, Any]],
+    spaces: list[str],
+    atlas: str | None,
+    scaffold: str | None,
+) -> str:
+    """Return the line saying that no design was found: where it looked, and how to look further."""
     asked = f"m{wanted}" if chirality == "mirror" else wanted
     if chirality == "table":
         asked += " (the table's chirality)"
@@ -222,7 +231,7 @@ def _absent(wanted: str, chirality: Chirality, hits: list[dict[str, Any]], space
     shown = ", ".join(spaces[:12]) + (f" and {len(spaces) - 12} more" if len(spaces) > 12 else "")
     return (
         f"{asked}: no design in {where}{told}; searched {len(spaces)} space{'' if len(spaces) == 1 else 's'}: "
-        f"{shown or 'none'}; "
+        f"{shown or f'none (no space of scaffold {scaffold!r})'}; "
         "build a bigger atlas with experiments/build_atlas.py and pass it as `atlas`, or search one space "
         f"with lkspace solve MESH --type {asked.split(' ')[0]}"
     )
