@@ -10,7 +10,8 @@ identified).
 
 Labels: -2..2 where the space has at most ``--max-designs`` designs (up to rotation),
 else -1..1 where that fits; else the space gets ``--partial-seconds S`` (default 300; 0:
-left out) with -1..1, its simplest designs first (``complete`` false).  A space past the
+left out) with -1..1, its simplest designs first (``complete`` false), or with -1,1 where
+-1..1 has too many residue classes to walk in order (the dodecahedron, the icosahedron).  A space past the
 atlas's own guard (:data:`~lkspace.linktypes.atlas.MAX_DESIGNS`, meant for interactive
 runs) but within ``--max-designs`` is walked whole under a time budget too long to end it.
 
@@ -30,6 +31,7 @@ import sys
 import time
 
 import lkspace
+from lkspace.errors import TooLargeError
 from lkspace.io.atomic import write_text
 from lkspace.linktypes.atlas import MAX_DESIGNS, atlas
 from lkspace.linktypes.lookup import SHIPPED, index_rows, write_index
@@ -65,6 +67,11 @@ UNBOUNDED = 1e9
 """Seconds given to a space bigger than ``MAX_DESIGNS`` that is meant to be built whole (about 30 years)."""
 
 
+FALLBACK = "-1,1"
+"""Labels of a partial space whose -1..1 has too many residue classes to walk simplest first: odd labels
+make one residue class on every edge of degree 2."""
+
+
 def slug(scaffold: str, labels: str) -> str:
     """``dihedron:3``, ``-2..2`` -> ``dihedron-3_-2..2``: the space's work folder."""
     return f"{scaffold.replace(':', '-')}_{labels}"
@@ -88,8 +95,8 @@ def plan(max_designs: int, partial: float) -> list[tuple[str, str, float | None]
     return spaces
 
 
-def build_space(work: str, name: str, labels: str, stop_after: float | None, processes: int) -> dict:
-    """Identify one space (or reuse its finished result); return the atlas result."""
+def build_space(work: str, name: str, labels: str, stop_after: float | None, processes: int) -> dict | str:
+    """Identify one space (or reuse its finished result); return the atlas result, or why it cannot be walked."""
     folder = os.path.join(work, slug(name, labels))
     done = os.path.join(folder, "atlas.json")
     if os.path.exists(done):
@@ -99,7 +106,11 @@ def build_space(work: str, name: str, labels: str, stop_after: float | None, pro
             print(f"{name} {labels}: reused ({data['designs']:,} designs, {len(data['types'])} types)", flush=True)
             return data
     t0 = time.monotonic()
-    data = atlas(lkspace.load(name), parse_label_set(labels), folder, processes=processes, stop_after=stop_after)
+    try:
+        data = atlas(lkspace.load(name), parse_label_set(labels), folder, processes=processes, stop_after=stop_after)
+    except TooLargeError as exc:  # too many residue classes to walk in order, even simplest first
+        print(f"{name} {labels}: left out: {exc}", flush=True)
+        return str(exc)
     data["labels"] = labels
     write_text(done, json.dumps(data))
     print(
@@ -119,8 +130,11 @@ def commit() -> str | None:
     return out.stdout.strip() or None
 
 
-def merge(results: list[dict], output: str) -> None:
-    """Write the index of ``results`` (atlas results, each with its ``labels`` text) to ``output``."""
+def merge(results: list[dict], output: str, left_out: list[dict] | None = None) -> None:
+    """Write the index of ``results`` (atlas results, each with its ``labels`` text) to ``output``.
+
+    ``left_out``: ``{scaffold, labels, reason}`` of the spaces planned but not walked, kept in the metadata.
+    """
     rows = [row for data in results for row in index_rows(data, data["labels"])]
     spaces = [
         {
@@ -138,6 +152,7 @@ def merge(results: list[dict], output: str) -> None:
         "commit": commit(),
         "date": datetime.datetime.now(datetime.UTC).isoformat(timespec="seconds"),
         "spaces": spaces,
+        "left_out": left_out or [],
     }
     write_index(output, rows, meta)
     print(f"wrote {output}: {len(rows)} rows, {len(spaces)} spaces, {os.path.getsize(output):,} bytes", flush=True)
@@ -178,7 +193,7 @@ def main(argv: list[str] | None = None) -> int:
             partial = stop_after is not None and stop_after != UNBOUNDED
             print(f"{name} {labels}" + (f" (simplest first, {stop_after:g} s)" if partial else ""))
         return 0
-    results = []
+    results, left_out = [], []
     for name, labels, stop_after in spaces:
         done = os.path.join(args.work, slug(name, labels), "atlas.json")
         if args.merge_only:
@@ -186,8 +201,15 @@ def main(argv: list[str] | None = None) -> int:
                 with open(done, encoding="utf-8") as fh:
                     results.append(json.load(fh))
             continue
-        results.append(build_space(args.work, name, labels, stop_after, args.processes))
-    merge(results, args.output)
+        data = build_space(args.work, name, labels, stop_after, args.processes)
+        if isinstance(data, str) and stop_after not in (None, UNBOUNDED):  # too many residue classes: odd labels
+            labels = FALLBACK
+            data = build_space(args.work, name, labels, stop_after, args.processes)
+        if isinstance(data, str):
+            left_out.append({"scaffold": name, "labels": labels, "reason": data})
+        else:
+            results.append(data)
+    merge(results, args.output, left_out)
     return 0
 
 

@@ -236,6 +236,7 @@ def test_build_script_writes_the_documented_index(small_atlas):
 
     rows, meta = read_index(str(small_atlas))
     assert meta["format"] == 1 and meta["lkspace_version"] == lkspace.__version__ and meta["date"]
+    assert meta["left_out"] == []
     assert meta["spaces"] == [
         {"scaffold": "dihedron:3", "labels": "-1..1", "designs": 10, "assignments": 27, "types": 4, "complete": True}
     ]

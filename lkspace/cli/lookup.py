@@ -8,8 +8,6 @@ from __future__ import annotations
 
 import click
 
-from ..errors import LkspaceError
-
 
 @click.command("lookup")
 @click.argument("name")
@@ -41,14 +39,11 @@ def lookup_cmd(name: str, limit: int, scaffold: str | None, atlas_file: str | No
       lkspace lookup "Borromean rings" --limit 3
       lkspace lookup m3_1 --scaffold tetrahedron --json
     """
-    from ..linktypes.lookup import TypeNotFound, lookup
+    from ..linktypes.lookup import lookup
     from .common import Context, emit
 
     ctx = Context(as_json)
-    try:
-        data = lookup(name, atlas_file, limit=limit, scaffold=scaffold)
-    except TypeNotFound as exc:
-        raise LkspaceError(str(exc)) from None
+    data = lookup(name, atlas_file, limit=limit, scaffold=scaffold)  # none found: TypeNotFound, exit 1
 
     def human() -> None:
         common = f" ({data['common_name']})" if data["common_name"] else ""

@@ -22,8 +22,8 @@ built from :func:`~lkspace.linktypes.atlas.atlas` results by :func:`index_rows` 
 =====================  ==========================================================
 
 The file's metadata (key ``lkspace-atlas-index``) holds ``format``, ``lkspace_version``,
-``commit``, ``date`` and ``spaces``: ``{scaffold, labels, designs, assignments, types,
-complete}`` for every space built.  Reading needs pyarrow only.
+``commit``, ``date``, ``spaces``: ``{scaffold, labels, designs, assignments, types,
+complete}`` for every space built, and ``left_out``: ``{scaffold, labels, reason}``.  Reading needs pyarrow only.
 """
 
 from __future__ import annotations
@@ -130,7 +130,7 @@ def lookup(name: str, atlas: str | None = None, *, limit: int = LIMIT, scaffold:
 
     Returns ``{query, name, chirality, common_name, atlas, searched, found_in, designs_total,
     simplest_kept, designs}``: ``designs_total`` counts the designs of the type (of the
-    chirality asked) in the spaces searched, ``simplest_kept`` the simplest of them the
+    chirality asked) summed over the spaces searched, ``simplest_kept`` the simplest of them the
     atlas keeps (:mod:`~lkspace.linktypes.examples`), from which ``designs`` is drawn;
     ``designs`` (at most ``limit``, simplest first: sum |t|, non-zero labels,
     crossings, then scaffold and labels) holds ``{type, scaffold, labels, label_set, sum_abs, nonzero,
@@ -166,16 +166,12 @@ def lookup(name: str, atlas: str | None = None, *, limit: int = LIMIT, scaffold:
         "designs": designs[:limit],
     }
     if not designs:
-        raise TypeNotFound(_absent(wanted, chirality, hits, spaces, atlas, scaffold), answer)
+        raise TypeNotFound(_absent(wanted, chirality, hits, spaces, atlas, scaffold))
     return answer
 
 
 class TypeNotFound(LkspaceError):
-    """No design of the type is in the atlas (exit 1); ``answer`` is the empty lookup."""
-
-    def __init__(self, message: str, answer: dict[str, Any]) -> None:
-        super().__init__(message)
-        self.answer = answer
+    """No design of the type is in the atlas (exit 1); the message names the spaces searched."""
 
 
 def _simplest(design: dict[str, Any]) -> tuple[Any, ...]:
@@ -188,7 +184,7 @@ def _same_type(row_type: str, wanted: str) -> bool:
     """Whether an atlas type is the one asked for (a sum matches its factors in any order, mirror marks aside)."""
     if "#" not in wanted:
         return row_type == wanted
-    factors = sorted(p.removeprefix("m") if p != "m" else p for p in wanted.split("#"))
+    factors = sorted(p[1:] if p.startswith("m") else p for p in wanted.split("#"))
     return sorted(row_type.split("#")) == factors
 
 
