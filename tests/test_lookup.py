@@ -12,6 +12,8 @@ import subprocess
 import sys
 
 import pytest
+from hypothesis import given
+from hypothesis import strategies as st
 
 import lkspace
 from lkspace.errors import UsageError
@@ -318,3 +320,32 @@ def test_studio_answers_lookup_as_the_cli_does():
                 assert bad.json()["error"]["message"].startswith(start), bad.text
     finally:
         stop()
+
+
+@given(
+    st.lists(
+        st.tuples(st.lists(st.integers(-2, 2), min_size=3, max_size=3), st.sampled_from([None, True, False])),
+        max_size=40,
+        unique_by=lambda d: tuple(d[0]),
+    ),
+    st.integers(1, 4),
+)
+def test_examples_keep_the_k_simplest_of_each_chirality(designs, k):
+    """Against sorting them all: per chirality the k smallest (sum |t|, non-zero, max |t|, labels), merged."""
+    import numpy as np
+
+    from lkspace.linktypes.examples import Examples
+
+    kept = Examples(k)
+    for labels, mirror in designs:
+        a = [abs(x) for x in labels]
+        kept.add(np.array(labels), (sum(a), sum(x != 0 for x in a), max(a)), {"mirror": mirror, "crossings": 3})
+
+    def key(d):
+        a = [abs(x) for x in d[0]]
+        return (sum(a), sum(x != 0 for x in a), max(a), tuple(d[0]))
+
+    want = []
+    for side in (None, True, False):
+        want += sorted((d for d in designs if d[1] is side), key=key)[:k]
+    assert [(e["labels"], e["mirror"]) for e in kept.to_list()] == [(list(d[0]), d[1]) for d in sorted(want, key=key)]
