@@ -349,3 +349,12 @@ def test_examples_keep_the_k_simplest_of_each_chirality(designs, k):
     for side in (None, True, False):
         want += sorted((d for d in designs if d[1] is side), key=key)[:k]
     assert [(e["labels"], e["mirror"]) for e in kept.to_list()] == [(list(d[0]), d[1]) for d in sorted(want, key=key)]
+
+
+def test_sums_and_split_types_are_looked_up_as_the_atlas_spells_them():
+    assert lookup_json("3_1#m3_1", "--limit", "1")["name"] == "3_1#3_1"  # the atlas holds sums without mirror marks
+    assert lookup_json("3_1#L2a1", "--limit", "1")["name"] == "L2a1#3_1"
+    unlink = lookup_json("unlink of 2 components", "--limit", "1")
+    assert unlink["name"] == "split: 0_1 + 0_1" and unlink["designs"][0]["sum_abs"] == 0
+    amphichiral = lookup("m4_1", check=False)  # identify does not tell the figure-eight knot's mirror apart
+    assert amphichiral.returncode == 1 and "none identified as this chirality: ask for 4_1" in amphichiral.stderr

@@ -143,6 +143,8 @@ def lookup(name: str, atlas: str | None = None, *, limit: int = LIMIT, scaffold:
     if scaffold is not None:
         spaces = [s for s in spaces if s.split(" ")[0] == scaffold]
     hits = [r for r in rows if _same_type(r["type"], wanted) and scaffold in (None, r["scaffold"])]
+    if "#" in wanted:  # a sum as the atlas spells it: factors in table order, no mirror marks
+        wanted = hits[0]["type"] if hits else "#".join(p[1:] if p.startswith("m") else p for p in wanted.split("#"))
     found: dict[tuple[str, tuple[int, ...]], dict[str, Any]] = {}
     for row in hits:
         for ex in json.loads(row["examples"]):
@@ -222,7 +224,7 @@ def _absent(
     told = ""
     if hits:
         n = sum(r["designs"] for r in hits)
-        told = f" ({n:,} designs of {wanted} are, but not of this chirality or not told apart: ask for {wanted})"
+        told = f" (it holds {n:,} designs of {wanted}, none identified as this chirality: ask for {wanted})"
     where = "the atlas " + (atlas or "shipped with lkspace")
     shown = ", ".join(spaces[:12]) + (f" and {len(spaces) - 12} more" if len(spaces) > 12 else "")
     return (
