@@ -57,10 +57,11 @@ def markdown(rows: list[dict], meta: dict, atlas: str) -> str:
         "",
         "## Named types by crossing number",
         "",
-        "Each cell: `type (first Σ|t|, designs)`; non-split types named by a table.",
+        "Each cell: `type (first Σ|t|, designs)`; non-split types named by a table.  *build s*: wall seconds",
+        "of the space's identification when it was built (`experiments/build_atlas.py`, on a shared 2-core machine).",
         "",
-        "| space | labels | designs | complete | " + " | ".join(band(lo, hi) for lo, hi in BANDS) + " |",
-        "|---|---|---|---|" + "---|" * len(BANDS),
+        "| space | labels | designs | complete | build s | " + " | ".join(band(lo, hi) for lo, hi in BANDS) + " |",
+        "|---|---|---|---|---|" + "---|" * len(BANDS),
     ]
     for space in spaces_of(rows, meta):
         types = sorted((r for r in by_space[space] if named(r)), key=type_order)
@@ -71,7 +72,8 @@ def markdown(rows: list[dict], meta: dict, atlas: str) -> str:
         s = info.get(space, {})
         designs = f"{s['designs']:,}" if "designs" in s else ""
         done = "yes" if s.get("complete", True) else "no (simplest first)"
-        lines.append(f"| {space[0]} | {space[1]} | {designs} | {done} | " + " | ".join(cells) + " |")
+        took = f"{s['wall_time']:.1f}" if s.get("wall_time") is not None else ""
+        lines.append(f"| {space[0]} | {space[1]} | {designs} | {done} | {took} | " + " | ".join(cells) + " |")
     lines += ["", "## Every type of every space", ""]
     for space in spaces_of(rows, meta):
         lines += [

@@ -144,6 +144,8 @@ def merge(results: list[dict], output: str, left_out: list[dict] | None = None) 
             "assignments": d["assignments"],
             "types": len(d["types"]),
             "complete": bool(d.get("complete", True)),
+            "identified": d.get("identified_now"),
+            "wall_time": d.get("wall_time"),
         }
         for d in results
     ]

@@ -23,7 +23,7 @@ built from :func:`~lkspace.linktypes.atlas.atlas` results by :func:`index_rows` 
 
 The file's metadata (key ``lkspace-atlas-index``) holds ``format``, ``lkspace_version``,
 ``commit``, ``date``, ``spaces``: ``{scaffold, labels, designs, assignments, types,
-complete}`` for every space built, and ``left_out``: ``{scaffold, labels, reason}``.  Reading needs pyarrow only.
+complete, identified, wall_time}`` for every space built, and ``left_out``: ``{scaffold, labels, reason}``.  Reading needs pyarrow only.
 """
 
 from __future__ import annotations
