@@ -118,7 +118,7 @@ def resolve_type(text: str) -> tuple[str, Chirality]:
         if len(parts) > 1:
             return "#".join(_chiral_canonical(p.strip()) for p in parts), "any"
         name = _chiral_canonical(text)
-        return (name[1:], "mirror") if name.startswith("m") and name != "m" else (name, "any")
+        return (name[1:], "mirror") if name.startswith("m") else (name, "any")
     found = common_type(text)
     if found:
         return found
@@ -145,6 +145,9 @@ def common_type(text: str) -> tuple[str, Chirality] | None:
 def resolve_name(text: str) -> str:
     """Return the table name (``m`` in front for a mirror image) or atlas type of what a user typed.
 
+    The table's own chirality (``"right-handed trefoil"``) comes back as the plain name
+    (``3_1``, either chirality); :func:`resolve_type` keeps it apart.
+
     Examples
     --------
     >>> resolve_name("Borromean rings"), resolve_name("left-handed trefoil"), resolve_name("L6a4{0,1}")
@@ -156,15 +159,17 @@ def resolve_name(text: str) -> str:
 
 def _is_table_name(text: str) -> bool:
     body = text[1:] if text.startswith("m") and len(text) > 1 else text
-    return body == "0_1" or bool(TABLE_NAME.fullmatch(body))
+    return bool(TABLE_NAME.fullmatch(body))
 
 
 def _canonical(name: str) -> str:
-    """``l6a4{0}`` -> ``L6a4``; ``k11a1`` -> ``K11a1``; ``11A_1`` -> ``11a_1``."""
+    """``l6a4{0}`` -> ``L6a4``; ``k11a1`` -> ``11a_1`` (KnotInfo's spelling to 13 crossings); ``K14N1`` -> ``K14n1``."""
     name = name.split("{")[0]
-    if name[:1] in "kKlL":
-        return name[0].upper() + name[1:].lower()
-    return name.lower()
+    if name[:1] not in "kKlL":
+        return name.lower()
+    name = name[0].upper() + name[1:].lower()
+    m = re.fullmatch(r"K(\d+)([an])(\d+)", name)
+    return f"{m[1]}{m[2]}_{m[3]}" if m and int(m[1]) <= 13 else name
 
 
 def _chiral_canonical(text: str) -> str:
