@@ -40,6 +40,7 @@ def lookup_cmd(name: str, limit: int, scaffold: str | None, atlas_file: str | No
       lkspace lookup m3_1 --scaffold tetrahedron --json
     """
     from ..linktypes.lookup import lookup
+    from ..words import plural
     from .common import Context, emit
 
     ctx = Context(as_json)
@@ -48,10 +49,10 @@ def lookup_cmd(name: str, limit: int, scaffold: str | None, atlas_file: str | No
     def human() -> None:
         common = f" ({data['common_name']})" if data["common_name"] else ""
         asked = f"m{data['name']}" if data["chirality"] == "mirror" else data["name"]
-        spaces = f"{len(data['found_in'])} of {len(data['searched'])} spaces"
+        spaces = f"{len(data['found_in'])} of {plural(len(data['searched']), 'space')}"
         shown = len(data["designs"])
         click.echo(
-            f"{asked}{common}: {data['designs_total']:,} designs in {spaces}; "
+            f"{asked}{common}: {plural(data['designs_total'], 'design')} in {spaces}; "
             + (f"the simplest {shown}:" if shown > 1 else "the simplest:")
         )
         rows = [("type", "scaffold", "labels", "sum|t|", "crossings", "identify again")]
