@@ -33,8 +33,11 @@ class Examples:
         mirror = rec.get("mirror")
         side = "undetermined" if mirror is None else "mirror" if mirror else "table"
         row = self.kept.setdefault(side, [])
+        full = len(row) >= self.k
+        if full and cost > row[-1][0][0]:  # the common case in a big space: not among the simplest
+            return
         key: Key = (cost, tuple(int(x) for x in labels))
-        if len(row) >= self.k and key >= row[-1][0]:
+        if full and key >= row[-1][0]:
             return
         example = {
             "labels": list(key[1]),
