@@ -3,7 +3,7 @@
 Each space is identified with :func:`lkspace.linktypes.atlas.atlas` (resumable cache under
 ``$ATLAS_CACHE``, default /tmp/lkspace-atlas-cache, never committed) and written to
 ``results/atlas/NAME/`` (README.md, atlas.parquet, a few PNGs).  Wall and CPU times go to
-``results/atlas/runs.json``; ``results/atlas/README.md`` gets the table "which knots and
+``results/atlas/runs.json``; ``results/atlas/runs.md`` gets the table "which knots and
 links each scaffold makes", by crossing number, and the types of the 32 single-cycle
 tetrahedral designs.
 """
@@ -122,7 +122,7 @@ def summary(runs: dict) -> None:
     lines += cube_estimate(runs)
     lines += book_family()
     lines += single_cycle_table()
-    with open(os.path.join(ROOT, "README.md"), "w") as fh:
+    with open(os.path.join(ROOT, "runs.md"), "w") as fh:
         fh.write("\n".join(lines) + "\n")
 
 

@@ -115,7 +115,10 @@ ALLOWED = {
     },
     "api": {"io"},
     "lkspace": {"api", "errors"},
-    "studio": {"catalog", "errors", "formats", "geometry", "io", "lkspace", "model", "progress", "scaffolds", "symmetry", "workers"},
+    "studio": {
+        "catalog", "errors", "formats", "geometry", "io", "linktypes", "lkspace", "model", "progress", "scaffolds",
+        "symmetry", "workers",
+    },
     "blender": {"cli", "errors", "formats", "geometry", "inverse", "io", "knots", "model", "strands", "symmetry", "words"},
     "dask_worker": {"engine"},
     "cli": {
@@ -138,6 +141,7 @@ STUDIO_INTERNALS = {
     "lkspace.io.scaffold_json": "scaffolds sent to and uploaded from the page as JSON",
     "lkspace.io.sources": "the one scaffold file the studio reads: the MESH of lkspace studio FILE",
     "lkspace.io.text": "uploaded JSON parsed with the input bounds of every lkspace reader",
+    "lkspace.linktypes.lookup": "the page asks the shipped atlas for the simplest designs of a type (/api/lookup)",
     "lkspace.model.specs": "the label set typed in the page's solve form",
     "lkspace.model.validation": "labels and null sides sent by the page",
     "lkspace.progress": "progress of identify and solve jobs reported to the page",

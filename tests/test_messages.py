@@ -8,6 +8,7 @@ import pytest
 
 import lkspace
 from lkspace.geometry.fabrication import gap_fixes
+from lkspace.linktypes.lookup import lookup
 from lkspace.linktypes.names import parse_type
 from lkspace.model.specs import parse_labels
 from lkspace.words import plural, rounded
@@ -138,6 +139,14 @@ def test_export_tube_bound_names_the_bound(capsys, tmp_path):
             ["solve", "cube", "--type", "m3_1", "--chirality", "table"],
             "type_name 'm3_1' asks for the mirror image but `chirality` is table",
             "--type 'm3_1' asks for the mirror image but --chirality is table",
+        ),
+        (
+            partial(lookup, "hopf lnk"),
+            ["lookup", "hopf lnk"],
+            "name 'hopf lnk': not a knot or link name (table names like 3_1, m3_1, 5_2, L6a4, 3_1#4_1, or common "
+            "names like 'trefoil', 'Borromean rings', 'Whitehead link'); did you mean 'Hopf link'?",
+            "NAME 'hopf lnk': not a knot or link name (table names like 3_1, m3_1, 5_2, L6a4, 3_1#4_1, or common "
+            "names like 'trefoil', 'Borromean rings', 'Whitehead link'); did you mean 'Hopf link'?",
         ),
         (
             lambda: parse_labels(lkspace.load("cube"), "1,2"),

@@ -26,6 +26,7 @@ FLAGS = {
     "subgroup": "--invariant",
     "type_name": "--type",
     "max_points": "MAX_POINTS",
+    "name": "NAME",
 }
 """Parameters whose flag is not ``--`` and the name with dashes (``max_designs`` -> ``--max-designs``).
 

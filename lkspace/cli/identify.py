@@ -60,6 +60,7 @@ def identify_cmd(
       lkspace identify tetrahedron --twist 1 --json  # L6a4, the Borromean rings
     """
     from ..knots.recognition import check_identifiable, identify
+    from ..linktypes.common_names import common_name
 
     ctx = Context(as_json)
     scaffold, labels, nulls = resolve_design(ctx, mesh, twist_spec, null_spec, row)
@@ -67,6 +68,7 @@ def identify_cmd(
     params = params_of(radius, normal_offset, tube_radius)
     result = identify(scaffold, labels, nulls, params, seed=seed, time_limit=time_limit or None).to_dict()
     result["labels"] = np.asarray(labels).tolist()
+    result["common_name"] = common_name(result["name"], result.get("mirror")) if result["name"] else None
 
     def human() -> None:
         name = result["name"] or "unknown"
@@ -74,9 +76,10 @@ def identify_cmd(
             click.echo(f"{scaffold.name}: {result['status']}")
         if result["status"].startswith("unknown: time limit"):
             click.echo(f"  raise --time-limit (now {time_limit:g} s; 0: no limit) to let it finish")
-        chir = ""
+        said = [result["common_name"]] if result["common_name"] else []
         if result.get("mirror") is not None:
-            chir = " (mirror of the table diagram)" if result["mirror"] else " (as in the table)"
+            said.append("mirror of the table diagram" if result["mirror"] else "as in the table")
+        chir = f" ({', '.join(said)})" if said else ""
         table = f" [{result['table']}]" if result.get("table") and result["name"] else ""
         click.echo(f"{scaffold.name}: {plural(result['components'], 'component')}: {name}{chir}{table}")
         if result.get("crossings") is not None:

@@ -37,6 +37,7 @@ from ..model.scaffold import Scaffold
 from ..progress import task
 from ..workers import context, ignore_interrupts
 from .candidates import OrderedWalk
+from .examples import Examples
 from .screen import type_labels
 
 CACHE = "cache.jsonl"
@@ -84,6 +85,7 @@ class TypeEntry:
     simplest: list[int] = field(default_factory=list)
     cost: tuple[int, int, int] = (1 << 62, 0, 0)
     chirality: dict[str, int] = field(default_factory=lambda: {"table": 0, "mirror": 0, "undetermined": 0})
+    examples: Examples = field(default_factory=Examples)
 
     def add(self, labels: np.ndarray, orbit: int, rec: dict[str, Any]) -> None:
         """Count one design of this type."""
@@ -93,6 +95,7 @@ class TypeEntry:
         cost = (int(a.sum()), int((a != 0).sum()), int(a.max()) if len(a) else 0)
         if cost < self.cost:
             self.cost, self.simplest = cost, [int(x) for x in labels]
+        self.examples.add(labels, cost, rec)
         crossings = rec.get("crossings")
         if crossings is not None and (self.crossings is None or crossings < self.crossings):
             self.crossings = int(crossings)
@@ -101,7 +104,10 @@ class TypeEntry:
         self.chirality["undetermined" if mirror is None else "mirror" if mirror else "table"] += 1
 
     def to_dict(self) -> dict[str, Any]:
-        """Return the JSON form (``name``, ``components``, ``designs``, ``assignments``, ``simplest`` ...)."""
+        """Return the JSON form (``name``, ``components``, ``designs``, ``assignments``, ``simplest``, ``examples`` ...).
+
+        ``examples``: the simplest designs of each chirality (:class:`~lkspace.linktypes.examples.Examples`).
+        """
         return {
             "name": self.name,
             "components": self.components,
@@ -113,6 +119,7 @@ class TypeEntry:
             "simplest_sum_abs": self.cost[0],
             "simplest_nonzero": self.cost[1],
             "chirality": self.chirality,
+            "examples": self.examples.to_list(),
         }
 
 

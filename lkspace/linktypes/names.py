@@ -1,5 +1,8 @@
 """Knot and link types named by the user: ``3_1``, ``m3_1``, ``4_1``, ``L6a4``, ``K14n10910``, ``3_1#4_1``.
 
+Common names are understood too (``"Borromean rings"``, ``"left-handed trefoil"``:
+:mod:`~lkspace.linktypes.common_names`).
+
 Names are those ``identify`` reports: ``0_1``; Rolfsen's ``3_1`` ... ``10_165`` and
 KnotInfo's ``11a_1`` ... ``13n_5110`` for knots (SnapPy's spelling ``K11a1`` is accepted);
 Thistlethwaite's ``L2a1`` ... ``L11n459`` for links (an orientation suffix such as
@@ -30,6 +33,7 @@ from ..errors import UsageError
 from ..knots.hoste import HT_NAME, ht_crossings, ht_manifold
 from ..knots.naming import name_key, one_based
 from ..knots.tables import JONES_POINT, knot_modules, laurent_value, tables
+from .common_names import common_type
 
 Chirality: TypeAlias = Literal["any", "table", "mirror"]
 """Which chirality a target asks for: either, the table's diagram, or its mirror image."""
@@ -203,6 +207,15 @@ def parse_type(type_name: str, chirality: str = "any") -> LinkType:
     asked: Chirality = chirality
     if not text:
         raise UsageError("type_name: empty name", parameter="type_name")
+    common = common_type(text)  # "Borromean rings", "left-handed trefoil"
+    if common is not None:
+        text, side = common
+        if side != "any" and asked not in ("any", side):
+            raise UsageError(
+                f"type_name {typed!r} names one chirality but `chirality` is {asked}", parameter="type_name"
+            )
+        asked = side if side != "any" else asked
+        return _prime(text, asked, typed)
     if "#" in text:
         return _sum(text, asked, typed)
     if text.startswith("m") and len(text) > 1:

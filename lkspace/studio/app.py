@@ -305,6 +305,29 @@ def catalog_query(studio: Studio, body: dict[str, Any]) -> dict[str, Any]:
     )
 
 
+class NoSuchDesign(LkspaceError):
+    """The atlas holds no design of the type asked for (404)."""
+
+    status = 404
+
+
+def type_lookup(studio: Studio, body: dict[str, Any]) -> dict[str, Any]:
+    """Return the simplest designs of the type ``name`` in the shipped atlas (``limit``, ``scaffold``): ``lookup --json``."""
+    from ..linktypes.lookup import TypeNotFound, lookup
+
+    name, limit, on = body.get("name"), str(body.get("limit", 10)), body.get("scaffold")
+    if not isinstance(name, str) or not name.strip() or len(name) > 200:
+        raise BadRequest("name: a knot or link type, e.g. 5_2, m3_1 or Borromean rings")
+    if not limit.isdigit() or not 1 <= int(limit) <= 1000:
+        raise BadRequest("limit: an integer in 1..1000")
+    if on is not None and (not isinstance(on, str) or len(on) > 200):
+        raise BadRequest("scaffold: a built-in scaffold name")
+    try:
+        return lookup(name, limit=int(limit), scaffold=on)
+    except TypeNotFound as exc:
+        raise NoSuchDesign(str(exc)) from None
+
+
 def download(studio: Studio, body: dict[str, Any]) -> Response:
     """Return the design as a file (``format``: one of :data:`~lkspace.studio.designs.EXPORTS`)."""
     held, labels, nulls, _ = design_args(studio, body)
@@ -363,6 +386,7 @@ def create_app(studio: Studio | None = None) -> Any:
         Route("/", page),
         Route("/favicon.ico", lambda request: Response(status_code=204)),
         Route("/api/info", endpoint(info)),
+        Route("/api/lookup", endpoint(type_lookup)),
         Route("/api/upload", upload, methods=["POST"]),
         Route("/api/job/{id}", endpoint(job)),
         Route("/api/job/{id}/cancel", endpoint(cancel), methods=["POST"]),

@@ -1,0 +1,55 @@
+"""The few simplest designs of one atlas type, kept as the designs stream by.
+
+Simplest: smallest ``sum |t|``, then fewest non-zero labels, then smallest largest
+``|t|``, then the labels themselves (so the choice does not depend on the order the
+designs come in).  Up to ``k`` are kept for each chirality identify reports (the
+table's diagram, its mirror, not told apart), so a lookup of ``m3_1`` finds mirror
+images even where the table's chirality is as simple.
+"""
+
+from __future__ import annotations
+
+import bisect
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+EXAMPLES = 5
+"""Designs kept per chirality of a type (:attr:`Examples.k`)."""
+
+Key = tuple[tuple[int, int, int], tuple[int, ...]]
+
+
+@dataclass
+class Examples:
+    """The ``k`` simplest designs of each chirality of a type, with what the atlas knows of them."""
+
+    k: int = EXAMPLES
+    kept: dict[str, list[tuple[Key, dict[str, Any]]]] = field(default_factory=dict)
+
+    def add(self, labels: np.ndarray, cost: tuple[int, int, int], rec: dict[str, Any]) -> None:
+        """Offer one design (``cost``: sum |t|, non-zero labels, largest |t|; ``rec``: its identification)."""
+        mirror = rec.get("mirror")
+        side = "undetermined" if mirror is None else "mirror" if mirror else "table"
+        row = self.kept.setdefault(side, [])
+        full = len(row) >= self.k
+        if full and cost > row[-1][0][0]:  # the common case in a big space: not among the simplest
+            return
+        key: Key = (cost, tuple(int(x) for x in labels))
+        if full and key >= row[-1][0]:
+            return
+        example = {
+            "labels": list(key[1]),
+            "sum_abs": cost[0],
+            "nonzero": cost[1],
+            "crossings": rec.get("crossings"),
+            "mirror": mirror,
+        }
+        bisect.insort(row, (key, example), key=lambda item: item[0])
+        del row[self.k :]
+
+    def to_list(self) -> list[dict[str, Any]]:
+        """Return the kept designs, simplest first: ``{labels, sum_abs, nonzero, crossings, mirror}``."""
+        every = sorted((item for row in self.kept.values() for item in row), key=lambda item: item[0])
+        return [example for _, example in every]

@@ -1,0 +1,235 @@
+"""Reverse lookup: the simplest designs of a knot or link type, from an atlas index (``lkspace lookup``).
+
+An **atlas index** is one Parquet file with one row per (type, scaffold, label set),
+built from :func:`~lkspace.linktypes.atlas.atlas` results by :func:`index_rows` and
+:func:`write_index` (``experiments/build_atlas.py``); lkspace ships one
+(:data:`SHIPPED`).  Columns (docs/design-to-target.md, "Looking up a type"):
+
+=====================  ==========================================================
+``type``               the atlas type (:func:`~lkspace.linktypes.atlas.type_key`)
+``common_name``        its common name, or null
+``components``         components
+``crossing_number``    the crossing number the name states (null: split, unknown)
+``crossings``          crossings of the smallest simplified diagram seen
+``table``              the table that named it
+``scaffold``, ``labels``  the space: a built-in name and a label set (``-2..2``)
+``designs``, ``assignments``  designs of the type up to rotation; label vectors
+``first_sum_abs``      the smallest sum |t| of a design of the type
+``chirality_table``, ``chirality_mirror``, ``chirality_undetermined``  designs per chirality
+``examples``           JSON list of the simplest designs of each chirality:
+                       ``{labels, sum_abs, nonzero, crossings, mirror}``
+``complete``           every design of the space was identified
+=====================  ==========================================================
+
+The file's metadata (key ``lkspace-atlas-index``) holds ``format``, ``lkspace_version``,
+``commit``, ``date``, ``spaces``: ``{scaffold, labels, designs, assignments, types,
+complete, identified, wall_time}`` for every space built, and ``left_out``: ``{scaffold, labels, reason}``.  Reading needs pyarrow only.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+from typing import Any
+
+from ..errors import CatalogError, LkspaceError
+from .common_names import Chirality, common_name, resolve_type
+
+SHIPPED = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "data", "atlas.parquet")
+"""The atlas index shipped with lkspace."""
+
+META = b"lkspace-atlas-index"
+FORMAT = 1
+LIMIT = 10
+"""Designs a lookup returns by default."""
+
+
+def index_rows(data: dict[str, Any], labels: str) -> list[dict[str, Any]]:
+    """Return the index rows of one :func:`~lkspace.linktypes.atlas.atlas` result (``labels``: its label set as typed)."""
+    from .atlas import crossing_number
+
+    rows = []
+    for t in data["types"]:
+        name = t["name"]
+        named = not name.startswith(("split", "unknown"))
+        chir = t.get("chirality") or {}
+        rows.append(
+            {
+                "type": name,
+                "common_name": common_name(name),
+                "components": t.get("components"),
+                "crossing_number": crossing_number(name) if named else None,
+                "crossings": t.get("crossings"),
+                "table": t.get("table"),
+                "scaffold": data["scaffold"],
+                "labels": labels,
+                "designs": t["designs"],
+                "assignments": t["assignments"],
+                "first_sum_abs": t.get("simplest_sum_abs"),
+                "chirality_table": chir.get("table", 0),
+                "chirality_mirror": chir.get("mirror", 0),
+                "chirality_undetermined": chir.get("undetermined", 0),
+                "examples": json.dumps(t.get("examples") or []),
+                "complete": bool(data.get("complete", True)),
+            }
+        )
+    return rows
+
+
+def write_index(path: str, rows: list[dict[str, Any]], meta: dict[str, Any]) -> None:
+    """Write an atlas index (temporary name, then renamed)."""
+    import pyarrow as pa
+    import pyarrow.parquet as pq
+
+    from ..io.atomic import atomic_path
+
+    ints = ("components", "crossing_number", "crossings")
+    longs = ("designs", "assignments", "first_sum_abs", "chirality_table", "chirality_mirror", "chirality_undetermined")
+    columns = {}
+    for key in ("type", "common_name", "components", "crossing_number", "crossings", "table", "scaffold", "labels"):
+        columns[key] = pa.array([r[key] for r in rows], pa.int32() if key in ints else pa.string())
+    for key in longs:
+        columns[key] = pa.array([r[key] for r in rows], pa.int64())
+    columns["examples"] = pa.array([r["examples"] for r in rows], pa.string())
+    columns["complete"] = pa.array([r["complete"] for r in rows], pa.bool_())
+    table = pa.table(columns).replace_schema_metadata({META: json.dumps({"format": FORMAT, **meta})})
+    os.makedirs(os.path.dirname(os.path.abspath(path)), exist_ok=True)
+    with atomic_path(path, suffix=".parquet.tmp") as tmp:
+        pq.write_table(table, tmp, compression="zstd")
+
+
+def read_index(path: str | None = None) -> tuple[list[dict[str, Any]], dict[str, Any]]:
+    """Return the rows and the metadata of an atlas index (default: the shipped one)."""
+    import pyarrow as pa
+    import pyarrow.parquet as pq
+
+    path = path or SHIPPED
+    try:
+        with pq.ParquetFile(path) as file:  # not read_table: that imports pandas
+            table = file.read()
+    except FileNotFoundError:
+        raise CatalogError(f"atlas {path}: no such file", parameter="atlas") from None
+    except (OSError, pa.ArrowException) as exc:
+        raise CatalogError(f"atlas {path}: not a Parquet atlas index ({exc})", parameter="atlas") from None
+    raw = (table.schema.metadata or {}).get(META)
+    if raw is None:
+        raise CatalogError(
+            f"atlas {path}: not an atlas index (no {META.decode()} metadata); build one with experiments/build_atlas.py",
+            parameter="atlas",
+        )
+    return table.to_pylist(), json.loads(raw)
+
+
+def lookup(name: str, atlas: str | None = None, *, limit: int = LIMIT, scaffold: str | None = None) -> dict[str, Any]:
+    """Return the simplest designs of the type ``name`` in an atlas index (default: the shipped one).
+
+    ``name``: a table name (``5_2``, ``m3_1``: mirror images only), an atlas type
+    (``split: 0_1 + 0_1``) or a common name (``"Borromean rings"``).  ``scaffold``: only
+    that space's designs.  A design in two label sets of one scaffold is listed once.  A
+    connected sum is looked up without the mirror marks of its factors.
+
+    Returns ``{query, name, chirality, common_name, atlas, searched, found_in, designs_total,
+    simplest_kept, designs}``: ``designs_total`` counts the designs of the type (of the
+    chirality asked) summed over the spaces searched, ``simplest_kept`` the simplest of them the
+    atlas keeps (:mod:`~lkspace.linktypes.examples`), from which ``designs`` is drawn;
+    ``designs`` (at most ``limit``, simplest first: sum |t|, non-zero labels,
+    crossings, then scaffold and labels) holds ``{type, scaffold, labels, label_set, sum_abs, nonzero,
+    crossings, mirror, chiral_name, designs_of_type, command}``.  Raises
+    :class:`TypeNotFound` (exit 1) when the atlas holds no such design.
+    """
+    wanted, chirality = resolve_type(name)
+    rows, meta = read_index(atlas)
+    spaces = [f"{s['scaffold']} {s['labels']}" for s in meta.get("spaces", [])]
+    if scaffold is not None:
+        spaces = [s for s in spaces if s.split(" ")[0] == scaffold]
+    hits = [r for r in rows if _same_type(r["type"], wanted) and scaffold in (None, r["scaffold"])]
+    if "#" in wanted:  # a sum as the atlas spells it: factors in table order, no mirror marks
+        wanted = hits[0]["type"] if hits else "#".join(p[1:] if p.startswith("m") else p for p in wanted.split("#"))
+    found: dict[tuple[str, tuple[int, ...]], dict[str, Any]] = {}
+    for row in hits:
+        for ex in json.loads(row["examples"]):
+            if chirality != "any" and ex["mirror"] is not (chirality == "mirror"):
+                continue
+            key = (row["scaffold"], tuple(ex["labels"]))
+            if key not in found:
+                found[key] = _design(row, ex)
+    designs = sorted(found.values(), key=_simplest)
+    count = "designs" if chirality == "any" else f"chirality_{chirality}"
+    answer = {
+        "query": name,
+        "name": wanted,
+        "chirality": chirality,
+        "common_name": common_name(wanted, None if chirality == "any" else chirality == "mirror"),
+        "atlas": os.path.abspath(atlas or SHIPPED),
+        "searched": spaces,
+        "found_in": list(dict.fromkeys(f"{r['scaffold']} {r['labels']}" for r in hits if r[count])),
+        "designs_total": sum(r[count] for r in hits),
+        "simplest_kept": len(designs),
+        "designs": designs[:limit],
+    }
+    if not designs:
+        raise TypeNotFound(_absent(wanted, chirality, hits, spaces, atlas, scaffold))
+    return answer
+
+
+class TypeNotFound(LkspaceError):
+    """No design of the type is in the atlas (exit 1); the message names the spaces searched."""
+
+
+def _simplest(design: dict[str, Any]) -> tuple[Any, ...]:
+    """Sort key: sum |t|, non-zero labels, crossings (unknown last), scaffold, labels."""
+    crossings = design["crossings"] if design["crossings"] is not None else 1 << 30
+    return (design["sum_abs"], design["nonzero"], crossings, design["scaffold"], design["labels"])
+
+
+def _same_type(row_type: str, wanted: str) -> bool:
+    """Whether an atlas type is the one asked for (a sum matches its factors in any order, mirror marks aside)."""
+    if "#" not in wanted:
+        return row_type == wanted
+    factors = sorted(p[1:] if p.startswith("m") else p for p in wanted.split("#"))
+    return sorted(row_type.split("#")) == factors
+
+
+def _design(row: dict[str, Any], ex: dict[str, Any]) -> dict[str, Any]:
+    labels = [int(x) for x in ex["labels"]]
+    mirror = ex.get("mirror")
+    return {
+        "type": row["type"],
+        "common_name": common_name(row["type"], mirror),
+        "scaffold": row["scaffold"],
+        "labels": labels,
+        "label_set": row["labels"],
+        "sum_abs": int(ex["sum_abs"]),
+        "nonzero": int(ex["nonzero"]),
+        "crossings": ex.get("crossings"),
+        "mirror": mirror,
+        "chiral_name": ("m" if mirror else "") + row["type"] if mirror is not None else row["type"],
+        "designs_of_type": row["designs"],
+        "command": f"lkspace identify {row['scaffold']} --twist {','.join(map(str, labels))}",
+    }
+
+
+def _absent(
+    wanted: str,
+    chirality: Chirality,
+    hits: list[dict[str, Any]],
+    spaces: list[str],
+    atlas: str | None,
+    scaffold: str | None,
+) -> str:
+    """Return the line saying that no design was found: where it looked, and how to look further."""
+    asked = f"m{wanted}" if chirality == "mirror" else wanted
+    if chirality == "table":
+        asked += " (the table's chirality)"
+    told = ""
+    if hits:
+        n = sum(r["designs"] for r in hits)
+        told = f" (it holds {n:,} designs of {wanted}, none identified as this chirality: ask for {wanted})"
+    where = "the atlas " + (atlas or "shipped with lkspace")
+    shown = ", ".join(spaces[:12]) + (f" and {len(spaces) - 12} more" if len(spaces) > 12 else "")
+    return (
+        f"{asked}: no design in {where}{told}; searched {len(spaces)} space{'' if len(spaces) == 1 else 's'}: "
+        f"{shown or f'none (no space of scaffold {scaffold!r})'}; "
+        "build a bigger atlas with experiments/build_atlas.py and pass it as `atlas`, or search one space "
+        f"with lkspace solve MESH --type {asked.split(' ')[0]}"
+    )
