@@ -1,7 +1,7 @@
 """Keyed identification against the geometric path on whole design spaces, row by row.
 
 Every design of a space (one per rotation orbit) is identified twice: by
-:func:`lkspace.knots.recognition.identify_batch` (diagrams from labels, names shared by
+:func:`lkspace.knots.batch.identify_batch` (diagrams from labels, names shared by
 invariant key) and by :func:`lkspace.knots.recognition.identify` (each design realized,
 projected and named on its own: the reference).  Names, mirror flags, split pieces,
 components and linking matrices are compared; the result goes to
@@ -21,7 +21,8 @@ import numpy as np
 
 import lkspace
 from lkspace import load
-from lkspace.knots.recognition import identify, identify_batch
+from lkspace.knots.batch import identify_batch
+from lkspace.knots.recognition import identify
 
 DEFAULT = ["tetrahedron:-2..2", "cube:-1..1", "octahedron:-1..1"]
 
@@ -48,9 +49,17 @@ def compare(space: str, processes: int) -> dict:
         got = (row.knot_name, row.mirror, str(row.status).split(":")[0], row.components, json.loads(row.linking_matrix))
         want = ref[i][:5]
         if got != want:
-            differ.append({"labels": labels[i].tolist(), "keyed": [str(v) for v in got], "geometric": [str(v) for v in want]})
-    return {"space": space, "designs": len(labels), "differ": len(differ), "examples": differ[:10],
-            "keyed_s": round(t_fast, 2), "geometric_s": round(t_ref, 1)}
+            differ.append(
+                {"labels": labels[i].tolist(), "keyed": [str(v) for v in got], "geometric": [str(v) for v in want]}
+            )
+    return {
+        "space": space,
+        "designs": len(labels),
+        "differ": len(differ),
+        "examples": differ[:10],
+        "keyed_s": round(t_fast, 2),
+        "geometric_s": round(t_ref, 1),
+    }
 
 
 def main() -> None:
@@ -60,9 +69,14 @@ def main() -> None:
     parser.add_argument("--output", default="results/compare_keyed.md")
     args = parser.parse_args()
     results = [compare(space, args.processes) for space in args.spaces]
-    lines = ["# Keyed identification against the geometric path, row by row", "",
-             f"lkspace {lkspace.__version__}; `python experiments/compare_keyed.py {' '.join(args.spaces)}`", "",
-             "| space | designs | rows that differ | keyed (s) | geometric (s) |", "|---|---|---|---|---|"]
+    lines = [
+        "# Keyed identification against the geometric path, row by row",
+        "",
+        f"lkspace {lkspace.__version__}; `python experiments/compare_keyed.py {' '.join(args.spaces)}`",
+        "",
+        "| space | designs | rows that differ | keyed (s) | geometric (s) |",
+        "|---|---|---|---|---|",
+    ]
     for r in results:
         lines.append(f"| {r['space']} | {r['designs']:,} | {r['differ']} | {r['keyed_s']} | {r['geometric_s']} |")
     for r in results:

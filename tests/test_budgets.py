@@ -242,7 +242,7 @@ def test_identify_bad_numbers(capsys, args, words):
 
 def test_identify_batch_budget_per_design():
     pytest.importorskip("spherogram")
-    from lkspace.knots.recognition import identify_batch
+    from lkspace.knots.batch import identify_batch
 
     scaffold = lkspace.load("truncated-octahedron")
     big = 3 * np.array(BIG_KNOT.split(","), np.int64)  # about 12 s to name on an idle machine: 4 s never suffice

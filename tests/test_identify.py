@@ -19,8 +19,9 @@ import lkspace  # noqa: E402
 from lkspace import identify  # noqa: E402
 from lkspace.cli import main  # noqa: E402
 from lkspace.errors import LkspaceError  # noqa: E402
+from lkspace.knots.batch import identify_batch  # noqa: E402
 from lkspace.knots.diagram import project  # noqa: E402
-from lkspace.knots.recognition import identify_batch, identify_curves  # noqa: E402
+from lkspace.knots.recognition import identify_curves  # noqa: E402
 
 
 def name_of(mesh, twists):

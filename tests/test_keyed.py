@@ -12,8 +12,10 @@ import numpy as np
 import pytest
 
 from lkspace import load
-from lkspace.knots.keyed import KeyCache, candidates, disk_cache, keys_of, trusted
-from lkspace.knots.recognition import identify, identify_batch
+from lkspace.knots.batch import identify_batch
+from lkspace.knots.key_names import KeyCache, candidates, disk_cache, trusted
+from lkspace.knots.keyed import keys_of
+from lkspace.knots.recognition import identify
 
 pytest.importorskip("snappy")
 

@@ -18,8 +18,10 @@ from lkspace import load
 from lkspace.errors import GeometryError, LkspaceError
 from lkspace.geometry.params import GeometryParams
 from lkspace.geometry.realization import realize
+from lkspace.knots.assembly import assemble_pd
 from lkspace.knots.diagram import project_generic
-from lkspace.knots.labels_diagram import assemble_pd, build_template
+from lkspace.knots.labels_diagram import build_template
+
 from .strategies import traceable_scaffolds
 
 regina = pytest.importorskip("regina")

@@ -2,7 +2,7 @@
 
 Identification runs as a second pass over a written catalog: each Parquet file (or each
 part of a sharded folder) is read, its designs are identified by invariant key
-(:func:`lkspace.knots.recognition.identify_batch`: diagrams from labels, one full naming
+(:func:`lkspace.knots.batch.identify_batch`: diagrams from labels, one full naming
 per distinct key, in ``processes`` worker processes), and the file is rewritten
 atomically with these extra columns:
 
@@ -140,8 +140,8 @@ def _identify_file(
     file: str, scaffold: Scaffold, processes: int, seed: int, step: Step, isolate: bool = False
 ) -> pd.DataFrame | None:
     """Identify the rows of one catalog file and rewrite it with the columns; ``None`` if it already has them."""
-    from ..knots.keyed import disk_cache
-    from ..knots.recognition import identify_batch
+    from ..knots.batch import identify_batch
+    from ..knots.key_names import disk_cache
 
     table = pq.read_table(file)
     if "labels" not in table.column_names:
@@ -158,9 +158,7 @@ def _identify_file(
     for start in range(0, len(labels), IDENTIFY_CHUNK):
         piece = labels[start : start + IDENTIFY_CHUNK]
         pieces.append(
-            identify_batch(
-                scaffold, piece, processes, seed, False, isolate=isolate, cache=cache, label_values=values
-            )
+            identify_batch(scaffold, piece, processes, seed, False, isolate=isolate, cache=cache, label_values=values)
         )
         step.advance(len(piece))
     import pandas as pd

@@ -156,7 +156,7 @@ def near_pairs(p0: np.ndarray, p1: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 def transverse(
     p0: np.ndarray, p1: np.ndarray, i: np.ndarray, j: np.ndarray
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """The crossings, seen along ``z``, of segment pairs ``(i, j)`` of ``p0 -> p1`` (``(n, 3)``).
+    """Return the crossings, seen along ``z``, of segment pairs ``(i, j)`` of ``p0 -> p1`` (``(n, 3)``).
 
     A segment holds its start and not its end (parameters in ``[0, 1)``), so a polyline's
     vertex is crossed once.

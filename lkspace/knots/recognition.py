@@ -20,14 +20,12 @@ KnotInfo's ``3_1`` is the right-handed (positive) trefoil.
 
 from __future__ import annotations
 
-import json
 import time
-from collections.abc import Callable, Iterator, Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
-import pandas as pd
 from numpy.typing import ArrayLike
 
 from ..errors import LkspaceError, TooLargeError, UsageError
@@ -36,10 +34,8 @@ from ..geometry.realization import realize
 from ..model.scaffold import Scaffold
 from ..progress import Step, task
 from ..strands.tracing import trace
-from ..workers import context, ignore_interrupts
 from .budget import INLINE_CROSSINGS, MAX_CROSSINGS, TIME_LIMIT, TimeLimitReached, run_in_time, twist_crossings
 from .diagram import project, project_generic
-from .keyed import KeyCache, disk_cache, keys_of, share_names
 from .naming import name_pd
 from .tables import knot_modules, tables
 
@@ -213,7 +209,7 @@ def identify(
         else:
             left = None if not time_limit else max(time_limit - (time.monotonic() - t0), 1e-3)
             try:
-                out = {**head, **_name_in_time(diagram.pd, diagram.n_components, left, step)}
+                out = {**head, **name_in_time(diagram.pd, diagram.n_components, left, step)}
                 status = status_of(out)
             except TimeLimitReached as exc:
                 status = f"unknown: time limit {time_limit:g} s reached (during {exc.stage})"
@@ -223,9 +219,7 @@ def identify(
     return Identification(**main, details=out, status=status)
 
 
-def _name_in_time(
-    pd: list[list[int]], n_components: int, time_limit: float | None, step: Step | None
-) -> dict[str, Any]:
+def name_in_time(pd: list[list[int]], n_components: int, time_limit: float | None, step: Step | None) -> dict[str, Any]:
     """Name the PD code ``pd`` within ``time_limit`` seconds (:func:`~lkspace.knots.budget.run_in_time`).
 
     Diagrams of at most :data:`~lkspace.knots.budget.INLINE_CROSSINGS` crossings are
@@ -238,188 +232,3 @@ def _name_in_time(
         return name_pd(pd, n_components, stage)
 
     return run_in_time(work, None if len(pd) <= INLINE_CROSSINGS else time_limit, step)
-
-
-_WORKER: dict[str, Any] = {}
-
-
-def _init_worker(time_limit: float | None = TIME_LIMIT, worker: bool = False) -> None:
-    if worker:
-        ignore_interrupts()
-    _WORKER.update(time_limit=time_limit)
-
-
-def _name_fields(item: tuple[list[list[int]], int]) -> dict[str, Any]:
-    """Name one design's PD code under the time limit: its row fields but ``components`` and ``linking_matrix``."""
-    pd, n_components = item
-    time_limit = _WORKER.get("time_limit", TIME_LIMIT)
-    if len(pd) > MAX_CROSSINGS:
-        status = f"unknown: diagram too large: {len(pd):,} crossings > {MAX_CROSSINGS:,}"
-        return {"knot_name": None, "status": status, "error": status.removeprefix("unknown: ")}
-    try:
-        named = _name_in_time(pd, n_components, time_limit or None, None)
-    except TimeLimitReached as exc:
-        status = f"unknown: time limit {time_limit:g} s reached (during {exc.stage})"
-        return {"knot_name": None, "status": status, "error": status.removeprefix("unknown: ")}
-    return {
-        "knot_name": named.get("name"),
-        "split": named.get("split"),
-        "mirror": named.get("mirror"),
-        "crossings": named.get("crossings"),
-        "jones": named.get("jones"),
-        "status": status_of(named),
-        "error": None,
-    }
-
-
-COLUMNS = ["knot_name", "components", "split", "mirror", "crossings", "jones", "linking_matrix", "status", "error"]
-
-BATCH = 20_000
-"""Designs keyed per call of the compiled kernel (bounds the memory of one call)."""
-
-
-def identify_batch(
-    scaffold: Scaffold,
-    labels_2d: ArrayLike,
-    processes: int = 1,
-    seed: int = 0,
-    progress: bool | None = None,
-    *,
-    time_limit: float | None = TIME_LIMIT,
-    isolate: bool = False,
-    cache: KeyCache | None = None,
-    label_values: ArrayLike | None = None,
-) -> pd.DataFrame:
-    """Identify many designs of one scaffold: a ``pandas.DataFrame``, one row per design.
-
-    Designs are keyed by invariants computed from their labels alone and named once per
-    key (:mod:`lkspace.knots.keyed`): no geometry is realized.
-
-    Parameters
-    ----------
-    scaffold : Scaffold
-        A finite scaffold (periodic ones are refused before any work).
-    labels_2d : (n_designs, n_edges) int
-    processes : int
-        Worker processes naming the designs named in full (``1``: in this process).
-        Workers are started by :func:`lkspace.workers.context` (never a fork of this
-        program).
-    seed : int
-        Seed of the generic projection.
-    progress : bool, optional
-        Count the designs on the progress display (:mod:`lkspace.progress`; default on).
-    time_limit : float or None
-        Seconds per design named in full, as for :func:`identify` (default 60); a
-        design that runs out gets the status ``unknown: time limit ...`` and the same
-        text in ``error``.
-    isolate : bool
-        Name in worker processes even when ``processes`` is 1.  For callers that run
-        in a thread other than the main one (a Dask task): SnapPy's PARI works only in a
-        process's main thread, and a thread would leave exteriors undecided.
-    cache : KeyCache, optional
-        Names found by earlier calls (default: :func:`~lkspace.knots.keyed.disk_cache`,
-        the keys trusted by earlier runs, kept under ``$LKSPACE_CACHE``).
-    label_values : array of int, optional
-        Twists the designs take (the label set); designs keep one diagram template
-        across calls when given.
-
-    Returns
-    -------
-    pandas.DataFrame
-        Columns ``knot_name`` (missing when unknown or split), ``components``, ``split``,
-        ``mirror``, ``crossings`` (simplified diagram), ``jones``, ``linking_matrix`` (JSON
-        text), ``status`` (as :attr:`Identification.status`) and ``error`` (missing unless
-        the design could not be identified: open strands, twists too large, time limit,
-        diagram too large), in the order of ``labels_2d``.
-
-    Examples
-    --------
-    >>> from lkspace import load
-    >>> identify_batch(load("dihedron:3"), [[1, 1, 1], [1, 0, 0]])["knot_name"].tolist()
-    ['3_1', '0_1']
-    """
-    check_identifiable(scaffold)
-    labels_2d = np.asarray(labels_2d, np.int64).reshape(-1, scaffold.n_edges)
-    cache = cache if cache is not None else disk_cache()
-    rows: list[dict[str, Any]] = []
-    with _Namer(processes, isolate, time_limit) as namer, task("identifying", total=len(labels_2d)) as step:
-        for start in range(0, len(labels_2d), BATCH):
-            chunk = labels_2d[start : start + BATCH]
-            rows.extend(_identify_chunk(scaffold, chunk, seed, cache, namer, label_values))
-            if progress is not False:
-                step.advance(len(chunk))
-    return pd.DataFrame(rows, columns=COLUMNS)
-
-
-def _identify_chunk(
-    scaffold: Scaffold,
-    labels_2d: np.ndarray,
-    seed: int,
-    cache: KeyCache,
-    namer: _Namer,
-    label_values: ArrayLike | None,
-) -> list[dict[str, Any]]:
-    """The rows of one chunk: refused designs first set apart, the rest keyed and named."""
-    rows: list[dict[str, Any]] = [dict.fromkeys(COLUMNS) for _ in range(len(labels_2d))]
-    refusal = _refusal(scaffold)
-    estimate = (np.abs(labels_2d) * np.maximum(scaffold.edge_degrees - 1, 0)).sum(axis=1)
-    fits = estimate <= MAX_CROSSINGS if refusal is None else np.zeros(len(labels_2d), bool)
-    for d in np.flatnonzero(~fits).tolist():
-        reason = refusal or (
-            f"{scaffold.name}: the twists make about {int(estimate[d]):,} crossings (sum of |t|(K-1) over the edges) "
-            f"> {MAX_CROSSINGS:,} (MAX_CROSSINGS): too large to identify; use smaller twists"
-        )
-        rows[d].update(status=f"unknown: {reason}", error=reason)
-    todo = np.flatnonzero(fits)
-    if not len(todo):
-        return rows
-    found = keys_of(scaffold, labels_2d[todo], seed, label_values)
-
-    def name_designs(indices: list[int]) -> list[dict[str, Any]]:
-        return namer.name([found.diagram(d)[:2] for d in indices])
-
-    for i, (d, fields) in enumerate(zip(todo.tolist(), share_names(found, cache, name_designs), strict=True)):
-        assert fields is not None
-        rows[d].update(fields, components=int(found.components[i]), linking_matrix=json.dumps(found.linking_matrix(i)))
-    return rows
-
-
-def _refusal(scaffold: Scaffold) -> str | None:
-    """Why no design of ``scaffold`` can be identified (its default null edge-sides open strands), or ``None``."""
-    if scaffold.nulls is not None and np.any(scaffold.nulls):
-        return f"{scaffold.name}: cannot identify a structure with open strands (null edge-sides)"
-    return None
-
-
-class _Namer:
-    """Names designs in full: in this process, or in worker processes started on first need."""
-
-    def __init__(self, processes: int, isolate: bool, time_limit: float | None) -> None:
-        self.processes, self.isolate, self.time_limit = processes, isolate, time_limit
-        self.pool: Any = None
-
-    def __enter__(self) -> _Namer:
-        _init_worker(self.time_limit)
-        return self
-
-    def name(self, items: list[tuple[list[list[int]], int]]) -> list[dict[str, Any]]:
-        """Row fields of each ``(pd, n_components)``, in order (the knot libraries load on first need)."""
-        if not items:
-            return []
-        knot_modules()
-        tables()  # loaded here (workers load their own)
-        if self.processes > 1 or self.isolate:
-            if self.pool is None:
-                self.pool = context().Pool(
-                    max(self.processes, 1), initializer=_init_worker, initargs=(self.time_limit, True)
-                )
-            chunk = max(1, min(16, len(items) // (4 * max(self.processes, 1)) or 1))
-            return list(self.pool.imap(_name_fields, items, chunksize=chunk))
-        return [_name_fields(item) for item in items]
-
-    def __exit__(self, kind: object, *exc: object) -> None:
-        if self.pool is not None:
-            if kind is not None:  # Ctrl-C or an error: stop the workers now, not after their queue
-                self.pool.terminate()
-            self.pool.close()
-            self.pool.join()

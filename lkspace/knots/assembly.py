@@ -1,0 +1,254 @@
+"""Assembling a design's PD code from a :class:`~lkspace.knots.labels_diagram.DiagramTemplate`.
+
+:func:`assemble_into` (compiled, called in the loops of :mod:`lkspace.knots.keyed`) walks
+the design's strands exactly as the trace does (:func:`lkspace.strands.walk.walk_strands`:
+from the smallest unvisited port, corner link then edge link), passes the pieces in the
+order and direction the walk meets them, keeps the crossings whose two pieces are both
+in the design, and numbers the edges of the PD code along the way.  Component order and
+orientation are the trace's, so the linking matrix reads as
+:func:`lkspace.knots.recognition.identify`'s.  PD convention as in
+:mod:`lkspace.knots.diagram` (KnotTheory, 1-based).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from ..errors import UsageError
+from ..kernels import helper, kernel
+from ..model.scaffold import Scaffold
+from .labels_diagram import DiagramTemplate, template
+
+WORK_ROWS = 7
+"""Rows of :func:`assemble_into`'s scratch array."""
+
+
+def work_array(tmpl: DiagramTemplate) -> np.ndarray:
+    """Scratch for :func:`assemble_into`: ``(WORK_ROWS, 2 n_crossings + 1) int64``, row 0 all -1."""
+    work = np.zeros((WORK_ROWS, 2 * tmpl.n_crossings + 1), np.int64)
+    work[0] = -1
+    return work
+
+
+@helper
+def assemble_into(
+    corner_partner: np.ndarray,
+    port_a: np.ndarray,
+    port_b: np.ndarray,
+    slot_edge: np.ndarray,
+    slot_index: np.ndarray,
+    edge_starts: np.ndarray,
+    degrees: np.ndarray,
+    slot_of_a: np.ndarray,
+    slot_of_b: np.ndarray,
+    label_values: np.ndarray,
+    pass_offsets: np.ndarray,
+    pass_crossing: np.ndarray,
+    pass_other: np.ndarray,
+    pass_over: np.ndarray,
+    crossing_sign: np.ndarray,
+    vidx: np.ndarray,
+    pd: np.ndarray,
+    signs: np.ndarray,
+    comps: np.ndarray,
+    work: np.ndarray,
+) -> tuple[int, int, int]:
+    """Assemble the PD code of the design whose edges take twists ``label_values[vidx]``.
+
+    Writes ``pd[:m]`` (``(m, 4)``, 1-based), ``signs[:m]`` and ``comps[:m]`` (over and
+    under component of each crossing, ``(m, 2)``); returns ``(m, n_components, n_free)``
+    (``n_free``: components without a crossing).  ``work`` is scratch from
+    :func:`work_array` (row 0 is all -1 again on return).
+    """
+    local, glob, seq_cross, seq_over, seq_comp, seq_into, seq_out = (
+        work[0],
+        work[1],
+        work[2],
+        work[3],
+        work[4],
+        work[5],
+        work[6],
+    )
+    n = len(port_a)
+    visited = np.zeros(2 * n, np.bool_)
+    m = 0  # crossings of the design so far
+    n_seq = 0  # passages so far
+    n_comp = 0
+    n_free = 0
+    for x0 in range(2 * n):
+        if visited[x0]:
+            continue
+        comp_first = n_seq
+        x = x0
+        while True:
+            y = corner_partner[x]  # the corner turn from x (turn s runs from port 2 s + 1)
+            visited[x] = True
+            visited[y] = True
+            piece = x // 2 if x % 2 == 1 else y // 2
+            forward = x % 2 == 1
+            for pass_round in range(2):
+                lo = pass_offsets[piece]
+                hi = pass_offsets[piece + 1]
+                for q in range(hi - lo):
+                    k = lo + q if forward else hi - 1 - q
+                    o = pass_other[k]
+                    if o >= n and vidx[slot_edge[(o - n) % n]] != (o - n) // n:
+                        continue  # the other piece is not in this design
+                    c = pass_crossing[k]
+                    if local[c] < 0:
+                        local[c] = m
+                        glob[m] = c
+                        signs[m] = crossing_sign[c]
+                        m += 1
+                    if not forward:
+                        signs[local[c]] = -signs[local[c]]
+                    seq_cross[n_seq] = local[c]
+                    seq_over[n_seq] = 1 if pass_over[k] else 0
+                    seq_comp[n_seq] = n_comp
+                    n_seq += 1
+                if pass_round == 1:
+                    break
+                # the edge link from y: its slot's piece passed forward from end a, or back from end b
+                j = slot_of_a[y]
+                if j >= 0:
+                    e = slot_edge[j]
+                    kk = degrees[e]
+                    y = port_b[edge_starts[e] + (slot_index[j] + label_values[vidx[e]] % kk) % kk]
+                    forward = True
+                else:
+                    mb = slot_of_b[y]
+                    e = slot_edge[mb]
+                    kk = degrees[e]
+                    j = edge_starts[e] + (slot_index[mb] - label_values[vidx[e]] % kk + kk) % kk
+                    y = port_a[j]
+                    forward = False
+                piece = n + vidx[e] * n + j
+            x = y
+            if x == x0:
+                break
+        count = n_seq - comp_first
+        if count == 0:
+            n_free += 1
+        for i in range(count):  # passage i enters by the component's edge i and leaves by edge i + 1
+            seq_into[comp_first + i] = comp_first + (i - 1 + count) % count + 1
+            seq_out[comp_first + i] = comp_first + i + 1
+        n_comp += 1
+    for i in range(n_seq):
+        c = seq_cross[i]
+        if seq_over[i] == 1:
+            comps[c, 0] = seq_comp[i]
+            if signs[c] > 0:  # X[under in, over out, under out, over in]
+                pd[c, 1] = seq_out[i]
+                pd[c, 3] = seq_into[i]
+            else:  # X[under in, over in, under out, over out]
+                pd[c, 1] = seq_into[i]
+                pd[c, 3] = seq_out[i]
+        else:
+            comps[c, 1] = seq_comp[i]
+            pd[c, 0] = seq_into[i]
+            pd[c, 2] = seq_out[i]
+    for i in range(m):
+        local[glob[i]] = -1
+    return m, n_comp, n_free
+
+
+@kernel
+def assemble_one(
+    corner_partner: np.ndarray,
+    port_a: np.ndarray,
+    port_b: np.ndarray,
+    slot_edge: np.ndarray,
+    slot_index: np.ndarray,
+    edge_starts: np.ndarray,
+    degrees: np.ndarray,
+    slot_of_a: np.ndarray,
+    slot_of_b: np.ndarray,
+    label_values: np.ndarray,
+    pass_offsets: np.ndarray,
+    pass_crossing: np.ndarray,
+    pass_other: np.ndarray,
+    pass_over: np.ndarray,
+    crossing_sign: np.ndarray,
+    vidx: np.ndarray,
+    work: np.ndarray,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, int, int]:
+    """One design's ``(pd, signs, comps, n_components, n_free)`` (:func:`assemble_into`)."""
+    size = len(crossing_sign)
+    pd = np.zeros((size, 4), np.int64)
+    signs = np.zeros(size, np.int64)
+    comps = np.zeros((size, 2), np.int64)
+    m, n_comp, n_free = assemble_into(
+        corner_partner,
+        port_a,
+        port_b,
+        slot_edge,
+        slot_index,
+        edge_starts,
+        degrees,
+        slot_of_a,
+        slot_of_b,
+        label_values,
+        pass_offsets,
+        pass_crossing,
+        pass_other,
+        pass_over,
+        crossing_sign,
+        vidx,
+        pd,
+        signs,
+        comps,
+        work,
+    )
+    return pd[:m], signs[:m], comps[:m], n_comp, n_free
+
+
+@dataclass(frozen=True, eq=False)
+class LabelDiagram:
+    """A design's diagram assembled from its labels.
+
+    Attributes
+    ----------
+    pd : (n_crossings, 4) int64
+        PD code, 1-based (KnotTheory convention).
+    signs : (n_crossings,) int64
+    crossing_components : (n_crossings, 2) int64
+        Over and under component (the trace's strand order).
+    n_components, n_free : int
+        Components, and those without any crossing.
+    """
+
+    pd: np.ndarray
+    signs: np.ndarray
+    crossing_components: np.ndarray
+    n_components: int
+    n_free: int
+
+    def linking_matrix(self) -> np.ndarray:
+        """(n_components, n_components) int64: linking numbers, zero diagonal."""
+        out = np.zeros((self.n_components, self.n_components), np.int64)
+        a, b = self.crossing_components[:, 0], self.crossing_components[:, 1]
+        mixed = a != b
+        np.add.at(out, (a[mixed], b[mixed]), self.signs[mixed])
+        np.add.at(out, (b[mixed], a[mixed]), self.signs[mixed])
+        return out // 2
+
+
+def assemble_pd(scaffold: Scaffold, labels: ArrayLike, seed: int = 0) -> LabelDiagram:
+    """Return the diagram of ``scaffold`` under twist ``labels`` (no nulls), from its :func:`template`.
+
+    Examples
+    --------
+    >>> from lkspace import load
+    >>> d = assemble_pd(load("dihedron:3"), [1, 1, 1])
+    >>> d.n_components, int(abs(d.signs.sum())) >= 3
+    (1, True)
+    """
+    lab = np.asarray(labels, np.int64).reshape(-1)
+    if len(lab) != scaffold.n_edges:
+        raise UsageError(f"labels: expected {scaffold.n_edges} labels, got {len(lab)}", parameter="labels")
+    tmpl = template(scaffold, lab, seed)
+    pd, signs, comps, n_comp, n_free = assemble_one(*tmpl.arrays(), tmpl.value_index(lab), work_array(tmpl))
+    return LabelDiagram(pd, signs, comps, int(n_comp), int(n_free))

@@ -1,0 +1,237 @@
+"""Sharing names by key: the trust rule, the second level, and the cache kept on disk.
+
+See :mod:`lkspace.knots.keyed` for the keys and what sharing promises.
+"""
+
+from __future__ import annotations
+
+import functools
+import json
+import os
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from fractions import Fraction
+from typing import Any
+
+import numpy as np
+
+from .keyed import KEY_VERSION, DesignKeys
+from .tables import HOMFLY_MAX_CROSSINGS
+
+
+@dataclass
+class KeyCache:
+    """Names found so far by key, shared by the batches of one run (and kept on disk).
+
+    Attributes
+    ----------
+    named : dict
+        Key -> the row fields (``knot_name``, ``split``, ``mirror``, ``crossings``,
+        ``jones``, ``status``, ``error``) its designs share.  A first-level key is
+        ``(hash, hash)``; a second-level one adds the HOMFLY-PT polynomial and crossings.
+    own : set
+        Keys whose designs are not named alike (module docstring).
+    full : int
+        Designs named in full so far.
+    path : str or None
+        File the trusted keys are appended to and read from (:func:`disk_cache`); keys
+        depend on invariants only, so they hold for every scaffold.
+    """
+
+    named: dict[tuple[Any, ...], dict[str, Any]] = field(default_factory=dict)
+    own: set[tuple[Any, ...]] = field(default_factory=set)
+    full: int = 0
+    path: str | None = None
+
+    def remember(self, key: tuple[Any, ...], fields: dict[str, Any] | None) -> None:
+        """Trust ``key`` (its designs take ``fields``) or, with ``None``, not; appended to :attr:`path`."""
+        if fields is None:
+            self.own.add(key)
+        else:
+            self.named[key] = fields
+        if self.path is None:
+            return
+        line = json.dumps({"key": list(key), "fields": fields}) + "\n"
+        try:
+            fd = os.open(self.path, os.O_WRONLY | os.O_APPEND | os.O_CREAT, 0o644)
+            try:
+                os.write(fd, line.encode())
+            finally:
+                os.close(fd)
+        except OSError:
+            self.path = None  # a read-only cache folder: keep the names in memory only
+
+
+def disk_cache() -> KeyCache:
+    """Return a :class:`KeyCache` holding the keys judged by earlier runs, appending new ones.
+
+    The file is ``names-by-key-<KEY_VERSION>-tables-<database_knotinfo version>.jsonl`` under ``$LKSPACE_CACHE``
+    (default ``~/.cache/lkspace``); a torn last line (an interrupted run) is skipped.
+    """
+    from importlib.metadata import PackageNotFoundError, version
+
+    try:
+        tables_version = version("database_knotinfo")
+    except PackageNotFoundError:
+        tables_version = "none"
+    root = os.environ.get("LKSPACE_CACHE") or os.path.join(os.path.expanduser("~"), ".cache", "lkspace")
+    path = os.path.join(root, f"names-by-key-{KEY_VERSION}-tables-{tables_version}.jsonl")
+    cache = KeyCache(path=path)
+    try:
+        os.makedirs(root, exist_ok=True)
+        with open(path, encoding="utf-8") as fh:
+            for line in fh:
+                try:
+                    item = json.loads(line)
+                    key = tuple(item["key"])
+                    if item["fields"] is None:
+                        cache.own.add(key)
+                    else:
+                        cache.named[key] = item["fields"]
+                except (json.JSONDecodeError, KeyError, TypeError):
+                    continue
+    except OSError:
+        pass
+    return cache
+
+
+def candidates(
+    jones: tuple[int, list[int]], n_components: int, homfly: str | None = None, crossings: int | None = None
+) -> set[tuple[str, bool]]:
+    """Table entries ``(name, mirror)`` with this Jones polynomial.
+
+    With ``homfly`` also this HOMFLY-PT polynomial, and with ``crossings`` (of a diagram of
+    the link) at most that crossing number.
+    """
+    from .tables import JONES_POINT, tables
+
+    lowest, coeffs = jones
+    x = Fraction(JONES_POINT)
+    value = sum((c * x ** (lowest + i) for i, c in enumerate(coeffs)), Fraction(0))
+    mirror_value = sum((c * x ** -(lowest + i) for i, c in enumerate(coeffs)), Fraction(0))
+    index = tables()
+    found = set()
+    for mirror, v in ((False, value), (True, mirror_value)):
+        for e in index.get(v, []):
+            if e["components"] != n_components or (crossings is not None and e["crossings"] > crossings):
+                continue
+            if homfly is None or _table_homfly(e["pd"], mirror) == homfly:
+                found.add((str(e["name"]), mirror))
+    return found
+
+
+@functools.lru_cache(maxsize=4096)
+def _table_homfly(pd_text: str, mirror: bool) -> str | None:
+    """HOMFLY-PT polynomial (regina) of a table entry's PD code, or of its mirror image."""
+    from .tables import knot_modules
+
+    if not pd_text:
+        return None
+    regina = knot_modules()[1]
+    link = regina.Link.fromPD(json.loads(pd_text))
+    if mirror:
+        link.changeAll()
+    return str(link.homfly())
+
+
+def trusted(named: dict[str, Any], found: set[tuple[str, bool]]) -> bool:
+    """Whether every design with a key may take ``named`` (its first design's fields); ``found``: its :func:`candidates`."""
+    status = str(named.get("status"))
+    if status.startswith(("unknown: time limit", "unknown: diagram too large")) or named.get("error"):
+        return False
+    if not found:
+        return True  # beyond the tables: the key is all there is to go by (module docstring)
+    names = {name for name, _ in found}
+    mirrors = {mirror for _, mirror in found}
+    return names == {named.get("knot_name")} and (len(mirrors) == 1 or named.get("mirror") is None)
+
+
+def homfly_of(pd: list[list[int]]) -> tuple[str, int] | None:
+    """Return the HOMFLY-PT polynomial (regina) of a PD code and the crossings left by regina's simplification.
+
+    ``None`` when more than :data:`~lkspace.knots.tables.HOMFLY_MAX_CROSSINGS` are left.
+    """
+    from .tables import knot_modules
+
+    if not pd:
+        return "1", 0
+    link = knot_modules()[1].Link.fromPD(pd)
+    link.simplify()
+    if link.size() > HOMFLY_MAX_CROSSINGS:
+        return None
+    return str(link.homfly()), int(link.size())
+
+
+def share_names(
+    found: DesignKeys,
+    cache: KeyCache,
+    name_designs: Callable[[list[int]], list[dict[str, Any]]],
+) -> list[dict[str, Any] | None]:
+    """Row fields of every design of ``found``, shared by key where the key is trusted.
+
+    First level: the compiled key.  Designs of an untrusted key get a second-level key:
+    the key, the HOMFLY-PT polynomial of their own diagram and the crossings left by
+    simplifying it, trusted when these separate the table entries (a table entry with
+    more crossings than the design's simplified diagram is not the design's type).  ``name_designs(indices)`` names designs in
+    full (in worker processes, under the time limit): once per new key, then each design
+    of a key trusted at neither level.
+    """
+    first = [(int(a), int(b)) if ok else None for (a, b), ok in zip(found.keys.tolist(), found.keyed, strict=True)]
+    rows = _share(found, first, cache, name_designs, second=False)
+    left = [d for d, row in enumerate(rows) if row is None]
+    diagrams = {d: found.diagram(d) for d in left}
+    second: list[tuple[Any, ...] | None] = [None] * len(rows)
+    for d in left:
+        key = first[d]
+        invariants = homfly_of(diagrams[d][0]) if key is not None else None
+        if key is not None and invariants is not None:
+            second[d] = (*key, *invariants)
+    for d, row in enumerate(_share(found, second, cache, name_designs, second=True)):
+        if rows[d] is None:
+            rows[d] = row
+    own = [d for d in left if rows[d] is None]
+    for d, named in zip(own, name_designs(own), strict=True):
+        cache.full += 1
+        rows[d] = named
+    return rows
+
+
+def _share(
+    found: DesignKeys,
+    keys: list[tuple[Any, ...] | None],
+    cache: KeyCache,
+    name_designs: Callable[[list[int]], list[dict[str, Any]]],
+    second: bool,
+) -> list[dict[str, Any] | None]:
+    """One level of :func:`share_names`: name each new key's first design, share the trusted keys' names."""
+    rows: list[dict[str, Any] | None] = [None] * len(keys)
+    firsts: dict[tuple[Any, ...], int] = {}
+    for d, k in enumerate(keys):
+        if k is not None and k not in cache.named and k not in cache.own and k not in firsts:
+            firsts[k] = d
+    for (k, d), named in zip(firsts.items(), name_designs(list(firsts.values())), strict=True):
+        cache.full += 1
+        rows[d] = named
+        pd, n_comp, signs = found.diagram(d)
+        jones = jones_of(pd, signs, n_comp)
+        if jones is not None and trusted(named, candidates(jones, n_comp, *(k[2:4] if second else ()))):
+            cache.remember(k, named)
+        elif jones is not None:
+            cache.remember(k, None)
+        else:
+            cache.own.add(k)
+    for d, k in enumerate(keys):
+        if rows[d] is None and k is not None and k in cache.named:
+            rows[d] = cache.named[k]
+    return rows
+
+
+def jones_of(pd: list[list[int]], signs: np.ndarray, n_components: int) -> tuple[int, list[int]] | None:
+    """Return the Jones polynomial of a PD code (lowest exponent of ``x = sqrt(t)``, coefficients); ``None`` if too wide."""
+    from .jones import jones
+
+    try:
+        lowest, coeffs = jones(pd, signs, n_components)
+    except ValueError:
+        return None
+    return int(lowest), list(coeffs)
