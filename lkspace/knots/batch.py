@@ -53,6 +53,8 @@ def _name_fields(item: tuple[list[list[int]], int]) -> dict[str, Any]:
         "jones": named.get("jones"),
         "status": status_of(named),
         "error": None,
+        "pieces": named.get("pieces"),
+        "table": named.get("table"),
     }
 
 
@@ -126,24 +128,27 @@ def identify_batch(
     labels_2d = np.asarray(labels_2d, np.int64).reshape(-1, scaffold.n_edges)
     cache = cache if cache is not None else KeyCache()
     rows: list[dict[str, Any]] = []
-    with _Namer(processes, isolate, time_limit) as namer, task("identifying", total=len(labels_2d)) as step:
+    with Namer(processes, isolate, time_limit) as namer, task("identifying", total=len(labels_2d)) as step:
         for start in range(0, len(labels_2d), BATCH):
             chunk = labels_2d[start : start + BATCH]
-            rows.extend(_identify_chunk(scaffold, chunk, seed, cache, namer, label_values))
+            rows.extend(identify_chunk(scaffold, chunk, seed, cache, namer, label_values))
             if progress is not False:
                 step.advance(len(chunk))
     return pd.DataFrame(rows, columns=COLUMNS)
 
 
-def _identify_chunk(
+def identify_chunk(
     scaffold: Scaffold,
     labels_2d: np.ndarray,
     seed: int,
     cache: KeyCache,
-    namer: _Namer,
+    namer: Namer,
     label_values: ArrayLike | None,
 ) -> list[dict[str, Any]]:
-    """Return the rows of one chunk: refused designs first set apart, the rest keyed and named."""
+    """Return the rows of one chunk: refused designs first set apart, the rest keyed and named.
+
+    A row holds :data:`COLUMNS` and, where the design was named, ``pieces`` and ``table``.
+    """
     rows: list[dict[str, Any]] = [dict.fromkeys(COLUMNS) for _ in range(len(labels_2d))]
     refusal = _refusal(scaffold)
     estimate = (np.abs(labels_2d) * np.maximum(scaffold.edge_degrees - 1, 0)).sum(axis=1)
@@ -175,14 +180,14 @@ def _refusal(scaffold: Scaffold) -> str | None:
     return None
 
 
-class _Namer:
+class Namer:
     """Names designs in full: in this process, or in worker processes started on first need."""
 
     def __init__(self, processes: int, isolate: bool, time_limit: float | None) -> None:
         self.processes, self.isolate, self.time_limit = processes, isolate, time_limit
         self.pool: Any = None
 
-    def __enter__(self) -> _Namer:
+    def __enter__(self) -> Namer:
         _init_worker(self.time_limit)
         return self
 

@@ -39,8 +39,8 @@ from .budget import MAX_CROSSINGS
 from .jones import jones_buffer_size, jones_into
 from .labels_diagram import DiagramTemplate, template
 
-KEY_VERSION = "k1"
-"""Version of the key's definition (hashes, invariants, trust rule): part of the disk cache's name.
+KEY_VERSION = "k2"
+"""Version of the key's definition (hashes, invariants, trust rule, fields kept): part of the disk cache's name.
 
 Raise it whenever any of them changes, so that no cache written before is read."""
 

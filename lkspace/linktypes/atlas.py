@@ -1,8 +1,10 @@
 """The atlas of a design space: every knot and link type it realizes (``lkspace atlas``).
 
 Every design (one per orbit of the rotation group: rotations keep the type and the
-chirality) is identified (:func:`lkspace.knots.recognition.identify`) in ``processes``
-worker processes, in the order of :class:`~lkspace.linktypes.candidates.OrderedWalk`.
+chirality) is identified by invariant key (:func:`lkspace.knots.batch.identify_chunk`:
+diagrams from labels, one full naming per distinct key, in ``processes`` worker
+processes; the keys judged are kept on disk, :func:`lkspace.knots.key_names.disk_cache`),
+in the order of :class:`~lkspace.linktypes.candidates.OrderedWalk`.
 Designs are grouped by **type**: the name (``3_1``; both mirror images together, counted
 apart in ``chirality``), ``split: 0_1 + 3_1`` for a split link with named pieces, or
 ``unknown (N components)``.  Per type: designs, assignments (the orbit sizes summed),
@@ -31,11 +33,9 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import CatalogError, LkspaceError, TooLargeError
-from ..knots.recognition import identify
+from ..errors import CatalogError, TooLargeError
 from ..model.scaffold import Scaffold
 from ..progress import task
-from ..workers import context, ignore_interrupts
 from .candidates import OrderedWalk
 from .examples import Examples
 from .screen import type_labels
@@ -56,19 +56,16 @@ def type_key(ident: dict[str, Any]) -> str:
     return f"unknown ({ident.get('components')} components)"
 
 
-def record_of(scaffold: Scaffold, labels: np.ndarray, seed: int, time_limit: float | None) -> dict[str, Any]:
-    """Identify one design; the few fields the atlas keeps."""
-    try:
-        ident = identify(scaffold, labels, seed=seed, time_limit=time_limit).to_dict()
-    except LkspaceError as exc:
-        return {"type": "unknown (not identified)", "status": f"unknown: {exc}", "components": None}
+def record_of(row: dict[str, Any]) -> dict[str, Any]:
+    """Return the few fields the atlas keeps of a row of :func:`~lkspace.knots.batch.identify_chunk`."""
+    ident = {"name": row.get("knot_name"), **row}
     return {
         "type": type_key(ident),
-        "components": ident["components"],
-        "table": ident.get("table"),
-        "mirror": ident.get("mirror"),
-        "crossings": ident.get("crossings"),
-        "status": ident["status"],
+        "components": row.get("components"),
+        "table": row.get("table"),
+        "mirror": row.get("mirror"),
+        "crossings": row.get("crossings"),
+        "status": row.get("status"),
     }
 
 
@@ -142,33 +139,6 @@ def crossing_number(name: str) -> int:
         m = re.match(r"m?[KL]?(\d+)", part)
         total += int(m[1]) if m else 0
     return total
-
-
-@dataclass(frozen=True, eq=False)
-class AtlasJob:
-    """What :func:`_record_row` needs in a (worker) process: the scaffold, identify's seed and time limit."""
-
-    scaffold: Scaffold
-    seed: int
-    time_limit: float | None
-
-
-_JOB: AtlasJob | None = None
-"""This process's job, set by :func:`_init` (or by :func:`atlas` for its own process)."""
-
-
-def _init(scaffold: Scaffold, seed: int, time_limit: float | None, worker: bool = True) -> None:
-    global _JOB
-    if worker:
-        ignore_interrupts()
-    _JOB = AtlasJob(scaffold, seed, time_limit)
-
-
-def _record_row(labels: np.ndarray) -> dict[str, Any]:
-    job = _JOB
-    if job is None:
-        raise RuntimeError("_record_row before _init")  # a bug in lkspace
-    return record_of(job.scaffold, np.asarray(labels, np.int64), job.seed, job.time_limit)
 
 
 def read_cache(path: str, header: dict[str, Any]) -> dict[tuple[int, ...], dict[str, Any]]:
@@ -306,12 +276,13 @@ def _records(
     (:func:`~lkspace.linktypes.screen.type_labels`).  Past ``deadline`` (``time.monotonic()``)
     nothing more is identified: the rest is ``"skipped"`` (still counted).
     """
-    late = False
-    pool = context().Pool(processes, _init, (scaffold, seed, time_limit)) if processes > 1 else None
-    _init(scaffold, seed, time_limit, worker=False)
+    from ..knots.batch import BATCH, Namer, identify_chunk
+    from ..knots.key_names import disk_cache
+
+    cache = disk_cache()
     known: dict[tuple[int, ...], dict[str, Any]] = {}
     walk = OrderedWalk(scaffold, label_set, None, no_zero=no_zero, deadline=deadline, tolerance=tolerance)
-    try:
+    with Namer(processes, False, time_limit) as namer:
         for batch in walk:
             keys = [tuple(r) for r in batch.labels.tolist()]
             zkeys = [tuple(r) for r in type_labels(scaffold, batch.labels).tolist()]
@@ -322,25 +293,28 @@ def _records(
                 dict.fromkeys(z for k, z in zip(keys, zkeys, strict=True) if k not in cached and z not in known)
             )
             rows = np.array(todo, np.int64).reshape(len(todo), scaffold.n_edges)
-            fresh = pool.imap(_record_row, rows, chunksize=8) if pool is not None else map(_record_row, rows)
+            fresh: list[dict[str, Any]] = []
+            for start in range(0, len(rows), BATCH):  # past the deadline, the rest of the batch is skipped
+                if deadline is not None and time.monotonic() > deadline:
+                    break
+                chunk = identify_chunk(scaffold, rows[start : start + BATCH], seed, cache, namer, label_set)
+                fresh.extend(record_of(row) for row in chunk)
+            made = iter(fresh)
             for i, (k, z) in enumerate(zip(keys, zkeys, strict=True)):
                 if k in cached:
                     rec = {**cached[k], "source": "cache"}
                 elif z in known:
                     rec = {**known[z], "source": "reused"}
-                elif late or (deadline is not None and time.monotonic() > deadline):
-                    late = True  # from now on no identification: results keep their order
-                    rec = {"source": "skipped"}
                 else:  # the first design of its family: the next identification, in order
-                    known[z] = next(fresh)
-                    rec = {**known[z], "source": "identified"}
+                    nxt = next(made, None)
+                    if nxt is None:
+                        rec = {"source": "skipped"}
+                    else:
+                        known[z] = nxt
+                        rec = {**nxt, "source": "identified"}
                 yield batch.labels[i].astype(np.int64), int(batch.orbit_sizes[i]), rec
-        if not walk.complete:
-            yield np.zeros(0, np.int64), 0, {"source": "unwalked"}
-    finally:
-        if pool is not None:
-            pool.terminate()
-            pool.join()
+    if not walk.complete:
+        yield np.zeros(0, np.int64), 0, {"source": "unwalked"}
 
 
 def atlas_of_catalog(path: str) -> dict[str, Any]:
