@@ -28,6 +28,7 @@ octahedron (-1..1) were compared row by row with the geometric path and agree
 from __future__ import annotations
 
 from dataclasses import dataclass
+from fractions import Fraction
 from typing import Any
 
 import numpy as np
@@ -36,10 +37,11 @@ from ..kernels import helper, kernel
 from ..model.scaffold import Scaffold
 from .assembly import assemble_into, assemble_one, work_array
 from .budget import MAX_CROSSINGS
+from .tables import JONES_POINT
 from .jones import jones_buffer_size, jones_into
 from .labels_diagram import DiagramTemplate, template
 
-KEY_VERSION = "k2"
+KEY_VERSION = "k3"
 """Version of the key's definition (hashes, invariants, trust rule, fields kept): part of the disk cache's name.
 
 Raise it whenever any of them changes, so that no cache written before is read."""
@@ -78,8 +80,12 @@ def design_keys(
     vidx_2d: np.ndarray,
     work: np.ndarray,
     max_crossings: int,
-) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    point: int,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Keys of many designs, ``vidx_2d`` ``(n_designs, n_edges)`` indices into ``label_values``.
+
+    ``point`` is ``x = sqrt(t)`` modulo :data:`PRIME` at which the Jones polynomial is
+    also evaluated (for filters comparing it with a target's, :func:`jones_residue`).
 
     Returns
     -------
@@ -93,6 +99,10 @@ def design_keys(
         or a diagram too wide for the compiled state sum).
     link_offsets : (n_designs + 1,) int64, link_values : (sum of components**2,) int64
         Each design's linking matrix, row by row (the trace's component order).
+    free : (n_designs,) int64
+        Components without any crossing in the diagram.
+    jones_at : (n_designs,) int64
+        The Jones polynomial at ``point``, modulo :data:`PRIME` (where ``keyed``).
     """
     n_designs = vidx_2d.shape[0]
     size = len(crossing_sign)
@@ -106,6 +116,9 @@ def design_keys(
     keyed = np.zeros(n_designs, np.bool_)
     link_offsets = np.zeros(n_designs + 1, np.int64)
     link_values = np.zeros(16 * n_designs, np.int64)
+    free = np.zeros(n_designs, np.int64)
+    jones_at = np.zeros(n_designs, np.int64)
+    inverse = _power(point, PRIME - 2)
     for d in range(n_designs):
         m, n_comp, n_free = assemble_into(
             corner_partner,
@@ -131,6 +144,7 @@ def design_keys(
         )
         crossings[d] = m
         components[d] = n_comp
+        free[d] = n_free
         base = link_offsets[d]
         need = base + n_comp * n_comp
         if need > len(link_values):
@@ -175,7 +189,41 @@ def design_keys(
         keys[d, 0] = h1
         keys[d, 1] = h2
         keyed[d] = True
-    return keys, crossings, components, keyed, link_offsets, link_values[: link_offsets[n_designs]]
+        value = 0
+        step = _power(point if lowest >= 0 else inverse, abs(lowest))
+        for i in range(length):
+            value = (value + (poly[i] % PRIME) * step) % PRIME
+            step = step * point % PRIME
+        jones_at[d] = value
+    return keys, crossings, components, keyed, link_offsets, link_values[: link_offsets[n_designs]], free, jones_at
+
+
+PRIME = 2_147_483_647
+"""The prime (2**31 - 1) modulo which the Jones polynomial is evaluated: products fit in int64."""
+
+
+@helper
+def _power(base: int, exponent: int) -> int:
+    """``base ** exponent`` modulo :data:`PRIME` (``exponent >= 0``)."""
+    out = 1
+    b = base % PRIME
+    e = exponent
+    while e > 0:
+        if e & 1:
+            out = out * b % PRIME
+        b = b * b % PRIME
+        e >>= 1
+    return out
+
+
+def jones_residue(value: Fraction) -> int:
+    """A rational Jones value (at ``sqrt t = 2/3``, :data:`~lkspace.knots.tables.JONES_POINT`) modulo :data:`PRIME`."""
+    return value.numerator % PRIME * pow(value.denominator % PRIME, PRIME - 2, PRIME) % PRIME
+
+
+def jones_point() -> int:
+    """:data:`~lkspace.knots.tables.JONES_POINT` modulo :data:`PRIME`."""
+    return jones_residue(Fraction(JONES_POINT))
 
 
 @dataclass(frozen=True, eq=False)
@@ -190,6 +238,8 @@ class DesignKeys:
     keyed: np.ndarray
     link_offsets: np.ndarray
     link_values: np.ndarray
+    free: np.ndarray
+    jones_at: np.ndarray
 
     def linking_matrix(self, d: int) -> list[list[int]]:
         """Design ``d``'s linking matrix."""
@@ -207,5 +257,5 @@ def keys_of(scaffold: Scaffold, labels_2d: np.ndarray, seed: int = 0, label_valu
     values = np.unique(labels_2d) if label_values is None else np.union1d(label_values, np.unique(labels_2d))
     tmpl = template(scaffold, values, seed)
     vidx = tmpl.value_index(labels_2d)
-    out = design_keys(*tmpl.arrays(), np.ascontiguousarray(vidx), work_array(tmpl), MAX_CROSSINGS)
+    out = design_keys(*tmpl.arrays(), np.ascontiguousarray(vidx), work_array(tmpl), MAX_CROSSINGS, jones_point())
     return DesignKeys(tmpl, vidx, *out)

@@ -17,7 +17,7 @@ A linking-matrix goal needs only the first filter: its verdict is exact.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -28,9 +28,12 @@ from ..knots.naming import one_based
 from ..knots.recognition import identify
 from ..knots.tables import JONES_POINT, knot_modules, laurent_value
 from ..model.scaffold import Scaffold
-from ..workers import ignore_interrupts
 from .linking import matches
 from .names import LinkType, judge
+
+if TYPE_CHECKING:
+    from ..knots.batch import Namer
+    from ..knots.key_names import KeyCache
 
 SIMPLIFY_MAX_CROSSINGS = 400
 """Projections with more crossings skip the simplify-and-Jones filter (identification has time budgets)."""
@@ -134,33 +137,53 @@ def screen(
     return {**out, **{k: ident.get(k) for k in keep}, "verdict": verdict, "reason": "identified"}
 
 
-@dataclass(frozen=True, eq=False)
-class ScreenJob:
-    """What :func:`screen_row` needs in a (worker) process: the scaffold, the goal, identify's seed and time limit."""
+def screen_batch(
+    scaffold: Scaffold,
+    labels: np.ndarray,
+    goal: Goal,
+    seed: int,
+    cache: KeyCache,
+    namer: Namer,
+    label_set: np.ndarray,
+) -> list[dict[str, Any]]:
+    """Judge a batch of designs (``(n, n_edges)``, closed strands) against ``goal`` from their labels alone.
 
-    scaffold: Scaffold
-    goal: Goal
-    seed: int
-    time_limit: float | None
+    The filters of :func:`screen` on each design's diagram from labels
+    (:mod:`lkspace.knots.keyed`; the Jones polynomial compared modulo a prime, so a
+    difference is a proof), then the survivors identified by key
+    (:func:`lkspace.knots.batch.identify_chunk`) and judged.  Returns one verdict per row,
+    as :func:`screen`.
+    """
+    from ..knots.batch import identify_chunk
+    from ..knots.keyed import jones_residue, keys_of
 
-
-_JOB: ScreenJob | None = None
-"""This process's job, set by :func:`init_worker`."""
-
-
-def init_worker(scaffold: Scaffold, goal: Goal, seed: int, time_limit: float | None, worker: bool = True) -> None:
-    """Keep what :func:`screen_row` needs in this (worker) process."""
-    global _JOB
-    if worker:
-        ignore_interrupts()
-        if goal.target is not None:
-            knot_modules()
-    _JOB = ScreenJob(scaffold, goal, seed, time_limit)
-
-
-def screen_row(labels: np.ndarray) -> dict[str, Any]:
-    """:func:`screen` with the worker's scaffold and goal (for ``Pool.imap``; after :func:`init_worker`)."""
-    job = _JOB
-    if job is None:
-        raise RuntimeError("screen_row before init_worker")  # a bug in lkspace
-    return screen(job.scaffold, np.asarray(labels, np.int64), job.goal, job.seed, job.time_limit)
+    found = keys_of(scaffold, labels, seed, label_set)
+    target = goal.target
+    residues = {jones_residue(v) for v in target.fingerprints} if target is not None else set()
+    verdicts: list[dict[str, Any]] = []
+    survivors: list[int] = []
+    for d in range(len(labels)):
+        lm = np.asarray(found.linking_matrix(d), np.int64)
+        out: dict[str, Any] = {"linking_matrix": lm.tolist()}
+        if goal.linking is not None and not matches(lm, goal.linking, goal.signed):
+            out.update(verdict="other", reason="linking matrix")
+        elif target is None:
+            out.update(verdict="match", reason="linking matrix")
+        elif target.linking is not None and not matches(lm, target.linking):
+            out.update(verdict="other", reason="linking numbers")
+        elif found.free[d] and goal.components > 1:
+            out.update(verdict="other", reason="split")
+        elif found.crossings[d] < target.crossings:
+            out.update(verdict="other", reason="crossings")
+        elif found.keyed[d] and int(found.jones_at[d]) not in residues:
+            out.update(verdict="other", reason="Jones polynomial")
+        else:
+            survivors.append(d)
+        verdicts.append(out)
+    if survivors and target is not None:
+        rows = identify_chunk(scaffold, labels[survivors], seed, cache, namer, label_set)
+        for d, row in zip(survivors, rows, strict=True):
+            ident = {**row, "name": row.get("knot_name")}
+            keep = ("name", "chiral_name", "mirror", "table", "status", "crossings")
+            verdicts[d].update({k: ident.get(k) for k in keep}, verdict=judge(target, ident), reason="identified")
+    return verdicts

@@ -1,10 +1,12 @@
 """Search a design space for a knot or link type or a linking matrix: ``lkspace solve --type/--linking-matrix``.
 
 Designs with the right number of components come simplest first
-(:class:`~lkspace.linktypes.candidates.OrderedWalk`), are screened by cheap filters and, if
-they survive, identified (:func:`~lkspace.linktypes.screen.screen`), in ``processes``
-worker processes.  Every match is **re-identified** in this process with another
-projection before it is reported.
+(:class:`~lkspace.linktypes.candidates.OrderedWalk`), a batch at a time; each batch is
+screened from its labels alone by cheap filters and, where they survive, identified by
+invariant key (:func:`~lkspace.linktypes.screen.screen_batch`; names in ``processes``
+worker processes).  Every match is **re-identified** on the geometric path (the design
+realized and projected along another direction, :func:`~lkspace.linktypes.screen.screen`)
+before it is reported.
 
 Status: ``found`` (``count`` designs, or fewer when the space ran out), ``exhausted``
 (the whole space walked and every design proved to be something else: the type is
@@ -25,9 +27,8 @@ from ..errors import SolveVerificationError
 from ..model.scaffold import Scaffold
 from ..progress import task
 from ..strands.tracing import trace
-from ..workers import context
 from .candidates import OrderedWalk
-from .screen import Goal, init_worker, screen, screen_row
+from .screen import Goal, screen, screen_batch
 
 TargetStatus: TypeAlias = Literal["found", "exhausted", "unknown"]
 """A target search's answer: designs found, none in the space (proved), or not decided."""
@@ -120,7 +121,7 @@ def solve_target(
     timed_out = False
     with (
         task(f"searching {scaffold.name} for {goal.label}") as step,
-        _screener(scaffold, goal, seed, identify_time_limit, processes) as run,
+        _screener(scaffold, goal, seed, identify_time_limit, processes, label_set) as run,
     ):
         for batch in walk:
             for labels, orbit, verdict in run(batch.labels, batch.orbit_sizes):
@@ -177,53 +178,31 @@ def _solution(labels: np.ndarray, orbit: int, goal: Goal, ident: dict[str, Any])
 
 
 class _screener:
-    """A context giving ``run(labels, orbits)``: ``(labels, orbit, verdict)`` per row, in order."""
+    """A context giving ``run(labels, orbits)``: ``(labels, orbit, verdict)`` per row, in order.
 
-    def __init__(self, scaffold: Scaffold, goal: Goal, seed: int, time_limit: float | None, processes: int) -> None:
-        self.args = (scaffold, goal, seed, time_limit)
-        self.processes = processes
-        self.pool: Any = None
-        self.seen: dict[bytes, dict[str, Any]] = {}
-        self.sent: set[bytes] = set()
+    A batch is screened from its labels alone (:func:`~lkspace.linktypes.screen.screen_batch`);
+    the keys judged are shared with every run (:func:`~lkspace.knots.key_names.disk_cache`).
+    """
+
+    def __init__(
+        self, scaffold: Scaffold, goal: Goal, seed: int, time_limit: float | None, processes: int, label_set: np.ndarray
+    ) -> None:
+        from ..knots.batch import Namer
+        from ..knots.key_names import disk_cache
+
+        self.scaffold, self.goal, self.seed, self.label_set = scaffold, goal, seed, label_set
+        self.namer = Namer(processes, False, time_limit)
+        self.cache = disk_cache()
 
     def __enter__(self) -> Any:
-        init_worker(*self.args, worker=False)
-        if self.processes > 1:
-            self.pool = context().Pool(self.processes, initializer=init_worker, initargs=(*self.args, True))
+        self.namer.__enter__()
         return self.run
 
     def run(self, labels: np.ndarray, orbits: np.ndarray) -> Iterator[tuple[np.ndarray, int, dict[str, Any]]]:
-        """Screen the rows; a row equal to an earlier one off the degree-1 edges takes its verdict.
-
-        The rows sent to the workers are the first of each family, in order (``sent``);
-        the results come back in that order and are matched to the rows here (``seen``).
-        """
-        loose = np.asarray(self.args[0].edge_degrees) == 1
-
-        def key(row: np.ndarray) -> bytes:
-            z = row.copy()
-            z[loose] = 0
-            return z.tobytes()
-
-        def firsts() -> Iterator[np.ndarray]:
-            for row in labels:
-                k = key(row)
-                if k not in self.sent:
-                    self.sent.add(k)
-                    yield row.astype(np.int64)
-
-        fresh = (
-            self.pool.imap(screen_row, firsts(), chunksize=4) if self.pool is not None else map(screen_row, firsts())
-        )
-        for i, row in enumerate(labels):
-            k = key(row)
-            if k in self.seen:
-                verdict = {**self.seen[k], "reason": "same type as a design screened before"}
-            else:
-                verdict = self.seen[k] = next(fresh)
-            yield row.astype(np.int64), int(orbits[i]), verdict
+        """Screen the rows of one batch of the walk."""
+        verdicts = screen_batch(self.scaffold, labels, self.goal, self.seed, self.cache, self.namer, self.label_set)
+        for i, verdict in enumerate(verdicts):
+            yield labels[i].astype(np.int64), int(orbits[i]), verdict
 
     def __exit__(self, *exc: object) -> None:
-        if self.pool is not None:
-            self.pool.terminate()  # a found answer or Ctrl-C: the queue is not waited for
-            self.pool.join()
+        self.namer.__exit__(*exc)  # a found answer or Ctrl-C: the workers stop at once
