@@ -42,7 +42,7 @@ from .screen import type_labels
 
 CACHE = "cache.jsonl"
 
-MAX_DESIGNS = 5_000_000
+MAX_DESIGNS = 20_000_000
 """Largest design space an atlas walks to its end; a bigger one needs ``stop_after`` (``--stop-after``)."""
 
 
@@ -280,14 +280,15 @@ def _records(
     from ..knots.key_names import disk_cache
 
     cache = disk_cache()
-    known: dict[tuple[int, ...], dict[str, Any]] = {}
+    known: dict[tuple[int, ...], dict[str, Any]] = {}  # by type labels; kept only where edges of degree 1 make families
+    families = bool(np.any(np.asarray(scaffold.edge_degrees) == 1))
     walk = OrderedWalk(scaffold, label_set, None, no_zero=no_zero, deadline=deadline, tolerance=tolerance)
     with Namer(processes, False, time_limit) as namer:
         for batch in walk:
             keys = [tuple(r) for r in batch.labels.tolist()]
             zkeys = [tuple(r) for r in type_labels(scaffold, batch.labels).tolist()]
             for k, z in zip(keys, zkeys, strict=True):
-                if k in cached:
+                if k in cached and families:
                     known.setdefault(z, cached[k])
             todo = list(
                 dict.fromkeys(z for k, z in zip(keys, zkeys, strict=True) if k not in cached and z not in known)
@@ -310,7 +311,8 @@ def _records(
                     if nxt is None:
                         rec = {"source": "skipped"}
                     else:
-                        known[z] = nxt
+                        if families:
+                            known[z] = nxt
                         rec = {**nxt, "source": "identified"}
                 yield batch.labels[i].astype(np.int64), int(batch.orbit_sizes[i]), rec
     if not walk.complete:
