@@ -35,21 +35,7 @@ def work_array(tmpl: DiagramTemplate) -> np.ndarray:
 
 @helper
 def assemble_into(
-    corner_partner: np.ndarray,
-    port_a: np.ndarray,
-    port_b: np.ndarray,
-    slot_edge: np.ndarray,
-    slot_index: np.ndarray,
-    edge_starts: np.ndarray,
-    degrees: np.ndarray,
-    slot_of_a: np.ndarray,
-    slot_of_b: np.ndarray,
-    label_values: np.ndarray,
-    pass_offsets: np.ndarray,
-    pass_crossing: np.ndarray,
-    pass_other: np.ndarray,
-    pass_over: np.ndarray,
-    crossing_sign: np.ndarray,
+    tmpl: tuple[np.ndarray, ...],
     vidx: np.ndarray,
     pd: np.ndarray,
     signs: np.ndarray,
@@ -58,11 +44,28 @@ def assemble_into(
 ) -> tuple[int, int, int]:
     """Assemble the PD code of the design whose edges take twists ``label_values[vidx]``.
 
-    Writes ``pd[:m]`` (``(m, 4)``, 1-based), ``signs[:m]`` and ``comps[:m]`` (over and
+    ``tmpl`` is :meth:`DiagramTemplate.arrays`.  Writes ``pd[:m]`` (``(m, 4)``, 1-based), ``signs[:m]`` and ``comps[:m]`` (over and
     under component of each crossing, ``(m, 2)``); returns ``(m, n_components, n_free)``
     (``n_free``: components without a crossing).  ``work`` is scratch from
     :func:`work_array` (row 0 is all -1 again on return).
     """
+    (
+        corner_partner,
+        port_a,
+        port_b,
+        slot_edge,
+        slot_index,
+        edge_starts,
+        degrees,
+        slot_of_a,
+        slot_of_b,
+        label_values,
+        pass_offsets,
+        pass_crossing,
+        pass_other,
+        pass_over,
+        crossing_sign,
+    ) = tmpl
     local, glob, seq_cross, seq_over, seq_comp, seq_into, seq_out = (
         work[0],
         work[1],
@@ -157,51 +160,14 @@ def assemble_into(
 
 @kernel
 def assemble_one(
-    corner_partner: np.ndarray,
-    port_a: np.ndarray,
-    port_b: np.ndarray,
-    slot_edge: np.ndarray,
-    slot_index: np.ndarray,
-    edge_starts: np.ndarray,
-    degrees: np.ndarray,
-    slot_of_a: np.ndarray,
-    slot_of_b: np.ndarray,
-    label_values: np.ndarray,
-    pass_offsets: np.ndarray,
-    pass_crossing: np.ndarray,
-    pass_other: np.ndarray,
-    pass_over: np.ndarray,
-    crossing_sign: np.ndarray,
-    vidx: np.ndarray,
-    work: np.ndarray,
+    tmpl: tuple[np.ndarray, ...], vidx: np.ndarray, work: np.ndarray
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, int, int]:
     """One design's ``(pd, signs, comps, n_components, n_free)`` (:func:`assemble_into`)."""
-    size = len(crossing_sign)
+    size = len(tmpl[14])
     pd = np.zeros((size, 4), np.int64)
     signs = np.zeros(size, np.int64)
     comps = np.zeros((size, 2), np.int64)
-    m, n_comp, n_free = assemble_into(
-        corner_partner,
-        port_a,
-        port_b,
-        slot_edge,
-        slot_index,
-        edge_starts,
-        degrees,
-        slot_of_a,
-        slot_of_b,
-        label_values,
-        pass_offsets,
-        pass_crossing,
-        pass_other,
-        pass_over,
-        crossing_sign,
-        vidx,
-        pd,
-        signs,
-        comps,
-        work,
-    )
+    m, n_comp, n_free = assemble_into(tmpl, vidx, pd, signs, comps, work)
     return pd[:m], signs[:m], comps[:m], n_comp, n_free
 
 
@@ -250,5 +216,5 @@ def assemble_pd(scaffold: Scaffold, labels: ArrayLike, seed: int = 0) -> LabelDi
     if len(lab) != scaffold.n_edges:
         raise UsageError(f"labels: expected {scaffold.n_edges} labels, got {len(lab)}", parameter="labels")
     tmpl = template(scaffold, lab, seed)
-    pd, signs, comps, n_comp, n_free = assemble_one(*tmpl.arrays(), tmpl.value_index(lab), work_array(tmpl))
+    pd, signs, comps, n_comp, n_free = assemble_one(tmpl.arrays(), tmpl.value_index(lab), work_array(tmpl))
     return LabelDiagram(pd, signs, comps, int(n_comp), int(n_free))

@@ -37,9 +37,9 @@ from ..kernels import helper, kernel
 from ..model.scaffold import Scaffold
 from .assembly import assemble_into, assemble_one, work_array
 from .budget import MAX_CROSSINGS
-from .tables import JONES_POINT
 from .jones import jones_buffer_size, jones_into
 from .labels_diagram import DiagramTemplate, template
+from .tables import JONES_POINT
 
 KEY_VERSION = "k3"
 """Version of the key's definition (hashes, invariants, trust rule, fields kept): part of the disk cache's name.
@@ -62,27 +62,15 @@ def _mix(h: np.uint64, v: int) -> np.uint64:
 
 @kernel
 def design_keys(
-    corner_partner: np.ndarray,
-    port_a: np.ndarray,
-    port_b: np.ndarray,
-    slot_edge: np.ndarray,
-    slot_index: np.ndarray,
-    edge_starts: np.ndarray,
-    degrees: np.ndarray,
-    slot_of_a: np.ndarray,
-    slot_of_b: np.ndarray,
-    label_values: np.ndarray,
-    pass_offsets: np.ndarray,
-    pass_crossing: np.ndarray,
-    pass_other: np.ndarray,
-    pass_over: np.ndarray,
-    crossing_sign: np.ndarray,
+    tmpl: tuple[np.ndarray, ...],
     vidx_2d: np.ndarray,
     work: np.ndarray,
     max_crossings: int,
     point: int,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """Keys of many designs, ``vidx_2d`` ``(n_designs, n_edges)`` indices into ``label_values``.
+    """Keys of many designs of a template (``tmpl``: :meth:`DiagramTemplate.arrays`).
+
+    ``vidx_2d`` ``(n_designs, n_edges)``: indices into the template's ``label_values``.
 
     ``point`` is ``x = sqrt(t)`` modulo :data:`PRIME` at which the Jones polynomial is
     also evaluated (for filters comparing it with a target's, :func:`jones_residue`).
@@ -105,11 +93,12 @@ def design_keys(
         The Jones polynomial at ``point``, modulo :data:`PRIME` (where ``keyed``).
     """
     n_designs = vidx_2d.shape[0]
-    size = len(crossing_sign)
+    size = len(tmpl[14])
+    n_slots = len(tmpl[1])
     pd = np.zeros((size, 4), np.int64)
     signs = np.zeros(size, np.int64)
     comps = np.zeros((size, 2), np.int64)
-    poly = np.zeros(jones_buffer_size(size, len(port_a)), np.int64)
+    poly = np.zeros(jones_buffer_size(size, n_slots), np.int64)
     keys = np.zeros((n_designs, 2), np.uint64)
     crossings = np.zeros(n_designs, np.int64)
     components = np.zeros(n_designs, np.int64)
@@ -120,28 +109,7 @@ def design_keys(
     jones_at = np.zeros(n_designs, np.int64)
     inverse = _power(point, PRIME - 2)
     for d in range(n_designs):
-        m, n_comp, n_free = assemble_into(
-            corner_partner,
-            port_a,
-            port_b,
-            slot_edge,
-            slot_index,
-            edge_starts,
-            degrees,
-            slot_of_a,
-            slot_of_b,
-            label_values,
-            pass_offsets,
-            pass_crossing,
-            pass_other,
-            pass_over,
-            crossing_sign,
-            vidx_2d[d],
-            pd,
-            signs,
-            comps,
-            work,
-        )
+        m, n_comp, n_free = assemble_into(tmpl, vidx_2d[d], pd, signs, comps, work)
         crossings[d] = m
         components[d] = n_comp
         free[d] = n_free
@@ -204,7 +172,7 @@ PRIME = 2_147_483_647
 
 @helper
 def _power(base: int, exponent: int) -> int:
-    """``base ** exponent`` modulo :data:`PRIME` (``exponent >= 0``)."""
+    """Return ``base ** exponent`` modulo :data:`PRIME` (``exponent >= 0``)."""
     out = 1
     b = base % PRIME
     e = exponent
@@ -217,12 +185,12 @@ def _power(base: int, exponent: int) -> int:
 
 
 def jones_residue(value: Fraction) -> int:
-    """A rational Jones value (at ``sqrt t = 2/3``, :data:`~lkspace.knots.tables.JONES_POINT`) modulo :data:`PRIME`."""
+    """Return a rational Jones value (at ``sqrt t = 2/3``, :data:`~lkspace.knots.tables.JONES_POINT`) modulo :data:`PRIME`."""
     return value.numerator % PRIME * pow(value.denominator % PRIME, PRIME - 2, PRIME) % PRIME
 
 
 def jones_point() -> int:
-    """:data:`~lkspace.knots.tables.JONES_POINT` modulo :data:`PRIME`."""
+    """Return :data:`~lkspace.knots.tables.JONES_POINT` modulo :data:`PRIME`."""
     return jones_residue(Fraction(JONES_POINT))
 
 
@@ -248,7 +216,7 @@ class DesignKeys:
 
     def diagram(self, d: int) -> tuple[list[list[int]], int, np.ndarray]:
         """Design ``d``'s PD code (1-based), components and crossing signs, assembled again."""
-        pd, signs, _, n_comp, _ = assemble_one(*self.template.arrays(), self.vidx[d], work_array(self.template))
+        pd, signs, _, n_comp, _ = assemble_one(self.template.arrays(), self.vidx[d], work_array(self.template))
         return pd.tolist(), int(n_comp), signs
 
 
@@ -257,5 +225,5 @@ def keys_of(scaffold: Scaffold, labels_2d: np.ndarray, seed: int = 0, label_valu
     values = np.unique(labels_2d) if label_values is None else np.union1d(label_values, np.unique(labels_2d))
     tmpl = template(scaffold, values, seed)
     vidx = tmpl.value_index(labels_2d)
-    out = design_keys(*tmpl.arrays(), np.ascontiguousarray(vidx), work_array(tmpl), MAX_CROSSINGS, jones_point())
+    out = design_keys(tmpl.arrays(), np.ascontiguousarray(vidx), work_array(tmpl), MAX_CROSSINGS, jones_point())
     return DesignKeys(tmpl, vidx, *out)
