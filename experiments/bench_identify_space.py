@@ -25,7 +25,6 @@ import tempfile
 import time
 
 import numpy as np
-
 from benchkit import RESULTS, load_average, provenance, summary, timed
 
 LKSPACE = [sys.executable, "-m", "lkspace"]
