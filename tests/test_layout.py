@@ -111,7 +111,6 @@ ALLOWED = {
     "catalog": {"design", "engine", "errors", "io", "kernels", "knots", "model", "progress", "strands", "symmetry", "workers"},
     "linktypes": {
         "catalog", "design", "errors", "formats", "geometry", "io", "knots", "model", "progress", "strands", "symmetry",
-        "workers",
     },
     "api": {"io"},
     "lkspace": {"api", "errors"},
