@@ -9,6 +9,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+import lkspace
 from lkspace import identify, load
 
 pytest.importorskip("spherogram")
@@ -318,3 +319,23 @@ def test_bad_atlas_requests_are_one_line_and_exit_2(capsys, args, words):
     assert code == 2 and err.count("\n") == 1 and err.startswith("lkspace: error: "), err
     for word in words:
         assert word in err
+
+
+@pytest.mark.parametrize("name", ["3_1", "L2a1", "4_1"])
+def test_the_screen_from_labels_never_contradicts_the_geometric_screen(name):
+    # screen_batch works on diagrams from labels; screen realizes and projects each design
+    from lkspace.knots.batch import Namer
+    from lkspace.knots.key_names import KeyCache
+    from lkspace.linktypes.screen import screen, screen_batch
+
+    cube = load("cube")
+    target = parse_type(name)
+    rows = np.random.default_rng(5).integers(-1, 2, size=(200, 12))
+    rows = np.array([r for r in rows if lkspace.trace(cube, r).components == target.components][:25])
+    goal = Goal(target.components, target)
+    with Namer(1, False, 60.0) as namer:
+        fast = screen_batch(cube, rows, goal, 0, KeyCache(), namer, np.arange(-1, 2))
+    for labels, verdict in zip(rows, fast, strict=True):
+        slow = screen(cube, labels, goal, seed=3)
+        assert {verdict["verdict"], slow["verdict"]} != {"match", "other"}, labels.tolist()
+        assert verdict["linking_matrix"] == slow["linking_matrix"]
