@@ -5,9 +5,9 @@ own rate (designs keyed per second in one process, after a warm-up).  The names 
 distinct key gets are kept on disk (``$LKSPACE_CACHE``); the runs are timed **cold** (an
 empty name cache: every distinct key named in full, the first run on a machine) and
 **warm** (the cache an earlier run left), each with ``--jobs 2`` and with ``--scheduler
-dask`` (a LocalCluster of 2 workers).  The geometric path's rates (each design realized,
-projected and named) come from ``results/compare_keyed.md``, where both paths ran on the
-same spaces.
+dask`` (a LocalCluster of 2 workers).  In the same run, the geometric path (each design
+realized, projected and named on its own, one process) is timed on a sample of the same
+space: the ratios compare the two.
 
 Usage: ``python experiments/bench_identify_space.py [--quick]``; writes
 ``results/bench_identify_space.{json,md}``.
@@ -76,6 +76,28 @@ def kernel_rate(name: str, labels: str) -> dict:
     return {"designs": len(rows), "seconds": round(seconds, 3), "designs_per_s": round(len(rows) / seconds)}
 
 
+GEOMETRIC = """
+import sys, time, numpy as np, lkspace
+from lkspace.knots.recognition import identify
+s = lkspace.load(sys.argv[1])
+rows = np.vstack([np.stack(b["labels"].to_numpy()) for b in lkspace.designs(s, sys.argv[2])])
+rows = rows[np.random.default_rng(0).choice(len(rows), min(int(sys.argv[3]), len(rows)), replace=False)]
+identify(s, rows[0])
+t = time.perf_counter()
+for r in rows:
+    identify(s, r)
+print(len(rows) / (time.perf_counter() - t))
+"""
+
+
+def geometric_rate(name: str, labels: str, sample: int) -> float:
+    """Designs per second of the geometric path (each realized, projected, named: one process), on a sample."""
+    import subprocess
+
+    out = subprocess.run([sys.executable, "-c", GEOMETRIC, name, labels, str(sample)], capture_output=True, text=True)
+    return round(float(out.stdout.split()[-1]), 1)
+
+
 def measure(quick: bool) -> dict:
     runs = 1 if quick else 3
     data: dict = {"provenance": provenance(), "load_before": load_average(), "spaces": [], "targets": []}
@@ -86,6 +108,7 @@ def measure(quick: bool) -> dict:
         dask = summary([enumerate_run(name, labels, cache_dir(cold_cache), dask=True) for _ in range(runs)])
         rate = kernel_rate(name, labels)
         n = rate["designs"]
+        old = geometric_rate(name, labels, 60 if quick else 200)
         data["spaces"].append(
             {
                 "space": f"{name} {labels}",
@@ -97,6 +120,9 @@ def measure(quick: bool) -> dict:
                 "dask": dask,
                 "dask_designs_per_s": round(n / dask["median_s"]),
                 "kernel": rate,
+                "geometric_designs_per_s": old,
+                "warm_over_geometric": round(n / warm["median_s"] / old, 1),
+                "cold_over_geometric": round(n / cold["wall"] / old, 1),
             }
         )
         shutil.rmtree(cold_cache, ignore_errors=True)
@@ -106,8 +132,11 @@ def measure(quick: bool) -> dict:
         cold = timed(cmd, env={**os.environ, "LKSPACE_CACHE": cache})
         warm = timed(cmd, env={**os.environ, "LKSPACE_CACHE": cache})
         data["targets"].append(
-            {"query": f"solve {name} --type '{target}' --labels {labels}", "cold_s": round(cold["wall"], 2),
-             "warm_s": round(warm["wall"], 2)}
+            {
+                "query": f"solve {name} --type '{target}' --labels {labels}",
+                "cold_s": round(cold["wall"], 2),
+                "warm_s": round(warm["wall"], 2),
+            }
         )
         shutil.rmtree(cache, ignore_errors=True)
     data["load_after"] = load_average()
@@ -125,16 +154,19 @@ def markdown(data: dict) -> str:
         "",
         "Each figure is a fresh `lkspace` process: `enumerate NAME --labels SET --identify --jobs 2`. "
         "Cold: an empty name cache (every distinct key named in full); warm: the cache a cold run left; "
-        "dask: warm, `--scheduler dask` (LocalCluster, 2 workers). Kernel: designs keyed per second in one process.",
+        "dask: warm, `--scheduler dask` (LocalCluster, 2 workers). Kernel: designs keyed per second in one process. "
+        "Geometric: `identify` (realize, project, name) on a sample of the space, one process.",
         "",
-        "| space | designs | cold (s) | cold designs/s | warm (s) | warm designs/s | dask (s) | dask designs/s | kernel designs/s |",
-        "|---|---|---|---|---|---|---|---|---|",
+        "| space | designs | cold (s) | cold designs/s | warm (s) | warm designs/s | dask (s) | dask designs/s "
+        "| kernel designs/s | geometric designs/s | warm / geometric | cold / geometric |",
+        "|---|---|---|---|---|---|---|---|---|---|---|---|",
     ]
     for s in data["spaces"]:
         lines.append(
             f"| {s['space']} | {s['designs']:,} | {s['cold_s']} | {s['cold_designs_per_s']:,} | {s['warm']['median_s']} "
             f"| {s['warm_designs_per_s']:,} | {s['dask']['median_s']} | {s['dask_designs_per_s']:,} "
-            f"| {s['kernel']['designs_per_s']:,} |"
+            f"| {s['kernel']['designs_per_s']:,} | {s['geometric_designs_per_s']} | {s['warm_over_geometric']}x "
+            f"| {s['cold_over_geometric']}x |"
         )
     lines += ["", "## `solve --type`, end to end", "", "| query | cold (s) | warm (s) |", "|---|---|---|"]
     for t in data["targets"]:
