@@ -21,6 +21,7 @@ from ..workers import context, ignore_interrupts
 from .budget import MAX_CROSSINGS, TIME_LIMIT, TimeLimitReached
 from .key_names import KeyCache, share_names
 from .keyed import keys_of
+from .naming import presimplified
 from .recognition import check_identifiable, name_in_time, status_of
 from .tables import knot_modules, tables
 
@@ -40,8 +41,8 @@ def _name_fields(item: tuple[list[list[int]], int]) -> dict[str, Any]:
     if len(pd) > MAX_CROSSINGS:
         status = f"unknown: diagram too large: {len(pd):,} crossings > {MAX_CROSSINGS:,}"
         return {"knot_name": None, "status": status, "error": status.removeprefix("unknown: ")}
-    try:
-        named = name_in_time(pd, n_components, time_limit or None, None)
+    try:  # simplified first, so that most diagrams are small enough to be named without a child process
+        named = name_in_time(presimplified(pd), n_components, time_limit or None, None)
     except TimeLimitReached as exc:
         status = f"unknown: time limit {time_limit:g} s reached (during {exc.stage})"
         return {"knot_name": None, "status": status, "error": status.removeprefix("unknown: ")}

@@ -128,13 +128,11 @@ def name_pd(pd: list[list[int]], n_components: int, stage: Callable[[str], None]
     ``"3_1#4_1"`` (``prime: False``, ``factors``).  ``stage`` is told each stage as it
     starts (``"simplification"``, ``"table lookup"``, ``"knot Floer homology"``).
     """
-    spherogram, regina, _ = knot_modules()
+    spherogram, _, _ = knot_modules()
     out: dict[str, Any]
-    if pd:  # regina's greedy simplification first: milliseconds, and it leaves spherogram little to do
+    if pd:
         stage(f"simplification ({len(pd)} crossings)")
-        rough = regina.Link.fromPD(pd)
-        rough.simplify()
-        pd = [list(x) for x in rough.pdData()]
+        pd = presimplified(pd)
     if not pd:
         out = {
             "name": "0_1" if n_components == 1 else None,
@@ -187,6 +185,18 @@ def name_pd(pd: list[list[int]], n_components: int, stage: Callable[[str], None]
         except Exception:  # noqa: BLE001 - optional invariant
             pass
     return out
+
+
+def presimplified(pd: list[list[int]]) -> list[list[int]]:
+    """Return ``pd`` after regina's greedy simplification: milliseconds, and it leaves spherogram little to do.
+
+    Components left without crossings drop out of the code (the caller keeps the count).
+    """
+    if not pd:
+        return pd
+    link = knot_modules()[1].Link.fromPD(pd)
+    link.simplify()
+    return [list(x) for x in link.pdData()]
 
 
 def name_key(name: str) -> tuple[int, str]:
