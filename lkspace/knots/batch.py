@@ -42,7 +42,7 @@ def _name_fields(item: tuple[list[list[int]], int]) -> dict[str, Any]:
         status = f"unknown: diagram too large: {len(pd):,} crossings > {MAX_CROSSINGS:,}"
         return {"knot_name": None, "status": status, "error": status.removeprefix("unknown: ")}
     try:  # simplified first, so that most diagrams are small enough to be named without a child process
-        named = name_in_time(presimplified(pd), n_components, time_limit or None, None)
+        named = name_in_time(presimplified(pd), n_components, time_limit or None, None, floer=False)
     except TimeLimitReached as exc:
         status = f"unknown: time limit {time_limit:g} s reached (during {exc.stage})"
         return {"knot_name": None, "status": status, "error": status.removeprefix("unknown: ")}

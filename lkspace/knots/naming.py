@@ -120,13 +120,17 @@ def _quiet(text: str) -> None:
     """Ignore a stage name (no progress wanted)."""
 
 
-def name_pd(pd: list[list[int]], n_components: int, stage: Callable[[str], None] = _quiet) -> dict[str, Any]:
+def name_pd(
+    pd: list[list[int]], n_components: int, stage: Callable[[str], None] = _quiet, *, floer: bool = True
+) -> dict[str, Any]:
     """Simplify and name the link of a PD code (1-based, KnotTheory convention).
 
     Split links are named piece by piece (``name`` stays ``None``, ``pieces`` lists
     them); a composite whose prime factors are all in the tables gets the name
     ``"3_1#4_1"`` (``prime: False``, ``factors``).  ``stage`` is told each stage as it
     starts (``"simplification"``, ``"table lookup"``, ``"knot Floer homology"``).
+    ``floer=False`` leaves out knot Floer homology (an extra invariant, seconds on big
+    knots, that catalogs do not keep).
     """
     spherogram, _, _ = knot_modules()
     out: dict[str, Any]
@@ -154,7 +158,7 @@ def name_pd(pd: list[list[int]], n_components: int, stage: Callable[[str], None]
     pieces = link.split_link_diagram()
     n_free += link.unlinked_unknot_components
     if len(pieces) + n_free > 1:
-        named = [name_pd(one_based(p.PD_code()), len(p.link_components), stage) for p in pieces]
+        named = [name_pd(one_based(p.PD_code()), len(p.link_components), stage, floer=floer) for p in pieces]
         out = {
             "name": None,
             "split": True,
@@ -177,7 +181,7 @@ def name_pd(pd: list[list[int]], n_components: int, stage: Callable[[str], None]
                 out["table"] = "+".join(sorted({str(f.get("table")) for f in named}))
                 if all(f.get("chiral_name") or f["mirror"] is None for f in named) and n_components == 1:
                     out["chiral_name"] = "#".join(sorted(out["factors"], key=name_key))
-    if n_components == 1 and simple and len(simple) <= KNOT_FLOER_MAX_CROSSINGS:
+    if floer and n_components == 1 and simple and len(simple) <= KNOT_FLOER_MAX_CROSSINGS:
         stage("knot Floer homology")
         try:
             hfk = link.knot_floer_homology()

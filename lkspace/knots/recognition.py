@@ -219,7 +219,9 @@ def identify(
     return Identification(**main, details=out, status=status)
 
 
-def name_in_time(pd: list[list[int]], n_components: int, time_limit: float | None, step: Step | None) -> dict[str, Any]:
+def name_in_time(
+    pd: list[list[int]], n_components: int, time_limit: float | None, step: Step | None, *, floer: bool = True
+) -> dict[str, Any]:
     """Name the PD code ``pd`` within ``time_limit`` seconds (:func:`~lkspace.knots.budget.run_in_time`).
 
     Diagrams of at most :data:`~lkspace.knots.budget.INLINE_CROSSINGS` crossings are
@@ -229,6 +231,6 @@ def name_in_time(pd: list[list[int]], n_components: int, time_limit: float | Non
     tables()  # loaded here, shared with the forked child
 
     def work(stage: Callable[[str], None]) -> dict[str, Any]:
-        return name_pd(pd, n_components, stage)
+        return name_pd(pd, n_components, stage, floer=floer)
 
     return run_in_time(work, None if len(pd) <= INLINE_CROSSINGS else time_limit, step)
