@@ -42,6 +42,9 @@ from .screen import type_labels
 
 CACHE = "cache.jsonl"
 
+PARTIAL_BATCH = 256
+"""Designs identified between two looks at the clock when the atlas has a deadline (``stop_after``)."""
+
 MAX_DESIGNS = 20_000_000
 """Largest design space an atlas walks to its end; a bigger one needs ``stop_after`` (``--stop-after``)."""
 
@@ -295,10 +298,11 @@ def _records(
             )
             rows = np.array(todo, np.int64).reshape(len(todo), scaffold.n_edges)
             fresh: list[dict[str, Any]] = []
-            for start in range(0, len(rows), BATCH):  # past the deadline, the rest of the batch is skipped
+            step = BATCH if deadline is None else PARTIAL_BATCH
+            for start in range(0, len(rows), step):  # past the deadline, the rest of the batch is skipped
                 if deadline is not None and time.monotonic() > deadline:
                     break
-                chunk = identify_chunk(scaffold, rows[start : start + BATCH], seed, cache, namer, label_set)
+                chunk = identify_chunk(scaffold, rows[start : start + step], seed, cache, namer, label_set)
                 fresh.extend(record_of(row) for row in chunk)
             made = iter(fresh)
             for i, (k, z) in enumerate(zip(keys, zkeys, strict=True)):
