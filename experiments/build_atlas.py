@@ -49,6 +49,9 @@ SCAFFOLDS = [
 ]  # fmt: skip
 """Every built-in finite scaffold family (``lkspace scaffold --help``), the small members of the numbered ones."""
 
+PARTIAL_TIME_LIMIT = 10.0
+"""Seconds per design in a space built simplest first for a while (past it: an unknown type)."""
+
 QUICK = [
     ("tetrahedron", "-2..2"),
     ("dihedron:3", "-2..2"),
@@ -107,7 +110,16 @@ def build_space(work: str, name: str, labels: str, stop_after: float | None, pro
             return data
     t0 = time.monotonic()
     try:
-        data = atlas(lkspace.load(name), parse_label_set(labels), folder, processes=processes, stop_after=stop_after)
+        # a partial space names its simplest designs: 10 s each, so that the deadline holds
+        limit = PARTIAL_TIME_LIMIT if stop_after else 60.0
+        data = atlas(
+            lkspace.load(name),
+            parse_label_set(labels),
+            folder,
+            processes=processes,
+            stop_after=stop_after,
+            time_limit=limit,
+        )
     except TooLargeError as exc:  # too many residue classes to walk in order, even simplest first
         print(f"{name} {labels}: left out: {exc}", flush=True)
         return str(exc)

@@ -42,7 +42,7 @@ from .screen import type_labels
 
 CACHE = "cache.jsonl"
 
-PARTIAL_BATCH = 256
+PARTIAL_BATCH = 16
 """Designs identified between two looks at the clock when the atlas has a deadline (``stop_after``)."""
 
 MAX_DESIGNS = 20_000_000
