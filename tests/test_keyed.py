@@ -78,12 +78,6 @@ def test_a_key_the_tables_share_is_not_trusted():
     assert trusted({"knot_name": "3_1", "mirror": False, "status": "identified"}, found)
     assert not trusted({"knot_name": "4_1", "mirror": None, "status": "identified"}, found)
     assert not trusted({"knot_name": "3_1", "mirror": False, "status": "unknown: time limit 1 s reached"}, found)
-    # a link named from the tables without a hyperbolic volume waits for the second level's crossing bound
-    hopf = jones([[1, 4, 2, 3], [3, 2, 4, 1]])
-    found = candidates(hopf, 2)
-    assert {name for name, _ in found} == {"L2a1"}
-    named = {"knot_name": "L2a1", "mirror": None, "status": "identified", "volume": 0.0}
-    assert not trusted(named, found, 2) and trusted(named, found, 2, second=True)
 
 
 def test_the_disk_cache_keeps_the_names_of_earlier_runs(tmp_path, monkeypatch):

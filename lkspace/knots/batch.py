@@ -58,7 +58,6 @@ def _name_fields(item: tuple[list[list[int]], int]) -> dict[str, Any]:
         "table": named.get("table"),
         "chiral_name": named.get("chiral_name"),
         "candidates": named.get("candidates"),
-        "volume": named.get("volume"),
     }
 
 
@@ -152,7 +151,7 @@ def identify_chunk(
     """Return the rows of one chunk: refused designs first set apart, the rest keyed and named.
 
     A row holds :data:`COLUMNS` and, where the design was named, ``pieces``, ``table``,
-    ``chiral_name``, ``candidates`` and ``volume`` (as :func:`~lkspace.knots.naming.name_pd` gives them).
+    ``chiral_name`` and ``candidates`` (as :func:`~lkspace.knots.naming.name_pd` gives them).
     """
     rows: list[dict[str, Any]] = [dict.fromkeys(COLUMNS) for _ in range(len(labels_2d))]
     refusal = _refusal(scaffold)

@@ -134,21 +134,13 @@ def _table_homfly(pd_text: str, mirror: bool) -> str | None:
     return str(link.homfly())
 
 
-def trusted(named: dict[str, Any], found: set[tuple[str, bool]], n_components: int = 1, second: bool = False) -> bool:
-    """Whether every design with a key may take ``named`` (its first design's fields).
-
-    ``found``: the key's :func:`candidates`.  At the first level a link's table name
-    without a hyperbolic volume is not shared: the volume, SnapPy's check of a table
-    name, cannot tell such a link from a composite one with the same polynomials (the
-    3-component L11n420 and the sum L2a1#L4a1); the second level's crossing bound can.
-    """
+def trusted(named: dict[str, Any], found: set[tuple[str, bool]]) -> bool:
+    """Whether every design with a key may take ``named`` (its first design's fields); ``found``: its :func:`candidates`."""
     status = str(named.get("status"))
     if status.startswith(("unknown: time limit", "unknown: diagram too large")) or named.get("error"):
         return False
     if not found:
         return True  # beyond the tables: the key is all there is to go by (module docstring)
-    if not second and n_components > 1 and not (named.get("volume") or 0) > 0:
-        return False
     names = {name for name, _ in found}
     mirrors = {mirror for _, mirror in found}
     return names == {named.get("knot_name")} and (len(mirrors) == 1 or named.get("mirror") is None)
@@ -222,7 +214,7 @@ def _share(
         rows[d] = named
         pd, n_comp, signs = found.diagram(d)
         jones = jones_of(pd, signs, n_comp)
-        if jones is not None and trusted(named, candidates(jones, n_comp, *(k[2:4] if second else ())), n_comp, second):
+        if jones is not None and trusted(named, candidates(jones, n_comp, *(k[2:4] if second else ()))):
             cache.remember(k, named)
         elif jones is not None:
             cache.remember(k, None)

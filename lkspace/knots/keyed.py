@@ -41,7 +41,7 @@ from .jones import jones_buffer_size, jones_into
 from .labels_diagram import DiagramTemplate, template
 from .tables import JONES_POINT
 
-KEY_VERSION = "k4"
+KEY_VERSION = "k3"
 """Version of the key's definition (hashes, invariants, trust rule, fields kept): part of the disk cache's name.
 
 Raise it whenever any of them changes, so that no cache written before is read."""
