@@ -95,3 +95,23 @@ def test_the_disk_cache_keeps_the_names_of_earlier_runs(tmp_path, monkeypatch):
     assert again.full < first.full  # only designs of keys trusted at no level are named again
     assert set(first.named) <= set(again.named)
     assert a.drop(columns="crossings").equals(b.drop(columns="crossings"))
+
+
+def test_a_key_shared_by_a_prime_link_and_a_sum_keeps_them_apart():
+    # same components, linking numbers, Jones and HOMFLY-PT polynomials: the prime L11n420
+    # (the first two) and the sum L2a1#L4a1, whose diagrams simplify to 6 crossings
+    tetra = load("tetrahedron")
+    labels = np.array(
+        [
+            [-2, -2, -2, -2, 2, -1],
+            [-2, -2, -2, 2, -2, -1],
+            [-2, -2, 0, 2, 0, 1],
+            [-2, 0, -2, 0, 2, 1],
+            [0, -2, -2, 0, 2, 1],
+            [0, 0, -2, 2, 2, 1],
+        ]
+    )
+    found = keys_of(tetra, labels)
+    assert len({tuple(k) for k in found.keys.tolist()}) == 1
+    names = identify_batch(tetra, labels, cache=KeyCache(), progress=False)["knot_name"].tolist()
+    assert names == [identify(tetra, lab).name for lab in labels] == ["L11n420"] * 2 + ["L2a1#L4a1"] * 4

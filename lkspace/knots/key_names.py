@@ -16,6 +16,7 @@ from typing import Any
 import numpy as np
 
 from .keyed import KEY_VERSION, DesignKeys
+from .naming import name_key
 from .tables import HOMFLY_MAX_CROSSINGS
 
 
@@ -146,17 +147,23 @@ def trusted(named: dict[str, Any], found: set[tuple[str, bool]]) -> bool:
     return names == {named.get("knot_name")} and (len(mirrors) == 1 or named.get("mirror") is None)
 
 
+def _simplified(pd: list[list[int]]) -> Any:
+    """Return regina's link of a PD code after regina's greedy simplification."""
+    from .tables import knot_modules
+
+    link = knot_modules()[1].Link.fromPD(pd)
+    link.simplify()
+    return link
+
+
 def homfly_of(pd: list[list[int]]) -> tuple[str, int] | None:
     """Return the HOMFLY-PT polynomial (regina) of a PD code and the crossings left by regina's simplification.
 
     ``None`` when more than :data:`~lkspace.knots.tables.HOMFLY_MAX_CROSSINGS` are left.
     """
-    from .tables import knot_modules
-
     if not pd:
         return "1", 0
-    link = knot_modules()[1].Link.fromPD(pd)
-    link.simplify()
+    link = _simplified(pd)
     if link.size() > HOMFLY_MAX_CROSSINGS:
         return None
     return str(link.homfly()), int(link.size())
@@ -222,8 +229,29 @@ def _share(
             cache.own.add(k)
     for d, k in enumerate(keys):
         if rows[d] is None and k is not None and k in cache.named:
-            rows[d] = cache.named[k]
+            named = cache.named[k]
+            if second or _reaches_crossing_number(found, d, named):
+                rows[d] = named
     return rows
+
+
+def _reaches_crossing_number(found: DesignKeys, d: int, named: dict[str, Any]) -> bool:
+    """Whether design ``d``'s diagram, simplified by regina, keeps at least the crossing number of ``named``'s table name.
+
+    A diagram with fewer crossings proves the design another link with the same key
+    (the composite L2a1#L4a1 beside the prime L11n420: same components, linking numbers,
+    Jones and HOMFLY-PT polynomials); it goes on to the second level.  Names of 2
+    crossings or fewer, sums and names past KnotInfo/LinkInfo are not checked.
+    """
+    name = named.get("knot_name")
+    if not name or "#" in name or named.get("table") not in ("knotinfo", "linkinfo"):
+        return True
+    need = name_key(name)[0]
+    if need <= 2:
+        return True
+    if found.crossings[d] < need:
+        return False
+    return int(_simplified(found.diagram(d)[0]).size()) >= need
 
 
 def jones_of(pd: list[list[int]], signs: np.ndarray, n_components: int) -> tuple[int, list[int]] | None:
