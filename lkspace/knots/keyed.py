@@ -16,6 +16,8 @@ own (no sharing) when
   key cannot),
 * the Jones polynomial equals its mirror image's but the first design's name was chiral
   (the key cannot tell a knot from its mirror image),
+* the design's own diagram, simplified, has fewer crossings than the crossing number of
+  the table name it would take (another link with the same key, such as a sum),
 * the first design ran out of time, or its diagram was too wide for the compiled Jones
   polynomial (:data:`~lkspace.knots.jones` returns no answer).
 
