@@ -184,6 +184,10 @@ def _refusal(scaffold: Scaffold) -> str | None:
     return None
 
 
+POOL_MIN = 16
+"""Fewest designs to name at once that are worth starting worker processes for (a second or two)."""
+
+
 class Namer:
     """Names designs in full: in this process, or in worker processes started on first need."""
 
@@ -201,7 +205,7 @@ class Namer:
             return []
         knot_modules()
         tables()  # loaded here (workers load their own)
-        if self.processes > 1 or self.isolate:
+        if self.isolate or (self.processes > 1 and len(items) >= POOL_MIN):
             if self.pool is None:
                 self.pool = context().Pool(
                     max(self.processes, 1), initializer=_init_worker, initargs=(self.time_limit, True)

@@ -240,14 +240,17 @@ def _reaches_crossing_number(found: DesignKeys, d: int, named: dict[str, Any]) -
 
     A diagram with fewer crossings proves the design another link with the same key
     (the composite L2a1#L4a1 beside the prime L11n420: same components, linking numbers,
-    Jones and HOMFLY-PT polynomials); it goes on to the second level.  Names of 2
-    crossings or fewer, sums and names past KnotInfo/LinkInfo are not checked.
+    Jones and HOMFLY-PT polynomials); it goes on to the second level.  Not checked:
+    sums, names past KnotInfo/LinkInfo, and names no other link can undercut: a knot of
+    at most 5 crossings (a sum of knots has at least 6) or a link of at most 3 (a sum or
+    split link of that many components has at least as many crossings; the tables hold
+    every prime one).
     """
     name = named.get("knot_name")
     if not name or "#" in name or named.get("table") not in ("knotinfo", "linkinfo"):
         return True
     need = name_key(name)[0]
-    if need <= 2:
+    if need <= (5 if found.components[d] == 1 else 3):
         return True
     if found.crossings[d] < need:
         return False
