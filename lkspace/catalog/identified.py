@@ -38,6 +38,8 @@ from .verify import file_metadata, open_catalog
 if TYPE_CHECKING:
     import pandas as pd
 
+    from ..knots.key_names import KeyCache
+
 IDENTIFY_CHUNK = 20_000
 """Rows identified per call between progress updates (a second or so once their keys are known)."""
 
@@ -103,8 +105,11 @@ def identify_catalog(
                 totals += summary
                 step.advance(pq.read_metadata(files[i]).num_rows)
         else:
+            from ..knots.key_names import disk_cache
+
+            cache = disk_cache()  # read once for every file of the catalog
             for file in files:
-                totals += _summary(_identify_file(file, scaffold, processes, seed, step))
+                totals += _summary(_identify_file(file, scaffold, processes, seed, step, cache=cache))
     return replace(totals, names=dict(sorted(totals.names.items(), key=lambda kv: -kv[1])))
 
 
@@ -124,9 +129,11 @@ def identify_part(shared: tuple[Scaffold, int], file: str) -> Identified:
             "identifying on Dask needs workers that may start processes: start them with"
             " 'python -m lkspace.dask_worker' (or set distributed.worker.daemon: false)"
         )
+    from ..knots.key_names import disk_cache
+
     scaffold, seed = shared
     with task("identifying designs", None) as step:
-        return _summary(_identify_file(file, scaffold, 1, seed, step, isolate=True))
+        return _summary(_identify_file(file, scaffold, 1, seed, step, isolate=True, cache=disk_cache()))
 
 
 def _summary(found: pd.DataFrame | None) -> Identified:
@@ -137,11 +144,13 @@ def _summary(found: pd.DataFrame | None) -> Identified:
 
 
 def _identify_file(
-    file: str, scaffold: Scaffold, processes: int, seed: int, step: Step, isolate: bool = False
+    file: str, scaffold: Scaffold, processes: int, seed: int, step: Step, *, cache: KeyCache, isolate: bool = False
 ) -> pd.DataFrame | None:
-    """Identify the rows of one catalog file and rewrite it with the columns; ``None`` if it already has them."""
+    """Identify the rows of one catalog file and rewrite it with the columns; ``None`` if it already has them.
+
+    ``cache``: the names by invariant key of this run (:func:`lkspace.knots.key_names.disk_cache`).
+    """
     from ..knots.batch import identify_batch
-    from ..knots.key_names import disk_cache
 
     table = pq.read_table(file)
     if "labels" not in table.column_names:
@@ -152,7 +161,6 @@ def _identify_file(
         return None
     flat = table.column("labels").combine_chunks().flatten().to_numpy(zero_copy_only=False)
     labels = np.asarray(flat, np.int64).reshape(table.num_rows, scaffold.n_edges)
-    cache = disk_cache()
     values = np.unique(labels)
     pieces = []
     for start in range(0, len(labels), IDENTIFY_CHUNK):

@@ -28,7 +28,7 @@ from ..geometry.construction import corner_pieces, edge_pieces
 from ..geometry.params import GeometryParams, Resolved
 from ..geometry.tracks import side_tracks
 from ..model.scaffold import Scaffold
-from ..strands.ports import port_model
+from ..strands.ports import PortModel, edge_partner, port_model
 from .diagram import near_pairs, transverse
 
 
@@ -199,11 +199,8 @@ def _template(scaffold: Scaffold, values: np.ndarray, polylines: list[np.ndarray
     )
 
 
-def _piece_ports(scaffold: Scaffold, values: np.ndarray, model: object) -> tuple[np.ndarray, np.ndarray]:
+def _piece_ports(scaffold: Scaffold, values: np.ndarray, model: PortModel) -> tuple[np.ndarray, np.ndarray]:
     """Start and end port of every piece (``(n_pieces,) int64``)."""
-    from ..strands.ports import PortModel, edge_partner
-
-    assert isinstance(model, PortModel)
     n = scaffold.n_corners
     corner_start = 2 * np.arange(n) + 1
     starts, ends = [corner_start], [model.corner_partner[corner_start]]
