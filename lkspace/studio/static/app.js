@@ -14,7 +14,7 @@ window.studio = { state: S, view, edgeScreen: (e) => view.screenOf(view.edgeMid(
 async function api(path, body) {
   const res = await fetch('/api/' + path, body === undefined ? {} : { method: 'POST', headers: { 'Content-Type': 'application/json' }, body: JSON.stringify(body) });
   const data = await res.json().catch(() => ({ error: { message: `HTTP ${res.status}` } }));
-  if (data && data.error) throw new Error(data.error.message);
+  if (data && data.error && typeof data.error === 'object') throw new Error(data.error.message); // a job's own `error` is text
   return data;
 }
 function message(text) { $('message').hidden = !text; $('message').textContent = text || ''; }
