@@ -147,7 +147,7 @@ function scheduleIdentify(body) {
         const j = await api('job/' + job);
         if (S.identifyKey !== key) return;
         if (j.state === 'running') continue;
-        if (j.state !== 'done') { $('identify').textContent = 'identify: ' + (j.error || j.state); return; }
+        if (j.state !== 'done') { $('identify').textContent = 'identify: ' + (j.error || j.state); if (j.state === 'cancelled') S.identifyKey = null; return; } // cancelled elsewhere: a redraw asks again
         const r = j.result;
         $('identify').innerHTML = `name: <b id="knot-name">${esc(r.name || 'unknown')}</b>${r.mirror ? ' (mirror)' : ''} <span class="dim">${esc(r.status)}, ${r.crossings ?? '?'} crossings</span>`;
         const lm = r.linking_matrix;
@@ -312,16 +312,18 @@ async function download(fmt) {
 
 // ---- catalog
 async function queryCatalog() {
-  const c = S.catalog;
+  const c = S.catalog, asked = { filters: c.filters.slice(), sort: c.sort, desc: c.desc, offset: c.offset }, mine = c.seq = (c.seq || 0) + 1;
   try {
     const r = await api('catalog', { filters: c.filters, sort: c.sort, descending: c.desc, offset: c.offset, limit: c.limit });
+    if (mine !== c.seq) return; // a newer query is on its way: these rows are not the ones asked for now
     if (!r.ready) { $('cat-page').textContent = 'reading catalog…'; setTimeout(queryCatalog, 500); return; }
     c.total = r.total; c.rows = r.labels; c.shown = JSON.stringify([c.filters, c.sort, c.desc, c.offset]);
-    c.good = { filters: c.filters.slice(), sort: c.sort, desc: c.desc, offset: c.offset };
+    c.good = asked;
     $('cat-page').textContent = ` ${r.total ? c.offset + 1 : 0}–${c.offset + r.rows.length} of ${r.total.toLocaleString()} (${(r.seconds * 1000).toFixed(0)} ms) `;
     $('cat-table').innerHTML = '<tr>' + r.columns.map((x) => `<th>${x}</th>`).join('') + '<th>labels</th></tr>' + r.rows.map((row, i) =>
       `<tr data-i="${i}">` + row.map((v) => `<td>${esc(v)}</td>`).join('') + `<td>${r.labels[i].join(' ')}</td></tr>`).join('');
   } catch (err) { // a refused filter or sort is not kept: back to the last query the server answered
+    if (mine !== c.seq) return;
     message(err.message);
     if (c.good) { Object.assign(c, c.good, { filters: c.good.filters.slice() }); drawFilters(); $('cat-sort').value = c.sort || ''; $('cat-desc').checked = c.desc; }
   }
