@@ -14,7 +14,7 @@ window.studio = { state: S, view, edgeScreen: (e) => view.screenOf(view.edgeMid(
 async function api(path, body) {
   const res = await fetch('/api/' + path, body === undefined ? {} : { method: 'POST', headers: { 'Content-Type': 'application/json' }, body: JSON.stringify(body) });
   const data = await res.json().catch(() => ({ error: { message: `HTTP ${res.status}` } }));
-  if (data && data.error) throw new Error(data.error.message);
+  if (data && data.error && typeof data.error === 'object') throw new Error(data.error.message); // a job's own `error` is text
   return data;
 }
 function message(text) { $('message').hidden = !text; $('message').textContent = text || ''; }
@@ -32,32 +32,47 @@ function parseSet(text) {
 }
 
 // ---- history
-function snapshot() { return { labels: S.labels.slice(), nulls: [...S.nulls] }; }
+function snapshot() { return { key: S.key, labels: S.labels.slice(), nulls: [...S.nulls], block: S.block && S.block.join('x') }; }
 function edit(fn, t0 = performance.now()) {
   S.undo.push(snapshot()); S.redo = [];
   fn(); update(t0);
 }
 function restore(from, to) {
   if (!from.length) return; to.push(snapshot()); const s = from.pop();
+  if (s.key !== S.key) { // a scaffold switch: back to that scaffold with its labels (put back if it cannot open)
+    loadScaffold(s.key, s.labels, s.nulls, s.block, true).then((ok) => { if (!ok) { from.push(s); to.pop(); } });
+    return;
+  }
   S.labels = s.labels; S.nulls = new Set(s.nulls); update(performance.now());
 }
 
 // ---- loading
-async function loadScaffold(key, labels, nulls, block) {
+// a switch is an edit (undo brings the previous scaffold back) unless it is the undo itself (keepHistory)
+async function loadScaffold(key, labels, nulls, block, keepHistory = false) {
+  const mine = S.loadSeq = (S.loadSeq || 0) + 1;
   try {
     const sc = await api('scaffold', { key });
-    S.key = sc.key; S.sc = sc; S.selected = null; S.orbits = null; $('orbit').checked = false; S.pins = new Map(); S.undo = []; S.redo = [];
+    if (mine !== S.loadSeq) return true; // a newer switch is on its way
+    if (S.sc && !keepHistory) { S.undo.push(snapshot()); S.redo = []; }
+    if (sc.key !== S.key) dropSolve();
+    S.key = sc.key; S.sc = sc; S.selected = null; S.orbits = null; $('orbit').checked = false; S.pins = new Map();
     S.labels = labels && labels.length === sc.n_edges ? labels.map(norm) : sc.labels ? sc.labels.map(norm) : new Array(sc.n_edges).fill(1);
     S.nulls = new Set(nulls || sc.nulls || []);
     $('block-row').hidden = !sc.dim;
     if (sc.dim) { if (block) $('block').value = block; else if (!/^\d+(x\d+)*$/.test($('block').value) || $('block').value.split('x').length !== sc.dim) $('block').value = sc.dim === 3 ? '2x2x2' : '3x3'; }
     S.block = sc.dim ? $('block').value.split('x').map(Number) : null;
-    if ($('builtin').value !== sc.key && [...$('builtin').options].some((o) => o.value === sc.key)) $('builtin').value = sc.key;
+    nameInMenu(sc);
     $('scaffold-info').textContent = `${sc.name}: ${sc.n_vertices} vertices, ${sc.n_edges} edges, ${sc.n_faces} faces${sc.dim ? ` (periodic, ${sc.dim}D)` : ''} — ${sc.origin}`;
     view.setScaffold(sc, S.block);
     await update(performance.now());
     view.fit(); panelEdge();
-  } catch (err) { message(err.message); }
+    return true;
+  } catch (err) { message(err.message); if (S.key) $('builtin').value = S.key; return false; } // the menu keeps naming what is shown
+}
+function nameInMenu(sc) { // an option for a file, an upload or a supercell the menu does not list
+  const menu = $('builtin');
+  if (![...menu.options].some((o) => o.value === sc.key)) menu.add(new Option(sc.key.startsWith('id:') ? `${sc.name} (${sc.origin})` : sc.key, sc.key));
+  menu.value = sc.key;
 }
 
 // ---- the redraw: trace + realize on the server, tubes here
@@ -81,6 +96,7 @@ async function update(t0) {
   $('busy').hidden = true;
   $('timing').textContent = `redraw ${ms.toFixed(0)} ms: answer ${S.breakdown.answer.toFixed(0)} (trace ${(d.timing.trace * 1000).toFixed(0)}, realize ${(d.timing.realize * 1000).toFixed(0)} on the server), tubes ${S.breakdown.tubes.toFixed(0)}, draw ${S.breakdown.render.toFixed(0)} ms`;
   panelRead(d); panelEdge(); writeHash();
+  $('clearance').textContent = d.failure ? 'clearance: not measured (no embedding)' : 'clearance: measuring…'; // never the last design's
   S.ready = true;
   if (!d.failure) S.measureTimer = setTimeout(() => measure(seq, body), 200);
   scheduleIdentify(body);
@@ -107,13 +123,15 @@ async function measure(seq, body) {
     if (seq !== S.seq) return;
     if (c.ok) { $('clearance').textContent = `clearance ${c.min_distance === null || !isFinite(c.min_distance) ? '—' : c.min_distance.toFixed(3)} ≥ ${c.min_separation.toFixed(3)}: embedded`; return; }
     $('clearance').textContent = 'clearance: too close';
+    clearTimeout(S.identifyTimer); S.identifyKey = null; $('identify').textContent = 'identify: no embedding to identify'; $('linking').innerHTML = '';
     message(c.message); view.setEdgeColors(S.labels, S.selected, S.pins, c.edge); view.markError(view.edgeMid(c.edge)); view.render();
   } catch (err) { if (seq === S.seq) $('clearance').textContent = 'clearance: ' + err.message; }
 }
 
 function scheduleIdentify(body) {
-  clearTimeout(S.identifyTimer);
-  const key = JSON.stringify([body.key, body.labels, body.nulls]); S.identifyKey = key;
+  const key = JSON.stringify([body.key, body.labels, [...body.nulls].sort((a, b) => a - b)]);
+  if (key === S.identifyKey) return; // the same design: keep its answer (or the identification under way)
+  clearTimeout(S.identifyTimer); S.identifyKey = key;
   $('identify').textContent = S.sc.dim ? 'periodic: an infinite structure (no knot name)' : 'identify: waiting…';
   $('linking').innerHTML = '';
   if (S.design && S.design.failure && !S.sc.dim) $('identify').textContent = 'identify: no embedding to identify';
@@ -129,7 +147,7 @@ function scheduleIdentify(body) {
         const j = await api('job/' + job);
         if (S.identifyKey !== key) return;
         if (j.state === 'running') continue;
-        if (j.state !== 'done') { $('identify').textContent = 'identify: ' + (j.error || j.state); return; }
+        if (j.state !== 'done') { $('identify').textContent = 'identify: ' + (j.error || j.state); if (j.state === 'cancelled') S.identifyKey = null; return; } // cancelled elsewhere: a redraw asks again
         const r = j.result;
         $('identify').innerHTML = `name: <b id="knot-name">${esc(r.name || 'unknown')}</b>${r.mirror ? ' (mirror)' : ''} <span class="dim">${esc(r.status)}, ${r.crossings ?? '?'} crossings</span>`;
         const lm = r.linking_matrix;
@@ -258,7 +276,9 @@ $('sv-go').onclick = async () => {
     fixes: Object.fromEntries([...S.pins].map(([e, t]) => [e, Number(t)])), count: Number($('sv-count').value), time_limit: Number($('sv-limit').value) };
   $('sv-results').innerHTML = ''; $('sv-status').textContent = 'starting…';
   try {
-    const { job } = await api('solve', body); S.solveJob = job; $('sv-cancel').disabled = false;
+    const { job } = await api('solve', body);
+    if (body.key !== S.key) { api(`job/${job}/cancel`, {}).catch(() => {}); return; } // the scaffold changed meanwhile
+    S.solveJob = job; $('sv-cancel').disabled = false;
     for (;;) {
       await new Promise((r) => setTimeout(r, 300));
       const j = await api('job/' + job);
@@ -274,6 +294,10 @@ $('sv-go').onclick = async () => {
   } catch (err) { $('sv-status').textContent = 'error: ' + err.message; $('sv-cancel').disabled = true; }
 };
 $('sv-cancel').onclick = async () => { if (S.solveJob) { const job = S.solveJob; S.solveJob = null; await api(`job/${job}/cancel`, {}).catch(() => {}); $('sv-status').textContent = 'cancelled'; $('sv-cancel').disabled = true; } };
+function dropSolve() { // a solve's designs belong to the scaffold it ran on: a switch cancels it and clears them
+  if (S.solveJob) api(`job/${S.solveJob}/cancel`, {}).catch(() => {});
+  S.solveJob = null; S.solutions = []; $('sv-results').innerHTML = ''; $('sv-status').textContent = ''; $('sv-cancel').disabled = true;
+}
 $('sv-results').onclick = (ev) => { const li = ev.target.closest('li'); if (li) { const s = S.solutions[+li.dataset.i]; edit(() => { S.labels = s.labels.map(norm); }); } };
 
 // ---- export
@@ -288,15 +312,21 @@ async function download(fmt) {
 
 // ---- catalog
 async function queryCatalog() {
-  const c = S.catalog;
+  const c = S.catalog, asked = { filters: c.filters.slice(), sort: c.sort, desc: c.desc, offset: c.offset }, mine = c.seq = (c.seq || 0) + 1;
   try {
     const r = await api('catalog', { filters: c.filters, sort: c.sort, descending: c.desc, offset: c.offset, limit: c.limit });
+    if (mine !== c.seq) return; // a newer query is on its way: these rows are not the ones asked for now
     if (!r.ready) { $('cat-page').textContent = 'reading catalog…'; setTimeout(queryCatalog, 500); return; }
     c.total = r.total; c.rows = r.labels; c.shown = JSON.stringify([c.filters, c.sort, c.desc, c.offset]);
+    c.good = asked;
     $('cat-page').textContent = ` ${r.total ? c.offset + 1 : 0}–${c.offset + r.rows.length} of ${r.total.toLocaleString()} (${(r.seconds * 1000).toFixed(0)} ms) `;
     $('cat-table').innerHTML = '<tr>' + r.columns.map((x) => `<th>${x}</th>`).join('') + '<th>labels</th></tr>' + r.rows.map((row, i) =>
       `<tr data-i="${i}">` + row.map((v) => `<td>${esc(v)}</td>`).join('') + `<td>${r.labels[i].join(' ')}</td></tr>`).join('');
-  } catch (err) { message(err.message); }
+  } catch (err) { // a refused filter or sort is not kept: back to the last query the server answered
+    if (mine !== c.seq) return;
+    message(err.message);
+    if (c.good) { Object.assign(c, c.good, { filters: c.good.filters.slice() }); drawFilters(); $('cat-sort').value = c.sort || ''; $('cat-desc').checked = c.desc; }
+  }
 }
 function catalogControls(info) {
   $('catalog').hidden = false;
