@@ -47,6 +47,9 @@ MAX_DIAGRAM_POINTS = 300_000
 MAX_THUMBS = 50
 """Most designs in one thumbnail request."""
 
+MAX_THUMB_POINTS = 50_000
+"""Most curve points of a design drawn as a thumbnail (past it: an empty box)."""
+
 MAX_CROSSINGS_DRAWN = 20_000
 """Most crossings drawn with gaps (past it the diagram is refused: it would be a tangle of ink)."""
 
@@ -229,7 +232,7 @@ def diagram(
 
 def thumbnail(scaffold: Scaffold, labels: np.ndarray) -> str:
     """Return a tiny SVG of a design's construction polylines seen along the generic rotation (no gaps)."""
-    options = RealizeOptions(embedding="later", max_points=MAX_DIAGRAM_POINTS)
+    options = RealizeOptions(embedding="later", max_points=MAX_THUMB_POINTS)
     real = realize(scaffold, labels, None, GeometryParams(smooth=False), options=options)
     rot = Rotation.random(random_state=0).as_matrix()
     flat, width, height, _ = to_screen([np.asarray(c) @ rot.T for c in real.curves], THUMB_SIZE, 3.0)
@@ -264,7 +267,7 @@ class Thumbnails:
 
     def answer(self, scaffold: Scaffold, key: str, designs: object, names: object) -> dict[str, Any]:
         """Thumbnails of ``designs`` (label lists) and the common names of ``names`` (table names or null)."""
-        if not isinstance(designs, list) or len(designs) > MAX_THUMBS:
+        if not isinstance(designs, list) or len(designs) > MAX_THUMBS or not all(isinstance(d, list) for d in designs):
             raise UsageError(f"designs: a list of at most {MAX_THUMBS} label lists")
         if names is not None and (not isinstance(names, list) or len(names) != len(designs)):
             raise UsageError("names: a list with one name (or null) per design")
