@@ -6,9 +6,9 @@ projected to the plane and drawn as an SVG.  Crossings are found as ``identify``
 them (:func:`lkspace.knots.diagram.near_pairs` and
 :func:`~lkspace.knots.diagram.transverse`: the segment nearer the viewer is over), and
 each one cuts the under strand with a gap.  Every path carries ``data-strand`` (the strand
-index); the page colours it as the 3D view colours that strand.  For closed strands the
-PD code of the same projection (:func:`lkspace.knots.diagram.project`) and its linking
-matrix come along.
+index); the page colours it as the 3D view colours that strand.  For closed strands (up to
+:data:`MAX_PD_CROSSINGS`) the PD code of the same projection
+(:func:`lkspace.knots.diagram.project`) and its linking matrix come along.
 
 This is the raw projection, with as many crossings as the curves show from that side,
 not the simplified diagram ``lkspace export --diagram`` lays out (spherogram, matplotlib:
@@ -49,6 +49,9 @@ MAX_THUMBS = 50
 
 MAX_THUMB_POINTS = 50_000
 """Most curve points of a design drawn as a thumbnail (past it: an empty box)."""
+
+MAX_PD_CROSSINGS = 2_000
+"""Most crossings of a diagram sent with its PD code and linking matrix."""
 
 MAX_CROSSINGS_DRAWN = 20_000
 """Most crossings drawn with gaps (past it the diagram is refused: it would be a tangle of ink)."""
@@ -148,8 +151,7 @@ def path_data(points: np.ndarray, closed: bool, cuts: list[float], gap: float, s
     parts = []
     whole = not cuts and closed
     for a, b in runs(arc[: len(arc) // 2 + 1] if closed else arc, closed, cuts, gap):
-        inside = (arc > a) & (arc < b)
-        keep = np.flatnonzero(inside)
+        keep = np.arange(np.searchsorted(arc, a, "right"), np.searchsorted(arc, b, "left"))
         keep = keep[np.concatenate([[True], np.diff(np.floor(arc[keep] / step)) > 0])] if len(keep) else keep
         ends = [np.array([np.interp(s, arc, pts[:, 0]), np.interp(s, arc, pts[:, 1])]) for s in (a, b)]
         run = np.vstack([ends[0], pts[keep], ends[1]])
@@ -191,14 +193,14 @@ def diagram_of(real: Realization, view: object = None) -> dict[str, Any]:
     if len(over) > MAX_CROSSINGS_DRAWN:
         raise TooLargeError(f"diagram: {len(over):,} crossings > {MAX_CROSSINGS_DRAWN:,}; use smaller twists")
     flat, width, height, scale = to_screen(turned, SIZE, 12.0)
+    steps = [np.linalg.norm(np.diff(np.vstack([p, p[:1]]), axis=0), axis=1) for p in flat]
+    starts = [np.concatenate([[0.0], np.cumsum(s)]) for s in steps]
     cuts: list[list[float]] = [[] for _ in flat]
     for seg, t in zip(under.tolist(), t_under.tolist(), strict=True):
         c, k = int(own[seg]), int(at[seg])
-        pts = flat[c]
-        steps = np.linalg.norm(np.diff(np.vstack([pts, pts[:1]]), axis=0), axis=1)
-        cuts[c].append(float(steps[:k].sum() + t * steps[k]))
+        cuts[c].append(float(starts[c][k] + t * steps[c][k]))
     stroke = 2.4
-    paths = [path_data(p, shut, cut, 3.2 * stroke, 0.8) for p, shut, cut in zip(flat, closed, cuts, strict=True)]
+    paths = [path_data(p, shut, cut, 2.6 * stroke, 0.8) for p, shut, cut in zip(flat, closed, cuts, strict=True)]
     out: dict[str, Any] = {
         "svg": svg(paths, real.strand_of.tolist(), width, height, stroke, "knot-diagram"),
         "crossings": int(len(over)),
@@ -207,7 +209,7 @@ def diagram_of(real: Realization, view: object = None) -> dict[str, Any]:
         "pd": None,
         "linking_matrix": None,
     }
-    if all(closed) and len(over) > 0:
+    if all(closed) and 0 < len(over) <= MAX_PD_CROSSINGS:
         drawn = project(turned, rotation=np.eye(3))
         out["pd"], out["linking_matrix"] = drawn.pd, drawn.linking_matrix().tolist()
         out["writhe"] = int(drawn.signs.sum())
