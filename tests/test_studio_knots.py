@@ -4,6 +4,7 @@ The diagram panel, common names, "find designs of type", catalog thumbnails and 
 and pinned designs: real clicks, every answer checked against the public API.
 """
 
+import json
 import re
 import signal
 import subprocess
@@ -91,6 +92,26 @@ def test_diagram_panel_follows_edits_and_the_view(page):
     expected = lkspace.trace("tetrahedron", labels).components
     assert labels[0] == 2 and page.evaluate("window.studio.diagram.answer.components") == expected
     assert sorted({k for k, _ in diagram_strands(page)}) == list(range(expected))
+    # quick edits: the diagram shown is the last design's (answers for the earlier ones are dropped)
+    for key in "++-+":
+        page.keyboard.press(key)
+    labels = labels_of(page)
+    page.wait_for_function(
+        f"(d => !d.pending && JSON.stringify(d.body.labels) === '{json.dumps(labels, separators=(',', ':'))}')"
+        "(window.studio.diagram)",
+        timeout=20000,
+    )
+    page.wait_for_timeout(500)  # any late answer would land now
+    fresh = page.evaluate(
+        """async () => { const d = window.studio.diagram, e = window.studio.view.camera.matrixWorld.elements;
+        const view = [[e[0], e[1], e[2]], [e[4], e[5], e[6]], [e[8], e[9], e[10]]];
+        const r = await fetch('/api/diagram', { method: 'POST', headers: { 'Content-Type': 'application/json' },
+          body: JSON.stringify({ ...d.body, view }) });
+        return (await r.json()).svg === d.svg; }"""
+    )
+    assert fresh and labels_of(page) == labels and labels[0] == 4
+    expected = lkspace.trace("tetrahedron", labels).components
+    assert page.evaluate("window.studio.diagram.answer.components") == expected
     # turning the 3D view redraws the diagram as seen from there (same design)
     svg = page.inner_html("#diagram")
     box = page.locator("#canvas").bounding_box()

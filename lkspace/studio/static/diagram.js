@@ -6,7 +6,7 @@ import { strandColor } from '/static/view.js';
 
 const $ = (id) => document.getElementById(id);
 const studio = window.studio;
-const D = { seq: 0, body: null, timer: null, svg: '', answer: null };
+const D = { seq: 0, body: null, timer: null, svg: '', answer: null, pending: false };
 studio.diagram = D;
 
 // colour the paths of a server SVG as the 3D view colours strand k
@@ -26,6 +26,7 @@ async function ask(body) {
     const res = await fetch('/api/diagram', { method: 'POST', headers: { 'Content-Type': 'application/json' }, body: JSON.stringify({ ...body, view: cameraAxes() }) });
     const d = await res.json();
     if (seq !== D.seq) return; // a newer design or view asked meanwhile: this answer is stale
+    D.pending = false;
     if (d.error) throw new Error(d.error.message);
     D.answer = d; D.svg = d.svg || '';
     $('diagram').innerHTML = D.svg; colourStrands($('diagram'));
@@ -33,17 +34,18 @@ async function ask(body) {
     $('diagram-info').innerHTML = d.svg
       ? `diagram: <b id="diagram-crossings">${d.crossings}</b> crossing${d.crossings === 1 ? '' : 's'} seen from the view <span class="dim">(click to enlarge)</span>`
       : d.message;
-  } catch (err) { if (seq === D.seq) { $('diagram').innerHTML = ''; D.svg = ''; $('diagram-info').textContent = 'diagram: ' + err.message; } }
+  } catch (err) { if (seq === D.seq) { D.pending = false; $('diagram').innerHTML = ''; D.svg = ''; $('diagram-info').textContent = 'diagram: ' + err.message; } }
 }
 
 function schedule(delay) {
   clearTimeout(D.timer); ++D.seq; // an answer on its way is for an older design or view
+  D.pending = !!D.body;
   if (D.body) D.timer = setTimeout(() => ask(D.body), delay);
 }
 
 document.addEventListener('studio:design', (ev) => {
   const { body, design } = ev.detail;
-  if (design.failure || !design.curves) { ++D.seq; D.body = null; D.svg = ''; $('diagram').innerHTML = ''; $('diagram-info').textContent = 'diagram: no curves to draw'; return; }
+  if (design.failure || !design.curves) { ++D.seq; D.body = null; D.pending = false; D.svg = ''; $('diagram').innerHTML = ''; $('diagram-info').textContent = 'diagram: no curves to draw'; return; }
   D.body = { key: body.key, labels: body.labels, nulls: body.nulls };
   schedule(120);
 });
