@@ -123,6 +123,9 @@ def test_thumbnails_draw_each_design_and_name_it(client):
         assert strands == list(range(lkspace.trace(sc, labels).components))
         assert 'class="knot-thumb"' in svg and len(svg) < 20_000
     assert post(client, "thumbnails", body).json() == r  # kept: the same drawing
+    odd = ["{", "m{", "split: ", "m", "K" * 200]  # names no table holds: no common name, no error
+    r = post(client, "thumbnails", {"key": "tetrahedron", "designs": [[1] * 6] * 5, "names": odd}).json()
+    assert r["common_names"] == [None] * 5
 
 
 @pytest.mark.parametrize(
