@@ -180,10 +180,8 @@ def svg(paths: list[str], strands: Sequence[int], width: float, height: float, s
 
 
 def diagram_of(real: Realization, view: object = None) -> dict[str, Any]:
-    """Return the diagram of ``real`` seen along ``view`` (or the generic rotation): SVG, crossings, PD code."""
+    """Return the diagram of ``real`` (a finite scaffold's) seen along ``view`` (or the generic rotation): SVG, crossings, PD code."""
     t0 = time.perf_counter()
-    if real.scaffold.periodic:
-        return {"svg": None, "message": "periodic: an infinite structure has no knot diagram"}
     n_points = sum(len(c) for c in real.curves)
     if n_points > MAX_DIAGRAM_POINTS:
         raise TooLargeError(f"diagram: {n_points:,} curve points > {MAX_DIAGRAM_POINTS:,}; use smaller twists")
@@ -221,6 +219,8 @@ def diagram(
     scaffold: Scaffold, key: str, labels: np.ndarray, nulls: np.ndarray | None, cache: Cache, view: object
 ) -> dict[str, Any]:
     """Return the diagram of a design, from the realization its redraw kept (realized now if it was not)."""
+    if scaffold.periodic:
+        return {"svg": None, "message": "periodic: an infinite structure has no knot diagram"}
     real = cache.get(Cache.key(key, labels, nulls, None))
     if real is None:
         drawn = design(scaffold, labels, nulls, None, cache, key)
