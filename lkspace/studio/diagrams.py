@@ -19,7 +19,6 @@ smoothing: about a millisecond a design), cached per scaffold and labels.
 
 from __future__ import annotations
 
-import math
 import threading
 import time
 from collections import OrderedDict
@@ -63,11 +62,11 @@ def rotation_of(view: object) -> np.ndarray:
         isinstance(view, list)
         and len(view) == 3
         and all(isinstance(v, list) and len(v) == 3 for v in view)
-        and all(isinstance(x, int | float) and not isinstance(x, bool) and math.isfinite(x) for v in view for x in v)
+        and all(isinstance(x, int | float) and not isinstance(x, bool) and abs(x) <= 1e6 for v in view for x in v)
     ):
-        raise UsageError("view: three directions [right, up, back], each three finite numbers")
+        raise UsageError("view: three directions [right, up, back], each three numbers within ±10**6")
     right, _, back = (np.array(v, np.float64) for v in view)
-    if np.linalg.norm(back) < 1e-9 or np.linalg.norm(np.cross(right, back)) < 1e-9 * np.linalg.norm(right):
+    if np.linalg.norm(np.cross(right, back)) <= 1e-9 * np.linalg.norm(right) * np.linalg.norm(back):
         raise UsageError("view: right and back must be non-zero and not parallel")
     back = back / np.linalg.norm(back)
     right = right - (right @ back) * back
@@ -182,6 +181,8 @@ def svg(paths: list[str], strands: Sequence[int], width: float, height: float, s
 def diagram_of(real: Realization, view: object = None) -> dict[str, Any]:
     """Return the diagram of ``real`` (a finite scaffold's) seen along ``view`` (or the generic rotation): SVG, crossings, PD code."""
     t0 = time.perf_counter()
+    if not real.curves:
+        return {"svg": None, "message": "no strands to draw"}
     n_points = sum(len(c) for c in real.curves)
     if n_points > MAX_DIAGRAM_POINTS:
         raise TooLargeError(f"diagram: {n_points:,} curve points > {MAX_DIAGRAM_POINTS:,}; use smaller twists")
