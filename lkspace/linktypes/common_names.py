@@ -165,7 +165,7 @@ def _is_table_name(text: str) -> bool:
 def _canonical(name: str) -> str:
     """``l6a4{0}`` -> ``L6a4``; ``k11a1`` -> ``11a_1`` (KnotInfo's spelling to 13 crossings); ``K14N1`` -> ``K14n1``."""
     name = name.split("{")[0]
-    if name[:1] not in "kKlL":
+    if not name or name[0] not in "kKlL":
         return name.lower()
     name = name[0].upper() + name[1:].lower()
     m = re.fullmatch(r"K(\d+)([an])(\d+)", name)

@@ -27,6 +27,7 @@ from ..errors import GeometryError, LkspaceError, TooLargeError, UsageError
 from ..scaffolds import DEFAULT
 from .browse import Browser
 from .designs import EXPORTS, Cache, clearance, design, export_bytes, labels_from_page, parse_block, parse_nulls
+from .diagrams import Thumbnails, diagram
 from .jobs import Jobs, relaxed
 from .scaffolds import MAX_UPLOAD, Registry, builtin_choices, dumps
 
@@ -52,6 +53,7 @@ class Studio:
     jobs: Jobs = field(default_factory=Jobs)
     browser: Browser | None = None
     local_only: bool = True
+    thumbs: Thumbnails = field(default_factory=Thumbnails)
 
 
 class BadRequest(UsageError):
@@ -328,6 +330,18 @@ def type_lookup(studio: Studio, body: dict[str, Any]) -> dict[str, Any]:
         raise NoSuchDesign(str(exc)) from None
 
 
+def knot_diagram(studio: Studio, body: dict[str, Any]) -> dict[str, Any]:
+    """Return the 2D knot diagram of a design seen along ``view`` (:mod:`~lkspace.studio.diagrams`)."""
+    held, labels, nulls, _ = design_args(studio, body)
+    return diagram(held.scaffold, held.key, labels, nulls, studio.cache, body.get("view"))
+
+
+def thumbnails(studio: Studio, body: dict[str, Any]) -> dict[str, Any]:
+    """Return thumbnails of ``designs`` on scaffold ``key`` and the common names of their ``names``."""
+    held = studio.registry.get(body.get("key"))
+    return studio.thumbs.answer(held.scaffold, held.key, body.get("designs"), body.get("names"))
+
+
 def download(studio: Studio, body: dict[str, Any]) -> Response:
     """Return the design as a file (``format``: one of :data:`~lkspace.studio.designs.EXPORTS`)."""
     held, labels, nulls, _ = design_args(studio, body)
@@ -381,6 +395,8 @@ def create_app(studio: Studio | None = None) -> Any:
         "solve": solve,
         "catalog": catalog_query,
         "export": download,
+        "diagram": knot_diagram,
+        "thumbnails": thumbnails,
     }
     routes = [
         Route("/", page),

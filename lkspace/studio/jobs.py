@@ -65,10 +65,12 @@ class QueueReporter:
 def identify_payload(scaffold: Scaffold, labels: np.ndarray, nulls: np.ndarray | None) -> dict[str, Any]:
     """Return the knot or link type of a design (:func:`lkspace.identify`) as the page shows it."""
     from .. import identify
+    from ..linktypes.common_names import common_name
 
     found = identify(scaffold, labels, nulls, time_limit=IDENTIFY_SECONDS)
     return {
         "name": found.name,
+        "common_name": common_name(found.name, found.mirror) if found.name else None,
         "status": found.status,
         "components": found.components,
         "linking_matrix": found.linking_matrix,

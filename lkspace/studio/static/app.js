@@ -97,6 +97,7 @@ async function update(t0) {
   $('timing').textContent = `redraw ${ms.toFixed(0)} ms: answer ${S.breakdown.answer.toFixed(0)} (trace ${(d.timing.trace * 1000).toFixed(0)}, realize ${(d.timing.realize * 1000).toFixed(0)} on the server), tubes ${S.breakdown.tubes.toFixed(0)}, draw ${S.breakdown.render.toFixed(0)} ms`;
   panelRead(d); panelEdge(); writeHash();
   $('clearance').textContent = d.failure ? 'clearance: not measured (no embedding)' : 'clearance: measuring…'; // never the last design's
+  document.dispatchEvent(new CustomEvent('studio:design', { detail: { seq, body, design: d } })); // diagram.js, compare.js
   S.ready = true;
   if (!d.failure) S.measureTimer = setTimeout(() => measure(seq, body), 200);
   scheduleIdentify(body);
@@ -149,7 +150,8 @@ function scheduleIdentify(body) {
         if (j.state === 'running') continue;
         if (j.state !== 'done') { $('identify').textContent = 'identify: ' + (j.error || j.state); if (j.state === 'cancelled') S.identifyKey = null; return; } // cancelled elsewhere: a redraw asks again
         const r = j.result;
-        $('identify').innerHTML = `name: <b id="knot-name">${esc(r.name || 'unknown')}</b>${r.mirror ? ' (mirror)' : ''} <span class="dim">${esc(r.status)}, ${r.crossings ?? '?'} crossings</span>`;
+        $('identify').innerHTML = `name: <b id="knot-name">${esc(r.name || 'unknown')}</b>${r.common_name ? ` <b id="common-name">(${esc(r.common_name)})</b>` : ''}${r.mirror ? ' (mirror)' : ''} <span class="dim">${esc(r.status)}, ${r.crossings ?? '?'} crossings</span>`;
+        document.dispatchEvent(new CustomEvent('studio:identified', { detail: { key, result: r } }));
         const lm = r.linking_matrix;
         if (lm && lm.length > 1 && lm.length <= 16) $('linking').innerHTML = '<div class="dim">linking matrix</div><table>' + lm.map((row) => '<tr>' + row.map((x) => `<td>${x}</td>`).join('') + '</tr>').join('') + '</table>';
         return;
@@ -354,6 +356,11 @@ function drawFilters() {
   $('cat-filters').innerHTML = S.catalog.filters.map((f, i) => `<span class="filter" data-i="${i}" title="remove">${esc(f.join(' '))} ✕</span>`).join('');
 }
 $('cat-filters').onclick = (ev) => { const x = ev.target.closest('.filter'); if (x) { S.catalog.filters.splice(+x.dataset.i, 1); S.catalog.offset = 0; drawFilters(); queryCatalog(); } };
+
+// ---- open a design from another panel (lookup.js, compare.js): same scaffold -> an undoable edit
+window.studio.open = (key, labels, nulls) => (key === S.key
+  ? edit(() => { S.labels = labels.map(norm); S.nulls = new Set(nulls || []); })
+  : loadScaffold(key, labels, nulls));
 
 // ---- start
 (async () => {
