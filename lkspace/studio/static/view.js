@@ -104,6 +104,7 @@ export class View {
     for (const g of Object.values(this.groups)) this.scene.add(g);
     this.raycaster = new THREE.Raycaster();
     this.edgeColors = null; this.sc = null; this.showNumbers = false; this.colors = [];
+    this.handles = null; this.afterRender = []; // edge handles (handles.js) and overlays drawn after each frame
     new ResizeObserver(() => this.resize()).observe(canvas.parentElement);
     this.resize();
   }
@@ -133,6 +134,7 @@ export class View {
     const box = new THREE.Box3().setFromBufferAttribute(eg.getAttribute('position'));
     this.scale = box.getSize(new THREE.Vector3()).length() || 1;
     this.raycaster.params.Line.threshold = this.scale * 0.012;
+    this.handles?.build(sc);
   }
   blockCopies(sc, block) { // the other cells of the block: their edges, faint and not pickable
     if (!block) return;
@@ -166,6 +168,7 @@ export class View {
       for (const k of [0, 3]) { this.edgeColors[6 * e + k] = c.r; this.edgeColors[6 * e + k + 1] = c.g; this.edgeColors[6 * e + k + 2] = c.b; }
     }
     this.edgeLines.geometry.getAttribute('color').needsUpdate = true;
+    this.handles?.paint(labels, selected, pinned, errorEdge);
   }
   setStrands(curves) {
     this.clear(this.groups.strands);
@@ -193,6 +196,7 @@ export class View {
     this.camera.updateProjectionMatrix(); this.controls.target.copy(center); this.controls.update(); this.render();
   }
   pick(clientX, clientY) {
+    if (this.handles) return this.handles.pick(clientX, clientY);
     const rect = this.canvas.getBoundingClientRect();
     const ndc = new THREE.Vector2(((clientX - rect.left) / rect.width) * 2 - 1, -((clientY - rect.top) / rect.height) * 2 + 1);
     this.raycaster.setFromCamera(ndc, this.camera);
@@ -207,6 +211,7 @@ export class View {
   render() {
     this.renderer.render(this.scene, this.camera);
     if (this.showNumbers && this.sc) this.drawNumbers(); else if (this.layer.childElementCount) this.layer.replaceChildren();
+    for (const f of this.afterRender) f();
   }
   drawNumbers() {
     const sc = this.sc, rect = this.canvas.getBoundingClientRect(), out = [];
