@@ -1,5 +1,8 @@
 """A labelled design as the page draws it: trace, strand curves (binary), clearance, exports.
 
+Each strand of the answer lists the edges it passes (:func:`strand_edges`), which the page
+lights when the strand is clicked.
+
 Every answer comes from :func:`lkspace.trace` and :func:`lkspace.realize`; curves travel
 as base64 ``float32`` arrays so a redraw of ~100,000 points costs a few milliseconds.
 The redraw realizes without measuring the clearance (``embedding="later"``); the page asks for

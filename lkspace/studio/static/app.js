@@ -232,13 +232,12 @@ $('randomize').onclick = () => {
   edit(() => { S.labels = S.labels.map(() => set[Math.floor(Math.random() * set.length)]); });
 };
 $('orbit').onchange = async () => { // edge orbits: a symmetry search, asked for on first use
-  if (!$('orbit').checked || S.orbits) return;
+  if (!$('orbit').checked || S.orbits) { select(S.selected); return; } // on or off with the orbits known: relight
   $('edge-info').textContent = 'computing edge orbits…';
   try { const key = S.key; const o = await api('orbits', { key }); if (key === S.key) S.orbits = o; }
   catch (err) { $('orbit').checked = false; message(err.message); }
   select(S.selected); // the orbit of the selected edge lit
 };
-$('orbit').addEventListener('change', () => select(S.selected));
 $('undo').onclick = () => restore(S.undo, S.redo);
 $('redo').onclick = () => restore(S.redo, S.undo);
 $('fit').onclick = () => view.fit();

@@ -4,8 +4,8 @@ const $ = (id) => document.getElementById(id);
 const SCRUB_PX = 12; // a drag of this many pixels changes the label by one
 
 export const KEYS = [
-  ['click an edge', 'select it (its label shows at its midpoint)'],
-  ['drag an edge', 'scrub its label: up +1, down −1 every 12 px'],
+  ['click an edge or its label', 'select it (its label shows at its midpoint)'],
+  ['drag an edge or its label', 'scrub its label: up +1, down −1 every 12 px'],
   ['click a strand', 'light its component and the edges it passes'],
   ['click empty space', 'clear the selection and the strand'],
   ['drag / right-drag / wheel', 'orbit / pan / zoom'],
@@ -65,9 +65,10 @@ export function bindKeys({ S, view, handles, strands, select, setLabel, add }) {
 
   // scrub: a drag that starts on a handle changes its label (one undo step for the whole drag)
   let scrub = null;
+  const labelOf = (el) => (el?.parentElement === handles.layer ? Number(el.dataset.edge) : null); // a label drawn at a midpoint
   view.canvas.parentElement.addEventListener('pointerdown', (ev) => {
-    if (ev.button !== 0 || ev.target !== view.canvas) return;
-    const e = handles.pick(ev.clientX, ev.clientY);
+    if (ev.button !== 0) return;
+    const e = ev.target === view.canvas ? handles.pick(ev.clientX, ev.clientY) : labelOf(ev.target);
     if (e === null) return;
     view.controls.enabled = false; // captured before OrbitControls sees the press
     scrub = { e, y: ev.clientY, base: S.labels[e], steps: 0, undo: S.undo.length };
@@ -75,7 +76,8 @@ export function bindKeys({ S, view, handles, strands, select, setLabel, add }) {
   }, true);
   window.addEventListener('pointermove', (ev) => {
     if (!scrub) {
-      if (ev.target === view.canvas && !ev.buttons) hoverAt(ev.clientX, ev.clientY);
+      if (!ev.buttons && labelOf(ev.target) !== null) handles.hover(labelOf(ev.target));
+      else if (ev.target === view.canvas && !ev.buttons) hoverAt(ev.clientX, ev.clientY);
       return;
     }
     const steps = Math.round((scrub.y - ev.clientY) / SCRUB_PX);

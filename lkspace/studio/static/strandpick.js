@@ -35,24 +35,24 @@ export class StrandPicker {
     this.view = view; this.handles = handles; this.S = state;
     this.group = new THREE.Group(); view.scene.add(this.group);
     this.strand = null; this.design = null; this.meshes = [];
-    handles.occluder = (x, y) => { const h = this.hit(x, y); return h ? h.t : Infinity; };
+    handles.occluder = (x, y) => { const h = this.hit(x, y, 0); return h ? h.t : Infinity; }; // a tube really covering the pixel
     view.afterRender.push(() => this.sync());
   }
 
-  // The strand under a pixel: {strand, curve, t} of the nearest tube the ray passes through, or null.
-  hit(clientX, clientY) {
+  // The strand under a pixel: {strand, curve, t} of the nearest tube the ray passes within `slack` pixels of, or null.
+  hit(clientX, clientY, slack = SLACK_PX) {
     const c = centerlines(this.S.shown);
     if (!c) return null;
     const { o, d, perPx } = this.handles.ray(clientX, clientY), p = c.points, r = c.radius;
     let best = null, start = 0;
     c.counts.forEach((n, k) => {
       const [sx, sy, sz, sr] = c.spheres[k], t0 = (sx - o.x) * d.x + (sy - o.y) * d.y + (sz - o.z) * d.z;
-      const miss = Math.hypot(o.x + t0 * d.x - sx, o.y + t0 * d.y - sy, o.z + t0 * d.z - sz) > sr + r + SLACK_PX * perPx * Math.max(t0 + sr, 0);
+      const miss = Math.hypot(o.x + t0 * d.x - sx, o.y + t0 * d.y - sy, o.z + t0 * d.z - sz) > sr + r + slack * perPx * Math.max(t0 + sr, 0);
       if (!miss) {
         const segments = c.closed[k] ? n : n - 1;
         for (let i = 0; i < segments; i++) {
           const h = raySegment(o, d, p, 3 * (start + i), p, 3 * (start + ((i + 1) % n)));
-          if (h && h.dist <= r + SLACK_PX * perPx * h.t && (!best || h.t < best.t)) best = { strand: c.strand[k], curve: k, t: h.t };
+          if (h && h.dist <= r + slack * perPx * h.t && (!best || h.t < best.t)) best = { strand: c.strand[k], curve: k, t: h.t };
         }
       }
       start += n;
