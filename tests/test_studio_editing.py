@@ -259,8 +259,8 @@ def test_strand_click_lights_its_component_and_edges(studio, browser, name):
         page.keyboard.press("Escape")
     lit = page.evaluate("window.studio.strands.strand")
     assert lit == point["strand"], "a click on the front-most strand lights that strand"
-    dimmed = page.evaluate("[...window.studio.handles.dimmed].sort((a, b) => a - b)")
-    assert dimmed == expected[lit]
+    lit_edges = page.evaluate("[...window.studio.handles.strandEdges].sort((a, b) => a - b)")
+    assert lit_edges == expected[lit]
     # N / P walk the lit strand's edges
     page.keyboard.press("n")
     assert selected(page) == expected[lit][0]
@@ -271,7 +271,8 @@ def test_strand_click_lights_its_component_and_edges(studio, browser, name):
     # empty space clears the strand and the selection
     page.mouse.click(300, 780)
     assert (
-        page.evaluate("window.studio.strands.strand") is None and page.evaluate("window.studio.handles.dimmed") is None
+        page.evaluate("window.studio.strands.strand") is None
+        and page.evaluate("window.studio.handles.strandEdges") is None
     )
     assert selected(page) is None
     # an edit clears the lit strand (its strands change)

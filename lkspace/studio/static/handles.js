@@ -8,13 +8,13 @@ const COLORS = { pos: '#2050c0', neg: '#c03030', zero: '#8a8a8a', selected: '#ff
 const LENGTH = 0.8; // a rod covers this fraction of its edge: the gaps at the vertices keep rods apart
 const SLACK_PX = 5; // a click this many pixels off a rod still hits it
 const MIN_LABEL_PX = 40; // labels of edges shorter than this on screen are left out (zoom in to see them)
-const MAX_LABELS = 400;
-const CELL = [30, 18]; // label grid cell in pixels: one label a cell, nearest first
+const MAX_LABELS = 200;
+const CELL = [34, 20]; // label grid cell in pixels: one label a cell, nearest first
 
 export class Handles {
   constructor(view, state) {
     this.view = view; this.S = state; view.handles = this;
-    this.hovered = null; this.dimmed = null; this.occluder = null;
+    this.hovered = null; this.strandEdges = null; this.occluder = null;
     this.layer = document.createElement('div'); this.layer.id = 'edge-labels';
     view.canvas.parentElement.append(this.layer);
     this.spans = [];
@@ -43,10 +43,10 @@ export class Handles {
       new THREE.MeshBasicMaterial({ color: COLORS.selected, transparent: true, opacity: 0.45, depthTest: false, depthWrite: false }));
     this.halo.renderOrder = 10; this.halo.visible = false;
     this.view.groups.edges.add(this.mesh, this.halo);
-    this.hovered = null; this.dimmed = null; this.errorEdge = null;
+    this.hovered = null; this.strandEdges = null; this.errorEdge = null;
   }
 
-  // Is edge e lit by the selection: the selected edge, or its orbit when orbit editing is on?
+  // The edges an edit of edge e sets: its orbit when orbit editing is on, else e alone.
   orbitOf(e) {
     const S = this.S;
     if (e === null || e === undefined) return [];
@@ -57,9 +57,9 @@ export class Handles {
     if (!this.mesh) return;
     this.errorEdge = errorEdge;
     const lit = new Set(this.orbitOf(selected)), m = new THREE.Matrix4(), q = new THREE.Quaternion(), c = new THREE.Color();
-    const up = new THREE.Vector3(0, 1, 0), dir = new THREE.Vector3(), mid = new THREE.Vector3(), white = new THREE.Color('#ffffff');
+    const up = new THREE.Vector3(0, 1, 0), dir = new THREE.Vector3(), mid = new THREE.Vector3(), size = new THREE.Vector3(), white = new THREE.Color('#ffffff');
     for (let e = 0; e < labels.length; e++) {
-      const t = Number(labels[e]), dim = this.dimmed && !this.dimmed.has(e);
+      const t = Number(labels[e]), dim = this.strandEdges && !this.strandEdges.has(e);
       let r = this.radius;
       if (e === errorEdge) { c.set(COLORS.error); r *= 1.8; }
       else if (e === selected) { c.set(COLORS.selected); r *= 2; }
@@ -69,18 +69,18 @@ export class Handles {
       if (e === this.hovered) { c.lerp(white, 0.2); r *= 1.5; }
       else if (dim && e !== selected) { c.lerp(white, 0.75); r *= 0.6; }
       this.mesh.setColorAt(e, c);
-      this.rod(e, r, mid, dir, q); m.compose(mid, q.setFromUnitVectors(up, dir.normalize()), new THREE.Vector3(r, this.len, r));
+      this.rod(e, mid, dir); m.compose(mid, q.setFromUnitVectors(up, dir.normalize()), size.set(r, this.len, r));
       this.mesh.setMatrixAt(e, m);
     }
     this.mesh.instanceMatrix.needsUpdate = true; this.mesh.instanceColor.needsUpdate = true;
     this.halo.visible = selected !== null && selected < labels.length;
     if (this.halo.visible) {
       const r = this.radius * 3.2;
-      this.rod(selected, r, this.halo.position, dir, q);
+      this.rod(selected, this.halo.position, dir);
       this.halo.quaternion.setFromUnitVectors(up, dir.normalize()); this.halo.scale.set(r, this.len, r);
     }
   }
-  rod(e, r, mid, dir, q) { // midpoint, direction and length of edge e's rod
+  rod(e, mid, dir) { // midpoint, direction and length (this.len) of edge e's rod
     const a = this.a, b = this.b;
     mid.set((a[3 * e] + b[3 * e]) / 2, (a[3 * e + 1] + b[3 * e + 1]) / 2, (a[3 * e + 2] + b[3 * e + 2]) / 2);
     dir.set(b[3 * e] - a[3 * e], b[3 * e + 1] - a[3 * e + 1], b[3 * e + 2] - a[3 * e + 2]);
@@ -88,7 +88,7 @@ export class Handles {
   }
 
   hover(e) { if (e !== this.hovered) { this.hovered = e; this.paint(); this.view.render(); } }
-  dim(edges) { this.dimmed = edges ? new Set(edges) : null; this.paint(); }
+  light(edges) { this.strandEdges = edges ? new Set(edges) : null; this.paint(); } // a lit strand's edges; the others dimmed
 
   // ---- picking: the nearest rod the ray through the pixel passes within its radius (plus a few pixels)
   ray(clientX, clientY) {
@@ -106,7 +106,7 @@ export class Handles {
       const px = Math.max(hit.dist - r, 0) / (perPx * hit.t); // pixels off the rod
       if (px <= SLACK_PX && (!best || px < best.px || (px === best.px && hit.t < best.t))) best = { edge: e, t: hit.t, px };
     }
-    if (best && this.occluder && this.occluder(clientX, clientY) < best.t - 4 * this.radius) return null; // a strand in front
+    if (best && this.occluder && this.occluder(clientX, clientY, best.t - 4 * this.radius)) return null; // a strand in front
     return best;
   }
   pick(clientX, clientY) { const hit = this.pickAt(clientX, clientY); return hit ? hit.edge : null; }
@@ -126,7 +126,7 @@ export class Handles {
       const x = ((v.x + w.x) / 4 + 0.5) * rect.width, y = (0.5 - (v.y + w.y) / 4) * rect.height;
       if (x < 0 || y < 0 || x > rect.width || y > rect.height) continue;
       const long = Math.hypot((v.x - w.x) * rect.width, (v.y - w.y) * rect.height) / 2 / LENGTH >= MIN_LABEL_PX;
-      if (forced.has(e) || (long && !(this.dimmed && !this.dimmed.has(e)))) items.push({ e, x, y, z: v.z + w.z, forced: forced.has(e) });
+      if (forced.has(e) || (long && !(this.strandEdges && !this.strandEdges.has(e)))) items.push({ e, x, y, z: v.z + w.z, forced: forced.has(e) });
     }
     items.sort((p, q) => (q.forced - p.forced) || (p.z - q.z));
     const taken = new Set(), out = [];

@@ -57,7 +57,7 @@ export function bindKeys({ S, view, handles, strands, select, setLabel, add }) {
     else if (ev.key === 'p' || ev.key === 'P') step(-1);
     else if (ev.key === 'o' || ev.key === 'O') $('orbit').click();
     else if (digit !== null && S.selected !== null && !(ev.shiftKey && digit === '0')) setLabel(ev.shiftKey ? -Number(digit) : Number(digit), t0);
-    else if (ev.key === 'Enter' && S.selected !== null) { $('label').focus(); $('label').select(); }
+    else if (ev.key === 'Enter' && S.selected !== null && el?.tagName !== 'BUTTON') { $('label').focus(); $('label').select(); }
     else return;
     ev.preventDefault();
   }, true);

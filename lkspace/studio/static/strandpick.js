@@ -35,12 +35,13 @@ export class StrandPicker {
     this.view = view; this.handles = handles; this.S = state;
     this.group = new THREE.Group(); view.scene.add(this.group);
     this.strand = null; this.design = null; this.meshes = [];
-    handles.occluder = (x, y) => { const h = this.hit(x, y, 0); return h ? h.t : Infinity; }; // a tube really covering the pixel
+    handles.occluder = (x, y, before) => this.hit(x, y, 0, before) !== null; // a tube really covering the pixel, nearer than `before`
     view.afterRender.push(() => this.sync());
   }
 
-  // The strand under a pixel: {strand, curve, t} of the nearest tube the ray passes within `slack` pixels of, or null.
-  hit(clientX, clientY, slack = SLACK_PX) {
+  // The strand under a pixel: {strand, curve, t} of the nearest tube the ray passes within `slack` pixels of
+  // (nearer than `before` along the ray), or null.
+  hit(clientX, clientY, slack = SLACK_PX, before = Infinity) {
     const c = centerlines(this.S.shown);
     if (!c) return null;
     const { o, d, perPx } = this.handles.ray(clientX, clientY), p = c.points, r = c.radius;
@@ -48,11 +49,11 @@ export class StrandPicker {
     c.counts.forEach((n, k) => {
       const [sx, sy, sz, sr] = c.spheres[k], t0 = (sx - o.x) * d.x + (sy - o.y) * d.y + (sz - o.z) * d.z;
       const miss = Math.hypot(o.x + t0 * d.x - sx, o.y + t0 * d.y - sy, o.z + t0 * d.z - sz) > sr + r + slack * perPx * Math.max(t0 + sr, 0);
-      if (!miss) {
+      if (!miss && t0 - sr < before) {
         const segments = c.closed[k] ? n : n - 1;
         for (let i = 0; i < segments; i++) {
           const h = raySegment(o, d, p, 3 * (start + i), p, 3 * (start + ((i + 1) % n)));
-          if (h && h.dist <= r + slack * perPx * h.t && (!best || h.t < best.t)) best = { strand: c.strand[k], curve: k, t: h.t };
+          if (h && h.t < before && h.dist <= r + slack * perPx * h.t && (!best || h.t < best.t)) best = { strand: c.strand[k], curve: k, t: h.t };
         }
       }
       start += n;
@@ -73,7 +74,7 @@ export class StrandPicker {
     if (!c || !this.S.design) return;
     this.strand = k; this.design = this.S.design;
     this.build(c, k);
-    this.handles.dim(this.S.design.strands[k]?.edges || []);
+    this.handles.light(this.S.design.strands[k]?.edges || []);
     this.view.render();
   }
   build(c, k) { // the component's tubes again, opaque over the dimmed ones (a rod a segment)
@@ -105,7 +106,7 @@ export class StrandPicker {
     for (const o of [...this.group.children]) { this.group.remove(o); o.geometry.dispose(); o.material.dispose(); }
     const was = this.strand !== null;
     this.strand = null; this.design = null;
-    if (was) { this.handles.dim(null); if (redraw) this.view.render(); }
+    if (was) { this.handles.light(null); if (redraw) this.view.render(); }
   }
 
   // After each render: an edit (a new design) clears the highlight; new tubes of the same design
