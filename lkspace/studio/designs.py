@@ -1,5 +1,8 @@
 """A labelled design as the page draws it: trace, strand curves (binary), clearance, exports.
 
+Each strand of the answer lists the edges it passes (:func:`strand_edges`), which the page
+lights when the strand is clicked.
+
 Every answer comes from :func:`lkspace.trace` and :func:`lkspace.realize`; curves travel
 as base64 ``float32`` arrays so a redraw of ~100,000 points costs a few milliseconds.
 The redraw realizes without measuring the clearance (``embedding="later"``); the page asks for
@@ -22,7 +25,7 @@ from typing import Any
 
 import numpy as np
 
-from .. import Realization, RealizeOptions, Scaffold, export, realize, trace
+from .. import Realization, RealizeOptions, Scaffold, Trace, export, realize, trace
 from ..errors import GeometryError, LabelError, TooLargeError, UsageError
 from ..formats.registry import FORMATS
 from ..geometry.clearance import check_embedding
@@ -113,6 +116,14 @@ def nearest_edge(scaffold: Scaffold, point: np.ndarray) -> int:
     return int(np.argmin(np.linalg.norm(pa + s[:, None] * v - point, axis=1)))
 
 
+def strand_edges(tr: Trace) -> list[list[int]]:
+    """Return the scaffold edges each strand passes (owns a port of a side of), sorted, one list a strand."""
+    edge_of_port = np.repeat(tr.scaffold.side_edge, 2)
+    pairs = np.unique(np.column_stack([tr.port_strand, edge_of_port]), axis=0)
+    starts = np.searchsorted(pairs[:, 0], np.arange(tr.components + 1))
+    return [pairs[starts[k] : starts[k + 1], 1].tolist() for k in range(tr.components)]
+
+
 class Cache:
     """The last few realizations, keyed by scaffold, labels, nulls, block and relaxed or not (for the clearance and reuse)."""
 
@@ -166,8 +177,14 @@ def design(
         "holds_together": tr.holds_together,
         "pieces": tr.n_pieces,
         "strands": [
-            {"kind": kind, "length": length, "period": period if kind != "open" else None, "closed": kind == "loop"}
-            for kind, length, period in zip(kinds, lengths, periods, strict=True)
+            {
+                "kind": kind,
+                "length": length,
+                "period": period if kind != "open" else None,
+                "closed": kind == "loop",
+                "edges": edges,
+            }
+            for kind, length, period, edges in zip(kinds, lengths, periods, strand_edges(tr), strict=True)
         ],
         "labels": [str(int(t)) if abs(int(t)) > 2**53 else int(t) for t in tr.labels],
         "nulls": [] if tr.nulls is None else np.flatnonzero(tr.nulls).tolist(),

@@ -1,6 +1,9 @@
 // The studio page: state, edits, panels.  Every answer (strands, components, names, solutions,
 // catalog rows, files) comes from the server's Python API; the page only draws and edits labels.
 import { View, strandColor } from '/static/view.js';
+import { Handles } from '/static/handles.js';
+import { StrandPicker } from '/static/strandpick.js';
+import { bindKeys } from '/static/keys.js';
 
 const $ = (id) => document.getElementById(id);
 const S = {
@@ -9,7 +12,9 @@ const S = {
   solveJob: null, catalog: { filters: [], sort: null, desc: false, offset: 0, limit: 25, total: 0 },
 };
 const view = new View($('canvas'), $('labels-layer'));
+const handles = new Handles(view, S), strands = new StrandPicker(view, handles, S);
 window.studio = { state: S, view, edgeScreen: (e) => view.screenOf(view.edgeMid(e)), colors: () => view.colors };
+Object.assign(window.studio, { handles, strands });
 
 async function api(path, body) {
   const res = await fetch('/api/' + path, body === undefined ? {} : { method: 'POST', headers: { 'Content-Type': 'application/json' }, body: JSON.stringify(body) });
@@ -205,12 +210,15 @@ $('canvas').addEventListener('pointerdown', (ev) => { S.down = [ev.clientX, ev.c
 $('canvas').addEventListener('click', (ev) => {
   if (S.down && Math.hypot(ev.clientX - S.down[0], ev.clientY - S.down[1]) > 4) return; // a drag, not a click
   const e = view.pick(ev.clientX, ev.clientY);
+  if (e === null && strands.click(ev.clientX, ev.clientY)) return; // a strand: its component lit, the selection kept
   if (e !== null && $('sv-pin').checked) {
     if (S.pins.has(e)) S.pins.delete(e); else S.pins.set(e, S.labels[e]);
     $('sv-pins').textContent = [...S.pins].map(([x, t]) => `${x}=${t}`).join(' ');
   }
-  S.selected = e; panelEdge(); view.setEdgeColors(S.labels, S.selected, S.pins, null); view.render();
+  select(e);
 });
+function select(e) { S.selected = e; panelEdge(); view.setEdgeColors(S.labels, S.selected, S.pins, null); view.render(); }
+bindKeys({ S, view, handles, strands, select, setLabel, add });
 document.addEventListener('keydown', (ev) => {
   const typing = ['INPUT', 'SELECT'].includes(document.activeElement?.tagName) && document.activeElement.type !== 'checkbox';
   if ((ev.ctrlKey || ev.metaKey) && ev.key.toLowerCase() === 'z') { ev.preventDefault(); ev.shiftKey ? restore(S.redo, S.undo) : restore(S.undo, S.redo); return; }
@@ -244,11 +252,11 @@ $('randomize').onclick = () => {
   edit(() => { S.labels = S.labels.map(() => set[Math.floor(Math.random() * set.length)]); });
 };
 $('orbit').onchange = async () => { // edge orbits: a symmetry search, asked for on first use
-  if (!$('orbit').checked || S.orbits) return;
+  if (!$('orbit').checked || S.orbits) { select(S.selected); return; } // on or off with the orbits known: relight
   $('edge-info').textContent = 'computing edge orbits…';
   try { const key = S.key; const o = await api('orbits', { key }); if (key === S.key) S.orbits = o; }
   catch (err) { $('orbit').checked = false; message(err.message); }
-  panelEdge();
+  select(S.selected); // the orbit of the selected edge lit
 };
 $('undo').onclick = () => restore(S.undo, S.redo);
 $('redo').onclick = () => restore(S.redo, S.undo);

@@ -104,6 +104,7 @@ export class View {
     for (const g of Object.values(this.groups)) this.scene.add(g);
     this.raycaster = new THREE.Raycaster();
     this.edgeColors = null; this.sc = null; this.showNumbers = false; this.colors = [];
+    this.handles = null; this.afterRender = []; // edge handles (handles.js) and overlays drawn after each frame
     new ResizeObserver(() => this.resize()).observe(canvas.parentElement);
     this.resize();
   }
@@ -132,7 +133,7 @@ export class View {
     if (sc.lattice) { this.outlineCell(sc.lattice); this.blockCopies(sc, block); }
     const box = new THREE.Box3().setFromBufferAttribute(eg.getAttribute('position'));
     this.scale = box.getSize(new THREE.Vector3()).length() || 1;
-    this.raycaster.params.Line.threshold = this.scale * 0.012;
+    this.handles?.build(sc);
   }
   blockCopies(sc, block) { // the other cells of the block: their edges, faint and not pickable
     if (!block) return;
@@ -166,6 +167,7 @@ export class View {
       for (const k of [0, 3]) { this.edgeColors[6 * e + k] = c.r; this.edgeColors[6 * e + k + 1] = c.g; this.edgeColors[6 * e + k + 2] = c.b; }
     }
     this.edgeLines.geometry.getAttribute('color').needsUpdate = true;
+    this.handles?.paint(labels, selected, pinned, errorEdge);
   }
   setStrands(curves) {
     this.clear(this.groups.strands);
@@ -192,13 +194,7 @@ export class View {
     this.camera.position.copy(center).addScaledVector(dir, dist); this.camera.near = dist / 100; this.camera.far = dist * 10;
     this.camera.updateProjectionMatrix(); this.controls.target.copy(center); this.controls.update(); this.render();
   }
-  pick(clientX, clientY) {
-    const rect = this.canvas.getBoundingClientRect();
-    const ndc = new THREE.Vector2(((clientX - rect.left) / rect.width) * 2 - 1, -((clientY - rect.top) / rect.height) * 2 + 1);
-    this.raycaster.setFromCamera(ndc, this.camera);
-    const hits = this.edgeLines ? this.raycaster.intersectObject(this.edgeLines) : [];
-    return hits.length ? Math.floor(hits[0].index / 2) : null;
-  }
+  pick(clientX, clientY) { return this.handles ? this.handles.pick(clientX, clientY) : null; } // the edge handle under a pixel
   screenOf(p) { // page coordinates of a 3D point
     const rect = this.canvas.getBoundingClientRect(); const v = new THREE.Vector3(p[0], p[1], p[2]).project(this.camera);
     return { x: rect.left + (v.x + 1) / 2 * rect.width, y: rect.top + (1 - v.y) / 2 * rect.height, z: v.z };
@@ -207,6 +203,7 @@ export class View {
   render() {
     this.renderer.render(this.scene, this.camera);
     if (this.showNumbers && this.sc) this.drawNumbers(); else if (this.layer.childElementCount) this.layer.replaceChildren();
+    for (const f of this.afterRender) f();
   }
   drawNumbers() {
     const sc = this.sc, rect = this.canvas.getBoundingClientRect(), out = [];
