@@ -115,10 +115,10 @@ def test_diagram_panel_follows_edits_and_the_view(page):
     # turning the 3D view redraws the diagram as seen from there (same design)
     svg = page.inner_html("#diagram")
     box = page.locator("#canvas").bounding_box()
-    x, y = box["x"] + box["width"] / 2, box["y"] + box["height"] / 2
+    x, y = box["x"] + 12, box["y"] + box["height"] - 12  # a corner: a drag on an edge handle would scrub its label
     page.mouse.move(x, y)
     page.mouse.down()
-    page.mouse.move(x + 150, y + 40, steps=8)
+    page.mouse.move(x + 150, y - 40, steps=8)
     page.mouse.up()
     page.wait_for_function(f"document.querySelector('#diagram').innerHTML !== {svg!r}", timeout=20000)
     assert page.evaluate("window.studio.diagram.answer.components") == expected
