@@ -27,6 +27,7 @@ from ..errors import GeometryError, LkspaceError, TooLargeError, UsageError
 from ..scaffolds import DEFAULT
 from .browse import Browser
 from .designs import EXPORTS, Cache, clearance, design, export_bytes, labels_from_page, parse_block, parse_nulls
+from .files import filename, open_design, save_design
 from .jobs import Jobs, relaxed
 from .scaffolds import MAX_UPLOAD, Registry, builtin_choices, dumps
 
@@ -52,6 +53,8 @@ class Studio:
     jobs: Jobs = field(default_factory=Jobs)
     browser: Browser | None = None
     local_only: bool = True
+    design: dict[str, Any] | None = None
+    """A design file opened on the command line (what ``/api/open-design`` answers), shown first."""
 
 
 class BadRequest(UsageError):
@@ -180,6 +183,7 @@ def info(studio: Studio, body: dict[str, Any]) -> dict[str, Any]:
         "exports": list(EXPORTS),
         "catalog": studio.browser.info() if studio.browser else None,
         "max_upload": MAX_UPLOAD,
+        "design": studio.design,
     }
 
 
@@ -381,6 +385,8 @@ def create_app(studio: Studio | None = None) -> Any:
         "solve": solve,
         "catalog": catalog_query,
         "export": download,
+        "design-file": save_design,
+        "filename": filename,
     }
     routes = [
         Route("/", page),
@@ -388,6 +394,7 @@ def create_app(studio: Studio | None = None) -> Any:
         Route("/api/info", endpoint(info)),
         Route("/api/lookup", endpoint(type_lookup)),
         Route("/api/upload", upload, methods=["POST"]),
+        Route("/api/open-design", open_design, methods=["POST"]),
         Route("/api/job/{id}", endpoint(job)),
         Route("/api/job/{id}/cancel", endpoint(cancel), methods=["POST"]),
         *[Route(f"/api/{name}", endpoint(fn), methods=["POST"]) for name, fn in posts.items()],
