@@ -42,7 +42,7 @@ def studio_cmd(mesh: str | None, port: int, host: str, no_browser: bool) -> None
     from ..catalog.reader import catalog_scaffold
     from ..studio.app import Studio
     from ..studio.browse import Browser
-    from ..studio.files import is_design_file, open_path
+    from ..studio.design_files import is_design_file, open_path
     from ..studio.server import LOCAL, serve
     from .export import is_catalog
 

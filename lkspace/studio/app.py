@@ -26,8 +26,8 @@ from .. import __version__
 from ..errors import GeometryError, LkspaceError, TooLargeError, UsageError
 from ..scaffolds import DEFAULT
 from .browse import Browser
+from .design_files import filename, open_upload, save_design
 from .designs import EXPORTS, Cache, clearance, design, export_bytes, labels_from_page, parse_block, parse_nulls
-from .files import filename, open_design, save_design
 from .jobs import Jobs, relaxed
 from .scaffolds import MAX_UPLOAD, Registry, builtin_choices, dumps
 
@@ -351,6 +351,19 @@ async def upload(request: Request) -> Response:
         name = request.headers.get("x-filename", "upload.json")
         held = await run_in_threadpool(studio.registry.upload, name, data)
         return Response(dumps(held.view()), media_type="application/json")
+    except Exception as exc:  # noqa: BLE001 - every failure is an answer
+        return fail(exc)
+
+
+async def open_design(request: Request) -> Response:
+    """Open an uploaded design file (raw body, name in ``X-Filename``): the page then loads the answer."""
+    from starlette.concurrency import run_in_threadpool
+
+    studio: Studio = request.app.state.studio
+    try:
+        data = await body_of(request, MAX_UPLOAD)
+        answer = await run_in_threadpool(open_upload, studio.registry, request.headers.get("x-filename", ""), data)
+        return Response(dumps(answer), media_type="application/json")
     except Exception as exc:  # noqa: BLE001 - every failure is an answer
         return fail(exc)
 

@@ -1,8 +1,8 @@
 """Save, open and name designs: the studio's design files (:mod:`lkspace.io.design_json`).
 
 ``/api/design-file`` writes the page's design (scaffold, labels, nulls, block, camera) as a
-design file download; ``/api/open-design`` reads one (raw body, like an upload) and answers
-what the page loads; ``/api/filename`` gives the stem every download is named with
+design file download; ``/api/open-design`` (in ``app.py``, a raw body like an upload) reads
+one with :func:`open_upload` and answers what the page loads; ``/api/filename`` gives the stem every download is named with
 (:func:`~lkspace.studio.filenames.design_stem`).  A design on a built-in scaffold names
 it; any other scaffold (a file, an upload, a catalog's) is embedded, so the file opens anywhere.
 """
@@ -14,7 +14,6 @@ import os
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
-from starlette.requests import Request
 from starlette.responses import Response
 
 from ..errors import LkspaceError, ScaffoldError, TooLargeError
@@ -22,7 +21,7 @@ from ..io.design_json import Design, design_to_dict, format_design, is_design, r
 from ..io.text import read_text
 from .designs import labels_from_page, parse_nulls
 from .filenames import design_stem
-from .scaffolds import MAX_UPLOAD, Registry, dumps
+from .scaffolds import Registry
 
 if TYPE_CHECKING:
     from .app import Studio
@@ -105,21 +104,11 @@ def open_path(registry: Registry, path: str) -> dict[str, Any]:
     return open_text(registry, read_text(path, "design"), os.path.basename(path), pinned=True)
 
 
-async def open_design(request: Request) -> Response:
-    """Open an uploaded design file (raw body, name in ``X-Filename``): the page then loads the answer."""
-    from starlette.concurrency import run_in_threadpool
-
-    from .app import body_of, fail
-
-    studio: Studio = request.app.state.studio
+def open_upload(registry: Registry, filename: str, data: bytes) -> dict[str, Any]:
+    """Open the bytes of an uploaded design file (see :func:`open_text`)."""
+    name = os.path.basename(filename.replace("\\", "/"))[:200] or "design.json"
     try:
-        data = await body_of(request, MAX_UPLOAD)
-        name = os.path.basename(request.headers.get("x-filename", "design.json").replace("\\", "/"))[:200]
-        try:
-            text = data.decode("utf-8")
-        except UnicodeDecodeError:
-            raise ScaffoldError(f"{name}: not a text file (UTF-8 expected)") from None
-        answer = await run_in_threadpool(open_text, studio.registry, text, name)
-        return Response(dumps(answer), media_type="application/json")
-    except Exception as exc:  # noqa: BLE001 - every failure is an answer
-        return fail(exc)
+        text = data.decode("utf-8")
+    except UnicodeDecodeError:
+        raise ScaffoldError(f"{name}: not a text file (UTF-8 expected)") from None
+    return open_text(registry, text, name)
