@@ -150,6 +150,7 @@ def test_open_design_errors_are_json(client):
         (design(labels=[1] * 5).encode(), "expected 12 twist labels"),
         (design(scaffold="id:0123456789abcdef").encode(), "is not a built-in scaffold"),
         (b"\xff\xfe", "not a text file"),
+        (design(scaffold="honeycomb:cP", labels=[1] * 3, block=[5, 5, 5]).encode(), "block: 125 copies > 64"),
     ]:
         r = client.post("/api/open-design", content=text, headers={"X-Filename": "bad.json"})
         assert 400 <= r.status_code < 500

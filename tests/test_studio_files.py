@@ -68,6 +68,7 @@ def page(browser, studio):
     pg.goto(studio)
     ready(pg)
     yield pg
+    identified(pg)  # no worker starting when the studio is stopped
     context.close()
 
 
@@ -86,6 +87,14 @@ def settle(page, labels):
         f"JSON.stringify(window.studio.state.labels) === '{json.dumps(labels, separators=(',', ':'))}'"
     )
     page.wait_for_function("document.getElementById('busy').hidden")
+
+
+def identified(page):
+    """Wait until the page's identify job is over (Ctrl-C while a worker starts is another matter)."""
+    page.wait_for_function(
+        "document.getElementById('knot-name') !== null || !/waiting|running/.test(document.getElementById('identify').textContent)",
+        timeout=90000,
+    )
 
 
 def click_edge(page, e):
@@ -173,6 +182,7 @@ def test_cli_opens_design_file_and_still_opens_scaffold_files(page, tmp_path):
         settle(other, labels)
         got = state(other)
         assert got["nulls"] == saved["nulls"] and close(got["position"], saved["position"], 1e-6)
+        identified(other)
     finally:
         stop(proc)
     scaffold_name, scaffold = download(page, "#exports [data-format=json]")  # a scaffold file, not a design
@@ -185,6 +195,7 @@ def test_cli_opens_design_file_and_still_opens_scaffold_files(page, tmp_path):
         ready(other)
         settle(other, labels)
         assert other.evaluate("window.studio.state.key").startswith("id:")
+        identified(other)
     finally:
         stop(proc)
 

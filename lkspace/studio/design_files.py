@@ -19,7 +19,7 @@ from starlette.responses import Response
 from ..errors import LkspaceError, ScaffoldError, TooLargeError
 from ..io.design_json import Design, design_to_dict, format_design, is_design, read_design, read_view
 from ..io.text import read_text
-from .designs import labels_from_page, parse_nulls
+from .designs import labels_from_page, parse_block, parse_nulls
 from .filenames import design_stem
 from .scaffolds import Registry
 
@@ -47,11 +47,10 @@ def save_design(studio: Studio, body: dict[str, Any]) -> Response:
     labels = labels_from_page(sc, body.get("labels"))
     nulls = parse_nulls(sc, body.get("nulls"))
     block = body.get("block")
-    if block is not None and not (isinstance(block, list) and all(isinstance(n, int) for n in block)):
-        raise ScaffoldError("block: a list of lattice copy counts like [2, 2, 2]")
+    parse_block(sc, block)  # the sizes a redraw accepts
     view = read_view(body.get("view"), "view")
     builtin = held.key if held.origin == "built-in" else None
-    data = design_to_dict(sc, builtin, labels, nulls, None if block is None else tuple(block), view)
+    data = design_to_dict(sc, builtin, labels, nulls, tuple(block) if sc.periodic and block else None, view)
     name = design_stem(sc.name, labels, [] if nulls is None else np.flatnonzero(nulls)) + ".design.json"
     return Response(
         format_design(data),
@@ -75,6 +74,11 @@ def open_text(registry: Registry, text: str, name: str, pinned: bool = False) ->
             ) from None
 
     found: Design = read_design(text, name, resolve)
+    if found.block is not None:
+        try:
+            parse_block(found.scaffold, list(found.block))
+        except LkspaceError as exc:
+            raise type(exc)(f"{name}: {exc}") from None
     if found.builtin is not None:
         key = registry.get(found.builtin).key
     else:
