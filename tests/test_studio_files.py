@@ -264,21 +264,32 @@ def test_png_of_the_view(page):
     assert page.evaluate("document.getElementById('canvas').width") == size[0]  # back to its own size
 
 
-def webm_ok(data):
-    return data[:4] == b"\x1a\x45\xdf\xa3" and b"webm" in data[:64] and len(data) > 2000
+def webm_ok(page, data):
+    """A WebM file the browser decodes, of the canvas's size."""
+    if data[:4] != b"\x1a\x45\xdf\xa3" or b"webm" not in data[:64]:
+        return False
+    size = page.evaluate(
+        """async (b64) => { const bytes = Uint8Array.from(atob(b64), (c) => c.charCodeAt(0));
+        const video = document.createElement('video'); video.muted = true;
+        video.src = URL.createObjectURL(new Blob([bytes], { type: 'video/webm' }));
+        await new Promise((ok, bad) => { video.onloadedmetadata = ok; video.onerror = () => bad(new Error('not decodable')); });
+        return [video.videoWidth, video.videoHeight]; }""",
+        base64.b64encode(data).decode(),
+    )
+    return size == page.evaluate("[document.getElementById('canvas').width, document.getElementById('canvas').height]")
 
 
 def test_turntable_and_twist_animations(page):
     make_design(page)
     before = state(page)
     name, data = download(page, "#an-turn", timeout=90000)
-    assert webm_ok(data) and name.endswith("_turntable.webm") and name.startswith("cube_")
+    assert webm_ok(page, data) and name.endswith("_turntable.webm") and name.startswith("cube_")
     after = state(page)
     assert close(after["position"], before["position"], 1e-9)  # the camera is put back
     click_edge(page, 5)
     page.fill("#an-range", "-1..1")
     name, data = download(page, "#an-twist", timeout=90000)
-    assert webm_ok(data) and name.endswith("_twist-e5_-1..1.webm")
+    assert webm_ok(page, data) and name.endswith("_twist-e5_-1..1.webm")
     assert state(page)["labels"] == before["labels"]
     # bounded and cancellable
     page.fill("#an-range", "-50..50")
