@@ -2,8 +2,8 @@
 
 ``/api/design-file`` writes the page's design (scaffold, labels, nulls, block, camera) as a
 design file download; ``/api/open-design`` (in ``app.py``, a raw body like an upload) reads
-one with :func:`open_upload` and answers what the page loads; ``/api/filename`` gives the stem every download is named with
-(:func:`~lkspace.studio.filenames.design_stem`).  A design on a built-in scaffold names
+one with :func:`open_upload` and answers what the page loads; ``/api/filename`` gives the
+stem every download is named with (:func:`~lkspace.studio.filenames.design_stem`).  A design on a built-in scaffold names
 it; any other scaffold (a file, an upload, a catalog's) is embedded, so the file opens anywhere.
 """
 
@@ -51,7 +51,7 @@ def save_design(studio: Studio, body: dict[str, Any]) -> Response:
     view = read_view(body.get("view"), "view")
     builtin = held.key if held.origin == "built-in" else None
     data = design_to_dict(sc, builtin, labels, nulls, tuple(block) if sc.periodic and block else None, view)
-    name = design_stem(sc.name, labels, [] if nulls is None else np.flatnonzero(nulls)) + ".design.json"
+    name = stem_of(studio, body) + ".design.json"
     return Response(
         format_design(data),
         media_type="application/json",
