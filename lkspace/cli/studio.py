@@ -21,7 +21,8 @@ from .common import Context, load_mesh
 def studio_cmd(mesh: str | None, port: int, host: str, no_browser: bool) -> None:
     """Open the studio: edit twist labels of MESH in the browser and see the strands at once.
 
-    MESH is a built-in name or a .obj / .json file (read once, here); a catalog opens its
+    MESH is a built-in name or a .obj / .json file (read once, here); a design file saved
+    by the studio (.json) opens its scaffold, labels and view; a catalog opens its
     scaffold with the catalog browser beside it.  Every edit is traced and realized by
     lkspace; identify and solve run in worker processes.  The studio listens on
     127.0.0.1 unless --host says otherwise, prints its URL and stops on Ctrl-C.
@@ -31,6 +32,7 @@ def studio_cmd(mesh: str | None, port: int, host: str, no_browser: bool) -> None
       lkspace studio cube
       lkspace studio honeycomb:cP@3x3x3 --no-browser --port 0
       lkspace studio cube.parquet
+      lkspace studio cube_t1.1.1.1.1.1.1.1.1.1.1.1.design.json
     """
     try:
         import starlette  # noqa: F401
@@ -40,6 +42,7 @@ def studio_cmd(mesh: str | None, port: int, host: str, no_browser: bool) -> None
     from ..catalog.reader import catalog_scaffold
     from ..studio.app import Studio
     from ..studio.browse import Browser
+    from ..studio.design_files import is_design_file, open_path
     from ..studio.server import LOCAL, serve
     from .export import is_catalog
 
@@ -48,6 +51,9 @@ def studio_cmd(mesh: str | None, port: int, host: str, no_browser: bool) -> None
         studio.browser = Browser(mesh)  # the catalog's structure checked here, its parts' bytes as they are read
         scaffold = catalog_scaffold(studio.browser.metadata, mesh)
         studio.initial = studio.registry.hold(scaffold, f"catalog {mesh}").key
+    elif mesh is not None and not reads_builtin(mesh) and is_design_file(mesh):
+        studio.design = open_path(studio.registry, mesh)  # a design file: its scaffold, labels and view
+        studio.initial = studio.design["key"]
     elif mesh is not None and not reads_builtin(mesh) and os.path.lexists(mesh):
         studio.initial = studio.registry.open_file(mesh).key  # the one file the studio reads
     else:

@@ -26,6 +26,7 @@ from .. import __version__
 from ..errors import GeometryError, LkspaceError, TooLargeError, UsageError
 from ..scaffolds import DEFAULT
 from .browse import Browser
+from .design_files import filename, open_upload, save_design
 from .designs import EXPORTS, Cache, clearance, design, export_bytes, labels_from_page, parse_block, parse_nulls
 from .diagrams import Thumbnails, diagram
 from .jobs import Jobs, relaxed
@@ -54,6 +55,8 @@ class Studio:
     browser: Browser | None = None
     local_only: bool = True
     thumbs: Thumbnails = field(default_factory=Thumbnails)
+    design: dict[str, Any] | None = None
+    """A design file opened on the command line (what ``/api/open-design`` answers), shown first."""
 
 
 class BadRequest(UsageError):
@@ -182,6 +185,7 @@ def info(studio: Studio, body: dict[str, Any]) -> dict[str, Any]:
         "exports": list(EXPORTS),
         "catalog": studio.browser.info() if studio.browser else None,
         "max_upload": MAX_UPLOAD,
+        "design": studio.design,
     }
 
 
@@ -365,6 +369,19 @@ async def upload(request: Request) -> Response:
         return fail(exc)
 
 
+async def open_design(request: Request) -> Response:
+    """Open an uploaded design file (raw body, name in ``X-Filename``): the page then loads the answer."""
+    from starlette.concurrency import run_in_threadpool
+
+    studio: Studio = request.app.state.studio
+    try:
+        data = await body_of(request, MAX_UPLOAD)
+        answer = await run_in_threadpool(open_upload, studio.registry, request.headers.get("x-filename", ""), data)
+        return Response(dumps(answer), media_type="application/json")
+    except Exception as exc:  # noqa: BLE001 - every failure is an answer
+        return fail(exc)
+
+
 async def http_error(request: Request, exc: Exception) -> Response:
     """Unknown paths and methods: a JSON error too."""
     status = getattr(exc, "status_code", 500)
@@ -397,6 +414,8 @@ def create_app(studio: Studio | None = None) -> Any:
         "export": download,
         "diagram": knot_diagram,
         "thumbnails": thumbnails,
+        "design-file": save_design,
+        "filename": filename,
     }
     routes = [
         Route("/", page),
@@ -404,6 +423,7 @@ def create_app(studio: Studio | None = None) -> Any:
         Route("/api/info", endpoint(info)),
         Route("/api/lookup", endpoint(type_lookup)),
         Route("/api/upload", upload, methods=["POST"]),
+        Route("/api/open-design", open_design, methods=["POST"]),
         Route("/api/job/{id}", endpoint(job)),
         Route("/api/job/{id}/cancel", endpoint(cancel), methods=["POST"]),
         *[Route(f"/api/{name}", endpoint(fn), methods=["POST"]) for name, fn in posts.items()],

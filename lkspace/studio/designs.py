@@ -31,6 +31,7 @@ from ..formats.registry import FORMATS
 from ..geometry.clearance import check_embedding
 from ..io.scaffold_json import format_scaffold_json
 from ..model.validation import validate_labels, validate_nulls
+from .filenames import design_stem
 
 MAX_STUDIO_POINTS = 600_000
 """Most curve points a redraw realizes, block copies included (as tubes, about 3 million vertices in the browser)."""
@@ -259,8 +260,7 @@ def export_bytes(scaffold: Scaffold, labels: np.ndarray, nulls: np.ndarray | Non
     """Return the design written as ``fmt`` (one of :data:`EXPORTS`): ``(content, file name)``."""
     if fmt not in EXPORTS:
         raise UsageError(f"format {str(fmt)[:20]!r}: choose one of {', '.join(EXPORTS)}")
-    stem = re.sub(r"[^A-Za-z0-9_.-]+", "_", scaffold.name)[:60] or "design"
-    name = f"{stem}.{fmt}"
+    name = f"{design_stem(scaffold.name, labels, [] if nulls is None else np.flatnonzero(nulls))}.{fmt}"
     if fmt == "json":
         return format_scaffold_json(scaffold, labels, nulls).encode(), name
     with tempfile.TemporaryDirectory(prefix="lkspace-studio-") as folder:

@@ -159,9 +159,9 @@ class Registry:
         scaffold = load(path)
         return self._keep(Held(f"id:{scaffold.content_hash()[:16]}", scaffold, os.path.basename(path)), pinned=True)
 
-    def hold(self, scaffold: Scaffold, origin: str, key: str | None = None) -> Held:
-        """Hold ``scaffold`` (from the command line or a catalog's metadata) under ``key`` or its content id."""
-        return self._keep(Held(key or f"id:{scaffold.content_hash()[:16]}", scaffold, origin), pinned=True)
+    def hold(self, scaffold: Scaffold, origin: str, key: str | None = None, pinned: bool = True) -> Held:
+        """Hold ``scaffold`` (from the command line, a catalog's metadata or a design file) under ``key`` or its content id."""
+        return self._keep(Held(key or f"id:{scaffold.content_hash()[:16]}", scaffold, origin), pinned=pinned)
 
     def upload(self, filename: str, data: bytes) -> Held:
         """Parse an uploaded ``.obj`` or ``.json`` scaffold of at most :data:`MAX_UPLOAD` bytes and hold it."""

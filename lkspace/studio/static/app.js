@@ -4,6 +4,9 @@ import { View, strandColor } from '/static/view.js';
 import { Handles } from '/static/handles.js';
 import { StrandPicker } from '/static/strandpick.js';
 import { bindKeys } from '/static/keys.js';
+import { installFiles, openDesign, openLink, showDesign, writeLink } from '/static/files.js';
+import { installAnimate } from '/static/animate.js';
+import { installLayout } from '/static/layout.js';
 
 const $ = (id) => document.getElementById(id);
 const S = {
@@ -100,7 +103,7 @@ async function update(t0) {
   S.breakdown = { answer: t1 - t0, tubes: t2 - t1, render: performance.now() - t2 };
   $('busy').hidden = true;
   $('timing').textContent = `redraw ${ms.toFixed(0)} ms: answer ${S.breakdown.answer.toFixed(0)} (trace ${(d.timing.trace * 1000).toFixed(0)}, realize ${(d.timing.realize * 1000).toFixed(0)} on the server), tubes ${S.breakdown.tubes.toFixed(0)}, draw ${S.breakdown.render.toFixed(0)} ms`;
-  panelRead(d); panelEdge(); writeHash();
+  panelRead(d); panelEdge(); writeLink(S, view);
   $('clearance').textContent = d.failure ? 'clearance: not measured (no embedding)' : 'clearance: measuring…'; // never the last design's
   document.dispatchEvent(new CustomEvent('studio:design', { detail: { seq, body, design: d } })); // diagram.js, compare.js
   S.ready = true;
@@ -190,21 +193,6 @@ function setLabel(value, t0) {
   edit(() => { for (const x of edges) S.labels[x] = value; }, t0);
 }
 
-// ---- URL hash: scaffold + labels (+ nulls, block) restore a design on reload or from a shared link
-function writeHash() {
-  const parts = [`s=${encodeURIComponent(S.key)}`, `t=${S.labels.join(',')}`];
-  if (S.nulls.size) parts.push(`n=${[...S.nulls].join(',')}`);
-  if (S.block) parts.push(`b=${S.block.join('x')}`);
-  history.replaceState(null, '', '#' + parts.join('&'));
-}
-function readHash() {
-  const p = new URLSearchParams(location.hash.slice(1));
-  if (!p.get('s')) return null;
-  const list = (x) => (x ? x.split(',').filter((v) => v !== '') : null);
-  try { return { key: p.get('s'), labels: list(p.get('t'))?.map(norm) || null, nulls: list(p.get('n'))?.map(Number) || null, block: p.get('b') }; }
-  catch { return { key: p.get('s') }; }
-}
-
 // ---- events
 $('canvas').addEventListener('pointerdown', (ev) => { S.down = [ev.clientX, ev.clientY]; });
 $('canvas').addEventListener('click', (ev) => {
@@ -272,6 +260,7 @@ $('block').addEventListener('change', () => {
 $('upload').onchange = async () => {
   const file = $('upload').files[0]; if (!file) return;
   try {
+    if (await openDesign(ctx, file, false)) { $('upload').value = ''; return; } // a design file, not a scaffold
     const res = await fetch('/api/upload', { method: 'POST', headers: { 'X-Filename': file.name }, body: await file.arrayBuffer() });
     const data = await res.json(); if (data.error) throw new Error(data.error.message);
     await loadScaffold(data.key);
@@ -371,13 +360,13 @@ window.studio.open = (key, labels, nulls) => (key === S.key
   : loadScaffold(key, labels, nulls));
 
 // ---- start
+const ctx = { S, view, api, message, loadScaffold, norm };
+installFiles(ctx); installAnimate(ctx); installLayout();
 (async () => {
   const info = await api('info');
   $('builtin').innerHTML = info.builtins.map((n) => `<option>${esc(n)}</option>`).join('');
   $('exports').innerHTML = info.exports.map((f) => `<button data-format="${f}">${f.toUpperCase()}</button>`).join('');
   $('exports').onclick = (ev) => { const f = ev.target.dataset.format; if (f) download(f); };
   if (info.catalog) { S.catalog.key = info.initial; catalogControls(info.catalog); }
-  const h = readHash();
-  if (h) await loadScaffold(h.key, h.labels, h.nulls, h.block); else await loadScaffold(info.initial);
-  if (h && !S.sc) await loadScaffold(info.initial);
+  if (!(await openLink(ctx, info.initial))) { if (info.design) await showDesign(ctx, info.design); else await loadScaffold(info.initial); }
 })();

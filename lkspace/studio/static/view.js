@@ -186,13 +186,28 @@ export class View {
     m.position.set(point[0], point[1], point[2]); this.groups.marks.add(m);
   }
   fit() {
-    const box = new THREE.Box3().setFromObject(this.groups.strands.children.length ? this.groups.strands : this.groups.edges);
+    const shown = this.groups.strands.children.length ? this.groups.strands : this.groups.edges;
+    const box = new THREE.Box3().setFromObject(shown);
     if (box.isEmpty()) box.setFromObject(this.groups.edges);
-    const center = box.getCenter(new THREE.Vector3()), r = box.getSize(new THREE.Vector3()).length() / 2 || 1;
-    const dist = r / Math.sin((this.camera.fov * Math.PI) / 360);
-    const dir = new THREE.Vector3(0.55, 0.45, 0.7).normalize();
+    const center = box.getCenter(new THREE.Vector3()), dir = new THREE.Vector3(0.55, 0.45, 0.7).normalize();
+    const dist = this.fitDistance(box.isEmpty() ? this.groups.edges : shown, center, dir) || 1;
     this.camera.position.copy(center).addScaledVector(dir, dist); this.camera.near = dist / 100; this.camera.far = dist * 10;
     this.camera.updateProjectionMatrix(); this.controls.target.copy(center); this.controls.update(); this.render();
+  }
+  fitDistance(group, center, dir) { // nearest camera distance along dir that shows every drawn point (up to 20,000 sampled), for the canvas aspect
+    const right = new THREE.Vector3().crossVectors(this.camera.up, dir).normalize(), up = new THREE.Vector3().crossVectors(dir, right);
+    const tanV = 0.94 * Math.tan((this.camera.fov * Math.PI) / 360), tanH = tanV * this.camera.aspect, d = new THREE.Vector3();
+    let dist = 0;
+    for (const object of group.children) {
+      const pos = object.geometry?.getAttribute('position');
+      if (!pos) continue;
+      for (let i = 0, step = Math.ceil(pos.count / 20000); i < pos.count; i += step) {
+        d.fromBufferAttribute(pos, i).sub(center);
+        const z = d.dot(dir);
+        dist = Math.max(dist, z + Math.abs(d.dot(right)) / tanH, z + Math.abs(d.dot(up)) / tanV);
+      }
+    }
+    return dist;
   }
   pick(clientX, clientY) { return this.handles ? this.handles.pick(clientX, clientY) : null; } // the edge handle under a pixel
   screenOf(p) { // page coordinates of a 3D point
