@@ -11,6 +11,7 @@ from __future__ import annotations
 import json
 import math
 import os
+import re
 from collections.abc import Awaitable, Callable
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
@@ -26,8 +27,9 @@ from .. import __version__
 from ..errors import GeometryError, LkspaceError, TooLargeError, UsageError
 from ..scaffolds import DEFAULT
 from .browse import Browser
-from .designs import EXPORTS, Cache, clearance, design, export_bytes, labels_from_page, parse_block, parse_nulls
+from .designs import EXPORTS, Cache, clearance, design, labels_from_page, parse_block, parse_nulls
 from .jobs import Jobs, relaxed
+from .lanes import Lane
 from .scaffolds import MAX_UPLOAD, Registry, builtin_choices, dumps
 
 if TYPE_CHECKING:
@@ -50,6 +52,7 @@ class Studio:
     registry: Registry = field(default_factory=Registry)
     cache: Cache = field(default_factory=Cache)
     jobs: Jobs = field(default_factory=Jobs)
+    exports: Lane = field(default_factory=lambda: Lane("export"))
     browser: Browser | None = None
     local_only: bool = True
 
@@ -70,6 +73,16 @@ class NotJson(BadRequest):
     """A POST without ``Content-Type: application/json`` (a cross-site form cannot send one without asking)."""
 
     status = 415
+
+
+class NotAFile(BadRequest):
+    """An upload not sent as :data:`UPLOAD_TYPE` (a cross-site form could send text/plain or multipart)."""
+
+    status = 415
+
+
+UPLOAD_TYPE = "application/octet-stream"
+"""The content type an upload must declare: not one a cross-site form can send without asking."""
 
 
 LOCAL_NAMES = ("127.0.0.1", "localhost", "::1")
@@ -124,9 +137,14 @@ async def body_of(request: Request, limit: int) -> bytes:
     return b"".join(chunks)
 
 
+def content_type(request: Request) -> str:
+    """Return the media type the request declares (lower case, no parameters)."""
+    return request.headers.get("content-type", "").split(";")[0].strip().lower()
+
+
 async def json_of(request: Request) -> dict[str, Any]:
     """Return the JSON object of the request body (``Content-Type: application/json`` required)."""
-    if request.headers.get("content-type", "").split(";")[0].strip().lower() != "application/json":
+    if content_type(request) != "application/json":
         raise NotJson("send the request body as application/json")
     raw = await body_of(request, MAX_JSON)
     try:
@@ -141,15 +159,25 @@ async def json_of(request: Request) -> dict[str, Any]:
 Handler = Callable[[Studio, dict[str, Any]], Any]
 
 
-def endpoint(handler: Handler) -> Callable[[Request], Awaitable[Response]]:
-    """Wrap ``handler(studio, body)`` (run in a worker thread) as a route answering JSON or an error."""
+def endpoint(
+    handler: Handler, lane: Callable[[Studio], Lane] | None = None
+) -> Callable[[Request], Awaitable[Response]]:
+    """Wrap ``handler(studio, body)`` as a route answering JSON or an error.
+
+    The handler runs in the thread pool that answers edits, or in the studio's ``lane(studio)``
+    (exports: queued apart, so an edit never waits behind them).
+    """
     from starlette.concurrency import run_in_threadpool
 
     async def route(request: Request) -> Response:
+        studio: Studio = request.app.state.studio
         try:
             body = await json_of(request) if request.method == "POST" else dict(request.query_params)
             body.update(request.path_params)
-            result = await run_in_threadpool(handler, request.app.state.studio, body)
+            if lane is None:
+                result = await run_in_threadpool(handler, studio, body)
+            else:
+                result = await lane(studio).run(handler, studio, body)
         except Exception as exc:  # noqa: BLE001 - every failure is an answer; the server runs on
             return fail(exc)
         if isinstance(result, Response):
@@ -257,7 +285,7 @@ def solve(studio: Studio, body: dict[str, Any]) -> dict[str, Any]:
         raise BadRequest("fixes: an object edge -> label")
     fixes = {}
     for edge, value in fixes_in.items():
-        if not str(edge).isdigit() or not 0 <= int(edge) < held.scaffold.n_edges:
+        if not is_count(edge, 9) or not 0 <= int(edge) < held.scaffold.n_edges:
             raise BadRequest(f"fixes: edge {str(edge)[:20]!r} out of range 0..{held.scaffold.n_edges - 1}")
         if not isinstance(value, int) or isinstance(value, bool) or abs(value) > 10**6:
             raise BadRequest(f"fixes: label of edge {edge} must be an integer within ±10**6")
@@ -278,19 +306,31 @@ def solve(studio: Studio, body: dict[str, Any]) -> dict[str, Any]:
     return {"job": studio.jobs.start("solve", held.scaffold, {"components": components, **options}).id}
 
 
-def job(studio: Studio, body: dict[str, Any]) -> dict[str, Any]:
-    """Return the state of job ``id`` (progress, result or error)."""
-    found = studio.jobs.get(int(body["id"]) if str(body.get("id", "")).isdigit() else None)
+def is_count(value: object, digits: int = 18) -> bool:
+    """Whether ``value`` is a non-negative decimal integer written in ASCII digits (at most ``digits``)."""
+    return (
+        isinstance(value, str | int)
+        and not isinstance(value, bool)
+        and bool(re.fullmatch(rf"[0-9]{{1,{digits}}}", str(value)))
+    )
+
+
+def job_of(studio: Studio, body: dict[str, Any]) -> Any:
+    """Return the job ``id`` names (a 400 error if none)."""
+    found = studio.jobs.get(int(body["id"]) if is_count(body.get("id")) else None)
     if found is None:
         raise BadRequest(f"no job {str(body.get('id'))[:20]!r}")
-    return found.poll()
+    return found
+
+
+def job(studio: Studio, body: dict[str, Any]) -> dict[str, Any]:
+    """Return the state of job ``id`` (progress, result or error)."""
+    return job_of(studio, body).poll()
 
 
 def cancel(studio: Studio, body: dict[str, Any]) -> dict[str, Any]:
     """Cancel job ``id`` (terminating its worker)."""
-    found = studio.jobs.get(int(body["id"]) if str(body.get("id", "")).isdigit() else None)
-    if found is None:
-        raise BadRequest(f"no job {str(body.get('id'))[:20]!r}")
+    found = job_of(studio, body)
     found.cancel()
     return found.poll()
 
@@ -318,7 +358,7 @@ def type_lookup(studio: Studio, body: dict[str, Any]) -> dict[str, Any]:
     name, limit, on = body.get("name"), str(body.get("limit", 10)), body.get("scaffold")
     if not isinstance(name, str) or not name.strip() or len(name) > 200:
         raise BadRequest("name: a knot or link type, e.g. 5_2, m3_1 or Borromean rings")
-    if not limit.isdigit() or not 1 <= int(limit) <= 1000:
+    if not is_count(limit, 4) or not 1 <= int(limit) <= 1000:
         raise BadRequest("limit: an integer in 1..1000")
     if on is not None and (not isinstance(on, str) or len(on) > 200):
         raise BadRequest("scaffold: a built-in scaffold name")
@@ -328,21 +368,35 @@ def type_lookup(studio: Studio, body: dict[str, Any]) -> dict[str, Any]:
         raise NoSuchDesign(str(exc)) from None
 
 
+class ExportFailed(LkspaceError):
+    """The export worker could not write the design (422)."""
+
+    status = 422
+
+
 def download(studio: Studio, body: dict[str, Any]) -> Response:
-    """Return the design as a file (``format``: one of :data:`~lkspace.studio.designs.EXPORTS`)."""
+    """Return the design as a file (``format``: one of :data:`~lkspace.studio.designs.EXPORTS`), written by a worker."""
     held, labels, nulls, _ = design_args(studio, body)
-    content, name = export_bytes(held.scaffold, labels, nulls, body.get("format"))
+    fmt = body.get("format")
+    if fmt not in EXPORTS:
+        raise BadRequest(f"format {str(fmt)[:20]!r}: choose one of {', '.join(EXPORTS)}")
+    state = studio.jobs.run("export", held.scaffold, labels, nulls, fmt)
+    if state["state"] != "done":
+        raise ExportFailed(f"cannot export this design: {state['error'] or state['state']}")
+    content, name = state["result"]["content"], state["result"]["name"]
     kinds = {"json": "application/json", "png": "image/png", "glb": "model/gltf-binary"}
     media = kinds.get(str(body.get("format")), "application/octet-stream")
     return Response(content, media_type=media, headers={"Content-Disposition": f'attachment; filename="{name}"'})
 
 
 async def upload(request: Request) -> Response:
-    """Hold an uploaded ``.obj`` / ``.json`` scaffold (raw body, name in ``X-Filename``)."""
+    """Hold an uploaded ``.obj`` / ``.json`` scaffold (raw body as :data:`UPLOAD_TYPE`, name in ``X-Filename``)."""
     from starlette.concurrency import run_in_threadpool
 
     studio: Studio = request.app.state.studio
     try:
+        if content_type(request) != UPLOAD_TYPE:  # refused before the body is read
+            raise NotAFile(f"send the file as {UPLOAD_TYPE} (the studio page does)")
         data = await body_of(request, MAX_UPLOAD)
         name = request.headers.get("x-filename", "upload.json")
         held = await run_in_threadpool(studio.registry.upload, name, data)
@@ -380,7 +434,6 @@ def create_app(studio: Studio | None = None) -> Any:
         "identify": identify,
         "solve": solve,
         "catalog": catalog_query,
-        "export": download,
     }
     routes = [
         Route("/", page),
@@ -390,6 +443,7 @@ def create_app(studio: Studio | None = None) -> Any:
         Route("/api/upload", upload, methods=["POST"]),
         Route("/api/job/{id}", endpoint(job)),
         Route("/api/job/{id}/cancel", endpoint(cancel), methods=["POST"]),
+        Route("/api/export", endpoint(download, lambda studio: studio.exports), methods=["POST"]),
         *[Route(f"/api/{name}", endpoint(fn), methods=["POST"]) for name, fn in posts.items()],
         Mount("/static", StaticFiles(directory=STATIC), name="static"),
     ]

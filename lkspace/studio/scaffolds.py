@@ -24,6 +24,7 @@ from ..io.obj import parse_obj
 from ..io.scaffold_json import scaffold_from_dict
 from ..io.sources import load
 from ..io.text import parse_json
+from .designs import default_block
 
 MAX_UPLOAD = 8_000_000
 """Largest uploaded scaffold file, in bytes."""
@@ -105,6 +106,7 @@ class Held:
         }
         if sc.lattice is not None:
             out["lattice"] = np.asarray(sc.lattice.basis).tolist()
+            out["block"] = default_block(sc)  # the block the page opens with: it fits the studio's bound
         return out
 
 
