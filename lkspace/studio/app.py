@@ -11,7 +11,6 @@ from __future__ import annotations
 import json
 import math
 import os
-import re
 from collections.abc import Awaitable, Callable
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
@@ -27,10 +26,10 @@ from .. import __version__
 from ..errors import GeometryError, LkspaceError, TooLargeError, UsageError
 from ..scaffolds import DEFAULT
 from .browse import Browser
-from .designs import EXPORTS, Cache, clearance, design, labels_from_page, parse_block, parse_nulls
+from .designs import EXPORTS, Cache, clearance, design, is_count, labels_from_page, parse_block, parse_nulls
 from .jobs import Jobs, relaxed
 from .lanes import Lane
-from .scaffolds import MAX_UPLOAD, Registry, builtin_choices, dumps
+from .scaffolds import MAX_UPLOAD, UPLOAD_TYPE, NotAFile, Registry, builtin_choices, dumps
 
 if TYPE_CHECKING:
     from .. import Realization
@@ -73,16 +72,6 @@ class NotJson(BadRequest):
     """A POST without ``Content-Type: application/json`` (a cross-site form cannot send one without asking)."""
 
     status = 415
-
-
-class NotAFile(BadRequest):
-    """An upload not sent as :data:`UPLOAD_TYPE` (a cross-site form could send text/plain or multipart)."""
-
-    status = 415
-
-
-UPLOAD_TYPE = "application/octet-stream"
-"""The content type an upload must declare: not one a cross-site form can send without asking."""
 
 
 LOCAL_NAMES = ("127.0.0.1", "localhost", "::1")
@@ -162,11 +151,7 @@ Handler = Callable[[Studio, dict[str, Any]], Any]
 def endpoint(
     handler: Handler, lane: Callable[[Studio], Lane] | None = None
 ) -> Callable[[Request], Awaitable[Response]]:
-    """Wrap ``handler(studio, body)`` as a route answering JSON or an error.
-
-    The handler runs in the thread pool that answers edits, or in the studio's ``lane(studio)``
-    (exports: queued apart, so an edit never waits behind them).
-    """
+    """Wrap ``handler(studio, body)`` (run in the thread pool that answers edits, or in ``lane(studio)``) as a route answering JSON or an error."""
     from starlette.concurrency import run_in_threadpool
 
     async def route(request: Request) -> Response:
@@ -306,15 +291,6 @@ def solve(studio: Studio, body: dict[str, Any]) -> dict[str, Any]:
     return {"job": studio.jobs.start("solve", held.scaffold, {"components": components, **options}).id}
 
 
-def is_count(value: object, digits: int = 18) -> bool:
-    """Whether ``value`` is a non-negative decimal integer written in ASCII digits (at most ``digits``)."""
-    return (
-        isinstance(value, str | int)
-        and not isinstance(value, bool)
-        and bool(re.fullmatch(rf"[0-9]{{1,{digits}}}", str(value)))
-    )
-
-
 def job_of(studio: Studio, body: dict[str, Any]) -> Any:
     """Return the job ``id`` names (a 400 error if none)."""
     found = studio.jobs.get(int(body["id"]) if is_count(body.get("id")) else None)
@@ -368,22 +344,10 @@ def type_lookup(studio: Studio, body: dict[str, Any]) -> dict[str, Any]:
         raise NoSuchDesign(str(exc)) from None
 
 
-class ExportFailed(LkspaceError):
-    """The export worker could not write the design (422)."""
-
-    status = 422
-
-
 def download(studio: Studio, body: dict[str, Any]) -> Response:
     """Return the design as a file (``format``: one of :data:`~lkspace.studio.designs.EXPORTS`), written by a worker."""
     held, labels, nulls, _ = design_args(studio, body)
-    fmt = body.get("format")
-    if fmt not in EXPORTS:
-        raise BadRequest(f"format {str(fmt)[:20]!r}: choose one of {', '.join(EXPORTS)}")
-    state = studio.jobs.run("export", held.scaffold, labels, nulls, fmt)
-    if state["state"] != "done":
-        raise ExportFailed(f"cannot export this design: {state['error'] or state['state']}")
-    content, name = state["result"]["content"], state["result"]["name"]
+    content, name = studio.jobs.export(held.scaffold, labels, nulls, body.get("format"))
     kinds = {"json": "application/json", "png": "image/png", "glb": "model/gltf-binary"}
     media = kinds.get(str(body.get("format")), "application/octet-stream")
     return Response(content, media_type=media, headers={"Content-Disposition": f'attachment; filename="{name}"'})

@@ -48,6 +48,15 @@ MAX_EXPORT_POINTS = 400_000
 """Most curve points of a downloaded file (tubes are 12 vertices a point)."""
 
 
+def is_count(value: object, digits: int = 18) -> bool:
+    """Return whether ``value`` is a non-negative integer written in at most ``digits`` ASCII digits."""
+    return (
+        isinstance(value, str | int)
+        and not isinstance(value, bool)
+        and bool(re.fullmatch(rf"[0-9]{{1,{digits}}}", str(value)))
+    )
+
+
 def labels_from_page(scaffold: Scaffold, value: object) -> np.ndarray:
     """``(n_edges,) int64`` from the page's list (integers, or decimal strings for exact int64)."""
     if value is None:
@@ -97,10 +106,10 @@ def parse_block(scaffold: Scaffold, value: object) -> np.ndarray | None:
     if copies > MAX_BLOCK:
         raise TooLargeError(f"block: {copies} copies > {MAX_BLOCK}")
     if copies > 1 and copies * scaffold.n_faces > MAX_BLOCK_FACES:
-        size = "x".join(map(str, value))
+        size, fits = ("x".join(map(str, sizes)) for sizes in (value, default_block(scaffold)))
         raise TooLargeError(
             f"block {size}: {copies} copies of {scaffold.n_faces:,} faces make {copies * scaffold.n_faces:,} faces"
-            f" > {MAX_BLOCK_FACES:,} the studio draws at once; choose a smaller block, such as {'x'.join(map(str, default_block(scaffold)))}"
+            f" > {MAX_BLOCK_FACES:,} the studio draws at once; choose a smaller block, such as {fits}"
         )
     grids = np.meshgrid(*[np.arange(n) for n in value], indexing="ij")
     return np.column_stack([g.reshape(-1) for g in grids])

@@ -31,7 +31,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from .. import Scaffold
-from ..errors import LkspaceError
+from ..errors import LkspaceError, UsageError
 from ..progress import Step, install
 from ..workers import context, ignore_interrupts
 from .lanes import Busy
@@ -59,6 +59,12 @@ MAX_RUNNING = max(2, min(len(REPLACED), os.cpu_count() or 2))
 
 MAX_JOBS = 64
 """Finished jobs remembered (the oldest are forgotten)."""
+
+
+class ExportFailed(LkspaceError):
+    """The export worker could not write the design (HTTP 422)."""
+
+    status = 422
 
 
 class QueueReporter:
@@ -263,6 +269,19 @@ class Jobs:
         finally:
             with self._lock:
                 self._jobs.pop(job.id, None)
+
+    def export(
+        self, scaffold: Scaffold, labels: np.ndarray, nulls: np.ndarray | None, fmt: object
+    ) -> tuple[bytes, str]:
+        """Return the design written as ``fmt`` by a worker: ``(content, file name)``; :class:`ExportFailed` if it could not."""
+        from .designs import EXPORTS
+
+        if fmt not in EXPORTS:
+            raise UsageError(f"format {str(fmt)[:20]!r}: choose one of {', '.join(EXPORTS)}")
+        state = self.run("export", scaffold, labels, nulls, fmt)
+        if state["state"] != "done":
+            raise ExportFailed(f"cannot export this design: {state['error'] or state['state']}")
+        return state["result"]["content"], state["result"]["name"]
 
     def wait(self, job: Job, pause: float = 0.05) -> dict[str, Any]:
         """Return the JSON view of ``job`` once it has ended (done, error or cancelled by a newer one)."""

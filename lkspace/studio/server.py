@@ -1,9 +1,9 @@
 """Serving the studio: a socket bound before uvicorn starts (so port 0 names its real port), the URL printed.
 
 uvicorn stops on Ctrl-C or SIGTERM after answering what is in flight (at most 2 s), then
-re-raises the signal; the workers are stopped as the shutdown begins, so a request waiting
-for one (a relaxation, an export) is answered at once and the studio exits within a second: the command line turns it into exit status 130 (143), as for every
-command.  uvicorn logs only critical events: every endpoint answers its own errors as
+re-raises the signal: the command line turns it into exit status 130 (143), as for every
+command.  The workers are stopped as the shutdown begins, so a request waiting for one
+(a relaxation, an export) is answered at once and the studio exits within a second.  uvicorn logs only critical events: every endpoint answers its own errors as
 JSON, and a measurement cut short by Ctrl-C is no error worth a traceback.
 """
 
