@@ -27,7 +27,7 @@ from ..errors import GeometryError, LkspaceError, TooLargeError, UsageError
 from ..scaffolds import DEFAULT
 from .browse import Browser
 from .designs import EXPORTS, Cache, clearance, design, is_count, labels_from_page, parse_block, parse_nulls
-from .jobs import Jobs, relaxed
+from .jobs import Job, Jobs, relaxed
 from .lanes import Lane
 from .scaffolds import MAX_UPLOAD, UPLOAD_TYPE, NotAFile, Registry, builtin_choices, dumps
 
@@ -151,7 +151,10 @@ Handler = Callable[[Studio, dict[str, Any]], Any]
 def endpoint(
     handler: Handler, lane: Callable[[Studio], Lane] | None = None
 ) -> Callable[[Request], Awaitable[Response]]:
-    """Wrap ``handler(studio, body)`` (run in the thread pool that answers edits, or in ``lane(studio)``) as a route answering JSON or an error."""
+    """Wrap ``handler(studio, body)`` as a route answering JSON or an error.
+
+    The handler runs in the thread pool that answers edits, or queued in ``lane(studio)`` (exports).
+    """
     from starlette.concurrency import run_in_threadpool
 
     async def route(request: Request) -> Response:
@@ -291,7 +294,7 @@ def solve(studio: Studio, body: dict[str, Any]) -> dict[str, Any]:
     return {"job": studio.jobs.start("solve", held.scaffold, {"components": components, **options}).id}
 
 
-def job_of(studio: Studio, body: dict[str, Any]) -> Any:
+def job_of(studio: Studio, body: dict[str, Any]) -> Job:
     """Return the job ``id`` names (a 400 error if none)."""
     found = studio.jobs.get(int(body["id"]) if is_count(body.get("id")) else None)
     if found is None:
