@@ -128,7 +128,9 @@ def test_save_then_open_over_http(client):
     assert name == design_stem("cube", labels, [5]) + ".design.json"
     saved = r.json()
     assert saved["scaffold"] == "cube" and saved["labels"] == labels and saved["view"] == CUBE_VIEW
-    back = client.post("/api/open-design", content=r.content, headers={"X-Filename": name}).json()
+    back = client.post(
+        "/api/open-design", content=r.content, headers={"X-Filename": name, "Content-Type": "application/octet-stream"}
+    ).json()
     assert back["key"] == "cube" and back["labels"] == labels and back["nulls"] == [5] and back["view"] == CUBE_VIEW
 
 
@@ -140,7 +142,11 @@ def test_uploaded_scaffold_is_embedded_and_reopens(client):
     saved = r.json()
     assert saved["scaffold"]["name"] == "my tetra"
     assert r.headers["content-disposition"].endswith('filename="my-tetra_t1.2.3.1.2.3.design.json"')
-    back = client.post("/api/open-design", content=r.content, headers={"X-Filename": "x.json"}).json()
+    back = client.post(
+        "/api/open-design",
+        content=r.content,
+        headers={"X-Filename": "x.json", "Content-Type": "application/octet-stream"},
+    ).json()
     assert back["key"] == held["key"] and back["labels"] == [1, 2, 3, 1, 2, 3] and back["view"] is None
 
 
@@ -152,7 +158,11 @@ def test_open_design_errors_are_json(client):
         (b"\xff\xfe", "not a text file"),
         (design(scaffold="honeycomb:cP", labels=[1] * 3, block=[5, 5, 5]).encode(), "block: 125 copies > 64"),
     ]:
-        r = client.post("/api/open-design", content=text, headers={"X-Filename": "bad.json"})
+        r = client.post(
+            "/api/open-design",
+            content=text,
+            headers={"X-Filename": "bad.json", "Content-Type": "application/octet-stream"},
+        )
         assert 400 <= r.status_code < 500
         assert words in r.json()["error"]["message"] and r.json()["error"]["message"].startswith("bad.json")
 
@@ -165,3 +175,9 @@ def test_server_exports_and_filename_agree(client):
     assert stem == "cube_t1.-1.0.2.1.1.1.1.1.1.1.1"
     big = client.post("/api/filename", json={"key": "honeycomb:cP@3x3x3"}).json()["stem"]
     assert big.startswith("honeycomb-cP-3x3x3_") and len(big) == len("honeycomb-cP-3x3x3_") + 8
+
+
+def test_open_design_takes_files_only_as_octet_stream(client):
+    """A design file sent as text/plain (what a cross-site form can send) is refused before it is read."""
+    r = client.post("/api/open-design", content=b"{}", headers={"X-Filename": "d.json", "Content-Type": "text/plain"})
+    assert r.status_code == 415 and "application/octet-stream" in r.json()["error"]["message"]

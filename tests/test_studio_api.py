@@ -40,6 +40,9 @@ def client(catalog):
     stop()
 
 
+UPLOAD = {"Content-Type": "application/octet-stream"}
+
+
 def post(client, path, body):
     return client.post(f"/api/{path}", json=body)
 
@@ -154,6 +157,7 @@ HOSTILE = [
     ("design", {"key": "cube", "labels": "1,1,1"}),
     ("design", {"key": "cube", "labels": [1] * 12, "nulls": [999]}),
     ("design", {"key": "cube", "labels": [1] * 12, "nulls": "all"}),
+    ("design", {"key": "cube", "nulls": [10**30]}),
     ("design", {"key": "../../etc/passwd"}),
     ("design", {"key": "/etc/passwd"}),
     ("design", {"key": "cube.obj"}),
@@ -203,19 +207,24 @@ def test_malformed_requests_and_uploads(client, tmp_path):
     rebound = client.get("/api/info", headers={"Host": "evil.example:8765"})
     assert rebound.status_code == 403 and "refused" in rebound.json()["error"]["message"]
     assert (
-        client.post("/api/upload", content=b"v 0 0 0\n" * 1_100_000, headers={"X-Filename": "big.obj"}).status_code
+        client.post(
+            "/api/upload", content=b"v 0 0 0\n" * 1_100_000, headers={**UPLOAD, "X-Filename": "big.obj"}
+        ).status_code
         == 413
     )
     assert (
-        client.post("/api/upload", content=b"\xff\xfe", headers={"X-Filename": "../../etc/x.json"}).status_code == 422
+        client.post(
+            "/api/upload", content=b"\xff\xfe", headers={**UPLOAD, "X-Filename": "../../etc/x.json"}
+        ).status_code
+        == 422
     )
-    bad = client.post("/api/upload", content=b"v 0 0 0\nf 1 2 3\n", headers={"X-Filename": "bad.obj"})
+    bad = client.post("/api/upload", content=b"v 0 0 0\nf 1 2 3\n", headers={**UPLOAD, "X-Filename": "bad.obj"})
     assert bad.status_code in (400, 422) and "error" in bad.json()
     assert client.get("/api/nowhere").json()["error"]["type"] == "HTTPError"
     assert client.get("/api/design").status_code == 405
     assert client.get("/api/job/999999").status_code == 400
     obj = lkspace.io.obj.format_obj(lkspace.load("tetrahedron"))
-    up = client.post("/api/upload", content=obj.encode(), headers={"X-Filename": "t.obj"}).json()
+    up = client.post("/api/upload", content=obj.encode(), headers={**UPLOAD, "X-Filename": "t.obj"}).json()
     d = post(client, "design", {"key": up["key"], "labels": [1] * 6}).json()
     assert d["components"] == 3  # the uploaded tetrahedron, after all the hostile requests
     assert client.get("/api/info").json()["exports"][:2] == ["json", "obj"]

@@ -234,6 +234,11 @@ def test_periodic_block(studio, browser):
     page.dispatch_event("#block", "change")
     wait_redraw(page, n)
     assert len(page.evaluate("window.studio.state.design.curves.copy")) == 4 * 3
+    n = redraws(page)
+    page.select_option("#builtin", "honeycomb:cP@7x7x7")  # 1,029 faces a cell: opens as one cell, drawn
+    page.wait_for_function(f"window.studio.state.latencies.length > {n}", timeout=120000)  # a big first build
+    assert page.input_value("#block") == "1x1x1" and page.evaluate("window.studio.state.block") == [1, 1, 1]
+    assert set(page.evaluate("window.studio.state.design.curves.copy")) == {0} and page.is_hidden("#message")
     page.close()
 
 

@@ -72,3 +72,66 @@ def test_a_port_in_use_is_one_line():
         )
     assert out.returncode == 2 and f"cannot listen on 127.0.0.1:{port}" in out.stderr
     assert out.stderr.count("\n") == 1
+
+
+def test_ctrl_c_stops_the_studio_with_its_jobs_after_long_use():
+    """The installed command, a few hundred requests, identify / solve / relax / exports running: Ctrl-C ends it all."""
+    import shutil
+    import threading
+    import time
+
+    psutil = pytest.importorskip("psutil")
+    command = [shutil.which("lkspace") or pytest.fail("the lkspace command is not installed")]
+    proc = subprocess.Popen(
+        [*command, "studio", "cube", "--no-browser", "--port", "0"],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+    try:
+        url = re.search(r"http://\S+/", proc.stdout.readline()).group(0)
+        with httpx.Client(base_url=url, timeout=120) as client:
+
+            def edits(seed):
+                for i in range(25):
+                    labels = [1] * 12
+                    labels[(seed + i) % 12] = 2 + i % 3
+                    assert client.post("/api/design", json={"key": "cube", "labels": labels}).status_code == 200
+                    assert client.post("/api/clearance", json={"key": "cube", "labels": labels}).status_code == 200
+
+            threads = [threading.Thread(target=edits, args=(k,)) for k in range(4)]
+            for t in threads:
+                t.start()
+            for t in threads:
+                t.join()
+            identify = client.post("/api/identify", json={"key": "dodecahedron", "labels": [2] * 30}).json()["job"]
+            solve = {"key": "honeycomb:cP@4x4x4", "components": 7, "count": 50, "objective": "min-abs"}
+            solving = client.post("/api/solve", json=solve).json()["job"]
+
+            def ask(path, body):
+                try:
+                    client.post(f"/api/{path}", json=body)
+                except httpx.HTTPError:
+                    pass  # cut short by Ctrl-C
+
+            pending = [("design", {"key": "icosahedron", "labels": [1] * 30, "relax": True})]
+            pending += [("export", {"key": "tetrahedron", "labels": [1] * 6, "format": "svg"})] * 3
+            for path, body in pending:
+                threading.Thread(target=ask, args=(path, body), daemon=True).start()
+            time.sleep(1)
+            assert [client.get(f"/api/job/{j}").json()["state"] for j in (identify, solving)] == ["running"] * 2
+            family = psutil.Process(proc.pid).children(recursive=True)
+            assert len(family) >= 3  # the fork server and two workers at least
+            started = time.monotonic()
+            proc.send_signal(signal.SIGINT)
+            _, err = proc.communicate(timeout=60)
+            seconds = time.monotonic() - started
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+            proc.communicate()
+    assert proc.returncode == 130 and "Traceback" not in err, err
+    print(f"Ctrl-C to exit: {seconds:.2f} s")
+    assert seconds < 10, seconds  # 0.4 s measured on a loaded machine; loose, as timings are noisy
+    psutil.wait_procs(family, timeout=5)
+    assert [p.pid for p in family if p.is_running() and p.status() != psutil.STATUS_ZOMBIE] == []

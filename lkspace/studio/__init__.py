@@ -10,7 +10,9 @@ API through these modules:
                                         files named on the command line, uploads)
 :mod:`~lkspace.studio.designs`          labels -> trace + strand curves (binary), the
                                         embedding check, export to bytes
-:mod:`~lkspace.studio.jobs`             identify and solve in worker processes (cancellable)
+:mod:`~lkspace.studio.jobs`             identify, relax, solve and exports in worker
+                                        processes (cancellable, bounded)
+:mod:`~lkspace.studio.lanes`            the line exports wait in; the busy answer (429)
 :mod:`~lkspace.studio.browse`           catalog filter / sort / page over Arrow data
 ======================================  ==================================================
 

@@ -8,7 +8,6 @@ path.
 
 from __future__ import annotations
 
-import json
 import math
 import os
 from collections.abc import Awaitable, Callable
@@ -23,23 +22,22 @@ from starlette.routing import Mount, Route
 from starlette.staticfiles import StaticFiles
 
 from .. import __version__
-from ..errors import GeometryError, LkspaceError, TooLargeError, UsageError
+from ..errors import GeometryError, LkspaceError, UsageError
 from ..scaffolds import DEFAULT
 from .browse import Browser
 from .design_files import filename, open_upload, save_design
-from .designs import EXPORTS, Cache, clearance, design, export_bytes, labels_from_page, parse_block, parse_nulls
+from .designs import EXPORTS, Cache, clearance, design, is_count, labels_from_page, parse_block, parse_nulls
 from .diagrams import Thumbnails, diagram
-from .jobs import Jobs, relaxed
+from .jobs import Job, Jobs, relaxed
+from .lanes import Lane
 from .scaffolds import MAX_UPLOAD, Registry, builtin_choices, dumps
+from .wire import BadRequest, LocalHostOnly, fail, file_of, json_of
 
 if TYPE_CHECKING:
     from .. import Realization
 
 STATIC = os.path.join(os.path.dirname(__file__), "static")
 """The page and its vendored three.js build (shipped in the wheel)."""
-
-MAX_JSON = 2_000_000
-"""Largest JSON request body, in bytes."""
 
 OBJECTIVES = (None, "min-abs", "min-nonzero")
 
@@ -52,17 +50,12 @@ class Studio:
     registry: Registry = field(default_factory=Registry)
     cache: Cache = field(default_factory=Cache)
     jobs: Jobs = field(default_factory=Jobs)
+    exports: Lane = field(default_factory=lambda: Lane("export"))
     browser: Browser | None = None
     local_only: bool = True
     thumbs: Thumbnails = field(default_factory=Thumbnails)
     design: dict[str, Any] | None = None
     """A design file opened on the command line (what ``/api/open-design`` answers), shown first."""
-
-
-class BadRequest(UsageError):
-    """A request the endpoints cannot read (not JSON, too large, fields missing)."""
-
-    status = 400
 
 
 class Superseded(UsageError):
@@ -71,90 +64,27 @@ class Superseded(UsageError):
     status = 409
 
 
-class NotJson(BadRequest):
-    """A POST without ``Content-Type: application/json`` (a cross-site form cannot send one without asking)."""
-
-    status = 415
-
-
-LOCAL_NAMES = ("127.0.0.1", "localhost", "::1")
-
-
-class LocalHostOnly:
-    """ASGI middleware: answer only requests addressed to this machine by name (DNS rebinding defence)."""
-
-    def __init__(self, app: Any) -> None:
-        self.app = app
-
-    async def __call__(self, scope: Any, receive: Any, send: Any) -> None:
-        """Refuse (403, JSON) an HTTP request whose Host header is not a local name."""
-        if scope["type"] == "http":
-            host = dict(scope.get("headers") or []).get(b"host", b"").decode("latin-1")
-            name = host[1:].split("]")[0] if host.startswith("[") else host.split(":")[0]
-            if name not in LOCAL_NAMES:
-                error = {
-                    "error": {
-                        "type": "HTTPError",
-                        "message": f"host {name[:60]!r} refused: the studio answers 127.0.0.1",
-                    }
-                }
-                await JSONResponse(error, status_code=403)(scope, receive, send)
-                return
-        await self.app(scope, receive, send)
-
-
-def fail(exc: Exception) -> JSONResponse:
-    """Return the JSON error answer to ``exc``."""
-    if isinstance(exc, LkspaceError):
-        status = getattr(exc, "status", 413 if isinstance(exc, TooLargeError) else 400 if exc.exit_code == 2 else 422)
-        kind = type(exc).__name__
-        message = " ".join(str(exc).split())
-    else:
-        status, kind = 500, "InternalError"
-        message = f"internal error ({type(exc).__name__}: {exc})"
-    return JSONResponse({"error": {"type": kind, "message": message}}, status_code=status)
-
-
-async def body_of(request: Request, limit: int) -> bytes:
-    """Return the request body, refused past ``limit`` bytes (before reading it all)."""
-    declared = request.headers.get("content-length")
-    if declared is not None and declared.isdigit() and int(declared) > limit:
-        raise TooLargeError(f"request of {int(declared):,} bytes > {limit:,}")
-    chunks, size = [], 0
-    async for chunk in request.stream():
-        size += len(chunk)
-        if size > limit:
-            raise TooLargeError(f"request larger than {limit:,} bytes")
-        chunks.append(chunk)
-    return b"".join(chunks)
-
-
-async def json_of(request: Request) -> dict[str, Any]:
-    """Return the JSON object of the request body (``Content-Type: application/json`` required)."""
-    if request.headers.get("content-type", "").split(";")[0].strip().lower() != "application/json":
-        raise NotJson("send the request body as application/json")
-    raw = await body_of(request, MAX_JSON)
-    try:
-        data = json.loads(raw or b"{}", parse_constant=lambda c: None)
-    except (ValueError, RecursionError):
-        raise BadRequest("request body: not valid JSON") from None
-    if not isinstance(data, dict):
-        raise BadRequest("request body: expected a JSON object")
-    return data
-
-
 Handler = Callable[[Studio, dict[str, Any]], Any]
 
 
-def endpoint(handler: Handler) -> Callable[[Request], Awaitable[Response]]:
-    """Wrap ``handler(studio, body)`` (run in a worker thread) as a route answering JSON or an error."""
+def endpoint(
+    handler: Handler, lane: Callable[[Studio], Lane] | None = None
+) -> Callable[[Request], Awaitable[Response]]:
+    """Wrap ``handler(studio, body)`` as a route answering JSON or an error.
+
+    The handler runs in the thread pool that answers edits, or queued in ``lane(studio)`` (exports).
+    """
     from starlette.concurrency import run_in_threadpool
 
     async def route(request: Request) -> Response:
+        studio: Studio = request.app.state.studio
         try:
             body = await json_of(request) if request.method == "POST" else dict(request.query_params)
             body.update(request.path_params)
-            result = await run_in_threadpool(handler, request.app.state.studio, body)
+            if lane is None:
+                result = await run_in_threadpool(handler, studio, body)
+            else:
+                result = await lane(studio).run(handler, studio, body)
         except Exception as exc:  # noqa: BLE001 - every failure is an answer; the server runs on
             return fail(exc)
         if isinstance(result, Response):
@@ -263,7 +193,7 @@ def solve(studio: Studio, body: dict[str, Any]) -> dict[str, Any]:
         raise BadRequest("fixes: an object edge -> label")
     fixes = {}
     for edge, value in fixes_in.items():
-        if not str(edge).isdigit() or not 0 <= int(edge) < held.scaffold.n_edges:
+        if not is_count(edge, 9) or not 0 <= int(edge) < held.scaffold.n_edges:
             raise BadRequest(f"fixes: edge {str(edge)[:20]!r} out of range 0..{held.scaffold.n_edges - 1}")
         if not isinstance(value, int) or isinstance(value, bool) or abs(value) > 10**6:
             raise BadRequest(f"fixes: label of edge {edge} must be an integer within ±10**6")
@@ -284,19 +214,22 @@ def solve(studio: Studio, body: dict[str, Any]) -> dict[str, Any]:
     return {"job": studio.jobs.start("solve", held.scaffold, {"components": components, **options}).id}
 
 
-def job(studio: Studio, body: dict[str, Any]) -> dict[str, Any]:
-    """Return the state of job ``id`` (progress, result or error)."""
-    found = studio.jobs.get(int(body["id"]) if str(body.get("id", "")).isdigit() else None)
+def job_of(studio: Studio, body: dict[str, Any]) -> Job:
+    """Return the job ``id`` names (a 400 error if none)."""
+    found = studio.jobs.get(int(body["id"]) if is_count(body.get("id")) else None)
     if found is None:
         raise BadRequest(f"no job {str(body.get('id'))[:20]!r}")
-    return found.poll()
+    return found
+
+
+def job(studio: Studio, body: dict[str, Any]) -> dict[str, Any]:
+    """Return the state of job ``id`` (progress, result or error)."""
+    return job_of(studio, body).poll()
 
 
 def cancel(studio: Studio, body: dict[str, Any]) -> dict[str, Any]:
     """Cancel job ``id`` (terminating its worker)."""
-    found = studio.jobs.get(int(body["id"]) if str(body.get("id", "")).isdigit() else None)
-    if found is None:
-        raise BadRequest(f"no job {str(body.get('id'))[:20]!r}")
+    found = job_of(studio, body)
     found.cancel()
     return found.poll()
 
@@ -324,7 +257,7 @@ def type_lookup(studio: Studio, body: dict[str, Any]) -> dict[str, Any]:
     name, limit, on = body.get("name"), str(body.get("limit", 10)), body.get("scaffold")
     if not isinstance(name, str) or not name.strip() or len(name) > 200:
         raise BadRequest("name: a knot or link type, e.g. 5_2, m3_1 or Borromean rings")
-    if not limit.isdigit() or not 1 <= int(limit) <= 1000:
+    if not is_count(limit, 4) or not 1 <= int(limit) <= 1000:
         raise BadRequest("limit: an integer in 1..1000")
     if on is not None and (not isinstance(on, str) or len(on) > 200):
         raise BadRequest("scaffold: a built-in scaffold name")
@@ -347,36 +280,35 @@ def thumbnails(studio: Studio, body: dict[str, Any]) -> dict[str, Any]:
 
 
 def download(studio: Studio, body: dict[str, Any]) -> Response:
-    """Return the design as a file (``format``: one of :data:`~lkspace.studio.designs.EXPORTS`)."""
+    """Return the design as a file (``format``: one of :data:`~lkspace.studio.designs.EXPORTS`), written by a worker."""
     held, labels, nulls, _ = design_args(studio, body)
-    content, name = export_bytes(held.scaffold, labels, nulls, body.get("format"))
+    content, name = studio.jobs.export(held.scaffold, labels, nulls, body.get("format"))
     kinds = {"json": "application/json", "png": "image/png", "glb": "model/gltf-binary"}
     media = kinds.get(str(body.get("format")), "application/octet-stream")
     return Response(content, media_type=media, headers={"Content-Disposition": f'attachment; filename="{name}"'})
 
 
 async def upload(request: Request) -> Response:
-    """Hold an uploaded ``.obj`` / ``.json`` scaffold (raw body, name in ``X-Filename``)."""
+    """Hold an uploaded ``.obj`` / ``.json`` scaffold (:func:`~lkspace.studio.wire.file_of`)."""
     from starlette.concurrency import run_in_threadpool
 
     studio: Studio = request.app.state.studio
     try:
-        data = await body_of(request, MAX_UPLOAD)
-        name = request.headers.get("x-filename", "upload.json")
-        held = await run_in_threadpool(studio.registry.upload, name, data)
+        name, data = await file_of(request)
+        held = await run_in_threadpool(studio.registry.upload, name or "upload.json", data)
         return Response(dumps(held.view()), media_type="application/json")
     except Exception as exc:  # noqa: BLE001 - every failure is an answer
         return fail(exc)
 
 
 async def open_design(request: Request) -> Response:
-    """Open an uploaded design file (raw body, name in ``X-Filename``): the page then loads the answer."""
+    """Open an uploaded design file (:func:`~lkspace.studio.wire.file_of`): the page then loads the answer."""
     from starlette.concurrency import run_in_threadpool
 
     studio: Studio = request.app.state.studio
     try:
-        data = await body_of(request, MAX_UPLOAD)
-        answer = await run_in_threadpool(open_upload, studio.registry, request.headers.get("x-filename", ""), data)
+        name, data = await file_of(request)
+        answer = await run_in_threadpool(open_upload, studio.registry, name, data)
         return Response(dumps(answer), media_type="application/json")
     except Exception as exc:  # noqa: BLE001 - every failure is an answer
         return fail(exc)
@@ -411,7 +343,6 @@ def create_app(studio: Studio | None = None) -> Any:
         "identify": identify,
         "solve": solve,
         "catalog": catalog_query,
-        "export": download,
         "diagram": knot_diagram,
         "thumbnails": thumbnails,
         "design-file": save_design,
@@ -426,6 +357,7 @@ def create_app(studio: Studio | None = None) -> Any:
         Route("/api/open-design", open_design, methods=["POST"]),
         Route("/api/job/{id}", endpoint(job)),
         Route("/api/job/{id}/cancel", endpoint(cancel), methods=["POST"]),
+        Route("/api/export", endpoint(download, lambda studio: studio.exports), methods=["POST"]),
         *[Route(f"/api/{name}", endpoint(fn), methods=["POST"]) for name, fn in posts.items()],
         Mount("/static", StaticFiles(directory=STATIC), name="static"),
     ]

@@ -39,11 +39,26 @@ MAX_STUDIO_POINTS = 600_000
 MAX_BLOCK = 64
 """Most lattice copies of a periodic block the page may ask for."""
 
+DEFAULT_BLOCK_FACES = 1_200
+"""Most faces of the block a periodic scaffold opens with (a redraw of about half a second)."""
+
+MAX_BLOCK_FACES = 4_000
+"""Most faces a periodic block may draw (copies × faces of the cell; past it the curves outgrow :data:`MAX_STUDIO_POINTS`)."""
+
 EXPORTS = ("json", *(ext[1:] for ext in FORMATS))
 """Download formats: the scaffold file with labels, then every format of the export registry."""
 
 MAX_EXPORT_POINTS = 400_000
 """Most curve points of a downloaded file (tubes are 12 vertices a point)."""
+
+
+def is_count(value: object, digits: int = 18) -> bool:
+    """Return whether ``value`` is a non-negative integer written in at most ``digits`` ASCII digits."""
+    return (
+        isinstance(value, str | int)
+        and not isinstance(value, bool)
+        and bool(re.fullmatch(rf"[0-9]{{1,{digits}}}", str(value)))
+    )
 
 
 def labels_from_page(scaffold: Scaffold, value: object) -> np.ndarray:
@@ -78,6 +93,8 @@ def parse_nulls(scaffold: Scaffold, value: object) -> np.ndarray | None:
         raise LabelError("nulls: expected a list of side indices (integers)")
     if len(value) > scaffold.n_corners:
         raise LabelError(f"nulls: {len(value)} sides, but {scaffold.name} has {scaffold.n_corners}")
+    if any(not 0 <= v < scaffold.n_corners for v in value):  # before numpy: 10**30 fits no int64
+        raise LabelError(f"nulls: side indices in 0..{scaffold.n_corners - 1}")
     return validate_nulls(scaffold, np.array(value, dtype=np.int64))
 
 
@@ -89,10 +106,25 @@ def parse_block(scaffold: Scaffold, value: object) -> np.ndarray | None:
         raise UsageError(f"block: give {scaffold.dim} sizes for a {scaffold.dim}D lattice")
     if not all(isinstance(v, int) and not isinstance(v, bool) and 1 <= v <= MAX_BLOCK for v in value):
         raise UsageError(f"block: sizes must be integers in 1..{MAX_BLOCK}")
-    if int(np.prod(value)) > MAX_BLOCK:
-        raise TooLargeError(f"block: {int(np.prod(value))} copies > {MAX_BLOCK}")
+    copies = int(np.prod(value))
+    if copies > MAX_BLOCK:
+        raise TooLargeError(f"block: {copies} copies > {MAX_BLOCK}")
+    if copies > 1 and copies * scaffold.n_faces > MAX_BLOCK_FACES:
+        size, fits = ("x".join(map(str, sizes)) for sizes in (value, default_block(scaffold)))
+        raise TooLargeError(
+            f"block {size}: {copies} copies of {scaffold.n_faces:,} faces make {copies * scaffold.n_faces:,} faces"
+            f" > {MAX_BLOCK_FACES:,} the studio draws at once; choose a smaller block, such as {fits}"
+        )
     grids = np.meshgrid(*[np.arange(n) for n in value], indexing="ij")
     return np.column_stack([g.reshape(-1) for g in grids])
+
+
+def default_block(scaffold: Scaffold) -> list[int]:
+    """Return the block a periodic scaffold opens with: 2x2x2 (3x3 in 2D), smaller past :data:`DEFAULT_BLOCK_FACES` drawn."""
+    side = 2 if scaffold.dim == 3 else 3
+    while side > 1 and side**scaffold.dim * scaffold.n_faces > DEFAULT_BLOCK_FACES:
+        side -= 1
+    return [side] * scaffold.dim
 
 
 def pack(array: np.ndarray, dtype: str = "<f4") -> str:

@@ -1,17 +1,26 @@
-"""Identify, relax and solve in worker processes: never blocking an edit, cancelled by terminating.
+"""Identify, relax, solve and exports in worker processes: never blocking an edit, cancelled by terminating.
 
 Each job runs :func:`run_job` in a fresh process of lkspace's worker context
 (:func:`lkspace.workers.context`; the fork server preloads the heavy modules, so a job
 starts in milliseconds after the first).  Progress of the library's long steps
 (:mod:`lkspace.progress`) and the result come back through a queue the server drains
-when the page polls.  A new identify or relax cancels the one before it (its result would
-be stale); a solve runs until it ends or the page cancels it.
+when the page polls.
+
+Jobs are bounded: one job of each kind at a time, and a new one stops the one running
+(an identification or relaxation of an older design is stale; a new solve is the page
+asking again with other settings, and the page follows only its latest solve).  On top,
+at most :data:`MAX_RUNNING` workers run at once; a job past that is refused with
+:class:`~lkspace.studio.lanes.Busy` (HTTP 429) naming what runs, so the user can wait or
+cancel one.  Exports run here too (their CPU apart from the threads that redraw), one
+at a time from the export lane (:mod:`~lkspace.studio.lanes`), which bounds them: they
+neither count against the cap nor show by id.
 """
 
 from __future__ import annotations
 
 import base64
 import itertools
+import os
 import queue as queues
 import threading
 import time
@@ -22,9 +31,10 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from .. import Scaffold
-from ..errors import LkspaceError
+from ..errors import LkspaceError, UsageError
 from ..progress import Step, install
 from ..workers import context, ignore_interrupts
+from .lanes import Busy
 
 if TYPE_CHECKING:
     from ..geometry.realization import Realization
@@ -41,11 +51,20 @@ PRELOAD = [
 IDENTIFY_SECONDS = 30.0
 """Time limit of one identification."""
 
-REPLACED = ("identify", "relax")
-"""Job kinds of which only the newest matters: starting one cancels the one before."""
+REPLACED = ("identify", "relax", "solve")
+"""The page's job kinds, run one at a time: starting one cancels the one running."""
+
+MAX_RUNNING = max(2, min(len(REPLACED), os.cpu_count() or 2))
+"""Most workers running at once: one of each kind, but no more than the cores (at least 2)."""
 
 MAX_JOBS = 64
 """Finished jobs remembered (the oldest are forgotten)."""
+
+
+class ExportFailed(LkspaceError):
+    """The export worker could not write the design (HTTP 422)."""
+
+    status = 422
 
 
 class QueueReporter:
@@ -112,10 +131,19 @@ def relaxed(real: Realization, payload: dict[str, Any]) -> Realization:
     return replace(real, curves=[c.copy() for c in curves], **fields)
 
 
+def export_payload(scaffold: Scaffold, labels: np.ndarray, nulls: np.ndarray | None, fmt: str) -> dict[str, Any]:
+    """Return the design written as ``fmt``: ``content`` (bytes) and the file ``name``."""
+    from .designs import export_bytes
+
+    content, name = export_bytes(scaffold, labels, nulls, fmt)
+    return {"content": content, "name": name}
+
+
 TASKS: dict[str, Callable[..., dict[str, Any]]] = {
     "identify": identify_payload,
     "solve": solve_payload,
     "relax": relax_payload,
+    "export": export_payload,
 }
 """Job kinds -> the function a worker runs."""
 
@@ -191,29 +219,71 @@ class Job:
 class Jobs:
     """The jobs of one studio."""
 
-    def __init__(self) -> None:
+    def __init__(self, max_running: int = MAX_RUNNING) -> None:
         self._ctx = context(PRELOAD)
         self._jobs: dict[int, Job] = {}
         self._ids = itertools.count(1)
         self._lock = threading.Lock()
+        self._starting = threading.Lock()
+        self.max_running = max_running
+        self.closed = False
         self.latest: dict[str, Job] = {}
 
+    def running(self) -> list[Job]:
+        """Return the page's jobs whose worker is still at work (:data:`REPLACED` kinds)."""
+        jobs = list(self._jobs.values())
+        return [j for j in jobs if j.kind in REPLACED and j.state == "running" and j.process.is_alive()]
+
     def start(self, kind: str, *args: Any) -> Job:
-        """Start a ``kind`` job; a new identify or relax cancels the previous one (:data:`REPLACED`)."""
-        if kind in REPLACED and kind in self.latest:
-            self.latest[kind].cancel()
-        channel = self._ctx.Queue()
-        process = self._ctx.Process(target=run_job, args=(kind, args, channel), daemon=True)  # type: ignore[attr-defined]
-        process.start()
-        with self._lock:
-            job = Job(next(self._ids), kind, process, channel)
-            self._jobs[job.id] = job
-            finished = [j for j in self._jobs.values() if j.state != "running"]
-            for old in finished[: max(0, len(self._jobs) - MAX_JOBS)]:
-                del self._jobs[old.id]
-        if kind in REPLACED:
-            self.latest[kind] = job
-        return job
+        """Start a ``kind`` job, cancelling the one of that kind running (:data:`REPLACED`).
+
+        Raises :class:`~lkspace.studio.lanes.Busy` when :attr:`max_running` workers of other
+        kinds run.  Starts are taken one at a time, so a burst of requests leaves one job running.
+        """
+        with self._starting:
+            if self.closed:
+                raise Busy("the studio is stopping")
+            if kind in REPLACED and kind in self.latest:
+                self.latest[kind].cancel()
+            running = self.running()
+            if len(running) >= self.max_running:
+                kinds = ", ".join(j.kind for j in running)
+                n = len(running)
+                raise Busy(f"the studio is busy: {n} job{'s' if n != 1 else ''} running ({kinds}); wait or cancel one")
+            channel = self._ctx.Queue()
+            process = self._ctx.Process(target=run_job, args=(kind, args, channel), daemon=True)  # type: ignore[attr-defined]
+            process.start()
+            with self._lock:
+                job = Job(next(self._ids), kind, process, channel)
+                self._jobs[job.id] = job
+                finished = [j for j in self._jobs.values() if j.state != "running"]
+                for old in finished[: max(0, len(self._jobs) - MAX_JOBS)]:
+                    del self._jobs[old.id]
+            if kind in REPLACED:
+                self.latest[kind] = job
+            return job
+
+    def run(self, kind: str, *args: Any) -> dict[str, Any]:
+        """Run a ``kind`` job to its end and forget it; return its final state (the export lane's jobs)."""
+        job = self.start(kind, *args)
+        try:
+            return self.wait(job)
+        finally:
+            with self._lock:
+                self._jobs.pop(job.id, None)
+
+    def export(
+        self, scaffold: Scaffold, labels: np.ndarray, nulls: np.ndarray | None, fmt: object
+    ) -> tuple[bytes, str]:
+        """Return the design written as ``fmt`` by a worker: ``(content, file name)``; :class:`ExportFailed` if it could not."""
+        from .designs import EXPORTS
+
+        if fmt not in EXPORTS:
+            raise UsageError(f"format {str(fmt)[:20]!r}: choose one of {', '.join(EXPORTS)}")
+        state = self.run("export", scaffold, labels, nulls, fmt)
+        if state["state"] != "done":
+            raise ExportFailed(f"cannot export this design: {state['error'] or state['state']}")
+        return state["result"]["content"], state["result"]["name"]
 
     def wait(self, job: Job, pause: float = 0.05) -> dict[str, Any]:
         """Return the JSON view of ``job`` once it has ended (done, error or cancelled by a newer one)."""
@@ -222,10 +292,16 @@ class Jobs:
         return state
 
     def get(self, job_id: object) -> Job | None:
-        """Return the job with id ``job_id``, if known."""
-        return self._jobs.get(job_id) if isinstance(job_id, int) else None
+        """Return the page's job with id ``job_id``, if known."""
+        job = self._jobs.get(job_id) if isinstance(job_id, int) else None
+        return job if job is not None and job.kind in REPLACED else None
 
     def shutdown(self) -> None:
-        """Stop every running worker."""
-        for job in list(self._jobs.values()):
+        """Stop every running worker (all signalled at once, then waited for) and start no more."""
+        with self._starting:
+            self.closed = True
+        jobs = [j for j in list(self._jobs.values()) if j.state == "running"]
+        for job in jobs:
+            job.process.terminate()
+        for job in jobs:
             job.cancel()

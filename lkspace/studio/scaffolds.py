@@ -24,9 +24,13 @@ from ..io.obj import parse_obj
 from ..io.scaffold_json import scaffold_from_dict
 from ..io.sources import load
 from ..io.text import parse_json
+from .designs import default_block
 
 MAX_UPLOAD = 8_000_000
 """Largest uploaded scaffold file, in bytes."""
+
+UPLOAD_TYPE = "application/octet-stream"
+"""The content type an upload must declare: not one a cross-site form can send without asking."""
 
 MAX_FACES = 20_000
 """Most faces of a scaffold the studio opens (a supercell past it is refused before it is built)."""
@@ -42,6 +46,12 @@ MAX_HELD = 32
 
 MAX_NAME = 200
 """Longest built-in name accepted from the page."""
+
+
+class NotAFile(UsageError):
+    """An upload not sent as :data:`UPLOAD_TYPE` (a cross-site form could send text/plain or multipart; 415)."""
+
+    status = 415
 
 
 @dataclass(frozen=True, eq=False)
@@ -105,6 +115,7 @@ class Held:
         }
         if sc.lattice is not None:
             out["lattice"] = np.asarray(sc.lattice.basis).tolist()
+            out["block"] = default_block(sc)  # the block the page opens with: it fits the studio's bound
         return out
 
 

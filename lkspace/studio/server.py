@@ -2,7 +2,8 @@
 
 uvicorn stops on Ctrl-C or SIGTERM after answering what is in flight (at most 2 s), then
 re-raises the signal: the command line turns it into exit status 130 (143), as for every
-command.  uvicorn logs only critical events: every endpoint answers its own errors as
+command.  The workers are stopped as the shutdown begins, so a request waiting for one
+(a relaxation, an export) is answered at once and the studio exits within a second.  uvicorn logs only critical events: every endpoint answers its own errors as
 JSON, and a measurement cut short by Ctrl-C is no error worth a traceback.
 """
 
@@ -58,6 +59,13 @@ def serve(studio: Studio, host: str = LOCAL, port: int = 8765, on_ready: Callabl
                 on_ready(url)
 
         threading.Thread(target=announce, daemon=True).start()
+
+    def stop_workers() -> None:
+        while not server.should_exit:
+            threading.Event().wait(0.05)
+        studio.jobs.shutdown()
+
+    threading.Thread(target=stop_workers, daemon=True).start()
     try:
         server.run(sockets=[sock])
     finally:

@@ -67,7 +67,7 @@ async function loadScaffold(key, labels, nulls, block, keepHistory = false) {
     S.labels = labels && labels.length === sc.n_edges ? labels.map(norm) : sc.labels ? sc.labels.map(norm) : new Array(sc.n_edges).fill(1);
     S.nulls = new Set(nulls || sc.nulls || []);
     $('block-row').hidden = !sc.dim;
-    if (sc.dim) { if (block) $('block').value = block; else if (!/^\d+(x\d+)*$/.test($('block').value) || $('block').value.split('x').length !== sc.dim) $('block').value = sc.dim === 3 ? '2x2x2' : '3x3'; }
+    if (sc.dim) $('block').value = block || sc.block.join('x'); // the server's block fits its bound on faces
     S.block = sc.dim ? $('block').value.split('x').map(Number) : null;
     nameInMenu(sc);
     $('scaffold-info').textContent = `${sc.name}: ${sc.n_vertices} vertices, ${sc.n_edges} edges, ${sc.n_faces} faces${sc.dim ? ` (periodic, ${sc.dim}D)` : ''} — ${sc.origin}`;
@@ -261,7 +261,7 @@ $('upload').onchange = async () => {
   const file = $('upload').files[0]; if (!file) return;
   try {
     if (await openDesign(ctx, file, false)) { $('upload').value = ''; return; } // a design file, not a scaffold
-    const res = await fetch('/api/upload', { method: 'POST', headers: { 'X-Filename': file.name }, body: await file.arrayBuffer() });
+    const res = await fetch('/api/upload', { method: 'POST', headers: { 'Content-Type': 'application/octet-stream', 'X-Filename': file.name }, body: await file.arrayBuffer() });
     const data = await res.json(); if (data.error) throw new Error(data.error.message);
     await loadScaffold(data.key);
   } catch (err) { message(err.message); }

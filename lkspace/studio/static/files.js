@@ -100,7 +100,7 @@ export async function openDesign(ctx, file, onlyDesigns = true) {
     try { data = JSON.parse(text); } catch { return false; }
     if (!data || data.format !== 'lkspace-design') return false;
   }
-  const res = await fetch('/api/open-design', { method: 'POST', headers: { 'X-Filename': file.name }, body: text });
+  const res = await fetch('/api/open-design', { method: 'POST', headers: { 'Content-Type': 'application/octet-stream', 'X-Filename': file.name }, body: text });
   const d = await res.json();
   if (d.error) throw new Error(d.error.message);
   await showDesign(ctx, d);
