@@ -137,7 +137,11 @@ def test_save_then_open_over_http(client):
 def test_uploaded_scaffold_is_embedded_and_reopens(client):
     tetra = builtin("tetrahedron")
     text = format_scaffold_json(tetra).replace('"tetrahedron"', '"my tetra"')
-    held = client.post("/api/upload", content=text.encode(), headers={"X-Filename": "my.json"}).json()
+    held = client.post(
+        "/api/upload",
+        content=text.encode(),
+        headers={"X-Filename": "my.json", "Content-Type": "application/octet-stream"},
+    ).json()
     r = client.post("/api/design-file", json={"key": held["key"], "labels": [1, 2, 3, 1, 2, 3]})
     saved = r.json()
     assert saved["scaffold"]["name"] == "my tetra"
