@@ -26,7 +26,8 @@ from .. import __version__
 from ..errors import GeometryError, LkspaceError, TooLargeError, UsageError
 from ..scaffolds import DEFAULT
 from .browse import Browser
-from .designs import EXPORTS, Cache, clearance, design, export_bytes, labels_from_page, parse_block, parse_nulls
+from .curves import parse_have
+from .designs import EXPORTS, Cache, design, export_bytes, labels_from_page, parse_block, parse_nulls
 from .jobs import Jobs, relaxed
 from .scaffolds import MAX_UPLOAD, Registry, builtin_choices, dumps
 
@@ -61,7 +62,7 @@ class BadRequest(UsageError):
 
 
 class Superseded(UsageError):
-    """A relaxation stopped because a newer design asked for one (its answer would be stale)."""
+    """A relaxation or measurement stopped because a newer design asked for one (its answer would be stale)."""
 
     status = 409
 
@@ -200,7 +201,9 @@ def redraw(studio: Studio, body: dict[str, Any]) -> dict[str, Any]:
     if not isinstance(relax, bool):
         raise BadRequest("relax: true or false")
     relaxer = (lambda real: relax_in_worker(studio, real)) if relax else None
-    return design(held.scaffold, labels, nulls, block, studio.cache, held.key, relaxer)
+    if not relax:
+        studio.jobs.stop("clearance")  # the last design's measurement: its answer is stale, its CPU is this one's
+    return design(held.scaffold, labels, nulls, block, studio.cache, held.key, relaxer, parse_have(body.get("have")))
 
 
 def relax_in_worker(studio: Studio, real: Realization) -> Realization:
@@ -222,7 +225,12 @@ def measure(studio: Studio, body: dict[str, Any]) -> dict[str, Any]:
         real = studio.cache.get(Cache.key(held.key, labels, nulls, block))
         if real is None:
             raise BadRequest("this design has no geometry to measure")
-    return clearance(real)
+    state = studio.jobs.wait(studio.jobs.start("clearance", real))  # a worker: an edit meanwhile is never held up
+    if state["state"] == "cancelled":
+        raise Superseded("clearance stopped: a newer design was asked for")
+    if state["state"] == "error":
+        raise GeometryError(state["error"])
+    return state["result"]
 
 
 def identify(studio: Studio, body: dict[str, Any]) -> dict[str, Any]:

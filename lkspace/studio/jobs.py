@@ -1,11 +1,12 @@
-"""Identify, relax and solve in worker processes: never blocking an edit, cancelled by terminating.
+"""Identify, relax, measure and solve in worker processes: never blocking an edit, cancelled by terminating.
 
 Each job runs :func:`run_job` in a fresh process of lkspace's worker context
 (:func:`lkspace.workers.context`; the fork server preloads the heavy modules, so a job
 starts in milliseconds after the first).  Progress of the library's long steps
 (:mod:`lkspace.progress`) and the result come back through a queue the server drains
-when the page polls.  A new identify or relax cancels the one before it (its result would
-be stale); a solve runs until it ends or the page cancels it.
+when the page polls.  A new identify, relax or clearance measurement cancels the one before
+it (its result would be stale; a new design stops a measurement too); a solve runs until it
+ends or the page cancels it.
 """
 
 from __future__ import annotations
@@ -41,7 +42,7 @@ PRELOAD = [
 IDENTIFY_SECONDS = 30.0
 """Time limit of one identification."""
 
-REPLACED = ("identify", "relax")
+REPLACED = ("identify", "relax", "clearance")
 """Job kinds of which only the newest matters: starting one cancels the one before."""
 
 MAX_JOBS = 64
@@ -110,10 +111,18 @@ def relaxed(real: Realization, payload: dict[str, Any]) -> Realization:
     return replace(real, curves=[c.copy() for c in curves], **fields)
 
 
+def clearance_payload(real: Realization) -> dict[str, Any]:
+    """Return the embedding check of ``real`` (:func:`lkspace.studio.designs.clearance`)."""
+    from .designs import clearance
+
+    return clearance(real)
+
+
 TASKS: dict[str, Callable[..., dict[str, Any]]] = {
     "identify": identify_payload,
     "solve": solve_payload,
     "relax": relax_payload,
+    "clearance": clearance_payload,
 }
 """Job kinds -> the function a worker runs."""
 
@@ -212,6 +221,11 @@ class Jobs:
         if kind in REPLACED:
             self.latest[kind] = job
         return job
+
+    def stop(self, kind: str) -> None:
+        """Cancel the newest ``kind`` job if it still runs (a newer design made its answer stale)."""
+        if kind in self.latest:
+            self.latest[kind].cancel()
 
     def wait(self, job: Job, pause: float = 0.05) -> dict[str, Any]:
         """Return the JSON view of ``job`` once it has ended (done, error or cancelled by a newer one)."""
