@@ -8,6 +8,7 @@ import { tubeArrays, decodeCurves } from '/static/tubes.js';
 export const PALETTE = ['#1f77b4', '#d62728', '#2ca02c', '#ff7f0e', '#9467bd', '#8c564b', '#e377c2',
   '#17becf', '#bcbd22', '#393b79', '#637939', '#843c39', '#7b4173', '#3182bd', '#e6550d', '#31a354'];
 const KEEP = 3; // a mesh is kept this many designs after it was last drawn (an answer in flight may name it)
+const MAX_HAVE = 50000; // lkspace/studio/curves.py MAX_HAVE
 
 export class Strands {
   constructor(group) {
@@ -16,7 +17,10 @@ export class Strands {
     this.colorOfPort = new Map(); this.strandColors = []; this.colors = [];
     this.worker = null; this.pending = new Map(); this.nextId = 0; this.queue = Promise.resolve();
   }
-  have() { return [...this.meshes.keys()]; } // the curve keys an answer may send without points
+  have() { // the curve keys an answer may send without points (those drawn now, if the server would take too many)
+    const all = [...this.meshes.keys()];
+    return all.length <= MAX_HAVE ? all : this.group.children.slice(0, MAX_HAVE).map((m) => m.userData.key);
+  }
   colorOf(k) { return PALETTE[this.strandColors[k] ?? k % PALETTE.length]; }
   drawn() { return this.group.children.map((m) => ({ key: m.userData.key, color: '#' + m.material.color.getHexString() })); }
   reset() {
