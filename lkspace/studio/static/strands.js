@@ -22,10 +22,10 @@ export class Strands {
     return all.length <= MAX_HAVE ? all : this.group.children.slice(0, MAX_HAVE).map((m) => m.userData.key);
   }
   colorOf(k) { return PALETTE[this.strandColors[k] ?? k % PALETTE.length]; }
-  drawn() { return this.group.children.map((m) => ({ key: m.userData.key, color: '#' + m.material.color.getHexString() })); }
-  reset() {
+  reset() { this.dropMeshes(); this.colorOfPort = new Map(); this.strandColors = []; this.colors = []; } // a new scaffold
+  dropMeshes() {
     for (const { mesh } of this.meshes.values()) { mesh.removeFromParent(); mesh.geometry.dispose(); }
-    this.meshes.clear(); this.colorOfPort = new Map(); this.strandColors = []; this.colors = []; this.radius = null;
+    this.meshes.clear(); this.radius = null;
   }
   // Draw an answer's curves (null: none) and colour its strands; resolves false when a curve sent
   // without points is no longer held (ask again without `have`).  Answers are drawn in call order.
@@ -38,7 +38,7 @@ export class Strands {
     const gen = ++this.generation;
     if (curves) {
       const total = curves.counts.reduce((a, b) => a + b, 0), sides = total > 200000 ? 5 : total > 40000 ? 6 : 8;
-      if (curves.radius !== this.radius || sides !== this.sides) { this.reset(); this.radius = curves.radius; this.sides = sides; }
+      if (curves.radius !== this.radius || sides !== this.sides) { this.dropMeshes(); this.radius = curves.radius; this.sides = sides; }
       if (curves.keys.some((key, i) => !curves.sent[i] && !this.meshes.has(key))) return false;
       const todo = [];
       curves.keys.forEach((key, i) => { if (curves.sent[i]) todo.push({ key, count: curves.counts[i], closed: curves.closed[i] }); });
