@@ -36,6 +36,7 @@ PRELOAD = [
     "lkspace.inverse.pipeline",
     "lkspace.knots.recognition",
     "lkspace.geometry.relax",
+    "lkspace.studio.designs",
 ]
 """Modules the fork server imports once, so jobs start without importing them."""
 
