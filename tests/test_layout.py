@@ -136,6 +136,7 @@ STUDIO_INTERNALS = {
     "lkspace.catalog.verify": "the catalog browser opens and checks catalogs (open_catalog, damaged)",
     "lkspace.formats.registry": "the download formats the page offers (FORMATS)",
     "lkspace.geometry.clearance": "a preview realized without measuring is measured when the page asks",
+    "lkspace.geometry.realization": "an edit realizes only the strands it changed (realize_reusing)",
     "lkspace.io.design_json": "design files saved from and opened in the page (scaffold, labels, view)",
     "lkspace.io.obj": "an uploaded .obj is parsed from bytes (no file)",
     "lkspace.io.scaffold_json": "scaffolds sent to and uploaded from the page as JSON",

@@ -50,12 +50,24 @@ def build_curves(
     counts: np.ndarray,
     shape: Resolved,
     translations: np.ndarray,
+    strands: np.ndarray | None = None,
 ) -> Curves:
-    """Build the strands of ``tr`` on the tracks ``fr``, ``counts`` points per edge piece (:func:`edge_counts`)."""
+    """Build the strands of ``tr`` on the tracks ``fr``, ``counts`` points per edge piece (:func:`edge_counts`).
+
+    With ``strands`` (indices into the trace), only those are built, in that order; every
+    step is built on its own, so a strand's curve is the same built alone or with the others.
+    """
+    ids, starts = np.arange(tr.components), tr.strand_starts
+    if strands is not None:
+        ids = np.asarray(strands, np.int64)
+        lengths = np.diff(starts)[ids]
+        starts = np.concatenate([[0], np.cumsum(lengths)])
+        steps = np.repeat(tr.strand_starts[ids] - starts[:-1], lengths) + np.arange(starts[-1])
+        ports, counts = Ports(ports.x[steps], ports.y[steps], ports.z[steps], ports.shift[steps]), counts[steps]
     plan = _edge_plan(counts)
     corners, a_pt, c_pt = _corner_turns(fr, ports, shape.corner_samples)
     points = _assemble(corners, _edge_points(scaffold, fr, tr.labels, ports, plan, shape), plan)
-    return _strand_curves(scaffold, tr, points, plan, a_pt, c_pt, translations)
+    return _strand_curves(scaffold, tr, ids, starts, points, plan, a_pt, c_pt, translations)
 
 
 @dataclass(frozen=True, eq=False)
@@ -215,20 +227,22 @@ def _assemble(corners: np.ndarray, edge_pts: np.ndarray, plan: EdgePlan) -> np.n
 def _strand_curves(
     scaffold: Scaffold,
     tr: Trace,
+    ids: np.ndarray,
+    starts: np.ndarray,
     points: np.ndarray,
     plan: EdgePlan,
     a_pt: np.ndarray,
     c_pt: np.ndarray,
     translations: np.ndarray,
 ) -> Curves:
-    """Cut the points into one polyline per strand and copy."""
+    """Cut the points into one polyline per strand and copy (strands ``ids``, owning steps ``starts[i]:starts[i + 1]``)."""
     nc = (len(points) - int(plan.n_edge.sum())) // max(len(plan.n_edge), 1)  # points per corner turn
     pos = np.concatenate([[0], np.cumsum(nc + plan.n_edge)])
     periods = tr.periods if scaffold.dim else np.zeros((tr.components, 0), np.int64)
     curves, closed_flags, strand_of, copy_of = [], [], [], []
     for c_i, shift in enumerate(lattice_shift(scaffold, translations)):
-        for s_i in range(tr.components):
-            first, last = tr.strand_starts[s_i], tr.strand_starts[s_i + 1] - 1
+        for i, s_i in enumerate(ids.tolist()):
+            first, last = starts[i], starts[i + 1] - 1
             pts = points[pos[first] : pos[last + 1]]
             is_closed = bool(tr.closed[s_i]) and not np.any(periods[s_i] != 0)
             if not tr.closed[s_i]:

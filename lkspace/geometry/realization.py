@@ -47,6 +47,7 @@ The construction itself (corner turns and edge helices) is in
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING, Any
 
@@ -70,7 +71,7 @@ from .params import (
     RealizeOptions,
     Resolved,
 )
-from .tracks import place_name, side_tracks
+from .tracks import Tracks, lattice_shift, place_name, side_tracks
 
 if TYPE_CHECKING:
     from .block import CellBlock
@@ -212,8 +213,79 @@ def realize(
     return real
 
 
+def realize_reusing(
+    scaffold: Scaffold, tr: Trace, known: Mapping[bytes, StrandCurve], options: RealizeOptions | None = None
+) -> tuple[Realization, dict[bytes, StrandCurve]]:
+    """Realize the trace ``tr`` as :func:`realize` does, building only the curves not in ``known``.
+
+    The answer is the one of ``realize(scaffold, options=replace(options, trace=tr,
+    embedding="later"))``, default parameters: a curve depends only on its strand's steps,
+    their edges' labels and the strand's period (its **key**), so a curve kept under its key
+    is the curve realize would build.  The caller keeps the curves between calls (an edit
+    changes the strands through one edge; the others keep theirs).  A finite scaffold whose
+    strands all close is smoothed as a whole (every curve moves): it is realized in full.
+
+    Returns
+    -------
+    Realization, and every curve of it under its key (``known`` is not changed).
+    """
+    how = replace(options or RealizeOptions(), trace=tr, embedding="later")
+    how.check()
+    shape = Resolved.of(scaffold, GeometryParams())
+    if shape.smooth and not scaffold.dim and tr.closed.all():
+        real = realize(scaffold, options=how)
+        return real, {}
+    fr, ports, counts, translations = _prepared(scaffold, tr, shape, how)
+    edges = scaffold.side_edge[ports.y // 2]
+    keys = [_strand_key(tr, ports, edges, s) for s in range(tr.components)]
+    shifts = lattice_shift(scaffold, translations)
+    wanted = [(keys[s] + t.tobytes(), s, c) for c, t in enumerate(translations) for s in range(tr.components)]
+    missing = sorted({s for key, s, _ in wanted if key not in known})
+    made: dict[bytes, StrandCurve] = {}
+    if missing:
+        base = build_curves(scaffold, fr, tr, ports, counts, shape, np.zeros_like(translations[:1]), np.array(missing))
+        for curve, cl, s in zip(base.curves, base.closed, missing, strict=True):
+            for c, t in enumerate(translations):
+                moved = curve + shifts[c]  # as realize moves its copies
+                made[keys[s] + t.tobytes()] = StrandCurve(moved, bool(cl), tightest_bend([moved], np.array([cl]))[0])
+    entries = {key: made[key] if key in made else known[key] for key, _, _ in wanted}
+    chosen = [entries[key] for key, _, _ in wanted]
+    built = Curves(
+        [e.curve for e in chosen],
+        np.array([e.closed for e in chosen], bool),
+        np.array([s for _, s, _ in wanted], np.int64),
+        np.array([c for _, _, c in wanted], np.int64),
+        translations,
+    )
+    return _measured(scaffold, tr, built, shape, how, min((e.bend for e in chosen), default=np.inf)), entries
+
+
+@dataclass(frozen=True, eq=False)
+class StrandCurve:
+    """One curve of :func:`realize_reusing`: its points, closed or not, and its tightest bend (for the tube radius)."""
+
+    curve: np.ndarray
+    closed: bool
+    bend: float
+
+
+def _strand_key(tr: Trace, ports: Ports, edges: np.ndarray, s: int) -> bytes:
+    """Bytes that determine strand ``s``'s curve: its ports (cuts included), its edges' labels, closed and period."""
+    steps = slice(tr.strand_starts[s], tr.strand_starts[s + 1])
+    parts = [ports.x[steps], ports.z[steps], tr.labels[edges[steps]], tr.closed[s : s + 1], tr.periods[s]]
+    return b"|".join(np.ascontiguousarray(p, np.int64).tobytes() for p in parts)
+
+
 def _built(scaffold: Scaffold, tr: Trace, shape: Resolved, how: RealizeOptions) -> Curves:
     """Lay the tracks, refuse what cannot be built (twists too tight, too many points), build the curves."""
+    fr, ports, counts, translations = _prepared(scaffold, tr, shape, how)
+    return build_curves(scaffold, fr, tr, ports, counts, shape, translations)
+
+
+def _prepared(
+    scaffold: Scaffold, tr: Trace, shape: Resolved, how: RealizeOptions
+) -> tuple[Tracks, Ports, np.ndarray, np.ndarray]:
+    """Lay the tracks and refuse what cannot be built (twists too tight, too many points): tracks, ports, counts, translations."""
     fr = side_tracks(scaffold, shape.radius, shape.normal_offset, shape.margin, shape.near_angle)
     if how.embedding != "measure":
         check_winding(scaffold, fr.pa, fr.pb, fr.margin, tr.labels, shape.min_separation)
@@ -225,7 +297,7 @@ def _built(scaffold: Scaffold, tr: Trace, shape: Resolved, how: RealizeOptions) 
     )
     if how.embedding != "later":
         check_samples(scaffold, tr.labels, shape.radius, shape.min_separation)
-    return build_curves(scaffold, fr, tr, ports, counts, shape, translations)
+    return fr, ports, counts, translations
 
 
 def _translations(scaffold: Scaffold, translations: ArrayLike | None) -> np.ndarray:
@@ -255,8 +327,13 @@ def _smoothed(scaffold: Scaffold, built: Curves, shape: Resolved, embedding: Emb
     return smooth_curves(built.curves, SMOOTH_DIAMETER * shape.radius)
 
 
-def _measured(scaffold: Scaffold, tr: Trace, built: Curves, shape: Resolved, how: RealizeOptions) -> Realization:
-    """Measure the clearance (refusing a self-intersection under ``"refuse"``), choose the tube radius."""
+def _measured(
+    scaffold: Scaffold, tr: Trace, built: Curves, shape: Resolved, how: RealizeOptions, bend: float | None = None
+) -> Realization:
+    """Measure the clearance (refusing a self-intersection under ``"refuse"``), choose the tube radius.
+
+    ``bend``: the tightest bend of the curves, when known.
+    """
     curves, closed = built.curves, built.closed
     min_dist, closest = (
         (float("inf"), {}) if how.embedding == "later" else _clearance(scaffold, curves, closed, shape, how.embedding)
@@ -272,7 +349,7 @@ def _measured(scaffold: Scaffold, tr: Trace, built: Curves, shape: Resolved, how
         shape.radius,
         shape.normal_offset,
         shape.margin,
-        _tube_radius(curves, closed, shape, min_dist),
+        _tube_radius(shape, min_dist, tightest_bend(curves, closed)[0] if bend is None else bend),
         shape.min_separation,
         float(min_dist),
         closest,
@@ -280,11 +357,10 @@ def _measured(scaffold: Scaffold, tr: Trace, built: Curves, shape: Resolved, how
     )
 
 
-def _tube_radius(curves: list[np.ndarray], closed: np.ndarray, shape: Resolved, min_dist: float) -> float:
-    """Return the tube radius given, or one clear of the other strands that does not fold where a curve bends."""
+def _tube_radius(shape: Resolved, min_dist: float, bend: float) -> float:
+    """Return the tube radius given, or one clear of the other strands that does not fold where the curves bend most (``bend``)."""
     if shape.tube_radius is not None:
         return float(shape.tube_radius)
-    bend = tightest_bend(curves, closed)[0]
     return float(min(TUBE * shape.scale, TUBE_GAP_SHARE * min_dist, TUBE_BEND_SHARE * bend))
 
 

@@ -25,8 +25,9 @@ from .. import __version__
 from ..errors import GeometryError, LkspaceError, UsageError
 from ..scaffolds import DEFAULT
 from .browse import Browser
+from .curves import parse_have
 from .design_files import filename, open_upload, save_design
-from .designs import EXPORTS, Cache, clearance, design, is_count, labels_from_page, parse_block, parse_nulls
+from .designs import EXPORTS, Cache, design, is_count, labels_from_page, parse_block, parse_nulls
 from .diagrams import Thumbnails, diagram
 from .jobs import Job, Jobs, relaxed
 from .lanes import Lane
@@ -59,7 +60,7 @@ class Studio:
 
 
 class Superseded(UsageError):
-    """A relaxation stopped because a newer design asked for one (its answer would be stale)."""
+    """A relaxation or measurement stopped because a newer design asked for one (its answer would be stale)."""
 
     status = 409
 
@@ -136,7 +137,9 @@ def redraw(studio: Studio, body: dict[str, Any]) -> dict[str, Any]:
     if not isinstance(relax, bool):
         raise BadRequest("relax: true or false")
     relaxer = (lambda real: relax_in_worker(studio, real)) if relax else None
-    return design(held.scaffold, labels, nulls, block, studio.cache, held.key, relaxer)
+    if not relax:
+        studio.jobs.stop("clearance")  # the last design's measurement: its answer is stale, its CPU is this one's
+    return design(held.scaffold, labels, nulls, block, studio.cache, held.key, relaxer, parse_have(body.get("have")))
 
 
 def relax_in_worker(studio: Studio, real: Realization) -> Realization:
@@ -158,7 +161,12 @@ def measure(studio: Studio, body: dict[str, Any]) -> dict[str, Any]:
         real = studio.cache.get(Cache.key(held.key, labels, nulls, block))
         if real is None:
             raise BadRequest("this design has no geometry to measure")
-    return clearance(real)
+    state = studio.jobs.wait(studio.jobs.start("clearance", real))  # a worker: an edit meanwhile is never held up
+    if state["state"] == "cancelled":
+        raise Superseded("clearance stopped: a newer design was asked for")
+    if state["state"] == "error":
+        raise GeometryError(state["error"])
+    return state["result"]
 
 
 def identify(studio: Studio, body: dict[str, Any]) -> dict[str, Any]:

@@ -13,13 +13,12 @@ are the relaxed ones (:func:`lkspace.relax`), kept apart from the default ones i
 
 from __future__ import annotations
 
-import base64
 import os
 import re
 import tempfile
 import threading
 import time
-from collections import OrderedDict
+from collections import ChainMap, OrderedDict
 from collections.abc import Callable
 from typing import Any
 
@@ -29,8 +28,10 @@ from .. import Realization, RealizeOptions, Scaffold, Trace, export, realize, tr
 from ..errors import GeometryError, LabelError, TooLargeError, UsageError
 from ..formats.registry import FORMATS
 from ..geometry.clearance import check_embedding
+from ..geometry.realization import StrandCurve, realize_reusing
 from ..io.scaffold_json import format_scaffold_json
 from ..model.validation import validate_labels, validate_nulls
+from .curves import curves_view
 from .filenames import design_stem
 
 MAX_STUDIO_POINTS = 600_000
@@ -127,11 +128,6 @@ def default_block(scaffold: Scaffold) -> list[int]:
     return [side] * scaffold.dim
 
 
-def pack(array: np.ndarray, dtype: str = "<f4") -> str:
-    """Base64 text of ``array`` as little-endian ``dtype``."""
-    return base64.b64encode(np.ascontiguousarray(array, dtype=dtype).tobytes()).decode("ascii")
-
-
 def edge_named(scaffold: Scaffold, message: str) -> int | None:
     """Return the edge a geometry message names (``edge 3-7`` or ``edge 3-7[0,1,0]``), if any."""
     names = {scaffold.edge_name(e): e for e in range(scaffold.n_edges)}
@@ -158,10 +154,16 @@ def strand_edges(tr: Trace) -> list[list[int]]:
 
 
 class Cache:
-    """The last few realizations, keyed by scaffold, labels, nulls, block and relaxed or not (for the clearance and reuse)."""
+    """The last few realizations, keyed by scaffold, labels, nulls, block and relaxed or not (for the clearance and reuse).
+
+    With a default realization it keeps its curves by strand key
+    (:func:`~lkspace.geometry.realization.realize_reusing`): the next design of the
+    same scaffold builds only the strands these do not hold.
+    """
 
     def __init__(self, size: int = 8) -> None:
         self._items: OrderedDict[bytes, Realization] = OrderedDict()
+        self._strands: dict[bytes, tuple[str, dict[bytes, StrandCurve]]] = {}
         self._size = size
         self._lock = threading.Lock()
 
@@ -178,13 +180,24 @@ class Cache:
         with self._lock:
             return self._items.get(key)
 
-    def put(self, key: bytes, real: Realization) -> None:
-        """Keep ``real`` under ``key`` (forgetting the oldest past the size)."""
+    def put(
+        self, key: bytes, real: Realization, scaffold: str = "", strands: dict[bytes, StrandCurve] | None = None
+    ) -> None:
+        """Keep ``real`` under ``key`` (forgetting the oldest past the size), and its curves by strand key."""
         with self._lock:
             self._items[key] = real
             self._items.move_to_end(key)
+            if strands:
+                self._strands[key] = (scaffold, strands)
             while len(self._items) > self._size:
-                self._items.popitem(last=False)
+                old, _ = self._items.popitem(last=False)
+                self._strands.pop(old, None)
+
+    def strands(self, scaffold: str) -> ChainMap[bytes, StrandCurve]:
+        """Return the curves kept by strand key for the designs of ``scaffold`` (newest first)."""
+        with self._lock:
+            kept = [self._strands[k][1] for k in reversed(self._items) if self._strands.get(k, ("",))[0] == scaffold]
+        return ChainMap(*kept)
 
 
 def design(
@@ -195,11 +208,14 @@ def design(
     cache: Cache,
     key: str,
     relaxer: Callable[[Realization], Realization] | None = None,
+    have: frozenset[str] = frozenset(),
 ) -> dict[str, Any]:
     """Return the page's view of a design: the trace's summary and the strand curves (or the error, on its edge).
 
     With ``relaxer``, the curves are ``relaxer(realization)`` (kept in the cache); its
-    errors (a refused scaffold, a relaxation stopped by a newer one) propagate.
+    errors (a refused scaffold, a relaxation stopped by a newer one) propagate.  Curves
+    whose key is in ``have`` (the page holds them) travel without their points
+    (:func:`~lkspace.studio.curves.curves_view`).
     """
     t0 = time.perf_counter()
     tr = trace(scaffold, labels, nulls)
@@ -216,8 +232,11 @@ def design(
                 "period": period if kind != "open" else None,
                 "closed": kind == "loop",
                 "edges": edges,
+                "port": port,
             }
-            for kind, length, period, edges in zip(kinds, lengths, periods, strand_edges(tr), strict=True)
+            for kind, length, period, edges, port in zip(
+                kinds, lengths, periods, strand_edges(tr), first_ports(tr.steps, tr.strand_starts), strict=True
+            )
         ],
         "labels": [str(int(t)) if abs(int(t)) > 2**53 else int(t) for t in tr.labels],
         "nulls": [] if tr.nulls is None else np.flatnonzero(tr.nulls).tolist(),
@@ -233,12 +252,12 @@ def design(
     if real is None:
         try:
             options = RealizeOptions(embedding="later", translations=block, trace=tr, max_points=MAX_STUDIO_POINTS)
-            real = realize(scaffold, tr.labels, nulls, options=options)
+            real, strands = realize_reusing(scaffold, tr, cache.strands(key), options)
         except (GeometryError, TooLargeError) as exc:
             out["failure"] = {"message": str(exc), "edge": edge_named(scaffold, str(exc))}
             out["timing"] = {"trace": t1 - t0, "realize": time.perf_counter() - t1}
             return out
-        cache.put(Cache.key(key, tr.labels, nulls, block), real)
+        cache.put(Cache.key(key, tr.labels, nulls, block), real, key, strands)
         if relaxer is not None:
             real = relaxer(real)
             cache.put(relaxed_key, real)
@@ -250,18 +269,14 @@ def design(
             "min_separation": sep,
             "ok": best >= sep,
         }
-    counts = np.array([len(c) for c in real.curves], np.int64)
-    out["curves"] = {
-        "points": pack(np.vstack(real.curves) if real.curves else np.zeros((0, 3))),
-        "counts": counts.tolist(),
-        "closed": real.closed.tolist(),
-        "strand": real.strand_of.tolist(),
-        "copy": real.copy_of.tolist(),
-        "radius": real.tube_radius,
-        "scale": real.scale,
-    }
+    out["curves"] = curves_view(real, have)
     out["timing"] = {"trace": t1 - t0, "realize": time.perf_counter() - t1}
     return out
+
+
+def first_ports(steps: np.ndarray, starts: np.ndarray) -> list[int]:
+    """Return the smallest port of every strand (``starts``: its steps' offsets), a name an edit elsewhere keeps."""
+    return np.minimum.reduceat(steps, starts[:-1]).tolist() if len(starts) > 1 else []
 
 
 def clearance(real: Realization) -> dict[str, Any]:

@@ -1,4 +1,4 @@
-"""Identify, relax, solve and exports in worker processes: never blocking an edit, cancelled by terminating.
+"""Identify, relax, measure, solve and exports in worker processes: never blocking an edit, cancelled by terminating.
 
 Each job runs :func:`run_job` in a fresh process of lkspace's worker context
 (:func:`lkspace.workers.context`; the fork server preloads the heavy modules, so a job
@@ -7,20 +7,19 @@ starts in milliseconds after the first).  Progress of the library's long steps
 when the page polls.
 
 Jobs are bounded: one job of each kind at a time, and a new one stops the one running
-(an identification or relaxation of an older design is stale; a new solve is the page
-asking again with other settings, and the page follows only its latest solve).  On top,
-at most :data:`MAX_RUNNING` workers run at once; a job past that is refused with
-:class:`~lkspace.studio.lanes.Busy` (HTTP 429) naming what runs, so the user can wait or
-cancel one.  Exports run here too (their CPU apart from the threads that redraw), one
-at a time from the export lane (:mod:`~lkspace.studio.lanes`), which bounds them: they
-neither count against the cap nor show by id.
+(an identification, relaxation or clearance measurement of an older design is stale; a
+new solve is the page asking again with other settings, and the page follows only its
+latest solve).  So at most :data:`MAX_RUNNING` workers run at once; a job past a lower
+cap is refused with :class:`~lkspace.studio.lanes.Busy` (HTTP 429) naming what runs, so
+the user can wait or cancel one.  Exports run here too (their CPU apart from the threads
+that redraw), one at a time from the export lane (:mod:`~lkspace.studio.lanes`), which
+bounds them: they neither count against the cap nor show by id.
 """
 
 from __future__ import annotations
 
 import base64
 import itertools
-import os
 import queue as queues
 import threading
 import time
@@ -45,17 +44,18 @@ PRELOAD = [
     "lkspace.inverse.pipeline",
     "lkspace.knots.recognition",
     "lkspace.geometry.relax",
+    "lkspace.studio.designs",
 ]
 """Modules the fork server imports once, so jobs start without importing them."""
 
 IDENTIFY_SECONDS = 30.0
 """Time limit of one identification."""
 
-REPLACED = ("identify", "relax", "solve")
+REPLACED = ("identify", "relax", "solve", "clearance")
 """The page's job kinds, run one at a time: starting one cancels the one running."""
 
-MAX_RUNNING = max(2, min(len(REPLACED), os.cpu_count() or 2))
-"""Most workers running at once: one of each kind, but no more than the cores (at least 2)."""
+MAX_RUNNING = len(REPLACED)
+"""Most workers running at once (one of each kind); a studio may set a lower cap."""
 
 MAX_JOBS = 64
 """Finished jobs remembered (the oldest are forgotten)."""
@@ -139,11 +139,19 @@ def export_payload(scaffold: Scaffold, labels: np.ndarray, nulls: np.ndarray | N
     return {"content": content, "name": name}
 
 
+def clearance_payload(real: Realization) -> dict[str, Any]:
+    """Return the embedding check of ``real`` (:func:`lkspace.studio.designs.clearance`)."""
+    from .designs import clearance
+
+    return clearance(real)
+
+
 TASKS: dict[str, Callable[..., dict[str, Any]]] = {
     "identify": identify_payload,
     "solve": solve_payload,
     "relax": relax_payload,
     "export": export_payload,
+    "clearance": clearance_payload,
 }
 """Job kinds -> the function a worker runs."""
 
@@ -284,6 +292,11 @@ class Jobs:
         if state["state"] != "done":
             raise ExportFailed(f"cannot export this design: {state['error'] or state['state']}")
         return state["result"]["content"], state["result"]["name"]
+
+    def stop(self, kind: str) -> None:
+        """Cancel the newest ``kind`` job if it still runs (a newer design made its answer stale)."""
+        if kind in self.latest:
+            self.latest[kind].cancel()
 
     def wait(self, job: Job, pause: float = 0.05) -> dict[str, Any]:
         """Return the JSON view of ``job`` once it has ended (done, error or cancelled by a newer one)."""

@@ -1,6 +1,6 @@
 // The studio page: state, edits, panels.  Every answer (strands, components, names, solutions,
 // catalog rows, files) comes from the server's Python API; the page only draws and edits labels.
-import { View, strandColor } from '/static/view.js';
+import { View } from '/static/view.js';
 import { Handles } from '/static/handles.js';
 import { StrandPicker } from '/static/strandpick.js';
 import { bindKeys } from '/static/keys.js';
@@ -89,11 +89,15 @@ async function update(t0) {
   clearTimeout(S.measureTimer); // an edit is on its way: the last design's clearance would only compete with it
   const body = { key: S.key, labels: S.labels, nulls: [...S.nulls], block: S.block };
   let d;
-  try { d = await api('design', body); } catch (err) { if (seq === S.seq) { message(err.message); $('busy').hidden = true; } return; }
+  try { d = await api('design', { ...body, have: view.strands.have() }); } catch (err) { if (seq === S.seq) { message(err.message); $('busy').hidden = true; } return; }
   if (seq !== S.seq) return; // a newer edit is on its way: this answer is stale
-  S.design = d; S.labels = d.labels.map(norm);
   const t1 = performance.now();
-  view.setStrands(d.curves || null);
+  if (!(await view.setStrands(d.curves || null, d.strands))) { // a curve it sent as held was dropped meanwhile: ask for all
+    try { d = await api('design', body); } catch (err) { if (seq === S.seq) { message(err.message); $('busy').hidden = true; } return; }
+    await view.setStrands(d.curves || null, d.strands);
+  }
+  if (seq !== S.seq) return;
+  S.design = d; S.labels = d.labels.map(norm);
   const t2 = performance.now();
   view.markError(null);
   message(d.failure ? d.failure.message : '');
@@ -120,7 +124,7 @@ async function relaxDraw(seq, body) {
   let d;
   try { d = await api('design', { ...body, relax: true }); } catch (err) { if (seq === S.seq) $('relax-status').textContent = 'relax: ' + err.message; return; }
   if (seq !== S.seq || !$('relaxed').checked) return; // stale: the design or the toggle changed meanwhile
-  view.setStrands(d.curves); view.render(); S.shown = d.curves;
+  await view.setStrands(d.curves, d.strands); view.render(); S.shown = d.curves;
   const c = d.clearance;
   $('relax-status').textContent = `relaxed in ${d.timing.realize.toFixed(1)} s, clearance ${c.min_distance === null ? '—' : c.min_distance.toFixed(3)}${c.ok ? '' : ' (too close)'}`;
 }
@@ -175,7 +179,7 @@ function panelRead(d) {
   $('summary').innerHTML = rows.map(([a, b]) => `<tr><td class="dim">${a}</td><td>${b}</td></tr>`).join('');
   const shown = d.strands.slice(0, 200);
   $('strands').innerHTML = '<tr><th></th><th>#</th><th>kind</th><th>length</th><th>period</th></tr>' + shown.map((s, k) =>
-    `<tr><td><span class="swatch" style="background:${strandColor(k)}"></span></td><td>${k}</td><td>${s.kind}</td><td>${s.length}</td><td>${s.period ? esc(JSON.stringify(s.period)) : '–'}</td></tr>`).join('') +
+    `<tr><td><span class="swatch" style="background:${view.strands.colorOf(k)}"></span></td><td>${k}</td><td>${s.kind}</td><td>${s.length}</td><td>${s.period ? esc(JSON.stringify(s.period)) : '–'}</td></tr>`).join('') +
     (d.strands.length > shown.length ? `<tr><td colspan=5 class="dim">… ${d.strands.length - shown.length} more</td></tr>` : '');
 }
 function panelEdge() {

@@ -2,8 +2,6 @@
 // The server projects the realized strands and cuts the under strand at every crossing
 // (POST /api/diagram); this module asks after each redraw and each turn of the view,
 // colours the paths as the 3D view colours the strands and drops answers for older designs.
-import { strandColor } from '/static/view.js';
-
 const $ = (id) => document.getElementById(id);
 const studio = window.studio;
 const D = { seq: 0, body: null, timer: null, svg: '', answer: null, pending: false };
@@ -11,7 +9,7 @@ studio.diagram = D;
 
 // colour the paths of a server SVG as the 3D view colours strand k
 export function colourStrands(root) {
-  for (const p of root.querySelectorAll('path[data-strand]')) p.setAttribute('stroke', strandColor(+p.dataset.strand));
+  for (const p of root.querySelectorAll('path[data-strand]')) p.setAttribute('stroke', studio.view.strands.colorOf(+p.dataset.strand));
 }
 
 function cameraAxes() { // right, up and back (towards the viewer) of the 3D camera

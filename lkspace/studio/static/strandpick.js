@@ -3,22 +3,23 @@
 // design answer's centre lines, read by `centerlines`): the ray against each tube's axis within its
 // radius, so the answer does not depend on how the tube meshes are laid out.  An edit clears it.
 import * as THREE from 'three';
-import { strandColor } from '/static/view.js';
 import { raySegment } from '/static/handles.js';
 
 const DIM = 0.12; // opacity of the other strands
 const SLACK_PX = 3; // a click this many pixels off a thin (far) tube still hits it
 
-// The drawn curves as {points (Float32Array xyz), counts, strand (strand index of each curve), radius}.
+// The drawn curves as {points (Float32Array xyz), counts, strand (strand index of each curve), radius}:
+// each curve's centre line as the tubes hold it (`pointsOf(key)`, strands.js), since an answer
+// carries the points of its new curves only.
 const decoded = new WeakMap();
-export function centerlines(curves) {
+export function centerlines(curves, pointsOf) {
   if (!curves) return null;
   if (!decoded.has(curves)) {
-    const bin = atob(curves.points), bytes = new Uint8Array(bin.length);
-    for (let i = 0; i < bin.length; i++) bytes[i] = bin.charCodeAt(i);
-    const points = new Float32Array(bytes.buffer), spheres = [];
+    const lines = curves.keys.map((key) => pointsOf(key));
+    if (lines.some((line) => !line)) return null; // not drawn (yet)
+    const points = new Float32Array(lines.reduce((n, line) => n + line.length, 0)), spheres = [];
     let start = 0;
-    for (const n of curves.counts) { spheres.push(bound(points, start, n)); start += n; }
+    lines.forEach((line, j) => { points.set(line, 3 * start); spheres.push(bound(points, start, curves.counts[j])); start += curves.counts[j]; });
     decoded.set(curves, { points, counts: curves.counts, closed: curves.closed, strand: curves.strand, radius: curves.radius, spheres });
   }
   return decoded.get(curves);
@@ -42,7 +43,7 @@ export class StrandPicker {
   // The strand under a pixel: {strand, curve, t} of the nearest tube the ray passes within `slack` pixels of
   // (nearer than `before` along the ray), or null.
   hit(clientX, clientY, slack = SLACK_PX, before = Infinity) {
-    const c = centerlines(this.S.shown);
+    const c = centerlines(this.S.shown, (key) => this.view.strands.pointsOf(key));
     if (!c) return null;
     const { o, d, perPx } = this.handles.ray(clientX, clientY), p = c.points, r = c.radius;
     let best = null, start = 0;
@@ -70,7 +71,7 @@ export class StrandPicker {
 
   show(k) {
     this.clear(false);
-    const c = centerlines(this.S.shown);
+    const c = centerlines(this.S.shown, (key) => this.view.strands.pointsOf(key));
     if (!c || !this.S.design) return;
     this.strand = k; this.design = this.S.design;
     this.build(c, k);
@@ -88,7 +89,7 @@ export class StrandPicker {
       start += n;
     });
     const mesh = new THREE.InstancedMesh(new THREE.CylinderGeometry(1, 1, 1, 10, 1, false),
-      new THREE.MeshStandardMaterial({ color: strandColor(k), roughness: 0.45, metalness: 0.05 }), segs.length / 2);
+      new THREE.MeshStandardMaterial({ color: this.view.strands.colorOf(k), roughness: 0.45, metalness: 0.05 }), segs.length / 2);
     const m = new THREE.Matrix4(), q = new THREE.Quaternion(), up = new THREE.Vector3(0, 1, 0), a = new THREE.Vector3(), b = new THREE.Vector3(), r = c.radius * 1.06;
     for (let s = 0; s < segs.length; s += 2) {
       a.fromArray(c.points, 3 * segs[s]); b.fromArray(c.points, 3 * segs[s + 1]);
@@ -121,12 +122,11 @@ export class StrandPicker {
   }
 }
 
-function dim(mesh) {
-  const m = mesh.material;
-  mesh.userData.undim = { transparent: m.transparent, opacity: m.opacity, depthWrite: m.depthWrite };
-  Object.assign(m, { transparent: true, opacity: DIM, depthWrite: false }); m.needsUpdate = true;
+function dim(mesh) { // a material of its own (strands of one colour share one)
+  mesh.userData.undim = mesh.material;
+  mesh.material = Object.assign(mesh.material.clone(), { transparent: true, opacity: DIM, depthWrite: false });
 }
 function restore(mesh) {
   if (!mesh.userData.undim) return;
-  Object.assign(mesh.material, mesh.userData.undim); mesh.material.needsUpdate = true; delete mesh.userData.undim;
+  mesh.material.dispose(); mesh.material = mesh.userData.undim; delete mesh.userData.undim;
 }

@@ -1,92 +1,8 @@
-// The 3D view: scaffold faces (translucent), pickable edges, strand tubes coloured by strand.
+// The 3D view: scaffold faces (translucent), pickable edges, strand tubes coloured by strand (strands.js).
 // It only draws what the server computed; it knows nothing of twists or tracing.
 import * as THREE from 'three';
 import { OrbitControls } from '/static/vendor/OrbitControls.js';
-
-export const PALETTE = ['#1f77b4', '#d62728', '#2ca02c', '#ff7f0e', '#9467bd', '#8c564b', '#e377c2',
-  '#17becf', '#bcbd22', '#393b79', '#637939', '#843c39', '#7b4173', '#3182bd', '#e6550d', '#31a354'];
-
-export function strandColor(k) { return PALETTE[k % PALETTE.length]; }
-
-function decodeFloats(b64) {
-  const bin = atob(b64);
-  const bytes = new Uint8Array(bin.length);
-  for (let i = 0; i < bin.length; i++) bytes[i] = bin.charCodeAt(i);
-  return new Float32Array(bytes.buffer);
-}
-
-// Tube mesh around polylines: rotation-minimizing frames (double reflection, Wang et al. 2008), `sides` around.
-// Plain arithmetic on typed arrays (no per-point objects): ~100,000 points in a few tens of milliseconds.
-function tubeGeometry(points, counts, closedFlags, colorOf, radius, sides) {
-  let nv = 0, ni = 0;
-  for (let c = 0; c < counts.length; c++) {
-    nv += counts[c] * sides;
-    ni += (closedFlags[c] ? counts[c] : counts[c] - 1) * sides * 6;
-  }
-  const pos = new Float32Array(nv * 3), nor = new Float32Array(nv * 3), col = new Float32Array(nv * 3);
-  const index = nv > 65535 ? new Uint32Array(ni) : new Uint16Array(ni);
-  const cosv = new Float64Array(sides), sinv = new Float64Array(sides);
-  for (let s = 0; s < sides; s++) { cosv[s] = Math.cos(2 * Math.PI * s / sides); sinv[s] = Math.sin(2 * Math.PI * s / sides); }
-  const color = new THREE.Color();
-  let start = 0, v = 0, ii = 0;
-  for (let c = 0; c < counts.length; c++) {
-    const n = counts[c], closed = closedFlags[c], P = 3 * start;
-    color.set(colorOf(c));
-    let tx = 0, ty = 0, tz = 0, rx = 0, ry = 0, rz = 0;
-    const tangent = (i) => {
-      const a = closed ? (i - 1 + n) % n : Math.max(i - 1, 0), b = closed ? (i + 1) % n : Math.min(i + 1, n - 1);
-      const x = points[P + 3 * b] - points[P + 3 * a], y = points[P + 3 * b + 1] - points[P + 3 * a + 1], z = points[P + 3 * b + 2] - points[P + 3 * a + 2];
-      const l = Math.hypot(x, y, z) || 1;
-      return [x / l, y / l, z / l];
-    };
-    for (let i = 0; i < n; i++) {
-      const [ux, uy, uz] = tangent(i);
-      if (i === 0) { // any unit vector perpendicular to the first tangent
-        rx = Math.abs(ux) < 0.9 ? 1 : 0; ry = rx ? 0 : 1; rz = 0;
-        const d = rx * ux + ry * uy; rx -= d * ux; ry -= d * uy; rz -= d * uz;
-      } else {
-        const vx = points[P + 3 * i] - points[P + 3 * i - 3], vy = points[P + 3 * i + 1] - points[P + 3 * i - 2], vz = points[P + 3 * i + 2] - points[P + 3 * i - 1];
-        const c1 = vx * vx + vy * vy + vz * vz;
-        if (c1 > 1e-20) {
-          let k = 2 * (vx * rx + vy * ry + vz * rz) / c1;
-          const lx = rx - k * vx, ly = ry - k * vy, lz = rz - k * vz;
-          k = 2 * (vx * tx + vy * ty + vz * tz) / c1;
-          const wx = ux - (tx - k * vx), wy = uy - (ty - k * vy), wz = uz - (tz - k * vz);
-          const c2 = wx * wx + wy * wy + wz * wz;
-          k = c2 > 1e-20 ? 2 * (wx * lx + wy * ly + wz * lz) / c2 : 0;
-          rx = lx - k * wx; ry = ly - k * wy; rz = lz - k * wz;
-        }
-      }
-      const rl = Math.hypot(rx, ry, rz) || 1; rx /= rl; ry /= rl; rz /= rl;
-      tx = ux; ty = uy; tz = uz;
-      const bx = ty * rz - tz * ry, by = tz * rx - tx * rz, bz = tx * ry - ty * rx;
-      const px = points[P + 3 * i], py = points[P + 3 * i + 1], pz = points[P + 3 * i + 2];
-      for (let s = 0; s < sides; s++) {
-        const nx = cosv[s] * rx + sinv[s] * bx, ny = cosv[s] * ry + sinv[s] * by, nz = cosv[s] * rz + sinv[s] * bz;
-        const o = 3 * (v + i * sides + s);
-        pos[o] = px + radius * nx; pos[o + 1] = py + radius * ny; pos[o + 2] = pz + radius * nz;
-        nor[o] = nx; nor[o + 1] = ny; nor[o + 2] = nz;
-        col[o] = color.r; col[o + 1] = color.g; col[o + 2] = color.b;
-      }
-    }
-    const rings = closed ? n : n - 1;
-    for (let i = 0; i < rings; i++) {
-      const j = (i + 1) % n;
-      for (let s = 0; s < sides; s++) {
-        const s2 = (s + 1) % sides;
-        const a = v + i * sides + s, b2 = v + i * sides + s2, c2 = v + j * sides + s, d = v + j * sides + s2;
-        index[ii++] = a; index[ii++] = c2; index[ii++] = b2; index[ii++] = b2; index[ii++] = c2; index[ii++] = d;
-      }
-    }
-    v += n * sides; start += n;
-  }
-  const g = new THREE.BufferGeometry();
-  g.setAttribute('position', new THREE.BufferAttribute(pos, 3));
-  g.setAttribute('normal', new THREE.BufferAttribute(nor, 3));
-  g.setAttribute('color', new THREE.BufferAttribute(col, 3));
-  g.setIndex(new THREE.BufferAttribute(index, 1));
-  return g;
-}
+import { Strands } from '/static/strands.js';
 
 export class View {
   constructor(canvas, layer) {
@@ -103,7 +19,7 @@ export class View {
     this.groups = { faces: new THREE.Group(), edges: new THREE.Group(), strands: new THREE.Group(), marks: new THREE.Group() };
     for (const g of Object.values(this.groups)) this.scene.add(g);
     this.raycaster = new THREE.Raycaster();
-    this.edgeColors = null; this.sc = null; this.showNumbers = false; this.colors = [];
+    this.edgeColors = null; this.sc = null; this.showNumbers = false; this.strands = new Strands(this.groups.strands);
     this.handles = null; this.afterRender = []; // edge handles (handles.js) and overlays drawn after each frame
     new ResizeObserver(() => this.resize()).observe(canvas.parentElement);
     this.resize();
@@ -114,7 +30,7 @@ export class View {
   }
   clear(group) { for (const o of [...group.children]) { group.remove(o); o.geometry?.dispose(); o.material?.dispose(); } }
   setScaffold(sc, block) {
-    this.sc = sc; this.block = block;
+    this.sc = sc; this.block = block; this.strands.reset();
     for (const g of Object.values(this.groups)) this.clear(g);
     const cp = sc.corner_positions, fs = sc.face_starts, cen = sc.face_centroids;
     const tri = [];
@@ -169,16 +85,8 @@ export class View {
     this.edgeLines.geometry.getAttribute('color').needsUpdate = true;
     this.handles?.paint(labels, selected, pinned, errorEdge);
   }
-  setStrands(curves) {
-    this.clear(this.groups.strands);
-    if (!curves) { this.colors = []; return; }
-    const pts = decodeFloats(curves.points);
-    const total = pts.length / 3, sides = total > 200000 ? 5 : total > 40000 ? 6 : 8;
-    const colorOf = (c) => strandColor(curves.strand[c]);
-    this.colors = [...new Set(curves.strand.map((k) => strandColor(k)))];
-    const g = tubeGeometry(pts, curves.counts, curves.closed, colorOf, curves.radius, sides);
-    this.groups.strands.add(new THREE.Mesh(g, new THREE.MeshStandardMaterial({ vertexColors: true, roughness: 0.45, metalness: 0.05 })));
-  }
+  get colors() { return this.strands.colors; }
+  setStrands(curves, strands) { return this.strands.set(curves, strands); } // resolves false: ask again without `have`
   markError(point) {
     this.clear(this.groups.marks);
     if (!point) return;

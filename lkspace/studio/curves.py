@@ -1,0 +1,59 @@
+"""The strand curves as they travel to the page: one content key per curve, points only for new ones.
+
+Every curve gets a **key**, a hash of its ``float32`` points and closed flag (16 hex
+digits), so two curves with one key draw alike.  The page says which keys it holds
+(``have``); the answer lists every curve (key, point count, strand, copy) but packs the
+points of the others only, as base64 little-endian ``float32``.  An edit changes the
+strands through one edge, so after an edit most curves travel as a key alone, and the
+page rebuilds the tubes of the new ones only.
+"""
+
+from __future__ import annotations
+
+import base64
+import hashlib
+from typing import Any
+
+import numpy as np
+
+from .. import Realization
+from ..errors import UsageError
+
+MAX_HAVE = 50_000
+"""Most curve keys a request may say the page holds."""
+
+
+def parse_have(value: object) -> frozenset[str]:
+    """Return the curve keys the page holds, from the request's ``have`` list (none when absent)."""
+    if value is None:
+        return frozenset()
+    if not isinstance(value, list) or not all(isinstance(v, str) and len(v) <= 32 for v in value):
+        raise UsageError("have: expected a list of curve keys (strings from an earlier answer)")
+    if len(value) > MAX_HAVE:
+        raise UsageError(f"have: {len(value):,} curve keys > {MAX_HAVE:,}; send the keys of the curves drawn")
+    return frozenset(value)
+
+
+def curve_key(points: np.ndarray, closed: bool) -> str:
+    """Return the content key of a curve: 16 hex digits of a hash of its ``float32`` points and closed flag."""
+    h = hashlib.blake2b(np.ascontiguousarray(points, "<f4").tobytes(), digest_size=8)
+    h.update(b"closed" if closed else b"open")
+    return h.hexdigest()
+
+
+def curves_view(real: Realization, have: frozenset[str] = frozenset()) -> dict[str, Any]:
+    """Return the page's view of ``real``'s curves, with the points of the curves whose key is not in ``have``."""
+    keys = [curve_key(c, bool(cl)) for c, cl in zip(real.curves, real.closed, strict=True)]
+    sent = [c for c, key in zip(real.curves, keys, strict=True) if key not in have]
+    points = np.vstack(sent) if sent else np.zeros((0, 3))
+    return {
+        "keys": keys,
+        "points": base64.b64encode(np.ascontiguousarray(points, "<f4").tobytes()).decode("ascii"),
+        "sent": [key not in have for key in keys],
+        "counts": [len(c) for c in real.curves],
+        "closed": real.closed.tolist(),
+        "strand": real.strand_of.tolist(),
+        "copy": real.copy_of.tolist(),
+        "radius": real.tube_radius,
+        "scale": real.scale,
+    }

@@ -1,0 +1,112 @@
+"""The strand tubes in the browser: after every edit the page draws exactly the server's curves, rebuilds only
+the new ones, and each strand keeps its colour (in the view and in the Read panel's strand table).
+
+The studio is started by the installed CLI; the keys are pressed in headless Chromium; the curves are
+checked against :func:`lkspace.realize`.
+"""
+
+import os
+import re
+import shutil
+import signal
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+import lkspace
+from lkspace.geometry.params import RealizeOptions
+
+pytest.importorskip("starlette")
+pytest.importorskip("uvicorn")
+playwright = pytest.importorskip("playwright.sync_api")
+CHROMIUM = "/usr/bin/chromium"
+if not os.path.exists(CHROMIUM):
+    pytest.skip(f"no Chromium at {CHROMIUM} (Debian package 'chromium')", allow_module_level=True)
+
+from lkspace.studio.curves import curve_key  # noqa: E402
+
+ARGS = ["--headless=new", "--no-sandbox", "--disable-gpu", "--no-first-run", "--disable-background-networking"]
+NAME = "honeycomb:cP@3x3x3"
+BLOCK = [[0, 0, 0], [1, 0, 0]]  # the page's block 2x1x1: two lattice copies of every thread
+
+
+@pytest.fixture(scope="module")
+def url():
+    """``lkspace studio honeycomb:cP@3x3x3 --no-browser --port 0``: yields its URL; stopped with Ctrl-C."""
+    exe = shutil.which("lkspace")
+    command = [exe] if exe else [sys.executable, "-m", "lkspace"]
+    proc = subprocess.Popen(
+        [*command, "studio", NAME, "--no-browser", "--port", "0"],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+    match = re.search(r"(http://127\.0\.0\.1:\d+/)", proc.stdout.readline())
+    assert match, proc.stderr.read() if proc.poll() is not None else "no URL"
+    yield match.group(1)
+    proc.send_signal(signal.SIGINT)
+    _, err = proc.communicate(timeout=60)
+    assert proc.returncode == 130 and "Traceback" not in err, err
+
+
+SEEN = """() => {
+  const s = window.studio.state, v = window.studio.view.strands;
+  return {
+    labels: s.labels.map(Number), curves: s.design.curves, strands: s.design.strands,
+    drawn: window.studio.view.groups.strands.children.map((m) => ({ key: m.userData.key, color: '#' + m.material.color.getHexString(), mark: m.userData.mark ?? null })),
+    colors: s.design.strands.map((_, k) => v.colorOf(k)),
+    swatches: [...document.querySelectorAll('#strands .swatch')].map((e) => e.style.backgroundColor),
+  };
+}"""
+
+
+def rgb(color):
+    return "rgb({}, {}, {})".format(*(int(color[i : i + 2], 16) for i in (1, 3, 5)))
+
+
+def test_edits_redraw_the_new_strands_only_and_keep_colours(url):
+    sc = lkspace.load(NAME)
+    with playwright.sync_playwright() as p:
+        browser = p.chromium.launch(executable_path=CHROMIUM, args=ARGS)
+        page = browser.new_page(viewport={"width": 1200, "height": 800})
+        errors = []
+        page.on("pageerror", lambda e: errors.append(str(e)))
+        page.goto(f"{url}#s={NAME}&b=2x1x1")
+        page.wait_for_function("window.studio && window.studio.state.ready", timeout=60000)
+        for e in range(sc.n_edges):  # select an edge whose edits change some strands
+            pos = page.evaluate(f"window.studio.edgeScreen({e})")
+            page.mouse.click(pos["x"], pos["y"])
+            if page.evaluate("window.studio.state.selected") is not None:
+                break
+        before, rebuilt, kept = None, 0, 0
+        for key in "++-+--":
+            page.evaluate("window.studio.view.groups.strands.children.forEach((m, i) => { m.userData.mark = i; })")
+            n = page.evaluate("window.studio.state.latencies.length")
+            page.keyboard.press(key)
+            page.wait_for_function(f"window.studio.state.latencies.length > {n}", timeout=60000)
+            seen = page.evaluate(SEEN)
+            real = lkspace.realize(
+                sc, seen["labels"], options=RealizeOptions(embedding="later", translations=np.array(BLOCK))
+            )
+            keys = [curve_key(c, cl) for c, cl in zip(real.curves, real.closed, strict=True)]
+            # exactly the server's curves are drawn, one mesh each, in the colour of their strand
+            assert sorted(d["key"] for d in seen["drawn"]) == sorted(keys) == sorted(seen["curves"]["keys"])
+            color_of = {d["key"]: d["color"] for d in seen["drawn"]}
+            assert [color_of[k] for k in keys] == [seen["colors"][s] for s in real.strand_of]
+            assert seen["swatches"] == [rgb(c) for c in seen["colors"]]  # the Read panel uses the same colours
+            # a curve drawn before keeps its mesh; the others are new
+            old = [d for d in seen["drawn"] if d["mark"] is not None]
+            rebuilt += len(seen["drawn"]) - len(old)
+            kept += len(old)
+            assert sum(seen["curves"]["sent"]) <= len(seen["drawn"]) - len(old)  # points travel for new curves only
+            # a strand named by the same smallest port keeps its colour
+            now = {s["port"]: c for s, c in zip(seen["strands"], seen["colors"], strict=True)}
+            if before is not None:
+                common = set(now) & set(before)
+                assert common and all(now[q] == before[q] for q in common)
+            before = now
+        assert rebuilt > 0 and kept > rebuilt  # every edit changed some strands, most stayed as they were
+        assert len(set(seen["colors"])) > 1 and not errors, errors
+        browser.close()
