@@ -135,7 +135,7 @@ def check_identifiable(scaffold: Scaffold) -> None:
     if scaffold.periodic:
         raise UsageError(
             f"{scaffold.name}: a periodic scaffold; identify names knots and links of finite "
-            "scaffolds only (its loops link their lattice translates; use export --block to look at a block)"
+            "scaffolds only (its loops link their lattice translates); to look at a block of the structure, export one with `block`"
         )
 
 
