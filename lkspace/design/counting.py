@@ -53,7 +53,7 @@ class DesignCount:
 
     def __repr__(self) -> str:
         by = "" if self.by_components is None else f"; by components {self.by_components}"
-        return f"DesignCount({self.designs:,} designs of {self.assignments:,} assignments{by})"
+        return f"DesignCount({plural(self.designs, 'design')} of {plural(self.assignments, 'assignment')}{by})"
 
     def to_dict(self) -> dict[str, Any]:
         """Return the JSON form (``by_components`` keyed by strings, as in the CLI)."""
