@@ -30,7 +30,6 @@ from __future__ import annotations
 
 import importlib
 import warnings
-from importlib.metadata import PackageNotFoundError, version
 from typing import TYPE_CHECKING, Any
 
 from .errors import CatalogError, LabelError, LkspaceError, MissingDependencyError, ScaffoldError
@@ -69,11 +68,7 @@ if TYPE_CHECKING:
     realize = api.loading(realization.realize)
     export = api.loading(registry.export)
     identify = api.loading(recognition.identify)
-
-try:
-    __version__ = version("lkspace")
-except PackageNotFoundError:  # pragma: no cover - running from a source tree without installing
-    __version__ = "0+unknown"
+    __version__: str
 
 _LAZY = {
     "Scaffold": "model.scaffold",
@@ -169,6 +164,9 @@ def __getattr__(name: str) -> Any:
         name = "designs"
     if name in SUBPACKAGES:
         return importlib.import_module(f".{name}", __name__)
+    if name == "__version__":  # read on first use: the program's first instants stay short (lkspace.__main__)
+        globals()[name] = _version()
+        return globals()[name]
     if name not in _LAZY:
         raise AttributeError(f"module 'lkspace' has no attribute {name!r}")
     value = getattr(importlib.import_module(f".{_LAZY[name]}", __name__), name)
@@ -178,6 +176,15 @@ def __getattr__(name: str) -> Any:
         value = api.loading(value, api.SCAFFOLD_FIRST[name])
     globals()[name] = value
     return value
+
+
+def _version() -> str:
+    from importlib.metadata import PackageNotFoundError, version
+
+    try:
+        return version("lkspace")
+    except PackageNotFoundError:  # pragma: no cover - running from a source tree without installing
+        return "0+unknown"
 
 
 def __dir__() -> list[str]:

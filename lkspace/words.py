@@ -13,7 +13,16 @@ def plural(n: int, word: str, many: str | None = None) -> str:
     >>> plural(1, "component"), plural(3, "component"), plural(2, "face set", "face sets")
     ('1 component', '3 components', '2 face sets')
     """
-    return f"{n:,} {word if n == 1 else (many or word + 's')}"
+    return f"{n:,} {noun(n, word, many)}"
+
+
+def noun(n: float, word: str, many: str | None = None) -> str:
+    """Return ``word`` for one of it and its plural for any other count (``many``: an irregular plural).
+
+    >>> noun(1, "key"), noun(2, "key"), noun(0.5, "turn")
+    ('key', 'keys', 'turns')
+    """
+    return word if n == 1 else (many or word + "s")
 
 
 def rounded(value: Any, digits: int = 12) -> Any:

@@ -24,7 +24,10 @@ import os
 import signal
 import sys
 import threading
-from collections.abc import Iterator, Sequence
+from collections.abc import Callable, Iterator, Sequence
+from typing import TypeVar
+
+T = TypeVar("T")
 
 IMPORTED_IN = os.getpid()
 """The process that imported this module; a fork of it (a Dask worker of our LocalCluster) has another pid."""
@@ -92,6 +95,34 @@ def _raise_terminated(signum: int, frame: object) -> None:
 def in_main_thread() -> bool:
     """Return whether this is the main thread (the only one that may set signal handlers)."""
     return threading.current_thread() is threading.main_thread()
+
+
+def interruptible(call: Callable[[], T]) -> T:
+    """Return ``call()``, run in a thread while this one waits in short joins (main thread only).
+
+    Python runs its signal handlers in the main thread between bytecodes, never inside one
+    long C call: a KD-tree of millions of points would hold Ctrl-C back for seconds.  Here
+    the interrupt goes on up at once; the call itself (it must release the GIL, as scipy's
+    KD-trees do) finishes in its thread and its result is dropped.
+    """
+    if not in_main_thread():
+        return call()
+    done: list[T] = []
+    failed: list[BaseException] = []
+
+    def run() -> None:
+        try:
+            done.append(call())
+        except BaseException as exc:  # handed to the waiting thread
+            failed.append(exc)
+
+    worker = threading.Thread(target=run, name="lkspace-call", daemon=True)
+    worker.start()
+    while worker.is_alive():
+        worker.join(0.05)
+    if failed:
+        raise failed[0]
+    return done[0]
 
 
 def _forked_child_defaults() -> None:

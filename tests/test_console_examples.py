@@ -17,6 +17,11 @@ HTML comments on the lines before a block's fence steer it:
   the reason shows in the test report;
 - ``<!-- console: setup: COMMAND -->``: a shell command run first in the block's folder
   (files the example reads); several may follow one another.
+
+A file the reader is shown is the file the example reads: ``<!-- console: file NAME -->``
+on the line before any other fenced block (```` ```text ````, ```` ```json ````, …) writes
+that block's text to ``NAME`` in the folder of every later console block of the same page
+whose commands name it.
 """
 
 import os
@@ -33,19 +38,27 @@ PAGES = [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md"))]
 BLOCK = re.compile(r"((?:[ ]*<!-- console: [^\n]*-->\n)*)([ ]*)```console\n(.*?)```", re.S)
 SKIP = re.compile(r"<!-- console: skip \((.*?)\) -->")
 SETUP = re.compile(r"<!-- console: setup: (.*?) -->")
+FILE = re.compile(r"<!-- console: file (\S+) -->\n([ ]*)```[^\n]*\n(.*?)```", re.S)
 SEPARATOR = "@@console-example@@"
 STATUS = "@@console-status@@"
 
 
+def _unindent(text, indent):
+    return "\n".join(line.removeprefix(indent) for line in text.split("\n"))
+
+
 def _blocks():
-    """One pytest param per console block: (page, index, setup commands, body)."""
+    """One pytest param per console block: (files, setup commands, body)."""
     for page in PAGES:
-        for i, match in enumerate(BLOCK.finditer(page.read_text())):
-            comments, indent, body = match[1], match[2], match[3]
-            body = "\n".join(line.removeprefix(indent) for line in body.split("\n"))
+        text = page.read_text()
+        shown = [(m.start(), m[1], _unindent(m[3], m[2])) for m in FILE.finditer(text)]
+        for i, match in enumerate(BLOCK.finditer(text)):
+            comments, body = match[1], _unindent(match[3], match[2])
+            commands = " ".join(c for c, _ in _commands(body))
+            files = {name: content for at, name, content in shown if at < match.start() and name in commands}
             skip = SKIP.search(comments)
             marks = [pytest.mark.skip(reason=skip[1])] if skip else []
-            yield pytest.param(SETUP.findall(comments), body, marks=marks, id=f"{page.name}[{i}]")
+            yield pytest.param(files, SETUP.findall(comments), body, marks=marks, id=f"{page.name}[{i}]")
 
 
 def _commands(body):
@@ -101,8 +114,10 @@ def _run(setup, commands, folder):
     return results
 
 
-@pytest.mark.parametrize(("setup", "body"), list(_blocks()))
-def test_console_example(setup, body, tmp_path):
+@pytest.mark.parametrize(("files", "setup", "body"), list(_blocks()))
+def test_console_example(files, setup, body, tmp_path):
+    for name, content in files.items():
+        (tmp_path / name).write_text(content)
     commands = _commands(body)
     assert commands, "a console block without a $ command"
     if any(re.search(r"\|\s*jq\b", c) for c, _ in commands) and shutil.which("jq") is None:

@@ -173,3 +173,70 @@ def test_ctrl_c_after_a_cp_sat_search_is_still_ours():
     )
     proc = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=HANG)
     assert (proc.returncode, proc.stdout.strip()) == (0, "caught"), proc.stderr
+
+
+def test_ctrl_c_while_the_command_line_imports_is_one_line_and_130():
+    """Ctrl-C while click and the command line import (the program's first second): no traceback.
+
+    The signal is sent from inside the import of click, so it lands there every time.
+    """
+    script = (
+        "import os, signal, sys\n"
+        "class Hook:\n"
+        "    def find_spec(self, name, path, target=None):\n"
+        "        if name == 'click':\n"
+        "            os.kill(os.getpid(), signal.SIGINT)\n"
+        "sys.meta_path.insert(0, Hook())\n"
+        "sys.argv = ['lkspace', 'identify', 'cube', '--twist', '1', '--json']\n"
+        "from lkspace.__main__ import main\n"
+        "main()\n"
+    )
+    proc = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=HANG)
+    assert (proc.returncode, proc.stderr) == (130, "lkspace: error: interrupted\n"), proc.stderr
+    assert '"type": "Interrupted"' in proc.stdout
+
+
+@pytest.mark.parametrize("delay", [0.3, 0.6, 1.0, 1.5])
+def test_ctrl_c_in_the_first_second_of_the_installed_program(delay):
+    """The real program at fixed moments of its start: exit 130 and one line, or (if the machine is so
+    slow that the signal lands while Python itself still starts, before any lkspace code) Python's own
+    start-up error; never a traceback through lkspace."""
+    proc = subprocess.Popen(
+        [*lkspace_command(), "identify", "cube", "--twist", "1"],
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.PIPE,
+        text=True,
+        start_new_session=True,
+    )
+    time.sleep(delay)
+    send(proc, signal.SIGINT, group=True)
+    _, err = proc.communicate(timeout=HANG)
+    if "Traceback" in err:
+        assert "lkspace" not in err.split("Traceback", 1)[1].replace("/bin/lkspace", ""), err
+        assert "init_import_site" in err or "<frozen site>" in err, err
+    else:
+        assert proc.returncode in (130, 0), err  # 0: the signal came after the answer
+        assert err.strip() in ("", "lkspace: error: interrupted"), err
+
+
+def test_a_long_call_in_a_thread_lets_ctrl_c_through_at_once():
+    """``workers.interruptible``: the interrupt goes on up while the call still runs (a KD-tree of millions
+    of points held Ctrl-C back for seconds in ``export --block``)."""
+    script = (
+        "import os, signal, threading\n"
+        "from lkspace.workers import interruptible\n"
+        "release = threading.Event()\n"
+        "threading.Timer(0.2, os.kill, (os.getpid(), signal.SIGINT)).start()\n"
+        "try:\n"
+        "    interruptible(lambda: release.wait(120))\n"
+        "except KeyboardInterrupt:\n"
+        "    print('interrupted while the call runs' if not release.is_set() else 'after the call')\n"
+        "release.set()\n"
+        "print(interruptible(lambda: 6 * 7))\n"
+        "try:\n"
+        "    interruptible(lambda: 1 / 0)\n"
+        "except ZeroDivisionError:\n"
+        "    print('raised here')\n"
+    )
+    proc = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=HANG)
+    assert proc.stdout.split("\n") == ["interrupted while the call runs", "42", "raised here", ""], proc.stderr

@@ -190,3 +190,65 @@ def test_parameters_in_backquotes_become_flags():
     )
     assert in_flags(UsageError("counts: x", parameter="count")) == "counts: x"  # a word, not a prefix
     assert in_flags(UsageError("pathological.parquet: x", parameter="path")) == "pathological.parquet: x"
+
+
+def _user_strings():
+    """Every string constant in lkspace's code (f-string parts included, docstrings left out), with where it is."""
+    import ast
+    import pathlib
+
+    root = pathlib.Path(lkspace.__file__).parent
+    for path in sorted(root.rglob("*.py")):
+        tree = ast.parse(path.read_text(), str(path))
+        docs = {id(n.value) for n in ast.walk(tree) if isinstance(n, ast.Expr) and isinstance(n.value, ast.Constant)}
+        for node in ast.walk(tree):
+            if isinstance(node, ast.Constant) and isinstance(node.value, str) and id(node) not in docs:
+                yield f"{path.relative_to(root)}:{node.lineno}", node.value
+
+
+def test_no_word_is_pluralized_with_s_in_brackets():
+    """``solution(s)``, ``design(s)``: every count says ``1 design`` or ``2 designs`` (words.plural, words.noun)."""
+    bad = [(where, text) for where, text in _user_strings() if re.search(r"[a-z]\(s\)", text)]
+    assert bad == []
+
+
+def test_results_count_in_words():
+    result = lkspace.solve("tetrahedron", 3)
+    assert re.fullmatch(r"SolveResult\(feasible, 1 solution by fast-path in \S+s\)", repr(result)), repr(result)
+    assert lkspace.words.noun(1, "key") == "key" and lkspace.words.noun(0.5, "turn") == "turns"
+
+
+def test_unknown_keys_are_named_with_the_keys_there_are(tmp_path):
+    path = tmp_path / "bad.json"
+    path.write_text(json.dumps({"vertices": [[0, 0, 0], [1, 0, 0], [0, 1, 0]], "faces": [[0, 1, 2]], "colour": 1}))
+    with pytest.raises(lkspace.ScaffoldError, match=r"unknown key 'colour'; the keys are comment, edges, faces") as e:
+        lkspace.load(str(path))
+    assert "(s)" not in str(e.value)
+
+
+def test_a_misspelt_builtin_name_gets_a_suggestion(capsys):
+    with pytest.raises(lkspace.ScaffoldError, match=r"did you mean 'cube'"):
+        lkspace.load("cubee")
+    code, _, err = run(capsys, "info", "zzz")
+    assert code == 2 and "the built-in names are tetrahedron, cube," in err and "--help" not in err, err
+
+
+def test_periodic_identify_names_the_block_parameter_in_python_and_the_flag_on_the_command_line(capsys):
+    with pytest.raises(lkspace.LkspaceError) as e:
+        lkspace.identify("honeycomb:cP", [1, 1, 1])
+    assert "`block`" in str(e.value) and "--" not in str(e.value), str(e.value)
+    code, _, err = run(capsys, "identify", "honeycomb:cP", "--twist", "1")
+    assert code == 2 and "export one with --block" in err, err
+
+
+def test_library_messages_name_no_command_line_flag():
+    """A Python caller never reads ``--flag``: library layers name parameters (in backquotes), cli/ maps them."""
+    programs = ("cli/", "studio/", "blender/", "__main__.py")
+    bad = [
+        (where, text)
+        for where, text in _user_strings()
+        if not where.startswith(programs)
+        and re.search(r"(?<![\w`-])--[a-z]", text)
+        and not (where.startswith("linktypes/lookup.py") and ("lkspace " in text or text == " --twist "))
+    ]  # lookup's answers hold pasteable commands: each design's, and `lkspace solve` (its type search has no Python API)
+    assert bad == []

@@ -25,6 +25,7 @@ from ..io.scaffold_json import scaffold_from_dict
 from ..io.sources import load
 from ..model.scaffold import Scaffold
 from ..strands.tracing import Trace, trace
+from ..words import noun
 from .transaction import load_manifest
 from .verify import damaged, open_catalog
 
@@ -180,7 +181,7 @@ def _read(path: str, columns: list[str] | None) -> Catalog:
     names = [n for n in schema.names if n not in LABEL_COLUMNS and (columns is None or n in columns)]
     unknown = sorted(set(columns or []) - set(schema.names))
     if unknown:
-        raise CatalogError(f"{path}: no column(s) {unknown}; columns are {schema.names}")
+        raise CatalogError(f"{path}: no {noun(len(unknown), 'column')} {unknown}; columns are {schema.names}")
     label_column = "key" if "key" in schema.names else "labels"
     tables = []
     for file in parts.files:

@@ -34,6 +34,7 @@ from ..model.scaffold import Scaffold
 from ..model.specs import LabelSetSpec
 from ..progress import task
 from ..symmetry.tolerance import resolve_tolerance
+from ..words import plural
 from ..workers import context, ignored_signals
 from .jobs import PartsJob, run_parts, selected_batches
 from .lock import catalog_lock
@@ -111,7 +112,7 @@ class CatalogWritten:
     identified: Identified | None = None
 
     def __repr__(self) -> str:
-        return f"CatalogWritten({self.designs:,} rows to {self.output} in {self.shards} part(s))"
+        return f"CatalogWritten({self.designs:,} rows to {self.output} in {plural(self.shards, 'part')})"
 
     def to_dict(self) -> dict[str, Any]:
         """JSON form: the ``lkspace enumerate --json`` fields (``by_components`` keyed by strings)."""

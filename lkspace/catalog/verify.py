@@ -202,7 +202,7 @@ def _manifest(folder: str) -> dict[str, Any]:
     except FileNotFoundError:
         raise CatalogError(
             f"{folder}: no manifest {MANIFEST}: not a finished lkspace catalog "
-            "(an interrupted run is finished by the same command with --resume)"
+            "(an interrupted run is finished by running it again with `resume=True`)"
         ) from None
     except OSError as exc:
         raise CatalogError(f"{where}: cannot read: {exc.strerror}") from None

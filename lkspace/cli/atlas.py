@@ -7,6 +7,7 @@ import os
 import click
 
 from ..knots.budget import TIME_LIMIT
+from ..words import plural
 from .common import (
     Context,
     emit,
@@ -117,7 +118,7 @@ def atlas_cmd(
 
     def human() -> None:
         click.echo(
-            f"{data['scaffold']}: {data['designs']:,} designs, {len(data['types'])} types"
+            f"{data['scaffold']}: {plural(data['designs'], 'design')}, {plural(len(data['types']), 'type')}"
             + (f" [{data['wall_time']:.1f} s]" if "wall_time" in data else "")
         )
         if not data.get("complete", True):

@@ -7,7 +7,7 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import UsageError
+from ..errors import TooLargeError, UsageError
 from ..model.scaffold import Scaffold
 from ..words import plural
 from .common import Context, emit, symmetry_tolerance, usage_errors
@@ -50,7 +50,10 @@ def run_invariant(
         if output is None and not count_only:
             ctx.notes["note"] = "no -o given: counted, nothing written"
     else:
-        payload = write_invariant_catalog(space, output, components, max_designs)
+        try:
+            payload = write_invariant_catalog(space, output, components, max_designs)
+        except TooLargeError as exc:  # the other way ahead, in flags
+            raise TooLargeError(f"{exc}, or count them with --count-only") from None
         payload["written"] = payload.pop("output")
     payload["mode"] = "designs"
     payload["seconds"] = round(time.perf_counter() - started, 3)

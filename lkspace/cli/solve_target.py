@@ -11,6 +11,7 @@ from .. import io
 from ..errors import UsageError
 from ..io.paths import output_file
 from ..knots.budget import TIME_LIMIT
+from ..words import plural
 from .common import Context, emit, label_set, load_mesh, symmetry_tolerance, usage_errors
 from .edges import edge_values, fix_label
 
@@ -77,7 +78,7 @@ def target_cmd(
     data = {"label_set": labels.tolist(), "no_zero": no_zero, **result.to_dict(), "written": written}
 
     def human() -> None:
-        line = f"{scaffold.name}: {result.status} — {len(result.solutions)} design(s) of {goal.label}"
+        line = f"{scaffold.name}: {result.status} — {plural(len(result.solutions), 'design')} of {goal.label}"
         click.echo(f"{line} [{result.stats.get('designs', 0):,} designs screened, {result.wall_time:.1f} s]")
         for k, sol in enumerate(result.solutions):
             name = sol.get("chiral_name") or sol.get("name") or ""

@@ -18,6 +18,7 @@ import numpy as np
 from ..engine import is_dask
 from ..model.scaffold import Scaffold
 from ..model.specs import LabelSetSpec
+from ..words import plural
 from .batch import class_components, design_counts
 from .census import census
 from .space import MAX_CLASSES, DesignSpace, make_space
@@ -52,7 +53,7 @@ class DesignCount:
 
     def __repr__(self) -> str:
         by = "" if self.by_components is None else f"; by components {self.by_components}"
-        return f"DesignCount({self.designs:,} designs of {self.assignments:,} assignments{by})"
+        return f"DesignCount({plural(self.designs, 'design')} of {plural(self.assignments, 'assignment')}{by})"
 
     def to_dict(self) -> dict[str, Any]:
         """Return the JSON form (``by_components`` keyed by strings, as in the CLI)."""
@@ -116,7 +117,9 @@ def count_space(
         if components is not None:
             by = {c: n for c, n in by.items() if c == components}
         covered = sum(n for c, n in found.assignments_by_components.items() if c in by)
-        return DesignCount(sum(by.values()), space.assignments, covered, by, f"census in {found.shards} shard(s)")
+        return DesignCount(
+            sum(by.values()), space.assignments, covered, by, f"census in {plural(found.shards, 'part')}"
+        )
     co = space.classes
     comps = class_components(space)
     keep = np.arange(len(comps)) if components is None else np.flatnonzero(comps == components)

@@ -83,7 +83,7 @@ def invariant_blocks(space: InvariantSpace, components: int | None = None) -> It
     if n_fixed > MAX_FIXED:
         raise TooLargeError(
             f"{space.scaffold.name}: {n_fixed:,} assignments fixed by {space.subgroup} are too many to list "
-            f"(limit {MAX_FIXED:,}); count them with --count-only or pick a larger subgroup"
+            f"(limit {MAX_FIXED:,}); pick a larger subgroup"
         )
     if n_fixed == 0:
         return

@@ -13,6 +13,7 @@ import numpy as np
 
 from ..geometry.realization import Realization
 from ..io.atomic import write_text
+from ..words import plural
 from .tubes import tube_meshes
 
 
@@ -41,7 +42,7 @@ def write(
     **ignored: object,
 ) -> None:
     """Write polylines (``l``) or tube meshes to ``path``, one ``o strand_k`` object per curve."""
-    out = [f"# lkspace strands of {real.scaffold.name}: {real.n_curves} curve(s)\n"]
+    out = [f"# lkspace strands of {real.scaffold.name}: {plural(real.n_curves, 'curve')}\n"]
     if units:
         out.append(f"# units {units}\n")
     base = 1

@@ -9,13 +9,16 @@ farther apart along it than an exclusion length; open curves that continue one a
 from __future__ import annotations
 
 from collections.abc import Sequence
+from functools import partial
 from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike
 from scipy.spatial import cKDTree
 
-CHUNK = 50_000
+from ..workers import interruptible
+
+CHUNK = 20_000
 """Samples whose neighbours the coarse pass of :func:`check_embedding` examines at once (bounds its memory)."""
 
 
@@ -26,7 +29,7 @@ def sample_tree(points: np.ndarray) -> cKDTree:
     pathologically slow on samples along straight or planar runs: 59 s instead of 3 s
     for 3 million samples of the cube's strands.
     """
-    return cKDTree(points, compact_nodes=False)
+    return interruptible(lambda: cKDTree(points, compact_nodes=False))
 
 
 def resample(curve: np.ndarray, closed: bool, spacing: float) -> tuple[np.ndarray, np.ndarray, float]:
@@ -64,9 +67,11 @@ def pieces_apart(
     along = np.where(same & cyc, np.minimum(along, lengths[oi] - along), along)
     apart = ~same | (along > exclusion)
     if joins:  # vectorized over the pairs: one table lookup per orientation
-        pair_keys = np.array([a * len(lengths) + b for a, b in joins], np.int64)
+        pair_keys = np.unique(np.array([a * len(lengths) + b for a, b in joins], np.int64))
         for x, y in ((i, j), (j, i)):
-            m = np.isin(owner[x].astype(np.int64) * len(lengths) + owner[y], pair_keys)
+            keys = owner[x].astype(np.int64) * len(lengths) + owner[y]
+            at = np.minimum(np.searchsorted(pair_keys, keys), len(pair_keys) - 1)
+            m = pair_keys[at] == keys  # np.isin sorts all the keys: seconds for millions of pairs
             if m.any():
                 gap = (lengths[owner[x[m]]] - arc[x[m]]) + arc[y[m]]
                 apart[m] &= gap > exclusion
@@ -134,7 +139,8 @@ def check_embedding(
             }
 
     pts, arc, owner, lengths = samples(curves, closed, min_separation / 2.0)
-    pairs = sample_tree(pts).query_pairs(min_separation, output_type="ndarray")
+    fine = sample_tree(pts)
+    pairs = interruptible(lambda: fine.query_pairs(min_separation, output_type="ndarray"))
     if len(pairs):
         keep = pieces_apart(owner, arc, lengths, closed, pairs[:, 0], pairs[:, 1], 4 * min_separation, joins)
         consider(pts, owner, pairs[keep, 0], pairs[keep, 1])
@@ -144,7 +150,7 @@ def check_embedding(
     tree = sample_tree(pts)
     for lo in range(0, len(pts), CHUNK):  # in chunks: k neighbours per sample take ~3 kB each
         hi = min(lo + CHUNK, len(pts))
-        _, nb = tree.query(pts[lo:hi], k=k, distance_upper_bound=0.3 * scale)
+        _, nb = interruptible(partial(tree.query, pts[lo:hi], k=k, distance_upper_bound=0.3 * scale))
         i = np.repeat(np.arange(lo, hi), k)
         j = nb.reshape(-1)
         found = j < len(pts)

@@ -31,6 +31,7 @@ import numpy as np
 
 from ..errors import GeometryError
 from ..model.scaffold import Scaffold
+from ..words import noun
 from .tracks import Tracks
 
 RAMP = 0.4
@@ -106,7 +107,7 @@ def helix_windows(
         e = int(bad[np.argmax(width[bad])])
         raise GeometryError(
             f"{scaffold.name}: `pitch` {pitch:g} needs {pitch * turns[e] / (1 - 2 * RAMP):.4g} of edge "
-            f"{scaffold.edge_name(e)} for its {turns[e]:.3g} turn(s), but the edge leaves {span[e]:.4g}; use a smaller pitch",
+            f"{scaffold.edge_name(e)} for its {turns[e]:.3g} {noun(turns[e], 'turn')}, but the edge leaves {span[e]:.4g}; use a smaller pitch",
             usage=True,
             parameter="pitch",
         )

@@ -33,6 +33,7 @@ import scipy.sparse.csgraph
 
 from ..model.scaffold import Scaffold
 from ..progress import Step
+from ..words import plural
 from .local_search import local_search
 from .query import Query, allowed_labels, cheapest_label, label_cost
 
@@ -265,7 +266,7 @@ def _greedy_designs(
             if partial is not None and (not partial or n_strands < partial[0][0]):
                 partial[:] = [(n_strands, labels)]
                 if step is not None:
-                    step.note(f"greedy merging: closest {n_strands} component(s)")
+                    step.note(f"greedy merging: closest {plural(n_strands, 'component')}")
             continue
         key = labels.tobytes()
         if key not in seen:

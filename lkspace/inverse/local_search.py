@@ -21,6 +21,7 @@ import numpy as np
 from ..model.scaffold import Scaffold
 from ..progress import Step
 from ..strands.walk import walk
+from ..words import plural
 from .query import Query, allowed_labels, cheapest_label
 
 WORSE_MOVE_PROBABILITY = 0.02
@@ -108,7 +109,7 @@ def local_search(
         if abs(n - target) < closest:
             closest, stale = abs(n - target), 0
             if step is not None:
-                step.note(f"local search: closest {n} component(s), want {target}")
+                step.note(f"local search: closest {plural(n, 'component')}, want {target}")
         else:
             stale += 1
     return designs

@@ -69,9 +69,8 @@ class SolveResult:
     stats: dict[str, Any] = field(default_factory=dict)
 
     def __repr__(self) -> str:
-        return (
-            f"SolveResult({self.status}, {len(self.solutions)} solution(s) by {self.method} in {self.wall_time:.3f}s)"
-        )
+        found = plural(len(self.solutions), "solution")
+        return f"SolveResult({self.status}, {found} by {self.method} in {self.wall_time:.3f}s)"
 
     def to_dict(self) -> dict[str, Any]:
         """Return the JSON form (``status``, ``solutions``, ``method``, ...)."""
@@ -169,7 +168,7 @@ def solve(
     'infeasible'
     >>> r = lkspace.solve("tetrahedron", 1, no_zero=True)
     >>> r
-    SolveResult(feasible, 1 solution(s) by fast-path in ...s)
+    SolveResult(feasible, 1 solution by fast-path in ...s)
     >>> r.solutions[0].components
     1
     """
@@ -199,7 +198,7 @@ def solve(
     if found and result.status == "infeasible":
         raise SolveVerificationError(
             f"internal error: CP-SAT calls {scaffold.name} infeasible for "
-            f"{query.components} component(s) but {found[0].tolist()} is a design"
+            f"{plural(query.components, 'component')} but {found[0].tolist()} is a design"
         )
     if found and not result.solutions:  # time ran out: the constructed designs still stand
         sols = [verify(scaffold, t, query.components) for t in found]
@@ -316,7 +315,7 @@ def solve_cp_sat(
                 break
             solver.parameters.max_time_in_seconds = left
         if step is not None:
-            step.note(f"CP-SAT search: {len(solutions)}/{count} design(s) so far")
+            step.note(f"CP-SAT search: {len(solutions)} of {plural(count, 'design')} so far")
         with heartbeat(step) if step is not None else contextlib.nullcontext():
             code = search_interruptibly(solver, dm.model)
         search_time += solver.wall_time

@@ -39,6 +39,7 @@ from ..model.scaffold import Scaffold
 from ..model.validation import MAX_LABEL
 from ..progress import task
 from ..scaffolds.periodic import voronoi_scaffold
+from ..words import noun
 from .json_fields import array, integer, point, shown, text, vectors
 from .text import parse_json, read_text
 
@@ -127,9 +128,7 @@ def scaffold_from_dict(data: dict[str, Any], name: str = "<json>") -> Scaffold:
         raise ScaffoldError(f"{name}: expected a JSON object, got {type(data).__name__}")
     if data.get("format") == VORONOI_FORMAT:
         return voronoi_from_dict(data, name)
-    unknown = set(data) - KEYS
-    if unknown:
-        raise ScaffoldError(f"{name}: unknown key(s) {shown(sorted(unknown))}")
+    _known_keys(data, KEYS, name)
     if text(data.get("format", FORMAT), f"{name}: format") != FORMAT:
         raise ScaffoldError(f"{name}: format {shown(data.get('format'))} is not {FORMAT!r}")
     _version(data, name)
@@ -186,15 +185,23 @@ MAX_VORONOI_POINTS = 200
 """Most generator points of a Voronoi file: Qhull works on 125 lattice translates of each."""
 
 
+def _known_keys(data: dict[str, Any], keys: set[str], name: str) -> None:
+    """Refuse a key outside ``keys``: a misspelt key must not be silently ignored."""
+    unknown = sorted(set(data) - keys)
+    if unknown:
+        raise ScaffoldError(
+            f"{name}: unknown {noun(len(unknown), 'key')} {', '.join(shown(k) for k in unknown)}; "
+            f"the keys are {', '.join(sorted(keys))}"
+        )
+
+
 def voronoi_from_dict(data: dict[str, Any], name: str) -> Scaffold:
     """Build a generalized Voronoi scaffold from its parsed JSON.
 
     The object is ``{"format": "lkspace-voronoi", "version": 1, "lattice": [[...], ...],
     "points": [[x, y, z], ...], "name": ...}``.
     """
-    unknown = set(data) - {"format", "version", "name", "lattice", "points", "comment"}
-    if unknown:
-        raise ScaffoldError(f"{name}: unknown key(s) {shown(sorted(unknown))}")
+    _known_keys(data, {"format", "version", "name", "lattice", "points", "comment"}, name)
     _version(data, name)
     lattice = Lattice(np.array(vectors(data.get("lattice"), f"{name}: lattice")))
     points = [point(p, f"{name}: points[{i}]") for i, p in enumerate(array(data.get("points"), f"{name}: points"))]

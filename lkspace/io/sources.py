@@ -14,6 +14,7 @@ exists.  A ``pathlib.Path`` (any ``os.PathLike``) is always a file.
 
 from __future__ import annotations
 
+import difflib
 import os
 from typing import TypeAlias
 
@@ -69,4 +70,7 @@ def load(source: ScaffoldSource, *, weld: float | bool | None = None) -> Scaffol
         return scaffolds.builtin(text)
     if isinstance(source, os.PathLike) or os.path.lexists(text) or os.path.splitext(text)[1] or os.sep in text:
         return read(text, weld)
-    raise ScaffoldError(f"{text!r} is neither a file nor a built-in scaffold name; see 'lkspace scaffold --help'")
+    names = scaffolds.builtin_names()
+    close = difflib.get_close_matches(text, names, n=2, cutoff=0.75)
+    hint = f"did you mean {' or '.join(map(repr, close))}?" if close else "the built-in names are " + ", ".join(names)
+    raise ScaffoldError(f"{text!r} is neither a file nor a built-in scaffold name; {hint}")

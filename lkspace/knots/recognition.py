@@ -34,6 +34,7 @@ from ..geometry.realization import realize
 from ..model.scaffold import Scaffold
 from ..progress import Step, task
 from ..strands.tracing import trace
+from ..words import plural
 from .budget import INLINE_CROSSINGS, MAX_CROSSINGS, TIME_LIMIT, TimeLimitReached, run_in_time, twist_crossings
 from .diagram import project, project_generic
 from .naming import name_pd
@@ -74,7 +75,9 @@ class Identification:
 
     def __repr__(self) -> str:
         chirality = {True: ", mirror", False: "", None: ""}[self.mirror]
-        return f"Identification({self.name or 'unknown'}{chirality}: {self.components} components, {self.crossings} crossings)"
+        crossings = "crossings unknown" if self.crossings is None else plural(self.crossings, "crossing")
+        counts = f"{plural(self.components, 'component')}, {crossings}"
+        return f"Identification({self.name or 'unknown'}{chirality}: {counts})"
 
     def to_dict(self) -> dict[str, Any]:
         """Return the JSON form (``status``, ``components``, ``name``, ``linking_matrix``, and every invariant)."""
@@ -135,7 +138,7 @@ def check_identifiable(scaffold: Scaffold) -> None:
     if scaffold.periodic:
         raise UsageError(
             f"{scaffold.name}: a periodic scaffold; identify names knots and links of finite "
-            "scaffolds only (its loops link their lattice translates; use export --block to look at a block)"
+            "scaffolds only (its loops link their lattice translates); to look at a block of the structure, export one with `block`"
         )
 
 
@@ -175,7 +178,7 @@ def identify(
     --------
     >>> import lkspace
     >>> lkspace.identify("dihedron:3", 1)
-    Identification(3_1: 1 components, 3 crossings)
+    Identification(3_1: 1 component, 3 crossings)
     """
     t0 = time.monotonic()
     check_identifiable(scaffold)

@@ -336,7 +336,9 @@ def atlas_of_catalog(path: str) -> dict[str, Any]:
     cat = read_catalog(path)
     frame = cat.frame
     if "knot_name" not in frame.columns:
-        raise CatalogError(f"{path}: no knot_name column; run 'lkspace enumerate ... --identify' or give MESH")
+        raise CatalogError(
+            f"{path}: no knot_name column: its designs are not named; write it with `identify=True`, or give a mesh"
+        )
     comps = frame["components"].to_numpy(np.int64)
     names = frame["knot_name"].astype(object).where(frame["knot_name"].notna(), None).to_numpy()
     split = frame["split"].fillna(False).to_numpy(bool) if "split" in frame.columns else np.zeros(len(frame), bool)

@@ -27,6 +27,7 @@ from ..errors import SolveVerificationError
 from ..model.scaffold import Scaffold
 from ..progress import task
 from ..strands.tracing import trace
+from ..words import plural
 from .candidates import OrderedWalk
 from .screen import Goal, screen, screen_batch
 
@@ -49,7 +50,7 @@ class TargetResult:
     reason: str = ""
 
     def __repr__(self) -> str:
-        return f"TargetResult({self.status}, {len(self.solutions)} solution(s) for {self.goal.label})"
+        return f"TargetResult({self.status}, {plural(len(self.solutions), 'solution')} for {self.goal.label})"
 
     def to_dict(self) -> dict[str, Any]:
         """Return the JSON form (``status``, ``solutions``, ``target``, ``stats`` ...)."""
@@ -151,7 +152,7 @@ def solve_target(
     elif complete and not undetermined:
         status, reason = "exhausted", "every design of the space is proved to be another type"
     elif undetermined:
-        status, reason = "unknown", f"{len(undetermined)} design(s) could not be told apart from the target"
+        status, reason = "unknown", f"{plural(len(undetermined), 'design')} could not be told apart from the target"
     else:
         status, reason = "unknown", "time ran out before the space was searched"
     stats: dict[str, Any] = dict(sorted(tally.items()))

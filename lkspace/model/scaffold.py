@@ -37,6 +37,7 @@ import numpy as np
 from numpy.typing import ArrayLike, DTypeLike
 
 from ..errors import ScaffoldError
+from ..words import plural
 from .lattice import Lattice
 from .radial import RadialOrder, radial_order
 from .validation import MAX_COORDINATE, validate_labels, validate_nulls
@@ -186,7 +187,8 @@ class Scaffold:
 
     def __repr__(self) -> str:
         cell = f", periodic in {self.dim}D" if self.periodic else ""
-        return f"Scaffold({self.name}: {self.n_vertices} vertices, {self.n_edges} edges, {self.n_faces} faces{cell})"
+        counts = f"{plural(self.n_vertices, 'vertex', 'vertices')}, {plural(self.n_edges, 'edge')}"
+        return f"Scaffold({self.name}: {counts}, {plural(self.n_faces, 'face')}{cell})"
 
     # ---- counts -------------------------------------------------------------
     @property

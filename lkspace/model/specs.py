@@ -17,6 +17,7 @@ from typing import TypeAlias
 import numpy as np
 
 from ..errors import LabelError
+from ..words import plural
 from .scaffold import Scaffold
 from .validation import MAX_LABEL_SET_SIZE, check_label
 
@@ -169,7 +170,7 @@ def _labels_of_entries(scaffold: Scaffold, entries: list[tuple[str, str, str]], 
     elif not named.all():
         missing = ", ".join(scaffold.edge_name(e) for e in np.flatnonzero(~named)[:5])
         raise LabelError(
-            f"{name}: no label for {int((~named).sum())} edge(s) ({missing}); add them or a '* T' default line"
+            f"{name}: no label for {plural(int((~named).sum()), 'edge')} ({missing}); add them or a '* T' default line"
         )
     return labels
 

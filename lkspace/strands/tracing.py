@@ -30,6 +30,7 @@ from numpy.typing import ArrayLike
 
 from ..model.scaffold import Scaffold, validate_labels, validate_nulls
 from ..progress import task
+from ..words import plural
 from .holding_together import HoldingTogether, holding_together
 from .ports import port_model
 from .walk import walk
@@ -80,7 +81,7 @@ class Trace:
         lengths = self.strand_lengths.tolist()
         shown = ", ".join(map(str, lengths[:8])) + (", ..." if len(lengths) > 8 else "")
         together = "holds together" if self.holds_together else "falls apart"
-        return f"Trace({self.scaffold.name}: {self.components} components, {together}, lengths [{shown}])"
+        return f"Trace({self.scaffold.name}: {plural(self.components, 'component')}, {together}, lengths [{shown}])"
 
     @property
     def components(self) -> int:

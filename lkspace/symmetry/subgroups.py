@@ -42,6 +42,7 @@ import numpy as np
 
 from ..errors import UsageError
 from ..model.scaffold import Scaffold
+from ..words import plural
 from .group import SymmetryGroup
 
 
@@ -228,7 +229,7 @@ def _cyclic(n: int, rest: str, spec: str, scaffold: Scaffold, group: SymmetryGro
     if len(classes) > 1:
         hints = [h for h in (_axis_hint(n, c, scaffold, group, table) for c in classes) if h is not None]
         unnamed = len(classes) - len(hints)
-        tail = f" ({unnamed} more kind(s) that no feature or vertex permutation names)" if unnamed else ""
+        tail = f" ({plural(unnamed, 'more kind')} that no feature or vertex permutation names)" if unnamed else ""
         raise UsageError(
             f"{scaffold.name} has {len(classes)} kinds of C{n} (not conjugate by a rotation); "
             f"give an axis: {', '.join(hints) or '-'}{tail}"
