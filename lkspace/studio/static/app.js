@@ -290,7 +290,7 @@ $('sv-go').onclick = async () => {
       $('sv-cancel').disabled = true; S.solveJob = null;
       if (j.state !== 'done') { $('sv-status').textContent = j.state === 'cancelled' ? 'cancelled' : 'error: ' + j.error; return; }
       const r = j.result;
-      $('sv-status').innerHTML = `<span id="sv-state">${r.status}</span>: ${r.solutions.length} design(s) by ${r.method} in ${r.wall_time.toFixed(2)} s${r.reason ? ' — ' + esc(r.reason) : ''}`;
+      $('sv-status').innerHTML = `<span id="sv-state">${r.status}</span>: ${r.solutions.length} design${r.solutions.length === 1 ? "" : "s"} by ${r.method} in ${r.wall_time.toFixed(2)} s${r.reason ? ' — ' + esc(r.reason) : ''}`;
       $('sv-results').innerHTML = r.solutions.map((s, i) => `<li data-i="${i}">${s.components} comp.: ${s.labels.slice(0, 16).join(' ')}${s.labels.length > 16 ? ' …' : ''}</li>`).join('');
       S.solutions = r.solutions; return;
     }
