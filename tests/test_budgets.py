@@ -219,7 +219,7 @@ def test_identify_status_identified(capsys):
 def test_identify_periodic_scaffold_is_refused(capsys):
     code, _, err = run(capsys, "identify", "honeycomb:cP", "--twist", "1")
     assert code == 2
-    one_line_error(err, "periodic", "export --block")
+    one_line_error(err, "periodic", "export", "--block")
 
 
 @pytest.mark.parametrize(

@@ -72,7 +72,7 @@ def test_round_trip_embedded_periodic():
         ("[1, 2]", ScaffoldError, "expected a JSON object, got list"),
         (design(format="lkspace-scaffold"), ScaffoldError, "format 'lkspace-scaffold' is not 'lkspace-design'"),
         (design(version=2), ScaffoldError, "design file version 2 is not supported (expected 1)"),
-        (design(colour="red"), ScaffoldError, "unknown key(s) ['colour']"),
+        (design(colour="red"), ScaffoldError, "unknown key ['colour']"),
         (design(scaffold=7), ScaffoldError, "scaffold: a built-in name or a scaffold file object"),
         (design(labels=[1] * 11), LabelError, "labels: expected 12 twist labels (one per edge of cube), got 11"),
         (design(labels=[1] * 11 + [0.5]), LabelError, "labels[11] (edge"),
@@ -85,7 +85,7 @@ def test_round_trip_embedded_periodic():
         (design(nulls=[[0, 4]]), ScaffoldError, "nulls[0][1] (side): 4 out of range 0..3"),
         (design(block=[2, 2, 2]), ScaffoldError, "block: cube is not periodic"),
         (design(view={"position": [1, 2]}), ScaffoldError, "view.position: expected 3 entries, got 2"),
-        (design(view={**CUBE_VIEW, "zoom": 2}), ScaffoldError, "view: unknown key(s) ['zoom']"),
+        (design(view={**CUBE_VIEW, "zoom": 2}), ScaffoldError, "view: unknown key ['zoom']"),
         (design(view={**CUBE_VIEW, "target": [3, 2, 4]}), ScaffoldError, "position and target are the same point"),
     ],
 )

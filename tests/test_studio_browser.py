@@ -4,90 +4,28 @@ Real clicks and keys on the page; ``window.studio`` only tells where an edge is 
 screen and what the page holds, every answer is checked against the public API.
 """
 
-import os
-import re
-import shutil
-import signal
-import subprocess
-import sys
-
 import numpy as np
 import pytest
 
 import lkspace
 
-CHROMIUM = "/usr/bin/chromium"
-ARGS = [
-    "--headless=new",
-    "--no-sandbox",
-    "--disable-gpu",
-    "--no-first-run",
-    "--disable-background-networking",
-    "--disable-component-update",
-    "--disable-sync",
-]
-
-pytest.importorskip("starlette")
-pytest.importorskip("uvicorn")
-playwright = pytest.importorskip("playwright.sync_api")
-if not os.path.exists(CHROMIUM):
-    pytest.skip(f"no Chromium at {CHROMIUM} (Debian package 'chromium')", allow_module_level=True)
-
-
-def lkspace_command() -> list[str]:
-    exe = shutil.which("lkspace")
-    return [exe] if exe else [sys.executable, "-m", "lkspace"]
+from .studio_harness import chromium, click_edge, labels_of, ready, redraws, running_studio, wait_redraw
 
 
 @pytest.fixture(scope="module")
 def studio(tmp_path_factory):
-    """``lkspace studio CATALOG --no-browser --port 0``: yields its URL; stopped with Ctrl-C (exit 130)."""
+    """``lkspace studio CATALOG``: yields its URL, the catalog and its folder; stopped with Ctrl-C."""
     folder = tmp_path_factory.mktemp("studio")
     catalog = str(folder / "tetra.parquet")
     lkspace.write_catalog("tetrahedron", catalog, label_set="-2..2")
-    proc = subprocess.Popen(
-        [*lkspace_command(), "studio", catalog, "--no-browser", "--port", "0"],
-        stdout=subprocess.PIPE,
-        stderr=subprocess.PIPE,
-        text=True,
-    )
-    line = proc.stdout.readline()
-    match = re.search(r"(http://127\.0\.0\.1:\d+/)", line)
-    assert match, f"no URL in {line!r}; stderr: {proc.stderr.read() if proc.poll() is not None else ''}"
-    yield match.group(1), catalog, folder
-    proc.send_signal(signal.SIGINT)
-    _, err = proc.communicate(timeout=60)  # a hang detector
-    assert proc.returncode == 130 and "Traceback" not in err, err
+    with running_studio(catalog) as url:
+        yield url, catalog, folder
 
 
 @pytest.fixture(scope="module")
 def browser():
-    with playwright.sync_playwright() as p:
-        b = p.chromium.launch(executable_path=CHROMIUM, args=ARGS)
+    with chromium() as b:
         yield b
-        b.close()
-
-
-def ready(page):
-    page.wait_for_function("window.studio && window.studio.state.ready", timeout=30000)
-
-
-def redraws(page):
-    return page.evaluate("window.studio.state.latencies.length")
-
-
-def wait_redraw(page, before):
-    page.wait_for_function(f"window.studio.state.latencies.length > {before}", timeout=20000)
-
-
-def labels_of(page):
-    return [int(t) for t in page.evaluate("window.studio.state.labels")]
-
-
-def click_edge(page, e):
-    pos = page.evaluate(f"window.studio.edgeScreen({e})")
-    page.mouse.click(pos["x"], pos["y"])
-    return page.evaluate("window.studio.state.selected")
 
 
 def test_edit_solve_browse_export_reload(studio, browser, tmp_path):

@@ -97,7 +97,11 @@ def test_ctrl_c_stops_the_studio_with_its_jobs_after_long_use():
                     labels = [1] * 12
                     labels[(seed + i) % 12] = 2 + i % 3
                     assert client.post("/api/design", json={"key": "cube", "labels": labels}).status_code == 200
-                    assert client.post("/api/clearance", json={"key": "cube", "labels": labels}).status_code == 200
+                    # 409: a newer design's measurement stopped this one (its answer would be stale)
+                    assert client.post("/api/clearance", json={"key": "cube", "labels": labels}).status_code in (
+                        200,
+                        409,
+                    )
 
             threads = [threading.Thread(target=edits, args=(k,)) for k in range(4)]
             for t in threads:

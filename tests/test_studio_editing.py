@@ -5,30 +5,14 @@ drags and keys); ``window.studio`` only tells where things are on screen and wha
 holds.  Every answer is checked against the public API on the Python side.
 """
 
-import os
-import re
-import shutil
-import signal
-import subprocess
-import sys
-
 import numpy as np
 import pytest
 
 import lkspace
 from lkspace.studio.designs import Cache, design
 from lkspace.symmetry.group import symmetry_group
+from tests.studio_harness import chromium, running_studio
 
-CHROMIUM = "/usr/bin/chromium"
-ARGS = [
-    "--headless=new",
-    "--no-sandbox",
-    "--disable-gpu",
-    "--no-first-run",
-    "--disable-background-networking",
-    "--disable-component-update",
-    "--disable-sync",
-]
 FRACTIONS = (0.5, 0.35, 0.65, 0.2, 0.8)  # points along a handle tried in turn (a strand may cover its midpoint)
 
 
@@ -55,34 +39,14 @@ def test_design_lists_the_edges_each_strand_passes(name, labels, block):
 @pytest.fixture(scope="module")
 def studio():
     """``lkspace studio cube --no-browser --port 0``: yields its URL; stopped with Ctrl-C (exit 130)."""
-    pytest.importorskip("starlette")
-    pytest.importorskip("uvicorn")
-    exe = shutil.which("lkspace")
-    command = [exe] if exe else [sys.executable, "-m", "lkspace"]
-    proc = subprocess.Popen(
-        [*command, "studio", "cube", "--no-browser", "--port", "0"],
-        stdout=subprocess.PIPE,
-        stderr=subprocess.PIPE,
-        text=True,
-    )
-    line = proc.stdout.readline()
-    match = re.search(r"(http://127\.0\.0\.1:\d+/)", line)
-    assert match, f"no URL in {line!r}; stderr: {proc.stderr.read() if proc.poll() is not None else ''}"
-    yield match.group(1)
-    proc.send_signal(signal.SIGINT)
-    _, err = proc.communicate(timeout=60)
-    assert proc.returncode == 130 and "Traceback" not in err, err
+    with running_studio("cube") as url:
+        yield url
 
 
 @pytest.fixture(scope="module")
 def browser():
-    sync_api = pytest.importorskip("playwright.sync_api")
-    if not os.path.exists(CHROMIUM):
-        pytest.skip(f"no Chromium at {CHROMIUM} (Debian package 'chromium')")
-    with sync_api.sync_playwright() as p:
-        b = p.chromium.launch(executable_path=CHROMIUM, args=ARGS)
+    with chromium() as b:
         yield b
-        b.close()
 
 
 def open_page(browser, url, errors, size=(1100, 800)):

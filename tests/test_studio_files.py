@@ -9,9 +9,6 @@ import io
 import json
 import math
 import pathlib
-import re
-import signal
-import subprocess
 
 import numpy as np
 import pytest
@@ -20,45 +17,21 @@ from lkspace.studio.filenames import design_stem
 
 pytest.importorskip("starlette")
 pytest.importorskip("uvicorn")
-playwright = pytest.importorskip("playwright.sync_api")
 Image = pytest.importorskip("PIL.Image")
 
-from .test_studio_browser import ARGS, CHROMIUM, lkspace_command, ready  # noqa: E402
-
-
-def start(*args):
-    """``lkspace studio ARGS --no-browser --port 0``: the process and its URL."""
-    proc = subprocess.Popen(
-        [*lkspace_command(), "studio", *args, "--no-browser", "--port", "0"],
-        stdout=subprocess.PIPE,
-        stderr=subprocess.PIPE,
-        text=True,
-    )
-    line = proc.stdout.readline()
-    match = re.search(r"(http://127\.0\.0\.1:\d+/)", line)
-    assert match, f"no URL in {line!r}; stderr: {proc.stderr.read() if proc.poll() is not None else ''}"
-    return proc, match.group(1)
-
-
-def stop(proc):
-    proc.send_signal(signal.SIGINT)
-    _, err = proc.communicate(timeout=60)
-    assert proc.returncode == 130 and "Traceback" not in err, err
+from .studio_harness import chromium, ready, running_studio, start_studio, stop_studio  # noqa: E402
 
 
 @pytest.fixture(scope="module")
 def studio():
-    proc, url = start("cube")
-    yield url
-    stop(proc)
+    with running_studio("cube") as url:
+        yield url
 
 
 @pytest.fixture(scope="module")
 def browser():
-    with playwright.sync_playwright() as p:
-        b = p.chromium.launch(executable_path=CHROMIUM, args=ARGS)
+    with chromium() as b:
         yield b
-        b.close()
 
 
 @pytest.fixture
@@ -174,7 +147,7 @@ def test_cli_opens_design_file_and_still_opens_scaffold_files(page, tmp_path):
     name, content = download(page, "#save-design")
     path = tmp_path / name
     path.write_bytes(content)
-    proc, url = start(str(path))
+    proc, url = start_studio(str(path))
     try:
         other = page.context.new_page()
         other.goto(url)
@@ -184,11 +157,11 @@ def test_cli_opens_design_file_and_still_opens_scaffold_files(page, tmp_path):
         assert got["nulls"] == saved["nulls"] and close(got["position"], saved["position"], 1e-6)
         identified(other)
     finally:
-        stop(proc)
+        stop_studio(proc)
     scaffold_name, scaffold = download(page, "#exports [data-format=json]")  # a scaffold file, not a design
     assert scaffold_name == design_stem("cube", labels, saved["nulls"]) + ".json"
     (tmp_path / scaffold_name).write_bytes(scaffold)
-    proc, url = start(str(tmp_path / scaffold_name))
+    proc, url = start_studio(str(tmp_path / scaffold_name))
     try:
         other = page.context.new_page()
         other.goto(url)
@@ -197,7 +170,7 @@ def test_cli_opens_design_file_and_still_opens_scaffold_files(page, tmp_path):
         assert other.evaluate("window.studio.state.key").startswith("id:")
         identified(other)
     finally:
-        stop(proc)
+        stop_studio(proc)
 
 
 def test_shared_link_reopens_the_same_picture(page, browser):
@@ -350,10 +323,11 @@ def test_desktop_layout_and_fit_fills_the_canvas(page):
         page.click("#fit")
         spread = page.evaluate(
             """() => { const v = window.studio.view, r = v.canvas.getBoundingClientRect();
-            const pos = v.groups.strands.children[0].geometry.getAttribute('position');
             let x0 = 1e9, x1 = -1e9, y0 = 1e9, y1 = -1e9;
-            for (let i = 0; i < pos.count; i += 7) { const s = v.screenOf([pos.getX(i), pos.getY(i), pos.getZ(i)]);
-              x0 = Math.min(x0, s.x); x1 = Math.max(x1, s.x); y0 = Math.min(y0, s.y); y1 = Math.max(y1, s.y); }
+            for (const mesh of v.groups.strands.children) { // one tube mesh a curve
+              const pos = mesh.geometry.getAttribute('position');
+              for (let i = 0; i < pos.count; i += 7) { const s = v.screenOf([pos.getX(i), pos.getY(i), pos.getZ(i)]);
+                x0 = Math.min(x0, s.x); x1 = Math.max(x1, s.x); y0 = Math.min(y0, s.y); y1 = Math.max(y1, s.y); } }
             return [(x1 - x0) / r.width, (y1 - y0) / r.height, x0 - r.left, r.right - x1, y0 - r.top, r.bottom - y1]; }"""
         )
         assert max(spread[0], spread[1]) > 0.75, spread  # the design fills the canvas in its tighter direction

@@ -5,9 +5,6 @@ and pinned designs: real clicks, every answer checked against the public API.
 """
 
 import json
-import re
-import signal
-import subprocess
 
 import pytest
 
@@ -16,11 +13,10 @@ import lkspace
 pytest.importorskip("starlette")
 pytest.importorskip("uvicorn")
 pytest.importorskip("spherogram")
-playwright = pytest.importorskip("playwright.sync_api")
 
 from lkspace.linktypes.common_names import common_name  # noqa: E402
 from lkspace.linktypes.lookup import lookup  # noqa: E402
-from tests.test_studio_browser import ARGS, CHROMIUM, click_edge, labels_of, lkspace_command, ready  # noqa: E402
+from tests.studio_harness import chromium, click_edge, labels_of, ready, running_studio  # noqa: E402
 
 BORROMEAN = [1] * 6
 """The Borromean rings on the tetrahedron (L6a4)."""
@@ -31,26 +27,14 @@ def studio(tmp_path_factory):
     """``lkspace studio`` on an identified tetrahedron catalog (it has the ``knot_name`` column)."""
     catalog = str(tmp_path_factory.mktemp("knots") / "tetra.parquet")
     lkspace.write_catalog("tetrahedron", catalog, label_set="-1..1", identify=True)
-    proc = subprocess.Popen(
-        [*lkspace_command(), "studio", catalog, "--no-browser", "--port", "0"],
-        stdout=subprocess.PIPE,
-        stderr=subprocess.PIPE,
-        text=True,
-    )
-    match = re.search(r"(http://127\.0\.0\.1:\d+/)", proc.stdout.readline())
-    assert match, proc.stderr.read() if proc.poll() is not None else "no URL"
-    yield match.group(1), catalog
-    proc.send_signal(signal.SIGINT)
-    _, err = proc.communicate(timeout=60)
-    assert proc.returncode == 130 and "Traceback" not in err, err
+    with running_studio(catalog) as url:
+        yield url, catalog
 
 
 @pytest.fixture(scope="module")
 def browser():
-    with playwright.sync_playwright() as p:
-        b = p.chromium.launch(executable_path=CHROMIUM, args=ARGS)
+    with chromium() as b:
         yield b
-        b.close()
 
 
 @pytest.fixture

@@ -10,8 +10,6 @@ against the server and against :func:`lkspace.trace` computed here.
 
 import json
 import re
-import signal
-import subprocess
 import urllib.request
 
 import numpy as np
@@ -21,18 +19,7 @@ from hypothesis import Phase, example, given, note, settings
 from hypothesis import strategies as st
 
 import lkspace
-from tests.test_studio_browser import (
-    ARGS,
-    CHROMIUM,
-    click_edge,
-    labels_of,
-    lkspace_command,
-    ready,
-    redraws,
-    wait_redraw,
-)
-
-playwright = pytest.importorskip("playwright.sync_api")
+from tests.studio_harness import chromium, click_edge, labels_of, ready, redraws, running_studio, wait_redraw
 
 SCAFFOLDS = ("tetrahedron", "cube", "octahedron", "dihedron:3", "upload")
 """Scaffolds the property test switches between (``upload``: the octahedron as ``octa.obj``)."""
@@ -51,29 +38,16 @@ def studio(tmp_path_factory):
     folder = tmp_path_factory.mktemp("studio-state")
     catalog = str(folder / "tetra.parquet")
     lkspace.write_catalog("tetrahedron", catalog, label_set="-2..2")
-    proc = subprocess.Popen(
-        [*lkspace_command(), "studio", catalog, "--no-browser", "--port", "0"],
-        stdout=subprocess.PIPE,
-        stderr=subprocess.PIPE,
-        text=True,
-    )
-    line = proc.stdout.readline()
-    match = re.search(r"(http://127\.0\.0\.1:\d+/)", line)
-    assert match, f"no URL in {line!r}"
     octa = folder / "octa.obj"
     octa.write_bytes(OCTA_OBJ)
-    yield match.group(1), str(octa), catalog
-    proc.send_signal(signal.SIGINT)
-    _, err = proc.communicate(timeout=60)
-    assert proc.returncode == 130 and "Traceback" not in err, err
+    with running_studio(catalog) as url:
+        yield url, str(octa), catalog
 
 
 @pytest.fixture(scope="module")
 def browser():
-    with playwright.sync_playwright() as p:
-        b = p.chromium.launch(executable_path=CHROMIUM, args=ARGS)
+    with chromium() as b:
         yield b
-        b.close()
 
 
 class Watched:

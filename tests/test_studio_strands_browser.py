@@ -5,13 +5,6 @@ The studio is started by the installed CLI; the keys are pressed in headless Chr
 checked against :func:`lkspace.realize`.
 """
 
-import os
-import re
-import shutil
-import signal
-import subprocess
-import sys
-
 import numpy as np
 import pytest
 
@@ -20,14 +13,9 @@ from lkspace.geometry.params import RealizeOptions
 
 pytest.importorskip("starlette")
 pytest.importorskip("uvicorn")
-playwright = pytest.importorskip("playwright.sync_api")
-CHROMIUM = "/usr/bin/chromium"
-if not os.path.exists(CHROMIUM):
-    pytest.skip(f"no Chromium at {CHROMIUM} (Debian package 'chromium')", allow_module_level=True)
-
 from lkspace.studio.curves import curve_key  # noqa: E402
+from tests.studio_harness import chromium, running_studio  # noqa: E402
 
-ARGS = ["--headless=new", "--no-sandbox", "--disable-gpu", "--no-first-run", "--disable-background-networking"]
 NAME = "honeycomb:cP@3x3x3"
 BLOCK = [[0, 0, 0], [1, 0, 0]]  # the page's block 2x1x1: two lattice copies of every thread
 
@@ -35,20 +23,8 @@ BLOCK = [[0, 0, 0], [1, 0, 0]]  # the page's block 2x1x1: two lattice copies of 
 @pytest.fixture(scope="module")
 def url():
     """``lkspace studio honeycomb:cP@3x3x3 --no-browser --port 0``: yields its URL; stopped with Ctrl-C."""
-    exe = shutil.which("lkspace")
-    command = [exe] if exe else [sys.executable, "-m", "lkspace"]
-    proc = subprocess.Popen(
-        [*command, "studio", NAME, "--no-browser", "--port", "0"],
-        stdout=subprocess.PIPE,
-        stderr=subprocess.PIPE,
-        text=True,
-    )
-    match = re.search(r"(http://127\.0\.0\.1:\d+/)", proc.stdout.readline())
-    assert match, proc.stderr.read() if proc.poll() is not None else "no URL"
-    yield match.group(1)
-    proc.send_signal(signal.SIGINT)
-    _, err = proc.communicate(timeout=60)
-    assert proc.returncode == 130 and "Traceback" not in err, err
+    with running_studio(NAME) as url:
+        yield url
 
 
 SEEN = """() => {
@@ -68,8 +44,7 @@ def rgb(color):
 
 def test_edits_redraw_the_new_strands_only_and_keep_colours(url):
     sc = lkspace.load(NAME)
-    with playwright.sync_playwright() as p:
-        browser = p.chromium.launch(executable_path=CHROMIUM, args=ARGS)
+    with chromium() as browser:
         page = browser.new_page(viewport={"width": 1200, "height": 800})
         errors = []
         page.on("pageerror", lambda e: errors.append(str(e)))
@@ -109,4 +84,3 @@ def test_edits_redraw_the_new_strands_only_and_keep_colours(url):
             before = now
         assert rebuilt > 0 and kept > rebuilt  # every edit changed some strands, most stayed as they were
         assert len(set(seen["colors"])) > 1 and not errors, errors
-        browser.close()

@@ -118,6 +118,9 @@ def _run(args: list[str]) -> int:
             cli.main(args=args, prog_name="lkspace", standalone_mode=False)
             sys.stdout.flush()  # a full disk at stdout fails here, inside the error handling
         except LkspaceError as exc:
+            interrupt = _interrupt_behind(exc)  # e.g. Ctrl-C while an optional package imports
+            if interrupt is not None:
+                return _interrupted(as_json, interrupt)
             return _fail(as_json, type(exc).__name__, in_flags(exc), exc.exit_code)
         except (click.exceptions.Abort, KeyboardInterrupt) as exc:  # click turns KeyboardInterrupt into Abort
             return _interrupted(as_json, _interrupt_behind(exc))

@@ -30,6 +30,7 @@ import numpy as np
 from ..errors import LabelError, ScaffoldError
 from ..model.scaffold import Scaffold
 from ..model.validation import validate_labels
+from ..words import noun
 from .json_fields import array, integer, point, shown, text
 from .scaffold_json import scaffold_from_dict, scaffold_to_dict
 from .text import parse_json
@@ -114,7 +115,7 @@ def read_view(value: Any, name: str) -> dict[str, tuple[float, float, float]] | 
         raise ScaffoldError(f"{name}: view: expected an object with position, target and up")
     unknown = set(value) - set(VIEW_KEYS)
     if unknown:
-        raise ScaffoldError(f"{name}: view: unknown key(s) {shown(sorted(unknown))}")
+        raise ScaffoldError(f"{name}: view: unknown {noun(len(unknown), 'key')} {shown(sorted(unknown))}")
     out = {}
     for key in VIEW_KEYS:
         if key not in value:
@@ -136,7 +137,7 @@ def design_from_dict(data: Any, name: str, resolve: Callable[[str], Scaffold]) -
         raise ScaffoldError(f"{name}: format {shown(data.get('format'))} is not {FORMAT!r}")
     unknown = set(data) - KEYS
     if unknown:
-        raise ScaffoldError(f"{name}: unknown key(s) {shown(sorted(unknown))}")
+        raise ScaffoldError(f"{name}: unknown {noun(len(unknown), 'key')} {shown(sorted(unknown))}")
     version = data.get("version")
     if isinstance(version, bool) or version != VERSION:
         raise ScaffoldError(f"{name}: design file version {shown(version)} is not supported (expected {VERSION})")

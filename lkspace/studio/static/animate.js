@@ -41,6 +41,12 @@ export function installAnimate(ctx) {
   let job = null;
   const status = (text) => { $('an-status').textContent = text; };
 
+  async function redrawShown() { // the design's own strands again (asked for whole if the frames pushed its tubes out)
+    if (await view.setStrands(S.shown || null, S.design?.strands)) return;
+    const d = await ctx.api('design', { key: S.key, labels: S.labels, nulls: [...S.nulls], block: S.block });
+    await view.setStrands(d.curves || null, d.strands); S.shown = d.curves || null;
+  }
+
   async function run(name, frames) { // frames(job) draws and records, returning the recorder; saved unless cancelled
     if (job) return;
     job = { cancelled: false }; const mine = job;
@@ -57,7 +63,7 @@ export function installAnimate(ctx) {
     } catch (err) { status(''); ctx.message(err.message); }
     finally {
       view.camera.position.copy(camera.position); view.controls.target.copy(camera.target); view.controls.enabled = true;
-      view.setStrands(S.shown || null); view.setEdgeColors(S.labels, S.selected, S.pins, null); view.controls.update(); view.render();
+      await redrawShown(); view.setEdgeColors(S.labels, S.selected, S.pins, null); view.controls.update(); view.render();
       job = null; $('an-cancel').disabled = true; $('an-turn').disabled = $('an-twist').disabled = false;
     }
   }
@@ -89,7 +95,7 @@ export function installAnimate(ctx) {
       const rec = recorder(view.canvas);
       for (const [k, { labels, d }] of steps.entries()) {
         if (mine.cancelled) break;
-        view.setStrands(d.curves || null); view.setEdgeColors(labels, e, S.pins, d.failure ? d.failure.edge : null); view.render(); rec.frame();
+        await view.setStrands(d.curves || null, d.strands); view.setEdgeColors(labels, e, S.pins, d.failure ? d.failure.edge : null); view.render(); rec.frame();
         status(`twist: edge ${e} label ${labels[e]} (${k + 1} of ${steps.length})`);
         await sleep(STEP_SECONDS * 1000);
       }
