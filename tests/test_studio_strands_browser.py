@@ -84,3 +84,28 @@ def test_edits_redraw_the_new_strands_only_and_keep_colours(url):
             before = now
         assert rebuilt > 0 and kept > rebuilt  # every edit changed some strands, most stayed as they were
         assert len(set(seen["colors"])) > 1 and not errors, errors
+
+
+SEAM = """async () => {
+  const { tubeArrays } = await import('/static/tubes.js');
+  const n = 200, p = new Float32Array(3 * n);
+  for (let i = 0; i < n; i++) { // a trefoil: its rotation-minimizing frame comes back turned
+    const t = 2 * Math.PI * i / n;
+    p.set([(2 + Math.cos(3 * t)) * Math.cos(2 * t), (2 + Math.cos(3 * t)) * Math.sin(2 * t), Math.sin(3 * t)], 3 * i);
+  }
+  const { normal } = tubeArrays(p, true, 0.1, 8);
+  const jump = (i, j) => Math.max(...[...Array(8).keys()].map((s) => Math.hypot(
+    normal[3 * (i * 8 + s)] - normal[3 * (j * 8 + s)], normal[3 * (i * 8 + s) + 1] - normal[3 * (j * 8 + s) + 1],
+    normal[3 * (i * 8 + s) + 2] - normal[3 * (j * 8 + s) + 2])));
+  const inner = Math.max(...[...Array(n - 1).keys()].map((i) => jump(i, i + 1)));
+  return { seam: jump(n - 1, 0), inner };
+}"""
+
+
+def test_closed_tubes_have_no_seam(url):
+    """The last ring of a closed tube meets the first as any two neighbours meet (no pinch)."""
+    with chromium() as browser:
+        page = browser.new_page()
+        page.goto(url)
+        got = page.evaluate(SEAM)
+    assert got["inner"] < 0.2 and got["seam"] < 1.5 * got["inner"], got
