@@ -62,11 +62,11 @@ export class Handles {
       const t = Number(labels[e]), dim = this.strandEdges && !this.strandEdges.has(e);
       let r = this.radius;
       if (e === errorEdge) { c.set(COLORS.error); r *= 1.8; }
-      else if (e === selected) { c.set(COLORS.selected); r *= 2; }
+      else if (e === selected) { c.set(COLORS.selected); r *= 1.6; }
       else if (lit.has(e)) { c.set(COLORS.orbit); r *= 1.6; }
       else if (pinned.has(e)) c.set(COLORS.pin);
       else c.set(t > 0 ? COLORS.pos : t < 0 ? COLORS.neg : COLORS.zero);
-      if (e === this.hovered) { c.lerp(white, 0.2); r *= 1.5; }
+      if (e === this.hovered) { c.lerp(white, 0.2); r *= 1.3; }
       else if (dim && e !== selected) { c.lerp(white, 0.75); r *= 0.6; }
       this.mesh.setColorAt(e, c);
       this.rod(e, mid, dir); m.compose(mid, q.setFromUnitVectors(up, dir.normalize()), size.set(r, this.len, r));
@@ -75,7 +75,7 @@ export class Handles {
     this.mesh.instanceMatrix.needsUpdate = true; this.mesh.instanceColor.needsUpdate = true;
     this.halo.visible = selected !== null && selected < labels.length;
     if (this.halo.visible) {
-      const r = this.radius * 3.2;
+      const r = this.radius * 2.2;
       this.rod(selected, this.halo.position, dir);
       this.halo.quaternion.setFromUnitVectors(up, dir.normalize()); this.halo.scale.set(r, this.len, r);
     }
