@@ -145,6 +145,16 @@ def test_catalog_filter_sort_page_match_pandas(client, catalog):
     assert r["labels"] == cat.labels[order].tolist()
     r = post(client, "catalog", {"sort": "components", "descending": True, "limit": 3}).json()
     assert [row[r["columns"].index("components")] for row in r["rows"]] == [int(frame.components.max())] * 3
+    # the row numbers backwards (once a 500: the sort column and the row numbers were both "row")
+    r = post(
+        client,
+        "catalog",
+        {"filters": [["components", "==", 1]], "sort": "row", "descending": True, "offset": 2, "limit": 4},
+    )
+    rows = np.flatnonzero((frame.components == 1).to_numpy(bool))[::-1][2:6]
+    assert [row[0] for row in r.json()["rows"]] == rows.tolist()
+    r = post(client, "catalog", {"sort": "row", "descending": True, "limit": 2}).json()
+    assert [row[0] for row in r["rows"]] == [len(frame) - 1, len(frame) - 2]
 
 
 HOSTILE = [

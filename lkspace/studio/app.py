@@ -370,5 +370,6 @@ def create_app(studio: Studio | None = None) -> Any:
         Mount("/static", StaticFiles(directory=STATIC), name="static"),
     ]
     app = Starlette(routes=routes, exception_handlers={HTTPException: http_error})
+    app.router.redirect_slashes = False  # a path with a stray slash is unknown (JSON 404), not a redirect
     app.state.studio = studio = studio or Studio()
     return LocalHostOnly(app) if studio.local_only else app

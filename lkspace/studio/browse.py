@@ -178,6 +178,12 @@ class Browser:
             chosen = pa.array([], pa.int64())
         elif sort is None or sort == "row" and not descending:
             chosen = pa.array(np.arange(offset, end)) if rows_in is None else rows_in[offset:end]
+        elif sort == "row":  # row numbers backwards: no sort to do
+            chosen = (
+                pa.array(np.arange(total - 1 - offset, total - 1 - end, -1))
+                if rows_in is None
+                else rows_in[::-1][offset:end]
+            )
         else:
             order = "descending" if descending else "ascending"
             skey = (fkey, sort, order)
