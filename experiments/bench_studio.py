@@ -178,6 +178,7 @@ def main() -> None:
         "machine": f"{platform.machine()}, {os.cpu_count()} cores shared with other jobs; software WebGL (--disable-gpu)",
         "load_average_at_start": load,
         "date": time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()),
+        "version": lkspace.__version__,
         "commit": subprocess.run(
             ["git", "rev-parse", "--short", "HEAD"], capture_output=True, text=True, cwd=ROOT
         ).stdout.strip(),

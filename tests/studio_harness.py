@@ -70,6 +70,21 @@ def running_studio(*args: str) -> Iterator[str]:
 
 
 @contextlib.contextmanager
+def serving(studio) -> Iterator:
+    """``studio`` served from a thread of this process for the ``with`` block: yields an httpx client."""
+    import httpx
+
+    from lkspace.studio.server import start_in_thread
+
+    url, stop = start_in_thread(studio)
+    try:
+        with httpx.Client(base_url=url, timeout=60) as client:
+            yield client
+    finally:
+        stop()
+
+
+@contextlib.contextmanager
 def chromium() -> Iterator:
     """Debian's Chromium, headless, under Playwright (skips the test where either is missing)."""
     sync_api = pytest.importorskip("playwright.sync_api")

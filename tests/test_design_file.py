@@ -19,7 +19,7 @@ pytest.importorskip("starlette")
 httpx = pytest.importorskip("httpx")
 
 from lkspace.studio.app import Studio  # noqa: E402
-from lkspace.studio.server import start_in_thread  # noqa: E402
+from tests.studio_harness import serving  # noqa: E402
 
 CUBE_VIEW = {"position": [3.0, 2.0, 4.0], "target": [0.0, 0.1, 0.0], "up": [0.0, 1.0, 0.0]}
 
@@ -113,10 +113,8 @@ def test_design_stem_short_long_and_safe():
 
 @pytest.fixture(scope="module")
 def client():
-    url, stop = start_in_thread(Studio())
-    with httpx.Client(base_url=url, timeout=60) as c:
+    with serving(Studio()) as c:
         yield c
-    stop()
 
 
 def test_save_then_open_over_http(client):

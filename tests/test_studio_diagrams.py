@@ -15,7 +15,7 @@ httpx = pytest.importorskip("httpx")
 from lkspace.linktypes.common_names import common_name  # noqa: E402
 from lkspace.studio.app import Studio  # noqa: E402
 from lkspace.studio.diagrams import MAX_THUMBS, runs  # noqa: E402
-from lkspace.studio.server import start_in_thread  # noqa: E402
+from tests.studio_harness import serving  # noqa: E402
 
 SVG = "{http://www.w3.org/2000/svg}"
 VIEW = [[0.8, -0.6, 0.0], [0.36, 0.48, 0.8], [-0.48, -0.64, 0.6]]
@@ -24,10 +24,8 @@ VIEW = [[0.8, -0.6, 0.0], [0.36, 0.48, 0.8], [-0.48, -0.64, 0.6]]
 
 @pytest.fixture(scope="module")
 def client():
-    url, stop = start_in_thread(Studio())
-    with httpx.Client(base_url=url, timeout=60) as c:
+    with serving(Studio()) as c:
         yield c
-    stop()
 
 
 def post(client, path, body):

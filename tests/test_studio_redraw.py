@@ -64,15 +64,13 @@ httpx = pytest.importorskip("httpx")
 
 from lkspace.studio.app import Studio  # noqa: E402
 from lkspace.studio.curves import curve_key  # noqa: E402
-from lkspace.studio.server import start_in_thread  # noqa: E402
+from tests.studio_harness import serving  # noqa: E402
 
 
 @pytest.fixture(scope="module")
 def client():
-    url, stop = start_in_thread(Studio())
-    with httpx.Client(base_url=url, timeout=60) as c:
+    with serving(Studio()) as c:
         yield c
-    stop()
 
 
 def test_curves_the_page_holds_travel_as_keys_alone(client):
