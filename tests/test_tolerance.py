@@ -19,7 +19,7 @@ from lkspace.design.space import make_space
 from lkspace.errors import UsageError
 from lkspace.inverse.pipeline import symmetry_actions
 from lkspace.symmetry.group import symmetry_group
-from lkspace.symmetry.nearby import near_symmetry
+from lkspace.symmetry.nearby import example_motion, near_symmetry
 from lkspace.symmetry.slots import RadialCheck
 from lkspace.symmetry.tolerance import default_tolerance, shortest_edge
 from tests.brute_symmetry import brute_motions, burnside_designs
@@ -108,7 +108,8 @@ def test_irregular_tetrahedron_is_told_how_to_fix_it(capsys):
     assert near.tolerance < near.miss < near.suggested
     message = near.message("tet", group.n_rotations, group.order)
     assert message.startswith(f"tet has 12 rotations (24 isometries) if points {near.suggested:g} apart count as one")
-    assert "but only 3 (6) within the tolerance 0.028: e.g. a 1/3 turn about the axis" in message
+    # twenty-one motions miss by the same amount up to the last bits: the example is chosen by rule, not by noise
+    assert "but only 3 (6) within the tolerance 0.028: e.g. a 1/3 turn about the axis (-0.58, -0.58, 0.58)" in message
     assert (
         f"pass `tolerance={near.suggested:g}`" in message and "correct the coordinates" in message
     )  # a flag on the CLI
@@ -249,3 +250,21 @@ def test_catalogs_from_before_the_tolerance_still_read_and_resume(tmp_path, caps
     again = write_catalog(space, tmp_path / "c", execution=Execution(shards=3, resume=True))
     assert again.shards_resumed == 2 and again.designs == 87
     assert len(read_catalog(tmp_path / "c").labels) == 87
+
+
+def test_near_symmetry_example_ignores_float_noise_and_order():
+    """Ties in the miss (equal but for the last bits, which vary by machine) never decide the example."""
+    rng = np.random.default_rng(7)
+    eye, turn, half = np.eye(3), np.array([[0.0, 0, 1], [1, 0, 0], [0, 1, 0]]), np.diag([1.0, -1, -1])
+    misses = [
+        (0.0367 + 3e-16, False, 4, [1, 0, 3, 2], half),  # a half turn moves all four vertices
+        (0.0367, True, 2, [1, 0, 2, 3], -eye),  # a reflection is never the example while a rotation ties
+        (0.0367 + 1e-16, False, 3, [1, 2, 0, 3], turn),  # fewest vertices moved, then smallest permutation
+        (0.0367 - 2e-16, False, 3, [2, 0, 1, 3], turn.T),
+        (0.05, False, 3, [0, 2, 3, 1], eye),  # a clearly worse fit
+    ]
+    for _ in range(20):
+        order = rng.permutation(len(misses))
+        miss, fit = example_motion([misses[i] for i in order], 1e-9)
+        assert miss == 0.0367 - 2e-16
+        assert fit is turn

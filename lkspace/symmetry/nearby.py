@@ -25,6 +25,9 @@ from .tolerance import resolve_tolerance, shortest_edge
 MAX_VERTICES = 20_000
 """Largest mesh (vertices) checked for near symmetries."""
 
+TIE = 1e-9
+"""Misses closer than this (times the shortest edge) are equal when the example is chosen."""
+
 
 @dataclass(frozen=True)
 class NearSymmetry:
@@ -108,12 +111,28 @@ def near_symmetry(scaffold: Scaffold, tolerance: float | None = None) -> NearSym
             if (np.linalg.det(fit) > 0) != bool(proper):
                 fit = q  # a flat mesh: the fit took the other side; the search's own matrix fits as well
             d = x @ fit.T - x[sigma]
-            misses.append((float(np.sqrt(np.einsum("ij,ij->i", d, d).max())), not proper, fit))
-    miss, _, fit = min(misses, key=lambda m: m[:2])
+            moved = int(np.count_nonzero(sigma != np.arange(len(sigma))))
+            misses.append((float(np.sqrt(np.einsum("ij,ij->i", d, d).max())), not proper, moved, sigma.tolist(), fit))
+    miss, fit = example_motion(misses, TIE * shortest_edge(scaffold))
     suggested = round_up(1.1 * min(max(m[0] for m in misses), loose))
     if suggested >= loose or _quiet_order(scaffold, suggested) != wide.order:
         suggested = loose  # products of near motions may miss by more than each: the search's own tolerance
     return NearSymmetry(tol, suggested, wide.n_rotations, wide.order, describe(fit), miss)
+
+
+def example_motion(
+    misses: list[tuple[float, bool, int, list[int], np.ndarray]], tie: float
+) -> tuple[float, np.ndarray]:
+    """Return the best-fitting missed motion ``(miss, matrix)``, the same on every machine.
+
+    ``misses`` holds ``(miss, improper, vertices moved, vertex permutation, matrix)``.  Misses
+    within ``tie`` of the smallest are equal (on a symmetric mesh they differ in the last bits,
+    which vary with the BLAS): among them a rotation before a reflection, then the motion that
+    moves the fewest vertices, then the smallest vertex permutation.
+    """
+    least = min(m[0] for m in misses)
+    *_, fit = min((m for m in misses if m[0] <= least + tie), key=lambda m: m[1:4])
+    return least, fit
 
 
 def _quiet_order(scaffold: Scaffold, tolerance: float) -> int:
