@@ -24,7 +24,7 @@ from typing import Any
 
 import numpy as np
 
-from .. import Realization, RealizeOptions, Scaffold, Trace, export, realize, trace
+from .. import PictureOptions, Realization, RealizeOptions, Scaffold, Trace, export, realize, trace
 from ..errors import GeometryError, LabelError, TooLargeError, UsageError
 from ..formats.registry import FORMATS
 from ..geometry.clearance import check_embedding
@@ -313,6 +313,6 @@ def export_bytes(scaffold: Scaffold, labels: np.ndarray, nulls: np.ndarray | Non
     with tempfile.TemporaryDirectory(prefix="lkspace-studio-") as folder:
         path = os.path.join(folder, name)
         real = realize(scaffold, labels, nulls, options=RealizeOptions(max_points=MAX_EXPORT_POINTS))
-        export(real, path, title=scaffold.name if fmt == "png" else None)
+        export(real, path, options=PictureOptions(title=scaffold.name) if fmt == "png" else None)
         with open(path, "rb") as handle:
             return handle.read(), name
