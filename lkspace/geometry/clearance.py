@@ -8,15 +8,65 @@ farther apart along it than an exclusion length; open curves that continue one a
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, replace
 from functools import partial
-from typing import Any
+from typing import cast
 
 import numpy as np
 from numpy.typing import ArrayLike
 from scipy.spatial import cKDTree
 
 from ..workers import interruptible
+
+
+@dataclass(frozen=True)
+class Closest:
+    """Where distinct pieces of the curves come closest (:func:`check_embedding`).
+
+    Attributes
+    ----------
+    curves : (int, int)
+        The two curves, smaller first (one curve twice for two stretches of it).
+    point : (float, float, float)
+        The midpoint of the two closest samples.
+    place : str, optional
+        The scaffold vertex or edge nearest to it, when named (:func:`lkspace.geometry.tracks.place_name`).
+    """
+
+    curves: tuple[int, int]
+    point: tuple[float, float, float]
+    place: str | None = None
+
+    def named(self, place: str) -> Closest:
+        """Return this point named ``place``."""
+        return replace(self, place=place)
+
+    def to_json(self) -> dict[str, object]:
+        """Return ``{"curves": [i, j], "point": [x, y, z]}`` and ``"place"`` when named."""
+        out: dict[str, object] = {"curves": list(self.curves), "point": list(self.point)}
+        if self.place is not None:
+            out["place"] = self.place
+        return out
+
+    @classmethod
+    def from_json(cls, data: Mapping[str, object] | None) -> Closest | None:
+        """Read :meth:`to_json`; ``None`` for an empty object (nothing measured)."""
+        if not data:
+            return None
+        curves, point = cast(Sequence[int], data["curves"]), cast(Sequence[float], data["point"])
+        place = data.get("place")
+        return cls(
+            (int(curves[0]), int(curves[1])),
+            (float(point[0]), float(point[1]), float(point[2])),
+            None if place is None else str(place),
+        )
+
+
+def closest_json(closest: Closest | None) -> dict[str, object]:
+    """Return ``closest`` as JSON: ``{}`` when nothing was measured."""
+    return {} if closest is None else closest.to_json()
+
 
 CHUNK = 20_000
 """Samples whose neighbours the coarse pass of :func:`check_embedding` examines at once (bounds its memory)."""
@@ -103,7 +153,7 @@ def samples(
 
 def check_embedding(
     curves: Sequence[np.ndarray], closed: ArrayLike, min_separation: float, scale: float
-) -> tuple[float, dict[str, Any]]:
+) -> tuple[float, Closest | None]:
     """Smallest distance between distinct pieces of the polylines (sampled).
 
     Two sample points are on distinct pieces when they lie on different curves, or on one
@@ -117,13 +167,13 @@ def check_embedding(
     -------
     min_distance : float
         ``inf`` when no two distinct pieces come within ``0.3 * scale``.
-    closest : dict
-        ``{"curves": [i, j], "point": [x, y, z]}`` of the closest pair (empty if none).
+    closest : Closest or None
+        The two curves and the midpoint of the closest pair (``None`` if none).
     """
     closed = np.asarray(closed, bool)
     joins = _joins(curves, closed, 1e-9 * max(1.0, scale))
     best = float("inf")
-    where: dict[str, Any] = {}
+    where: Closest | None = None
 
     def consider(pts: np.ndarray, owner: np.ndarray, i: np.ndarray, j: np.ndarray) -> None:
         nonlocal best, where
@@ -133,10 +183,9 @@ def check_embedding(
         b = int(np.argmin(d))
         if d[b] < best:
             best = float(d[b])
-            where = {
-                "curves": sorted([int(owner[i[b]]), int(owner[j[b]])]),
-                "point": (0.5 * (pts[i[b]] + pts[j[b]])).tolist(),
-            }
+            c0, c1 = sorted([int(owner[i[b]]), int(owner[j[b]])])
+            x, y, z = (0.5 * (pts[i[b]] + pts[j[b]])).tolist()
+            where = Closest((c0, c1), (x, y, z))
 
     pts, arc, owner, lengths = samples(curves, closed, min_separation / 2.0)
     fine = sample_tree(pts)
