@@ -21,7 +21,8 @@ import tempfile
 import time
 
 import lkspace
-from lkspace.formats.registry import WRITERS, export
+from lkspace.formats.options import MeshOptions, PrintOptions
+from lkspace.formats.registry import ENCODERS, export
 from lkspace.geometry.realization import GeometryParams, realize
 
 
@@ -57,10 +58,11 @@ def main() -> None:
     row["tube_build_s"] = best_of(lambda: tubes.tube_meshes(real, None, 12), args.repeat)
     with tempfile.TemporaryDirectory() as tmp:
         for ext in (".ply", ".stl", ".3mf", ".obj"):
-            if ext not in WRITERS:
+            if ext not in ENCODERS:
                 continue
             path = os.path.join(tmp, "x" + ext)
-            row[f"write{ext}_s"] = best_of(lambda p=path: export(real, p, tubes=True), args.repeat)
+            options = PrintOptions() if ext in (".stl", ".3mf") else MeshOptions(tubes=True)
+            row[f"write{ext}_s"] = best_of(lambda p=path, o=options: export(real, p, options=o), args.repeat)
             row[f"size{ext}_bytes"] = os.path.getsize(path)
     row["python"] = platform.python_version()
     results = {}

@@ -11,7 +11,7 @@ from __future__ import annotations
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, replace
 from functools import partial
-from typing import cast
+from typing import NamedTuple, cast
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -82,8 +82,19 @@ def sample_tree(points: np.ndarray) -> cKDTree:
     return interruptible(lambda: cKDTree(points, compact_nodes=False))
 
 
-def resample(curve: np.ndarray, closed: bool, spacing: float) -> tuple[np.ndarray, np.ndarray, float]:
-    """Points every ``spacing`` along a polyline: ``(points (m, 3), arclength (m,), length)``."""
+class Resampled(NamedTuple):
+    """A polyline resampled at a fixed spacing (:func:`resample`)."""
+
+    points: np.ndarray
+    """(m, 3) float64"""
+    arclength: np.ndarray
+    """(m,) float64: the arclength of each point from the start"""
+    length: float
+    """The whole length (a closed polyline's includes its closing segment)."""
+
+
+def resample(curve: np.ndarray, closed: bool, spacing: float) -> Resampled:
+    """Return the points every ``spacing`` along a polyline (:class:`Resampled`)."""
     pts = np.vstack([curve, curve[:1]]) if closed else curve
     seg = np.linalg.norm(np.diff(pts, axis=0), axis=1)
     cum = np.concatenate([[0.0], np.cumsum(seg)])
@@ -91,7 +102,7 @@ def resample(curve: np.ndarray, closed: bool, spacing: float) -> tuple[np.ndarra
     m = max(2, int(np.ceil(length / spacing)) + (0 if closed else 1))
     s = np.linspace(0.0, length, m, endpoint=not closed)
     out = np.column_stack([np.interp(s, cum, pts[:, i]) for i in range(3)])
-    return out, s, length
+    return Resampled(out, s, length)
 
 
 def pieces_apart(
@@ -144,10 +155,10 @@ def samples(
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Resample every curve at ``spacing``: ``(points, arclength, owner curve, curve lengths)``."""
     chunks = [resample(c, bool(cl), spacing) for c, cl in zip(curves, closed, strict=False)]
-    pts = np.vstack([c[0] for c in chunks])
-    arc = np.concatenate([c[1] for c in chunks])
-    owner = np.repeat(np.arange(len(chunks)), [len(c[0]) for c in chunks])
-    lengths = np.array([c[2] for c in chunks])
+    pts = np.vstack([c.points for c in chunks])
+    arc = np.concatenate([c.arclength for c in chunks])
+    owner = np.repeat(np.arange(len(chunks)), [len(c.points) for c in chunks])
+    lengths = np.array([c.length for c in chunks])
     return pts, arc, owner, lengths
 
 
@@ -209,8 +220,19 @@ def check_embedding(
     return best, where
 
 
-def tightest_bend(curves: list[np.ndarray], closed: np.ndarray) -> tuple[float, int, np.ndarray]:
-    """Return the smallest bend radius of the centrelines, its piece and point.
+class Bend(NamedTuple):
+    """The tightest bend of some polylines (:func:`tightest_bend`)."""
+
+    radius: float
+    """The smallest bend radius (``inf`` for straight polylines)."""
+    piece: int
+    """The polyline it is on (-1 if none bends)."""
+    point: np.ndarray
+    """(3,) float64: the point where it bends."""
+
+
+def tightest_bend(curves: list[np.ndarray], closed: np.ndarray) -> Bend:
+    """Return the smallest bend radius of the centrelines, its piece and point (:class:`Bend`).
 
     At a polyline point where the direction turns by ``theta`` between segments of
     lengths ``a`` and ``b``, the bend radius is ``min(a, b) / 2 / tan(theta / 2)`` (the
@@ -229,4 +251,4 @@ def tightest_bend(curves: list[np.ndarray], closed: np.ndarray) -> tuple[float, 
         if len(bend) and bend.min() < best:
             i = int(np.argmin(bend))
             best, piece, where = float(bend[i]), k, pts[i + 1]
-    return best, piece, where
+    return Bend(float(best), piece, where)

@@ -247,7 +247,9 @@ def realize_reusing(
         for curve, cl, s in zip(base.curves, base.closed, missing, strict=True):
             for c, t in enumerate(translations):
                 moved = curve + shifts[c]  # as realize moves its copies
-                made[keys[s] + t.tobytes()] = StrandCurve(moved, bool(cl), tightest_bend([moved], np.array([cl]))[0])
+                made[keys[s] + t.tobytes()] = StrandCurve(
+                    moved, bool(cl), tightest_bend([moved], np.array([cl])).radius
+                )
     entries = {key: made[key] if key in made else known[key] for key, _, _ in wanted}
     chosen = [entries[key] for key, _, _ in wanted]
     built = Curves(
@@ -349,7 +351,7 @@ def _measured(
         shape.radius,
         shape.normal_offset,
         shape.margin,
-        _tube_radius(shape, min_dist, tightest_bend(curves, closed)[0] if bend is None else bend),
+        _tube_radius(shape, min_dist, tightest_bend(curves, closed).radius if bend is None else bend),
         shape.min_separation,
         float(min_dist),
         closest,
