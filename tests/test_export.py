@@ -410,6 +410,8 @@ def test_a_record_of_another_format_is_refused_in_one_line(tmp_path, borromean):
     assert info.value.parameter == "options" and info.value.exit_code == 2
     with pytest.raises(ExportError, match="^clearance: polylines have no tubes"):
         MeshOptions(clearance=0.1)
+    with pytest.raises(ExportError, match="^sides: must be an integer in 3..256, got 2"):
+        GlbOptions(sides=2)
     assert list(tmp_path.iterdir()) == []
 
 

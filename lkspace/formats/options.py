@@ -33,6 +33,14 @@ TUBE_SIDES = 12
 """Vertices around a tube's circle (the mesh formats' default ``sides``)."""
 PRINT_SIDES = 16
 """Vertices around a printed tube's circle (``.stl``, ``.3mf``)."""
+MAX_SIDES = 256
+"""Most vertices around a tube's circle (``sides``)."""
+
+
+def check_sides(sides: int) -> None:
+    """Refuse a ``sides`` that is not an integer in 3..:data:`MAX_SIDES`."""
+    if isinstance(sides, bool) or not isinstance(sides, int) or not 3 <= sides <= MAX_SIDES:
+        raise ExportError(f"sides: must be an integer in 3..{MAX_SIDES}, got {sides!r}", parameter="sides")
 
 
 @dataclass(frozen=True)
@@ -102,6 +110,7 @@ class MeshOptions(TubeOptions):
 
     def __post_init__(self) -> None:
         super().__post_init__()
+        check_sides(self.sides)
         if self.clearance is not None and not self.tubes:
             raise ExportError(
                 "clearance: polylines have no tubes to keep apart; give tubes=True", parameter="clearance"
@@ -116,6 +125,10 @@ class GlbOptions(TubeOptions):
     """``.glb``: tube meshes, ``sides`` vertices around."""
 
     sides: int = TUBE_SIDES
+
+    def __post_init__(self) -> None:
+        super().__post_init__()
+        check_sides(self.sides)
 
 
 @dataclass(frozen=True)
@@ -173,6 +186,7 @@ class PrintOptions:
 
     def __post_init__(self) -> None:
         check_options(self.thickness, self.clearance, self.units, self.scale)
+        check_sides(self.sides)
 
 
 FormatOptions: TypeAlias = MeshOptions | GlbOptions | PrintOptions | PictureOptions

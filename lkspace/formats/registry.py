@@ -171,12 +171,10 @@ def check_tubes(real: Realization, path: str | os.PathLike[str], options: Format
             parameter=options.given,
         )
     points = sum(len(c) for c in real.curves)
-    if (
-        needs_tubes(path, isinstance(options, MeshOptions) and options.tubes)
-        and points * TUBE_SIDES > MAX_TUBE_VERTICES
-    ):
+    sides = options.sides if isinstance(options, (MeshOptions, GlbOptions)) else TUBE_SIDES  # pieces: as ever
+    if needs_tubes(path, isinstance(options, MeshOptions) and options.tubes) and points * sides > MAX_TUBE_VERTICES:
         raise TooLargeError(
-            f"{path}: tubes of {points:,} curve points need {points * TUBE_SIDES:,} vertices "
+            f"{path}: tubes of {points:,} curve points need {points * sides:,} vertices "
             f"> {MAX_TUBE_VERTICES:,} (MAX_TUBE_VERTICES); write polylines (.obj or .ply without `tubes`)"
         )
     if isinstance(options, PictureOptions) and not options.diagram:
