@@ -1,13 +1,10 @@
 """What each export format takes: one frozen record per format, checked when it is built.
 
-==================  ==============  =============================================================
-record              formats         fields
-==================  ==============  =============================================================
-:class:`MeshOptions`     ``.obj``, ``.ply``  ``tubes``, the tube, ``units`` (a comment), ``sides``
-:class:`GlbOptions`      ``.glb``            the tube, ``sides``
-:class:`PrintOptions`    ``.stl``, ``.3mf``  ``thickness``, ``clearance``, ``units``, ``scale``, ``sides``, ``pieces``
-:class:`PictureOptions`  ``.png``, ``.svg``  ``look``, ``diagram``, ``show_mesh``, ``title``, the tube
-==================  ==============  =============================================================
+- :class:`MeshOptions` (``.obj``, ``.ply``): ``tubes``, the tube, ``units`` (a comment), ``sides``
+- :class:`GlbOptions` (``.glb``): the tube, ``sides``
+- :class:`PrintOptions` (``.stl``, ``.3mf``): ``thickness``, ``clearance``, ``units``, ``scale``,
+  ``sides``, ``pieces``
+- :class:`PictureOptions` (``.png``, ``.svg``): ``look``, ``diagram``, ``show_mesh``, ``title``, the tube
 
 "The tube" (:class:`TubeOptions`) is ``radius`` in scaffold units, or ``thickness`` (a
 diameter in output units) with ``scale`` (output units per scaffold unit), and an optional
