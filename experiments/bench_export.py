@@ -1,7 +1,8 @@
 """Benchmark: writing tube meshes (PLY, STL, 3MF, OBJ) and building them.
 
-One large design, ``icosahedron --twist 3`` realized with dense sampling (about 100,000
-curve points, 1.2 million tube vertices), is written as PLY tubes, and when the writers
+One large design, ``icosahedron --twist 3`` realized with dense sampling and unsmoothed
+(smoothing resamples the curves: about 4,000 points; unsmoothed about 100,000 curve
+points, 1.2 million tube vertices), is written as PLY tubes, and when the writers
 exist as STL and 3MF; the tube build alone is timed too.  Best of ``--repeat`` runs (the
 machine is shared: numbers are noisy, the best run is the fairest).  Writes
 ``results/bench_export.json``; ``--label`` names the run (e.g. ``before``, ``after``)
@@ -42,7 +43,7 @@ def main() -> None:
     here = os.path.dirname(os.path.abspath(__file__))
     parser.add_argument("--out", default=os.path.join(here, "..", "results", "bench_export.json"))
     args = parser.parse_args()
-    params = GeometryParams(samples_per_turn=500, edge_samples=600, corner_samples=200)
+    params = GeometryParams(samples_per_turn=500, edge_samples=600, corner_samples=200, smooth=False)
     real = realize(lkspace.load("icosahedron"), 3, params=params)
     points = sum(len(c) for c in real.curves)
     row: dict[str, object] = {
