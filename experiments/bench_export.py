@@ -1,7 +1,8 @@
 """Benchmark: writing tube meshes (PLY, STL, 3MF, OBJ) and building them.
 
-One large design, ``icosahedron --twist 3`` realized with dense sampling (about 100,000
-curve points, 1.2 million tube vertices), is written as PLY tubes, and when the writers
+One large design, ``icosahedron --twist 3`` realized with dense sampling and unsmoothed
+(smoothing resamples the curves: about 4,000 points; unsmoothed about 100,000 curve
+points, 1.2 million tube vertices), is written as PLY tubes, and when the writers
 exist as STL and 3MF; the tube build alone is timed too.  Best of ``--repeat`` runs (the
 machine is shared: numbers are noisy, the best run is the fairest).  Writes
 ``results/bench_export.json``; ``--label`` names the run (e.g. ``before``, ``after``)
@@ -21,7 +22,8 @@ import tempfile
 import time
 
 import lkspace
-from lkspace.formats.registry import WRITERS, export
+from lkspace.formats.options import MeshOptions, PrintOptions
+from lkspace.formats.registry import ENCODERS, export
 from lkspace.geometry.realization import GeometryParams, realize
 
 
@@ -41,7 +43,7 @@ def main() -> None:
     here = os.path.dirname(os.path.abspath(__file__))
     parser.add_argument("--out", default=os.path.join(here, "..", "results", "bench_export.json"))
     args = parser.parse_args()
-    params = GeometryParams(samples_per_turn=500, edge_samples=600, corner_samples=200)
+    params = GeometryParams(samples_per_turn=500, edge_samples=600, corner_samples=200, smooth=False)
     real = realize(lkspace.load("icosahedron"), 3, params=params)
     points = sum(len(c) for c in real.curves)
     row: dict[str, object] = {
@@ -57,10 +59,11 @@ def main() -> None:
     row["tube_build_s"] = best_of(lambda: tubes.tube_meshes(real, None, 12), args.repeat)
     with tempfile.TemporaryDirectory() as tmp:
         for ext in (".ply", ".stl", ".3mf", ".obj"):
-            if ext not in WRITERS:
+            if ext not in ENCODERS:
                 continue
             path = os.path.join(tmp, "x" + ext)
-            row[f"write{ext}_s"] = best_of(lambda p=path: export(real, p, tubes=True), args.repeat)
+            options = PrintOptions() if ext in (".stl", ".3mf") else MeshOptions(tubes=True)
+            row[f"write{ext}_s"] = best_of(lambda p=path, o=options: export(real, p, options=o), args.repeat)
             row[f"size{ext}_bytes"] = os.path.getsize(path)
     row["python"] = platform.python_version()
     results = {}

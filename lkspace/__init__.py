@@ -44,6 +44,7 @@ if TYPE_CHECKING:
     from .design import counting
     from .design.counting import DesignCount
     from .formats import registry
+    from .formats.options import GlbOptions, MeshOptions, PictureOptions, PrintOptions
     from .geometry import realization
     from .geometry.params import RealizeOptions
     from .geometry.realization import GeometryParams, Realization
@@ -97,6 +98,10 @@ _LAZY = {
     "RealizeOptions": "geometry.params",
     "relax": "geometry.relax",
     "export": "formats.registry",
+    "MeshOptions": "formats.options",
+    "GlbOptions": "formats.options",
+    "PrintOptions": "formats.options",
+    "PictureOptions": "formats.options",
     "identify": "knots.recognition",
     "Identification": "knots.recognition",
 }
@@ -127,6 +132,10 @@ __all__ = [
     "RealizeOptions",
     "relax",
     "export",
+    "MeshOptions",
+    "GlbOptions",
+    "PrintOptions",
+    "PictureOptions",
     "identify",
     "Identification",
     "Scaffold",

@@ -266,7 +266,7 @@ def test_export_goes_through_the_checked_fabrication_path(blender, tmp_path):
     assert bpy.ops.lkspace.export(filepath=str(out), thickness=1.0, clearance=0.3, scale=10.0) == {"FINISHED"}
     _, scaffold, labels, _ = independent(obj, tmp_path, pairs)
     ref = tmp_path / "ref.stl"
-    lkspace.export(scaffold, ref, labels, thickness=1.0, clearance=0.3, scale=10.0)
+    lkspace.export(scaffold, ref, labels, options=lkspace.PrintOptions(thickness=1.0, clearance=0.3, scale=10.0))
     assert stl_triangles(out) == stl_triangles(ref) > 0
     # a clearance the design cannot keep is refused, and nothing is written
     bad = tmp_path / "bad.stl"

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 import lkspace
-from lkspace import export, realize
+from lkspace import GlbOptions, MeshOptions, export, realize
 from lkspace.cli import main
 from lkspace.errors import ExportError
 from lkspace.formats.glb import glb_bytes
@@ -40,7 +40,7 @@ def test_obj_polylines(tmp_path, borromean):
 
 def test_obj_tubes_open_in_trimesh(tmp_path, borromean):
     path = tmp_path / "b.obj"
-    export(borromean, path, tubes=True)
+    export(borromean, path, options=MeshOptions(tubes=True))
     mesh = trimesh.load(path, force="mesh")
     bodies = mesh.split(only_watertight=False)
     assert len(bodies) == 3 and all(b.is_watertight for b in bodies)
@@ -49,7 +49,7 @@ def test_obj_tubes_open_in_trimesh(tmp_path, borromean):
 
 def test_ply_tubes_and_polylines(tmp_path, borromean):
     path = tmp_path / "b.ply"
-    export(borromean, path, tubes=True)
+    export(borromean, path, options=MeshOptions(tubes=True))
     mesh = trimesh.load(path)
     assert mesh.is_watertight and mesh.volume > 0
     colours = np.unique(mesh.visual.vertex_colors[:, :3], axis=0)
@@ -72,7 +72,7 @@ def test_glb_opens_in_trimesh_and_pygltflib(tmp_path, borromean):
     colours = {tuple(m.pbrMetallicRoughness.baseColorFactor) for m in gltf.materials}
     assert len(colours) == 3
     assert len(gltf.binary_blob()) == gltf.buffers[0].byteLength
-    assert glb_bytes(borromean)[:4] == b"glTF"
+    assert glb_bytes(borromean, GlbOptions())[:4] == b"glTF"
 
 
 def test_png_is_a_clear_picture(tmp_path, borromean):
@@ -98,9 +98,9 @@ def test_tube_of_an_open_polyline_is_capped():
 def test_every_writer_has_its_format_name():
     from typing import get_args
 
-    from lkspace.formats.registry import WRITERS, Format
+    from lkspace.formats.registry import ENCODERS, OPTIONS, Format
 
-    assert sorted(get_args(Format)) == sorted(ext[1:] for ext in WRITERS)
+    assert sorted(get_args(Format)) == sorted(ext[1:] for ext in ENCODERS) == sorted(ext[1:] for ext in OPTIONS)
 
 
 def test_bad_extension_writes_nothing(tmp_path, borromean):
@@ -119,7 +119,7 @@ def test_failed_write_leaves_the_old_file(tmp_path, borromean, monkeypatch):
 
     monkeypatch.setattr(ex, "tube_meshes", boom)
     with pytest.raises(RuntimeError):
-        export(borromean, path, tubes=True)
+        export(borromean, path, options=MeshOptions(tubes=True))
     assert path.read_text() == "old" and os.listdir(tmp_path) == ["b.obj"]
 
 
@@ -336,9 +336,9 @@ def test_realize_and_export_library_bounds(tmp_path):
     with pytest.raises(GeometryError, match="samples_per_turn"):
         realize("cube", 1, params=GeometryParams(samples_per_turn=0))
     with pytest.raises(ExportError, match="tube radius"):
-        export("cube", tmp_path / "c.obj", 1, tubes=True, radius=float("nan"))
+        export("cube", tmp_path / "c.obj", 1, options=MeshOptions(tubes=True, radius=float("nan")))
     with pytest.raises(ExportError, match="shortest edge"):
-        export("cube", tmp_path / "c.obj", 1, tubes=True, radius=1e300)
+        export("cube", tmp_path / "c.obj", 1, options=MeshOptions(tubes=True, radius=1e300))
     assert list(tmp_path.iterdir()) == []
 
 
@@ -398,3 +398,30 @@ def test_export_row_of_an_empty_catalog(tmp_path, capsys):
     assert code == 2
     one_line_error(err, "no rows")
     assert not (tmp_path / "x.obj").exists()
+
+
+def test_a_record_of_another_format_is_refused_in_one_line(tmp_path, borromean):
+    from lkspace import PictureOptions, PrintOptions
+
+    with pytest.raises(ExportError, match=r"^options: \.obj takes MeshOptions \(radius, .*\), not PrintOptions$"):
+        export(borromean, tmp_path / "b.obj", options=PrintOptions(thickness=0.1))
+    with pytest.raises(ExportError, match=r"^options: \.stl takes PrintOptions .*, not PictureOptions$") as info:
+        export(borromean, tmp_path / "b.stl", options=PictureOptions(title="x"))
+    assert info.value.parameter == "options" and info.value.exit_code == 2
+    with pytest.raises(ExportError, match="^clearance: polylines have no tubes"):
+        MeshOptions(clearance=0.1)
+    with pytest.raises(ExportError, match="^sides: must be an integer in 3..256, got 2"):
+        GlbOptions(sides=2)
+    assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize("ext", [".obj", ".ply", ".glb", ".stl", ".png"])
+def test_the_file_holds_the_encoders_bytes(tmp_path, borromean, ext):
+    if ext == ".png":
+        pytest.importorskip("matplotlib")
+    from lkspace.formats.registry import OPTIONS, encoder
+
+    options = OPTIONS[ext]()
+    export(borromean, tmp_path / f"b{ext}", options=options)
+    assert (tmp_path / f"b{ext}").read_bytes() == encoder(ext)(borromean, options)
+    assert os.listdir(tmp_path) == [f"b{ext}"]  # no temporary file left

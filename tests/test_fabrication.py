@@ -11,7 +11,7 @@ import zipfile
 import numpy as np
 import pytest
 
-from lkspace import export, realize
+from lkspace import MeshOptions, PrintOptions, export, realize
 from lkspace.errors import GeometryError
 from lkspace.geometry.fabrication import printable
 
@@ -98,10 +98,10 @@ def test_bad_fabrication_options(tmp_path, capsys, args, words):
 
 def test_python_export_refuses_the_same_way(tmp_path):
     with pytest.raises(GeometryError, match="^thickness: must be") as bad:
-        export("cube", tmp_path / "c.stl", 2, thickness=-1.0)
+        export("cube", tmp_path / "c.stl", 2, options=PrintOptions(thickness=-1.0))
     assert bad.value.exit_code == 2 and bad.value.parameter == "thickness"
     with pytest.raises(GeometryError, match=r"clearance 0\.5 .* near (edge|vertex)") as far:
-        export("cube", tmp_path / "c.3mf", 2, thickness=0.1, clearance=0.5)
+        export("cube", tmp_path / "c.3mf", 2, options=PrintOptions(thickness=0.1, clearance=0.5))
     assert far.value.exit_code == 1 and list(tmp_path.iterdir()) == []
 
 
@@ -109,7 +109,7 @@ def test_reported_gap_is_never_more_than_the_true_gap(tmp_path):
     real = realize("tetrahedron", 1)
     pieces = printable(real, thickness=0.1, clearance=0.0)
     assert pieces.min_gap is not None
-    export(real, tmp_path / "t.stl", pieces=pieces)
+    export(real, tmp_path / "t.stl", options=PrintOptions(pieces=pieces))
     true_gap = smallest_gap(bodies_of(tmp_path / "t.stl"), 3 * pieces.min_gap)
     assert 0 < pieces.min_gap <= true_gap + 1e-6
     with pytest.raises(GeometryError, match="leave a gap"):
@@ -194,7 +194,7 @@ def test_periodic_block_prints_one_piece_per_thread_run(tmp_path, capsys):
 
 def test_binary_ply_reads_back(tmp_path):
     real = realize("tetrahedron", 1)
-    export(real, tmp_path / "t.ply", tubes=True)
+    export(real, tmp_path / "t.ply", options=MeshOptions(tubes=True))
     mesh = trimesh.load(tmp_path / "t.ply")
     assert mesh.is_watertight and len(mesh.split()) == 3
     export(real, tmp_path / "p.ply")

@@ -106,9 +106,9 @@ def test_embedding_check_modes():
     with pytest.raises(GeometryError, match=r"come within ([0-9.e-]+) "):
         realize("book:6", 1, params=params)
     measured = realize("book:6", 1, params=params, options=RealizeOptions(embedding="measure"))
-    assert measured.min_distance < measured.min_separation and measured.closest["curves"]
+    assert measured.min_distance < measured.min_separation and measured.closest is not None
     later = realize("book:6", 1, params=params, options=RealizeOptions(embedding="later"))
-    assert later.min_distance == np.inf and later.closest == {}
+    assert later.min_distance == np.inf and later.closest is None
     assert all(np.array_equal(a, b) for a, b in zip(later.curves, measured.curves, strict=True))
     with pytest.raises(GeometryError, match="^embedding: expected one of refuse, measure, later") as bad:
         realize("book:6", 1, options=RealizeOptions(embedding="never"))  # type: ignore[arg-type]
@@ -138,11 +138,11 @@ def test_check_embedding_finds_a_crossing():
     a = np.column_stack([np.cos(t), np.sin(t), 0 * t])
     b = np.column_stack([np.cos(t), 0 * t, np.sin(t)])  # meets a at (+-1, 0, 0)
     d, where = check_embedding([a, b], [True, True], 0.01, 1.0)
-    assert d < 0.01 and where["curves"] == [0, 1]
+    assert d < 0.01 and where is not None and where.curves == (0, 1)
     d2, _ = check_embedding([a, b + [0, 0.5, 0]], [True, True], 0.01, 1.0)
     assert abs(d2 - (1 - 0.75**0.5)) < 0.02  # nearest: (0.866, .5, 0) to (1, .5, 0)
     d3, where3 = check_embedding([a, b + [5, 0, 0]], [True, True], 0.01, 1.0)
-    assert d3 == np.inf and where3 == {}
+    assert d3 == np.inf and where3 is None
 
 
 def test_open_strands_end_at_their_cut(tetra):

@@ -69,7 +69,7 @@ def test_book_spine_carries_evenly_spaced_regular_helices(k, t):
 
 def hausdorff_to(real, mapped: np.ndarray) -> float:
     dense = np.vstack(
-        [resample(c, bool(cl), 0.002 * real.scale)[0] for c, cl in zip(real.curves, real.closed, strict=True)]
+        [resample(c, bool(cl), 0.002 * real.scale).points for c, cl in zip(real.curves, real.closed, strict=True)]
     )
     return float(cKDTree(dense).query(mapped)[0].max())
 

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 import lkspace
-from lkspace import export, realize
+from lkspace import PictureOptions, export, realize
 
 from .cli_calls import one_line_error, run
 
@@ -57,7 +57,7 @@ def test_views_differ(tmp_path):
 
     pictures = []
     for view in ("front", "top", "30,10"):
-        export(real, tmp_path / "v.png", look=look_of(view, "96x96", None, None))
+        export(real, tmp_path / "v.png", options=PictureOptions(look=look_of(view, "96x96", None, None)))
         pictures.append(plt_image.imread(tmp_path / "v.png")[..., :3])
     assert not np.allclose(pictures[0], pictures[1]) and not np.allclose(pictures[0], pictures[2])
 

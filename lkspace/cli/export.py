@@ -4,7 +4,8 @@ from __future__ import annotations
 
 import os
 from collections.abc import Callable
-from typing import TYPE_CHECKING, Any, TypeGuard, TypeVar
+from dataclasses import replace
+from typing import TYPE_CHECKING, Any, TypeGuard, TypeVar, cast
 
 import click
 import numpy as np
@@ -17,6 +18,7 @@ from .common import Context, emit, json_option, labels_of, load_mesh, nulls_of, 
 from .numbers import Finite
 
 if TYPE_CHECKING:
+    from ..formats.options import FormatOptions, PictureOptions
     from ..geometry.realization import GeometryParams
 
 F = TypeVar("F", bound=Callable[..., Any])
@@ -162,6 +164,37 @@ def params_of(
     )
 
 
+def format_options(
+    ext: str,
+    tubes: bool,
+    thickness: float | None,
+    clearance: float | None,
+    units: str | None,
+    scale: float,
+    picture: PictureOptions | None,
+) -> FormatOptions:
+    """Return the options record of format ``ext`` from the fabrication flags and ``--tubes``.
+
+    A flag the format does not take is left out, as the command has always done: ``--units``
+    is a comment of ``.obj`` and ``.ply`` only, ``--clearance`` is checked on tubes only
+    (``--tubes``, ``.glb``, printable formats), ``--thickness`` and ``--scale`` set every tube.
+    ``picture`` holds the picture flags of a ``.png`` or ``.svg`` (refused for other formats).
+    """
+    from ..formats.options import GlbOptions, MeshOptions, PictureOptions, PrintOptions
+    from ..formats.registry import PICTURES, PRINTABLE
+    from ..geometry.fabrication import Units
+
+    if ext in PRINTABLE:
+        return PrintOptions(thickness, clearance, cast(Units, units or "mm"), scale)
+    if not tubes and ext != ".glb":
+        clearance = None
+    if ext == ".glb":
+        return GlbOptions(thickness=thickness, scale=scale, clearance=clearance)
+    if ext in PICTURES:
+        return replace(picture or PictureOptions(), thickness=thickness, scale=scale, clearance=clearance)
+    return MeshOptions(thickness=thickness, scale=scale, clearance=clearance, tubes=tubes, units=cast(Units, units))
+
+
 FORMAT_HELP = "Output file: .obj, .ply, .glb, .stl, .3mf, .png or .svg (the format follows the extension)."
 
 
@@ -287,6 +320,7 @@ def export_cmd(
       lkspace export honeycomb:cP --twist 2,1,1 --block 2x2x2 -o block.png --size 480x480
       lkspace export designs.parquet --row 7 -o design7.png
     """
+    from ..formats.options import PictureOptions, PrintOptions
     from ..formats.registry import PICTURES, export, output_target, point_budget
     from ..geometry.params import RealizeOptions
     from ..geometry.realization import realize
@@ -294,12 +328,12 @@ def export_cmd(
     ctx = Context(as_json)
     output_target(output, (mesh, twist_spec, null_spec))  # checked before any work (export checks it again)
     ext = os.path.splitext(output)[1].lower()
-    look = None
+    picture = None
     if ext in PICTURES:
-        from ..formats.render import check_title, look_of
+        from ..formats.render import look_of
 
         look = look_of(view, size, background, colors)
-        check_title(title)
+        picture = PictureOptions(look=look, diagram=diagram, show_mesh=not no_mesh, title=title)  # checks the title
     elif diagram or any(v is not None for v in (view, size, background, colors)):
         raise UsageError(
             f"--view, --size, --background, --colors and --diagram are for pictures (.png, .svg), not {ext}"
@@ -319,25 +353,14 @@ def export_cmd(
     else:
         with point_budget(output, tubes) as max_points:
             real = realize(scaffold, labels, nulls, params, relax=relax, options=RealizeOptions(max_points=max_points))
+    options = format_options(ext, tubes, thickness, clearance, units, scale, picture)
     pieces = None
-    if ext in (".stl", ".3mf"):
+    if isinstance(options, PrintOptions):
         from ..geometry.fabrication import printable
 
-        pieces = printable(real, thickness, clearance, units or "mm", scale)
-    fmt = export(
-        real,
-        output,
-        pieces=pieces,
-        tubes=tubes,
-        show_mesh=not no_mesh,
-        thickness=thickness,
-        clearance=clearance,
-        units=units,
-        scale=scale,
-        look=look,
-        diagram=diagram,
-        title=title,
-    )
+        pieces = printable(real, thickness, clearance, options.units, scale)
+        options = replace(options, pieces=pieces)
+    fmt = export(real, output, options=options)
     data = {
         "written": os.path.abspath(output),
         "format": fmt,

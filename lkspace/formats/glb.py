@@ -6,18 +6,17 @@ One mesh, node and material per strand (opens in Blender, three.js, trimesh).
 from __future__ import annotations
 
 import json
-import os
 import struct
 
 import numpy as np
 
 from ..geometry.realization import Realization
-from ..io.atomic import write_bytes
 from .colors import colors
+from .options import GlbOptions
 from .tubes import tube_meshes
 
 
-def glb_bytes(real: Realization, radius: float | None = None, sides: int = 12) -> bytes:
+def glb_bytes(real: Realization, options: GlbOptions) -> bytes:
     """Return the glTF 2.0 binary of the tubes: one mesh, node and material per strand."""
     blobs, views, accessors, meshes, nodes, materials = [], [], [], [], [], []
     offset = 0
@@ -30,7 +29,9 @@ def glb_bytes(real: Realization, radius: float | None = None, sides: int = 12) -
         offset += len(data) + pad
         return len(views) - 1
 
-    for k, ((v, nrm, f), rgb) in enumerate(zip(tube_meshes(real, radius, sides), colors(real.n_curves), strict=False)):
+    for k, ((v, nrm, f), rgb) in enumerate(
+        zip(tube_meshes(real, options.tube_radius, options.sides), colors(real.n_curves), strict=False)
+    ):
         v32 = v.astype(np.float32)
         pos = add_view(v32.tobytes(), 34962)
         accessors.append(
@@ -94,10 +95,3 @@ def glb_bytes(real: Realization, radius: float | None = None, sides: int = 12) -
         + struct.pack("<I4s", len(binary), b"BIN\0")
         + binary
     )
-
-
-def write(
-    real: Realization, path: str | os.PathLike[str], *, radius: float | None = None, sides: int = 12, **ignored: object
-) -> None:
-    """Write :func:`glb_bytes` to ``path`` atomically."""
-    write_bytes(path, glb_bytes(real, radius, sides))

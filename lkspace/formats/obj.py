@@ -2,18 +2,16 @@
 
 A polyline is one ``l`` element listing its vertices in order (a closed strand repeats
 its first vertex at the end), as the OBJ specification defines polylines.  Lines are formatted from
-plain lists (``ndarray.tolist``), not numpy scalars.
+plain lists (``ndarray.tolist``), not numpy scalars; the text is UTF-8 with ``\\n`` line ends.
 """
 
 from __future__ import annotations
 
-import os
-
 import numpy as np
 
 from ..geometry.realization import Realization
-from ..io.atomic import write_text
 from ..words import plural
+from .options import MeshOptions
 from .tubes import tube_meshes
 
 
@@ -31,23 +29,14 @@ def face_lines(f: np.ndarray) -> str:
     return "".join(["f {} {} {}\n".format(*r) for r in f.tolist()])
 
 
-def write(
-    real: Realization,
-    path: str | os.PathLike[str],
-    *,
-    tubes: bool = False,
-    radius: float | None = None,
-    sides: int = 12,
-    units: str | None = None,
-    **ignored: object,
-) -> None:
-    """Write polylines (``l``) or tube meshes to ``path``, one ``o strand_k`` object per curve."""
+def obj_bytes(real: Realization, options: MeshOptions) -> bytes:
+    """Return polylines (``l``) or tube meshes, one ``o strand_k`` object per curve, as OBJ text."""
     out = [f"# lkspace strands of {real.scaffold.name}: {plural(real.n_curves, 'curve')}\n"]
-    if units:
-        out.append(f"# units {units}\n")
+    if options.units:
+        out.append(f"# units {options.units}\n")
     base = 1
-    if tubes:
-        for k, (v, _, f) in enumerate(tube_meshes(real, radius, sides)):
+    if options.tubes:
+        for k, (v, _, f) in enumerate(tube_meshes(real, options.tube_radius, options.sides)):
             out += [f"o strand_{k}\n", vertex_lines(v), face_lines(f + base)]
             base += len(v)
     else:
@@ -57,4 +46,4 @@ def write(
                 idx = np.append(idx, base)
             out += [f"o strand_{k}\n", vertex_lines(curve), "l " + " ".join(idx.astype(str).tolist()) + "\n"]
             base += len(curve)
-    write_text(path, "".join(out))
+    return "".join(out).encode("utf-8")

@@ -9,13 +9,11 @@ writer formatted every vertex in Python: 12.7 s where this takes well under a se
 
 from __future__ import annotations
 
-import os
-
 import numpy as np
 
 from ..geometry.realization import Realization
-from ..io.atomic import atomic_path
 from .colors import colors
+from .options import MeshOptions
 from .tubes import merged, tube_meshes
 
 VERTEX = np.dtype([("x", "<f4"), ("y", "<f4"), ("z", "<f4"), ("red", "u1"), ("green", "u1"), ("blue", "u1")])
@@ -23,13 +21,12 @@ FACE = np.dtype([("n", "u1"), ("v", "<i4", 3)])
 EDGE = np.dtype([("vertex1", "<i4"), ("vertex2", "<i4")])
 
 
-def ply_bytes(
-    real: Realization, tubes: bool = False, radius: float | None = None, sides: int = 12, units: str | None = None
-) -> bytes:
+def ply_bytes(real: Realization, options: MeshOptions) -> bytes:
     """Return the binary PLY of the strands (``tubes``: triangle faces, else polyline edges)."""
+    tubes, units = options.tubes, options.units
     cols = (colors(max(real.n_curves, 1)) * 255).round().astype(np.uint8)
     if tubes:
-        meshes = tube_meshes(real, radius, sides)
+        meshes = tube_meshes(real, options.tube_radius, options.sides)
         verts, elems, _ = merged(meshes)
         owner = np.repeat(np.arange(len(meshes)), [len(v) for v, _, _ in meshes])
     else:
@@ -72,18 +69,3 @@ def ply_bytes(
         "end_header",
     ]
     return ("\n".join(header) + "\n").encode() + vrec.tobytes() + erec.tobytes()
-
-
-def write(
-    real: Realization,
-    path: str | os.PathLike[str],
-    *,
-    tubes: bool = False,
-    radius: float | None = None,
-    sides: int = 12,
-    units: str | None = None,
-    **ignored: object,
-) -> None:
-    """Write binary PLY to ``path`` atomically: ``edge`` polylines or tube ``face`` triangles."""
-    with atomic_path(path) as tmp, open(tmp, "wb") as fh:
-        fh.write(ply_bytes(real, tubes, radius, sides, units))

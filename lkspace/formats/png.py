@@ -9,43 +9,33 @@ and backend are left alone.
 
 from __future__ import annotations
 
-import os
+import io
+from typing import Literal
 
 from ..geometry.realization import Realization
-from ..io.atomic import atomic_path
-from .render import Look, render
+from .options import PictureOptions
+from .render import render
 
 
-def write(
-    real: Realization,
-    path: str | os.PathLike[str],
-    *,
-    show_mesh: bool = True,
-    radius: float | None = None,
-    title: str | None = None,
-    look: Look | None = None,
-    diagram: bool = False,
-    size: int | None = None,
-    elev: float | None = None,
-    azim: float | None = None,
-    **ignored: object,
-) -> None:
-    """Draw the picture and save it atomically; the format follows the extension (``.png``, ``.svg``).
-
-    ``size`` (pixels, square), ``elev`` and ``azim`` are the older spelling of ``look``
-    and are still honoured when ``look`` is not given.
-    """
-    if look is None:
-        side = 900 if size is None else int(size)
-        look = Look(
-            azim=azim if azim is not None else (None if elev is None else -58.0), elev=elev, width=side, height=side
-        )
-    if diagram:
+def picture_bytes(real: Realization, options: PictureOptions, fmt: Literal["png", "svg"]) -> bytes:
+    """Draw the picture of ``options`` and return it encoded as ``fmt``."""
+    look = options.look
+    if options.diagram:
         from .diagram import draw_diagram
 
-        fig = draw_diagram(real, look, title=title)
+        fig = draw_diagram(real, look, title=options.title)
     else:
-        fig = render(real, look, show_mesh=show_mesh, radius=radius, title=title)
-    fmt = os.path.splitext(os.fspath(path))[1].lower().lstrip(".")
-    with atomic_path(path, suffix="." + fmt) as tmp:
-        fig.savefig(tmp, format=fmt, dpi=100, transparent=look.transparent)
+        fig = render(real, look, show_mesh=options.show_mesh, radius=options.tube_radius, title=options.title)
+    buffer = io.BytesIO()
+    fig.savefig(buffer, format=fmt, dpi=100, transparent=look.transparent)
+    return buffer.getvalue()
+
+
+def png_bytes(real: Realization, options: PictureOptions) -> bytes:
+    """Return the picture as PNG."""
+    return picture_bytes(real, options, "png")
+
+
+def svg_bytes(real: Realization, options: PictureOptions) -> bytes:
+    """Return the picture as SVG."""
+    return picture_bytes(real, options, "svg")

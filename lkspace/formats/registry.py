@@ -1,4 +1,4 @@
-"""Export: one writer per file type behind a registry, chosen by the output's extension.
+"""Export: one encoder per file type behind a registry, chosen by the output's extension.
 
 ========  =====================================================================
 ``.obj``  one object per strand: polylines (``l``) or, with ``tubes=True``, tube meshes
@@ -11,23 +11,24 @@
 ``.svg``  the same picture as vector graphics
 ========  =====================================================================
 
-Each format is a module of :mod:`lkspace.formats` with a ``write(real, path, **options)``
-function, imported only when used.  The output path is checked before any work
-(:func:`lkspace.io.paths.output_file`: an existing folder, not a device, an extension of
-:data:`FORMATS`); every file is written to a temporary name and renamed when complete,
-replacing the file a symlink points to.  Tubes are bounded by :data:`MAX_TUBE_VERTICES`.
-Printable formats (:data:`PRINTABLE`) get their pieces from
-:func:`lkspace.geometry.fabrication.printable`, which proves the clearance first.
+Each format is a function ``(Realization, options) -> bytes`` (:data:`ENCODERS`, the
+``exchange`` pattern of trimesh), imported only when used, with its own options record
+(:data:`OPTIONS`, :mod:`lkspace.formats.options`).  :func:`export` checks the output path
+before any work (:func:`lkspace.io.paths.output_file`: an existing folder, not a device, an
+extension of :data:`FORMATS`), bounds the tubes (:data:`MAX_TUBE_VERTICES`), proves the
+clearance, encodes, and writes the bytes once: to a temporary name, renamed when complete,
+replacing the file a symlink points to (:func:`lkspace.io.atomic.write_bytes`).  Printable
+formats (:data:`PRINTABLE`) get their pieces from :func:`lkspace.geometry.fabrication.printable`.
 """
 
 from __future__ import annotations
 
+import dataclasses
 import importlib
-import math
 import os
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from contextlib import contextmanager
-from typing import TYPE_CHECKING, Any, Literal, cast
+from typing import Literal, cast
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -36,34 +37,39 @@ from ..errors import ExportError, TooLargeError
 from ..geometry.limits import MAX_POINTS, MAX_RELATIVE
 from ..geometry.params import GeometryParams, RealizeOptions
 from ..geometry.realization import Realization, realize
+from ..io.atomic import write_bytes
 from ..io.paths import only_extension, output_file
 from ..model.scaffold import Scaffold
-from ..progress import task
+from ..progress import Step, task
+from .options import TUBE_SIDES, FormatOptions, GlbOptions, MeshOptions, PictureOptions, PrintOptions, TubeOptions
 
-if TYPE_CHECKING:
-    from ..geometry.fabrication import Printable
-    from .render import Look
-
-WRITERS = {
-    ".obj": "obj",
-    ".ply": "ply",
-    ".glb": "glb",
-    ".stl": "stl",
-    ".3mf": "threemf",
-    ".png": "png",
-    ".svg": "png",
+ENCODERS = {
+    ".obj": "obj:obj_bytes",
+    ".ply": "ply:ply_bytes",
+    ".glb": "glb:glb_bytes",
+    ".stl": "stl:stl_bytes",
+    ".3mf": "threemf:threemf_bytes",
+    ".png": "png:png_bytes",
+    ".svg": "png:svg_bytes",
 }
-"""Extension -> module of :mod:`lkspace.formats` whose ``write`` writes it."""
-FORMATS = tuple(WRITERS)
+"""Extension -> ``module:function`` of :mod:`lkspace.formats` encoding it: ``(Realization, options) -> bytes``."""
+OPTIONS: dict[str, type[FormatOptions]] = {
+    ".obj": MeshOptions,
+    ".ply": MeshOptions,
+    ".glb": GlbOptions,
+    ".stl": PrintOptions,
+    ".3mf": PrintOptions,
+    ".png": PictureOptions,
+    ".svg": PictureOptions,
+}
+"""Extension -> the options record its encoder takes (:mod:`lkspace.formats.options`)."""
+FORMATS = tuple(ENCODERS)
 Format = Literal["obj", "ply", "glb", "stl", "3mf", "png", "svg"]
-"""A format :func:`export` writes: an extension of :data:`WRITERS` without its dot."""
+"""A format :func:`export` writes: an extension of :data:`ENCODERS` without its dot."""
 PRINTABLE = (".stl", ".3mf")
 """Formats of solid, printable pieces."""
 PICTURES = (".png", ".svg")
 """Formats drawn with matplotlib."""
-
-TUBE_SIDES = 12
-"""Vertices around a tube's circle (the writers' default ``sides``)."""
 
 MAX_TUBE_VERTICES = 6_000_000
 """Most tube vertices an export writes (curve points times :data:`TUBE_SIDES`).
@@ -83,7 +89,7 @@ def output_target(path: str | os.PathLike[str], inputs: tuple[str | None, ...] =
     text = os.fspath(path)
     only_extension(text, FORMATS)
     ext = os.path.splitext(text)[1].lower()
-    if text.strip() and ext not in WRITERS:
+    if text.strip() and ext not in ENCODERS:
         raise ExportError(
             f"{text}: unknown output format {ext or '(no extension)'!r}; the extension picks one of {', '.join(FORMATS)}"
         )
@@ -135,6 +141,61 @@ def check_picture_rings(real: Realization, radius: float) -> None:
         )
 
 
+def options_for(ext: str, options: FormatOptions | None) -> FormatOptions:
+    """Return ``options``, or the default record of format ``ext``; refuse a record of another format."""
+    wanted = OPTIONS[ext]
+    if options is None:
+        return wanted()
+    if type(options) is not wanted:
+        takes = ", ".join(f.name for f in dataclasses.fields(wanted))
+        raise ExportError(
+            f"options: {ext} takes {wanted.__name__} ({takes}), not {type(options).__name__}", parameter="options"
+        )
+    return options
+
+
+def encoder(ext: str) -> Callable[[Realization, FormatOptions], bytes]:
+    """Return the encoder of format ``ext`` (its module imported now)."""
+    module, name = ENCODERS[ext].split(":")
+    return cast(
+        Callable[[Realization, FormatOptions], bytes], getattr(importlib.import_module(f"{__package__}.{module}"), name)
+    )
+
+
+def check_tubes(real: Realization, path: str | os.PathLike[str], options: FormatOptions) -> None:
+    """Refuse tubes that are too thick for the scaffold or have too many vertices to write."""
+    radius = options.tube_radius if isinstance(options, TubeOptions) else None
+    if isinstance(options, TubeOptions) and radius is not None and radius > MAX_RELATIVE * real.scale:
+        raise ExportError(
+            f"{options.given}: the tube radius {radius:g} exceeds {MAX_RELATIVE:g} x the shortest edge ({real.scale:.4g})",
+            parameter=options.given,
+        )
+    points = sum(len(c) for c in real.curves)
+    sides = options.sides if isinstance(options, (MeshOptions, GlbOptions)) else TUBE_SIDES  # pieces: as ever
+    if needs_tubes(path, isinstance(options, MeshOptions) and options.tubes) and points * sides > MAX_TUBE_VERTICES:
+        raise TooLargeError(
+            f"{path}: tubes of {points:,} curve points need {points * sides:,} vertices "
+            f"> {MAX_TUBE_VERTICES:,} (MAX_TUBE_VERTICES); write polylines (.obj or .ply without `tubes`)"
+        )
+    if isinstance(options, PictureOptions) and not options.diagram:
+        check_picture_rings(real, radius if radius is not None else real.tube_radius)
+
+
+def proved(real: Realization, options: FormatOptions, step: Step) -> FormatOptions:
+    """Prove the clearance of the tubes; return ``options`` (printable: holding their pieces)."""
+    from ..geometry.fabrication import printable
+
+    if isinstance(options, PrintOptions) and options.pieces is None:
+        step.note("checking clearance")
+        pieces = printable(real, options.thickness, options.clearance, options.units, options.scale)
+        return dataclasses.replace(options, pieces=pieces)
+    if isinstance(options, TubeOptions) and options.clearance is not None:
+        step.note("checking clearance")
+        radius = options.tube_radius if options.tube_radius is not None else real.tube_radius
+        printable(real, 2 * radius * options.scale, options.clearance, "mm", options.scale)
+    return options
+
+
 def export(
     design: Realization | Scaffold,
     path: str | os.PathLike[str],
@@ -142,17 +203,7 @@ def export(
     nulls: ArrayLike | None = None,
     *,
     params: GeometryParams | None = None,
-    tubes: bool = False,
-    radius: float | None = None,
-    show_mesh: bool = True,
-    title: str | None = None,
-    thickness: float | None = None,
-    clearance: float | None = None,
-    units: str | None = None,
-    scale: float = 1.0,
-    look: Look | None = None,
-    diagram: bool = False,
-    pieces: Printable | None = None,
+    options: FormatOptions | None = None,
 ) -> Format:
     """Write a design's strands to ``path``; the format follows the extension.
 
@@ -164,28 +215,9 @@ def export(
         a built-in name (:func:`lkspace.load`).
     path : str or os.PathLike
         ``.obj``, ``.ply``, ``.glb``, ``.stl``, ``.3mf``, ``.png`` or ``.svg``.
-    tubes : bool
-        Tube meshes instead of polylines (``.obj``, ``.ply``; the other formats are always tubes).
-    radius : float, optional
-        Tube radius in scaffold units (default: the realization's).
-    show_mesh, title
-        Pictures only: draw the scaffold faintly; a title.
-    thickness, clearance : float, optional
-        Tube diameter and the least surface gap between distinct pieces, in output
-        units (``.stl``, ``.3mf``; see :func:`lkspace.geometry.fabrication.printable`).
-        ``thickness`` also sets the tube of the other formats (``radius = thickness / 2 / scale``);
-        ``clearance`` given with a tube format is checked there too.
-    units : str, optional
-        What one output unit is (``mm``, ``cm``, ``m``, ``in``, ``ft``, ``um``): the 3MF
-        ``unit`` and the STL header (default ``mm``), a PLY/OBJ comment (none by default).
-    scale : float
-        Output units per scaffold unit (printable formats).
-    look : Look, optional
-        Pictures: view, size, background and colours (:func:`lkspace.formats.render.look_of`).
-    diagram : bool
-        Pictures: draw the 2D knot/link diagram instead of the 3D render.
-    pieces : Printable, optional
-        Printable formats: pieces already made by :func:`~lkspace.geometry.fabrication.printable`.
+    options : MeshOptions, GlbOptions, PrintOptions or PictureOptions, optional
+        The record of the format (:data:`OPTIONS`; default: its defaults); a record of
+        another format is refused (:mod:`lkspace.formats.options`).
 
     Returns
     -------
@@ -196,60 +228,23 @@ def export(
     --------
     >>> import tempfile, os
     >>> import lkspace
+    >>> from lkspace.formats.options import PrintOptions
     >>> export(lkspace.load("tetrahedron"), os.path.join(tempfile.mkdtemp(), "t.obj"), 1)
     'obj'
-    >>> lkspace.export("tetrahedron", os.path.join(tempfile.mkdtemp(), "t.stl"), 1, thickness=0.1, clearance=0.05)
+    >>> stl = os.path.join(tempfile.mkdtemp(), "t.stl")
+    >>> lkspace.export("tetrahedron", stl, 1, options=PrintOptions(thickness=0.1, clearance=0.05))
     'stl'
     """
-    if radius is not None and not (math.isfinite(radius) and radius > 0):
-        raise ExportError(f"radius: the tube radius must be a finite number > 0, got {radius}", parameter="radius")
-    from ..geometry.fabrication import check_options
-
-    check_options(thickness, clearance, units or "mm", scale)
     target = output_target(path)  # checked before any work: extension, folder, device, not the input
     ext = os.path.splitext(os.fspath(path))[1].lower()
-    if diagram and ext not in PICTURES:
-        raise ExportError(
-            f"diagram: a diagram is drawn as {' or '.join(PICTURES)}, not {ext} ({path})", parameter="diagram"
-        )
-    if ext in PICTURES:
-        from .render import check_title
-
-        check_title(title)
+    options = options_for(ext, options)
     with task(f"export {os.path.basename(os.fspath(path))}") as step:
         if not isinstance(design, Realization):
             step.note("realizing")
-            with point_budget(path, tubes) as max_points:
+            with point_budget(path, isinstance(options, MeshOptions) and options.tubes) as max_points:
                 design = realize(design, labels, nulls, params, options=RealizeOptions(max_points=max_points))
-        real = design
-        given = "radius" if radius is not None else "thickness"  # the parameter that sets the tube
-        if radius is None and thickness is not None and ext not in PRINTABLE:
-            radius = thickness / 2 / scale
-        if radius is not None and radius > MAX_RELATIVE * real.scale:
-            raise ExportError(
-                f"{given}: the tube radius {radius:g} exceeds {MAX_RELATIVE:g} x the shortest edge ({real.scale:.4g})",
-                parameter=given,
-            )
-        points = sum(len(c) for c in real.curves)
-        if needs_tubes(path, tubes) and points * TUBE_SIDES > MAX_TUBE_VERTICES:
-            raise TooLargeError(
-                f"{path}: tubes of {points:,} curve points need {points * TUBE_SIDES:,} vertices "
-                f"> {MAX_TUBE_VERTICES:,} (MAX_TUBE_VERTICES); write polylines (.obj or .ply without `tubes`)"
-            )
-        if ext in PICTURES and not diagram:
-            check_picture_rings(real, radius if radius is not None else real.tube_radius)
-        if (pieces is None and ext in PRINTABLE) or (clearance is not None and (tubes or ext == ".glb")):
-            from ..geometry.fabrication import printable
-
-            step.note("checking clearance")
-            if ext in PRINTABLE and pieces is None:
-                pieces = printable(real, thickness, clearance, units or "mm", scale)
-            elif ext not in PRINTABLE:
-                tube = 2 * (radius if radius is not None else real.tube_radius) * scale
-                printable(real, tube, clearance, units or "mm", scale)
-        step.note(f"writing {points:,} points")
-        writer = importlib.import_module(f"{__package__}.{WRITERS[ext]}")
-        options: dict[str, Any] = {"tubes": tubes, "radius": radius, "show_mesh": show_mesh, "title": title}
-        options.update(pieces=pieces, units=units, look=look, diagram=diagram)
-        writer.write(real, target, **options)
-    return cast(Format, ext[1:])  # an extension of WRITERS: output_target checked it
+        check_tubes(design, path, options)
+        options = proved(design, options, step)
+        step.note(f"writing {sum(len(c) for c in design.curves):,} points")
+        write_bytes(target, encoder(ext)(design, options))
+    return cast(Format, ext[1:])  # an extension of ENCODERS: output_target checked it

@@ -8,12 +8,11 @@ coordinates and their unit normals, all at once with a numpy structured array.
 
 from __future__ import annotations
 
-import os
-
 import numpy as np
 
-from ..geometry.fabrication import Printable
-from ..io.atomic import atomic_path
+from ..geometry.fabrication import Printable, printable
+from ..geometry.realization import Realization
+from .options import PrintOptions
 from .tubes import merged, tube
 
 STL_TRIANGLE = np.dtype([("normal", "<f4", 3), ("vertices", "<f4", (3, 3)), ("attribute", "<u2")])
@@ -25,8 +24,20 @@ def print_meshes(pieces: Printable, sides: int) -> list[tuple[np.ndarray, np.nda
     return [tube(c, bool(cl), pieces.radius, sides) for c, cl in zip(pieces.curves, pieces.closed, strict=True)]
 
 
-def stl_bytes(pieces: Printable, sides: int = 16, name: str = "lkspace") -> bytes:
-    """Return the binary STL of the pieces' tubes."""
+def pieces_of(real: Realization, options: PrintOptions) -> Printable:
+    """Return the pieces of ``options`` (``pieces``), else made from ``real`` and checked now."""
+    if options.pieces is not None:
+        return options.pieces
+    return printable(real, options.thickness, options.clearance, options.units, options.scale)
+
+
+def stl_bytes(real: Realization, options: PrintOptions) -> bytes:
+    """Return the binary STL of the printable pieces' tubes (header: the scaffold, units, pieces)."""
+    return pieces_stl(pieces_of(real, options), options.sides, real.scaffold.name)
+
+
+def pieces_stl(pieces: Printable, sides: int, name: str) -> bytes:
+    """Return the binary STL of the tubes of ``pieces``, ``name`` in its header."""
     verts, faces, _ = merged(print_meshes(pieces, sides))
     tri = verts[faces]
     normal = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
@@ -36,18 +47,3 @@ def stl_bytes(pieces: Printable, sides: int = 16, name: str = "lkspace") -> byte
     records["vertices"] = tri
     header = f"lkspace {name} units={pieces.units} pieces={len(pieces.curves)}".encode()[:80].ljust(80, b" ")
     return header + np.uint32(len(faces)).tobytes() + records.tobytes()
-
-
-def write(
-    real: object,
-    path: str | os.PathLike[str],
-    *,
-    pieces: Printable | None = None,
-    sides: int = 16,
-    **ignored: object,
-) -> None:
-    """Write the printable ``pieces`` (made by the registry) to ``path`` atomically."""
-    assert pieces is not None, "the registry passes the printable pieces"
-    name = getattr(getattr(real, "scaffold", None), "name", "lkspace")
-    with atomic_path(path) as tmp, open(tmp, "wb") as fh:
-        fh.write(stl_bytes(pieces, sides, name))

@@ -9,16 +9,16 @@ each.  Coordinates are written with 7 significant digits.
 from __future__ import annotations
 
 import io
-import os
 import zipfile
 from xml.sax.saxutils import escape
 
 import numpy as np
 
 from ..geometry.fabrication import UNITS, Printable
-from ..io.atomic import atomic_path
+from ..geometry.realization import Realization
 from .colors import colors
-from .stl import print_meshes
+from .options import PrintOptions
+from .stl import pieces_of, print_meshes
 
 CONTENT_TYPES = (
     '<?xml version="1.0" encoding="UTF-8"?>\n'
@@ -36,7 +36,7 @@ RELS = (
 )
 
 
-def model_xml(pieces: Printable, name: str, sides: int = 16) -> str:
+def model_xml(pieces: Printable, name: str, sides: int) -> str:
     """Return the ``3D/3dmodel.model`` document."""
     n_strands = int(pieces.strand_of.max()) + 1 if len(pieces.strand_of) else 1
     rgb = (colors(n_strands) * 255).round().astype(int)
@@ -74,26 +74,16 @@ def triangle_text(f: np.ndarray) -> str:
     return "".join(['<triangle v1="{}" v2="{}" v3="{}"/>'.format(*r) for r in f.tolist()])
 
 
-def threemf_bytes(pieces: Printable, name: str = "lkspace", sides: int = 16) -> bytes:
-    """Return the 3MF package (zip) of the pieces."""
+def threemf_bytes(real: Realization, options: PrintOptions) -> bytes:
+    """Return the 3MF package (zip) of the printable pieces, titled with the scaffold's name."""
+    return pieces_3mf(pieces_of(real, options), real.scaffold.name, options.sides)
+
+
+def pieces_3mf(pieces: Printable, name: str, sides: int) -> bytes:
+    """Return the 3MF package (zip) of ``pieces``."""
     buf = io.BytesIO()
     with zipfile.ZipFile(buf, "w", zipfile.ZIP_DEFLATED, compresslevel=1) as zf:
         zf.writestr("[Content_Types].xml", CONTENT_TYPES)
         zf.writestr("_rels/.rels", RELS)
         zf.writestr("3D/3dmodel.model", model_xml(pieces, name, sides))
     return buf.getvalue()
-
-
-def write(
-    real: object,
-    path: str | os.PathLike[str],
-    *,
-    pieces: Printable | None = None,
-    sides: int = 16,
-    **ignored: object,
-) -> None:
-    """Write the printable ``pieces`` (made by the registry) to ``path`` atomically."""
-    assert pieces is not None, "the registry passes the printable pieces"
-    name = getattr(getattr(real, "scaffold", None), "name", "lkspace")
-    with atomic_path(path) as tmp, open(tmp, "wb") as fh:
-        fh.write(threemf_bytes(pieces, name, sides))

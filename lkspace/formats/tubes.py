@@ -122,7 +122,7 @@ def tube_meshes(real: Realization, radius: float | None, sides: int, spacing: fl
     radius = real.tube_radius if radius is None else radius
     out = []
     for curve, closed in zip(real.curves, real.closed, strict=False):
-        pts = curve if spacing is None else resample(curve, bool(closed), spacing)[0]
+        pts = curve if spacing is None else resample(curve, bool(closed), spacing).points
         out.append(tube(pts, bool(closed), radius, sides))
     return out
 

@@ -8,15 +8,65 @@ farther apart along it than an exclusion length; open curves that continue one a
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, replace
 from functools import partial
-from typing import Any
+from typing import NamedTuple, cast
 
 import numpy as np
 from numpy.typing import ArrayLike
 from scipy.spatial import cKDTree
 
 from ..workers import interruptible
+
+
+@dataclass(frozen=True)
+class Closest:
+    """Where distinct pieces of the curves come closest (:func:`check_embedding`).
+
+    Attributes
+    ----------
+    curves : (int, int)
+        The two curves, smaller first (one curve twice for two stretches of it).
+    point : (float, float, float)
+        The midpoint of the two closest samples.
+    place : str, optional
+        The scaffold vertex or edge nearest to it, when named (:func:`lkspace.geometry.tracks.place_name`).
+    """
+
+    curves: tuple[int, int]
+    point: tuple[float, float, float]
+    place: str | None = None
+
+    def named(self, place: str) -> Closest:
+        """Return this point named ``place``."""
+        return replace(self, place=place)
+
+    def to_json(self) -> dict[str, object]:
+        """Return ``{"curves": [i, j], "point": [x, y, z]}`` and ``"place"`` when named."""
+        out: dict[str, object] = {"curves": list(self.curves), "point": list(self.point)}
+        if self.place is not None:
+            out["place"] = self.place
+        return out
+
+    @classmethod
+    def from_json(cls, data: Mapping[str, object] | None) -> Closest | None:
+        """Read :meth:`to_json`; ``None`` for an empty object (nothing measured)."""
+        if not data:
+            return None
+        curves, point = cast(Sequence[int], data["curves"]), cast(Sequence[float], data["point"])
+        place = data.get("place")
+        return cls(
+            (int(curves[0]), int(curves[1])),
+            (float(point[0]), float(point[1]), float(point[2])),
+            None if place is None else str(place),
+        )
+
+
+def closest_json(closest: Closest | None) -> dict[str, object]:
+    """Return ``closest`` as JSON: ``{}`` when nothing was measured."""
+    return {} if closest is None else closest.to_json()
+
 
 CHUNK = 20_000
 """Samples whose neighbours the coarse pass of :func:`check_embedding` examines at once (bounds its memory)."""
@@ -32,8 +82,19 @@ def sample_tree(points: np.ndarray) -> cKDTree:
     return interruptible(lambda: cKDTree(points, compact_nodes=False))
 
 
-def resample(curve: np.ndarray, closed: bool, spacing: float) -> tuple[np.ndarray, np.ndarray, float]:
-    """Points every ``spacing`` along a polyline: ``(points (m, 3), arclength (m,), length)``."""
+class Resampled(NamedTuple):
+    """A polyline resampled at a fixed spacing (:func:`resample`)."""
+
+    points: np.ndarray
+    """(m, 3) float64"""
+    arclength: np.ndarray
+    """(m,) float64: the arclength of each point from the start"""
+    length: float
+    """The whole length (a closed polyline's includes its closing segment)."""
+
+
+def resample(curve: np.ndarray, closed: bool, spacing: float) -> Resampled:
+    """Return the points every ``spacing`` along a polyline (:class:`Resampled`)."""
     pts = np.vstack([curve, curve[:1]]) if closed else curve
     seg = np.linalg.norm(np.diff(pts, axis=0), axis=1)
     cum = np.concatenate([[0.0], np.cumsum(seg)])
@@ -41,7 +102,7 @@ def resample(curve: np.ndarray, closed: bool, spacing: float) -> tuple[np.ndarra
     m = max(2, int(np.ceil(length / spacing)) + (0 if closed else 1))
     s = np.linspace(0.0, length, m, endpoint=not closed)
     out = np.column_stack([np.interp(s, cum, pts[:, i]) for i in range(3)])
-    return out, s, length
+    return Resampled(out, s, length)
 
 
 def pieces_apart(
@@ -94,16 +155,16 @@ def samples(
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Resample every curve at ``spacing``: ``(points, arclength, owner curve, curve lengths)``."""
     chunks = [resample(c, bool(cl), spacing) for c, cl in zip(curves, closed, strict=False)]
-    pts = np.vstack([c[0] for c in chunks])
-    arc = np.concatenate([c[1] for c in chunks])
-    owner = np.repeat(np.arange(len(chunks)), [len(c[0]) for c in chunks])
-    lengths = np.array([c[2] for c in chunks])
+    pts = np.vstack([c.points for c in chunks])
+    arc = np.concatenate([c.arclength for c in chunks])
+    owner = np.repeat(np.arange(len(chunks)), [len(c.points) for c in chunks])
+    lengths = np.array([c.length for c in chunks])
     return pts, arc, owner, lengths
 
 
 def check_embedding(
     curves: Sequence[np.ndarray], closed: ArrayLike, min_separation: float, scale: float
-) -> tuple[float, dict[str, Any]]:
+) -> tuple[float, Closest | None]:
     """Smallest distance between distinct pieces of the polylines (sampled).
 
     Two sample points are on distinct pieces when they lie on different curves, or on one
@@ -117,13 +178,13 @@ def check_embedding(
     -------
     min_distance : float
         ``inf`` when no two distinct pieces come within ``0.3 * scale``.
-    closest : dict
-        ``{"curves": [i, j], "point": [x, y, z]}`` of the closest pair (empty if none).
+    closest : Closest or None
+        The two curves and the midpoint of the closest pair (``None`` if none).
     """
     closed = np.asarray(closed, bool)
     joins = _joins(curves, closed, 1e-9 * max(1.0, scale))
     best = float("inf")
-    where: dict[str, Any] = {}
+    where: Closest | None = None
 
     def consider(pts: np.ndarray, owner: np.ndarray, i: np.ndarray, j: np.ndarray) -> None:
         nonlocal best, where
@@ -133,10 +194,9 @@ def check_embedding(
         b = int(np.argmin(d))
         if d[b] < best:
             best = float(d[b])
-            where = {
-                "curves": sorted([int(owner[i[b]]), int(owner[j[b]])]),
-                "point": (0.5 * (pts[i[b]] + pts[j[b]])).tolist(),
-            }
+            c0, c1 = sorted([int(owner[i[b]]), int(owner[j[b]])])
+            x, y, z = (0.5 * (pts[i[b]] + pts[j[b]])).tolist()
+            where = Closest((c0, c1), (x, y, z))
 
     pts, arc, owner, lengths = samples(curves, closed, min_separation / 2.0)
     fine = sample_tree(pts)
@@ -160,8 +220,19 @@ def check_embedding(
     return best, where
 
 
-def tightest_bend(curves: list[np.ndarray], closed: np.ndarray) -> tuple[float, int, np.ndarray]:
-    """Return the smallest bend radius of the centrelines, its piece and point.
+class Bend(NamedTuple):
+    """The tightest bend of some polylines (:func:`tightest_bend`)."""
+
+    radius: float
+    """The smallest bend radius (``inf`` for straight polylines)."""
+    piece: int
+    """The polyline it is on (-1 if none bends)."""
+    point: np.ndarray
+    """(3,) float64: the point where it bends."""
+
+
+def tightest_bend(curves: list[np.ndarray], closed: np.ndarray) -> Bend:
+    """Return the smallest bend radius of the centrelines, its piece and point (:class:`Bend`).
 
     At a polyline point where the direction turns by ``theta`` between segments of
     lengths ``a`` and ``b``, the bend radius is ``min(a, b) / 2 / tan(theta / 2)`` (the
@@ -180,4 +251,4 @@ def tightest_bend(curves: list[np.ndarray], closed: np.ndarray) -> tuple[float, 
         if len(bend) and bend.min() < best:
             i = int(np.argmin(bend))
             best, piece, where = float(bend[i]), k, pts[i + 1]
-    return best, piece, where
+    return Bend(float(best), piece, where)

@@ -23,7 +23,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Literal, TypeGuard, cast, get_args
+from typing import Literal, TypeGuard, get_args
 
 import numpy as np
 
@@ -133,7 +133,7 @@ def printable(
     real: Realization,
     thickness: float | None = None,
     clearance: float | None = None,
-    units: str = "mm",
+    units: Units = "mm",
     scale: float = 1.0,
 ) -> Printable:
     """Return the :class:`Printable` pieces of ``real`` (``thickness``, ``clearance`` in output units).
@@ -167,8 +167,7 @@ def printable(
             parameter="thickness",
         )
     min_gap = check_gaps(real, scaled, closed, radius, clearance, scale)
-    unit = cast(Units, units)  # checked by check_options
-    return Printable(scaled, closed, np.asarray(strand_of, np.int64), radius, clearance, min_gap, unit, scale)
+    return Printable(scaled, closed, np.asarray(strand_of, np.int64), radius, clearance, min_gap, units, scale)
 
 
 def check_gaps(

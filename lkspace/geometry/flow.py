@@ -26,7 +26,7 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass
-from typing import Literal
+from typing import Literal, NamedTuple
 
 import numpy as np
 from scipy.spatial import cKDTree
@@ -139,13 +139,22 @@ def circumradii(points: np.ndarray, ring: _Ring) -> np.ndarray:
         return np.where(area2 > 1e-14 * ab * bc, ab * bc * ca / (2.0 * area2), np.inf)
 
 
-def distinct_pairs(
-    points: np.ndarray, ring: _Ring, lengths: np.ndarray, radius: float
-) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Pairs of points on distinct pieces within ``radius``: ``(i, j, distance)``."""
+class Pairs(NamedTuple):
+    """Pairs of flow points on distinct pieces (:func:`distinct_pairs`)."""
+
+    i: np.ndarray
+    """(n_pairs,) int64: the first point of each pair"""
+    j: np.ndarray
+    """(n_pairs,) int64: the second point"""
+    d: np.ndarray
+    """(n_pairs,) float64: their distance"""
+
+
+def distinct_pairs(points: np.ndarray, ring: _Ring, lengths: np.ndarray, radius: float) -> Pairs:
+    """Return the pairs of points on distinct pieces within ``radius`` (:class:`Pairs`)."""
     pairs = cKDTree(points).query_pairs(radius, output_type="ndarray")
     if not len(pairs):
-        return np.zeros(0, np.int64), np.zeros(0, np.int64), np.zeros(0)
+        return Pairs(np.zeros(0, np.int64), np.zeros(0, np.int64), np.zeros(0))
     i, j = pairs[:, 0], pairs[:, 1]
     d = np.linalg.norm(points[i] - points[j], axis=1)
     oi = ring.owner[i]
@@ -153,7 +162,7 @@ def distinct_pairs(
     steps = np.minimum(steps, ring.sizes[oi] - steps)
     along = steps * lengths[oi] / ring.sizes[oi]
     keep = (oi != ring.owner[j]) | (along > FOLD * d)
-    return i[keep], j[keep], d[keep]
+    return Pairs(i[keep], j[keep], d[keep])
 
 
 def _lengths(curves: list[np.ndarray]) -> np.ndarray:
@@ -188,8 +197,8 @@ def rope_flow(
                 points = np.vstack(pts_list)
                 lengths = _lengths(pts_list)
             radius = circumradii(points, ring)
-            i, j, d = distinct_pairs(points, ring, lengths, max(diameter, 4 * h))
-            gap = float(d.min()) if len(d) else max(diameter, 4 * h)
+            near = distinct_pairs(points, ring, lengths, max(diameter, 4 * h))
+            gap = float(near.d.min()) if len(near.d) else max(diameter, 4 * h)
             thick = min(0.5 * gap, float(radius.min()))
             if options.grow > 0:
                 rope = float(lengths.sum()) / thick
@@ -201,7 +210,7 @@ def rope_flow(
                     break
                 if gap >= 0.98 * diameter and thick >= 0.49 * diameter:
                     diameter *= 1 + options.grow
-            move = _step(points, ring, radius, i, j, d, diameter, h, options.pull)
+            move = _step(points, ring, radius, near, diameter, h, options.pull)
             points = points + move
             pts_list = np.split(points, ring.starts[1:])
             lengths = _lengths(pts_list)
@@ -218,14 +227,13 @@ def _step(
     points: np.ndarray,
     ring: _Ring,
     radius: np.ndarray,
-    i: np.ndarray,
-    j: np.ndarray,
-    d: np.ndarray,
+    pairs: Pairs,
     diameter: float,
     h: float,
     pull: float,
 ) -> np.ndarray:
-    """One capped step ``(n, 3)``: curve shortening, curvature relief and overlap pushes."""
+    """One capped step ``(n, 3)``: curve shortening, curvature relief and overlap pushes (``pairs``: the close ones)."""
+    i, j, d = pairs
     mid = 0.5 * (points[ring.prev] + points[ring.next]) - points
     weight = np.where(radius < 0.5 * diameter, 0.5, pull)
     move = weight[:, None] * mid
@@ -284,5 +292,5 @@ def rope_thickness(curves: list[np.ndarray], points: int = 100) -> float:
     ring = _Ring.of(pts_list)
     points_all = np.vstack(pts_list)
     radius = float(circumradii(points_all, ring).min())
-    _, _, d = distinct_pairs(points_all, ring, _lengths(pts_list), 2 * radius)
+    d = distinct_pairs(points_all, ring, _lengths(pts_list), 2 * radius).d
     return min(radius, 0.5 * float(d.min())) if len(d) else radius

@@ -48,8 +48,8 @@ The construction itself (corner turns and edge helices) is in
 from __future__ import annotations
 
 from collections.abc import Mapping
-from dataclasses import dataclass, field, replace
-from typing import TYPE_CHECKING, Any
+from dataclasses import dataclass, replace
+from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -57,7 +57,7 @@ from numpy.typing import ArrayLike
 from ..errors import GeometryError
 from ..model.scaffold import Scaffold
 from ..strands.tracing import Trace, trace
-from .clearance import check_embedding, tightest_bend
+from .clearance import Closest, check_embedding, closest_json, tightest_bend
 from .construction import Curves, Ports, build_curves, edge_counts
 from .flow import smooth_curves
 from .limits import check_points, check_samples, check_winding
@@ -95,8 +95,8 @@ class Realization:
         The parameters used.
     min_distance : float
         Smallest sampled distance between distinct pieces (non-adjacent stretches).
-    closest : dict
-        Where it occurs: the two curves and the nearest scaffold element.
+    closest : Closest or None
+        Where it occurs: the two curves and the nearest scaffold element (``None`` when not measured).
     translations : (n_copies, dim) int64
         Lattice translations of the copies (one zero row for a single copy).
     block : CellBlock or None
@@ -117,7 +117,7 @@ class Realization:
     tube_radius: float
     min_separation: float
     min_distance: float
-    closest: dict[str, Any] = field(default_factory=dict)
+    closest: Closest | None = None
     translations: np.ndarray | None = None
     block: CellBlock | None = None
 
@@ -133,7 +133,7 @@ class Realization:
         """Number of polylines (strands times copies)."""
         return len(self.curves)
 
-    def summary(self) -> dict[str, Any]:
+    def summary(self) -> dict[str, object]:
         """Return a JSON-ready description of the realization."""
         return {
             "curves": self.n_curves,
@@ -145,7 +145,7 @@ class Realization:
             "tube_radius": self.tube_radius,
             "min_distance": self.min_distance,
             "min_separation": self.min_separation,
-            "closest": self.closest,
+            "closest": closest_json(self.closest),
         }
 
 
@@ -247,7 +247,9 @@ def realize_reusing(
         for curve, cl, s in zip(base.curves, base.closed, missing, strict=True):
             for c, t in enumerate(translations):
                 moved = curve + shifts[c]  # as realize moves its copies
-                made[keys[s] + t.tobytes()] = StrandCurve(moved, bool(cl), tightest_bend([moved], np.array([cl]))[0])
+                made[keys[s] + t.tobytes()] = StrandCurve(
+                    moved, bool(cl), tightest_bend([moved], np.array([cl])).radius
+                )
     entries = {key: made[key] if key in made else known[key] for key, _, _ in wanted}
     chosen = [entries[key] for key, _, _ in wanted]
     built = Curves(
@@ -336,7 +338,7 @@ def _measured(
     """
     curves, closed = built.curves, built.closed
     min_dist, closest = (
-        (float("inf"), {}) if how.embedding == "later" else _clearance(scaffold, curves, closed, shape, how.embedding)
+        (float("inf"), None) if how.embedding == "later" else _clearance(scaffold, curves, closed, shape, how.embedding)
     )
     return Realization(
         scaffold,
@@ -349,7 +351,7 @@ def _measured(
         shape.radius,
         shape.normal_offset,
         shape.margin,
-        _tube_radius(shape, min_dist, tightest_bend(curves, closed)[0] if bend is None else bend),
+        _tube_radius(shape, min_dist, tightest_bend(curves, closed).radius if bend is None else bend),
         shape.min_separation,
         float(min_dist),
         closest,
@@ -366,16 +368,17 @@ def _tube_radius(shape: Resolved, min_dist: float, bend: float) -> float:
 
 def _clearance(
     scaffold: Scaffold, curves: list[np.ndarray], closed: np.ndarray, shape: Resolved, embedding: EmbeddingCheck
-) -> tuple[float, dict[str, Any]]:
+) -> tuple[float, Closest | None]:
     """Smallest distance between distinct pieces and where; refuse a self-intersection when ``embedding == "refuse"``."""
     min_sep = shape.min_separation
     min_dist, closest = check_embedding(curves, closed, min_sep, shape.scale)
-    if closest:
-        closest["place"] = place_name(scaffold, closest["point"])
+    if closest is not None:
+        closest = closest.named(place_name(scaffold, closest.point))
     if embedding == "refuse" and min_dist < min_sep:
+        assert closest is not None  # a distance below min_separation was measured somewhere
         raise GeometryError(
-            f"{scaffold.name}: strands {closest['curves'][0]} and {closest['curves'][1]} come within "
-            f"{min_dist:.3g} (< min_separation {min_sep:.3g}) near {closest['place']}; the geometry would "
+            f"{scaffold.name}: strands {closest.curves[0]} and {closest.curves[1]} come within "
+            f"{min_dist:.3g} (< min_separation {min_sep:.3g}) near {closest.place}; the geometry would "
             "self-intersect (try a smaller `radius` or `normal_offset`)"
         )
     return min_dist, closest

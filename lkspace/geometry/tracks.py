@@ -70,7 +70,6 @@ def side_tracks(scaffold: Scaffold, rho: float, h: float, margin: float, near_an
     Raises :class:`~lkspace.errors.GeometryError` when a face's centroid lies on an edge's
     line or the normal offset reorders the strands around an edge.
     """
-    radial = scaffold.radial
     pa, pb = scaffold.edge_points[:, 0], scaffold.edge_points[:, 1]
     vec = pb - pa
     length = np.linalg.norm(vec, axis=1)
@@ -100,6 +99,32 @@ def side_tracks(scaffold: Scaffold, rho: float, h: float, margin: float, near_an
     if near_angle is not None:
         h_side *= min_face_angle(scaffold, r, u1, u2)[e] < near_angle
     w = rho * r + h_side[:, None] * n  # (n_corners, 3) track offsets
+    slot_angle, gap, slot_radius = slot_angles(scaffold, w, u1, u2, h)
+    frac = end_margins(scaffold, length, rho, h, margin)
+    # straight track ends: each port's point and the direction toward its corner
+    n_ports = 2 * scaffold.n_corners
+    ports = np.arange(n_ports)
+    ps = ports // 2
+    at_a = (ports % 2 == 0) == scaffold.side_forward[ps]
+    pe = e[ps]
+    par = np.where(at_a, frac[pe, 0], 1.0 - frac[pe, 1])
+    port_point = pa[pe] + par[:, None] * vec[pe] + shift[ps] + w[ps]
+    port_dir = np.where(at_a[:, None], -axis[pe], axis[pe])
+    return Tracks(pa, pb, axis, length, u1, u2, frac, shift, slot_angle, gap, slot_radius, port_point, port_dir)
+
+
+def slot_angles(
+    scaffold: Scaffold, w: np.ndarray, u1: np.ndarray, u2: np.ndarray, h: float
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Return the tracks' slots around their edges, in slot order: ``(angle, gap, radius)``, each ``(n_corners,)``.
+
+    ``w`` (n_corners, 3) are the track offsets from the edges; the angles about each edge
+    (frame ``u1``, ``u2``) are unwrapped to increase strictly within one turn, ``gap`` is
+    the angle to the next slot.  Raises :class:`~lkspace.errors.GeometryError` when the
+    normal offset ``h`` reorders the strands around an edge.
+    """
+    e = scaffold.side_edge
+    radial = scaffold.radial
     ang = np.arctan2(np.sum(w * u2[e], axis=1), np.sum(w * u1[e], axis=1))
     rad = np.linalg.norm(w, axis=1)
     # unwrap the angles of each edge in slot order: strictly increasing within one turn
@@ -122,8 +147,17 @@ def side_tracks(scaffold: Scaffold, rho: float, h: float, margin: float, near_an
             "around the edge; use a smaller `normal_offset`",
             parameter="normal_offset",
         )
-    # margins: at least ``margin``, longer at acute corners so that the corner turn ends
-    # before the helix starts (the inset corner lies rho * cot(alpha / 2) from the vertex)
+    return slot_angle, gap, rad[sides]
+
+
+def end_margins(scaffold: Scaffold, length: np.ndarray, rho: float, h: float, margin: float) -> np.ndarray:
+    """Return the fraction ``(n_edges, 2)`` of each edge kept straight at its ends a and b.
+
+    At least ``margin``, longer at acute corners so that the corner turn ends before the
+    helix starts (the inset corner lies ``rho * cot(alpha / 2)`` from the vertex); at most
+    0.42 of the edge.
+    """
+    e = scaffold.side_edge
     pos = scaffold.corner_positions
     to_prev = pos[scaffold.corner_prev] - pos
     to_next = pos[scaffold.corner_next] - pos
@@ -137,18 +171,7 @@ def side_tracks(scaffold: Scaffold, rho: float, h: float, margin: float, near_an
     ends_need = np.zeros((len(length), 2))
     np.maximum.at(ends_need[:, 0], e, need_a)
     np.maximum.at(ends_need[:, 1], e, need_b)
-    frac = np.minimum(ends_need / length[:, None], 0.42)
-    # straight track ends: each port's point and the direction toward its corner
-    n_ports = 2 * scaffold.n_corners
-    ports = np.arange(n_ports)
-    ps = ports // 2
-    at_a = (ports % 2 == 0) == scaffold.side_forward[ps]
-    pe = e[ps]
-    par = np.where(at_a, frac[pe, 0], 1.0 - frac[pe, 1])
-    port_point = pa[pe] + par[:, None] * vec[pe] + shift[ps] + w[ps]
-    port_dir = np.where(at_a[:, None], -axis[pe], axis[pe])
-    out = Tracks(pa, pb, axis, length, u1, u2, frac, shift, slot_angle, gap, rad[sides], port_point, port_dir)
-    return out
+    return np.minimum(ends_need / length[:, None], 0.42)
 
 
 def min_face_angle(scaffold: Scaffold, r: np.ndarray, u1: np.ndarray, u2: np.ndarray) -> np.ndarray:

@@ -7,6 +7,7 @@ simplest design of the first ``pictures`` named types, in the table's order.
 
 from __future__ import annotations
 
+import io
 import json
 import os
 import re
@@ -77,13 +78,16 @@ def picture(scaffold: Scaffold, labels: list[int], path: str, title: str) -> Non
     """Draw one design as a small PNG (480 x 480, a 64-colour palette: tens of KB)."""
     from PIL import Image
 
-    from ..formats.png import write
+    from ..formats.options import PictureOptions
+    from ..formats.png import png_bytes
+    from ..formats.render import Look
     from ..geometry.realization import realize
 
+    look = Look(width=PICTURE_SIZE, height=PICTURE_SIZE)
+    data = png_bytes(realize(scaffold, labels), PictureOptions(look=look, title=title))
+    with Image.open(io.BytesIO(data)) as img:
+        small = img.convert("RGB").quantize(colors=64)
     with atomic_path(path, suffix=".png") as tmp:
-        write(realize(scaffold, labels), tmp, size=PICTURE_SIZE, title=title)
-        with Image.open(tmp) as img:
-            small = img.convert("RGB").quantize(colors=64)
         small.save(tmp, format="PNG", optimize=True)
 
 

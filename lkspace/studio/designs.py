@@ -24,7 +24,7 @@ from typing import Any
 
 import numpy as np
 
-from .. import Realization, RealizeOptions, Scaffold, Trace, export, realize, trace
+from .. import PictureOptions, Realization, RealizeOptions, Scaffold, Trace, export, realize, trace
 from ..errors import GeometryError, LabelError, TooLargeError, UsageError
 from ..formats.registry import FORMATS
 from ..geometry.clearance import check_embedding
@@ -287,16 +287,16 @@ def clearance(real: Realization) -> dict[str, Any]:
         "min_separation": real.min_separation,
         "ok": best >= real.min_separation,
     }
-    if where:
-        point = np.asarray(where["point"])
+    if where is not None:
+        point = np.asarray(where.point)
         if real.scaffold.lattice is not None and real.translations is not None:
-            shift = real.scaffold.lattice.translate(real.translations[real.copy_of[where["curves"][0]]][None])[0]
+            shift = real.scaffold.lattice.translate(real.translations[real.copy_of[where.curves[0]]][None])[0]
             point = point - shift
         out["edge"] = nearest_edge(real.scaffold, point)
-        out["curves"] = where["curves"]
+        out["curves"] = list(where.curves)
     if not out["ok"]:
         out["message"] = (
-            f"strands {where['curves'][0]} and {where['curves'][1]} come within {best:.3g} "
+            f"strands {out['curves'][0]} and {out['curves'][1]} come within {best:.3g} "
             f"(< min_separation {real.min_separation:.3g}) near edge {real.scaffold.edge_name(out['edge'])}: "
             "the geometry would self-intersect"
         )
@@ -313,6 +313,6 @@ def export_bytes(scaffold: Scaffold, labels: np.ndarray, nulls: np.ndarray | Non
     with tempfile.TemporaryDirectory(prefix="lkspace-studio-") as folder:
         path = os.path.join(folder, name)
         real = realize(scaffold, labels, nulls, options=RealizeOptions(max_points=MAX_EXPORT_POINTS))
-        export(real, path, title=scaffold.name if fmt == "png" else None)
+        export(real, path, options=PictureOptions(title=scaffold.name) if fmt == "png" else None)
         with open(path, "rb") as handle:
             return handle.read(), name

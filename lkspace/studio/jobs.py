@@ -112,6 +112,7 @@ def solve_payload(scaffold: Scaffold, options: dict[str, Any]) -> dict[str, Any]
 def relax_payload(real: Realization) -> dict[str, Any]:
     """Return the curves of ``real`` relaxed (:func:`lkspace.relax`): ``points`` (base64 ``float64``), ``counts``, tube, clearance."""
     from .. import relax
+    from ..geometry.clearance import closest_json
 
     out = relax(real)
     return {
@@ -119,7 +120,7 @@ def relax_payload(real: Realization) -> dict[str, Any]:
         "counts": [len(c) for c in out.curves],
         "tube_radius": out.tube_radius,
         "min_distance": out.min_distance,
-        "closest": out.closest,
+        "closest": closest_json(out.closest),
     }
 
 
@@ -127,8 +128,11 @@ def relaxed(real: Realization, payload: dict[str, Any]) -> Realization:
     """Return ``real`` with the curves of a :func:`relax_payload`."""
     points = np.frombuffer(base64.b64decode(payload["points"]), "<f8").reshape(-1, 3)
     curves = np.split(points, np.cumsum(payload["counts"])[:-1])
-    fields = {k: payload[k] for k in ("tube_radius", "min_distance", "closest")}
-    return replace(real, curves=[c.copy() for c in curves], **fields)
+    from ..geometry.clearance import Closest
+
+    closest = Closest.from_json(payload["closest"])
+    fields = {k: payload[k] for k in ("tube_radius", "min_distance")}
+    return replace(real, curves=[c.copy() for c in curves], closest=closest, **fields)
 
 
 def export_payload(scaffold: Scaffold, labels: np.ndarray, nulls: np.ndarray | None, fmt: str) -> dict[str, Any]:

@@ -85,6 +85,7 @@ class LKSPACE_OT_export(DesignOperator):  # noqa: N801
 
     def execute(self, context: Any) -> set[str]:
         """Export with ``lkspace.export`` (the path of ``lkspace export -o X --thickness --clearance``)."""
+        from lkspace.formats.options import PrintOptions
         from lkspace.formats.registry import export
 
         obj = context.active_object
@@ -95,9 +96,7 @@ class LKSPACE_OT_export(DesignOperator):  # noqa: N801
                 bpy.path.abspath(self.filepath),
                 labels,
                 nulls,
-                thickness=self.thickness,
-                clearance=self.clearance,
-                scale=self.scale,
+                options=PrintOptions(thickness=self.thickness, clearance=self.clearance, scale=self.scale),
             )
         except LkspaceError as exc:
             self.report({"ERROR"}, str(exc))
