@@ -7,6 +7,7 @@ from typing import Any
 
 import click
 
+from ..catalog.options import Selection
 from ..catalog.plan import MAX_JOBS, MAX_SHARDS
 from ..design.space import WALK_MODES, DesignSpace, WalkMode, make_space
 from ..errors import CatalogError, TooLargeError, UsageError
@@ -26,41 +27,22 @@ from .common import (
 from .flags import flags_in
 
 
-def _count_payload(
-    space: DesignSpace,
-    mode: str,
-    components: int | None,
-    max_designs: int | None,
-    sample: int | None,
-    seed: int,
-    scheduler: str = "local",
-    jobs: int = 1,
-) -> dict[str, Any]:
+def _count_payload(space: DesignSpace, selection: Selection, scheduler: str = "local", jobs: int = 1) -> dict[str, Any]:
     from ..design.counting import count_space
 
-    if mode == "designs":
-        totals = count_space(space, components, scheduler, jobs).to_dict()
+    if selection.mode == "designs":
+        totals = count_space(space, selection.components, scheduler, jobs).to_dict()
         if totals.get("note"):
             totals["note"] = flags_in(totals["note"])
-        if max_designs is not None:
-            totals["designs"] = min(totals["designs"], max_designs)
+        if selection.max_designs is not None:
+            totals["designs"] = min(totals["designs"], selection.max_designs)
         return totals
     from ..catalog.listing import designs  # pyarrow and pandas: only where rows are listed to count them
 
     rows = 0
     by: dict[str, int] = {}
-    for df in designs(
-        space.scaffold,
-        space.label_set,
-        space.mode,
-        mode=mode,
-        components=components,
-        no_zero=space.no_zero,
-        max_designs=max_designs,
-        tolerance=space.tolerance,
-        sample=sample,
-        seed=seed,
-    ):
+    sc, tolerance = space.scaffold, space.tolerance
+    for df in designs(sc, space.label_set, space.mode, selection=selection, no_zero=space.no_zero, tolerance=tolerance):
         rows += len(df)
         for c, n in df.components.value_counts().items():
             by[str(int(c))] = by.get(str(int(c)), 0) + int(n)
@@ -238,27 +220,22 @@ def enumerate_cmd(
         code = 128 + getattr(exc, "signum", 2)
         raise CatalogInterrupted(f"interrupted; nothing was written to {output}", code) from None
     started = time.perf_counter()
+    selection = Selection(mode, components, max_designs, sample, seed, identify)
     if count_only or output is None:
-        payload = _count_payload(space, mode, components, max_designs, sample, seed, engine, jobs)
+        payload = _count_payload(space, selection, engine, jobs)
         payload.update(
             group_order=space.group_order, written=None, mode=mode, symmetry=symmetry, label_set=labels.tolist()
         )
         if output is None and not count_only:
             ctx.notes["note"] = "no -o given: counted, nothing written"
     else:
-        from ..catalog.options import Execution, Selection
+        from ..catalog.options import Execution
         from ..catalog.plan import CatalogTooLarge
         from ..catalog.shards import write_catalog
 
         try:
-            written = write_catalog(
-                space,
-                output,
-                selection=Selection(mode, components, max_designs, sample, seed),
-                execution=Execution(jobs, shards, engine, resume),
-                identify=identify,
-                allow_large=yes,
-            )
+            execution = Execution(jobs, shards, engine, resume, allow_large=yes)
+            written = write_catalog(space, output, selection=selection, execution=execution)
         except CatalogInterrupted as exc:
             if not exc.resumable:
                 raise
