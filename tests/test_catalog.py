@@ -13,9 +13,10 @@ import pytest
 
 from lkspace import Execution, Selection, load, write_catalog
 from lkspace.catalog import plan
+from lkspace.catalog.metadata import FORMAT_VERSION
 from lkspace.catalog.plan import CatalogTooLarge, split_classes
 from lkspace.catalog.reader import read_catalog, read_metadata
-from lkspace.catalog.records import FORMAT_VERSION, Manifest, PartFooter
+from lkspace.catalog.records import Manifest, PartFooter
 from lkspace.catalog.transaction import MANIFEST
 from lkspace.design.space import make_space
 from lkspace.errors import CatalogError, ExportError, UsageError

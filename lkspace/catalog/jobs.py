@@ -28,9 +28,10 @@ from ..errors import require
 from ..workers import ignore_interrupts
 from .batches import space_batches
 from .lock import pid_alive
+from .metadata import CatalogMetadata
 from .options import Selection
 from .plan import Plan
-from .records import CatalogMetadata, PartFooter, PartSummary, Shard
+from .records import PartFooter, PartSummary, Shard
 from .schema import expected_schema
 from .transaction import file_sha256
 from .writer import write_batches

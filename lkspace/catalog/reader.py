@@ -26,7 +26,8 @@ from ..io.sources import load
 from ..model.scaffold import Scaffold
 from ..strands.tracing import Trace, trace
 from ..words import noun
-from .records import JsonObject, PartFooter, ScaffoldInfo
+from .metadata import JsonObject, ScaffoldInfo
+from .records import PartFooter
 from .transaction import load_manifest
 from .verify import damaged, open_catalog
 

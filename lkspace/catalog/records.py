@@ -1,319 +1,38 @@
-"""The catalog's wire formats: its ``lkspace`` metadata, the part footer and the manifest.
+"""The catalog's wire formats for files and folders: the part footer and the manifest.
 
 Each is a frozen record with one validating ``from_json`` and one ``to_json``, used by
-every reader and writer of that format:
+every reader and writer of that format (the settings they share are
+:class:`~lkspace.catalog.metadata.CatalogMetadata`):
 
-- :class:`CatalogMetadata`: the settings every file of a catalog shares (scaffold, label
-  set, symmetry, mode, filters, ...), with its :class:`ScaffoldInfo` and :class:`Filters`;
 - :class:`PartFooter`: the ``lkspace`` key of a Parquet file: the settings, the file's
   :class:`Shard` and, in the footer, its totals (:class:`PartSummary`) and ``digest``;
 - :class:`Manifest`: ``_lkspace.json`` of a folder: the run's :class:`Signature`, its run
   id and the finished parts.
 
-``to_json`` writes the keys in the order lkspace has always written them, so catalogs and
-builds of earlier versions read and resume, and a record read and written back is the
-same text.  ``from_json`` refuses anything else with a one-line
-:class:`~lkspace.errors.CatalogError` naming the file (``where``) and what is wrong; a
-setting recorded only since format version 1 was fixed (:data:`LATER_KEYS`) may be
-absent (:data:`UNRECORDED`).
+``to_json`` writes the keys in the order lkspace has always written them; ``from_json``
+refuses anything else with a one-line :class:`~lkspace.errors.CatalogError` naming the
+file (``where``) and what is wrong.
 """
 
 from __future__ import annotations
 
-import hashlib
 import json
 import os
 from dataclasses import dataclass, field
-from enum import Enum
-from typing import Final, TypeAlias
 
-from ..design.space import WALK_MODES, WalkMode
 from ..errors import CatalogError
-from ..symmetry.group import MODES, SymmetryMode
-
-Json: TypeAlias = None | bool | int | float | str | list["Json"] | dict[str, "Json"]
-"""A JSON value as :func:`json.loads` returns it."""
-
-JsonObject: TypeAlias = dict[str, Json]
-
-FORMAT_VERSION = 1
-"""The catalog format version lkspace writes."""
-
-FORMAT_VERSIONS = (1,)
-"""Catalog format versions this lkspace reads."""
-
-LATER_KEYS = ("symmetry_tolerance",)
-"""Settings recorded since format version 1 was fixed: a catalog without one was written before it existed."""
-
-
-class Unrecorded(Enum):
-    """The value of a :data:`LATER_KEYS` setting that a catalog written before it existed lacks."""
-
-    UNRECORDED = "unrecorded"
-
-
-UNRECORDED: Final = Unrecorded.UNRECORDED
-
-
-def decode(raw: bytes | str, where: str) -> Json:
-    """Parse the JSON text ``raw`` of ``where`` (``lkspace`` metadata or a manifest)."""
-    try:
-        data: Json = json.loads(raw)
-    except (UnicodeDecodeError, ValueError):
-        raise CatalogError(
-            f"{where}: the 'lkspace' metadata is not valid JSON (damaged, or not written by lkspace)"
-        ) from None
-    return data
-
-
-def metadata_digest(meta: JsonObject) -> str:
-    """Return the SHA-256 of ``meta`` without its ``digest`` (canonical JSON): a file's footer records it.
-
-    It makes a changed value in the metadata itself (a label set, a row count) detectable
-    in a one-file catalog, which has no manifest.
-    """
-    body = {k: v for k, v in meta.items() if k != "digest"}
-    return hashlib.sha256(json.dumps(body, sort_keys=True, separators=(",", ":")).encode()).hexdigest()
-
-
-def same_settings(old: JsonObject, new: JsonObject) -> bool:
-    """Whether the JSON ``old`` has every setting of ``new`` (a :data:`LATER_KEYS` setting it lacks passes)."""
-    return all(old.get(k) == v for k, v in new.items() if k in old or k not in LATER_KEYS)
-
-
-def _shown(value: object) -> str:
-    text = repr(value)
-    return text if len(text) <= 40 else text[:37] + "..."
-
-
-def json_object(value: object, what: str) -> JsonObject:
-    """Return ``value`` if it is a JSON object (a dict with string keys); raise naming it as ``what`` otherwise."""
-    if not isinstance(value, dict) or not all(isinstance(k, str) for k in value):
-        raise CatalogError(f"{what} is not a JSON object")
-    return value
-
-
-def _int(data: JsonObject, key: str, where: str, minimum: int | None = None) -> int:
-    value = data.get(key)
-    if isinstance(value, bool) or not isinstance(value, int) or (minimum is not None and value < minimum):
-        raise CatalogError(f"{where}: {key} {_shown(value)} is not a count (damaged)")
-    return value
-
-
-def _optional_int(data: JsonObject, key: str, where: str) -> int | None:
-    return None if data.get(key) is None else _int(data, key, where)
-
-
-def _str(data: JsonObject, key: str, where: str) -> str:
-    value = data.get(key)
-    if not isinstance(value, str):
-        raise CatalogError(f"{where}: {key} {_shown(value)} is not a string (damaged)")
-    return value
-
-
-def _bool(data: JsonObject, key: str, where: str) -> bool:
-    value = data.get(key)
-    if not isinstance(value, bool):
-        raise CatalogError(f"{where}: {key} {_shown(value)} is not true or false (damaged)")
-    return value
-
-
-def _header(data: Json, where: str) -> JsonObject:
-    """Return ``data`` if it is a JSON object of a known format version with a scaffold and a label set."""
-    if not isinstance(data, dict):
-        raise CatalogError(f"{where}: the 'lkspace' metadata is not a JSON object (damaged, or not written by lkspace)")
-    version = data.get("format_version")
-    if isinstance(version, bool) or version not in FORMAT_VERSIONS:
-        known = ", ".join(map(str, FORMAT_VERSIONS))
-        raise CatalogError(
-            f"{where}: catalog format_version {version!r} is not one this lkspace reads ({known}); "
-            "a newer lkspace wrote it, or it is damaged"
-        )
-    if not isinstance(data.get("scaffold"), dict) or not isinstance(data.get("label_set"), list):
-        raise CatalogError(f"{where}: the 'lkspace' metadata has no scaffold or label_set (damaged)")
-    return data
-
-
-@dataclass(frozen=True)
-class ScaffoldInfo:
-    """The ``scaffold`` entry of the metadata: which scaffold, and (since it was recorded) its geometry.
-
-    Attributes
-    ----------
-    name, content_hash : str
-        The scaffold's name and :meth:`~lkspace.model.scaffold.Scaffold.content_hash`.
-    edges, faces : int
-    periodic : bool
-    data : dict or None
-        The scaffold file's JSON without labels (``None``: not recorded; loaded by name).
-    """
-
-    name: str
-    content_hash: str
-    edges: int
-    faces: int
-    periodic: bool
-    data: JsonObject | None = None
-
-    def to_json(self) -> JsonObject:
-        """JSON form (``data`` left out when not recorded)."""
-        out: JsonObject = {
-            "name": self.name,
-            "content_hash": self.content_hash,
-            "edges": self.edges,
-            "faces": self.faces,
-            "periodic": self.periodic,
-        }
-        if self.data is not None:
-            out["data"] = self.data
-        return out
-
-    @classmethod
-    def from_json(cls, data: Json, where: str) -> ScaffoldInfo:
-        """Read the ``scaffold`` entry of ``where``'s metadata."""
-        info = json_object(data, f"{where}: the scaffold in its 'lkspace' metadata")
-        edges = info.get("edges")
-        if isinstance(edges, bool) or not isinstance(edges, int) or edges < 1:
-            raise CatalogError(f"{where}: the 'lkspace' metadata has no usable scaffold edges or mode (damaged)")
-        what = f"{where}: the scaffold in its 'lkspace' metadata:"
-        geometry = info.get("data")
-        return cls(
-            _str(info, "name", what),
-            _str(info, "content_hash", what),
-            edges,
-            _int(info, "faces", what, 1),
-            _bool(info, "periodic", what),
-            None if geometry is None else json_object(geometry, f"{what} data"),
-        )
-
-
-@dataclass(frozen=True)
-class Filters:
-    """The ``filters`` entry: rows kept by number of components, without zero labels, up to a count."""
-
-    components: int | None = None
-    no_zero: bool = False
-    max_designs: int | None = None
-
-    def to_json(self) -> JsonObject:
-        """JSON form."""
-        return {"components": self.components, "no_zero": self.no_zero, "max_designs": self.max_designs}
-
-    @classmethod
-    def from_json(cls, data: Json, where: str) -> Filters:
-        """Read the ``filters`` entry of ``where``'s metadata."""
-        what = f"{where}: the filters in its 'lkspace' metadata:"
-        filters = json_object(data, what[:-1])
-        return cls(
-            _optional_int(filters, "components", what),
-            _bool(filters, "no_zero", what),
-            _optional_int(filters, "max_designs", what),
-        )
-
-
-@dataclass(frozen=True)
-class CatalogMetadata:
-    """The settings every file of a catalog shares, in the order they are written.
-
-    Attributes
-    ----------
-    format_version : int
-    scaffold : ScaffoldInfo
-    label_set : tuple of int
-    symmetry : {"rotations", "isometries", "none"}
-    symmetry_tolerance : float, None or UNRECORDED
-        The tolerance of the symmetry search (``None`` without symmetry).
-    group_order, acting_order : int
-        Order of the symmetry group, and signed edge permutations acting on the labels.
-    assignments : int
-        ``|label set| ** edges``.
-    mode : {"designs", "residues", "spanning-trees"}
-    filters : Filters
-    sample, seed : int or None
-        ``spanning-trees`` sampling (``seed`` is ``None`` without ``sample``).
-    canonical_rule : str
-        How each row's representative was chosen.
-    invariant : dict or None
-        A symmetric catalog's subgroup facts (:mod:`lkspace.catalog.symmetric`).
-    """
-
-    format_version: int
-    scaffold: ScaffoldInfo
-    label_set: tuple[int, ...]
-    symmetry: SymmetryMode
-    symmetry_tolerance: float | None | Unrecorded
-    group_order: int
-    acting_order: int
-    assignments: int
-    mode: WalkMode
-    filters: Filters
-    sample: int | None
-    seed: int | None
-    canonical_rule: str
-    invariant: JsonObject | None = None
-
-    def to_json(self) -> JsonObject:
-        """JSON form (``symmetry_tolerance`` and ``invariant`` left out when absent)."""
-        out: JsonObject = {
-            "format_version": self.format_version,
-            "scaffold": self.scaffold.to_json(),
-            "label_set": list(self.label_set),
-            "symmetry": self.symmetry,
-        }
-        if not isinstance(self.symmetry_tolerance, Unrecorded):
-            out["symmetry_tolerance"] = self.symmetry_tolerance
-        out.update(
-            group_order=self.group_order,
-            acting_order=self.acting_order,
-            assignments=self.assignments,
-            mode=self.mode,
-            filters=self.filters.to_json(),
-            sample=self.sample,
-            seed=self.seed,
-            canonical_rule=self.canonical_rule,
-        )
-        if self.invariant is not None:
-            out["invariant"] = self.invariant
-        return out
-
-    @classmethod
-    def from_json(cls, data: Json, where: str) -> CatalogMetadata:
-        """Read the settings of ``where``'s ``lkspace`` metadata (or manifest)."""
-        meta = _header(data, where)
-        labels = meta["label_set"]
-        if not isinstance(labels, list) or not all(isinstance(t, int) and not isinstance(t, bool) for t in labels):
-            raise CatalogError(f"{where}: label_set {_shown(labels)} is not a list of integers (damaged)")
-        symmetry, mode = meta.get("symmetry"), meta.get("mode")
-        if symmetry not in MODES:
-            raise CatalogError(f"{where}: symmetry {_shown(symmetry)} is not one of {', '.join(MODES)} (damaged)")
-        if mode not in WALK_MODES:
-            raise CatalogError(f"{where}: the 'lkspace' metadata has no usable scaffold edges or mode (damaged)")
-        invariant = meta.get("invariant")
-        return cls(
-            _int(meta, "format_version", where),
-            ScaffoldInfo.from_json(meta["scaffold"], where),
-            tuple(t for t in labels if isinstance(t, int)),
-            symmetry,
-            _tolerance(meta, where),
-            _int(meta, "group_order", where, 1),
-            _int(meta, "acting_order", where, 1),
-            _int(meta, "assignments", where, 0),
-            mode,
-            Filters.from_json(meta.get("filters"), where),
-            _optional_int(meta, "sample", where),
-            _optional_int(meta, "seed", where),
-            _str(meta, "canonical_rule", where),
-            None if invariant is None else json_object(invariant, f"{where}: invariant"),
-        )
-
-
-def _tolerance(meta: JsonObject, where: str) -> float | None | Unrecorded:
-    if "symmetry_tolerance" not in meta:
-        return UNRECORDED
-    value = meta["symmetry_tolerance"]
-    if value is not None and (isinstance(value, bool) or not isinstance(value, int | float)):
-        raise CatalogError(f"{where}: symmetry_tolerance {_shown(value)} is not a number (damaged)")
-    return value
+from .metadata import (
+    CatalogMetadata,
+    Json,
+    JsonObject,
+    checked_header,
+    count_field,
+    json_object,
+    metadata_digest,
+    same_settings,
+    shown,
+    text_field,
+)
 
 
 @dataclass(frozen=True)
@@ -342,8 +61,13 @@ class Shard:
         shard = json_object(data, what[:-1])
         run = shard.get("run")
         if run is not None and not isinstance(run, str):
-            raise CatalogError(f"{what} run {_shown(run)} is not a string (damaged)")
-        return cls(_int(shard, "index", what, 0), _int(shard, "count", what, 1), _str(shard, "plan", what), run)
+            raise CatalogError(f"{what} run {shown(run)} is not a string (damaged)")
+        return cls(
+            count_field(shard, "index", what, 0),
+            count_field(shard, "count", what, 1),
+            text_field(shard, "plan", what),
+            run,
+        )
 
 
 @dataclass(frozen=True)
@@ -385,14 +109,14 @@ class PartSummary:
         by = json_object(entry.get("by_components"), f"{where}: by_components")
         counts = {k: v for k, v in by.items() if isinstance(v, int) and not isinstance(v, bool)}
         if len(counts) != len(by) or not all(k.isdigit() for k in by):
-            raise CatalogError(f"{where}: by_components {_shown(by)} is not counts by components (damaged)")
+            raise CatalogError(f"{where}: by_components {shown(by)} is not counts by components (damaged)")
         rows = entry.get("rows")
         if isinstance(rows, bool) or not isinstance(rows, int) or rows < 0:
             raise CatalogError(f"{where}: damaged: its metadata says {rows!r} rows")
         file, sha = entry.get("file"), entry.get("sha256")
         if (file is None) != (sha is None) or not isinstance(file, str | None) or not isinstance(sha, str | None):
-            raise CatalogError(f"{where}: file {_shown(file)} and sha256 {_shown(sha)} are malformed (damaged)")
-        return cls(counts, _int(entry, "assignments_covered", where, -1), rows, file, sha)
+            raise CatalogError(f"{where}: file {shown(file)} and sha256 {shown(sha)} are malformed (damaged)")
+        return cls(counts, count_field(entry, "assignments_covered", where, -1), rows, file, sha)
 
 
 @dataclass(frozen=True)
@@ -442,7 +166,7 @@ class PartFooter:
     @classmethod
     def from_json(cls, data: Json, where: str) -> PartFooter:
         """Read the ``lkspace`` metadata of the file ``where``; a footer's ``digest`` is checked."""
-        meta = _header(data, where)
+        meta = checked_header(data, where)
         digest = meta.get("digest")
         if digest is not None and digest != metadata_digest(meta):
             raise CatalogError(
@@ -529,7 +253,7 @@ class Manifest:
     @classmethod
     def from_json(cls, data: Json, where: str) -> Manifest:
         """Read the manifest ``where``: the settings, a run id and well-formed parts numbered below ``shards``."""
-        meta = _header(data, where)
+        meta = checked_header(data, where)
         settings = CatalogMetadata.from_json(meta, where)
         entries, count = meta.get("parts"), meta.get("shards")
         if not isinstance(entries, dict) or isinstance(count, bool) or not isinstance(count, int) or count < 1:

@@ -32,8 +32,9 @@ import pyarrow.parquet as pq
 from ..engine import is_dask
 from ..errors import CatalogError, ExportError, UsageError, require
 from .jobs import PartsJob, run_parts, write_part_remote
+from .metadata import CatalogMetadata, decode
 from .options import Execution
-from .records import CatalogMetadata, Manifest, PartFooter, PartSummary, Signature, decode
+from .records import Manifest, PartFooter, PartSummary, Signature
 from .schema import METADATA_KEY
 from .transaction import MANIFEST, PART_NAME, new_run, part_name
 

@@ -49,7 +49,7 @@ from typing import TYPE_CHECKING
 import pyarrow as pa
 
 if TYPE_CHECKING:
-    from .records import CatalogMetadata
+    from .metadata import CatalogMetadata
 
 ROW_GROUP = 262_144
 METADATA_KEY = b"lkspace"

@@ -39,19 +39,10 @@ from ..words import plural
 from ..workers import context, ignored_signals
 from .jobs import PartsJob, run_parts
 from .lock import catalog_lock
+from .metadata import FORMAT_VERSION, CatalogMetadata, Filters, JsonObject, ScaffoldInfo
 from .options import Execution, Selection
 from .plan import check_jobs, make_plan
-from .records import (
-    FORMAT_VERSION,
-    CatalogMetadata,
-    Filters,
-    JsonObject,
-    Manifest,
-    PartFooter,
-    PartSummary,
-    ScaffoldInfo,
-    Signature,
-)
+from .records import Manifest, PartFooter, PartSummary, Signature
 from .remote import check_remote, remote_url, write_remote
 from .transaction import (
     CatalogInterrupted,

@@ -26,8 +26,9 @@ from ..model.specs import LabelSetSpec, parse_label_set
 from ..symmetry.group import SymmetryMode
 from .batches import gather_blocks
 from .lock import catalog_lock
+from .metadata import CatalogMetadata, json_object
 from .options import Selection
-from .records import CatalogMetadata, PartFooter, json_object
+from .records import PartFooter
 from .schema import ROW_GROUP, expected_schema
 from .shards import catalog_metadata
 from .transaction import catalog_target

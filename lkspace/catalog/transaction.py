@@ -28,7 +28,8 @@ from dataclasses import dataclass
 from ..errors import CatalogError, ExportError
 from ..io.atomic import remove_path, write_text
 from ..io.paths import not_an_input, only_extension, output_folder
-from .records import Json, Manifest, PartSummary, Signature
+from .metadata import Json
+from .records import Manifest, PartSummary, Signature
 
 MANIFEST = "_lkspace.json"
 """The manifest of a sharded catalog (pandas and pyarrow skip names starting with ``_``)."""

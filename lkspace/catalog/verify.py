@@ -35,7 +35,8 @@ import pyarrow as pa
 import pyarrow.parquet as pq
 
 from ..errors import CatalogError
-from .records import CatalogMetadata, JsonObject, Manifest, PartFooter, decode
+from .metadata import CatalogMetadata, JsonObject, decode
+from .records import Manifest, PartFooter
 from .schema import IDENTIFY_COLUMNS, METADATA_KEY, expected_schema
 from .transaction import MANIFEST, file_sha256
 
