@@ -14,9 +14,10 @@ from __future__ import annotations
 
 import hashlib
 import json
+from collections.abc import Callable
 from dataclasses import dataclass
 from enum import Enum
-from typing import Final, TypeAlias
+from typing import Final, TypeAlias, TypeVar
 
 from ..design.space import WALK_MODES, WalkMode
 from ..errors import CatalogError
@@ -38,12 +39,33 @@ LATER_KEYS = ("symmetry_tolerance",)
 
 
 class Unrecorded(Enum):
-    """The value of a :data:`LATER_KEYS` setting that a catalog written before it existed lacks."""
+    """The value of a setting the metadata lacks (a :data:`LATER_KEYS` setting of an older catalog, say).
+
+    lkspace writes every setting; a reader needs only ``format_version``, the scaffold's
+    ``name`` and ``edges``, ``label_set``, ``mode`` and (in a footer) ``rows``.  An absent
+    key is read as :data:`UNRECORDED` and left out again by ``to_json``.
+    """
 
     UNRECORDED = "unrecorded"
 
+    def __str__(self) -> str:
+        return self.value
+
 
 UNRECORDED: Final = Unrecorded.UNRECORDED
+
+T = TypeVar("T")
+
+
+def recorded(data: JsonObject, key: str, read: Callable[[JsonObject, str, str], T], where: str) -> T | Unrecorded:
+    """Return ``read(data, key, where)``, or :data:`UNRECORDED` when ``data`` has no ``key``."""
+    return read(data, key, where) if key in data else UNRECORDED
+
+
+def put(out: JsonObject, **values: Json | Unrecorded) -> JsonObject:
+    """Add ``values`` to ``out`` in order, leaving out the :data:`UNRECORDED` ones; return ``out``."""
+    out.update({k: v for k, v in values.items() if not isinstance(v, Unrecorded)})
+    return out
 
 
 def decode(raw: bytes | str, where: str) -> Json:
@@ -145,21 +167,16 @@ class ScaffoldInfo:
     """
 
     name: str
-    content_hash: str
+    content_hash: str | Unrecorded
     edges: int
-    faces: int
-    periodic: bool
+    faces: int | Unrecorded
+    periodic: bool | Unrecorded
     data: JsonObject | None = None
 
     def to_json(self) -> JsonObject:
         """JSON form (``data`` left out when not recorded)."""
-        out: JsonObject = {
-            "name": self.name,
-            "content_hash": self.content_hash,
-            "edges": self.edges,
-            "faces": self.faces,
-            "periodic": self.periodic,
-        }
+        out = put({"name": self.name}, content_hash=self.content_hash)
+        put(out, edges=self.edges, faces=self.faces, periodic=self.periodic)
         if self.data is not None:
             out["data"] = self.data
         return out
@@ -175,10 +192,10 @@ class ScaffoldInfo:
         geometry = info.get("data")
         return cls(
             text_field(info, "name", what),
-            text_field(info, "content_hash", what),
+            recorded(info, "content_hash", text_field, what),
             edges,
-            count_field(info, "faces", what, 1),
-            flag_field(info, "periodic", what),
+            recorded(info, "faces", count_field, what),
+            recorded(info, "periodic", flag_field, what),
             None if geometry is None else json_object(geometry, f"{what} data"),
         )
 
@@ -236,38 +253,26 @@ class CatalogMetadata:
     format_version: int
     scaffold: ScaffoldInfo
     label_set: tuple[int, ...]
-    symmetry: SymmetryMode
+    symmetry: SymmetryMode | Unrecorded
     symmetry_tolerance: float | None | Unrecorded
-    group_order: int
-    acting_order: int
-    assignments: int
+    group_order: int | Unrecorded
+    acting_order: int | Unrecorded
+    assignments: int | Unrecorded
     mode: WalkMode
-    filters: Filters
-    sample: int | None
-    seed: int | None
-    canonical_rule: str
+    filters: Filters | Unrecorded
+    sample: int | None | Unrecorded
+    seed: int | None | Unrecorded
+    canonical_rule: str | Unrecorded
     invariant: JsonObject | None = None
 
     def to_json(self) -> JsonObject:
-        """JSON form (``symmetry_tolerance`` and ``invariant`` left out when absent)."""
-        out: JsonObject = {
-            "format_version": self.format_version,
-            "scaffold": self.scaffold.to_json(),
-            "label_set": list(self.label_set),
-            "symmetry": self.symmetry,
-        }
-        if not isinstance(self.symmetry_tolerance, Unrecorded):
-            out["symmetry_tolerance"] = self.symmetry_tolerance
-        out.update(
-            group_order=self.group_order,
-            acting_order=self.acting_order,
-            assignments=self.assignments,
-            mode=self.mode,
-            filters=self.filters.to_json(),
-            sample=self.sample,
-            seed=self.seed,
-            canonical_rule=self.canonical_rule,
-        )
+        """JSON form (settings not recorded, and ``invariant`` when absent, left out)."""
+        out: JsonObject = {"format_version": self.format_version, "scaffold": self.scaffold.to_json()}
+        put(out, label_set=list(self.label_set), symmetry=self.symmetry, symmetry_tolerance=self.symmetry_tolerance)
+        put(out, group_order=self.group_order, acting_order=self.acting_order, assignments=self.assignments)
+        filters = self.filters if isinstance(self.filters, Unrecorded) else self.filters.to_json()
+        put(out, mode=self.mode, filters=filters, sample=self.sample, seed=self.seed)
+        put(out, canonical_rule=self.canonical_rule)
         if self.invariant is not None:
             out["invariant"] = self.invariant
         return out
@@ -279,9 +284,7 @@ class CatalogMetadata:
         labels = meta["label_set"]
         if not isinstance(labels, list) or not all(isinstance(t, int) and not isinstance(t, bool) for t in labels):
             raise CatalogError(f"{where}: label_set {shown(labels)} is not a list of integers (damaged)")
-        symmetry, mode = meta.get("symmetry"), meta.get("mode")
-        if symmetry not in MODES:
-            raise CatalogError(f"{where}: symmetry {shown(symmetry)} is not one of {', '.join(MODES)} (damaged)")
+        mode = meta.get("mode")
         if mode not in WALK_MODES:
             raise CatalogError(f"{where}: the 'lkspace' metadata has no usable scaffold edges or mode (damaged)")
         invariant = meta.get("invariant")
@@ -289,24 +292,29 @@ class CatalogMetadata:
             count_field(meta, "format_version", where),
             ScaffoldInfo.from_json(meta["scaffold"], where),
             tuple(t for t in labels if isinstance(t, int)),
-            symmetry,
-            _tolerance(meta, where),
-            count_field(meta, "group_order", where, 1),
-            count_field(meta, "acting_order", where, 1),
-            count_field(meta, "assignments", where, 0),
+            recorded(meta, "symmetry", _symmetry, where),
+            recorded(meta, "symmetry_tolerance", _tolerance, where),
+            recorded(meta, "group_order", count_field, where),
+            recorded(meta, "acting_order", count_field, where),
+            recorded(meta, "assignments", count_field, where),
             mode,
-            Filters.from_json(meta.get("filters"), where),
-            optional_count(meta, "sample", where),
-            optional_count(meta, "seed", where),
-            text_field(meta, "canonical_rule", where),
+            recorded(meta, "filters", lambda d, k, w: Filters.from_json(d[k], w), where),
+            recorded(meta, "sample", optional_count, where),
+            recorded(meta, "seed", optional_count, where),
+            recorded(meta, "canonical_rule", text_field, where),
             None if invariant is None else json_object(invariant, f"{where}: invariant"),
         )
 
 
-def _tolerance(meta: JsonObject, where: str) -> float | None | Unrecorded:
-    if "symmetry_tolerance" not in meta:
-        return UNRECORDED
-    value = meta["symmetry_tolerance"]
+def _symmetry(meta: JsonObject, key: str, where: str) -> SymmetryMode:
+    value = meta[key]
+    if value not in MODES:
+        raise CatalogError(f"{where}: symmetry {shown(value)} is not one of {', '.join(MODES)} (damaged)")
+    return value
+
+
+def _tolerance(meta: JsonObject, key: str, where: str) -> float | None:
+    value = meta[key]
     if value is not None and (isinstance(value, bool) or not isinstance(value, int | float)):
         raise CatalogError(f"{where}: symmetry_tolerance {shown(value)} is not a number (damaged)")
     return value

@@ -25,10 +25,13 @@ from .metadata import (
     CatalogMetadata,
     Json,
     JsonObject,
+    Unrecorded,
     checked_header,
     count_field,
     json_object,
     metadata_digest,
+    put,
+    recorded,
     same_settings,
     shown,
     text_field,
@@ -76,9 +79,9 @@ class PartSummary:
 
     Attributes
     ----------
-    by_components : dict of str -> int
+    by_components : dict of str -> int, or UNRECORDED
         Rows by number of components (keys are decimal strings, as in JSON).
-    assignments_covered : int
+    assignments_covered : int or UNRECORDED
         Assignments the rows stand for (-1: past 64 bits).
     rows : int
         Rows written.
@@ -88,16 +91,27 @@ class PartSummary:
         Hex SHA-256 of the file's bytes (``None``: a footer's totals).
     """
 
-    by_components: dict[str, int]
-    assignments_covered: int
+    by_components: dict[str, int] | Unrecorded
+    assignments_covered: int | Unrecorded
     rows: int
     file: str | None = None
     sha256: str | None = None
 
+    @property
+    def counted(self) -> bool:
+        """Whether the totals by components and of assignments are recorded (lkspace writes them)."""
+        return not isinstance(self.by_components, Unrecorded) and not isinstance(self.assignments_covered, Unrecorded)
+
+    def counts(self) -> tuple[dict[str, int], int]:
+        """Return ``(by_components, assignments_covered)``; a part without them is not kept (:attr:`counted`)."""
+        if isinstance(self.by_components, Unrecorded) or isinstance(self.assignments_covered, Unrecorded):
+            raise CatalogError(f"{self.file}: its totals by components are not recorded (damaged)")
+        return self.by_components, self.assignments_covered
+
     def to_json(self) -> JsonObject:
         """JSON form (the manifest's entry of a part; a footer's totals without ``file``)."""
-        by: JsonObject = dict(self.by_components)
-        out: JsonObject = {"by_components": by, "assignments_covered": self.assignments_covered, "rows": self.rows}
+        by = self.by_components if isinstance(self.by_components, Unrecorded) else dict[str, Json](self.by_components)
+        out = put({}, by_components=by, assignments_covered=self.assignments_covered, rows=self.rows)
         if self.file is not None:
             out.update(file=self.file, sha256=self.sha256)
         return out
@@ -106,17 +120,22 @@ class PartSummary:
     def from_json(cls, data: Json, where: str) -> PartSummary:
         """Read a manifest entry or a footer's totals (``where`` names it)."""
         entry = json_object(data, where)
-        by = json_object(entry.get("by_components"), f"{where}: by_components")
-        counts = {k: v for k, v in by.items() if isinstance(v, int) and not isinstance(v, bool)}
-        if len(counts) != len(by) or not all(k.isdigit() for k in by):
-            raise CatalogError(f"{where}: by_components {shown(by)} is not counts by components (damaged)")
         rows = entry.get("rows")
         if isinstance(rows, bool) or not isinstance(rows, int) or rows < 0:
             raise CatalogError(f"{where}: damaged: its metadata says {rows!r} rows")
         file, sha = entry.get("file"), entry.get("sha256")
         if (file is None) != (sha is None) or not isinstance(file, str | None) or not isinstance(sha, str | None):
             raise CatalogError(f"{where}: file {shown(file)} and sha256 {shown(sha)} are malformed (damaged)")
-        return cls(counts, count_field(entry, "assignments_covered", where, -1), rows, file, sha)
+        covered = recorded(entry, "assignments_covered", count_field, where)
+        return cls(recorded(entry, "by_components", _counts, where), covered, rows, file, sha)
+
+
+def _counts(entry: JsonObject, key: str, where: str) -> dict[str, int]:
+    by = json_object(entry[key], f"{where}: {key}")
+    counts = {k: v for k, v in by.items() if isinstance(v, int) and not isinstance(v, bool)}
+    if len(counts) != len(by) or not all(k.isdigit() for k in by):
+        raise CatalogError(f"{where}: {key} {shown(by)} is not counts by components (damaged)")
+    return counts
 
 
 @dataclass(frozen=True)

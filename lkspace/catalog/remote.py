@@ -109,7 +109,7 @@ def _kept_parts(fs: Any, root: str, settings: CatalogMetadata, plan: str) -> tup
         except (OSError, ValueError, KeyError, TypeError):  # CatalogError is a ValueError
             continue
         shard, totals = footer.shard, footer.totals
-        if shard is None or shard.run is None or shard.plan != plan or totals is None:
+        if shard is None or shard.run is None or shard.plan != plan or totals is None or not totals.counted:
             continue
         if not footer.has_settings(settings, shard):
             continue

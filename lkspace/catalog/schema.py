@@ -69,7 +69,7 @@ IDENTIFY_COLUMNS = {
 
 def expected_schema(settings: CatalogMetadata) -> pa.Schema:
     """Return the schema a catalog file of ``settings`` (mode, scaffold) has, before any ``--identify`` columns."""
-    periodic = settings.scaffold.periodic
+    periodic = settings.scaffold.periodic is True
     if settings.mode == "designs":
         return design_schema(settings.scaffold.edges, periodic)
     return residue_schema(periodic)

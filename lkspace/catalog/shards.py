@@ -272,7 +272,7 @@ class _Run:
         target, build, header = self.target, self.target.build, self.job.header(0)
         for candidate in (build, target.path) if self.execution.resume else ():
             footer = _matching(candidate, header)
-            if footer is not None and footer.totals is not None:
+            if footer is not None and footer.totals is not None and footer.totals.counted:
                 tick(footer.totals.rows)
                 if self.identify and not footer.identified:
                     self._identify(candidate)
@@ -373,9 +373,10 @@ def _totals(job: PartsJob, summaries: list[PartSummary], skipped: int, path: str
     """Return the totals of the run of ``job`` from its parts' ``summaries`` (``skipped`` of them kept)."""
     space = job.space
     by: dict[int, int] = {}
-    covered = [s.assignments_covered for s in summaries] or [0]
-    for s in summaries:
-        for k, v in s.by_components.items():
+    counts = [s.counts() for s in summaries]
+    covered = [c for _, c in counts] or [0]
+    for by_components, _ in counts:
+        for k, v in by_components.items():
             by[int(k)] = by.get(int(k), 0) + v
     return CatalogWritten(
         designs=sum(s.rows for s in summaries),

@@ -30,7 +30,7 @@ from .metadata import CatalogMetadata, json_object
 from .options import Selection
 from .records import PartFooter
 from .schema import ROW_GROUP, expected_schema
-from .shards import catalog_metadata
+from .shards import CANONICAL_RULE, catalog_metadata
 from .transaction import catalog_target
 from .writer import write_batches
 
@@ -99,7 +99,7 @@ def invariant_metadata(space: InvariantSpace, components: int | None, max_design
     return replace(
         meta,
         acting_order=int(len(space.action[1])),
-        canonical_rule=meta.canonical_rule + "; under the normalizer of the invariant subgroup",
+        canonical_rule=CANONICAL_RULE + "; under the normalizer of the invariant subgroup",
         invariant=json_object(space.summary(), "the subgroup's summary"),
     )
 
@@ -156,12 +156,13 @@ def write_invariant_catalog(
     with catalog_lock(target.lock, target.shown):
         batches = invariant_batches(space, components, max_designs)
         summary = write_batches(target.path, expected_schema(meta), PartFooter(meta), batches)
+    by_components, covered = summary.counts()
     return {
         "designs": summary.rows,
         "assignments": space.assignments,
         "fixed_assignments": space.n_fixed,
-        "assignments_covered": summary.assignments_covered,
-        "by_components": dict(sorted(summary.by_components.items(), key=lambda kv: int(kv[0]))),
+        "assignments_covered": covered,
+        "by_components": dict(sorted(by_components.items(), key=lambda kv: int(kv[0]))),
         "output": os.fspath(path),
         "group_order": meta.group_order,
         "acting_order": meta.acting_order,

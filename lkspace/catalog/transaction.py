@@ -211,11 +211,11 @@ def save_manifest(folder: str, manifest: Manifest) -> None:
 
 
 def verified_parts(folder: str, manifest: Manifest) -> dict[int, PartSummary]:
-    """Return the finished parts recorded in ``manifest`` whose file in ``folder`` still has its SHA-256."""
+    """Return the finished parts recorded in ``manifest`` (with their totals) whose file in ``folder`` still has its SHA-256."""
     good = {}
     for index, entry in manifest.parts.items():
         file = os.path.join(folder, str(entry.file))
-        if os.path.isfile(file) and file_sha256(file) == entry.sha256:
+        if entry.counted and os.path.isfile(file) and file_sha256(file) == entry.sha256:
             good[index] = entry
     return good
 

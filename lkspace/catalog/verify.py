@@ -69,11 +69,6 @@ class CatalogParts:
     run: str | None = None
 
     @property
-    def metadata(self) -> JsonObject:
-        """The ``lkspace`` metadata of the first file as JSON (:meth:`PartFooter.to_json`)."""
-        return self.footer.to_json()
-
-    @property
     def n_rows(self) -> int:
         """Rows of the whole catalog."""
         return sum(self.rows)

@@ -79,7 +79,7 @@ class Browser:
             "path": self.path,
             "scaffold": self.footer.settings.scaffold.name,
             "label_set": list(self.footer.settings.label_set),
-            "symmetry": self.footer.settings.symmetry,
+            "symmetry": self.footer.to_json().get("symmetry"),
             "ready": self._ready.is_set(),
             "error": self._error,
         }
