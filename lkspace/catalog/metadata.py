@@ -79,6 +79,15 @@ def decode(raw: bytes | str, where: str) -> Json:
     return data
 
 
+def lkspace_mark(data: Json) -> bool:
+    """Whether ``data`` bears lkspace's mark: a JSON object with a ``format_version`` (metadata or a manifest).
+
+    Not a check that it reads (``from_json`` is): a damaged catalog lkspace wrote is still
+    one lkspace may replace, and nothing else is.
+    """
+    return isinstance(data, dict) and "format_version" in data
+
+
 def metadata_digest(meta: JsonObject) -> str:
     """Return the SHA-256 of ``meta`` without its ``digest`` (canonical JSON): a file's footer records it.
 

@@ -32,7 +32,7 @@ import pyarrow.parquet as pq
 from ..engine import is_dask
 from ..errors import CatalogError, ExportError, UsageError, require
 from .jobs import PartsJob, run_parts, write_part_remote
-from .metadata import CatalogMetadata, decode
+from .metadata import CatalogMetadata, Json, decode, lkspace_mark
 from .options import Execution
 from .records import Manifest, PartFooter, PartSummary, Signature
 from .schema import METADATA_KEY
@@ -81,10 +81,10 @@ def check_remote(url: str, argument: str = "path") -> None:
     try:
         with fs.open(root, "rb") as fh:
             raw = (pq.read_metadata(fh).metadata or {}).get(METADATA_KEY)
-        meta = json.loads(raw) if raw is not None else None
+        meta: Json = json.loads(raw) if raw is not None else None
     except (OSError, ValueError, pa.ArrowException):
         meta = None
-    if not isinstance(meta, dict) or "format_version" not in meta:
+    if not lkspace_mark(meta):
         raise ExportError(
             f"{url}: is not an lkspace catalog; lkspace replaces only catalogs it wrote: choose another {argument}"
         )

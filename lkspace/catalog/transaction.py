@@ -28,7 +28,7 @@ from dataclasses import dataclass
 from ..errors import CatalogError, ExportError
 from ..io.atomic import remove_path, write_text
 from ..io.paths import not_an_input, only_extension, output_folder
-from .metadata import Json
+from .metadata import Json, lkspace_mark
 from .records import Manifest, PartSummary, Signature
 
 MANIFEST = "_lkspace.json"
@@ -138,11 +138,7 @@ def foreign_reason(path: str) -> str | None:
         if not entries:
             return "is an empty folder, not an lkspace catalog"
         manifest = _manifest_json(path)
-        if (
-            not isinstance(manifest, dict)
-            or "format_version" not in manifest
-            or not isinstance(manifest.get("parts"), dict)
-        ):
+        if not lkspace_mark(manifest) or not isinstance(manifest, dict) or not isinstance(manifest.get("parts"), dict):
             return "is a folder that holds no lkspace catalog (no lkspace manifest _lkspace.json)"
         for entry in sorted(entries):
             if entry != MANIFEST and not PART_NAME.fullmatch(entry) and not entry.startswith(".part-"):
@@ -152,11 +148,11 @@ def foreign_reason(path: str) -> str | None:
     import pyarrow.parquet as pq
 
     try:
-        raw = (pq.read_metadata(path).metadata or {}).get(b"lkspace")
-        meta = json.loads(raw) if raw is not None else None
+        raw = (pq.read_metadata(path).metadata or {}).get(b"lkspace")  # schema.METADATA_KEY: schema imports pyarrow
+        meta: Json = json.loads(raw) if raw is not None else None
     except (OSError, ValueError, pa.ArrowException):
         return "is a file that is not an lkspace catalog (not a readable Parquet file)"
-    if not isinstance(meta, dict) or "format_version" not in meta:
+    if not lkspace_mark(meta):
         return "is a Parquet file that is not an lkspace catalog (no 'lkspace' metadata)"
     return None
 
