@@ -159,7 +159,7 @@ def laves_row() -> dict:
             if len(set(degrees.tolist())) == 1:
                 even.setdefault(int(degrees[0]), []).append(list(faces))
     k = int(sc.edge_degrees[0])
-    geometric = sum(len(df) for df in lkspace.designs(sc, list(range(k)), mode="residues"))
+    geometric = sum(len(df) for df in lkspace.designs(sc, list(range(k)), selection=lkspace.Selection(mode="residues")))
     return {
         "edges_per_cell": sc.n_edges,
         "ring_classes_per_cell": sc.n_faces,

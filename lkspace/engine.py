@@ -28,10 +28,11 @@ import logging
 import os
 import sys
 from collections.abc import Callable, Iterator, Sequence
+from multiprocessing.pool import Pool
 from typing import Any
 
 from .errors import MissingDependencyError, UsageError, require
-from .workers import context, ignore_interrupts
+from .workers import context, deferred_signals, ignore_interrupts
 
 SCHEDULERS = ("local", "dask")
 """Named schedulers; anything else must be a ``tcp://HOST:PORT`` (or ``tls://``) address."""
@@ -173,6 +174,26 @@ def dask_client(scheduler: str, jobs: int) -> Iterator[Any]:
                 yield client
 
 
+@contextlib.contextmanager
+def worker_pool(processes: int, initializer: Callable[..., object], initargs: tuple[object, ...]) -> Iterator[Pool]:
+    """Yield a pool of ``processes`` worker processes (:func:`lkspace.workers.context`), shut down when the body ends.
+
+    Made whole before a signal is handled (a pool half made cannot be stopped); closed and
+    joined when the body finishes, terminated at once (running tasks stopped, queued ones
+    never started) when it raises, Ctrl-C and a caller stopping early included.
+    """
+    with deferred_signals():
+        pool = context().Pool(processes, initializer=initializer, initargs=initargs)
+    try:
+        yield pool
+        pool.close()
+    except BaseException:
+        pool.terminate()
+        raise
+    finally:
+        pool.join()
+
+
 def _knock(host_port: str) -> None:
     """Open and close a TCP connection to ``HOST[:PORT]`` (Dask's port 8786 by default); ``OSError`` if refused."""
     import socket
@@ -208,15 +229,8 @@ def run_tasks(
             for i, item in enumerate(items):
                 yield i, fn(shared, item)
             return
-        pool = context().Pool(min(jobs, len(items)), initializer=_init_local, initargs=(fn, shared))
-        try:
+        with worker_pool(min(jobs, len(items)), _init_local, (fn, shared)) as pool:
             yield from pool.imap_unordered(_run_local, list(enumerate(items)))
-            pool.close()
-        except BaseException:
-            pool.terminate()
-            raise
-        finally:
-            pool.join()
         return
     distributed = import_distributed(f"scheduler {scheduler}", "scheduler")
     with dask_client(scheduler, jobs) as client:
@@ -272,14 +286,16 @@ def _setup_plugin(distributed: Any, setup: Callable[[], object]) -> Any:
     return Setup()
 
 
-_LOCAL: dict[str, Any] = {}
+_LOCAL: list[tuple[Callable[..., Any], Any]] = []
+"""In a pool worker of :func:`run_tasks`: the function and the shared argument (set once by :func:`_init_local`)."""
 
 
 def _init_local(fn: Callable[..., Any], shared: Any) -> None:
     ignore_interrupts()
-    _LOCAL.update(fn=fn, shared=shared)
+    _LOCAL[:] = [(fn, shared)]
 
 
 def _run_local(job: tuple[int, Any]) -> tuple[int, Any]:
     i, item = job
-    return i, _LOCAL["fn"](_LOCAL["shared"], item)
+    fn, shared = _LOCAL[0]
+    return i, fn(shared, item)

@@ -13,10 +13,10 @@ import pytest
 
 from lkspace import Execution, Selection, load, write_catalog
 from lkspace.catalog import plan
+from lkspace.catalog.metadata import FORMAT_VERSION
 from lkspace.catalog.plan import CatalogTooLarge, split_classes
 from lkspace.catalog.reader import read_catalog, read_metadata
-from lkspace.catalog.records import Manifest
-from lkspace.catalog.schema import FORMAT_VERSION
+from lkspace.catalog.records import Manifest, PartFooter
 from lkspace.catalog.transaction import MANIFEST
 from lkspace.design.space import make_space
 from lkspace.errors import CatalogError, ExportError, UsageError
@@ -212,7 +212,7 @@ def test_library_errors_name_parameters_and_the_cli_names_flags(tmp_path, monkey
     )
     assert code == 2 and "error: --shards applies to full design walks (not with --max-designs or other modes)" in err
     monkeypatch.setattr(plan, "ROW_LIMIT", 10)  # the tetrahedron's 87 designs are now a large run
-    with pytest.raises(CatalogTooLarge, match="pass allow_large=True to go ahead") as refused:
+    with pytest.raises(CatalogTooLarge, match=r"pass Execution\(allow_large=True\) to go ahead") as refused:
         write_catalog("tetrahedron", out, "-1..1")
     assert refused.value.allowable and "--" not in str(refused.value) and not out.exists()
     code, _, err = run(capsys, "enumerate", "tetrahedron", "--labels", "-1..1", "-o", out)
@@ -221,7 +221,7 @@ def test_library_errors_name_parameters_and_the_cli_names_flags(tmp_path, monkey
         and "past 10 rows" in err
         and err.rstrip().endswith("pass --yes to go ahead (or use --count-only, filters or a smaller label set)")
     )
-    assert write_catalog("tetrahedron", out, "-1..1", allow_large=True).designs == 87
+    assert write_catalog("tetrahedron", out, "-1..1", execution=Execution(allow_large=True)).designs == 87
     assert run(capsys, "enumerate", "tetrahedron", "--labels", "-1..1", "-o", out, "--yes")[0] == 0
 
 
@@ -239,13 +239,32 @@ def test_write_catalog_leaves_the_callers_signal_handlers_alone(tmp_path):
 
 
 def test_manifest_records_round_trip_byte_for_byte(tmp_path):
-    """A manifest read into records and written back is the same text: builds of earlier versions resume."""
+    """A manifest or a footer read into records and written back is the same text: builds of earlier versions resume."""
     write_catalog("cube", tmp_path / "c", "-1..1", selection=Selection(components=2), execution=Execution(shards=3))
     text = (tmp_path / "c" / MANIFEST).read_text()
-    manifest = Manifest.from_json(json.loads(text))
-    assert manifest is not None and manifest.complete and sorted(manifest.parts) == ["0", "1", "2"]
-    assert json.dumps(manifest.to_json(), indent=1) == text
+    manifest = Manifest.from_json(json.loads(text), "manifest")
+    assert manifest.complete and sorted(manifest.parts) == [0, 1, 2]
+    assert manifest.encode() == text
     assert sum(p.rows for p in manifest.parts.values()) == len(pd.read_parquet(tmp_path / "c"))
-    assert (
-        Manifest.from_json({"run": "ab", "parts": {"0": {"rows": "x"}}}).parts == {}
-    )  # an unreadable part is not kept
+    for part in manifest.parts.values():
+        file = tmp_path / "c" / str(part.file)
+        for raw in (pq.read_metadata(file).metadata[b"lkspace"], pq.read_schema(file).metadata[b"lkspace"]):
+            assert PartFooter.from_json(json.loads(raw), str(file)).encode() == raw  # footer, and the schema's copy
+
+
+def test_one_parser_of_the_manifest_for_reads_and_resumes(tmp_path):
+    """What a read refuses a resume does not keep: a malformed entry is refused by both (the build starts over)."""
+    out = tmp_path / "c"
+    write_catalog("cube", out, "-1..1", execution=Execution(shards=3))
+    data = json.loads((out / MANIFEST).read_text())
+    with pytest.raises(CatalogError, match="the entry of part 0 is malformed"):
+        Manifest.from_json({**data, "parts": {**data["parts"], "0": {"rows": "x"}}}, "manifest")
+    with pytest.raises(CatalogError, match="not numbered 0..2"):
+        Manifest.from_json({**data, "parts": {**data["parts"], "3": data["parts"]["0"]}}, "manifest")
+    build = tmp_path / ".c.lkspace-build"
+    out.rename(build)
+    del data["complete"]
+    data["parts"]["0"]["rows"] = "x"
+    (build / MANIFEST).write_text(json.dumps(data, indent=1))
+    again = write_catalog("cube", out, "-1..1", execution=Execution(shards=3, resume=True))
+    assert again.shards_resumed == 0 and len(read_catalog(out).labels) == again.designs

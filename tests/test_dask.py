@@ -11,12 +11,13 @@ import os
 import shutil
 import subprocess
 import sys
+from dataclasses import replace
 from pathlib import Path
 
 import pandas as pd
 import pytest
 
-from lkspace import Execution, load, write_catalog
+from lkspace import Execution, Selection, load, write_catalog
 from lkspace.catalog.transaction import MANIFEST, load_manifest, save_manifest
 from lkspace.design.census import census
 from lkspace.design.counting import count_space
@@ -68,8 +69,8 @@ def test_same_rows_from_every_scheduler(tmp_path, cluster):
     same(tmp_path / "one.parquet", tmp_path / "pool")
     same(tmp_path / "one.parquet", tmp_path / "dask")
     manifest = load_manifest(str(tmp_path / "dask"))
-    assert manifest["complete"] and len(manifest["parts"]) == 4
-    assert sorted(os.listdir(tmp_path / "dask")) == sorted([MANIFEST, *(p["file"] for p in manifest["parts"].values())])
+    assert manifest is not None and manifest.complete and len(manifest.parts) == 4
+    assert sorted(os.listdir(tmp_path / "dask")) == sorted([MANIFEST, *(p.file for p in manifest.parts.values())])
 
 
 def test_resume_on_dask(tmp_path, cluster):
@@ -79,10 +80,10 @@ def test_resume_on_dask(tmp_path, cluster):
     build = tmp_path / ".c.lkspace-build"
     shutil.move(tmp_path / "c", build)
     manifest = load_manifest(str(build))
-    lost = manifest["parts"].pop("1")
-    manifest.pop("complete")
-    os.remove(build / lost["file"])
-    save_manifest(str(build), manifest)
+    assert manifest is not None
+    kept = {i: part for i, part in manifest.parts.items() if i != 1}
+    os.remove(build / str(manifest.parts[1].file))
+    save_manifest(str(build), replace(manifest, parts=kept, complete=False))
     again = write_catalog(space, tmp_path / "c", execution=Execution(shards=3, resume=True, scheduler=cluster))
     assert again.shards_resumed == 2 and again.designs == first.designs
     assert not build.exists()
@@ -106,14 +107,17 @@ def test_cli_local_cluster_survives_a_killed_worker(tmp_path):
     write_catalog(make_space(load("cube"), "-1..1"), tmp_path / "ref.parquet")
     same(tmp_path / "ref.parquet", out)
     manifest = load_manifest(str(out))
-    assert sorted(os.listdir(out)) == sorted([MANIFEST, *(p["file"] for p in manifest["parts"].values())])
+    assert manifest is not None
+    assert sorted(os.listdir(out)) == sorted([MANIFEST, *(p.file for p in manifest.parts.values())])
 
 
 def test_identify_pass_on_dask(tmp_path, cluster):
     pytest.importorskip("snappy")
     space = make_space(load("tetrahedron"), "-2,2")
-    local = write_catalog(space, tmp_path / "a", identify=True, execution=Execution(shards=2))
-    on_dask = write_catalog(space, tmp_path / "b", identify=True, execution=Execution(shards=2, scheduler=cluster))
+    local = write_catalog(space, tmp_path / "a", selection=Selection(identify=True), execution=Execution(shards=2))
+    on_dask = write_catalog(
+        space, tmp_path / "b", selection=Selection(identify=True), execution=Execution(shards=2, scheduler=cluster)
+    )
     assert local.identified == on_dask.identified and on_dask.identified.rows == 12
     assert on_dask.identified.named >= 6  # L12a2007, L12n2205, L12n2211 (HTLinkExteriors): decided in a main thread
     cols = ["key", "knot_name", "identify_error"]  # crossings: of a simplified diagram, may differ by process

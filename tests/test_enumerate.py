@@ -8,7 +8,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import lkspace
-from lkspace import load
+from lkspace import Selection, load
 from lkspace.catalog.batches import design_batches, residue_batches
 from lkspace.design.counting import burnside_total, count_space
 from lkspace.design.space import canonical_form, make_space
@@ -134,10 +134,11 @@ def test_spanning_trees_give_single_components():
     space = make_space(load("cube"), "-1..1", "rotations")
     _, pairs = dual_edges(space)
     assert len(list(all_spanning_trees(6, pairs))) == 384  # spanning trees of the octahedron
-    df = next(lkspace.designs("cube", "-1..1", mode="spanning-trees"))
+    df = next(lkspace.designs("cube", "-1..1", selection=Selection(mode="spanning-trees")))
     assert (df.components == 1).all() and len(df) > 0
-    a = next(lkspace.designs("cube", "-2..2", mode="spanning-trees", sample=30, seed=7))
-    b = next(lkspace.designs("cube", "-2..2", mode="spanning-trees", sample=30, seed=7))
+    sampled = Selection(mode="spanning-trees", sample=30, seed=7)
+    a = next(lkspace.designs("cube", "-2..2", selection=sampled))
+    b = next(lkspace.designs("cube", "-2..2", selection=sampled))
     assert a.residues.map(tuple).tolist() == b.residues.map(tuple).tolist()
     assert set(a.residues.map(tuple)) <= set(df.residues.map(tuple))
 

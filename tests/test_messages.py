@@ -155,7 +155,7 @@ def test_export_tube_bound_names_the_bound(capsys, tmp_path):
             "--twist '1,2': expected 12 twist labels (one per edge of cube), got 2",
         ),
         (
-            lambda: next(lkspace.designs("tetrahedron", "2", mode="spanning-trees")),
+            lambda: next(lkspace.designs("tetrahedron", "2", selection=lkspace.Selection(mode="spanning-trees"))),
             ["enumerate", "tetrahedron", "--labels", "2", "--mode", "spanning-trees", "-o", "-"],
             "mode='spanning-trees' needs odd labels; [2] has none",
             "--mode spanning-trees needs odd labels; [2] has none",

@@ -379,7 +379,9 @@ def test_distinct_up_to_symmetry_matches_the_residue_orbits(name, labels, mode):
 
     scaffold = lkspace.load(name)
     result = solve(scaffold, 1, label_set=labels, count=500, distinct_up_to=mode, fast_path=False)
-    orbits = pd.concat(list(lkspace.designs(scaffold, labels, mode, mode="residues", components=1)))
+    orbits = pd.concat(
+        list(lkspace.designs(scaffold, labels, mode, selection=lkspace.Selection(mode="residues", components=1)))
+    )
     assert result.status == "optimal" or result.exhausted
     assert len(result.solutions) == len(orbits)
     assert all(trace(scaffold, s.labels).components == 1 for s in result.solutions)

@@ -26,7 +26,7 @@ BORROMEAN = [1] * 6
 def studio(tmp_path_factory):
     """``lkspace studio`` on an identified tetrahedron catalog (it has the ``knot_name`` column)."""
     catalog = str(tmp_path_factory.mktemp("knots") / "tetra.parquet")
-    lkspace.write_catalog("tetrahedron", catalog, label_set="-1..1", identify=True)
+    lkspace.write_catalog("tetrahedron", catalog, label_set="-1..1", selection=lkspace.Selection(identify=True))
     with running_studio(catalog) as url:
         yield url, catalog
 

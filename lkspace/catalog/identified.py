@@ -17,7 +17,6 @@ The ``lkspace`` metadata gains ``"identified": true``.
 
 from __future__ import annotations
 
-import json
 import multiprocessing
 import os
 from collections.abc import Iterable
@@ -32,7 +31,7 @@ from ..errors import CatalogError, UsageError
 from ..io.atomic import atomic_path
 from ..model.scaffold import Scaffold
 from ..progress import Step, task
-from .schema import IDENTIFY_COLUMNS, METADATA_KEY, metadata_digest
+from .schema import IDENTIFY_COLUMNS, METADATA_KEY
 from .verify import file_metadata, open_catalog
 
 if TYPE_CHECKING:
@@ -155,8 +154,8 @@ def _identify_file(
     table = pq.read_table(file)
     if "labels" not in table.column_names:
         raise CatalogError(f"{file}: no 'labels' column to identify")
-    meta = file_metadata(file)[0]
-    if meta.get("identified"):
+    footer = file_metadata(file)[0]
+    if footer.identified:
         step.advance(table.num_rows)
         return None
     flat = table.column("labels").combine_chunks().flatten().to_numpy(zero_copy_only=False)
@@ -178,9 +177,8 @@ def _identify_file(
         if name in table.column_names:
             table = table.drop_columns([name])
         table = table.append_column(pa.field(name, type_), column)
-    meta["identified"] = True
-    meta["digest"] = metadata_digest(meta)
-    table = table.replace_schema_metadata({**(table.schema.metadata or {}), METADATA_KEY: json.dumps(meta).encode()})
+    footer = replace(footer, identified=True)  # its digest written anew
+    table = table.replace_schema_metadata({**(table.schema.metadata or {}), METADATA_KEY: footer.encode()})
     with atomic_path(file, suffix=".parquet.tmp") as tmp:
         pq.write_table(table, tmp, compression="zstd", write_page_checksum=True)
     return found

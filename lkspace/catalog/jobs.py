@@ -19,18 +19,20 @@ import threading
 import time
 from collections.abc import Callable, Generator, Iterator
 from dataclasses import dataclass, replace
-from typing import Any
 
 import pyarrow as pa
 
 from ..design.space import DesignSpace
-from ..engine import is_dask, run_tasks
+from ..engine import is_dask, run_tasks, worker_pool
 from ..errors import require
-from ..workers import context, deferred_signals, ignore_interrupts
+from ..workers import ignore_interrupts
 from .batches import space_batches
 from .lock import pid_alive
+from .metadata import CatalogMetadata
 from .options import Selection
-from .records import PartSummary
+from .plan import Plan
+from .records import PartFooter, PartSummary, Shard
+from .schema import expected_schema
 from .transaction import file_sha256
 from .writer import write_batches
 
@@ -47,16 +49,10 @@ class PartsJob:
     space : DesignSpace
     selection : Selection
         Which rows the catalog holds.
-    schema : pyarrow.Schema
-        The catalog's columns.
-    meta : dict
+    settings : CatalogMetadata
         The ``lkspace`` metadata common to every part (:func:`~lkspace.catalog.shards.catalog_metadata`).
-    plan : str
-        The plan's fingerprint (:attr:`~lkspace.catalog.plan.Plan.fingerprint`).
-    ranges : list of list of int, or None
-        Representative class ids of each part (``None``: one part, the whole walk).
-    count : int
-        Number of parts.
+    plan : Plan
+        The parts: each one's representative classes, and the plan's fingerprint.
     files : tuple of str, or None
         The parts' file names (``None``: a one-file catalog on a URL).
     run : str or None
@@ -69,19 +65,26 @@ class PartsJob:
 
     space: DesignSpace
     selection: Selection
-    schema: pa.Schema
-    meta: dict[str, Any]
-    plan: str
-    ranges: list[list[int]] | None
-    count: int
-    files: tuple[str, ...] | None
-    run: str | None
+    settings: CatalogMetadata
+    plan: Plan
+    files: tuple[str, ...] | None = None
+    run: str | None = None
     folder: str | None = None
     remote: str | None = None
 
+    @property
+    def schema(self) -> pa.Schema:
+        """The catalog's columns."""
+        return expected_schema(self.settings)
+
     def batches(self, i: int) -> Iterator[pa.RecordBatch]:
         """Record batches of part ``i``."""
-        return selected_batches(self.space, self.selection, self.ranges[i] if self.ranges is not None else None)
+        ranges = self.plan.ranges
+        return selected_batches(self.space, self.selection, ranges[i] if ranges is not None else None)
+
+    def header(self, i: int) -> PartFooter:
+        """Return the ``lkspace`` metadata part ``i`` is written with (its footer adds its totals)."""
+        return PartFooter(self.settings, Shard(i, self.plan.parts, self.plan.fingerprint, self.run))
 
 
 def selected_batches(
@@ -128,8 +131,7 @@ def write_part_with(job: PartsJob, i: int, on_rows: Callable[[int], object] | No
         return write_part_remote(job, i)
     assert job.folder is not None and job.files is not None, "a local part needs its folder and file names"
     path = os.path.join(job.folder, job.files[i])
-    meta = {**job.meta, "shard": {"index": i, "count": job.count, "plan": job.plan, "run": job.run}}
-    summary = write_batches(path, job.schema, meta, job.batches(i), on_rows)
+    summary = write_batches(path, job.schema, job.header(i), job.batches(i), on_rows)
     return i, replace(summary, file=job.files[i], sha256=file_sha256(path))
 
 
@@ -139,11 +141,9 @@ def write_part_remote(job: PartsJob, i: int) -> tuple[int, PartSummary]:
     fsspec = require("fsspec", "dask", f"writing to {job.remote}")
     fs, root = fsspec.core.url_to_fs(job.remote)
     dest = root if job.files is None else f"{root}/{job.files[i]}"
-    shard: dict[str, Any] = {"index": i, "count": job.count, "plan": job.plan}
-    meta = {**job.meta, "shard": shard if job.files is None else {**shard, "run": job.run}}
     with tempfile.TemporaryDirectory(prefix="lkspace-part-") as tmp:
         local = os.path.join(tmp, "part.parquet")
-        summary = write_batches(local, job.schema, meta, job.batches(i))
+        summary = write_batches(local, job.schema, job.header(i), job.batches(i))
         digest = file_sha256(local)
         fs.put_file(local, dest)
     name = os.path.basename(dest) if job.files is None else job.files[i]
@@ -178,10 +178,7 @@ def run_parts(
             yield write_part_with(job, i, on_rows)
         return
     rows_done = 0
-    payload = pickle.dumps(job)
-    with deferred_signals():  # a pool half made cannot be stopped: finish making it, then stop
-        pool = context().Pool(min(jobs, len(todo)), initializer=init_worker, initargs=(payload, os.getpid()))
-    try:
+    with worker_pool(min(jobs, len(todo)), init_worker, (pickle.dumps(job), os.getpid())) as pool:
         results = pool.imap_unordered(write_part, todo)
         for _ in todo:
             while True:
@@ -193,9 +190,3 @@ def run_parts(
             rows_done += done[1].rows
             yield done
             tick(rows_done)
-        pool.close()
-    except BaseException:
-        pool.terminate()
-        raise
-    finally:
-        pool.join()

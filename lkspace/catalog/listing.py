@@ -9,7 +9,10 @@ from ..design.space import WALK_MODES, make_space
 from ..errors import LabelError
 from ..model.scaffold import Scaffold
 from ..model.specs import LabelSetSpec
-from .batches import design_batches, residue_batches, space_batches
+from ..symmetry.group import SymmetryMode
+from .batches import design_batches, space_batches
+from .options import Selection
+from .residue_rows import residue_batches
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -19,14 +22,10 @@ if TYPE_CHECKING:
 def designs(
     scaffold: Scaffold,
     label_set: LabelSetSpec = "-2..2",
-    symmetry: str = "rotations",
+    symmetry: SymmetryMode = "rotations",
     *,
-    mode: str = "designs",
-    components: int | None = None,
+    selection: Selection | None = None,
     no_zero: bool = False,
-    max_designs: int | None = None,
-    sample: int | None = None,
-    seed: int = 0,
     batch_rows: int | None = None,
     as_arrow: bool = False,
     tolerance: float | None = None,
@@ -40,12 +39,12 @@ def designs(
     label_set : str or sequence of int
         The label set ``SET`` (``"-2..2"``, ``"-2,2"``, or a list).
     symmetry : {"rotations", "isometries", "none"}
-    mode : {"designs", "residues", "spanning-trees"}
-        One row per design, per residue-class orbit, or per spanning-tree class.
-    components, no_zero, max_designs
-        Filters applied during the walk.
-    sample, seed
-        ``spanning-trees`` only: sample ``sample`` uniform spanning trees instead of all.
+    selection : Selection, optional
+        Which rows (:class:`~lkspace.catalog.options.Selection`: ``mode``, ``components``,
+        ``max_designs``, ``sample``, ``seed``; default every design), as for
+        :func:`~lkspace.write_catalog`.
+    no_zero : bool
+        Leave out designs with a zero label.
     batch_rows : int, optional
         Rows per batch (default 262,144).
     as_arrow : bool
@@ -64,15 +63,19 @@ def designs(
     >>> df = next(lkspace.designs("tetrahedron", "-2,2"))
     >>> len(df), int(df.orbit_size.sum())
     (12, 64)
+    >>> trees = next(lkspace.designs("cube", "-1..1", selection=lkspace.Selection(mode="spanning-trees")))
+    >>> int(trees.components.max())
+    1
     """
+    sel = selection or Selection()
     space = make_space(scaffold, label_set, symmetry, no_zero, tolerance)
-    if mode not in WALK_MODES:
-        raise LabelError(f"unknown mode {mode!r}; choose one of {', '.join(WALK_MODES)}")
-    if mode == "designs":
-        batches = design_batches(space, None, components, max_designs, batch_rows)
-    elif mode == "residues":
-        batches = residue_batches(space, None, components, max_designs, batch_rows)
+    if sel.mode not in WALK_MODES:
+        raise LabelError(f"unknown mode {sel.mode!r}; choose one of {', '.join(WALK_MODES)}")
+    if sel.mode == "designs":
+        batches = design_batches(space, None, sel.components, sel.max_designs, batch_rows)
+    elif sel.mode == "residues":
+        batches = residue_batches(space, None, sel.components, sel.max_designs, batch_rows)
     else:
-        batches = space_batches(space, mode, sample=sample, seed=seed, max_designs=max_designs)
+        batches = space_batches(space, sel.mode, sample=sel.sample, seed=sel.seed, max_designs=sel.max_designs)
     for batch in batches:
         yield batch if as_arrow else batch.to_pandas()

@@ -4,8 +4,10 @@
 design, one process)::
 
     write_catalog("cube", "cube.parquet", "-1..1",
-                  selection=Selection(components=1),
+                  selection=Selection(components=1, identify=True),
                   execution=Execution(jobs=2, shards=4, resume=True))
+
+:func:`~lkspace.designs` takes a :class:`Selection` too (``identify`` aside: it writes no files).
 """
 
 from __future__ import annotations
@@ -33,6 +35,8 @@ class Selection:
         ``"spanning-trees"`` mode: sample this many uniform spanning trees instead of listing all.
     seed : int
         Random seed of ``sample``.
+    identify : bool
+        Add knot/link columns to the rows (a written catalog only: :func:`~lkspace.write_catalog`).
     """
 
     mode: WalkMode = "designs"
@@ -40,6 +44,7 @@ class Selection:
     max_designs: int | None = None
     sample: int | None = None
     seed: int = 0
+    identify: bool = False
 
 
 @dataclass(frozen=True)
@@ -57,9 +62,13 @@ class Execution:
         address; ``None``: ``$DASK_SCHEDULER_ADDRESS`` or local.
     resume : bool
         Keep the verified parts of an interrupted run and write the rest.
+    allow_large : bool
+        Go ahead with a run estimated past :data:`~lkspace.catalog.plan.ROW_LIMIT` rows or
+        :data:`~lkspace.catalog.plan.BYTE_LIMIT` bytes (refused otherwise, before any work).
     """
 
     jobs: int = 1
     shards: int | None = None
     scheduler: str | None = None
     resume: bool = False
+    allow_large: bool = False

@@ -5,7 +5,7 @@ representative residue classes are cut into contiguous runs of about
 :data:`PART_ROWS` designs (exact Burnside counts per class), one part each.  So a run
 interrupted with 4 jobs resumes with 1 and finds the same parts.
 The estimate of rows and bytes is checked against :data:`ROW_LIMIT` and
-:data:`BYTE_LIMIT` (past them the caller must allow a large run, ``allow_large=True``)
+:data:`BYTE_LIMIT` (past them the caller must allow a large run, ``Execution(allow_large=True)``)
 and :data:`MAX_PARTS` (past it nothing is written at all): :class:`CatalogTooLarge`.
 """
 
@@ -21,7 +21,7 @@ from ..design.counting import class_weights
 from ..design.space import DesignSpace
 from ..errors import CatalogError, TooLargeError, UsageError
 from ..model.counts import count_text
-from .options import Selection
+from .options import Execution, Selection
 
 PART_ROWS = 1_000_000
 """Designs per part of a sharded catalog (about): a walk with more rows becomes a folder."""
@@ -106,7 +106,7 @@ class CatalogTooLarge(TooLargeError):
     def __init__(self, estimate: str, allowable: bool) -> None:
         remedy = "count the designs, filter them or use a smaller label set"
         if allowable:
-            remedy = f"pass allow_large=True to go ahead (or {remedy})"
+            remedy = f"pass Execution(allow_large=True) to go ahead (or {remedy})"
         super().__init__(f"{estimate}; {remedy}")
         self.estimate = estimate
         self.allowable = allowable
@@ -118,16 +118,16 @@ def check_jobs(jobs: int) -> None:
         raise UsageError(f"jobs {jobs}: use 1..{MAX_JOBS} worker processes", parameter="jobs")
 
 
-def make_plan(space: DesignSpace, selection: Selection, shards: int | None = None, allow_large: bool = False) -> Plan:
-    """Estimate the run and cut it into parts; refuse it when it is past a bound.
+def make_plan(space: DesignSpace, selection: Selection, execution: Execution) -> Plan:
+    """Estimate the run and cut it into ``execution.shards`` parts; refuse it when it is past a bound.
 
     Raises
     ------
     CatalogTooLarge
-        The estimate is past :data:`ROW_LIMIT` or :data:`BYTE_LIMIT` and ``allow_large``
-        is false, or past :data:`MAX_PARTS` parts.
+        The estimate is past :data:`ROW_LIMIT` or :data:`BYTE_LIMIT` and
+        ``execution.allow_large`` is false, or past :data:`MAX_PARTS` parts.
     """
-    n_edges = space.scaffold.n_edges
+    n_edges, shards, allow_large = space.scaffold.n_edges, execution.shards, execution.allow_large
     mode, max_designs = selection.mode, selection.max_designs
     if shards is not None and not 1 <= shards <= MAX_SHARDS:
         raise UsageError(f"shards {shards}: use 1..{MAX_SHARDS} parts", parameter="shards")

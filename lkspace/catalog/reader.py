@@ -13,7 +13,7 @@ from __future__ import annotations
 import os
 from dataclasses import dataclass
 from functools import cached_property
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 import numpy as np
 import pyarrow as pa
@@ -26,6 +26,8 @@ from ..io.sources import load
 from ..model.scaffold import Scaffold
 from ..strands.tracing import Trace, trace
 from ..words import noun
+from .metadata import JsonObject, ScaffoldInfo
+from .records import PartFooter
 from .transaction import load_manifest
 from .verify import damaged, open_catalog
 
@@ -40,24 +42,24 @@ READ_ATTEMPTS = 3
 """Times :func:`read_catalog` reads a folder again when it was replaced by a new run while being read."""
 
 
-def read_metadata(path: str | os.PathLike) -> dict[str, Any]:
-    """Return the ``lkspace`` metadata of a catalog (of its first part, for a folder), its structure checked.
+def read_metadata(path: str | os.PathLike[str]) -> JsonObject:
+    """Return the ``lkspace`` metadata of a catalog (of its first part, for a folder) as JSON, its structure checked.
 
-    It is read from the file footer, which holds the file's totals as well; the checks
-    are :func:`~lkspace.catalog.verify.open_catalog`'s.
+    It is read from the file footer, which holds the file's totals as well
+    (:class:`~lkspace.catalog.records.PartFooter`); the checks are
+    :func:`~lkspace.catalog.verify.open_catalog`'s.
     """
-    return open_catalog(path).metadata
+    return open_catalog(path).footer.to_json()
 
 
-def catalog_scaffold(metadata: dict[str, Any], path: str) -> Scaffold:
-    """Return the scaffold of a catalog: stored in its ``metadata``, else loaded by name; hash checked."""
-    info = metadata.get("scaffold", {})
-    data = info.get("data")
+def catalog_scaffold(footer: PartFooter, path: str) -> Scaffold:
+    """Return the scaffold of a catalog: stored in its ``footer``, else loaded by name; hash checked."""
+    info: ScaffoldInfo = footer.settings.scaffold
     try:
-        scaffold = scaffold_from_dict(data, info.get("name", "catalog")) if data else load(info.get("name", ""))
+        scaffold = scaffold_from_dict(info.data, info.name) if info.data else load(info.name)
     except LkspaceError as exc:
         raise CatalogError(f"{path}: the scaffold in its 'lkspace' metadata: {exc}") from None
-    if info.get("content_hash") not in (None, scaffold.content_hash()):
+    if info.content_hash != scaffold.content_hash():
         raise CatalogError(f"{path}: the scaffold {scaffold.name!r} differs from the one the catalog was written for")
     return scaffold
 
@@ -72,26 +74,30 @@ class Catalog:
         Every column except the label vectors, with Arrow-backed dtypes.
     labels : (n_designs, n_edges) int8
         The canonical twist labels of each row, in edge order (row ``i`` of ``frame``).
-    metadata : dict
-        The ``lkspace`` metadata (scaffold, label set, symmetry, group order, ...).
+    footer : PartFooter
+        The ``lkspace`` metadata (scaffold, label set, symmetry, group order, ...; of the first part).
     path : str
     """
 
     frame: pd.DataFrame
     labels: np.ndarray
-    metadata: dict[str, Any]
+    footer: PartFooter
     path: str
 
     def __len__(self) -> int:
         return len(self.frame)
 
     def __repr__(self) -> str:
-        scaffold = self.metadata.get("scaffold", {}).get("name", "?")
-        label_set = self.metadata.get("label_set", self.metadata.get("labels"))
+        settings = self.footer.settings
         return (
-            f"Catalog({scaffold}: {len(self):,} rows, label set {label_set}, "
-            f"symmetry {self.metadata.get('symmetry')}; columns {', '.join(self.frame.columns)})"
+            f"Catalog({settings.scaffold.name}: {len(self):,} rows, label set {list(settings.label_set)}, "
+            f"symmetry {settings.symmetry}; columns {', '.join(self.frame.columns)})"
         )
+
+    @cached_property
+    def metadata(self) -> JsonObject:
+        """The ``lkspace`` metadata as JSON (:meth:`~lkspace.catalog.records.PartFooter.to_json`)."""
+        return self.footer.to_json()
 
     def __getitem__(self, rows: slice | ArrayLike | pd.Series) -> Catalog:
         """Return the catalog restricted to ``rows``: a boolean mask, an index array or a slice."""
@@ -102,12 +108,12 @@ class Catalog:
         elif not isinstance(rows, slice):
             rows = np.asarray(rows)
         frame = self.frame.iloc[rows].reset_index(drop=True)
-        return Catalog(frame, self.labels[rows], self.metadata, self.path)
+        return Catalog(frame, self.labels[rows], self.footer, self.path)
 
     @cached_property
     def scaffold(self) -> Scaffold:
         """The catalog's scaffold: stored in its metadata, else loaded by name; hash checked."""
-        return catalog_scaffold(self.metadata, self.path)
+        return catalog_scaffold(self.footer, self.path)
 
     def trace(self, row: int) -> Trace:
         """Trace the design in row ``row``: its :class:`~lkspace.strands.tracing.Trace`."""
@@ -133,7 +139,7 @@ def _labels_of(table: pa.Table) -> np.ndarray:
     return flat.reshape(table.num_rows, -1)
 
 
-def read_catalog(path: str | os.PathLike, columns: list[str] | None = None) -> Catalog:
+def read_catalog(path: str | os.PathLike[str], columns: list[str] | None = None) -> Catalog:
     """Read a catalog (a file or a folder of parts) written by ``lkspace enumerate``.
 
     The catalog is checked first (:mod:`lkspace.catalog.verify`): its structure, every
@@ -169,7 +175,7 @@ def read_catalog(path: str | os.PathLike, columns: list[str] | None = None) -> C
 def _run_of(path: str) -> object:
     """Return the run id in the manifest of the folder ``path`` (``None``: a file, or no readable manifest)."""
     manifest = load_manifest(path) if os.path.isdir(path) else None
-    return None if manifest is None else manifest.get("run")
+    return None if manifest is None else manifest.run
 
 
 def _read(path: str, columns: list[str] | None) -> Catalog:
@@ -197,4 +203,4 @@ def _read(path: str, columns: list[str] | None) -> Catalog:
         raise CatalogError(f"{path}: its parts do not share one schema: {exc}") from None
     labels = _labels_of(table)
     frame = table.select(names).to_pandas(types_mapper=pd.ArrowDtype)
-    return Catalog(frame, labels, parts.metadata, path)
+    return Catalog(frame, labels, parts.footer, path)

@@ -29,20 +29,19 @@ from typing import Any
 import pyarrow as pa
 import pyarrow.parquet as pq
 
-from ..design.space import DesignSpace
 from ..engine import is_dask
 from ..errors import CatalogError, ExportError, UsageError, require
 from .jobs import PartsJob, run_parts, write_part_remote
-from .options import Selection
-from .plan import Plan
-from .records import Manifest, PartSummary
+from .metadata import CatalogMetadata, Json, decode, lkspace_mark
+from .options import Execution
+from .records import Manifest, PartFooter, PartSummary, Signature
 from .schema import METADATA_KEY
-from .transaction import MANIFEST, PART_NAME, new_run, part_name, same_settings
+from .transaction import MANIFEST, PART_NAME, new_run, part_name
 
 
-def remote_url(path: Any) -> str | None:
+def remote_url(path: str | os.PathLike[str]) -> str | None:
     """``path`` when it is an fsspec URL other than a local file (``file://`` is local), else ``None``."""
-    text = os.fspath(path) if isinstance(path, os.PathLike) else str(path)
+    text = os.fspath(path)
     if "://" not in text or text.startswith("file://"):
         return None
     return text.rstrip("/")
@@ -82,88 +81,79 @@ def check_remote(url: str, argument: str = "path") -> None:
     try:
         with fs.open(root, "rb") as fh:
             raw = (pq.read_metadata(fh).metadata or {}).get(METADATA_KEY)
-        meta = json.loads(raw) if raw is not None else None
+        meta: Json = json.loads(raw) if raw is not None else None
     except (OSError, ValueError, pa.ArrowException):
         meta = None
-    if not isinstance(meta, dict) or "format_version" not in meta:
+    if not lkspace_mark(meta):
         raise ExportError(
             f"{url}: is not an lkspace catalog; lkspace replaces only catalogs it wrote: choose another {argument}"
         )
 
 
-def _kept_parts(fs: Any, root: str, signature: dict[str, Any], fingerprint: str) -> tuple[str, dict[str, PartSummary]]:
+def _kept_parts(fs: Any, root: str, settings: CatalogMetadata, plan: str) -> tuple[str, dict[int, PartSummary]]:
     """Return ``(run id, parts)``: the parts in the folder ``root`` of the one earlier run of these settings.
 
-    A part is kept when its footer metadata is of this run's settings and plan and it
+    A part is kept when its footer metadata is of this run's settings and ``plan`` and it
     reads to the end; of several earlier runs, the one with the most such parts.
     """
     import hashlib
     import io
 
-    by_run: dict[str, dict[str, PartSummary]] = {}
+    by_run: dict[str, dict[int, PartSummary]] = {}
     for path in sorted(fs.glob(f"{root}/part-*.parquet")):
         try:
             with fs.open(path, "rb") as fh:
                 data = fh.read()
-            meta = json.loads(pq.read_metadata(io.BytesIO(data)).metadata[METADATA_KEY])
+            footer = PartFooter.from_json(decode(pq.read_metadata(io.BytesIO(data)).metadata[METADATA_KEY], path), path)
             pq.read_table(io.BytesIO(data))
-        except (OSError, ValueError, KeyError, TypeError):
+        except (OSError, ValueError, KeyError, TypeError):  # CatalogError is a ValueError
             continue
-        shard = meta.get("shard") or {}
-        run = shard.get("run")
-        if not isinstance(run, str) or shard.get("plan") != fingerprint:
+        shard, totals = footer.shard, footer.totals
+        if shard is None or shard.run is None or shard.plan != plan or totals is None or not totals.counted:
             continue
-        totals = PartSummary.from_json(meta)
-        if totals is None or not same_settings(meta, signature):
+        if not footer.has_settings(settings, shard):
             continue
         entry = replace(totals, file=os.path.basename(path), sha256=hashlib.sha256(data).hexdigest())
-        by_run.setdefault(run, {}).setdefault(str(shard["index"]), entry)
+        by_run.setdefault(shard.run, {}).setdefault(shard.index, entry)
     if not by_run:
         return new_run(), {}
     run = max(by_run, key=lambda r: len(by_run[r]))
     return run, by_run[run]
 
 
-def write_remote(
-    space: DesignSpace,
-    url: str,
-    plan: Plan,
-    meta: dict[str, Any],
-    schema: Any,
-    selection: Selection,
-    jobs: int,
-    scheduler: str,
-    resume: bool,
-) -> tuple[list[PartSummary], int]:
-    """Write the catalog of ``plan`` to ``url``; return the parts' summaries and how many were kept."""
+def write_remote(job: PartsJob, url: str, execution: Execution) -> tuple[list[PartSummary], int]:
+    """Write the parts of ``job`` to ``url`` as ``execution`` says; return their summaries and how many were kept.
+
+    ``execution.scheduler`` is resolved (:func:`lkspace.engine.resolve_scheduler`).
+    """
     fs, root = _fs(url)
+    jobs, scheduler = execution.jobs, str(execution.scheduler)
     if fs.protocol in ("memory", ("memory",)) and (jobs > 1 or is_dask(scheduler)):
         raise UsageError(f"{url}: memory:// is private to this process; use jobs=1 and the local scheduler")
-    single = plan.parts == 1 and url.endswith(".parquet")
-    n = plan.parts
-    job = PartsJob(space, selection, schema, meta, plan.fingerprint, plan.ranges, n, None, None, remote=url)
-    if single:
+    job, n = replace(job, remote=url), job.plan.parts
+    if n == 1 and url.endswith(".parquet"):
         if fs.isdir(root):
             raise CatalogError(f"{url}: is a folder; give a new name for a one-file catalog")
         return [write_part_remote(job, 0)[1]], 0
-    run_id, kept = _kept_parts(fs, root, meta, plan.fingerprint) if resume and fs.isdir(root) else (new_run(), {})
+    resume = execution.resume and fs.isdir(root)
+    run_id, kept = _kept_parts(fs, root, job.settings, job.plan.fingerprint) if resume else (new_run(), {})
     if fs.exists(f"{root}/{MANIFEST}"):
         fs.rm(f"{root}/{MANIFEST}")  # from here on the folder reads as incomplete
     if not kept and fs.isdir(root):
         for old in fs.glob(f"{root}/part-*.parquet"):
             fs.rm(old)
     fs.makedirs(root, exist_ok=True)
-    files = tuple(str(kept[str(i)].file) if str(i) in kept else part_name(i, run_id) for i in range(n))
+    files = tuple(str(kept[i].file) if i in kept else part_name(i, run_id) for i in range(n))
     job = replace(job, files=files, run=run_id)
     parts = dict(kept)
-    todo = [i for i in range(n) if str(i) not in kept]
+    todo = [i for i in range(n) if i not in kept]
     for i, summary in run_parts(job, todo, jobs, lambda rows: None, scheduler):
-        parts[str(i)] = summary
+        parts[i] = summary
     keep_files = {str(p.file) for p in parts.values()}
     for old in fs.glob(f"{root}/part-*.parquet"):
         if os.path.basename(old) not in keep_files:
             fs.rm(old)
-    manifest = Manifest({**meta, "shards": n}, run_id, parts, complete=True)
+    manifest = Manifest(Signature(job.settings, n), run_id, parts, complete=True)
     with fs.open(f"{root}/{MANIFEST}", "w") as fh:  # last: the manifest marks the catalog complete
-        fh.write(json.dumps(manifest.to_json(), indent=1))
-    return [parts[str(i)] for i in range(n)], len(kept)
+        fh.write(manifest.encode())
+    return [parts[i] for i in range(n)], len(kept)

@@ -35,21 +35,22 @@ for consumers that want fixed width.  Row groups of 262,144 rows, zstd.
 ``classes`` (classes in the orbit), ``orbit_size`` (assignments the row stands for) and
 ``designs`` (designs in it).
 
-Metadata key ``lkspace`` (JSON): format version, scaffold name and content hash,
+Metadata key ``lkspace`` (JSON, :class:`~lkspace.catalog.records.PartFooter`): format
+version (:data:`~lkspace.catalog.records.FORMAT_VERSION`), scaffold name and content hash,
 ``label_set``, symmetry mode and group order, filters, mode, shard, and the rows/by-components
 totals of the part; in the footer also ``digest``, the SHA-256 of the rest
-(:func:`metadata_digest`).
+(:func:`~lkspace.catalog.records.metadata_digest`).
 """
 
 from __future__ import annotations
 
-import hashlib
-import json
-from typing import Any
+from typing import TYPE_CHECKING
 
 import pyarrow as pa
 
-FORMAT_VERSION = 1
+if TYPE_CHECKING:
+    from .metadata import CatalogMetadata
+
 ROW_GROUP = 262_144
 METADATA_KEY = b"lkspace"
 
@@ -66,21 +67,12 @@ IDENTIFY_COLUMNS = {
 """Columns ``--identify`` adds after the others (:mod:`lkspace.catalog.identified`), with their types."""
 
 
-def metadata_digest(meta: dict[str, Any]) -> str:
-    """Return the SHA-256 of ``meta`` without its ``digest`` (canonical JSON): a file's footer records it.
-
-    It makes a changed value in the metadata itself (a label set, a row count) detectable
-    in a one-file catalog, which has no manifest.
-    """
-    body = {k: v for k, v in meta.items() if k != "digest"}
-    return hashlib.sha256(json.dumps(body, sort_keys=True, separators=(",", ":")).encode()).hexdigest()
-
-
-def expected_schema(meta: dict[str, Any]) -> pa.Schema:
-    """Return the schema a catalog file of ``meta`` (mode, scaffold) has, before any ``--identify`` columns."""
-    scaffold = meta["scaffold"]
-    periodic = bool(scaffold.get("periodic"))
-    return design_schema(scaffold["edges"], periodic) if meta.get("mode") == "designs" else residue_schema(periodic)
+def expected_schema(settings: CatalogMetadata) -> pa.Schema:
+    """Return the schema a catalog file of ``settings`` (mode, scaffold) has, before any ``--identify`` columns."""
+    periodic = settings.scaffold.periodic is True
+    if settings.mode == "designs":
+        return design_schema(settings.scaffold.edges, periodic)
+    return residue_schema(periodic)
 
 
 def design_schema(n_edges: int, periodic: bool) -> pa.Schema:

@@ -20,7 +20,7 @@ import contextlib
 import os
 from collections.abc import Callable
 from dataclasses import asdict, dataclass, replace
-from typing import TYPE_CHECKING, Any, TypeAlias
+from typing import TYPE_CHECKING, TypeAlias
 
 import pyarrow as pa
 import pyarrow.parquet as pq
@@ -33,17 +33,17 @@ from ..io.scaffold_json import scaffold_to_dict
 from ..model.scaffold import Scaffold
 from ..model.specs import LabelSetSpec
 from ..progress import task
+from ..symmetry.group import SymmetryMode
 from ..symmetry.tolerance import resolve_tolerance
 from ..words import plural
 from ..workers import context, ignored_signals
-from .jobs import PartsJob, run_parts, selected_batches
+from .jobs import PartsJob, run_parts
 from .lock import catalog_lock
+from .metadata import FORMAT_VERSION, CatalogMetadata, Filters, JsonObject, ScaffoldInfo
 from .options import Execution, Selection
-from .plan import Plan, check_jobs, make_plan
-from .reader import read_metadata
-from .records import Manifest, PartSummary
+from .plan import check_jobs, make_plan
+from .records import Manifest, PartFooter, PartSummary, Signature
 from .remote import check_remote, remote_url, write_remote
-from .schema import FORMAT_VERSION, design_schema, residue_schema
 from .transaction import (
     CatalogInterrupted,
     Destination,
@@ -54,11 +54,11 @@ from .transaction import (
     part_name,
     prune_build,
     remove_temporaries,
-    same_settings,
     save_manifest,
     seed_build,
     verified_parts,
 )
+from .verify import open_catalog
 from .writer import write_batches
 
 if TYPE_CHECKING:
@@ -105,7 +105,7 @@ class CatalogWritten:
     shards_resumed: int
     group_order: int
     acting_order: int
-    symmetry: str
+    symmetry: SymmetryMode
     label_set: list[int]
     mode: WalkMode
     format_version: int = FORMAT_VERSION
@@ -114,53 +114,24 @@ class CatalogWritten:
     def __repr__(self) -> str:
         return f"CatalogWritten({self.designs:,} rows to {self.output} in {plural(self.shards, 'part')})"
 
-    def to_dict(self) -> dict[str, Any]:
+    def to_dict(self) -> JsonObject:
         """JSON form: the ``lkspace enumerate --json`` fields (``by_components`` keyed by strings)."""
-        out = asdict(self)
+        out: JsonObject = asdict(self)
         out["by_components"] = {str(k): v for k, v in self.by_components.items()}
         if self.identified is None:
             del out["identified"]
         return out
 
 
-def catalog_metadata(space: DesignSpace, selection: Selection) -> dict[str, Any]:
-    """Return the ``lkspace`` metadata common to every part of a catalog (its signature for resuming)."""
-    sc = space.scaffold
-    return {
-        "format_version": FORMAT_VERSION,
-        "scaffold": {
-            "name": sc.name,
-            "content_hash": sc.content_hash(),
-            "edges": sc.n_edges,
-            "faces": sc.n_faces,
-            "periodic": sc.periodic,
-            "data": {k: v for k, v in scaffold_to_dict(sc).items() if k not in ("labels", "nulls")},  # geometry only
-        },
-        "label_set": space.label_set.tolist(),
-        "symmetry": space.mode,
-        "symmetry_tolerance": None if space.mode == "none" else resolve_tolerance(sc, space.tolerance),
-        "group_order": space.group_order,
-        "acting_order": space.n_actions,
-        "assignments": space.assignments,
-        "mode": selection.mode,
-        "filters": {"components": selection.components, "no_zero": space.no_zero, "max_designs": selection.max_designs},
-        "sample": selection.sample,
-        "seed": selection.seed if selection.sample is not None else None,
-        "canonical_rule": CANONICAL_RULE,
-    }
-
-
 def write_catalog(
     space: DesignSpace | Scaffold,
     path: str | os.PathLike[str],
     label_set: LabelSetSpec = "-2..2",
-    symmetry: str = "rotations",
+    symmetry: SymmetryMode = "rotations",
     *,
     no_zero: bool = False,
     selection: Selection | None = None,
     execution: Execution | None = None,
-    identify: bool = False,
-    allow_large: bool = False,
     progress: Progress | None = None,
 ) -> CatalogWritten:
     """Walk a design space and write its catalog; return its totals (:class:`CatalogWritten`).
@@ -174,15 +145,11 @@ def write_catalog(
         The catalog: a ``.parquet`` file or folder, or an fsspec URL
         (``s3://bucket/cat.parquet``, ``memory://cat``: see :mod:`lkspace.catalog.remote`).
     selection : Selection, optional
-        Which rows (:class:`~lkspace.catalog.options.Selection`; default every design).
+        Which rows, and whether knot/link columns are added (``identify``; a local catalog
+        only) (:class:`~lkspace.catalog.options.Selection`; default every design).
     execution : Execution, optional
         How the run executes (:class:`~lkspace.catalog.options.Execution`: ``jobs``,
-        ``shards``, ``scheduler``, ``resume``; default one process, local).
-    identify : bool
-        Add knot/link columns before the catalog is put in place.
-    allow_large : bool
-        Go ahead with a run estimated past :data:`~lkspace.catalog.plan.ROW_LIMIT` rows or
-        :data:`~lkspace.catalog.plan.BYTE_LIMIT` bytes (refused otherwise, before any work).
+        ``shards``, ``scheduler``, ``resume``, ``allow_large``; default one process, local).
     progress : callable, optional
         ``progress(total)`` may return a callable taking the rows written so far.
 
@@ -192,7 +159,9 @@ def write_catalog(
     rows it is one Parquet file; larger design walks (or ``shards`` > 1) make a folder of
     parts with a manifest ``_lkspace.json`` that pandas and pyarrow open as one table.
     ``jobs`` worker processes write the parts; ``resume`` keeps the parts of an
-    interrupted run whose checksums still match and redoes the rest.
+    interrupted run whose checksums still match and redoes the rest.  A run estimated past
+    :data:`~lkspace.catalog.plan.ROW_LIMIT` rows or :data:`~lkspace.catalog.plan.BYTE_LIMIT`
+    bytes is refused before any work unless ``allow_large``.
 
     Raises
     ------
@@ -205,98 +174,112 @@ def write_catalog(
         temporaries removed, finished parts kept.
     """
     selection = selection or Selection()
-    execution = execution or Execution()
     if not isinstance(space, DesignSpace):
         space = make_space(space, label_set, symmetry, no_zero)
-    jobs, resume = execution.jobs, execution.resume
-    check_jobs(jobs)
-    engine = resolve_scheduler(execution.scheduler)
-    check_scheduler(engine)
-    if jobs > 1 and engine == "local":
-        context()  # starts the fork server now: it is ready when the pool is made (a wait Ctrl-C cannot cut)
+    execution = _started(execution or Execution())
     remote = remote_url(path)
-    if remote is None:
-        target = catalog_target(path)
-    elif identify:
-        raise CatalogError(
-            "identify rewrites the files of a local catalog; write to a local path", usage=True, parameter="identify"
-        )
-    else:
-        check_remote(remote)
-    try:  # planning loads compiled kernels: an interrupt now stops the run cleanly too
-        plan = make_plan(space, selection, execution.shards, allow_large)
-    except KeyboardInterrupt as exc:
-        shown = remote or target.shown
-        raise CatalogInterrupted(
-            f"interrupted; nothing was written to {shown}", 128 + getattr(exc, "signum", 2)
-        ) from None
-    meta = catalog_metadata(space, selection)
-    periodic = space.scaffold.periodic
-    schema = (
-        design_schema(space.scaffold.n_edges, periodic) if selection.mode == "designs" else residue_schema(periodic)
-    )
     if remote is not None:
-        summaries, kept = write_remote(space, remote, plan, meta, schema, selection, jobs, engine, resume)
-        return _totals(space, meta, summaries, remote, plan.parts, kept)
-    run = _Run(space, target, plan, meta, schema, selection, identify, engine)
-    with catalog_lock(target.lock, target.shown), task("writing catalog", plan.rows) as step:
-        advance = progress(plan.rows) if progress is not None else None
+        if selection.identify:
+            raise CatalogError(
+                "identify rewrites the files of a local catalog; write to a local path",
+                usage=True,
+                parameter="identify",
+            )
+        check_remote(remote)
+        job = _planned(space, selection, execution, remote)
+        summaries, kept = write_remote(job, remote, execution)
+        return _totals(job, summaries, kept, remote)
+    target = catalog_target(path)
+    run = _Run(_planned(space, selection, execution, target.shown), target, execution)
+    summaries, kept = run.write(progress)
+    return replace(_totals(run.job, summaries, kept, os.path.abspath(path)), identified=run.identified)
 
-        def tick(rows: int) -> None:
-            step.update(completed=rows)
-            if plan.parts > 1:
-                step.note(f"{len(run.parts)}/{plan.parts} parts")
-            if advance is not None:
-                advance(rows)
 
-        remove_temporaries(target, keep_build=resume)
-        try:
-            summaries, kept = run.single(resume, jobs, tick) if plan.parts == 1 else run.sharded(resume, jobs, tick)
-        except KeyboardInterrupt as exc:
-            with ignored_signals():
-                remove_temporaries(target, keep_build=plan.parts > 1)
-            raise run.interrupted(128 + getattr(exc, "signum", 2)) from None
-    totals = _totals(space, meta, summaries, os.fspath(path), plan.parts, kept)
-    return replace(totals, identified=run.identified) if identify else totals
+def _started(execution: Execution) -> Execution:
+    """Check ``execution`` before any work; return it with its scheduler resolved (:mod:`lkspace.engine`)."""
+    check_jobs(execution.jobs)
+    scheduler = resolve_scheduler(execution.scheduler)
+    check_scheduler(scheduler)
+    if execution.jobs > 1 and scheduler == "local":
+        context()  # starts the fork server now: it is ready when the pool is made (a wait Ctrl-C cannot cut)
+    return replace(execution, scheduler=scheduler)
+
+
+def _planned(space: DesignSpace, selection: Selection, execution: Execution, shown: str) -> PartsJob:
+    """Plan the run (refused past a bound) and return the job its parts are written from."""
+    try:  # planning loads compiled kernels: an interrupt now stops the run cleanly too
+        plan = make_plan(space, selection, execution)
+    except KeyboardInterrupt as exc:
+        code = 128 + getattr(exc, "signum", 2)
+        raise CatalogInterrupted(f"interrupted; nothing was written to {shown}", code) from None
+    return PartsJob(space, selection, catalog_metadata(space, selection), plan)
+
+
+def catalog_metadata(space: DesignSpace, selection: Selection) -> CatalogMetadata:
+    """Return the ``lkspace`` metadata common to every part of a catalog (its signature for resuming)."""
+    sc = space.scaffold
+    geometry = {k: v for k, v in scaffold_to_dict(sc).items() if k not in ("labels", "nulls")}
+    return CatalogMetadata(
+        format_version=FORMAT_VERSION,
+        scaffold=ScaffoldInfo(sc.name, sc.content_hash(), sc.n_edges, sc.n_faces, sc.periodic, geometry),
+        label_set=tuple(space.label_set.tolist()),
+        symmetry=space.mode,
+        symmetry_tolerance=None if space.mode == "none" else resolve_tolerance(sc, space.tolerance),
+        group_order=space.group_order,
+        acting_order=space.n_actions,
+        assignments=space.assignments,
+        mode=selection.mode,
+        filters=Filters(selection.components, space.no_zero, selection.max_designs),
+        sample=selection.sample,
+        seed=selection.seed if selection.sample is not None else None,
+        canonical_rule=CANONICAL_RULE,
+    )
 
 
 class _Run:
-    """One catalog run: what :func:`write_catalog` planned, and the parts finished so far."""
+    """One local catalog run: its job, the build beside the target, and the parts finished so far."""
 
-    def __init__(
-        self,
-        space: DesignSpace,
-        target: Destination,
-        plan: Plan,
-        meta: dict[str, Any],
-        schema: pa.Schema,
-        selection: Selection,
-        identify: bool,
-        scheduler: str = "local",
-    ) -> None:
-        self.space, self.target, self.plan, self.meta, self.schema = space, target, plan, meta, schema
-        self.selection, self.identify, self.scheduler = selection, identify, scheduler
-        self.signature = {**meta, "shards": plan.parts, "plan": plan.fingerprint, "identify": identify}
-        self.parts: dict[str, PartSummary] = {}
+    def __init__(self, job: PartsJob, target: Destination, execution: Execution) -> None:
+        self.job, self.target, self.execution = job, target, execution
+        self.identify = job.selection.identify
+        self.signature = Signature(job.settings, job.plan.parts, job.plan.fingerprint, self.identify)
+        self.parts: dict[int, PartSummary] = {}
         self.identified: Identified | None = None
-        self.jobs = 1
 
-    def single(self, resume: bool, jobs: int, tick: Callable[[int], object]) -> tuple[list[PartSummary], int]:
+    def write(self, progress: Progress | None) -> tuple[list[PartSummary], int]:
+        """Under the target's lock, build the catalog and put it in place; return the parts and how many were kept."""
+        target, plan = self.target, self.job.plan
+        with catalog_lock(target.lock, target.shown), task("writing catalog", plan.rows) as step:
+            advance = progress(plan.rows) if progress is not None else None
+
+            def tick(rows: int) -> None:
+                step.update(completed=rows)
+                if plan.parts > 1:
+                    step.note(f"{len(self.parts)}/{plan.parts} parts")
+                if advance is not None:
+                    advance(rows)
+
+            remove_temporaries(target, keep_build=self.execution.resume)
+            try:
+                return self.single(tick) if plan.parts == 1 else self.sharded(tick)
+            except KeyboardInterrupt as exc:
+                with ignored_signals():
+                    remove_temporaries(target, keep_build=plan.parts > 1)
+                raise self.interrupted(128 + getattr(exc, "signum", 2)) from None
+
+    def single(self, tick: Callable[[int], object]) -> tuple[list[PartSummary], int]:
         """Write (or, resuming, keep) a one-file catalog."""
-        self.jobs = jobs
-        target, build = self.target, self.target.build
-        part_meta = {**self.meta, "shard": {"index": 0, "count": 1, "plan": self.plan.fingerprint}}
-        for candidate in (build, target.path) if resume else ():
-            found = _matching(candidate, part_meta)
-            if found is not None:
-                footer, summary = found
-                tick(summary.rows)
-                if self.identify and not footer.get("identified"):
+        target, build, header = self.target, self.target.build, self.job.header(0)
+        for candidate in (build, target.path) if self.execution.resume else ():
+            footer = _matching(candidate, header)
+            if footer is not None and footer.totals is not None and footer.totals.counted:
+                tick(footer.totals.rows)
+                if self.identify and not footer.identified:
                     self._identify(candidate)
                 if candidate == build:
                     with ignored_signals():
                         replace_path(build, target.path, target.aside)
-                return [summary], 1
+                return [footer.totals], 1
         remove_path(build)
         rows = [0]
 
@@ -304,40 +287,26 @@ class _Run:
             rows[0] += n
             tick(rows[0])
 
-        summary = write_batches(build, self.schema, part_meta, selected_batches(self.space, self.selection), on_rows)
+        summary = write_batches(build, self.job.schema, header, self.job.batches(0), on_rows)
         if self.identify:
             self._identify(build)
         with ignored_signals():
             replace_path(build, target.path, target.aside)
         return [summary], 0
 
-    def sharded(self, resume: bool, jobs: int, tick: Callable[[int], object]) -> tuple[list[PartSummary], int]:
+    def sharded(self, tick: Callable[[int], object]) -> tuple[list[PartSummary], int]:
         """Write a folder of parts in the build, then put it in place."""
-        build, n = self.target.build, self.plan.parts
-        self.jobs = jobs
-        old = Manifest.from_json(load_manifest(build)) if resume and os.path.isdir(build) else None
-        if old is not None and same_settings(old.signature, self.signature):
-            run_id = old.run
-            self.parts = verified_parts(build, old)
-        else:
-            remove_path(build)
-            os.mkdir(build)
-            run_id, self.parts = seed_build(self.target, build, self.signature) if resume else (new_run(), {})
-        prune_build(build, self.parts)
-        self._save(run_id)
+        build, n = self.target.build, self.job.plan.parts
+        run_id = self._start_build()
         kept = len(self.parts)
         base = sum(p.rows for p in self.parts.values())
         tick(base)
-        files = tuple(part_name(i, run_id) for i in range(n))
-        plan = self.plan
-        job = PartsJob(
-            self.space, self.selection, self.schema, self.meta, plan.fingerprint, plan.ranges, n, files, run_id, build
-        )
-        todo = [i for i in range(n) if str(i) not in self.parts]
-        parts = run_parts(job, todo, jobs, lambda rows: tick(base + rows), self.scheduler)
-        with contextlib.closing(parts) as finished:
+        job = replace(self.job, files=tuple(part_name(i, run_id) for i in range(n)), run=run_id, folder=build)
+        todo = [i for i in range(n) if i not in self.parts]
+        jobs, scheduler = self.execution.jobs, str(self.execution.scheduler)
+        with contextlib.closing(run_parts(job, todo, jobs, lambda rows: tick(base + rows), scheduler)) as finished:
             for i, summary in finished:
-                self.parts[str(i)] = summary
+                self.parts[i] = summary
                 self._save(run_id)
         prune_build(build, self.parts)  # temporaries of a worker lost mid-part
         self._save(run_id, complete=True)  # every part is there
@@ -348,61 +317,78 @@ class _Run:
             self._save(run_id, complete=True)
         with ignored_signals():
             replace_path(build, self.target.path, self.target.aside)
-        return [self.parts[str(i)] for i in range(n)], kept
+        return [self.parts[i] for i in range(n)], kept
+
+    def _start_build(self) -> str:
+        """Make the build folder (resuming: keep its verified parts, or the target's); return the run id."""
+        build = self.target.build
+        old = load_manifest(build) if self.execution.resume and os.path.isdir(build) else None
+        if old is not None and self.signature.resumes(old.signature):
+            run_id = old.run
+            self.parts = verified_parts(build, old)
+        else:
+            remove_path(build)
+            os.mkdir(build)
+            run_id, self.parts = (
+                seed_build(self.target, build, self.signature) if self.execution.resume else (new_run(), {})
+            )
+        prune_build(build, self.parts)
+        self._save(run_id)
+        return run_id
 
     def _save(self, run_id: str, complete: bool = False) -> None:
         """Write the build's manifest: this run's settings and the parts finished so far."""
-        manifest = Manifest(self.signature, run_id, dict(self.parts), complete)
-        save_manifest(self.target.build, manifest.to_json())
+        save_manifest(self.target.build, Manifest(self.signature, run_id, dict(self.parts), complete))
 
     def _identify(self, path: str) -> None:
         from .identified import identify_catalog
 
-        self.identified = identify_catalog(path, self.space.scaffold, processes=self.jobs, scheduler=self.scheduler)
+        scaffold, processes, scheduler = self.job.space.scaffold, self.execution.jobs, str(self.execution.scheduler)
+        self.identified = identify_catalog(path, scaffold, processes=processes, scheduler=scheduler)
 
     def interrupted(self, exit_code: int) -> CatalogInterrupted:
         """Return the interrupt that says what the run left (and whether it can be resumed)."""
-        if self.plan.parts == 1:
+        if self.job.plan.parts == 1:
             left = f"interrupted; nothing was written to {self.target.shown} (an old catalog there is unchanged)"
             return CatalogInterrupted(left, exit_code)
-        left = f"interrupted; {len(self.parts)} of {self.plan.parts} parts are finished in {self.target.build}"
+        left = f"interrupted; {len(self.parts)} of {self.job.plan.parts} parts are finished in {self.target.build}"
         return CatalogInterrupted(left, exit_code, resumable=True)
 
 
-def _matching(part: str, meta: dict[str, Any]) -> tuple[dict[str, Any], PartSummary] | None:
-    """Return the footer metadata and totals of the catalog file ``part`` if it has the metadata ``meta`` and reads to the end."""
+def _matching(part: str, header: PartFooter) -> PartFooter | None:
+    """Return the footer of the catalog file ``part`` if it was written with ``header`` and reads to the end."""
     if not os.path.isfile(part):
         return None
     try:
-        footer = read_metadata(part)
-        summary = PartSummary.from_json(footer)
-        if summary is None or not same_settings(footer, meta):
+        footer = open_catalog(part).footer
+        if not footer.has_settings(header.settings, header.shard):
             return None
         pq.ParquetFile(part).read()
     except (CatalogError, OSError, pa.ArrowException):
         return None
-    return footer, summary
+    return footer
 
 
-def _totals(
-    space: DesignSpace, meta: dict[str, Any], summaries: list[PartSummary], path: str, shards: int, skipped: int
-) -> CatalogWritten:
+def _totals(job: PartsJob, summaries: list[PartSummary], skipped: int, path: str) -> CatalogWritten:
+    """Return the totals of the run of ``job`` from its parts' ``summaries`` (``skipped`` of them kept)."""
+    space = job.space
     by: dict[int, int] = {}
-    covered = [s.assignments_covered for s in summaries] or [0]
-    for s in summaries:
-        for k, v in s.by_components.items():
+    counts = [s.counts() for s in summaries]
+    covered = [c for _, c in counts] or [0]
+    for by_components, _ in counts:
+        for k, v in by_components.items():
             by[int(k)] = by.get(int(k), 0) + v
     return CatalogWritten(
         designs=sum(s.rows for s in summaries),
         assignments=space.assignments,
         assignments_covered=-1 if min(covered) < 0 else sum(covered),
         by_components=dict(sorted(by.items())),
-        output=path if remote_url(path) else os.path.abspath(path),
-        shards=shards,
+        output=path,
+        shards=job.plan.parts,
         shards_resumed=skipped,
         group_order=space.group_order,
         acting_order=space.n_actions,
         symmetry=space.mode,
         label_set=space.label_set.tolist(),
-        mode=meta["mode"],
+        mode=job.settings.mode,
     )

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import os
 from collections.abc import Iterator
+from dataclasses import replace
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -22,11 +23,14 @@ from ..design.space import DesignSpace
 from ..errors import CatalogError
 from ..model.scaffold import Scaffold
 from ..model.specs import LabelSetSpec, parse_label_set
+from ..symmetry.group import SymmetryMode
 from .batches import gather_blocks
 from .lock import catalog_lock
+from .metadata import CatalogMetadata, json_object
 from .options import Selection
-from .schema import ROW_GROUP, design_schema
-from .shards import catalog_metadata
+from .records import PartFooter
+from .schema import ROW_GROUP, expected_schema
+from .shards import CANONICAL_RULE, catalog_metadata
 from .transaction import catalog_target
 from .writer import write_batches
 
@@ -39,7 +43,7 @@ def invariant_space(
     scaffold: Scaffold,
     subgroup: str,
     label_set: LabelSetSpec = "-2..2",
-    symmetry: str = "rotations",
+    symmetry: SymmetryMode = "rotations",
     no_zero: bool = False,
 ) -> InvariantSpace:
     """Return the :class:`~lkspace.design.invariant.InvariantSpace` of user-level arguments (a label SET as text)."""
@@ -58,7 +62,7 @@ def symmetric_designs(
     scaffold: Scaffold,
     subgroup: str,
     label_set: LabelSetSpec = "-2..2",
-    symmetry: str = "rotations",
+    symmetry: SymmetryMode = "rotations",
     *,
     components: int | None = None,
     no_zero: bool = False,
@@ -88,14 +92,16 @@ def symmetric_designs(
         yield batch.to_pandas()
 
 
-def invariant_metadata(space: InvariantSpace, components: int | None, max_designs: int | None) -> dict[str, Any]:
+def invariant_metadata(space: InvariantSpace, components: int | None, max_designs: int | None) -> CatalogMetadata:
     """Return the ``lkspace`` metadata of a symmetric catalog: the usual keys and ``invariant``."""
     plain = DesignSpace(space.scaffold, space.label_set, space.mode, space.no_zero)
     meta = catalog_metadata(plain, Selection(components=components, max_designs=max_designs))
-    meta["acting_order"] = int(len(space.action[1]))
-    meta["invariant"] = space.summary()
-    meta["canonical_rule"] += "; under the normalizer of the invariant subgroup"
-    return meta
+    return replace(
+        meta,
+        acting_order=int(len(space.action[1])),
+        canonical_rule=CANONICAL_RULE + "; under the normalizer of the invariant subgroup",
+        invariant=json_object(space.summary(), "the subgroup's summary"),
+    )
 
 
 def count_invariant(space: InvariantSpace, components: int | None = None) -> dict[str, Any]:
@@ -104,7 +110,12 @@ def count_invariant(space: InvariantSpace, components: int | None = None) -> dic
     ``by_components`` is ``None`` when the fixed assignments are past
     :data:`~lkspace.design.invariant_walk.MAX_FIXED` (counted, not listed).
     """
-    base = {"assignments": space.assignments, "fixed_assignments": space.n_fixed, "invariant": space.summary()}
+    invariant = json_object(space.summary(), "the subgroup's summary")
+    base: dict[str, Any] = {
+        "assignments": space.assignments,
+        "fixed_assignments": space.n_fixed,
+        "invariant": invariant,
+    }
     if space.n_fixed > MAX_FIXED:
         note = f"{space.n_fixed:,} fixed assignments: too many to list (limit {MAX_FIXED:,}); counted by Burnside"
         if components is not None:
@@ -142,19 +153,20 @@ def write_invariant_catalog(
     if os.path.isdir(target.path):
         raise CatalogError(f"{target.shown}: is a folder; a symmetric catalog is one .parquet file", usage=True)
     meta = invariant_metadata(space, components, max_designs)
-    schema = design_schema(space.scaffold.n_edges, space.scaffold.periodic)
     with catalog_lock(target.lock, target.shown):
-        summary = write_batches(target.path, schema, meta, invariant_batches(space, components, max_designs))
+        batches = invariant_batches(space, components, max_designs)
+        summary = write_batches(target.path, expected_schema(meta), PartFooter(meta), batches)
+    by_components, covered = summary.counts()
     return {
         "designs": summary.rows,
         "assignments": space.assignments,
         "fixed_assignments": space.n_fixed,
-        "assignments_covered": summary.assignments_covered,
-        "by_components": dict(sorted(summary.by_components.items(), key=lambda kv: int(kv[0]))),
+        "assignments_covered": covered,
+        "by_components": dict(sorted(by_components.items(), key=lambda kv: int(kv[0]))),
         "output": os.fspath(path),
-        "group_order": meta["group_order"],
-        "acting_order": meta["acting_order"],
+        "group_order": meta.group_order,
+        "acting_order": meta.acting_order,
         "symmetry": space.mode,
         "label_set": space.label_set.tolist(),
-        "invariant": meta["invariant"],
+        "invariant": meta.invariant,
     }

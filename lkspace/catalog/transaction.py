@@ -24,12 +24,12 @@ import os
 import re
 import stat
 from dataclasses import dataclass
-from typing import Any
 
-from ..errors import ExportError
+from ..errors import CatalogError, ExportError
 from ..io.atomic import remove_path, write_text
 from ..io.paths import not_an_input, only_extension, output_folder
-from .records import Manifest, PartSummary
+from .metadata import Json, lkspace_mark
+from .records import Manifest, PartSummary, Signature
 
 MANIFEST = "_lkspace.json"
 """The manifest of a sharded catalog (pandas and pyarrow skip names starting with ``_``)."""
@@ -137,8 +137,8 @@ def foreign_reason(path: str) -> str | None:
         entries = os.listdir(path)
         if not entries:
             return "is an empty folder, not an lkspace catalog"
-        manifest = load_manifest(path)
-        if manifest is None or "format_version" not in manifest or not isinstance(manifest.get("parts"), dict):
+        manifest = _manifest_json(path)
+        if not lkspace_mark(manifest) or not isinstance(manifest, dict) or not isinstance(manifest.get("parts"), dict):
             return "is a folder that holds no lkspace catalog (no lkspace manifest _lkspace.json)"
         for entry in sorted(entries):
             if entry != MANIFEST and not PART_NAME.fullmatch(entry) and not entry.startswith(".part-"):
@@ -148,11 +148,11 @@ def foreign_reason(path: str) -> str | None:
     import pyarrow.parquet as pq
 
     try:
-        raw = (pq.read_metadata(path).metadata or {}).get(b"lkspace")
-        meta = json.loads(raw) if raw is not None else None
+        raw = (pq.read_metadata(path).metadata or {}).get(b"lkspace")  # schema.METADATA_KEY: schema imports pyarrow
+        meta: Json = json.loads(raw) if raw is not None else None
     except (OSError, ValueError, pa.ArrowException):
         return "is a file that is not an lkspace catalog (not a readable Parquet file)"
-    if not isinstance(meta, dict) or "format_version" not in meta:
+    if not lkspace_mark(meta):
         return "is a Parquet file that is not an lkspace catalog (no 'lkspace' metadata)"
     return None
 
@@ -182,46 +182,46 @@ def part_name(index: int, run: str) -> str:
     return f"part-{index:05d}-{run}.parquet"
 
 
-def load_manifest(folder: str) -> dict[str, Any] | None:
-    """Return the manifest of a catalog or build folder, or ``None`` if missing or unreadable."""
+def _manifest_json(folder: str) -> Json:
+    """Return the JSON of the manifest of ``folder`` (``None`` if missing or not JSON)."""
     try:
         with open(os.path.join(folder, MANIFEST), encoding="utf-8") as fh:
-            data = json.load(fh)
+            data: Json = json.load(fh)
     except (OSError, ValueError):
         return None
-    return data if isinstance(data, dict) else None
+    return data
 
 
-def save_manifest(folder: str, manifest: dict[str, Any]) -> None:
+def load_manifest(folder: str) -> Manifest | None:
+    """Return the manifest of a catalog or build folder, or ``None`` if missing or not a manifest lkspace reads."""
+    data = _manifest_json(folder)
+    try:
+        return None if data is None else Manifest.from_json(data, os.path.join(folder, MANIFEST))
+    except CatalogError:
+        return None
+
+
+def save_manifest(folder: str, manifest: Manifest) -> None:
     """Write the manifest atomically."""
-    write_text(os.path.join(folder, MANIFEST), json.dumps(manifest, indent=1))
+    write_text(os.path.join(folder, MANIFEST), manifest.encode())
 
 
-def verified_parts(folder: str, manifest: Manifest) -> dict[str, PartSummary]:
-    """Return the finished parts recorded in ``manifest`` whose file in ``folder`` still has its SHA-256."""
+def verified_parts(folder: str, manifest: Manifest) -> dict[int, PartSummary]:
+    """Return the finished parts recorded in ``manifest`` (with their totals) whose file in ``folder`` still has its SHA-256."""
     good = {}
     for index, entry in manifest.parts.items():
         file = os.path.join(folder, str(entry.file))
-        if os.path.isfile(file) and file_sha256(file) == entry.sha256:
+        if entry.counted and os.path.isfile(file) and file_sha256(file) == entry.sha256:
             good[index] = entry
     return good
 
 
-def prune_build(folder: str, parts: dict[str, PartSummary]) -> None:
+def prune_build(folder: str, parts: dict[int, PartSummary]) -> None:
     """Remove from the build ``folder`` every file that is not the manifest or a part in ``parts``."""
     keep = {MANIFEST} | {str(entry.file) for entry in parts.values()}
     for entry in os.listdir(folder):
         if entry not in keep:
             remove_path(os.path.join(folder, entry))
-
-
-LATER_KEYS = ("symmetry_tolerance",)
-"""Settings recorded since format version 1 was fixed: a catalog without one was written before it existed."""
-
-
-def same_settings(old: dict[str, Any], signature: dict[str, Any]) -> bool:
-    """Whether the metadata ``old`` has every setting of ``signature`` (a :data:`LATER_KEYS` setting it lacks passes)."""
-    return all(old.get(k) == v for k, v in signature.items() if k in old or k not in LATER_KEYS)
 
 
 def new_run() -> str:
@@ -231,22 +231,22 @@ def new_run() -> str:
     return secrets.token_hex(4)
 
 
-def seed_build(target: Destination, build: str, signature: dict[str, Any]) -> tuple[str, dict[str, PartSummary]]:
+def seed_build(target: Destination, build: str, signature: Signature) -> tuple[str, dict[int, PartSummary]]:
     """Start a build from the finished catalog at the target, if it is of the same run settings.
 
     Returns ``(run id, parts)``: the build takes over the old catalog's run id (its parts'
     footers name it) and its parts whose checksums verify, linked (or copied) into
     ``build``; a new run id and no parts when there is no such catalog.
     """
-    old = Manifest.from_json(load_manifest(target.path)) if os.path.isdir(target.path) else None
-    if old is None or not same_settings(old.signature, signature):
+    old = load_manifest(target.path) if os.path.isdir(target.path) else None
+    if old is None or not signature.resumes(old.signature):
         return new_run(), {}
     import shutil
 
     seeded = {}
     for index, entry in verified_parts(target.path, old).items():
         name = str(entry.file)
-        if not index.isdigit() or name != part_name(int(index), old.run):
+        if name != part_name(index, old.run):
             continue
         src, dst = os.path.join(target.path, name), os.path.join(build, name)
         try:

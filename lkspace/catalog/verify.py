@@ -27,23 +27,18 @@ file and what is wrong.
 
 from __future__ import annotations
 
-import json
 import os
 from dataclasses import dataclass
-from typing import Any, Literal
+from typing import Literal
 
 import pyarrow as pa
 import pyarrow.parquet as pq
 
 from ..errors import CatalogError
-from .schema import IDENTIFY_COLUMNS, METADATA_KEY, expected_schema, metadata_digest
+from .metadata import CatalogMetadata, JsonObject, decode
+from .records import Manifest, PartFooter
+from .schema import IDENTIFY_COLUMNS, METADATA_KEY, expected_schema
 from .transaction import MANIFEST, file_sha256
-
-FORMAT_VERSIONS = (1,)
-"""Catalog format versions this lkspace reads."""
-
-SIGNATURE = ("format_version", "scaffold", "label_set", "symmetry", "mode", "filters", "sample", "seed")
-"""Metadata every part of one catalog shares with its manifest."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -58,17 +53,20 @@ class CatalogParts:
         The catalog file, or the parts of a folder in order.
     rows : tuple of int
         Rows of each file (footer and manifest agree).
-    metadata : dict
+    footer : PartFooter
         The ``lkspace`` metadata of the first file (with that file's totals).
     checksums : tuple of str, optional
         The manifest's SHA-256 of each part; ``None`` for a one-file catalog.
+    run : str, optional
+        The run id of a folder's parts; ``None`` for a one-file catalog.
     """
 
     path: str
     files: tuple[str, ...]
     rows: tuple[int, ...]
-    metadata: dict[str, Any]
+    footer: PartFooter
     checksums: tuple[str, ...] | None
+    run: str | None = None
 
     @property
     def n_rows(self) -> int:
@@ -98,29 +96,7 @@ class CatalogParts:
             self.verify(part)
 
 
-def parse_metadata(raw: bytes | str, where: str) -> dict[str, Any]:
-    """Parse ``lkspace`` metadata (or a manifest) from ``where``: a JSON object of a known format version."""
-    try:
-        data = json.loads(raw)
-    except (UnicodeDecodeError, ValueError):
-        raise CatalogError(
-            f"{where}: the 'lkspace' metadata is not valid JSON (damaged, or not written by lkspace)"
-        ) from None
-    if not isinstance(data, dict):
-        raise CatalogError(f"{where}: the 'lkspace' metadata is not a JSON object (damaged, or not written by lkspace)")
-    version = data.get("format_version")
-    if isinstance(version, bool) or version not in FORMAT_VERSIONS:
-        known = ", ".join(map(str, FORMAT_VERSIONS))
-        raise CatalogError(
-            f"{where}: catalog format_version {version!r} is not one this lkspace reads ({known}); "
-            "a newer lkspace wrote it, or it is damaged"
-        )
-    if not isinstance(data.get("scaffold"), dict) or not isinstance(data.get("label_set"), list):
-        raise CatalogError(f"{where}: the 'lkspace' metadata has no scaffold or label_set (damaged)")
-    return data
-
-
-def file_metadata(file: str) -> tuple[dict[str, Any], int]:
+def file_metadata(file: str) -> tuple[PartFooter, int]:
     """Return the ``lkspace`` footer metadata of the Parquet ``file`` and its rows, checked as one file.
 
     ``FileNotFoundError`` propagates (a catalog replaced while read); anything else wrong
@@ -137,28 +113,17 @@ def file_metadata(file: str) -> tuple[dict[str, Any], int]:
         raise CatalogError(f"{file}: damaged or not Parquet (truncated?): its footer does not read: {reason}") from None
     if raw is None:
         raise CatalogError(f"{file}: no 'lkspace' metadata; not an lkspace catalog")
-    meta = parse_metadata(raw, file)
-    if "digest" in meta and meta["digest"] != metadata_digest(meta):
-        raise CatalogError(f"{file}: damaged: its 'lkspace' metadata does not match the digest it was written with")
-    rows = meta.get("rows")
-    if isinstance(rows, bool) or not isinstance(rows, int) or rows != info.num_rows:
+    footer = PartFooter.from_json(decode(raw, file), file)
+    rows = footer.totals.rows if footer.totals is not None else None
+    if rows != info.num_rows:
         raise CatalogError(f"{file}: damaged: its metadata says {rows!r} rows, the file holds {info.num_rows:,}")
-    _check_columns(file, schema.remove_metadata(), meta)
-    return meta, rows
+    _check_columns(file, schema.remove_metadata(), footer.settings)
+    return footer, info.num_rows
 
 
-def shard_of(meta: dict[str, Any]) -> dict[str, Any]:
-    """Return the ``shard`` entry of part metadata (``{index, count, plan, run}``; empty when absent)."""
-    shard = meta.get("shard")
-    return shard if isinstance(shard, dict) else {}
-
-
-def _check_columns(file: str, schema: pa.Schema, meta: dict[str, Any]) -> None:
-    """Raise unless ``schema`` is the one a catalog of ``meta`` has (``--identify`` columns after it)."""
-    try:
-        expected = expected_schema(meta)
-    except (KeyError, TypeError, ValueError, pa.ArrowException):
-        raise CatalogError(f"{file}: the 'lkspace' metadata has no usable scaffold edges or mode (damaged)") from None
+def _check_columns(file: str, schema: pa.Schema, settings: CatalogMetadata) -> None:
+    """Raise unless ``schema`` is the one a catalog of ``settings`` has (``--identify`` columns after it)."""
+    expected = expected_schema(settings)
     fields = list(schema)
     for i, field in enumerate(fields):
         want = expected.field(i).type if i < len(expected) else IDENTIFY_COLUMNS.get(field.name)
@@ -184,17 +149,18 @@ def open_catalog(path: str | os.PathLike[str]) -> CatalogParts:
         return _open_folder(path)
     if not os.path.exists(path):
         raise CatalogError(f"{path}: no such catalog")
-    meta, rows = file_metadata(path)
-    shard = shard_of(meta)
-    if shard.get("count", 1) != 1:
+    footer, rows = file_metadata(path)
+    shard = footer.shard
+    if shard is not None and shard.count != 1:
         raise CatalogError(
-            f"{path}: part {shard.get('index')} of a catalog of {shard.get('count')} parts, not a whole catalog; "
+            f"{path}: part {shard.index} of a catalog of {shard.count} parts, not a whole catalog; "
             "open the folder it belongs to"
         )
-    return CatalogParts(path, (path,), (rows,), meta, None)
+    return CatalogParts(path, (path,), (rows,), footer, None)
 
 
-def _manifest(folder: str) -> dict[str, Any]:
+def _manifest(folder: str) -> Manifest:
+    """Read the manifest of the catalog ``folder``: well formed (:meth:`Manifest.from_json`) and complete."""
     where = os.path.join(folder, MANIFEST)
     try:
         with open(where, "rb") as fh:
@@ -206,29 +172,28 @@ def _manifest(folder: str) -> dict[str, Any]:
         ) from None
     except OSError as exc:
         raise CatalogError(f"{where}: cannot read: {exc.strerror}") from None
-    manifest = parse_metadata(raw, where)
-    parts, count = manifest.get("parts"), manifest.get("shards")
-    if not isinstance(parts, dict) or not isinstance(count, int) or isinstance(count, bool) or count < 1:
-        raise CatalogError(f"{where}: no part list (damaged manifest)")
-    if not manifest.get("complete") or len(parts) != count:
-        raise CatalogError(f"{folder}: an unfinished catalog ({len(parts)} of {count} parts)")
-    if sorted(parts) != sorted(str(i) for i in range(count)):
-        raise CatalogError(f"{where}: the parts are not numbered 0..{count - 1} (damaged manifest)")
-    for index, entry in parts.items():
-        ok = isinstance(entry, dict) and isinstance(entry.get("sha256"), str)
-        name, rows = entry.get("file") if ok else None, entry.get("rows") if ok else None
-        if not (isinstance(name, str) and name == os.path.basename(name) and name.endswith(".parquet")):
-            ok = False
-        if not ok or isinstance(rows, bool) or not isinstance(rows, int) or rows < 0:
-            raise CatalogError(f"{where}: the entry of part {index} is malformed (damaged manifest)")
+    manifest = Manifest.from_json(decode(raw, where), where)
+    count = manifest.signature.shards
+    if not manifest.complete or len(manifest.parts) != count:
+        raise CatalogError(f"{folder}: an unfinished catalog ({len(manifest.parts)} of {count} parts)")
     return manifest
+
+
+def _same_catalog(part: CatalogMetadata, manifest: CatalogMetadata) -> bool:
+    """Whether a part and its manifest record the same catalog: scaffold, label set and settings.
+
+    Not the settings recorded since (:data:`~lkspace.catalog.records.LATER_KEYS`): a
+    resumed build keeps the parts of an earlier version beside new ones.
+    """
+    keys = ("format_version", "scaffold", "label_set", "symmetry", "mode", "filters", "sample", "seed")
+    return all(getattr(part, k) == getattr(manifest, k) for k in keys)
 
 
 def _open_folder(folder: str) -> CatalogParts:
     manifest = _manifest(folder)
-    count = int(manifest["shards"])
-    entries = [manifest["parts"][str(i)] for i in range(count)]
-    listed = [str(e["file"]) for e in entries]
+    count, run = manifest.signature.shards, manifest.run
+    entries = [manifest.parts[i] for i in range(count)]
+    listed = [str(e.file) for e in entries]
     present = {p for p in os.listdir(folder) if p.endswith(".parquet") and not p.startswith((".", "_"))}
     for i, name in enumerate(listed):
         if name not in present:
@@ -239,28 +204,31 @@ def _open_folder(folder: str) -> CatalogParts:
             f"{os.path.join(folder, extra[0])}: not a part of this catalog (its manifest does not list it, "
             "but pandas and Dask would read it): remove it"
         )
-    run, metadata = manifest.get("run"), None
-    for i, entry in enumerate(entries):
-        file = os.path.join(folder, listed[i])
-        meta, rows = file_metadata(file)
-        shard = shard_of(meta)
-        other = shard.get("run", run)
-        if other != run:
-            raise CatalogError(f"{file}: a part of another catalog (run {other}, not {run}): replaced")
-        if shard.get("plan") != manifest.get("plan") or any(meta.get(k) != manifest.get(k) for k in SIGNATURE):
-            raise CatalogError(f"{file}: a part of another catalog (scaffold, label set or settings differ)")
-        if shard.get("index") != i or shard.get("count") != count:
-            raise CatalogError(
-                f"{file}: holds part {shard.get('index')} of {shard.get('count')}, but the manifest lists it as "
-                f"part {i} of {count}: parts swapped or renamed"
-            )
-        if rows != entry["rows"]:
-            raise CatalogError(f"{file}: holds {rows:,} rows, the manifest says {entry['rows']:,}: replaced or damaged")
-        metadata = metadata or meta
-    assert metadata is not None  # count >= 1
+    footers = [_part_footer(os.path.join(folder, name), i, manifest) for i, name in enumerate(listed)]
     files = tuple(os.path.join(folder, name) for name in listed)
-    rows_of = tuple(int(e["rows"]) for e in entries)
-    return CatalogParts(folder, files, rows_of, metadata, tuple(str(e["sha256"]) for e in entries))
+    rows = tuple(e.rows for e in entries)
+    return CatalogParts(folder, files, rows, footers[0], tuple(str(e.sha256) for e in entries), run)
+
+
+def _part_footer(file: str, i: int, manifest: Manifest) -> PartFooter:
+    """Return the footer of ``file``, checked to be part ``i`` of the catalog of ``manifest``."""
+    footer, rows = file_metadata(file)
+    count, run, shard = manifest.signature.shards, manifest.run, footer.shard
+    other = run if shard is None or shard.run is None else shard.run
+    if other != run:
+        raise CatalogError(f"{file}: a part of another catalog (run {other}, not {run}): replaced")
+    plan = None if shard is None else shard.plan
+    if plan != manifest.signature.plan or not _same_catalog(footer.settings, manifest.signature.settings):
+        raise CatalogError(f"{file}: a part of another catalog (scaffold, label set or settings differ)")
+    if shard is None or shard.index != i or shard.count != count:
+        where = "no part" if shard is None else f"part {shard.index} of {shard.count}"
+        raise CatalogError(
+            f"{file}: holds {where}, but the manifest lists it as part {i} of {count}: parts swapped or renamed"
+        )
+    listed = manifest.parts[i].rows
+    if rows != listed:
+        raise CatalogError(f"{file}: holds {rows:,} rows, the manifest says {listed:,}: replaced or damaged")
+    return footer
 
 
 Checks = Literal["manifest, part footers, SHA-256 of every part", "footer, CRC-32 of every data page"]
@@ -294,9 +262,17 @@ class CatalogCheck:
     run: str | None
     checks: Checks
 
-    def to_dict(self) -> dict[str, Any]:
+    def to_dict(self) -> JsonObject:
         """JSON form (``lkspace verify --json``)."""
-        return {k: getattr(self, k) for k in self.__dataclass_fields__}
+        return {
+            "path": self.path,
+            "rows": self.rows,
+            "parts": self.parts,
+            "format_version": self.format_version,
+            "scaffold": self.scaffold,
+            "run": self.run,
+            "checks": self.checks,
+        }
 
 
 def verify_catalog(path: str | os.PathLike[str]) -> CatalogCheck:
@@ -322,14 +298,14 @@ def verify_catalog(path: str | os.PathLike[str]) -> CatalogCheck:
     else:
         read_pages(parts.files[0])
         checks = "footer, CRC-32 of every data page"
-    shard = shard_of(parts.metadata)
+    settings = parts.footer.settings
     return CatalogCheck(
         path=parts.path,
         rows=parts.n_rows,
         parts=len(parts.files),
-        format_version=int(parts.metadata["format_version"]),
-        scaffold=str(parts.metadata["scaffold"].get("name")),
-        run=shard.get("run"),
+        format_version=settings.format_version,
+        scaffold=settings.scaffold.name,
+        run=parts.run,
         checks=checks,
     )
 

@@ -2,17 +2,16 @@
 
 from __future__ import annotations
 
-import json
 from collections.abc import Callable, Iterable
-from typing import Any
+from dataclasses import replace
 
 import numpy as np
 import pyarrow as pa
 import pyarrow.parquet as pq
 
 from ..io.atomic import atomic_path
-from .records import PartSummary
-from .schema import METADATA_KEY, ROW_GROUP, metadata_digest
+from .records import PartFooter, PartSummary
+from .schema import METADATA_KEY, ROW_GROUP
 
 
 class CatalogWriter:
@@ -25,10 +24,10 @@ class CatalogWriter:
     Every data page carries a CRC-32 checksum, which readers verify.
     """
 
-    def __init__(self, path: str, schema: pa.Schema, metadata: dict[str, Any]) -> None:
+    def __init__(self, path: str, schema: pa.Schema, header: PartFooter) -> None:
         self.path = path
-        self.metadata = dict(metadata)
-        self.schema = schema.with_metadata({METADATA_KEY: json.dumps(self.metadata).encode()})
+        self.header = header
+        self.schema = schema.with_metadata({METADATA_KEY: header.encode()})
         self._ctx = atomic_path(path, suffix=".parquet.tmp")
         self._tmp = self._ctx.__enter__()
         self._writer = pq.ParquetWriter(self._tmp, self.schema, compression="zstd", write_page_checksum=True)
@@ -52,12 +51,11 @@ class CatalogWriter:
             self._writer.write_table(table, row_group_size=ROW_GROUP)
         self._pending, self._n_pending = [], 0
 
-    def close(self, summary: dict[str, Any] | None = None) -> None:
-        """Finish the file; the ``lkspace`` metadata (with ``summary``) goes into its footer."""
+    def close(self, totals: PartSummary) -> None:
+        """Finish the file; the ``lkspace`` metadata with ``totals`` goes into its footer."""
         self._flush()
-        meta = {**self.metadata, **(summary or {}), "rows": self.rows}
-        meta["digest"] = metadata_digest(meta)
-        self._writer.add_key_value_metadata({METADATA_KEY: json.dumps(meta).encode()})
+        footer = replace(self.header, totals=replace(totals, rows=self.rows))
+        self._writer.add_key_value_metadata({METADATA_KEY: footer.encode()})
         self._writer.close()
         self._ctx.__exit__(None, None, None)
 
@@ -72,12 +70,15 @@ class CatalogWriter:
 def write_batches(
     path: str,
     schema: pa.Schema,
-    meta: dict[str, Any],
+    header: PartFooter,
     batches: Iterable[pa.RecordBatch],
     on_rows: Callable[[int], object] | None = None,
 ) -> PartSummary:
-    """Write ``batches`` to ``path`` atomically; return its totals (also stored in its footer)."""
-    writer = CatalogWriter(path, schema, meta)
+    """Write ``batches`` to ``path`` atomically under ``header`` (settings and shard); return its totals.
+
+    The totals are stored in its footer as well.
+    """
+    writer = CatalogWriter(path, schema, header)
     by: dict[str, int] = {}
     covered = 0
     try:
@@ -93,8 +94,9 @@ def write_batches(
     except BaseException as exc:
         writer.abort(exc)
         raise
-    writer.close({"by_components": by, "assignments_covered": covered})
-    return PartSummary(by, covered, writer.rows)
+    totals = PartSummary(by, covered, writer.rows)
+    writer.close(totals)
+    return totals
 
 
 def _values(column: pa.Array, dtype: type[np.integer]) -> np.ndarray:

@@ -7,10 +7,12 @@ from typing import Any
 
 import click
 
+from ..catalog.options import Execution, Selection
 from ..catalog.plan import MAX_JOBS, MAX_SHARDS
 from ..design.space import WALK_MODES, DesignSpace, WalkMode, make_space
 from ..errors import CatalogError, TooLargeError, UsageError
 from ..symmetry.group import MODES as SYMMETRY_MODES
+from ..symmetry.group import SymmetryMode
 from ..words import plural
 from .common import (
     Context,
@@ -26,41 +28,22 @@ from .common import (
 from .flags import flags_in
 
 
-def _count_payload(
-    space: DesignSpace,
-    mode: str,
-    components: int | None,
-    max_designs: int | None,
-    sample: int | None,
-    seed: int,
-    scheduler: str = "local",
-    jobs: int = 1,
-) -> dict[str, Any]:
+def _count_payload(space: DesignSpace, selection: Selection, scheduler: str = "local", jobs: int = 1) -> dict[str, Any]:
     from ..design.counting import count_space
 
-    if mode == "designs":
-        totals = count_space(space, components, scheduler, jobs).to_dict()
+    if selection.mode == "designs":
+        totals = count_space(space, selection.components, scheduler, jobs).to_dict()
         if totals.get("note"):
             totals["note"] = flags_in(totals["note"])
-        if max_designs is not None:
-            totals["designs"] = min(totals["designs"], max_designs)
+        if selection.max_designs is not None:
+            totals["designs"] = min(totals["designs"], selection.max_designs)
         return totals
     from ..catalog.listing import designs  # pyarrow and pandas: only where rows are listed to count them
 
     rows = 0
     by: dict[str, int] = {}
-    for df in designs(
-        space.scaffold,
-        space.label_set,
-        space.mode,
-        mode=mode,
-        components=components,
-        no_zero=space.no_zero,
-        max_designs=max_designs,
-        tolerance=space.tolerance,
-        sample=sample,
-        seed=seed,
-    ):
+    sc, tolerance = space.scaffold, space.tolerance
+    for df in designs(sc, space.label_set, space.mode, selection=selection, no_zero=space.no_zero, tolerance=tolerance):
         rows += len(df)
         for c, n in df.components.value_counts().items():
             by[str(int(c))] = by.get(str(int(c)), 0) + int(n)
@@ -154,7 +137,7 @@ def _where_it_ran(
 def enumerate_cmd(
     mesh: str | None,
     labels_spec: str,
-    symmetry: str,
+    symmetry: SymmetryMode,
     output: str | None,
     mode: WalkMode,
     components: int | None,
@@ -187,120 +170,122 @@ def enumerate_cmd(
     The representative of each design is the orbit member smallest in (t mod K per
     edge, then t per edge), lexicographically in edge order.
     """
-    from ..catalog.transaction import CatalogInterrupted, catalog_target
-    from ..engine import check_scheduler, is_dask, resolve_scheduler
+    from ..catalog.transaction import CatalogInterrupted
+    from ..engine import check_scheduler, resolve_scheduler
 
     ctx = Context(as_json)
     engine = resolve_scheduler(scheduler)
     check_scheduler(engine)
-    url = None
-    if output is not None and not count_only:  # a bad -o fails before any work
-        from ..catalog.remote import check_remote, remote_url  # pyarrow: only when a catalog is written
-
-        url = remote_url(output)
-        if url is None:
-            catalog_target(output, (mesh,), "-o")
-        else:
-            check_remote(output, "-o")
-    if sample is not None and mode != "spanning-trees":
-        raise UsageError("--sample applies to --mode spanning-trees only")
-    if output is not None and not count_only and (shards or 1) > 1 and (mode != "designs" or max_designs is not None):
-        raise CatalogError("--shards applies to full design walks (not with --max-designs or other modes)", usage=True)
-    if url is not None and url.startswith("memory://") and (jobs > 1 or is_dask(engine)):
-        raise UsageError(f"{url}: memory:// is private to this process; use --jobs 1 and --scheduler local")
-    if identify and (output is None or count_only):
-        raise UsageError("--identify names the rows of a written catalog: give -o CATALOG.parquet")
+    selection = Selection(mode, components, max_designs, sample, seed, identify)
+    execution = Execution(jobs, shards, engine, resume, allow_large=yes)
+    writes = output is not None and not count_only
+    _check_before_work(mesh, output if writes else None, selection, execution)
     if invariant is not None:
         from .invariant import refuse_with_invariant, run_invariant
 
         refuse_with_invariant(mode=mode != "designs", sample=sample, shards=shards, resume=resume, identify=identify)
         refuse_with_invariant(jobs=jobs > 1, scheduler=scheduler)
-        return run_invariant(
-            ctx,
-            load_mesh(ctx, mesh),
-            label_set(labels_spec),
-            symmetry,
-            invariant,
-            output,
-            count_only,
-            components,
-            no_zero,
-            max_designs,
-        )
+        scaffold = load_mesh(ctx, mesh)
+        labels = label_set(labels_spec)
+        args = (output, count_only, components, no_zero, max_designs)
+        return run_invariant(ctx, scaffold, labels, symmetry, invariant, *args)
     try:
         scaffold = load_mesh(ctx, mesh)
         labels = label_set(labels_spec)
         space = make_space(scaffold, labels, symmetry, no_zero, symmetry_tolerance())
         facts = symmetry_facts(scaffold) if symmetry != "none" else {}
     except KeyboardInterrupt as exc:  # Ctrl-C or SIGTERM while the symmetry group is computed
-        if output is None or count_only:
+        if not writes:
             raise
         code = 128 + getattr(exc, "signum", 2)
         raise CatalogInterrupted(f"interrupted; nothing was written to {output}", code) from None
     started = time.perf_counter()
-    if count_only or output is None:
-        payload = _count_payload(space, mode, components, max_designs, sample, seed, engine, jobs)
+    if output is None or count_only:
+        payload = _count_payload(space, selection, engine, jobs)
         payload.update(
             group_order=space.group_order, written=None, mode=mode, symmetry=symmetry, label_set=labels.tolist()
         )
         if output is None and not count_only:
             ctx.notes["note"] = "no -o given: counted, nothing written"
     else:
-        from ..catalog.options import Execution, Selection
-        from ..catalog.plan import CatalogTooLarge
-        from ..catalog.shards import write_catalog
-
-        try:
-            written = write_catalog(
-                space,
-                output,
-                selection=Selection(mode, components, max_designs, sample, seed),
-                execution=Execution(jobs, shards, engine, resume),
-                identify=identify,
-                allow_large=yes,
-            )
-        except CatalogInterrupted as exc:
-            if not exc.resumable:
-                raise
-            raise CatalogInterrupted(
-                f"{exc.left}: run the same command with --resume to finish", exc.exit_code
-            ) from None
-        except CatalogTooLarge as exc:  # the way ahead, in flags
-            ahead = "use --count-only, filters or a smaller label set"
-            if exc.allowable:
-                ahead = f"pass --yes to go ahead (or {ahead})"
-            raise TooLargeError(f"{exc.estimate}; {ahead}") from None
-        payload = written.to_dict()
-        payload["written"] = payload.pop("output")
+        payload = _written(space, output, selection, execution)
     payload["seconds"] = round(time.perf_counter() - started, 3)
     payload.update(facts)
-    ran_in = _where_it_ran(engine, payload, count_only or output is None, identify, output)
+    ran_in = _where_it_ran(engine, payload, not writes, identify, output)
     if ran_in is not None:
         payload["ran_in"] = ran_in
+    found = f"group order {space.group_order}"
+    if facts:
+        found += f"; found {facts['group']} within {facts['symmetry_tolerance']:.3g}"
+    headline = f"{scaffold.name}: label set {labels.tolist()}, symmetry {symmetry} ({found}), mode {mode}"
+    emit(ctx, payload, lambda: _show(headline, payload))
 
-    def human() -> None:
-        from rich.console import Console
-        from rich.table import Table
 
-        con = Console(highlight=False)
-        found = f"group order {space.group_order}"
-        if facts:
-            found += f"; found {facts['group']} within {facts['symmetry_tolerance']:.3g}"
-        con.print(f"{scaffold.name}: label set {labels.tolist()}, symmetry {symmetry} ({found}), mode {mode}")
-        table = Table(show_header=False, box=None)
-        table.add_row("designs", f"{payload['designs']:,}")
-        table.add_row("assignments", f"{payload['assignments']:,}")
-        for k, v in (payload["by_components"] or {}).items():
-            table.add_row(f"  {plural(int(k), 'component')}", f"{v:,}")
-        table.add_row("written", str(payload.get("written") or "- (count only; give -o FILE to write)"))
-        if "identified" in payload:
-            top = ", ".join(f"{k} ({v})" for k, v in list(payload["identified"]["names"].items())[:6])
-            table.add_row(
-                "identified", f"{payload['identified']['named']:,} of {payload['identified']['rows']:,} named: {top}"
-            )
-        if "ran_in" in payload:
-            table.add_row("ran in", payload["ran_in"])
-        table.add_row("seconds", str(payload["seconds"]))
-        con.print(table)
+def _check_before_work(mesh: str | None, output: str | None, selection: Selection, execution: Execution) -> None:
+    """Refuse options that do not go together, and a bad catalog ``output`` (``None``: none written), before any work."""
+    from ..engine import is_dask
 
-    emit(ctx, payload, human)
+    url = None
+    if output is not None:  # a bad -o fails before any work
+        from ..catalog.remote import check_remote, remote_url  # pyarrow: only when a catalog is written
+        from ..catalog.transaction import catalog_target
+
+        url = remote_url(output)
+        if url is None:
+            catalog_target(output, (mesh,), "-o")
+        else:
+            check_remote(output, "-o")
+    sel = selection
+    if sel.sample is not None and sel.mode != "spanning-trees":
+        raise UsageError("--sample applies to --mode spanning-trees only")
+    if output is not None and (execution.shards or 1) > 1 and (sel.mode != "designs" or sel.max_designs is not None):
+        raise CatalogError("--shards applies to full design walks (not with --max-designs or other modes)", usage=True)
+    if url is not None and url.startswith("memory://") and (execution.jobs > 1 or is_dask(str(execution.scheduler))):
+        raise UsageError(f"{url}: memory:// is private to this process; use --jobs 1 and --scheduler local")
+    if sel.identify and output is None:
+        raise UsageError("--identify names the rows of a written catalog: give -o CATALOG.parquet")
+
+
+def _written(space: DesignSpace, output: str, selection: Selection, execution: Execution) -> dict[str, Any]:
+    """Write the catalog; return the command's JSON of it (its errors in flags)."""
+    from ..catalog.plan import CatalogTooLarge
+    from ..catalog.shards import write_catalog
+    from ..catalog.transaction import CatalogInterrupted
+
+    try:
+        written = write_catalog(space, output, selection=selection, execution=execution)
+    except CatalogInterrupted as exc:
+        if not exc.resumable:
+            raise
+        raise CatalogInterrupted(f"{exc.left}: run the same command with --resume to finish", exc.exit_code) from None
+    except CatalogTooLarge as exc:  # the way ahead, in flags
+        ahead = "use --count-only, filters or a smaller label set"
+        if exc.allowable:
+            ahead = f"pass --yes to go ahead (or {ahead})"
+        raise TooLargeError(f"{exc.estimate}; {ahead}") from None
+    payload = written.to_dict()
+    payload["written"] = payload.pop("output")
+    return payload
+
+
+def _show(headline: str, payload: dict[str, Any]) -> None:
+    """Print the ``headline`` and the totals of ``payload`` as a table (the command's human output)."""
+    from rich.console import Console
+    from rich.table import Table
+
+    con = Console(highlight=False)
+    con.print(headline)
+    table = Table(show_header=False, box=None)
+    table.add_row("designs", f"{payload['designs']:,}")
+    table.add_row("assignments", f"{payload['assignments']:,}")
+    for k, v in (payload["by_components"] or {}).items():
+        table.add_row(f"  {plural(int(k), 'component')}", f"{v:,}")
+    table.add_row("written", str(payload.get("written") or "- (count only; give -o FILE to write)"))
+    if "identified" in payload:
+        identified = payload["identified"]
+        top = ", ".join(f"{k} ({v})" for k, v in list(identified["names"].items())[:6])
+        table.add_row("identified", f"{identified['named']:,} of {identified['rows']:,} named: {top}")
+    if "ran_in" in payload:
+        table.add_row("ran in", payload["ran_in"])
+    table.add_row("seconds", str(payload["seconds"]))
+    con.print(table)

@@ -74,7 +74,7 @@ def catalog_row(path: str, row: int) -> tuple[Scaffold, np.ndarray]:
         raise damaged(file, exc) from None
     values = np.frombuffer(cell, np.int8) if column == "key" else np.array(cell)
     labels = values.astype(np.int64)
-    scaffold = catalog_scaffold(parts.metadata, path)
+    scaffold = catalog_scaffold(parts.footer, path)
     if len(labels) != scaffold.n_edges:
         raise CatalogError(f"{path} row {row}: {len(labels)} labels, but {scaffold.name} has {scaffold.n_edges} edges")
     return scaffold, labels

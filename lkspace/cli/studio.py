@@ -49,7 +49,7 @@ def studio_cmd(mesh: str | None, port: int, host: str, no_browser: bool) -> None
     studio = Studio()
     if is_catalog(mesh):
         studio.browser = Browser(mesh)  # the catalog's structure checked here, its parts' bytes as they are read
-        scaffold = catalog_scaffold(studio.browser.metadata, mesh)
+        scaffold = catalog_scaffold(studio.browser.footer, mesh)
         studio.initial = studio.registry.hold(scaffold, f"catalog {mesh}").key
     elif mesh is not None and not reads_builtin(mesh) and is_design_file(mesh):
         studio.design = open_path(studio.registry, mesh)  # a design file: its scaffold, labels and view

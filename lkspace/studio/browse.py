@@ -34,7 +34,7 @@ class Browser:
     def __init__(self, path: str) -> None:
         self.path = path
         self._parts = open_catalog(path)  # the structure: a bad catalog is refused at once
-        self.metadata = self._parts.metadata
+        self.footer = self._parts.footer  # its lkspace metadata (catalogs.records.PartFooter)
         self._table: Any = None
         self._error: str | None = None
         self._filtered: tuple[str, Any] | None = None
@@ -77,9 +77,9 @@ class Browser:
         """Scaffold name, row count and columns (``ready`` false while reading)."""
         out: dict[str, Any] = {
             "path": self.path,
-            "scaffold": self.metadata.get("scaffold", {}).get("name"),
-            "label_set": self.metadata.get("label_set"),
-            "symmetry": self.metadata.get("symmetry"),
+            "scaffold": self.footer.settings.scaffold.name,
+            "label_set": list(self.footer.settings.label_set),
+            "symmetry": self.footer.to_json().get("symmetry"),
             "ready": self._ready.is_set(),
             "error": self._error,
         }
