@@ -33,7 +33,8 @@ import os
 from typing import Any
 
 from ..errors import CatalogError, LkspaceError
-from .common_names import Chirality, common_name, resolve_type
+from .common_names import common_name, resolve_type
+from .spelling import Chirality
 
 SHIPPED = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "data", "atlas.parquet")
 """The atlas index shipped with lkspace."""
