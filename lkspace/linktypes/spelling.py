@@ -75,7 +75,7 @@ _ROLFSEN_TEXT = """
 10n_7=10_154 10n_39=10_155 10n_32=10_156 10n_42=10_157 10n_41=10_158 10n_34=10_159
 10n_33=10_160 10n_31=10_161 10n_40=10_162 10n_35=10_163 10n_38=10_164 10n_37=10_165
 """
-ROLFSEN: dict[str, str] = dict(pair.split("=") for pair in _ROLFSEN_TEXT.split())  # type: ignore[misc]
+ROLFSEN: dict[str, str] = dict(pair.split("=", 1) for pair in _ROLFSEN_TEXT.split())
 """KnotInfo's ``dt_name`` -> ``name`` of the 249 non-trivial knots to 10 crossings (``5a_1`` -> ``5_2``).
 
 Written from ``database_knotinfo`` (``tests/test_lookup.py`` checks it against the installed one)."""
