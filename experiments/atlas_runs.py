@@ -196,8 +196,8 @@ def single_cycle_table() -> list[str]:
         "|---|---|---|",
     ]
     for lab, rec in rows:
-        chir = {True: "mirror", False: "table", None: "-"}[rec.get("mirror")]
-        lines.append(f"| `{','.join(map(str, lab))}` | {rec['type']} | {chir} |")
+        chir = {True: "mirror", False: "table", None: "-"}[rec.mirror]
+        lines.append(f"| `{','.join(map(str, lab))}` | {rec.type} | {chir} |")
     return lines
 
 

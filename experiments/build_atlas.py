@@ -33,7 +33,7 @@ import time
 import lkspace
 from lkspace.errors import TooLargeError
 from lkspace.io.atomic import write_text
-from lkspace.linktypes.atlas import MAX_DESIGNS, atlas
+from lkspace.linktypes.atlas import MAX_DESIGNS, AtlasOptions, atlas
 from lkspace.linktypes.lookup import SHIPPED, index_rows, write_index
 from lkspace.model.specs import parse_label_set
 
@@ -112,14 +112,8 @@ def build_space(work: str, name: str, labels: str, stop_after: float | None, pro
     try:
         # a partial space names its simplest designs: 10 s each, so that the deadline holds
         limit = PARTIAL_TIME_LIMIT if stop_after else 60.0
-        data = atlas(
-            lkspace.load(name),
-            parse_label_set(labels),
-            folder,
-            processes=processes,
-            stop_after=stop_after,
-            time_limit=limit,
-        )
+        options = AtlasOptions(processes=processes, stop_after=stop_after, time_limit=limit)
+        data = atlas(lkspace.load(name), parse_label_set(labels), folder, options)
     except TooLargeError as exc:  # too many residue classes to walk in order, even simplest first
         print(f"{name} {labels}: left out: {exc}", flush=True)
         return str(exc)

@@ -89,7 +89,7 @@ def atlas_cmd(
       lkspace atlas designs.parquet --json
     """
     from ..knots.recognition import check_identifiable
-    from ..linktypes.atlas import atlas, atlas_of_catalog
+    from ..linktypes.atlas import AtlasOptions, atlas, atlas_of_catalog
     from ..linktypes.gallery import atlas_folder, write_gallery
 
     ctx = Context(as_json)
@@ -102,10 +102,7 @@ def atlas_cmd(
         scaffold = load_mesh(ctx, mesh)
         check_identifiable(scaffold)
         labels = label_set(labels_spec)
-        data = atlas(
-            scaffold,
-            labels,
-            folder,
+        options = AtlasOptions(
             no_zero=no_zero,
             processes=processes,
             seed=seed,
@@ -113,6 +110,7 @@ def atlas_cmd(
             stop_after=stop_after or None,
             tolerance=symmetry_tolerance(),
         )
+        data = atlas(scaffold, labels, folder, options)
     files = write_gallery(folder, data, scaffold, pictures) if folder is not None else []
     data["written"] = [os.path.join(os.path.abspath(folder), f) for f in files] if folder else []
 

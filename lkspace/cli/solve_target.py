@@ -37,7 +37,7 @@ def target_cmd(
     from ..linktypes.linking import parse_linking_matrix
     from ..linktypes.names import parse_type
     from ..linktypes.screen import Goal
-    from ..linktypes.search import solve_target
+    from ..linktypes.search import SearchOptions, solve_target
 
     if signed and linking_text is None:
         raise UsageError("--signed applies to --linking-matrix only")
@@ -58,12 +58,9 @@ def target_cmd(
     n = target.components if target is not None else len(linking)  # type: ignore[arg-type]
     goal = Goal(n, target, linking, signed)
     limit = time_limit or None
-    result = solve_target(
-        scaffold,
-        goal,
-        label_set=labels,
+    options = SearchOptions(
         no_zero=no_zero,
-        fixes=fixes,
+        fixes=tuple(sorted(fixes.items())) if fixes else (),
         count=count,
         time_limit=limit,
         identify_time_limit=min(TIME_LIMIT, limit) if limit else TIME_LIMIT,
@@ -71,6 +68,7 @@ def target_cmd(
         seed=seed,
         tolerance=symmetry_tolerance(),
     )
+    result = solve_target(scaffold, goal, label_set=labels, options=options)
     written = None
     if target_path is not None and output is not None and result.solutions:
         io.write(scaffold, target_path, result.solutions[0]["labels"])

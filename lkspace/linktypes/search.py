@@ -17,13 +17,13 @@ from __future__ import annotations
 
 import time
 from collections import Counter
-from collections.abc import Iterator, Mapping
+from collections.abc import Iterator
 from dataclasses import dataclass, field
 from typing import Any, Literal, TypeAlias
 
 import numpy as np
 
-from ..errors import SolveVerificationError
+from ..errors import SolveVerificationError, UsageError
 from ..model.scaffold import Scaffold
 from ..progress import task
 from ..strands.tracing import trace
@@ -85,23 +85,49 @@ def check_answer(scaffold: Scaffold, labels: np.ndarray, goal: Goal, seed: int, 
     return again
 
 
-def solve_target(
-    scaffold: Scaffold,
-    goal: Goal,
-    *,
-    label_set: np.ndarray,
-    no_zero: bool = False,
-    fixes: Mapping[int, int] | None = None,
-    count: int = 1,
-    time_limit: float | None = None,
-    identify_time_limit: float | None = 60.0,
-    processes: int = 1,
-    seed: int = 0,
-    tolerance: float | None = None,
-) -> TargetResult:
-    """Find up to ``count`` designs of ``goal``, simplest first (see the module docstring).
+@dataclass(frozen=True)
+class SearchOptions:
+    """How :func:`solve_target` walks the space (every field optional).
 
-    ``tolerance``: the symmetry search's, in mesh units (default: 1/100 of the shortest edge).
+    Attributes
+    ----------
+    no_zero : bool
+        Leave label 0 out of the space.
+    fixes : tuple of (int, int)
+        ``(edge, label)`` pairs every design keeps.
+    count : int
+        Designs wanted (>= 1).
+    time_limit : float or None
+        Seconds for the whole search (``None``: no limit).
+    identify_time_limit : float or None
+        Seconds per identification.
+    processes : int
+        Worker processes naming designs (>= 1).
+    seed : int
+        Projection seed.
+    tolerance : float or None
+        The symmetry search's, in mesh units (default: 1/100 of the shortest edge).
+    """
+
+    no_zero: bool = False
+    fixes: tuple[tuple[int, int], ...] = ()
+    count: int = 1
+    time_limit: float | None = None
+    identify_time_limit: float | None = 60.0
+    processes: int = 1
+    seed: int = 0
+    tolerance: float | None = None
+
+    def __post_init__(self) -> None:
+        for name in ("count", "processes"):
+            if getattr(self, name) < 1:
+                raise UsageError(f"{name} {getattr(self, name)}: at least 1", parameter=name)
+
+
+def solve_target(
+    scaffold: Scaffold, goal: Goal, *, label_set: np.ndarray, options: SearchOptions = SearchOptions()
+) -> TargetResult:
+    """Find up to ``options.count`` designs of ``goal``, simplest first (see the module docstring).
 
     Examples
     --------
@@ -111,10 +137,12 @@ def solve_target(
     >>> r.status, r.solutions[0]["labels"], r.solutions[0]["name"]
     ('found', [-1, -1, -1], '3_1')
     """
+    o = options
     t0 = time.monotonic()
-    deadline = None if not time_limit else t0 + time_limit
+    deadline = None if not o.time_limit else t0 + o.time_limit
+    fixes = dict(o.fixes) or None
     walk = OrderedWalk(
-        scaffold, label_set, goal.components, no_zero=no_zero, fixes=fixes, deadline=deadline, tolerance=tolerance
+        scaffold, label_set, goal.components, no_zero=o.no_zero, fixes=fixes, deadline=deadline, tolerance=o.tolerance
     )
     tally: Counter[str] = Counter()
     solutions: list[dict[str, Any]] = []
@@ -122,7 +150,7 @@ def solve_target(
     timed_out = False
     with (
         task(f"searching {scaffold.name} for {goal.label}") as step,
-        _screener(scaffold, goal, seed, identify_time_limit, processes, label_set) as run,
+        _screener(scaffold, goal, o, label_set) as run,
     ):
         for batch in walk:
             for labels, orbit, verdict in run(batch.labels, batch.orbit_sizes):
@@ -132,20 +160,20 @@ def solve_target(
                 if verdict["verdict"] == "undetermined":
                     undetermined.append(labels.tolist())
                 elif verdict["verdict"] == "match":
-                    again = check_answer(scaffold, labels, goal, seed, identify_time_limit)
+                    again = check_answer(scaffold, labels, goal, o.seed, o.identify_time_limit)
                     if again["verdict"] != "match":
                         tally["re-identification disagreed"] += 1
                         undetermined.append(labels.tolist())
                         continue
                     solutions.append(_solution(labels, orbit, goal, again))
-                    if len(solutions) >= count:
+                    if len(solutions) >= o.count:
                         break
                 if deadline is not None and time.monotonic() > deadline:
                     timed_out = True
                     break
-            if len(solutions) >= count or timed_out:
+            if len(solutions) >= o.count or timed_out:
                 break
-    complete = walk.complete and not timed_out and len(solutions) < count
+    complete = walk.complete and not timed_out and len(solutions) < o.count
     status: TargetStatus
     if solutions:
         status, reason = "found", ""
@@ -185,14 +213,12 @@ class _screener:
     the keys judged are shared with every run (:func:`~lkspace.knots.key_names.disk_cache`).
     """
 
-    def __init__(
-        self, scaffold: Scaffold, goal: Goal, seed: int, time_limit: float | None, processes: int, label_set: np.ndarray
-    ) -> None:
+    def __init__(self, scaffold: Scaffold, goal: Goal, options: SearchOptions, label_set: np.ndarray) -> None:
         from ..knots.batch import Namer
         from ..knots.key_names import disk_cache
 
-        self.scaffold, self.goal, self.seed, self.label_set = scaffold, goal, seed, label_set
-        self.namer = Namer(processes, False, time_limit)
+        self.scaffold, self.goal, self.seed, self.label_set = scaffold, goal, options.seed, label_set
+        self.namer = Namer(options.processes, False, options.identify_time_limit)
         self.cache = disk_cache()
 
     def __enter__(self) -> Any:
