@@ -17,8 +17,9 @@ from hypothesis import strategies as st
 
 import lkspace
 from lkspace.errors import UsageError
+from lkspace.linktypes.answers import LookupAnswer
 from lkspace.linktypes.common_names import CHIRAL, COMMON, common_name, resolve_name, resolve_type
-from lkspace.linktypes.records import IndexRow, LookupAnswer
+from lkspace.linktypes.records import DesignRecord, IndexRow
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 LKSPACE = str(pathlib.Path(sys.executable).parent / "lkspace")
@@ -346,7 +347,9 @@ def test_examples_keep_the_k_simplest_of_each_chirality(designs, k):
     kept = Examples(k)
     for labels, mirror in designs:
         a = [abs(x) for x in labels]
-        kept.add(np.array(labels), (sum(a), sum(x != 0 for x in a), max(a)), {"mirror": mirror, "crossings": 3})
+        kept.add(
+            np.array(labels), (sum(a), sum(x != 0 for x in a), max(a)), DesignRecord("3_1", mirror=mirror, crossings=3)
+        )
 
     def key(d):
         a = [abs(x) for x in d[0]]
@@ -355,7 +358,7 @@ def test_examples_keep_the_k_simplest_of_each_chirality(designs, k):
     want = []
     for side in (None, True, False):
         want += sorted((d for d in designs if d[1] is side), key=key)[:k]
-    assert [(e["labels"], e["mirror"]) for e in kept.to_list()] == [(list(d[0]), d[1]) for d in sorted(want, key=key)]
+    assert [(list(e.labels), e.mirror) for e in kept.records()] == [(list(d[0]), d[1]) for d in sorted(want, key=key)]
 
 
 def test_sums_and_split_types_are_looked_up_as_the_atlas_spells_them():

@@ -7,15 +7,8 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from lkspace.errors import CatalogError
-from lkspace.linktypes.records import (
-    AtlasType,
-    ChiralityCounts,
-    DesignRecord,
-    Example,
-    IndexRow,
-    LookupAnswer,
-    LookupDesign,
-)
+from lkspace.linktypes.answers import LookupAnswer, LookupDesign, TargetSolution
+from lkspace.linktypes.records import AtlasType, ChiralityCounts, DesignRecord, Example, IndexRow
 
 counts = st.integers(0, 10**12)
 maybe = st.none() | st.integers(0, 200)
@@ -72,3 +65,11 @@ def test_lookup_answer_refuses_an_unknown_chirality():
         LookupAnswer.from_json({**data, "chirality": "left"})
     with pytest.raises(CatalogError, match=r"designs\[0\]: field 'labels'"):
         LookupAnswer.from_json({**data, "designs": [{**design.to_json(), "labels": "1,1"}]})
+
+
+def test_target_solution_names_only_what_was_identified():
+    plain = TargetSolution((0, 1), 2, 1, 1, 1, 2, ((0, 1), (1, 0)))
+    assert "name" not in plain.to_json() and TargetSolution.from_json(plain.to_json()) == plain
+    named = TargetSolution((1, 1, 1), 1, 3, 1, 3, 1, ((0,),), True, True, "3_1", "3_1", False, "knotinfo", 3)
+    assert list(named.to_json())[-5:] == ["name", "chiral_name", "mirror", "table", "crossings"]
+    assert TargetSolution.from_json(json.loads(json.dumps(named.to_json()))) == named

@@ -33,6 +33,7 @@ def solve_type(mesh, name, labels="-1..1", **kw):
 
 def assert_reidentified(mesh, solution, name):
     """An answer names the type again under an independent call (another projection seed)."""
+    solution = solution if isinstance(solution, dict) else solution.to_json()
     again = identify(mesh, solution["labels"], seed=17)
     assert again.name == name and again.components == solution["components"]
     return again
@@ -43,7 +44,7 @@ def test_dihedra_make_the_torus_knots_and_links_t2n(n, name):
     result = solve_type(f"dihedron:{n}", name, "0..1")
     assert result.status == "found"
     (sol,) = result.solutions
-    assert sol["labels"] == [1] * n and sol["name"] == name
+    assert sol.labels == (1,) * n and sol.name == name
     assert_reidentified(f"dihedron:{n}", sol, name)
 
 
@@ -51,7 +52,7 @@ def test_book3_twist_2_is_the_trefoil():
     result = solve_type("book:3", "3_1", "0..2", count=1)
     assert result.status == "found"
     sol = result.solutions[0]
-    assert sol["labels"][0] == 2 and sum(abs(t) for t in sol["labels"]) == 2  # the spine edge alone
+    assert sol.labels[0] == 2 and sum(abs(t) for t in sol.labels) == 2  # the spine edge alone
     assert_reidentified("book:3", sol, "3_1")
 
 
@@ -74,9 +75,9 @@ def test_figure_eight_mesh_gives_4_1():
 def test_chirality_is_asked_for_and_reported():
     left = solve_type("dihedron:3", "m3_1", "-1..1").solutions[0]
     right = solve_type("dihedron:3", "3_1", "-1..1", chirality="table").solutions[0]
-    assert left["chiral_name"] == "m3_1" and left["mirror"] is True
-    assert right["chiral_name"] == "3_1" and right["mirror"] is False
-    assert identify("dihedron:3", left["labels"]).details["chiral_name"] == "m3_1"
+    assert left.chiral_name == "m3_1" and left.mirror is True
+    assert right.chiral_name == "3_1" and right.mirror is False
+    assert identify("dihedron:3", left.labels).details["chiral_name"] == "m3_1"
     assert parse_type("m4_1").amphichiral  # the figure-eight knot is its own mirror image
 
 
@@ -118,7 +119,7 @@ def test_signed_linking_matrix():
     # the two faces of a dihedron run in opposite directions: positive twists link them negatively
     for result, sign in ((a, -1), (b, 1)):
         assert result.status == "found"
-        assert result.solutions[0]["linking_matrix"][0][1] == sign
+        assert result.solutions[0].linking_matrix[0][1] == sign
 
 
 @settings(max_examples=40, deadline=None)
@@ -267,7 +268,7 @@ def test_worker_processes_give_the_same_answers():
     one = solve_type("tetrahedron", "3_1", "-1..1", count=3)
     two = solve_type("tetrahedron", "3_1", "-1..1", count=3, processes=2)
     assert one.status == two.status == "found"
-    assert [s["labels"] for s in one.solutions] == [s["labels"] for s in two.solutions]
+    assert [s.labels for s in one.solutions] == [s.labels for s in two.solutions]
     assert (
         atlas(load("dihedron:4"), np.arange(-1, 2), options=AtlasOptions(processes=2))["types"]
         == atlas(load("dihedron:4"), np.arange(-1, 2))["types"]
@@ -338,5 +339,5 @@ def test_the_screen_from_labels_never_contradicts_the_geometric_screen(name):
         fast = screen_batch(cube, rows, goal, 0, KeyCache(), namer, np.arange(-1, 2))
     for labels, verdict in zip(rows, fast, strict=True):
         slow = screen(cube, labels, goal, seed=3)
-        assert {verdict["verdict"], slow["verdict"]} != {"match", "other"}, labels.tolist()
-        assert verdict["linking_matrix"] == slow["linking_matrix"]
+        assert {verdict.verdict, slow.verdict} != {"match", "other"}, labels.tolist()
+        assert verdict.linking_matrix == slow.linking_matrix

@@ -71,7 +71,7 @@ def target_cmd(
     result = solve_target(scaffold, goal, label_set=labels, options=options)
     written = None
     if target_path is not None and output is not None and result.solutions:
-        io.write(scaffold, target_path, result.solutions[0]["labels"])
+        io.write(scaffold, target_path, list(result.solutions[0].labels))
         written = os.path.abspath(output)
     data = {"label_set": labels.tolist(), "no_zero": no_zero, **result.to_dict(), "written": written}
 
@@ -79,9 +79,10 @@ def target_cmd(
         line = f"{scaffold.name}: {result.status} — {plural(len(result.solutions), 'design')} of {goal.label}"
         click.echo(f"{line} [{result.stats.get('designs', 0):,} designs screened, {result.wall_time:.1f} s]")
         for k, sol in enumerate(result.solutions):
-            name = sol.get("chiral_name") or sol.get("name") or ""
-            extra = f" {name} ({sol.get('table')})" if name else f" linking matrix {sol['linking_matrix']}"
-            click.echo(f"  {k}: {','.join(map(str, sol['labels']))}  sum|t|={sol['sum_abs']}{extra}")
+            name = sol.chiral_name or sol.name or ""
+            matrix = None if sol.linking_matrix is None else [list(r) for r in sol.linking_matrix]
+            extra = f" {name} ({sol.table})" if name else f" linking matrix {matrix}"
+            click.echo(f"  {k}: {','.join(map(str, sol.labels))}  sum|t|={sol.sum_abs}{extra}")
         if result.reason:
             click.echo(f"  {result.reason}", err=result.status == "unknown")
         if written:

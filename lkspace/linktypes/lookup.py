@@ -36,8 +36,10 @@ import os
 from collections.abc import Mapping
 
 from ..errors import CatalogError, LkspaceError
+from .answers import LookupAnswer, LookupDesign
 from .common_names import common_name, resolve_type
-from .records import INDEX_COLUMNS, AtlasType, Example, IndexRow, JsonObject, LookupAnswer, LookupDesign
+from .fields import JsonObject
+from .records import INDEX_COLUMNS, AtlasType, Example, IndexRow
 from .spelling import Chirality
 
 SHIPPED = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "data", "atlas.parquet")

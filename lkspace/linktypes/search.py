@@ -28,8 +28,9 @@ from ..model.scaffold import Scaffold
 from ..progress import task
 from ..strands.tracing import trace
 from ..words import plural
+from .answers import TargetSolution
 from .candidates import OrderedWalk
-from .screen import Goal, screen, screen_batch
+from .screen import Goal, Screening, screen, screen_batch
 
 TargetStatus: TypeAlias = Literal["found", "exhausted", "unknown"]
 """A target search's answer: designs found, none in the space (proved), or not decided."""
@@ -39,14 +40,14 @@ CHECK_SEED_SHIFT = 1009
 
 @dataclass(frozen=True)
 class TargetResult:
-    """The answer: ``status``, ``solutions`` (dicts with ``labels``, ``components``, ``name`` ...) and counts."""
+    """The answer: ``status``, ``solutions`` and counts (``stats``: designs per verdict and reason)."""
 
     status: TargetStatus
-    solutions: list[dict[str, Any]]
+    solutions: tuple[TargetSolution, ...]
     goal: Goal
     wall_time: float
     complete: bool
-    stats: dict[str, Any] = field(default_factory=dict)
+    stats: dict[str, int | list[list[int]]] = field(default_factory=dict)
     reason: str = ""
 
     def __repr__(self) -> str:
@@ -56,7 +57,7 @@ class TargetResult:
         """Return the JSON form (``status``, ``solutions``, ``target``, ``stats`` ...)."""
         out: dict[str, Any] = {
             "status": self.status,
-            "solutions": self.solutions,
+            "solutions": [s.to_json() for s in self.solutions],
             "components": self.goal.components,
             "exhausted": self.status == "exhausted",
             "space_complete": self.complete,
@@ -73,7 +74,7 @@ class TargetResult:
         return out
 
 
-def check_answer(scaffold: Scaffold, labels: np.ndarray, goal: Goal, seed: int, time_limit: float | None) -> dict:
+def check_answer(scaffold: Scaffold, labels: np.ndarray, goal: Goal, seed: int, time_limit: float | None) -> Screening:
     """Re-trace and re-identify a match with another projection; raise if it is not the goal."""
     components = trace(scaffold, labels).components
     if components != goal.components:
@@ -134,8 +135,8 @@ def solve_target(
     >>> from lkspace import load
     >>> from lkspace.linktypes.names import parse_type
     >>> r = solve_target(load("dihedron:3"), Goal(1, parse_type("3_1")), label_set=np.arange(-1, 2))
-    >>> r.status, r.solutions[0]["labels"], r.solutions[0]["name"]
-    ('found', [-1, -1, -1], '3_1')
+    >>> r.status, r.solutions[0].labels, r.solutions[0].name
+    ('found', (-1, -1, -1), '3_1')
     """
     o = options
     t0 = time.monotonic()
@@ -145,7 +146,7 @@ def solve_target(
         scaffold, label_set, goal.components, no_zero=o.no_zero, fixes=fixes, deadline=deadline, tolerance=o.tolerance
     )
     tally: Counter[str] = Counter()
-    solutions: list[dict[str, Any]] = []
+    solutions: list[TargetSolution] = []
     undetermined: list[list[int]] = []
     timed_out = False
     with (
@@ -155,13 +156,13 @@ def solve_target(
         for batch in walk:
             for labels, orbit, verdict in run(batch.labels, batch.orbit_sizes):
                 tally["designs"] += 1
-                tally[f"{verdict['verdict']}: {verdict['reason']}"] += 1
+                tally[f"{verdict.verdict}: {verdict.reason}"] += 1
                 step.note(f"{tally['designs']:,} designs screened (|t| <= {batch.shell}), {len(solutions)} found")
-                if verdict["verdict"] == "undetermined":
+                if verdict.verdict == "undetermined":
                     undetermined.append(labels.tolist())
-                elif verdict["verdict"] == "match":
+                elif verdict.verdict == "match":
                     again = check_answer(scaffold, labels, goal, o.seed, o.identify_time_limit)
-                    if again["verdict"] != "match":
+                    if again.verdict != "match":
                         tally["re-identification disagreed"] += 1
                         undetermined.append(labels.tolist())
                         continue
@@ -183,27 +184,28 @@ def solve_target(
         status, reason = "unknown", f"{plural(len(undetermined), 'design')} could not be told apart from the target"
     else:
         status, reason = "unknown", "time ran out before the space was searched"
-    stats: dict[str, Any] = dict(sorted(tally.items()))
+    stats: dict[str, int | list[list[int]]] = dict(sorted(tally.items()))
     stats["undetermined_examples"] = undetermined[:5]
-    return TargetResult(status, solutions, goal, time.monotonic() - t0, complete, stats, reason)
+    return TargetResult(status, tuple(solutions), goal, time.monotonic() - t0, complete, stats, reason)
 
 
-def _solution(labels: np.ndarray, orbit: int, goal: Goal, ident: dict[str, Any]) -> dict[str, Any]:
+def _solution(labels: np.ndarray, orbit: int, goal: Goal, again: Screening) -> TargetSolution:
     a = np.abs(labels)
-    out = {
-        "labels": labels.tolist(),
-        "components": goal.components,
-        "sum_abs": int(a.sum()),
-        "max_abs": int(a.max()) if len(a) else 0,
-        "nonzero": int((labels != 0).sum()),
-        "orbit_size": int(orbit),
-        "linking_matrix": ident.get("linking_matrix"),
-        "reidentified": True,
-    }
-    for key in ("name", "chiral_name", "mirror", "table", "crossings"):
-        if key in ident:
-            out[key] = ident[key]
-    return out
+    return TargetSolution(
+        labels=tuple(int(x) for x in labels),
+        components=goal.components,
+        sum_abs=int(a.sum()),
+        max_abs=int(a.max()) if len(a) else 0,
+        nonzero=int((labels != 0).sum()),
+        orbit_size=int(orbit),
+        linking_matrix=None if again.linking_matrix is None else tuple(tuple(r) for r in again.linking_matrix),
+        identified=again.identified,
+        name=again.name,
+        chiral_name=again.chiral_name,
+        mirror=again.mirror,
+        table=again.table,
+        crossings=again.crossings,
+    )
 
 
 class _screener:
@@ -225,7 +227,7 @@ class _screener:
         self.namer.__enter__()
         return self.run
 
-    def run(self, labels: np.ndarray, orbits: np.ndarray) -> Iterator[tuple[np.ndarray, int, dict[str, Any]]]:
+    def run(self, labels: np.ndarray, orbits: np.ndarray) -> Iterator[tuple[np.ndarray, int, Screening]]:
         """Screen the rows of one batch of the walk."""
         verdicts = screen_batch(self.scaffold, labels, self.goal, self.seed, self.cache, self.namer, self.label_set)
         for i, verdict in enumerate(verdicts):
