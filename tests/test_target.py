@@ -191,7 +191,7 @@ def test_atlas_agrees_with_the_catalogs_identification(tmp_path, capsys):
     assert code == 0, err
     keep = ("designs", "assignments", "simplest_sum_abs", "chirality")
     from_catalog = {t["name"]: [t[k] for k in keep] for t in json.loads(out)["types"]}
-    direct = atlas(load("tetrahedron"), np.arange(-1, 2))
+    direct = atlas(load("tetrahedron"), np.arange(-1, 2)).to_json()
     named = {t["name"]: [t[k] for k in keep] for t in direct["types"] if t["name"][0] not in "su"}
     assert direct["designs"] == 87 and direct["assignments"] == 3**6
     for name, counts in named.items():
@@ -200,11 +200,11 @@ def test_atlas_agrees_with_the_catalogs_identification(tmp_path, capsys):
 
 
 def test_atlas_resumes_from_its_cache(tmp_path):
-    first = atlas(load("dihedron:3"), np.arange(-1, 2), str(tmp_path))
+    first = atlas(load("dihedron:3"), np.arange(-1, 2), str(tmp_path)).to_json()
     assert first["identified_now"] == first["designs"]
     lines = (tmp_path / "cache.jsonl").read_text().splitlines()
     (tmp_path / "cache.jsonl").write_text("\n".join(lines[:-2]) + "\n" + lines[-2][:5])  # an interrupted run
-    again = atlas(load("dihedron:3"), np.arange(-1, 2), str(tmp_path))
+    again = atlas(load("dihedron:3"), np.arange(-1, 2), str(tmp_path)).to_json()
     assert again["identified_now"] == 2 and again["types"] == first["types"]
 
 
@@ -270,17 +270,17 @@ def test_worker_processes_give_the_same_answers():
     assert one.status == two.status == "found"
     assert [s.labels for s in one.solutions] == [s.labels for s in two.solutions]
     assert (
-        atlas(load("dihedron:4"), np.arange(-1, 2), options=AtlasOptions(processes=2))["types"]
-        == atlas(load("dihedron:4"), np.arange(-1, 2))["types"]
+        atlas(load("dihedron:4"), np.arange(-1, 2), options=AtlasOptions(processes=2)).types
+        == atlas(load("dihedron:4"), np.arange(-1, 2)).types
     )
 
 
 def test_atlas_with_a_time_budget_is_partial_then_resumes(tmp_path):
-    whole = atlas(load("dihedron:4"), np.arange(-2, 3))
-    part = atlas(load("dihedron:4"), np.arange(-2, 3), str(tmp_path), AtlasOptions(stop_after=1e-6))
+    whole = atlas(load("dihedron:4"), np.arange(-2, 3)).to_json()
+    part = atlas(load("dihedron:4"), np.arange(-2, 3), str(tmp_path), AtlasOptions(stop_after=1e-6)).to_json()
     assert not part["complete"]
     assert part["designs"] + part["skipped"] < whole["designs"] == 120
-    again = atlas(load("dihedron:4"), np.arange(-2, 3), str(tmp_path))
+    again = atlas(load("dihedron:4"), np.arange(-2, 3), str(tmp_path)).to_json()
     assert again["complete"] and again["types"] == whole["types"]
 
 

@@ -111,25 +111,25 @@ def atlas_cmd(
             tolerance=symmetry_tolerance(),
         )
         data = atlas(scaffold, labels, folder, options)
-    files = write_gallery(folder, data, scaffold, pictures) if folder is not None else []
-    data["written"] = [os.path.join(os.path.abspath(folder), f) for f in files] if folder else []
+    files: list[str] = []
+    if folder is not None:
+        files, data = write_gallery(folder, data, scaffold, pictures)
+    out = {**data.to_json(), "written": [os.path.join(os.path.abspath(folder), f) for f in files] if folder else []}
 
     def human() -> None:
-        click.echo(
-            f"{data['scaffold']}: {plural(data['designs'], 'design')}, {plural(len(data['types']), 'type')}"
-            + (f" [{data['wall_time']:.1f} s]" if "wall_time" in data else "")
-        )
-        if not data.get("complete", True):
+        took = f" [{data.run.wall_time:.1f} s]" if data.run is not None else ""
+        click.echo(f"{data.scaffold}: {plural(data.designs, 'design')}, {plural(len(data.types), 'type')}{took}")
+        if data.run is not None and not data.run.complete:
             click.echo(
-                f"  partial: --stop-after reached, {data['skipped']:,} designs not identified (rerun with -o to go on)"
+                f"  partial: --stop-after reached, {data.run.skipped:,} designs not identified (rerun with -o to go on)"
             )
-        for t in data["types"]:
-            simplest = ",".join(map(str, t["simplest"]))
-            table = f" ({t['table']})" if t.get("table") else ""
+        for t in data.types:
+            simplest = ",".join(map(str, t.simplest))
+            table = f" ({t.table})" if t.table else ""
             click.echo(
-                f"  {t['name']:<24}{table:<19} {t['designs']:>8,} {'design ' if t['designs'] == 1 else 'designs'}  simplest {simplest}"
+                f"  {t.name:<24}{table:<19} {t.designs:>8,} {'design ' if t.designs == 1 else 'designs'}  simplest {simplest}"
             )
         if folder:
             click.echo(f"wrote {', '.join(files)} to {folder}")
 
-    emit(ctx, data, human)
+    emit(ctx, out, human)

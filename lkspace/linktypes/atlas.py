@@ -38,7 +38,7 @@ from ..model.scaffold import Scaffold
 from ..progress import task
 from .candidates import OrderedWalk
 from .examples import Examples
-from .records import AtlasType, ChiralityCounts, DesignRecord
+from .records import AtlasResult, AtlasRun, AtlasType, ChiralityCounts, DesignRecord
 from .screen import type_labels
 
 CACHE = "cache.jsonl"
@@ -200,8 +200,8 @@ class AtlasOptions:
 
 def atlas(
     scaffold: Scaffold, label_set: np.ndarray, folder: str | None = None, options: AtlasOptions = AtlasOptions()
-) -> dict[str, Any]:
-    """Identify every design of the space; return ``{"types": [...], "designs": n, ...}``.
+) -> AtlasResult:
+    """Identify every design of the space; return its types (``to_json()``: ``{"types": [...], "designs": n, ...}``).
 
     ``folder``: keep the resumable cache there (``cache.jsonl``).  ``options.stop_after``:
     seconds after which nothing more is identified; the answer then covers the designs
@@ -213,8 +213,8 @@ def atlas(
     --------
     >>> from lkspace import load
     >>> out = atlas(load("dihedron:3"), np.array([0, 1]))
-    >>> [(t["name"], t["designs"], t["simplest"]) for t in out["types"]]
-    [('0_1', 1, [0, 0, 1]), ('3_1', 1, [1, 1, 1]), ('L2a1', 1, [0, 1, 1]), ('split: 0_1 + 0_1', 1, [0, 0, 0])]
+    >>> [(t.name, t.designs, t.simplest) for t in out.types]
+    [('0_1', 1, (0, 0, 1)), ('3_1', 1, (1, 1, 1)), ('L2a1', 1, (0, 1, 1)), ('split: 0_1 + 0_1', 1, (0, 0, 0))]
     """
     t0 = time.monotonic()
     if not options.stop_after:
@@ -247,20 +247,13 @@ def atlas(
     finally:
         if sink is not None:
             sink.close()
-    listed = [t.record().to_json() for t in sort_types(types)]
-    return {
-        "scaffold": scaffold.name,
-        "label_set": [int(x) for x in label_set],
-        "designs": how["designs"],
-        "assignments": sum(t["assignments"] for t in listed),
-        "identified_now": how["identified"],
-        "reused": how["reused"],
-        "from_cache": how["cache"],
-        "complete": how["skipped"] == 0 and not how["unwalked"],
-        "skipped": how["skipped"],
-        "types": listed,
-        "wall_time": round(time.monotonic() - t0, 3),
-    }
+    listed = tuple(t.record() for t in sort_types(types))
+    complete = how["skipped"] == 0 and not how["unwalked"]
+    wall_time = round(time.monotonic() - t0, 3)
+    run = AtlasRun(how["identified"], how["reused"], how["cache"], complete, how["skipped"], wall_time)
+    return AtlasResult(
+        scaffold.name, tuple(int(x) for x in label_set), how["designs"], sum(t.assignments for t in listed), listed, run
+    )
 
 
 def _check_size(scaffold: Scaffold, label_set: np.ndarray, tolerance: float | None) -> None:
@@ -343,7 +336,7 @@ def _records(
         yield np.zeros(0, np.int64), 0, "unwalked", None
 
 
-def atlas_of_catalog(path: str) -> dict[str, Any]:
+def atlas_of_catalog(path: str) -> AtlasResult:
     """Sum a catalog identified by ``enumerate --identify`` (its ``knot_name`` column) into atlas types.
 
     Rows without a name are grouped as ``split (N components)`` or ``unknown (N
@@ -397,12 +390,13 @@ def atlas_of_catalog(path: str) -> dict[str, Any]:
         entry = types[str(row["key"])]
         entry.simplest = [int(x) for x in cat.labels[int(i)]]
         entry.cost = (int(row["sum_abs"]), int(row["nonzero"]), int(row["max_abs"]))
-    listed = [t.record().to_json() for t in sort_types(types)]
-    return {
-        "scaffold": cat.scaffold.name,
-        "label_set": cat.metadata.get("label_set"),
-        "designs": len(frame),
-        "assignments": sum(t["assignments"] for t in listed),
-        "types": listed,
-        "from_catalog": os.path.abspath(path),
-    }
+    listed = tuple(t.record() for t in sort_types(types))
+    label_set = cat.metadata.get("label_set")
+    return AtlasResult(
+        cat.scaffold.name,
+        None if label_set is None else tuple(int(x) for x in label_set),
+        len(frame),
+        sum(t.assignments for t in listed),
+        listed,
+        from_catalog=os.path.abspath(path),
+    )

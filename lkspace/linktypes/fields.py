@@ -44,6 +44,14 @@ def read_opt_int(data: Mapping[str, object], key: str, where: str) -> int | None
     return None if get_field(data, key, where) is None else read_int(data, key, where)
 
 
+def read_float(data: Mapping[str, object], key: str, where: str) -> float:
+    """Return a number field (an integer is a number too)."""
+    value = get_field(data, key, where)
+    if isinstance(value, int | float) and not isinstance(value, bool):
+        return float(value)
+    raise wrong(where, key, value, "a number")
+
+
 def read_str(data: Mapping[str, object], key: str, where: str) -> str:
     """Return a string field."""
     value = get_field(data, key, where)

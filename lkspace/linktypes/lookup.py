@@ -33,13 +33,12 @@ from __future__ import annotations
 
 import json
 import os
-from collections.abc import Mapping
 
 from ..errors import CatalogError, LkspaceError
 from .answers import LookupAnswer, LookupDesign
 from .common_names import common_name, resolve_type
 from .fields import JsonObject
-from .records import INDEX_COLUMNS, AtlasType, Example, IndexRow
+from .records import INDEX_COLUMNS, AtlasResult, Example, IndexRow
 from .spelling import Chirality
 
 SHIPPED = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "data", "atlas.parquet")
@@ -51,17 +50,12 @@ LIMIT = 10
 """Designs a lookup returns by default."""
 
 
-def index_rows(data: Mapping[str, object], labels: str) -> list[IndexRow]:
+def index_rows(data: AtlasResult, labels: str) -> list[IndexRow]:
     """Return the index rows of one :func:`~lkspace.linktypes.atlas.atlas` result (``labels``: its label set as typed)."""
     from .atlas import crossing_number
 
-    scaffold = data["scaffold"]
-    types = data["types"]
-    if not isinstance(scaffold, str) or not isinstance(types, list):
-        raise CatalogError(f"atlas result of {scaffold!r}: no scaffold name or no list of types")
     rows = []
-    for i, entry in enumerate(types):
-        t = AtlasType.from_json(entry, f"atlas of {scaffold} {labels}, types[{i}]")
+    for t in data.types:
         named = not t.name.startswith(("split", "unknown"))
         rows.append(
             IndexRow(
@@ -71,7 +65,7 @@ def index_rows(data: Mapping[str, object], labels: str) -> list[IndexRow]:
                 crossing_number=crossing_number(t.name) if named else None,
                 crossings=t.crossings,
                 table=t.table,
-                scaffold=scaffold,
+                scaffold=data.scaffold,
                 labels=labels,
                 designs=t.designs,
                 assignments=t.assignments,
@@ -80,7 +74,7 @@ def index_rows(data: Mapping[str, object], labels: str) -> list[IndexRow]:
                 chirality_mirror=t.chirality.mirror,
                 chirality_undetermined=t.chirality.undetermined,
                 examples=t.examples,
-                complete=bool(data.get("complete", True)),
+                complete=data.complete,
             )
         )
     return rows

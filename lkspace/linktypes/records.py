@@ -33,6 +33,7 @@ from .fields import (
     JsonObject,
     as_object,
     read_bool,
+    read_float,
     read_int,
     read_ints,
     read_list,
@@ -210,6 +211,92 @@ class AtlasType:
         }
         if self.picture is not None:
             out["picture"] = self.picture
+        return out
+
+
+@dataclass(frozen=True)
+class AtlasRun:
+    """How an atlas of a mesh was made: designs identified now, reused, read from the cache, skipped."""
+
+    identified_now: int
+    reused: int
+    from_cache: int
+    complete: bool
+    skipped: int
+    wall_time: float
+
+
+@dataclass(frozen=True)
+class AtlasResult:
+    """An atlas (``lkspace atlas --json``; ``atlas.json`` of ``experiments/build_atlas.py``).
+
+    ``run``: how it was made, for an atlas of a mesh; ``from_catalog``: the catalog it
+    was summed from otherwise.  ``labels``: the label set as typed (build_atlas only).
+    """
+
+    scaffold: str
+    label_set: tuple[int, ...] | None
+    designs: int
+    assignments: int
+    types: tuple[AtlasType, ...]
+    run: AtlasRun | None = None
+    from_catalog: str | None = None
+    labels: str | None = None
+
+    @property
+    def complete(self) -> bool:
+        """Every design of the space was identified (an atlas of a catalog: always)."""
+        return self.run is None or self.run.complete
+
+    @classmethod
+    def from_json(cls, data: object, where: str = "atlas") -> AtlasResult:
+        """Read :meth:`to_json`."""
+        d = as_object(data, where)
+        scaffold = read_str(d, "scaffold", where)
+        where = f"{where} of {scaffold}"
+        types = tuple(
+            AtlasType.from_json(t, f"{where}, types[{i}]") for i, t in enumerate(read_list(d, "types", where))
+        )
+        run = None
+        if "identified_now" in d:
+            run = AtlasRun(
+                read_int(d, "identified_now", where),
+                read_int(d, "reused", where),
+                read_int(d, "from_cache", where),
+                read_bool(d, "complete", where),
+                read_int(d, "skipped", where),
+                read_float(d, "wall_time", where),
+            )
+        return cls(
+            scaffold,
+            None if d.get("label_set") is None else read_ints(d, "label_set", where),
+            read_int(d, "designs", where),
+            read_int(d, "assignments", where),
+            types,
+            run,
+            read_opt_str(d, "from_catalog", where) if "from_catalog" in d else None,
+            read_opt_str(d, "labels", where) if "labels" in d else None,
+        )
+
+    def to_json(self) -> JsonObject:
+        """Return ``{scaffold, label_set, designs, assignments, [identified_now ... skipped], types, ...}``."""
+        out: JsonObject = {
+            "scaffold": self.scaffold,
+            "label_set": None if self.label_set is None else list(self.label_set),
+            "designs": self.designs,
+            "assignments": self.assignments,
+        }
+        r = self.run
+        if r is not None:
+            out.update(identified_now=r.identified_now, reused=r.reused, from_cache=r.from_cache)
+            out.update(complete=r.complete, skipped=r.skipped)
+        out["types"] = [t.to_json() for t in self.types]
+        if r is not None:
+            out["wall_time"] = r.wall_time
+        if self.from_catalog is not None:
+            out["from_catalog"] = self.from_catalog
+        if self.labels is not None:
+            out["labels"] = self.labels
         return out
 
 
