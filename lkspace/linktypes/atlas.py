@@ -29,7 +29,7 @@ import time
 from collections import Counter
 from collections.abc import Iterator
 from dataclasses import dataclass, field
-from typing import Any, Literal, TypeAlias
+from typing import Any, Literal, TextIO, TypeAlias
 
 import numpy as np
 
@@ -38,6 +38,7 @@ from ..model.scaffold import Scaffold
 from ..progress import task
 from .candidates import OrderedWalk
 from .examples import Examples
+from .fields import JsonObject
 from .records import AtlasResult, AtlasRun, AtlasType, ChiralityCounts, DesignRecord
 from .screen import type_labels
 
@@ -145,7 +146,7 @@ def crossing_number(name: str) -> int:
     return total
 
 
-def read_cache(path: str, header: dict[str, Any]) -> dict[tuple[int, ...], DesignRecord]:
+def read_cache(path: str, header: JsonObject) -> dict[tuple[int, ...], DesignRecord]:
     """Return the records of a previous run (``{labels: record}``); empty if none or if it was for another space."""
     if not os.path.exists(path):
         return {}
@@ -219,7 +220,7 @@ def atlas(
     t0 = time.monotonic()
     if not options.stop_after:
         _check_size(scaffold, label_set, options.tolerance)
-    header = {
+    header: JsonObject = {
         "scaffold": scaffold.name,
         "hash": scaffold.content_hash(),
         "labels": [int(x) for x in label_set],
@@ -268,7 +269,7 @@ def _check_size(scaffold: Scaffold, label_set: np.ndarray, tolerance: float | No
         )
 
 
-def _open_cache(path: str, header: dict[str, Any], resume: bool) -> Any:
+def _open_cache(path: str, header: JsonObject, resume: bool) -> TextIO:
     os.makedirs(os.path.dirname(path) or ".", exist_ok=True)
     fh = open(path, "a" if resume else "w", encoding="utf-8")  # noqa: SIM115 - closed by the caller
     if not resume:

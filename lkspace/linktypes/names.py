@@ -34,6 +34,7 @@ from ..knots.hoste import HT_NAME, ht_crossings, ht_manifold
 from ..knots.naming import name_key, one_based
 from ..knots.tables import JONES_POINT, knot_modules, laurent_value, tables
 from .common_names import common_type
+from .fields import JsonObject
 from .spelling import CHIRALITIES, Chirality, canonical_name, chiral_parts
 
 Verdict: TypeAlias = Literal["match", "other", "undetermined"]
@@ -80,7 +81,7 @@ class LinkType:
             return "#".join(self.factors)
         return {"any": self.name, "mirror": f"m{self.name}", "table": f"{self.name} (table chirality)"}[self.chirality]
 
-    def to_dict(self) -> dict[str, Any]:
+    def to_dict(self) -> JsonObject:
         """Return the JSON form (name, chirality, components, crossing number, table)."""
         return {
             "name": self.name,

@@ -30,6 +30,7 @@ from ..strands.tracing import trace
 from ..words import plural
 from .answers import TargetSolution
 from .candidates import OrderedWalk
+from .fields import Json, JsonObject
 from .screen import Goal, Screening, screen, screen_batch
 
 TargetStatus: TypeAlias = Literal["found", "exhausted", "unknown"]
@@ -47,15 +48,15 @@ class TargetResult:
     goal: Goal
     wall_time: float
     complete: bool
-    stats: dict[str, int | list[list[int]]] = field(default_factory=dict)
+    stats: JsonObject = field(default_factory=dict)
     reason: str = ""
 
     def __repr__(self) -> str:
         return f"TargetResult({self.status}, {plural(len(self.solutions), 'solution')} for {self.goal.label})"
 
-    def to_dict(self) -> dict[str, Any]:
+    def to_dict(self) -> JsonObject:
         """Return the JSON form (``status``, ``solutions``, ``target``, ``stats`` ...)."""
-        out: dict[str, Any] = {
+        out: JsonObject = {
             "status": self.status,
             "solutions": [s.to_json() for s in self.solutions],
             "components": self.goal.components,
@@ -147,7 +148,7 @@ def solve_target(
     )
     tally: Counter[str] = Counter()
     solutions: list[TargetSolution] = []
-    undetermined: list[list[int]] = []
+    undetermined: list[Json] = []
     timed_out = False
     with (
         task(f"searching {scaffold.name} for {goal.label}") as step,
@@ -184,7 +185,7 @@ def solve_target(
         status, reason = "unknown", f"{plural(len(undetermined), 'design')} could not be told apart from the target"
     else:
         status, reason = "unknown", "time ran out before the space was searched"
-    stats: dict[str, int | list[list[int]]] = dict(sorted(tally.items()))
+    stats: JsonObject = dict(sorted(tally.items()))
     stats["undetermined_examples"] = undetermined[:5]
     return TargetResult(status, tuple(solutions), goal, time.monotonic() - t0, complete, stats, reason)
 
