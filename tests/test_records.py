@@ -8,7 +8,7 @@ from hypothesis import strategies as st
 
 from lkspace.errors import CatalogError
 from lkspace.linktypes.answers import LookupAnswer, LookupDesign, TargetSolution
-from lkspace.linktypes.records import AtlasType, ChiralityCounts, DesignRecord, Example, IndexRow
+from lkspace.linktypes.records import INDEX_COLUMNS, AtlasType, ChiralityCounts, DesignRecord, Example, IndexRow
 
 counts = st.integers(0, 10**12)
 maybe = st.none() | st.integers(0, 200)
@@ -32,9 +32,16 @@ def test_atlas_type_round_trips(kept, picture):
 
 def test_index_row_and_lookup_round_trip():
     ex = Example((1, 1, 1), 3, 3, 3, False)
-    row = IndexRow("3_1", "trefoil", 1, 3, 3, "knotinfo", "dihedron:3", "-1..1", 2, 12, 3, 1, 1, 0, (ex,), True)
+    text = IndexRow.examples_text((ex,))
+    row = IndexRow("3_1", "trefoil", 1, 3, 3, "knotinfo", "dihedron:3", "-1..1", 2, 12, 3, 1, 1, 0, text, True)
     written = row.to_row()
     assert isinstance(written["examples"], str) and IndexRow.from_row(written) == row
+    assert IndexRow.from_row(written).examples == (ex,)
+    assert list(written) == [name for name, _ in INDEX_COLUMNS]
+    with pytest.raises(CatalogError, match="field 'designs' is '2', expected an integer"):
+        IndexRow.from_row({**written, "designs": "2"})
+    with pytest.raises(CatalogError, match=r"examples\[0\]: field 'labels'"):
+        _ = IndexRow.from_row({**written, "examples": '[{"labels": "1,1,1"}]'}).examples
     assert (row.count("any"), row.count("table"), row.count("mirror")) == (2, 1, 1)
     design = LookupDesign("3_1", "trefoil", "dihedron:3", (1, 1, 1), "-1..1", 3, 3, 3, False, "3_1", 2, "lkspace ...")
     answer = LookupAnswer("trefoil", "3_1", "any", "trefoil", "/a.parquet", ("s",), ("s",), 2, 1, (design,))

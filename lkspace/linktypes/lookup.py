@@ -73,7 +73,7 @@ def index_rows(data: AtlasResult, labels: str) -> list[IndexRow]:
                 chirality_table=t.chirality.table,
                 chirality_mirror=t.chirality.mirror,
                 chirality_undetermined=t.chirality.undetermined,
-                examples=t.examples,
+                examples_json=IndexRow.examples_text(t.examples),
                 complete=data.complete,
             )
         )

@@ -27,6 +27,7 @@ from __future__ import annotations
 import json
 from collections.abc import Mapping
 from dataclasses import dataclass
+from functools import cached_property
 
 from ..errors import CatalogError
 from .fields import (
@@ -320,10 +321,21 @@ INDEX_COLUMNS: tuple[tuple[str, str], ...] = (
 )
 """The columns of an atlas index, in file order, with their Arrow types (``examples``: a JSON list)."""
 
+_NULLABLE = frozenset({"common_name", "components", "crossing_number", "crossings", "table", "first_sum_abs"})
+_KINDS: tuple[tuple[str, type, bool], ...] = tuple(
+    (name, {"string": str, "int32": int, "int64": int, "bool_": bool}[kind], name in _NULLABLE)
+    for name, kind in INDEX_COLUMNS
+)
+
 
 @dataclass(frozen=True)
 class IndexRow:
-    """One row of an atlas index: one type in one space (scaffold, label set); columns in :data:`INDEX_COLUMNS`."""
+    """One row of an atlas index: one type in one space (scaffold, label set); columns in :data:`INDEX_COLUMNS`.
+
+    ``examples_json`` is the ``examples`` column as stored; :attr:`examples` reads it (with
+    :meth:`Example.from_json`, on first use: a lookup reads the examples of the rows of one
+    type, not the ~10^4 of the whole index).
+    """
 
     type: str
     common_name: str | None
@@ -339,17 +351,15 @@ class IndexRow:
     chirality_table: int
     chirality_mirror: int
     chirality_undetermined: int
-    examples: tuple[Example, ...]
+    examples_json: str
     complete: bool
 
     @classmethod
     def from_row(cls, row: Mapping[str, object], where: str = "atlas index row") -> IndexRow:
-        """Read one Parquet row (``examples`` a JSON string), checking every column."""
-        raw = read_str(row, "examples", where)
-        try:
-            examples = json.loads(raw)
-        except json.JSONDecodeError as exc:
-            raise CatalogError(f"{where}: field 'examples' is not JSON ({exc})") from None
+        """Read one Parquet row, checking every column (``examples``: its text now, its JSON on first use)."""
+        fast = [row.get(name) for name, _, _ in _KINDS]
+        if all(type(v) is kind or (v is None and nullable) for v, (_, kind, nullable) in zip(fast, _KINDS)):
+            return cls(*fast)  # type: ignore[arg-type]  # each column checked just above, at a fraction of the cost
         return cls(
             read_str(row, "type", where),
             read_opt_str(row, "common_name", where),
@@ -365,15 +375,30 @@ class IndexRow:
             read_int(row, "chirality_table", where),
             read_int(row, "chirality_mirror", where),
             read_int(row, "chirality_undetermined", where),
-            _examples({"examples": examples}, "examples", where),
+            read_str(row, "examples", where),
             read_bool(row, "complete", where),
         )
 
     def to_row(self) -> dict[str, object]:
         """Return the row as written to Parquet: the columns of :data:`INDEX_COLUMNS`, ``examples`` as JSON text."""
-        values = {name: getattr(self, name) for name, _ in INDEX_COLUMNS}
-        values["examples"] = json.dumps([e.to_json() for e in self.examples])
-        return values
+        values = {name: getattr(self, name) for name, _ in INDEX_COLUMNS if name != "examples"}
+        values["examples"] = self.examples_json
+        return {name: values[name] for name, _ in INDEX_COLUMNS}
+
+    @cached_property
+    def examples(self) -> tuple[Example, ...]:
+        """The simplest designs of the type in this space (the ``examples`` column read and checked)."""
+        where = f"atlas index row {self.type!r} ({self.scaffold} {self.labels})"
+        try:
+            examples = json.loads(self.examples_json)
+        except json.JSONDecodeError as exc:
+            raise CatalogError(f"{where}: field 'examples' is not JSON ({exc})") from None
+        return _examples({"examples": examples}, "examples", where)
+
+    @staticmethod
+    def examples_text(examples: tuple[Example, ...]) -> str:
+        """Return the ``examples`` column of ``examples``: a JSON list."""
+        return json.dumps([e.to_json() for e in examples])
 
     def count(self, chirality: Chirality) -> int:
         """Designs of the type in this space, of one chirality (``"any"``: all)."""
