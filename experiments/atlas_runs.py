@@ -58,16 +58,17 @@ def main(only: list[str]) -> None:
         data = atlas(scaffold, parse_label_set(labels), os.path.join(CACHE, folder))
         write_gallery(os.path.join(ROOT, folder), data, scaffold, pictures)
         before = runs.get(folder, {})
+        identified = data.run.identified_now if data.run is not None else 0
         runs[folder] = {
             "scaffold": name,
             "labels": labels,
-            "designs": data["designs"],
-            "types": len(data["types"]),
-            "identified_now": data["identified_now"],
+            "designs": data.designs,
+            "types": len(data.types),
+            "identified_now": identified,
             "wall_s": round(time.monotonic() - t0, 1),
             "cpu_s": round(cpu() - c0, 1),
         }
-        if data["identified_now"] == 0 and before.get("identified_now"):  # all from the cache: keep the real cost
+        if identified == 0 and before.get("identified_now"):  # all from the cache: keep the real cost
             runs[folder].update({k: before[k] for k in ("identified_now", "wall_s", "cpu_s")})
         latest = json.load(open(runs_path)) if os.path.exists(runs_path) else {}  # another runner may have written
         runs = {**latest, folder: runs[folder]}
@@ -196,8 +197,8 @@ def single_cycle_table() -> list[str]:
         "|---|---|---|",
     ]
     for lab, rec in rows:
-        chir = {True: "mirror", False: "table", None: "-"}[rec.get("mirror")]
-        lines.append(f"| `{','.join(map(str, lab))}` | {rec['type']} | {chir} |")
+        chir = {True: "mirror", False: "table", None: "-"}[rec.mirror]
+        lines.append(f"| `{','.join(map(str, lab))}` | {rec.type} | {chir} |")
     return lines
 
 

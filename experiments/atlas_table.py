@@ -18,6 +18,7 @@ import sys
 from collections import defaultdict
 
 from lkspace.linktypes.lookup import SHIPPED, read_index
+from lkspace.linktypes.records import IndexRow
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 OUT = os.path.join(HERE, "..", "results", "atlas")
@@ -25,24 +26,24 @@ BANDS = [(0, 0), (2, 2), (3, 3), (4, 4), (5, 5), (6, 6), (7, 7), (8, 8), (9, 10_
 """Crossing-number columns of the overview (0: the unknot; links start at 2)."""
 
 
-def named(row: dict) -> bool:
-    return not row["type"].startswith(("split", "unknown"))
+def named(row: IndexRow) -> bool:
+    return not row.type.startswith(("split", "unknown"))
 
 
-def type_order(row: dict) -> tuple:
-    return (row["crossing_number"] or 0, row["components"] or 0, row["type"])
+def type_order(row: IndexRow) -> tuple:
+    return (row.crossing_number or 0, row.components or 0, row.type)
 
 
-def spaces_of(rows: list[dict], meta: dict) -> list[tuple[str, str]]:
+def spaces_of(rows: list[IndexRow], meta: dict) -> list[tuple[str, str]]:
     """The spaces in the order they were built."""
     listed = [(s["scaffold"], s["labels"]) for s in meta.get("spaces", [])]
-    return listed or sorted({(r["scaffold"], r["labels"]) for r in rows})
+    return listed or sorted({(r.scaffold, r.labels) for r in rows})
 
 
-def markdown(rows: list[dict], meta: dict, atlas: str) -> str:
-    by_space: dict[tuple[str, str], list[dict]] = defaultdict(list)
+def markdown(rows: list[IndexRow], meta: dict, atlas: str) -> str:
+    by_space: dict[tuple[str, str], list[IndexRow]] = defaultdict(list)
     for r in rows:
-        by_space[r["scaffold"], r["labels"]].append(r)
+        by_space[r.scaffold, r.labels].append(r)
     info = {(s["scaffold"], s["labels"]): s for s in meta.get("spaces", [])}
     lines = [
         "# The atlas: which knots and links each scaffold makes",
@@ -67,8 +68,8 @@ def markdown(rows: list[dict], meta: dict, atlas: str) -> str:
         types = sorted((r for r in by_space[space] if named(r)), key=type_order)
         cells = []
         for lo, hi in BANDS:
-            pick = [r for r in types if lo <= (r["crossing_number"] or 0) <= hi]
-            cells.append(", ".join(f"{r['type']} ({r['first_sum_abs']}, {r['designs']:,})" for r in pick))
+            pick = [r for r in types if lo <= (r.crossing_number or 0) <= hi]
+            cells.append(", ".join(f"{r.type} ({r.first_sum_abs}, {r.designs:,})" for r in pick))
         s = info.get(space, {})
         designs = f"{s['designs']:,}" if "designs" in s else ""
         done = "yes" if s.get("complete", True) else "no (simplest first)"
@@ -83,11 +84,11 @@ def markdown(rows: list[dict], meta: dict, atlas: str) -> str:
             "|---|---|---|---|---|---|---|---|",
         ]
         for r in sorted(by_space[space], key=lambda r: (not named(r), *type_order(r))):
-            chir = f"{r['chirality_table']:,} / {r['chirality_mirror']:,} / {r['chirality_undetermined']:,}"
+            chir = f"{r.chirality_table:,} / {r.chirality_mirror:,} / {r.chirality_undetermined:,}"
             lines.append(
-                f"| {r['type']} | {r['common_name'] or ''} | {r['components']} | "
-                f"{'' if r['crossing_number'] is None else r['crossing_number']} | {r['first_sum_abs']} | "
-                f"{r['designs']:,} | {r['assignments']:,} | {chir} |"
+                f"| {r.type} | {r.common_name or ''} | {r.components} | "
+                f"{'' if r.crossing_number is None else r.crossing_number} | {r.first_sum_abs} | "
+                f"{r.designs:,} | {r.assignments:,} | {chir} |"
             )
         lines.append("")
     lines += [
@@ -102,7 +103,7 @@ def band(lo: int, hi: int) -> str:
     return str(lo) if lo == hi else f"{lo}+"
 
 
-def plot(rows: list[dict], meta: dict, path: str) -> None:
+def plot(rows: list[IndexRow], meta: dict, path: str) -> None:
     import matplotlib
 
     matplotlib.use("Agg")
@@ -110,16 +111,16 @@ def plot(rows: list[dict], meta: dict, path: str) -> None:
 
     spaces = spaces_of(rows, meta)
     keep = [r for r in rows if named(r)]
-    types = sorted({r["type"]: r for r in keep}.values(), key=type_order)
-    column = {r["type"]: i for i, r in enumerate(types)}
+    types = sorted({r.type: r for r in keep}.values(), key=type_order)
+    column = {r.type: i for i, r in enumerate(types)}
     line = {s: i for i, s in enumerate(spaces)}
-    xs = [column[r["type"]] for r in keep]
-    ys = [line[r["scaffold"], r["labels"]] for r in keep]
-    top = max((r["designs"] for r in keep), default=1)
-    sizes = [10 + 240 * math.log1p(r["designs"]) / math.log1p(top) for r in keep]
+    xs = [column[r.type] for r in keep]
+    ys = [line[r.scaffold, r.labels] for r in keep]
+    top = max((r.designs for r in keep), default=1)
+    sizes = [10 + 240 * math.log1p(r.designs) / math.log1p(top) for r in keep]
     fig, ax = plt.subplots(figsize=(min(4 + 0.22 * len(types), 60), 1.5 + 0.45 * len(spaces)))
-    dots = ax.scatter(xs, ys, s=sizes, c=[r["first_sum_abs"] for r in keep], cmap="viridis", edgecolors="k", lw=0.3)
-    ax.set_xticks(range(len(types)), [r["type"] for r in types], rotation=90, fontsize=7)
+    dots = ax.scatter(xs, ys, s=sizes, c=[r.first_sum_abs for r in keep], cmap="viridis", edgecolors="k", lw=0.3)
+    ax.set_xticks(range(len(types)), [r.type for r in types], rotation=90, fontsize=7)
     ax.set_yticks(range(len(spaces)), [f"{s} {labels}" for s, labels in spaces], fontsize=8)
     ax.set_xlim(-0.7, len(types) - 0.3)
     ax.set_ylim(len(spaces) - 0.5, -0.5)

@@ -82,7 +82,7 @@ def main() -> None:
             "filters_s": round(t_fast, 3),
             "identify_all_s": round(t_naive, 3),
             "speedup": round(t_naive / t_fast, 1),
-            "answer": r.solutions[0]["labels"] if r.solutions else None,
+            "answer": list(r.solutions[0].labels) if r.solutions else None,
         }
         print(row, flush=True)
         rows.append(row)

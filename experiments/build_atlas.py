@@ -23,6 +23,7 @@ per-design geometric identification), ``--quick`` (a few small spaces, about two
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import datetime
 import json
 import os
@@ -33,8 +34,9 @@ import time
 import lkspace
 from lkspace.errors import TooLargeError
 from lkspace.io.atomic import write_text
-from lkspace.linktypes.atlas import MAX_DESIGNS, atlas
+from lkspace.linktypes.atlas import MAX_DESIGNS, AtlasOptions, atlas
 from lkspace.linktypes.lookup import SHIPPED, index_rows, write_index
+from lkspace.linktypes.records import AtlasResult
 from lkspace.model.specs import parse_label_set
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -98,36 +100,31 @@ def plan(max_designs: int, partial: float) -> list[tuple[str, str, float | None]
     return spaces
 
 
-def build_space(work: str, name: str, labels: str, stop_after: float | None, processes: int) -> dict | str:
+def build_space(work: str, name: str, labels: str, stop_after: float | None, processes: int) -> AtlasResult | str:
     """Identify one space (or reuse its finished result); return the atlas result, or why it cannot be walked."""
     folder = os.path.join(work, slug(name, labels))
     done = os.path.join(folder, "atlas.json")
     if os.path.exists(done):
         with open(done, encoding="utf-8") as fh:
-            data = json.load(fh)
-        if data.get("complete") or stop_after not in (None, UNBOUNDED):
-            print(f"{name} {labels}: reused ({data['designs']:,} designs, {len(data['types'])} types)", flush=True)
+            data = AtlasResult.from_json(json.load(fh), done)
+        if data.complete or stop_after not in (None, UNBOUNDED):
+            print(f"{name} {labels}: reused ({data.designs:,} designs, {len(data.types)} types)", flush=True)
             return data
     t0 = time.monotonic()
     try:
         # a partial space names its simplest designs: 10 s each, so that the deadline holds
         limit = PARTIAL_TIME_LIMIT if stop_after else 60.0
-        data = atlas(
-            lkspace.load(name),
-            parse_label_set(labels),
-            folder,
-            processes=processes,
-            stop_after=stop_after,
-            time_limit=limit,
-        )
+        options = AtlasOptions(processes=processes, stop_after=stop_after, time_limit=limit)
+        data = atlas(lkspace.load(name), parse_label_set(labels), folder, options)
     except TooLargeError as exc:  # too many residue classes to walk in order, even simplest first
         print(f"{name} {labels}: left out: {exc}", flush=True)
         return str(exc)
-    data["labels"] = labels
-    write_text(done, json.dumps(data))
+    data = dataclasses.replace(data, labels=labels)
+    write_text(done, json.dumps(data.to_json()))
+    identified = data.run.identified_now if data.run is not None else 0
     print(
-        f"{name} {labels}: {data['designs']:,} designs, {len(data['types'])} types, "
-        f"{data['identified_now']:,} identified now, {time.monotonic() - t0:.1f} s",
+        f"{name} {labels}: {data.designs:,} designs, {len(data.types)} types, "
+        f"{identified:,} identified now, {time.monotonic() - t0:.1f} s",
         flush=True,
     )
     return data
@@ -142,22 +139,22 @@ def commit() -> str | None:
     return out.stdout.strip() or None
 
 
-def merge(results: list[dict], output: str, left_out: list[dict] | None = None) -> None:
+def merge(results: list[AtlasResult], output: str, left_out: list[dict] | None = None) -> None:
     """Write the index of ``results`` (atlas results, each with its ``labels`` text) to ``output``.
 
     ``left_out``: ``{scaffold, labels, reason}`` of the spaces planned but not walked, kept in the metadata.
     """
-    rows = [row for data in results for row in index_rows(data, data["labels"])]
+    rows = [row for data in results for row in index_rows(data, data.labels or "")]
     spaces = [
         {
-            "scaffold": d["scaffold"],
-            "labels": d["labels"],
-            "designs": d["designs"],
-            "assignments": d["assignments"],
-            "types": len(d["types"]),
-            "complete": bool(d.get("complete", True)),
-            "identified": d.get("identified_now"),
-            "wall_time": d.get("wall_time"),
+            "scaffold": d.scaffold,
+            "labels": d.labels,
+            "designs": d.designs,
+            "assignments": d.assignments,
+            "types": len(d.types),
+            "complete": d.complete,
+            "identified": None if d.run is None else d.run.identified_now,
+            "wall_time": None if d.run is None else d.run.wall_time,
         }
         for d in results
     ]
@@ -213,7 +210,7 @@ def main(argv: list[str] | None = None) -> int:
         if args.merge_only:
             if os.path.exists(done):
                 with open(done, encoding="utf-8") as fh:
-                    results.append(json.load(fh))
+                    results.append(AtlasResult.from_json(json.load(fh), done))
             continue
         data = build_space(args.work, name, labels, stop_after, args.processes)
         if isinstance(data, str) and stop_after not in (None, UNBOUNDED):  # too many residue classes: odd labels

@@ -17,7 +17,9 @@ from hypothesis import strategies as st
 
 import lkspace
 from lkspace.errors import UsageError
+from lkspace.linktypes.answers import LookupAnswer
 from lkspace.linktypes.common_names import CHIRAL, COMMON, common_name, resolve_name, resolve_type
+from lkspace.linktypes.records import DesignRecord, IndexRow
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 LKSPACE = str(pathlib.Path(sys.executable).parent / "lkspace")
@@ -169,6 +171,7 @@ def test_lookup_plain_name_shows_both_chiralities_simplest_first():
 
 def test_lookup_json_fields():
     out = lookup_json("trefoil", "--limit", "1")
+    assert LookupAnswer.from_json(out).to_json() == out  # the JSON is the record's, field for field
     assert set(out) == {
         "query", "name", "chirality", "common_name", "atlas", "searched", "found_in", "designs_total", "simplest_kept",
         "designs",
@@ -247,15 +250,17 @@ def test_build_script_writes_the_documented_index(small_atlas):
     }  # fmt: skip
     # dihedron:3 (two triangles on one 3-cycle), labels -1..1: by hand, the unknot needs one twisted edge
     # (sum 1), the Hopf link two (sum 2), the trefoil all three (sum 3); all labels 0 is the 2-component unlink
-    first = {r["type"]: r["first_sum_abs"] for r in rows}
+    first = {r.type: r.first_sum_abs for r in rows}
     assert first == {"0_1": 1, "L2a1": 2, "3_1": 3, "split: 0_1 + 0_1": 0}
-    by_type = {r["type"]: r for r in rows}
-    assert by_type["L2a1"]["common_name"] == "Hopf link" and by_type["L2a1"]["crossing_number"] == 2
-    assert by_type["split: 0_1 + 0_1"]["crossing_number"] is None
-    trefoil = json.loads(by_type["3_1"]["examples"])
+    by_type = {r.type: r for r in rows}
+    assert by_type["L2a1"].common_name == "Hopf link" and by_type["L2a1"].crossing_number == 2
+    assert by_type["split: 0_1 + 0_1"].crossing_number is None
+    trefoil = json.loads(by_type["3_1"].to_row()["examples"])  # the column as written: a JSON list
     assert sorted(e["labels"] for e in trefoil) == [[-1, -1, -1], [1, 1, 1]]
     assert {e["mirror"] for e in trefoil} == {True, False}
-    assert by_type["3_1"]["chirality_table"] == by_type["3_1"]["chirality_mirror"] == 1
+    assert by_type["3_1"].chirality_table == by_type["3_1"].chirality_mirror == 1
+    raw = pq.read_table(small_atlas).to_pylist()
+    assert [IndexRow.from_row(r).to_row() for r in raw] == raw  # one reader, one writer: a round trip
     names = pq.read_schema(small_atlas).names
     assert names[:3] == ["type", "common_name", "components"] and "examples" in names
 
@@ -342,7 +347,9 @@ def test_examples_keep_the_k_simplest_of_each_chirality(designs, k):
     kept = Examples(k)
     for labels, mirror in designs:
         a = [abs(x) for x in labels]
-        kept.add(np.array(labels), (sum(a), sum(x != 0 for x in a), max(a)), {"mirror": mirror, "crossings": 3})
+        kept.add(
+            np.array(labels), (sum(a), sum(x != 0 for x in a), max(a)), DesignRecord("3_1", mirror=mirror, crossings=3)
+        )
 
     def key(d):
         a = [abs(x) for x in d[0]]
@@ -351,7 +358,7 @@ def test_examples_keep_the_k_simplest_of_each_chirality(designs, k):
     want = []
     for side in (None, True, False):
         want += sorted((d for d in designs if d[1] is side), key=key)[:k]
-    assert [(e["labels"], e["mirror"]) for e in kept.to_list()] == [(list(d[0]), d[1]) for d in sorted(want, key=key)]
+    assert [(list(e.labels), e.mirror) for e in kept.records()] == [(list(d[0]), d[1]) for d in sorted(want, key=key)]
 
 
 def test_sums_and_split_types_are_looked_up_as_the_atlas_spells_them():

@@ -120,7 +120,7 @@ def test_common_name_of_the_borromean_rings(page):
 
 
 def test_lookup_trefoil_lists_designs_and_loads_one(page):
-    expected = lookup("trefoil", limit=12)["designs"]
+    expected = lookup("trefoil", limit=12).to_json()["designs"]
     page.fill("#find-name", "trefoil")
     page.press("#find-name", "Enter")
     page.wait_for_selector("#find-results li", timeout=30000)

@@ -89,7 +89,7 @@ def atlas_cmd(
       lkspace atlas designs.parquet --json
     """
     from ..knots.recognition import check_identifiable
-    from ..linktypes.atlas import atlas, atlas_of_catalog
+    from ..linktypes.atlas import AtlasOptions, atlas, atlas_of_catalog
     from ..linktypes.gallery import atlas_folder, write_gallery
 
     ctx = Context(as_json)
@@ -102,10 +102,7 @@ def atlas_cmd(
         scaffold = load_mesh(ctx, mesh)
         check_identifiable(scaffold)
         labels = label_set(labels_spec)
-        data = atlas(
-            scaffold,
-            labels,
-            folder,
+        options = AtlasOptions(
             no_zero=no_zero,
             processes=processes,
             seed=seed,
@@ -113,25 +110,26 @@ def atlas_cmd(
             stop_after=stop_after or None,
             tolerance=symmetry_tolerance(),
         )
-    files = write_gallery(folder, data, scaffold, pictures) if folder is not None else []
-    data["written"] = [os.path.join(os.path.abspath(folder), f) for f in files] if folder else []
+        data = atlas(scaffold, labels, folder, options)
+    files: list[str] = []
+    if folder is not None:
+        files, data = write_gallery(folder, data, scaffold, pictures)
+    out = {**data.to_json(), "written": [os.path.join(os.path.abspath(folder), f) for f in files] if folder else []}
 
     def human() -> None:
-        click.echo(
-            f"{data['scaffold']}: {plural(data['designs'], 'design')}, {plural(len(data['types']), 'type')}"
-            + (f" [{data['wall_time']:.1f} s]" if "wall_time" in data else "")
-        )
-        if not data.get("complete", True):
+        took = f" [{data.run.wall_time:.1f} s]" if data.run is not None else ""
+        click.echo(f"{data.scaffold}: {plural(data.designs, 'design')}, {plural(len(data.types), 'type')}{took}")
+        if data.run is not None and not data.run.complete:
             click.echo(
-                f"  partial: --stop-after reached, {data['skipped']:,} designs not identified (rerun with -o to go on)"
+                f"  partial: --stop-after reached, {data.run.skipped:,} designs not identified (rerun with -o to go on)"
             )
-        for t in data["types"]:
-            simplest = ",".join(map(str, t["simplest"]))
-            table = f" ({t['table']})" if t.get("table") else ""
+        for t in data.types:
+            simplest = ",".join(map(str, t.simplest))
+            table = f" ({t.table})" if t.table else ""
             click.echo(
-                f"  {t['name']:<24}{table:<19} {t['designs']:>8,} {'design ' if t['designs'] == 1 else 'designs'}  simplest {simplest}"
+                f"  {t.name:<24}{table:<19} {t.designs:>8,} {'design ' if t.designs == 1 else 'designs'}  simplest {simplest}"
             )
         if folder:
             click.echo(f"wrote {', '.join(files)} to {folder}")
 
-    emit(ctx, data, human)
+    emit(ctx, out, human)

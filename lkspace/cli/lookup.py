@@ -44,23 +44,22 @@ def lookup_cmd(name: str, limit: int, scaffold: str | None, atlas_file: str | No
     from .common import Context, emit
 
     ctx = Context(as_json)
-    data = lookup(name, atlas_file, limit=limit, scaffold=scaffold)  # none found: TypeNotFound, exit 1
+    answer = lookup(name, atlas_file, limit=limit, scaffold=scaffold)  # none found: TypeNotFound, exit 1
 
     def human() -> None:
-        common = f" ({data['common_name']})" if data["common_name"] else ""
-        asked = f"m{data['name']}" if data["chirality"] == "mirror" else data["name"]
-        spaces = f"{len(data['found_in'])} of {plural(len(data['searched']), 'space')}"
-        shown = len(data["designs"])
+        common = f" ({answer.common_name})" if answer.common_name else ""
+        spaces = f"{len(answer.found_in)} of {plural(len(answer.searched), 'space')}"
+        shown = len(answer.designs)
         click.echo(
-            f"{asked}{common}: {plural(data['designs_total'], 'design')} in {spaces}; "
+            f"{answer.asked}{common}: {plural(answer.designs_total, 'design')} in {spaces}; "
             + (f"the simplest {shown}:" if shown > 1 else "the simplest:")
         )
         rows = [("type", "scaffold", "labels", "sum|t|", "crossings", "identify again")]
-        for d in data["designs"]:
-            crossings = "?" if d["crossings"] is None else str(d["crossings"])
-            rows.append((d["chiral_name"], d["scaffold"], d["label_set"], str(d["sum_abs"]), crossings, d["command"]))
+        for d in answer.designs:
+            crossings = "?" if d.crossings is None else str(d.crossings)
+            rows.append((d.chiral_name, d.scaffold, d.label_set, str(d.sum_abs), crossings, d.command))
         widths = [max(len(r[i]) for r in rows) for i in range(len(rows[0]) - 1)]
         for r in rows:
             click.echo("  " + "  ".join(c.ljust(w) for c, w in zip(r, widths, strict=False)) + "  " + r[-1])
 
-    emit(ctx, data, human)
+    emit(ctx, answer.to_json(), human)

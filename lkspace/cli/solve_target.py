@@ -37,7 +37,7 @@ def target_cmd(
     from ..linktypes.linking import parse_linking_matrix
     from ..linktypes.names import parse_type
     from ..linktypes.screen import Goal
-    from ..linktypes.search import solve_target
+    from ..linktypes.search import SearchOptions, solve_target
 
     if signed and linking_text is None:
         raise UsageError("--signed applies to --linking-matrix only")
@@ -58,12 +58,9 @@ def target_cmd(
     n = target.components if target is not None else len(linking)  # type: ignore[arg-type]
     goal = Goal(n, target, linking, signed)
     limit = time_limit or None
-    result = solve_target(
-        scaffold,
-        goal,
-        label_set=labels,
+    options = SearchOptions(
         no_zero=no_zero,
-        fixes=fixes,
+        fixes=tuple(sorted(fixes.items())) if fixes else (),
         count=count,
         time_limit=limit,
         identify_time_limit=min(TIME_LIMIT, limit) if limit else TIME_LIMIT,
@@ -71,9 +68,10 @@ def target_cmd(
         seed=seed,
         tolerance=symmetry_tolerance(),
     )
+    result = solve_target(scaffold, goal, label_set=labels, options=options)
     written = None
     if target_path is not None and output is not None and result.solutions:
-        io.write(scaffold, target_path, result.solutions[0]["labels"])
+        io.write(scaffold, target_path, list(result.solutions[0].labels))
         written = os.path.abspath(output)
     data = {"label_set": labels.tolist(), "no_zero": no_zero, **result.to_dict(), "written": written}
 
@@ -81,9 +79,10 @@ def target_cmd(
         line = f"{scaffold.name}: {result.status} — {plural(len(result.solutions), 'design')} of {goal.label}"
         click.echo(f"{line} [{result.stats.get('designs', 0):,} designs screened, {result.wall_time:.1f} s]")
         for k, sol in enumerate(result.solutions):
-            name = sol.get("chiral_name") or sol.get("name") or ""
-            extra = f" {name} ({sol.get('table')})" if name else f" linking matrix {sol['linking_matrix']}"
-            click.echo(f"  {k}: {','.join(map(str, sol['labels']))}  sum|t|={sol['sum_abs']}{extra}")
+            name = sol.chiral_name or sol.name or ""
+            matrix = None if sol.linking_matrix is None else [list(r) for r in sol.linking_matrix]
+            extra = f" {name} ({sol.table})" if name else f" linking matrix {matrix}"
+            click.echo(f"  {k}: {','.join(map(str, sol.labels))}  sum|t|={sol.sum_abs}{extra}")
         if result.reason:
             click.echo(f"  {result.reason}", err=result.status == "unknown")
         if written:

@@ -29,21 +29,26 @@ import time
 from collections import Counter
 from collections.abc import Iterator
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, Literal, TextIO, TypeAlias
 
 import numpy as np
 
-from ..errors import CatalogError, TooLargeError
+from ..errors import CatalogError, TooLargeError, UsageError
 from ..model.scaffold import Scaffold
 from ..progress import task
 from .candidates import OrderedWalk
 from .examples import Examples
+from .fields import JsonObject
+from .records import AtlasResult, AtlasRun, AtlasType, ChiralityCounts, DesignRecord
 from .screen import type_labels
 
 CACHE = "cache.jsonl"
 
 PARTIAL_BATCH = 16
 """Designs identified between two looks at the clock when the atlas has a deadline (``stop_after``)."""
+
+Source: TypeAlias = Literal["cache", "identified", "reused", "skipped", "unwalked"]
+"""Where an atlas took a design's record from (``skipped``, ``unwalked``: nowhere, past the deadline)."""
 
 MAX_DESIGNS = 20_000_000
 """Largest design space an atlas walks to its end; a bigger one needs ``stop_after`` (``--stop-after``)."""
@@ -59,17 +64,18 @@ def type_key(ident: dict[str, Any]) -> str:
     return f"unknown ({ident.get('components')} components)"
 
 
-def record_of(row: dict[str, Any]) -> dict[str, Any]:
+def record_of(row: dict[str, Any]) -> DesignRecord:
     """Return the few fields the atlas keeps of a row of :func:`~lkspace.knots.batch.identify_chunk`."""
     ident = {"name": row.get("knot_name"), **row}
-    return {
-        "type": type_key(ident),
-        "components": row.get("components"),
-        "table": row.get("table"),
-        "mirror": row.get("mirror"),
-        "crossings": row.get("crossings"),
-        "status": row.get("status"),
-    }
+    components, mirror, crossings = row.get("components"), row.get("mirror"), row.get("crossings")
+    return DesignRecord(
+        type=type_key(ident),
+        components=None if components is None else int(components),
+        table=row.get("table"),
+        mirror=None if mirror is None else bool(mirror),
+        crossings=None if crossings is None else int(crossings),
+        status=row.get("status"),
+    )
 
 
 @dataclass
@@ -87,7 +93,7 @@ class TypeEntry:
     chirality: dict[str, int] = field(default_factory=lambda: {"table": 0, "mirror": 0, "undetermined": 0})
     examples: Examples = field(default_factory=Examples)
 
-    def add(self, labels: np.ndarray, orbit: int, rec: dict[str, Any]) -> None:
+    def add(self, labels: np.ndarray, orbit: int, rec: DesignRecord) -> None:
         """Count one design of this type."""
         self.designs += 1
         self.assignments += int(orbit)
@@ -96,31 +102,27 @@ class TypeEntry:
         if cost < self.cost:
             self.cost, self.simplest = cost, [int(x) for x in labels]
         self.examples.add(labels, cost, rec)
-        crossings = rec.get("crossings")
+        crossings = rec.crossings
         if crossings is not None and (self.crossings is None or crossings < self.crossings):
-            self.crossings = int(crossings)
-        self.table = self.table or rec.get("table")
-        mirror = rec.get("mirror")
-        self.chirality["undetermined" if mirror is None else "mirror" if mirror else "table"] += 1
+            self.crossings = crossings
+        self.table = self.table or rec.table
+        self.chirality["undetermined" if rec.mirror is None else "mirror" if rec.mirror else "table"] += 1
 
-    def to_dict(self) -> dict[str, Any]:
-        """Return the JSON form (``name``, ``components``, ``designs``, ``assignments``, ``simplest``, ``examples`` ...).
-
-        ``examples``: the simplest designs of each chirality (:class:`~lkspace.linktypes.examples.Examples`).
-        """
-        return {
-            "name": self.name,
-            "components": self.components,
-            "table": self.table,
-            "crossings": self.crossings,
-            "designs": self.designs,
-            "assignments": self.assignments,
-            "simplest": self.simplest,
-            "simplest_sum_abs": self.cost[0],
-            "simplest_nonzero": self.cost[1],
-            "chirality": self.chirality,
-            "examples": self.examples.to_list(),
-        }
+    def record(self) -> AtlasType:
+        """Return the type as the atlas reports it (``examples``: the simplest designs of each chirality)."""
+        return AtlasType(
+            name=self.name,
+            components=self.components,
+            table=self.table,
+            crossings=self.crossings,
+            designs=self.designs,
+            assignments=self.assignments,
+            simplest=tuple(self.simplest),
+            simplest_sum_abs=self.cost[0],
+            simplest_nonzero=self.cost[1],
+            chirality=ChiralityCounts(**self.chirality),
+            examples=self.examples.records(),
+        )
 
 
 def sort_types(types: dict[str, TypeEntry]) -> list[TypeEntry]:
@@ -144,11 +146,11 @@ def crossing_number(name: str) -> int:
     return total
 
 
-def read_cache(path: str, header: dict[str, Any]) -> dict[tuple[int, ...], dict[str, Any]]:
+def read_cache(path: str, header: JsonObject) -> dict[tuple[int, ...], DesignRecord]:
     """Return the records of a previous run (``{labels: record}``); empty if none or if it was for another space."""
     if not os.path.exists(path):
         return {}
-    out: dict[tuple[int, ...], dict[str, Any]] = {}
+    out: dict[tuple[int, ...], DesignRecord] = {}
     with open(path, encoding="utf-8") as fh:
         first = fh.readline()
         try:
@@ -159,100 +161,115 @@ def read_cache(path: str, header: dict[str, Any]) -> dict[tuple[int, ...], dict[
         for line in fh:
             try:
                 item = json.loads(line)
-                out[tuple(item["labels"])] = item["record"]
-            except (json.JSONDecodeError, KeyError, TypeError):
+                out[tuple(item["labels"])] = DesignRecord.from_json(item["record"])
+            except (json.JSONDecodeError, KeyError, TypeError, CatalogError):
                 continue  # a line torn by an interrupted run
     return out
 
 
-def atlas(
-    scaffold: Scaffold,
-    label_set: np.ndarray,
-    folder: str | None = None,
-    *,
-    no_zero: bool = False,
-    processes: int = 1,
-    seed: int = 0,
-    time_limit: float | None = 60.0,
-    stop_after: float | None = None,
-    tolerance: float | None = None,
-) -> dict[str, Any]:
-    """Identify every design of the space; return ``{"types": [...], "designs": n, ...}``.
+@dataclass(frozen=True)
+class AtlasOptions:
+    """How :func:`atlas` walks and identifies a space (every field optional).
 
-    ``folder``: keep the resumable cache there (``cache.jsonl``).  ``stop_after``: seconds
-    after which nothing more is identified; the answer then covers the designs identified
-    so far (the simplest ones: the walk goes simplest first), ``complete`` is false and
-    ``skipped`` counts the designs walked but not identified (the walk itself stops at the
-    deadline too, so there may be more).  A rerun with the same folder continues.
-    ``tolerance``: the symmetry search's, in mesh units (default: 1/100 of the shortest edge).
+    Attributes
+    ----------
+    no_zero : bool
+        Leave label 0 out of the space.
+    processes : int
+        Worker processes identifying (>= 1).
+    seed : int
+        Projection seed.
+    time_limit : float or None
+        Seconds per identification (past it: an unknown type); ``None``: no limit.
+    stop_after : float or None
+        Seconds after which nothing more is identified (``None``: identify every design).
+    tolerance : float or None
+        The symmetry search's, in mesh units (default: 1/100 of the shortest edge).
+    """
+
+    no_zero: bool = False
+    processes: int = 1
+    seed: int = 0
+    time_limit: float | None = 60.0
+    stop_after: float | None = None
+    tolerance: float | None = None
+
+    def __post_init__(self) -> None:
+        if self.processes < 1:
+            raise UsageError(f"processes {self.processes}: at least 1", parameter="processes")
+
+
+def atlas(
+    scaffold: Scaffold, label_set: np.ndarray, folder: str | None = None, options: AtlasOptions = AtlasOptions()
+) -> AtlasResult:
+    """Identify every design of the space; return its types (``to_json()``: ``{"types": [...], "designs": n, ...}``).
+
+    ``folder``: keep the resumable cache there (``cache.jsonl``).  ``options.stop_after``:
+    seconds after which nothing more is identified; the answer then covers the designs
+    identified so far (the simplest ones: the walk goes simplest first), ``complete`` is
+    false and ``skipped`` counts the designs walked but not identified (the walk itself
+    stops at the deadline too, so there may be more).  A rerun with the same folder continues.
 
     Examples
     --------
     >>> from lkspace import load
     >>> out = atlas(load("dihedron:3"), np.array([0, 1]))
-    >>> [(t["name"], t["designs"], t["simplest"]) for t in out["types"]]
-    [('0_1', 1, [0, 0, 1]), ('3_1', 1, [1, 1, 1]), ('L2a1', 1, [0, 1, 1]), ('split: 0_1 + 0_1', 1, [0, 0, 0])]
+    >>> [(t.name, t.designs, t.simplest) for t in out.types]
+    [('0_1', 1, (0, 0, 1)), ('3_1', 1, (1, 1, 1)), ('L2a1', 1, (0, 1, 1)), ('split: 0_1 + 0_1', 1, (0, 0, 0))]
     """
     t0 = time.monotonic()
-    if not stop_after:
-        from ..design.counting import count_designs
-
-        n = count_designs(scaffold, label_set, tolerance=tolerance).designs
-        if n > MAX_DESIGNS:
-            raise TooLargeError(
-                f"{scaffold.name}: {n:,} designs with labels {label_set.tolist()} > {MAX_DESIGNS:,} (MAX_DESIGNS); "
-                "an atlas would identify them all: give `stop_after=S` for the simplest ones, or a smaller label set",
-            )
-    header = {
+    if not options.stop_after:
+        _check_size(scaffold, label_set, options.tolerance)
+    header: JsonObject = {
         "scaffold": scaffold.name,
         "hash": scaffold.content_hash(),
         "labels": [int(x) for x in label_set],
-        "no_zero": no_zero,
-        "seed": seed,
+        "no_zero": options.no_zero,
+        "seed": options.seed,
     }
     cache_path = os.path.join(folder, CACHE) if folder else None
     cached = read_cache(cache_path, header) if cache_path else {}
     types: dict[str, TypeEntry] = {}
-    n_designs = 0
     how: Counter[str] = Counter()
     sink = _open_cache(cache_path, header, bool(cached)) if cache_path else None
+    deadline = None if not options.stop_after else t0 + options.stop_after
     try:
         with task(f"atlas of {scaffold.name}") as step:
-            deadline = None if not stop_after else t0 + stop_after
-            records = _records(scaffold, label_set, no_zero, cached, processes, seed, time_limit, deadline, tolerance)
-            for labels, orbit, rec in records:
-                source = rec.pop("source")
+            for labels, orbit, source, rec in _records(scaffold, label_set, cached, options, deadline):
                 how[source] += 1
-                if source in ("skipped", "unwalked"):
+                if rec is None:  # skipped or unwalked
                     continue
-                if source != "cache":
-                    if sink is not None:
-                        sink.write(json.dumps({"labels": labels.tolist(), "record": rec}) + "\n")
-                        sink.flush()
-                entry = types.setdefault(rec["type"], TypeEntry(rec["type"], rec.get("components")))
-                entry.add(labels, orbit, rec)
-                n_designs += 1
-                step.note(f"{n_designs:,} designs, {len(types)} types")
+                if source != "cache" and sink is not None:
+                    sink.write(json.dumps({"labels": labels.tolist(), "record": rec.to_json()}) + "\n")
+                    sink.flush()
+                types.setdefault(rec.type, TypeEntry(rec.type, rec.components)).add(labels, orbit, rec)
+                how["designs"] += 1
+                step.note(f"{how['designs']:,} designs, {len(types)} types")
     finally:
         if sink is not None:
             sink.close()
-    listed = [t.to_dict() for t in sort_types(types)]
-    return {
-        "scaffold": scaffold.name,
-        "label_set": [int(x) for x in label_set],
-        "designs": n_designs,
-        "assignments": sum(t["assignments"] for t in listed),
-        "identified_now": how["identified"],
-        "reused": how["reused"],
-        "from_cache": how["cache"],
-        "complete": how["skipped"] == 0 and not how["unwalked"],
-        "skipped": how["skipped"],
-        "types": listed,
-        "wall_time": round(time.monotonic() - t0, 3),
-    }
+    listed = tuple(t.record() for t in sort_types(types))
+    complete = how["skipped"] == 0 and not how["unwalked"]
+    wall_time = round(time.monotonic() - t0, 3)
+    run = AtlasRun(how["identified"], how["reused"], how["cache"], complete, how["skipped"], wall_time)
+    return AtlasResult(
+        scaffold.name, tuple(int(x) for x in label_set), how["designs"], sum(t.assignments for t in listed), listed, run
+    )
 
 
-def _open_cache(path: str, header: dict[str, Any], resume: bool) -> Any:
+def _check_size(scaffold: Scaffold, label_set: np.ndarray, tolerance: float | None) -> None:
+    """Refuse a space too big to walk to its end (:data:`MAX_DESIGNS`)."""
+    from ..design.counting import count_designs
+
+    n = count_designs(scaffold, label_set, tolerance=tolerance).designs
+    if n > MAX_DESIGNS:
+        raise TooLargeError(
+            f"{scaffold.name}: {n:,} designs with labels {label_set.tolist()} > {MAX_DESIGNS:,} (MAX_DESIGNS); "
+            "an atlas would identify them all: give `stop_after=S` for the simplest ones, or a smaller label set",
+        )
+
+
+def _open_cache(path: str, header: JsonObject, resume: bool) -> TextIO:
     os.makedirs(os.path.dirname(path) or ".", exist_ok=True)
     fh = open(path, "a" if resume else "w", encoding="utf-8")  # noqa: SIM115 - closed by the caller
     if not resume:
@@ -264,15 +281,11 @@ def _open_cache(path: str, header: dict[str, Any], resume: bool) -> Any:
 def _records(
     scaffold: Scaffold,
     label_set: np.ndarray,
-    no_zero: bool,
-    cached: dict[tuple[int, ...], dict[str, Any]],
-    processes: int,
-    seed: int,
-    time_limit: float | None,
-    deadline: float | None = None,
-    tolerance: float | None = None,
-) -> Iterator[tuple[np.ndarray, int, dict[str, Any]]]:
-    """``(labels, orbit size, record)`` of every design; ``record["source"]`` says where it came from.
+    cached: dict[tuple[int, ...], DesignRecord],
+    options: AtlasOptions,
+    deadline: float | None,
+) -> Iterator[tuple[np.ndarray, int, Source, DesignRecord | None]]:
+    """``(labels, orbit size, source, record)`` of every design; ``source`` says where the record came from.
 
     ``"cache"`` (a previous run), ``"identified"`` (identified now) or ``"reused"``: a design
     that differs from one identified before only on edges of degree 1 has its type
@@ -283,10 +296,12 @@ def _records(
     from ..knots.key_names import disk_cache
 
     cache = disk_cache()
-    known: dict[tuple[int, ...], dict[str, Any]] = {}  # by type labels; kept only where edges of degree 1 make families
+    known: dict[tuple[int, ...], DesignRecord] = {}  # by type labels; kept only where edges of degree 1 make families
     families = bool(np.any(np.asarray(scaffold.edge_degrees) == 1))
-    walk = OrderedWalk(scaffold, label_set, None, no_zero=no_zero, deadline=deadline, tolerance=tolerance)
-    with Namer(processes, False, time_limit) as namer:
+    walk = OrderedWalk(
+        scaffold, label_set, None, no_zero=options.no_zero, deadline=deadline, tolerance=options.tolerance
+    )
+    with Namer(options.processes, False, options.time_limit) as namer:
         for batch in walk:
             keys = [tuple(r) for r in batch.labels.tolist()]
             zkeys = [tuple(r) for r in type_labels(scaffold, batch.labels).tolist()]
@@ -297,33 +312,32 @@ def _records(
                 dict.fromkeys(z for k, z in zip(keys, zkeys, strict=True) if k not in cached and z not in known)
             )
             rows = np.array(todo, np.int64).reshape(len(todo), scaffold.n_edges)
-            fresh: list[dict[str, Any]] = []
+            fresh: list[DesignRecord] = []
             step = BATCH if deadline is None else PARTIAL_BATCH
             for start in range(0, len(rows), step):  # past the deadline, the rest of the batch is skipped
                 if deadline is not None and time.monotonic() > deadline:
                     break
-                chunk = identify_chunk(scaffold, rows[start : start + step], seed, cache, namer, label_set)
+                chunk = identify_chunk(scaffold, rows[start : start + step], options.seed, cache, namer, label_set)
                 fresh.extend(record_of(row) for row in chunk)
             made = iter(fresh)
             for i, (k, z) in enumerate(zip(keys, zkeys, strict=True)):
+                source: Source
+                rec: DesignRecord | None
                 if k in cached:
-                    rec = {**cached[k], "source": "cache"}
+                    source, rec = "cache", cached[k]
                 elif z in known:
-                    rec = {**known[z], "source": "reused"}
+                    source, rec = "reused", known[z]
                 else:  # the first design of its family: the next identification, in order
-                    nxt = next(made, None)
-                    if nxt is None:
-                        rec = {"source": "skipped"}
-                    else:
-                        if families:
-                            known[z] = nxt
-                        rec = {**nxt, "source": "identified"}
-                yield batch.labels[i].astype(np.int64), int(batch.orbit_sizes[i]), rec
+                    rec = next(made, None)
+                    source = "skipped" if rec is None else "identified"
+                    if rec is not None and families:
+                        known[z] = rec
+                yield batch.labels[i].astype(np.int64), int(batch.orbit_sizes[i]), source, rec
     if not walk.complete:
-        yield np.zeros(0, np.int64), 0, {"source": "unwalked"}
+        yield np.zeros(0, np.int64), 0, "unwalked", None
 
 
-def atlas_of_catalog(path: str) -> dict[str, Any]:
+def atlas_of_catalog(path: str) -> AtlasResult:
     """Sum a catalog identified by ``enumerate --identify`` (its ``knot_name`` column) into atlas types.
 
     Rows without a name are grouped as ``split (N components)`` or ``unknown (N
@@ -377,12 +391,13 @@ def atlas_of_catalog(path: str) -> dict[str, Any]:
         entry = types[str(row["key"])]
         entry.simplest = [int(x) for x in cat.labels[int(i)]]
         entry.cost = (int(row["sum_abs"]), int(row["nonzero"]), int(row["max_abs"]))
-    listed = [t.to_dict() for t in sort_types(types)]
-    return {
-        "scaffold": cat.scaffold.name,
-        "label_set": cat.metadata.get("label_set"),
-        "designs": len(frame),
-        "assignments": sum(t["assignments"] for t in listed),
-        "types": listed,
-        "from_catalog": os.path.abspath(path),
-    }
+    listed = tuple(t.record() for t in sort_types(types))
+    label_set = cat.metadata.get("label_set")
+    return AtlasResult(
+        cat.scaffold.name,
+        None if label_set is None else tuple(int(x) for x in label_set),
+        len(frame),
+        sum(t.assignments for t in listed),
+        listed,
+        from_catalog=os.path.abspath(path),
+    )

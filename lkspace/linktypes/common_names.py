@@ -2,7 +2,8 @@
 
 Table names follow KnotInfo/LinkInfo (Rolfsen's ``3_1`` for knots, Thistlethwaite's
 ``L6a4`` for links, an orientation suffix such as ``{0,1}`` dropped), with ``m`` in front
-for the mirror image of the table's diagram.  KnotInfo's ``3_1`` is the right-handed
+for the mirror image of the table's diagram; they are spelled by
+:func:`~lkspace.linktypes.spelling.canonical_name`.  KnotInfo's ``3_1`` is the right-handed
 trefoil (its diagram has writhe +3), so ``m3_1`` is the left-handed one.  A split link
 is the atlas type ``split: 0_1 + 0_1`` (:func:`lkspace.linktypes.atlas.type_key`); its
 pieces all unknots, it is the unlink of that many components.
@@ -17,9 +18,9 @@ from __future__ import annotations
 
 import difflib
 import re
-from typing import Literal
 
 from ..errors import UsageError
+from .spelling import Chirality, chiral_name, chiral_parts, is_table_name
 
 COMMON: dict[str, tuple[str, ...]] = {
     "0_1": ("unknot", "trivial knot"),
@@ -44,11 +45,7 @@ CHIRAL: dict[str, tuple[str, str]] = {"3_1": ("right-handed trefoil", "left-hand
 MAX_UNLINK = 64
 """Most components of an unlink named in words (``unlink of 3 components``)."""
 
-TABLE_NAME = re.compile(r"(?:\d+_\d+|\d+[an]_\d+|K\d+[an]\d+|L\d+[an]\d+)(?:\{[\d,]*\})?", re.I)
-"""One prime table name: ``3_1``, ``11a_1``, ``K14n10910``, ``L6a4``, ``L6a4{0,1}``."""
-
 UNLINK = re.compile(r"(?:unlink of (\d+) components?|(\d+)[- ]?components? unlink|unlink (\d+))")
-Chirality = Literal["any", "table", "mirror"]
 
 
 def _key(text: str) -> str:
@@ -89,8 +86,7 @@ def common_name(name: str, mirror: bool | None = None) -> str | None:
     if name.startswith("split: "):
         pieces = name[len("split: ") :].split(" + ")
         return f"unlink of {len(pieces)} components" if all(p == "0_1" for p in pieces) else None
-    marked = name.startswith("m") and len(name) > 1
-    base = _canonical(name[1:] if marked else name)
+    base, marked = chiral_parts(name)
     mirror = True if marked else mirror
     if mirror is not None and base in CHIRAL:
         return CHIRAL[base][int(mirror)]
@@ -114,11 +110,11 @@ def resolve_type(text: str) -> tuple[str, Chirality]:
     if text.startswith("split: "):
         return text, "any"
     parts = text.split("#")
-    if all(_is_table_name(p.strip()) for p in parts):
+    if all(is_table_name(p.strip()) for p in parts):
         if len(parts) > 1:
-            return "#".join(_chiral_canonical(p.strip()) for p in parts), "any"
-        name = _chiral_canonical(text)
-        return (name[1:], "mirror") if name.startswith("m") else (name, "any")
+            return "#".join(chiral_name(p.strip()) for p in parts), "any"
+        name, mirror = chiral_parts(text)
+        return name, "mirror" if mirror else "any"
     found = common_type(text)
     if found:
         return found
@@ -155,26 +151,6 @@ def resolve_name(text: str) -> str:
     """
     name, chirality = resolve_type(text)
     return f"m{name}" if chirality == "mirror" else name
-
-
-def _is_table_name(text: str) -> bool:
-    body = text[1:] if text.startswith("m") and len(text) > 1 else text
-    return bool(TABLE_NAME.fullmatch(body))
-
-
-def _canonical(name: str) -> str:
-    """``l6a4{0}`` -> ``L6a4``; ``k11a1`` -> ``11a_1`` (KnotInfo's spelling to 13 crossings); ``K14N1`` -> ``K14n1``."""
-    name = name.split("{")[0]
-    if not name or name[0] not in "kKlL":
-        return name.lower()
-    name = name[0].upper() + name[1:].lower()
-    m = re.fullmatch(r"K(\d+)([an])(\d+)", name)
-    return f"{m[1]}{m[2]}_{m[3]}" if m and int(m[1]) <= 13 else name
-
-
-def _chiral_canonical(text: str) -> str:
-    mirror = text.startswith("m") and len(text) > 1
-    return ("m" if mirror else "") + _canonical(text[1:] if mirror else text)
 
 
 def _first_name(found: tuple[str, Chirality]) -> str:

@@ -11,9 +11,10 @@ from __future__ import annotations
 
 import bisect
 from dataclasses import dataclass, field
-from typing import Any
 
 import numpy as np
+
+from .records import DesignRecord, Example
 
 EXAMPLES = 5
 """Designs kept per chirality of a type (:attr:`Examples.k`)."""
@@ -26,11 +27,11 @@ class Examples:
     """The ``k`` simplest designs of each chirality of a type, with what the atlas knows of them."""
 
     k: int = EXAMPLES
-    kept: dict[str, list[tuple[Key, dict[str, Any]]]] = field(default_factory=dict)
+    kept: dict[str, list[tuple[Key, Example]]] = field(default_factory=dict)
 
-    def add(self, labels: np.ndarray, cost: tuple[int, int, int], rec: dict[str, Any]) -> None:
+    def add(self, labels: np.ndarray, cost: tuple[int, int, int], rec: DesignRecord) -> None:
         """Offer one design (``cost``: sum |t|, non-zero labels, largest |t|; ``rec``: its identification)."""
-        mirror = rec.get("mirror")
+        mirror = rec.mirror
         side = "undetermined" if mirror is None else "mirror" if mirror else "table"
         row = self.kept.setdefault(side, [])
         full = len(row) >= self.k
@@ -39,17 +40,11 @@ class Examples:
         key: Key = (cost, tuple(int(x) for x in labels))
         if full and key >= row[-1][0]:
             return
-        example = {
-            "labels": list(key[1]),
-            "sum_abs": cost[0],
-            "nonzero": cost[1],
-            "crossings": rec.get("crossings"),
-            "mirror": mirror,
-        }
+        example = Example(key[1], cost[0], cost[1], rec.crossings, mirror)
         bisect.insort(row, (key, example), key=lambda item: item[0])
         del row[self.k :]
 
-    def to_list(self) -> list[dict[str, Any]]:
-        """Return the kept designs, simplest first: ``{labels, sum_abs, nonzero, crossings, mirror}``."""
+    def records(self) -> tuple[Example, ...]:
+        """Return the kept designs, simplest first."""
         every = sorted((item for row in self.kept.values() for item in row), key=lambda item: item[0])
-        return [example for _, example in every]
+        return tuple(example for _, example in every)

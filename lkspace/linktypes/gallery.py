@@ -11,11 +11,12 @@ import io
 import json
 import os
 import re
-from typing import Any
+from dataclasses import replace
 
 from ..errors import ExportError
 from ..io.atomic import atomic_path, write_text
 from ..model.scaffold import Scaffold
+from .records import AtlasResult
 
 PICTURE_SIZE = 480
 
@@ -25,15 +26,21 @@ def picture_name(type_name: str) -> str:
     return re.sub(r"[^A-Za-z0-9_#-]+", "_", type_name).strip("_").replace("#", "+") + ".png"
 
 
-def write_gallery(folder: str, data: dict[str, Any], scaffold: Scaffold | None, pictures: int = 12) -> list[str]:
-    """Write ``atlas.parquet``, ``README.md`` and up to ``pictures`` PNGs into ``folder``; return the file names."""
+def write_gallery(
+    folder: str, data: AtlasResult, scaffold: Scaffold | None, pictures: int = 12
+) -> tuple[list[str], AtlasResult]:
+    """Write ``atlas.parquet``, ``README.md`` and up to ``pictures`` PNGs into ``folder``.
+
+    Returns the file names and the atlas with each type's ``picture``.
+    """
     os.makedirs(folder, exist_ok=True)
     written = []
     if scaffold is not None and pictures > 0:
-        written += _pictures(folder, data, scaffold, pictures)
+        data = _pictures(folder, data, scaffold, pictures)
+        written = [t.picture for t in data.types if t.picture is not None]
     _parquet(os.path.join(folder, "atlas.parquet"), data)
     write_text(os.path.join(folder, "README.md"), markdown(data))
-    return ["atlas.parquet", "README.md", *written]
+    return ["atlas.parquet", "README.md", *written], data
 
 
 def atlas_folder(folder: str, inputs: tuple[str | None, ...] = ()) -> None:
@@ -91,68 +98,73 @@ def picture(scaffold: Scaffold, labels: list[int], path: str, title: str) -> Non
         small.save(tmp, format="PNG", optimize=True)
 
 
-def _pictures(folder: str, data: dict[str, Any], scaffold: Scaffold, limit: int) -> list[str]:
-    out: list[str] = []
-    for entry in data["types"]:
-        if len(out) >= limit:
+def _pictures(folder: str, data: AtlasResult, scaffold: Scaffold, limit: int) -> AtlasResult:
+    """Draw the simplest design of the first ``limit`` named types; return the atlas with their ``picture``."""
+    types = list(data.types)
+    drawn = 0
+    for i, entry in enumerate(types):
+        if drawn >= limit:
             break
-        if entry["name"].startswith(("unknown", "split")):
+        if entry.name.startswith(("unknown", "split")):
             continue
-        name = picture_name(entry["name"])
-        picture(scaffold, entry["simplest"], os.path.join(folder, name), f"{entry['name']}: {entry['simplest']}")
-        entry["picture"] = name
-        out.append(name)
-    return out
+        name = picture_name(entry.name)
+        simplest = list(entry.simplest)
+        picture(scaffold, simplest, os.path.join(folder, name), f"{entry.name}: {simplest}")
+        types[i] = replace(entry, picture=name)
+        drawn += 1
+    return replace(data, types=tuple(types))
 
 
-def _parquet(path: str, data: dict[str, Any]) -> None:
+def _parquet(path: str, data: AtlasResult) -> None:
     import pyarrow as pa
     import pyarrow.parquet as pq
 
-    types = data["types"]
+    types = data.types
     table = pa.table(
         {
-            "name": pa.array([t["name"] for t in types], pa.string()),
-            "components": pa.array([t["components"] for t in types], pa.int32()),
-            "table": pa.array([t.get("table") for t in types], pa.string()),
-            "crossings": pa.array([t.get("crossings") for t in types], pa.int32()),
-            "designs": pa.array([t["designs"] for t in types], pa.int64()),
-            "assignments": pa.array([t["assignments"] for t in types], pa.int64()),
-            "simplest": pa.array([t["simplest"] for t in types], pa.list_(pa.int64())),
-            "simplest_sum_abs": pa.array([t.get("simplest_sum_abs") for t in types], pa.int64()),
-            "chirality": pa.array([json.dumps(t.get("chirality")) for t in types], pa.string()),
-            "picture": pa.array([t.get("picture") for t in types], pa.string()),
+            "name": pa.array([t.name for t in types], pa.string()),
+            "components": pa.array([t.components for t in types], pa.int32()),
+            "table": pa.array([t.table for t in types], pa.string()),
+            "crossings": pa.array([t.crossings for t in types], pa.int32()),
+            "designs": pa.array([t.designs for t in types], pa.int64()),
+            "assignments": pa.array([t.assignments for t in types], pa.int64()),
+            "simplest": pa.array([list(t.simplest) for t in types], pa.list_(pa.int64())),
+            "simplest_sum_abs": pa.array([t.simplest_sum_abs for t in types], pa.int64()),
+            "chirality": pa.array([json.dumps(t.chirality.to_json()) for t in types], pa.string()),
+            "picture": pa.array([t.picture for t in types], pa.string()),
         }
     )
-    meta = {k: v for k, v in data.items() if k != "types"}
+    meta = {k: v for k, v in data.to_json().items() if k != "types"}
     table = table.replace_schema_metadata({"lkspace-atlas": json.dumps(meta)})
     with atomic_path(path, suffix=".parquet.tmp") as tmp:
         pq.write_table(table, tmp)
 
 
-def markdown(data: dict[str, Any]) -> str:
+def markdown(data: AtlasResult) -> str:
     """Return the atlas as a Markdown page: a heading, the space, one table row per type."""
+    label_set = None if data.label_set is None else list(data.label_set)
+    skipped = 0 if data.run is None else data.run.skipped
     lines = [
-        f"# Atlas of {data['scaffold']}, labels {data.get('label_set')}",
+        f"# Atlas of {data.scaffold}, labels {label_set}",
         "",
-        f"{data['designs']:,} designs (up to rotation) of {data['assignments']:,} assignments; "
-        f"{len(data['types'])} types.  *simplest*: smallest sum |t|, then fewest non-zero labels.",
+        f"{data.designs:,} designs (up to rotation) of {data.assignments:,} assignments; "
+        f"{len(data.types)} types.  *simplest*: smallest sum |t|, then fewest non-zero labels.",
         "",
         *(
-            [f"**Partial**: the time budget ran out; {data['skipped']:,} more designs were not identified.", ""]
-            if not data.get("complete", True)
+            [f"**Partial**: the time budget ran out; {skipped:,} more designs were not identified.", ""]
+            if not data.complete
             else []
         ),
         "| type | components | table | smallest diagram (crossings) | designs | assignments | chirality (table/mirror/?) | simplest |",
         "|---|---|---|---|---|---|---|---|",
     ]
-    for t in data["types"]:
-        c = t.get("chirality") or {}
-        chir = f"{c.get('table', 0)}/{c.get('mirror', 0)}/{c.get('undetermined', 0)}"
-        name = f"[{t['name']}]({t['picture']})" if t.get("picture") else t["name"]
-        simplest = ",".join(map(str, t["simplest"]))
+    for t in data.types:
+        c = t.chirality
+        chir = f"{c.table}/{c.mirror}/{c.undetermined}"
+        name = f"[{t.name}]({t.picture})" if t.picture else t.name
+        simplest = ",".join(map(str, t.simplest))
         lines.append(
-            f"| {name} | {t['components']} | {t.get('table') or ''} | {t.get('crossings') if t.get('crossings') is not None else ''} "
-            f"| {t['designs']:,} | {t['assignments']:,} | {chir} | `{simplest}` |"
+            f"| {name} | {t.components} | {t.table or ''} | {t.crossings if t.crossings is not None else ''} "
+            f"| {t.designs:,} | {t.assignments:,} | {chir} | `{simplest}` |"
         )
     return "\n".join(lines) + "\n"

@@ -24,16 +24,22 @@ built from :func:`~lkspace.linktypes.atlas.atlas` results by :func:`index_rows` 
 The file's metadata (key ``lkspace-atlas-index``) holds ``format``, ``lkspace_version``,
 ``commit``, ``date``, ``spaces``: ``{scaffold, labels, designs, assignments, types,
 complete, identified, wall_time}`` for every space built, and ``left_out``: ``{scaffold, labels, reason}``.  Reading needs pyarrow only.
+A row is an :class:`~lkspace.linktypes.records.IndexRow`, an answer a
+:class:`~lkspace.linktypes.records.LookupAnswer`: their ``from_row``/``to_row`` and
+``to_json`` are the only readers and writers of these formats.
 """
 
 from __future__ import annotations
 
 import json
 import os
-from typing import Any
 
 from ..errors import CatalogError, LkspaceError
-from .common_names import Chirality, common_name, resolve_type
+from .answers import LookupAnswer, LookupDesign
+from .common_names import common_name, resolve_type
+from .fields import JsonObject
+from .records import INDEX_COLUMNS, AtlasResult, Example, IndexRow
+from .spelling import Chirality
 
 SHIPPED = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "data", "atlas.parquet")
 """The atlas index shipped with lkspace."""
@@ -44,61 +50,52 @@ LIMIT = 10
 """Designs a lookup returns by default."""
 
 
-def index_rows(data: dict[str, Any], labels: str) -> list[dict[str, Any]]:
+def index_rows(data: AtlasResult, labels: str) -> list[IndexRow]:
     """Return the index rows of one :func:`~lkspace.linktypes.atlas.atlas` result (``labels``: its label set as typed)."""
     from .atlas import crossing_number
 
     rows = []
-    for t in data["types"]:
-        name = t["name"]
-        named = not name.startswith(("split", "unknown"))
-        chir = t.get("chirality") or {}
+    for t in data.types:
+        named = not t.name.startswith(("split", "unknown"))
         rows.append(
-            {
-                "type": name,
-                "common_name": common_name(name),
-                "components": t.get("components"),
-                "crossing_number": crossing_number(name) if named else None,
-                "crossings": t.get("crossings"),
-                "table": t.get("table"),
-                "scaffold": data["scaffold"],
-                "labels": labels,
-                "designs": t["designs"],
-                "assignments": t["assignments"],
-                "first_sum_abs": t.get("simplest_sum_abs"),
-                "chirality_table": chir.get("table", 0),
-                "chirality_mirror": chir.get("mirror", 0),
-                "chirality_undetermined": chir.get("undetermined", 0),
-                "examples": json.dumps(t.get("examples") or []),
-                "complete": bool(data.get("complete", True)),
-            }
+            IndexRow(
+                type=t.name,
+                common_name=common_name(t.name),
+                components=t.components,
+                crossing_number=crossing_number(t.name) if named else None,
+                crossings=t.crossings,
+                table=t.table,
+                scaffold=data.scaffold,
+                labels=labels,
+                designs=t.designs,
+                assignments=t.assignments,
+                first_sum_abs=t.simplest_sum_abs,
+                chirality_table=t.chirality.table,
+                chirality_mirror=t.chirality.mirror,
+                chirality_undetermined=t.chirality.undetermined,
+                examples_json=IndexRow.examples_text(t.examples),
+                complete=data.complete,
+            )
         )
     return rows
 
 
-def write_index(path: str, rows: list[dict[str, Any]], meta: dict[str, Any]) -> None:
+def write_index(path: str, rows: list[IndexRow], meta: JsonObject) -> None:
     """Write an atlas index (temporary name, then renamed)."""
     import pyarrow as pa
     import pyarrow.parquet as pq
 
     from ..io.atomic import atomic_path
 
-    ints = ("components", "crossing_number", "crossings")
-    longs = ("designs", "assignments", "first_sum_abs", "chirality_table", "chirality_mirror", "chirality_undetermined")
-    columns = {}
-    for key in ("type", "common_name", "components", "crossing_number", "crossings", "table", "scaffold", "labels"):
-        columns[key] = pa.array([r[key] for r in rows], pa.int32() if key in ints else pa.string())
-    for key in longs:
-        columns[key] = pa.array([r[key] for r in rows], pa.int64())
-    columns["examples"] = pa.array([r["examples"] for r in rows], pa.string())
-    columns["complete"] = pa.array([r["complete"] for r in rows], pa.bool_())
+    written = [r.to_row() for r in rows]
+    columns = {key: pa.array([r[key] for r in written], getattr(pa, kind)()) for key, kind in INDEX_COLUMNS}
     table = pa.table(columns).replace_schema_metadata({META: json.dumps({"format": FORMAT, **meta})})
     os.makedirs(os.path.dirname(os.path.abspath(path)), exist_ok=True)
     with atomic_path(path, suffix=".parquet.tmp") as tmp:
         pq.write_table(table, tmp, compression="zstd")
 
 
-def read_index(path: str | None = None) -> tuple[list[dict[str, Any]], dict[str, Any]]:
+def read_index(path: str | None = None) -> tuple[list[IndexRow], JsonObject]:
     """Return the rows and the metadata of an atlas index (default: the shipped one)."""
     import pyarrow as pa
     import pyarrow.parquet as pq
@@ -117,10 +114,14 @@ def read_index(path: str | None = None) -> tuple[list[dict[str, Any]], dict[str,
             f"atlas {path}: not an atlas index (no {META.decode()} metadata); build one with experiments/build_atlas.py",
             parameter="atlas",
         )
-    return table.to_pylist(), json.loads(raw)
+    meta = json.loads(raw)
+    if not isinstance(meta, dict):
+        raise CatalogError(f"atlas {path}: its {META.decode()} metadata is no JSON object", parameter="atlas")
+    rows = [IndexRow.from_row(row, f"atlas {path}, row {i}") for i, row in enumerate(table.to_pylist())]
+    return rows, meta
 
 
-def lookup(name: str, atlas: str | None = None, *, limit: int = LIMIT, scaffold: str | None = None) -> dict[str, Any]:
+def lookup(name: str, atlas: str | None = None, *, limit: int = LIMIT, scaffold: str | None = None) -> LookupAnswer:
     """Return the simplest designs of the type ``name`` in an atlas index (default: the shipped one).
 
     ``name``: a table name (``5_2``, ``m3_1``: mirror images only), an atlas type
@@ -128,58 +129,67 @@ def lookup(name: str, atlas: str | None = None, *, limit: int = LIMIT, scaffold:
     that space's designs.  A design in two label sets of one scaffold is listed once.  A
     connected sum is looked up without the mirror marks of its factors.
 
-    Returns ``{query, name, chirality, common_name, atlas, searched, found_in, designs_total,
-    simplest_kept, designs}``: ``designs_total`` counts the designs of the type (of the
-    chirality asked) summed over the spaces searched, ``simplest_kept`` the simplest of them the
-    atlas keeps (:mod:`~lkspace.linktypes.examples`), from which ``designs`` is drawn;
-    ``designs`` (at most ``limit``, simplest first: sum |t|, non-zero labels,
-    crossings, then scaffold and labels) holds ``{type, scaffold, labels, label_set, sum_abs, nonzero,
-    crossings, mirror, chiral_name, designs_of_type, command}``.  Raises
-    :class:`TypeNotFound` (exit 1) when the atlas holds no such design.
+    Returns a :class:`~lkspace.linktypes.records.LookupAnswer` (``to_json()``: ``{query,
+    name, chirality, common_name, atlas, searched, found_in, designs_total, simplest_kept,
+    designs}``): ``designs_total`` counts the designs of the type (of the chirality asked)
+    summed over the spaces searched, ``simplest_kept`` the simplest of them the atlas keeps
+    (:mod:`~lkspace.linktypes.examples`), from which ``designs`` is drawn; ``designs`` (at
+    most ``limit``, simplest first: sum |t|, non-zero labels, crossings, then scaffold and
+    labels) holds :class:`~lkspace.linktypes.records.LookupDesign` ``{type, scaffold, labels,
+    label_set, sum_abs, nonzero, crossings, mirror, chiral_name, designs_of_type, command}``.
+    Raises :class:`TypeNotFound` (exit 1) when the atlas holds no such design.
     """
     wanted, chirality = resolve_type(name)
     rows, meta = read_index(atlas)
-    spaces = [f"{s['scaffold']} {s['labels']}" for s in meta.get("spaces", [])]
+    spaces = [f"{s['scaffold']} {s['labels']}" for s in _spaces(meta)]
     if scaffold is not None:
         spaces = [s for s in spaces if s.split(" ")[0] == scaffold]
-    hits = [r for r in rows if _same_type(r["type"], wanted) and scaffold in (None, r["scaffold"])]
+    hits = [r for r in rows if _same_type(r.type, wanted) and scaffold in (None, r.scaffold)]
     if "#" in wanted:  # a sum as the atlas spells it: factors in table order, no mirror marks
-        wanted = hits[0]["type"] if hits else "#".join(p[1:] if p.startswith("m") else p for p in wanted.split("#"))
-    found: dict[tuple[str, tuple[int, ...]], dict[str, Any]] = {}
+        wanted = hits[0].type if hits else "#".join(p[1:] if p.startswith("m") else p for p in wanted.split("#"))
+    found: dict[tuple[str, tuple[int, ...]], LookupDesign] = {}
     for row in hits:
-        for ex in json.loads(row["examples"]):
-            if chirality != "any" and ex["mirror"] is not (chirality == "mirror"):
+        for ex in row.examples:
+            if chirality != "any" and ex.mirror is not (chirality == "mirror"):
                 continue
-            key = (row["scaffold"], tuple(ex["labels"]))
+            key = (row.scaffold, ex.labels)
             if key not in found:
                 found[key] = _design(row, ex)
     designs = sorted(found.values(), key=_simplest)
-    count = "designs" if chirality == "any" else f"chirality_{chirality}"
-    answer = {
-        "query": name,
-        "name": wanted,
-        "chirality": chirality,
-        "common_name": common_name(wanted, None if chirality == "any" else chirality == "mirror"),
-        "atlas": os.path.abspath(atlas or SHIPPED),
-        "searched": spaces,
-        "found_in": list(dict.fromkeys(f"{r['scaffold']} {r['labels']}" for r in hits if r[count])),
-        "designs_total": sum(r[count] for r in hits),
-        "simplest_kept": len(designs),
-        "designs": designs[:limit],
-    }
     if not designs:
         raise TypeNotFound(_absent(wanted, chirality, hits, spaces, atlas, scaffold))
-    return answer
+    return LookupAnswer(
+        query=name,
+        name=wanted,
+        chirality=chirality,
+        common_name=common_name(wanted, None if chirality == "any" else chirality == "mirror"),
+        atlas=os.path.abspath(atlas or SHIPPED),
+        searched=tuple(spaces),
+        found_in=tuple(dict.fromkeys(f"{r.scaffold} {r.labels}" for r in hits if r.count(chirality))),
+        designs_total=sum(r.count(chirality) for r in hits),
+        simplest_kept=len(designs),
+        designs=tuple(designs[:limit]),
+    )
 
 
 class TypeNotFound(LkspaceError):
     """No design of the type is in the atlas (exit 1); the message names the spaces searched."""
 
 
-def _simplest(design: dict[str, Any]) -> tuple[Any, ...]:
+def _spaces(meta: JsonObject) -> list[dict[str, str]]:
+    """Return the spaces an index was built from (``{scaffold, labels}``), as its metadata lists them."""
+    listed = meta.get("spaces")
+    out = []
+    for s in listed if isinstance(listed, list) else []:
+        if isinstance(s, dict) and isinstance(s.get("scaffold"), str) and isinstance(s.get("labels"), str):
+            out.append({"scaffold": str(s["scaffold"]), "labels": str(s["labels"])})
+    return out
+
+
+def _simplest(design: LookupDesign) -> tuple[int, int, int, str, tuple[int, ...]]:
     """Sort key: sum |t|, non-zero labels, crossings (unknown last), scaffold, labels."""
-    crossings = design["crossings"] if design["crossings"] is not None else 1 << 30
-    return (design["sum_abs"], design["nonzero"], crossings, design["scaffold"], design["labels"])
+    crossings = design.crossings if design.crossings is not None else 1 << 30
+    return (design.sum_abs, design.nonzero, crossings, design.scaffold, design.labels)
 
 
 def _same_type(row_type: str, wanted: str) -> bool:
@@ -190,29 +200,28 @@ def _same_type(row_type: str, wanted: str) -> bool:
     return sorted(row_type.split("#")) == factors
 
 
-def _design(row: dict[str, Any], ex: dict[str, Any]) -> dict[str, Any]:
-    labels = [int(x) for x in ex["labels"]]
-    mirror = ex.get("mirror")
-    return {
-        "type": row["type"],
-        "common_name": common_name(row["type"], mirror),
-        "scaffold": row["scaffold"],
-        "labels": labels,
-        "label_set": row["labels"],
-        "sum_abs": int(ex["sum_abs"]),
-        "nonzero": int(ex["nonzero"]),
-        "crossings": ex.get("crossings"),
-        "mirror": mirror,
-        "chiral_name": ("m" if mirror else "") + row["type"] if mirror is not None else row["type"],
-        "designs_of_type": row["designs"],
-        "command": f"lkspace identify {row['scaffold']} --twist {','.join(map(str, labels))}",
-    }
+def _design(row: IndexRow, ex: Example) -> LookupDesign:
+    mirror = ex.mirror
+    return LookupDesign(
+        type=row.type,
+        common_name=common_name(row.type, mirror),
+        scaffold=row.scaffold,
+        labels=ex.labels,
+        label_set=row.labels,
+        sum_abs=ex.sum_abs,
+        nonzero=ex.nonzero,
+        crossings=ex.crossings,
+        mirror=mirror,
+        chiral_name=("m" if mirror else "") + row.type if mirror is not None else row.type,
+        designs_of_type=row.designs,
+        command=f"lkspace identify {row.scaffold} --twist {','.join(map(str, ex.labels))}",
+    )
 
 
 def _absent(
     wanted: str,
     chirality: Chirality,
-    hits: list[dict[str, Any]],
+    hits: list[IndexRow],
     spaces: list[str],
     atlas: str | None,
     scaffold: str | None,
@@ -223,7 +232,7 @@ def _absent(
         asked += " (the table's chirality)"
     told = ""
     if hits:
-        n = sum(r["designs"] for r in hits)
+        n = sum(r.designs for r in hits)
         told = f" (it holds {n:,} designs of {wanted}, none identified as this chirality: ask for {wanted})"
     where = "the atlas " + (atlas or "shipped with lkspace")
     shown = ", ".join(spaces[:12]) + (f" and {len(spaces) - 12} more" if len(spaces) > 12 else "")

@@ -6,7 +6,8 @@ Common names are understood too (``"Borromean rings"``, ``"left-handed trefoil"`
 Names are those ``identify`` reports: ``0_1``; Rolfsen's ``3_1`` ... ``10_165`` and
 KnotInfo's ``11a_1`` ... ``13n_5110`` for knots (SnapPy's spelling ``K11a1`` is accepted);
 Thistlethwaite's ``L2a1`` ... ``L11n459`` for links (an orientation suffix such as
-``{0,1}`` is ignored); ``K14n10910`` / ``L13n4723``: SnapPy's ``HTLinkExteriors``
+``{0,1}`` is ignored; every spelling is read by
+:func:`~lkspace.linktypes.spelling.canonical_name`); ``K14n10910`` / ``L13n4723``: SnapPy's ``HTLinkExteriors``
 (hyperbolic knots to 15 crossings, links to 14); ``A#B``: a connected sum of knots.
 
 **Mirror images.**  A plain name matches both chiralities.  ``m`` in front (``m3_1``, or
@@ -21,11 +22,10 @@ ruled out by a chirality request.
 from __future__ import annotations
 
 import json
-import re
 from dataclasses import dataclass, field
 from fractions import Fraction
 from functools import lru_cache
-from typing import Any, Literal, TypeAlias, get_args
+from typing import Any, Literal, TypeAlias
 
 import numpy as np
 
@@ -34,10 +34,9 @@ from ..knots.hoste import HT_NAME, ht_crossings, ht_manifold
 from ..knots.naming import name_key, one_based
 from ..knots.tables import JONES_POINT, knot_modules, laurent_value, tables
 from .common_names import common_type
+from .fields import JsonObject
+from .spelling import CHIRALITIES, Chirality, canonical_name, chiral_parts
 
-Chirality: TypeAlias = Literal["any", "table", "mirror"]
-"""Which chirality a target asks for: either, the table's diagram, or its mirror image."""
-CHIRALITIES: tuple[Chirality, ...] = get_args(Chirality)
 Verdict: TypeAlias = Literal["match", "other", "undetermined"]
 """An identification against a target (:func:`judge`)."""
 
@@ -82,7 +81,7 @@ class LinkType:
             return "#".join(self.factors)
         return {"any": self.name, "mirror": f"m{self.name}", "table": f"{self.name} (table chirality)"}[self.chirality]
 
-    def to_dict(self) -> dict[str, Any]:
+    def to_dict(self) -> JsonObject:
         """Return the JSON form (name, chirality, components, crossing number, table)."""
         return {
             "name": self.name,
@@ -102,15 +101,6 @@ def table_entries() -> dict[str, list[dict[str, Any]]]:
         for e in entries:
             out.setdefault(e["name"], []).append(e)
     return out
-
-
-def _canonical(name: str) -> str:
-    """``K11a1`` -> ``11a_1``; ``L6a4{0,0}`` -> ``L6a4``; other names unchanged."""
-    name = name.split("{")[0]
-    m = re.fullmatch(r"K(\d+)([an])(\d+)", name)
-    if m and int(m[1]) <= 13:
-        return f"{m[1]}{m[2]}_{m[3]}" if int(m[1]) >= 11 else name
-    return name
 
 
 def _jones_values(pd: list[list[int]]) -> set[Fraction]:
@@ -218,14 +208,15 @@ def parse_type(type_name: str, chirality: str = "any") -> LinkType:
         return _prime(text, asked, typed)
     if "#" in text:
         return _sum(text, asked, typed)
-    if text.startswith("m") and len(text) > 1:
+    name, mirror = chiral_parts(text)
+    if mirror:
         if asked == "table":
             raise UsageError(
                 f"type_name {typed!r} asks for the mirror image but `chirality` is table",
                 parameter="type_name",
             )
-        text, asked = text[1:], "mirror"
-    return _prime(_canonical(text), asked, typed)
+        asked = "mirror"
+    return _prime(name, asked, typed)
 
 
 def _sum(text: str, chirality: Chirality, typed: str) -> LinkType:
@@ -234,8 +225,8 @@ def _sum(text: str, chirality: Chirality, typed: str) -> LinkType:
     chiral = []
     primes = []
     for p in parts:
-        mirror = p.startswith("m") and len(p) > 1
-        prime = _prime(_canonical(p[1:] if mirror else p), "any", typed)
+        base, mirror = chiral_parts(p)
+        prime = _prime(base, "any", typed)
         if prime.components != 1 or prime.name == "0_1":
             raise UsageError(
                 f"type_name {typed!r}: a connected sum is written with non-trivial knots, e.g. 3_1#4_1",
@@ -271,7 +262,7 @@ def judge(target: LinkType, ident: dict[str, Any]) -> Verdict:
         if (
             cands
             and target.table in ("knotinfo", "linkinfo")
-            and target.name not in {_canonical(c.split(" ")[0]) for c in cands}
+            and target.name not in {canonical_name(c.split(" ")[0]) for c in cands}
         ):
             return "other"
         return "undetermined"

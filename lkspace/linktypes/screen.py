@@ -16,7 +16,7 @@ A linking-matrix goal needs only the first filter: its verdict is exact.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -29,7 +29,7 @@ from ..knots.recognition import identify
 from ..knots.tables import JONES_POINT, knot_modules, laurent_value
 from ..model.scaffold import Scaffold
 from .linking import matches
-from .names import LinkType, judge
+from .names import LinkType, Verdict, judge
 
 if TYPE_CHECKING:
     from ..knots.batch import Namer
@@ -78,6 +78,43 @@ class Goal:
         return f"linking matrix {np.asarray(self.linking).tolist()}"
 
 
+@dataclass(frozen=True)
+class Screening:
+    """One design judged against a goal.
+
+    ``verdict``: ``"match"``, ``"other"`` or ``"undetermined"``; ``reason``: the filter
+    that decided, or ``"identified"``; ``linking_matrix``: of the projection (``None``:
+    not realized).  When identified (``identified``), what identify said: ``name``,
+    ``chiral_name``, ``mirror``, ``table``, ``status``, ``crossings``.
+    """
+
+    verdict: Verdict
+    reason: str
+    linking_matrix: list[list[int]] | None = None
+    identified: bool = False
+    name: str | None = None
+    chiral_name: str | None = None
+    mirror: bool | None = None
+    table: str | None = None
+    status: str | None = None
+    crossings: int | None = None
+
+    def judged(self, target: LinkType, ident: dict[str, Any]) -> Screening:
+        """Return this screening completed by an identification (``Identification.to_dict()`` or a batch row)."""
+        return replace(
+            self,
+            verdict=judge(target, ident),
+            reason="identified",
+            identified=True,
+            name=ident.get("name"),
+            chiral_name=ident.get("chiral_name"),
+            mirror=ident.get("mirror"),
+            table=ident.get("table"),
+            status=ident.get("status"),
+            crossings=ident.get("crossings"),
+        )
+
+
 def _jones_value(diagram: Diagram) -> tuple[int, Any] | None:
     """``(simplified crossings, Jones at 2/3)``, or ``None`` when the diagram is too big for the filter."""
     if diagram.n_crossings > SIMPLIFY_MAX_CROSSINGS:
@@ -97,44 +134,34 @@ def _jones_value(diagram: Diagram) -> tuple[int, Any] | None:
 
 def screen(
     scaffold: Scaffold, labels: np.ndarray, goal: Goal, seed: int = 0, time_limit: float | None = 60.0
-) -> dict[str, Any]:
-    """Judge one design (closed strands, ``goal.components`` of them) against ``goal``.
-
-    Returns
-    -------
-    dict
-        ``verdict`` (``"match"``, ``"other"`` or ``"undetermined"``), ``reason`` (the
-        filter that decided, or the identification status) and, when identified,
-        ``name``, ``chiral_name``, ``mirror``, ``table``, ``status``.
-    """
+) -> Screening:
+    """Judge one design (closed strands, ``goal.components`` of them) against ``goal``."""
     try:
         real = realize(scaffold, labels)
         diagram = project_generic(real.curves, seed)
     except LkspaceError as exc:
-        return {"verdict": "undetermined", "reason": f"not realized: {exc}"}
+        return Screening("undetermined", f"not realized: {exc}")
     lm = diagram.linking_matrix()
-    out: dict[str, Any] = {"linking_matrix": lm.tolist()}
+    matrix = lm.tolist()
     if goal.linking is not None and not matches(lm, goal.linking, goal.signed):
-        return {**out, "verdict": "other", "reason": "linking matrix"}
+        return Screening("other", "linking matrix", matrix)
     target = goal.target
     if target is None:
-        return {**out, "verdict": "match", "reason": "linking matrix"}
+        return Screening("match", "linking matrix", matrix)
     if target.linking is not None and not matches(lm, target.linking):
-        return {**out, "verdict": "other", "reason": "linking numbers"}
+        return Screening("other", "linking numbers", matrix)
     if diagram.free_components and goal.components > 1:
-        return {**out, "verdict": "other", "reason": "split"}
+        return Screening("other", "split", matrix)
     if diagram.n_crossings < target.crossings:
-        return {**out, "verdict": "other", "reason": "crossings"}
+        return Screening("other", "crossings", matrix)
     jones = _jones_value(diagram)
     if jones is not None and jones[1] not in target.fingerprints:
-        return {**out, "verdict": "other", "reason": "Jones polynomial"}
+        return Screening("other", "Jones polynomial", matrix)
     try:
         ident = identify(scaffold, labels, seed=seed, time_limit=time_limit).to_dict()
     except LkspaceError as exc:
-        return {**out, "verdict": "undetermined", "reason": f"not identified: {exc}"}
-    verdict = judge(target, ident)
-    keep = ("name", "chiral_name", "mirror", "table", "status", "crossings")
-    return {**out, **{k: ident.get(k) for k in keep}, "verdict": verdict, "reason": "identified"}
+        return Screening("undetermined", f"not identified: {exc}", matrix)
+    return Screening("undetermined", "", matrix).judged(target, ident)
 
 
 def screen_batch(
@@ -145,7 +172,7 @@ def screen_batch(
     cache: KeyCache,
     namer: Namer,
     label_set: np.ndarray,
-) -> list[dict[str, Any]]:
+) -> list[Screening]:
     """Judge a batch of designs (``(n, n_edges)``, closed strands) against ``goal`` from their labels alone.
 
     The filters of :func:`screen` on each design's diagram from labels
@@ -160,30 +187,28 @@ def screen_batch(
     found = keys_of(scaffold, labels, seed, label_set)
     target = goal.target
     residues = {jones_residue(v) for v in target.fingerprints} if target is not None else set()
-    verdicts: list[dict[str, Any]] = []
+    verdicts: list[Screening] = []
     survivors: list[int] = []
     for d in range(len(labels)):
         lm = np.asarray(found.linking_matrix(d), np.int64)
-        out: dict[str, Any] = {"linking_matrix": lm.tolist()}
+        matrix = lm.tolist()
         if goal.linking is not None and not matches(lm, goal.linking, goal.signed):
-            out.update(verdict="other", reason="linking matrix")
+            verdicts.append(Screening("other", "linking matrix", matrix))
         elif target is None:
-            out.update(verdict="match", reason="linking matrix")
+            verdicts.append(Screening("match", "linking matrix", matrix))
         elif target.linking is not None and not matches(lm, target.linking):
-            out.update(verdict="other", reason="linking numbers")
+            verdicts.append(Screening("other", "linking numbers", matrix))
         elif found.free[d] and goal.components > 1:
-            out.update(verdict="other", reason="split")
+            verdicts.append(Screening("other", "split", matrix))
         elif found.crossings[d] < target.crossings:
-            out.update(verdict="other", reason="crossings")
+            verdicts.append(Screening("other", "crossings", matrix))
         elif found.keyed[d] and int(found.jones_at[d]) not in residues:
-            out.update(verdict="other", reason="Jones polynomial")
+            verdicts.append(Screening("other", "Jones polynomial", matrix))
         else:
             survivors.append(d)
-        verdicts.append(out)
+            verdicts.append(Screening("undetermined", "", matrix))
     if survivors and target is not None:
         rows = identify_chunk(scaffold, labels[survivors], seed, cache, namer, label_set)
         for d, row in zip(survivors, rows, strict=True):
-            ident = {**row, "name": row.get("knot_name")}
-            keep = ("name", "chiral_name", "mirror", "table", "status", "crossings")
-            verdicts[d].update({k: ident.get(k) for k in keep}, verdict=judge(target, ident), reason="identified")
+            verdicts[d] = verdicts[d].judged(target, {**row, "name": row.get("knot_name")})
     return verdicts

@@ -17,19 +17,21 @@ from __future__ import annotations
 
 import time
 from collections import Counter
-from collections.abc import Iterator, Mapping
+from collections.abc import Iterator
 from dataclasses import dataclass, field
 from typing import Any, Literal, TypeAlias
 
 import numpy as np
 
-from ..errors import SolveVerificationError
+from ..errors import SolveVerificationError, UsageError
 from ..model.scaffold import Scaffold
 from ..progress import task
 from ..strands.tracing import trace
 from ..words import plural
+from .answers import TargetSolution
 from .candidates import OrderedWalk
-from .screen import Goal, screen, screen_batch
+from .fields import Json, JsonObject
+from .screen import Goal, Screening, screen, screen_batch
 
 TargetStatus: TypeAlias = Literal["found", "exhausted", "unknown"]
 """A target search's answer: designs found, none in the space (proved), or not decided."""
@@ -39,24 +41,24 @@ CHECK_SEED_SHIFT = 1009
 
 @dataclass(frozen=True)
 class TargetResult:
-    """The answer: ``status``, ``solutions`` (dicts with ``labels``, ``components``, ``name`` ...) and counts."""
+    """The answer: ``status``, ``solutions`` and counts (``stats``: designs per verdict and reason)."""
 
     status: TargetStatus
-    solutions: list[dict[str, Any]]
+    solutions: tuple[TargetSolution, ...]
     goal: Goal
     wall_time: float
     complete: bool
-    stats: dict[str, Any] = field(default_factory=dict)
+    stats: JsonObject = field(default_factory=dict)
     reason: str = ""
 
     def __repr__(self) -> str:
         return f"TargetResult({self.status}, {plural(len(self.solutions), 'solution')} for {self.goal.label})"
 
-    def to_dict(self) -> dict[str, Any]:
+    def to_dict(self) -> JsonObject:
         """Return the JSON form (``status``, ``solutions``, ``target``, ``stats`` ...)."""
-        out: dict[str, Any] = {
+        out: JsonObject = {
             "status": self.status,
-            "solutions": self.solutions,
+            "solutions": [s.to_json() for s in self.solutions],
             "components": self.goal.components,
             "exhausted": self.status == "exhausted",
             "space_complete": self.complete,
@@ -73,7 +75,7 @@ class TargetResult:
         return out
 
 
-def check_answer(scaffold: Scaffold, labels: np.ndarray, goal: Goal, seed: int, time_limit: float | None) -> dict:
+def check_answer(scaffold: Scaffold, labels: np.ndarray, goal: Goal, seed: int, time_limit: float | None) -> Screening:
     """Re-trace and re-identify a match with another projection; raise if it is not the goal."""
     components = trace(scaffold, labels).components
     if components != goal.components:
@@ -85,67 +87,95 @@ def check_answer(scaffold: Scaffold, labels: np.ndarray, goal: Goal, seed: int, 
     return again
 
 
-def solve_target(
-    scaffold: Scaffold,
-    goal: Goal,
-    *,
-    label_set: np.ndarray,
-    no_zero: bool = False,
-    fixes: Mapping[int, int] | None = None,
-    count: int = 1,
-    time_limit: float | None = None,
-    identify_time_limit: float | None = 60.0,
-    processes: int = 1,
-    seed: int = 0,
-    tolerance: float | None = None,
-) -> TargetResult:
-    """Find up to ``count`` designs of ``goal``, simplest first (see the module docstring).
+@dataclass(frozen=True)
+class SearchOptions:
+    """How :func:`solve_target` walks the space (every field optional).
 
-    ``tolerance``: the symmetry search's, in mesh units (default: 1/100 of the shortest edge).
+    Attributes
+    ----------
+    no_zero : bool
+        Leave label 0 out of the space.
+    fixes : tuple of (int, int)
+        ``(edge, label)`` pairs every design keeps.
+    count : int
+        Designs wanted (>= 1).
+    time_limit : float or None
+        Seconds for the whole search (``None``: no limit).
+    identify_time_limit : float or None
+        Seconds per identification.
+    processes : int
+        Worker processes naming designs (>= 1).
+    seed : int
+        Projection seed.
+    tolerance : float or None
+        The symmetry search's, in mesh units (default: 1/100 of the shortest edge).
+    """
+
+    no_zero: bool = False
+    fixes: tuple[tuple[int, int], ...] = ()
+    count: int = 1
+    time_limit: float | None = None
+    identify_time_limit: float | None = 60.0
+    processes: int = 1
+    seed: int = 0
+    tolerance: float | None = None
+
+    def __post_init__(self) -> None:
+        for name in ("count", "processes"):
+            if getattr(self, name) < 1:
+                raise UsageError(f"{name} {getattr(self, name)}: at least 1", parameter=name)
+
+
+def solve_target(
+    scaffold: Scaffold, goal: Goal, *, label_set: np.ndarray, options: SearchOptions = SearchOptions()
+) -> TargetResult:
+    """Find up to ``options.count`` designs of ``goal``, simplest first (see the module docstring).
 
     Examples
     --------
     >>> from lkspace import load
     >>> from lkspace.linktypes.names import parse_type
     >>> r = solve_target(load("dihedron:3"), Goal(1, parse_type("3_1")), label_set=np.arange(-1, 2))
-    >>> r.status, r.solutions[0]["labels"], r.solutions[0]["name"]
-    ('found', [-1, -1, -1], '3_1')
+    >>> r.status, r.solutions[0].labels, r.solutions[0].name
+    ('found', (-1, -1, -1), '3_1')
     """
+    o = options
     t0 = time.monotonic()
-    deadline = None if not time_limit else t0 + time_limit
+    deadline = None if not o.time_limit else t0 + o.time_limit
+    fixes = dict(o.fixes) or None
     walk = OrderedWalk(
-        scaffold, label_set, goal.components, no_zero=no_zero, fixes=fixes, deadline=deadline, tolerance=tolerance
+        scaffold, label_set, goal.components, no_zero=o.no_zero, fixes=fixes, deadline=deadline, tolerance=o.tolerance
     )
     tally: Counter[str] = Counter()
-    solutions: list[dict[str, Any]] = []
-    undetermined: list[list[int]] = []
+    solutions: list[TargetSolution] = []
+    undetermined: list[Json] = []
     timed_out = False
     with (
         task(f"searching {scaffold.name} for {goal.label}") as step,
-        _screener(scaffold, goal, seed, identify_time_limit, processes, label_set) as run,
+        _screener(scaffold, goal, o, label_set) as run,
     ):
         for batch in walk:
             for labels, orbit, verdict in run(batch.labels, batch.orbit_sizes):
                 tally["designs"] += 1
-                tally[f"{verdict['verdict']}: {verdict['reason']}"] += 1
+                tally[f"{verdict.verdict}: {verdict.reason}"] += 1
                 step.note(f"{tally['designs']:,} designs screened (|t| <= {batch.shell}), {len(solutions)} found")
-                if verdict["verdict"] == "undetermined":
+                if verdict.verdict == "undetermined":
                     undetermined.append(labels.tolist())
-                elif verdict["verdict"] == "match":
-                    again = check_answer(scaffold, labels, goal, seed, identify_time_limit)
-                    if again["verdict"] != "match":
+                elif verdict.verdict == "match":
+                    again = check_answer(scaffold, labels, goal, o.seed, o.identify_time_limit)
+                    if again.verdict != "match":
                         tally["re-identification disagreed"] += 1
                         undetermined.append(labels.tolist())
                         continue
                     solutions.append(_solution(labels, orbit, goal, again))
-                    if len(solutions) >= count:
+                    if len(solutions) >= o.count:
                         break
                 if deadline is not None and time.monotonic() > deadline:
                     timed_out = True
                     break
-            if len(solutions) >= count or timed_out:
+            if len(solutions) >= o.count or timed_out:
                 break
-    complete = walk.complete and not timed_out and len(solutions) < count
+    complete = walk.complete and not timed_out and len(solutions) < o.count
     status: TargetStatus
     if solutions:
         status, reason = "found", ""
@@ -155,27 +185,28 @@ def solve_target(
         status, reason = "unknown", f"{plural(len(undetermined), 'design')} could not be told apart from the target"
     else:
         status, reason = "unknown", "time ran out before the space was searched"
-    stats: dict[str, Any] = dict(sorted(tally.items()))
+    stats: JsonObject = dict(sorted(tally.items()))
     stats["undetermined_examples"] = undetermined[:5]
-    return TargetResult(status, solutions, goal, time.monotonic() - t0, complete, stats, reason)
+    return TargetResult(status, tuple(solutions), goal, time.monotonic() - t0, complete, stats, reason)
 
 
-def _solution(labels: np.ndarray, orbit: int, goal: Goal, ident: dict[str, Any]) -> dict[str, Any]:
+def _solution(labels: np.ndarray, orbit: int, goal: Goal, again: Screening) -> TargetSolution:
     a = np.abs(labels)
-    out = {
-        "labels": labels.tolist(),
-        "components": goal.components,
-        "sum_abs": int(a.sum()),
-        "max_abs": int(a.max()) if len(a) else 0,
-        "nonzero": int((labels != 0).sum()),
-        "orbit_size": int(orbit),
-        "linking_matrix": ident.get("linking_matrix"),
-        "reidentified": True,
-    }
-    for key in ("name", "chiral_name", "mirror", "table", "crossings"):
-        if key in ident:
-            out[key] = ident[key]
-    return out
+    return TargetSolution(
+        labels=tuple(int(x) for x in labels),
+        components=goal.components,
+        sum_abs=int(a.sum()),
+        max_abs=int(a.max()) if len(a) else 0,
+        nonzero=int((labels != 0).sum()),
+        orbit_size=int(orbit),
+        linking_matrix=None if again.linking_matrix is None else tuple(tuple(r) for r in again.linking_matrix),
+        identified=again.identified,
+        name=again.name,
+        chiral_name=again.chiral_name,
+        mirror=again.mirror,
+        table=again.table,
+        crossings=again.crossings,
+    )
 
 
 class _screener:
@@ -185,21 +216,19 @@ class _screener:
     the keys judged are shared with every run (:func:`~lkspace.knots.key_names.disk_cache`).
     """
 
-    def __init__(
-        self, scaffold: Scaffold, goal: Goal, seed: int, time_limit: float | None, processes: int, label_set: np.ndarray
-    ) -> None:
+    def __init__(self, scaffold: Scaffold, goal: Goal, options: SearchOptions, label_set: np.ndarray) -> None:
         from ..knots.batch import Namer
         from ..knots.key_names import disk_cache
 
-        self.scaffold, self.goal, self.seed, self.label_set = scaffold, goal, seed, label_set
-        self.namer = Namer(processes, False, time_limit)
+        self.scaffold, self.goal, self.seed, self.label_set = scaffold, goal, options.seed, label_set
+        self.namer = Namer(options.processes, False, options.identify_time_limit)
         self.cache = disk_cache()
 
     def __enter__(self) -> Any:
         self.namer.__enter__()
         return self.run
 
-    def run(self, labels: np.ndarray, orbits: np.ndarray) -> Iterator[tuple[np.ndarray, int, dict[str, Any]]]:
+    def run(self, labels: np.ndarray, orbits: np.ndarray) -> Iterator[tuple[np.ndarray, int, Screening]]:
         """Screen the rows of one batch of the walk."""
         verdicts = screen_batch(self.scaffold, labels, self.goal, self.seed, self.cache, self.namer, self.label_set)
         for i, verdict in enumerate(verdicts):

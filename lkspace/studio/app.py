@@ -270,7 +270,7 @@ def type_lookup(studio: Studio, body: dict[str, Any]) -> dict[str, Any]:
     if on is not None and (not isinstance(on, str) or len(on) > 200):
         raise BadRequest("scaffold: a built-in scaffold name")
     try:
-        return lookup(name, limit=int(limit), scaffold=on)
+        return lookup(name, limit=int(limit), scaffold=on).to_json()
     except TypeNotFound as exc:
         raise NoSuchDesign(str(exc)) from None
 
