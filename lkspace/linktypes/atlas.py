@@ -392,10 +392,9 @@ def atlas_of_catalog(path: str) -> AtlasResult:
         entry.simplest = [int(x) for x in cat.labels[int(i)]]
         entry.cost = (int(row["sum_abs"]), int(row["nonzero"]), int(row["max_abs"]))
     listed = tuple(t.record() for t in sort_types(types))
-    label_set = cat.metadata.get("label_set")
     return AtlasResult(
         cat.scaffold.name,
-        None if label_set is None else tuple(int(x) for x in label_set),
+        cat.footer.settings.label_set,
         len(frame),
         sum(t.assignments for t in listed),
         listed,
