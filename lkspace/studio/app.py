@@ -225,7 +225,7 @@ def identify(studio: Studio, request: DesignRequest) -> JobStarted:
 def solve(studio: Studio, request: SolveRequest) -> JobStarted:
     """Start a solve in a worker: ``components``, ``label_set``, ``no_zero``, ``fixes``, ``objective``, ``count``, ``time_limit``."""
     sc = studio.registry.get(request.key).scaffold
-    if request.components > sc.n_corners:
+    if not 1 <= request.components <= sc.n_corners:
         raise BadRequest(f"components: an integer in 1..{sc.n_corners}")
     if len(request.fixes) > sc.n_edges:
         raise BadRequest("fixes: an object edge -> label")

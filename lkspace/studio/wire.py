@@ -289,7 +289,9 @@ class SolveRequest:
         from ..model.specs import parse_label_set
 
         key = scaffold_key(data)
-        components = integer_in(data, "components", 0, 1, 2**31, "components: an integer in 1..(edge-sides)")
+        components = data.get("components")
+        if not isinstance(components, int) or isinstance(components, bool):
+            raise BadRequest("components: an integer (how many strands the designs have)")
         count = integer_in(data, "count", 5, 1, 50, "count: an integer in 1..50")
         limit = data.get("time_limit", 60)
         if (
