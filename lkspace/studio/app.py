@@ -24,47 +24,40 @@ from starlette.staticfiles import StaticFiles
 from .. import __version__
 from ..errors import GeometryError, LkspaceError, UsageError
 from ..scaffolds import DEFAULT
+from .answers import (
+    Clearance,
+    DesignView,
+    DiagramView,
+    Info,
+    JobStarted,
+    JobState,
+    OpenedDesign,
+    OrbitView,
+    RelaxedCurves,
+    ScaffoldView,
+    Thumbs,
+)
 from .browse import Browser
 from .design_files import filename, open_upload, save_design
 from .designs import EXPORTS, Cache, design, labels_from_page, parse_block, parse_nulls
 from .diagrams import Thumbnails, diagram
 from .jobs import Job, Jobs, relaxed
 from .lanes import Lane
-from .scaffolds import Held, Registry, builtin_choices
-from .wire import (
-    MAX_UPLOAD,
-    Answer,
-    BadRequest,
+from .requests import (
     CatalogRequest,
-    Clearance,
     DesignFileRequest,
     DesignRequest,
-    DesignView,
     DiagramRequest,
-    DiagramView,
     ExportRequest,
-    Info,
     JobRequest,
-    JobStarted,
-    JobState,
-    JsonObject,
-    LocalHostOnly,
     LookupRequest,
-    OpenedDesign,
-    OrbitView,
     RedrawRequest,
-    RelaxedCurves,
     ScaffoldRequest,
-    ScaffoldView,
     SolveRequest,
     ThumbnailsRequest,
-    Thumbs,
-    dumps,
-    error_json,
-    fail,
-    file_of,
-    json_of,
 )
+from .scaffolds import Held, Registry, builtin_choices
+from .wire import MAX_UPLOAD, Answer, BadRequest, JsonObject, LocalHostOnly, dumps, error_json, fail, file_of, json_of
 
 if TYPE_CHECKING:
     from .. import Realization

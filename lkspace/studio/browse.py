@@ -18,7 +18,9 @@ import numpy as np
 
 from ..catalog.verify import open_catalog
 from ..errors import CatalogError, UsageError
-from .wire import CatalogInfo, CatalogPage, CatalogRequest, Filter, JsonObject
+from .answers import CatalogInfo, CatalogPage
+from .requests import CatalogRequest, Filter
+from .wire import JsonObject
 
 
 class Browser:

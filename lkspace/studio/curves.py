@@ -16,7 +16,7 @@ import hashlib
 import numpy as np
 
 from .. import Realization
-from .wire import CurvesView
+from .answers import CurvesView
 
 
 def curve_key(points: np.ndarray, closed: bool) -> str:

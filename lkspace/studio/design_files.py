@@ -20,10 +20,11 @@ from .. import Scaffold
 from ..errors import LkspaceError, ScaffoldError, TooLargeError
 from ..io.design_json import Design, design_to_dict, format_design, is_design, read_design
 from ..io.text import read_text
+from .answers import OpenedDesign, Stem
 from .designs import labels_from_page, parse_block, parse_nulls
 from .filenames import design_stem
+from .requests import DesignFileRequest, DesignRequest
 from .scaffolds import Registry
-from .wire import DesignFileRequest, DesignRequest, OpenedDesign, Stem
 
 if TYPE_CHECKING:
     from .app import Studio

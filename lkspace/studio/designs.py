@@ -31,9 +31,9 @@ from ..geometry.clearance import check_embedding
 from ..geometry.realization import StrandCurve, realize_reusing
 from ..io.scaffold_json import format_scaffold_json
 from ..model.validation import validate_labels, validate_nulls
+from .answers import Clearance, DesignView, StrandView, page_labels
 from .curves import curves_view
 from .filenames import design_stem
-from .wire import Clearance, DesignView, StrandView, page_labels
 
 MAX_STUDIO_POINTS = 600_000
 """Most curve points a redraw realizes, block copies included (as tubes, about 3 million vertices in the browser)."""

@@ -32,8 +32,9 @@ from .. import GeometryParams, Realization, RealizeOptions, Scaffold, realize
 from ..errors import DiagramError, GeometryError, TooLargeError, UsageError
 from ..knots.diagram import near_pairs, project, transverse
 from ..linktypes.common_names import common_name
+from .answers import DiagramView, Thumbs
 from .designs import Cache, design, labels_from_page
-from .wire import DiagramView, ThumbnailsRequest, Thumbs, View
+from .requests import ThumbnailsRequest, View
 
 SIZE = 360.0
 """Longer side of a diagram's viewBox (SVG user units)."""

@@ -32,8 +32,7 @@ from .. import Scaffold
 from ..errors import LkspaceError, UsageError
 from ..progress import Step, install
 from ..workers import context, ignore_interrupts
-from .lanes import Busy
-from .wire import (
+from .answers import (
     Clearance,
     Exported,
     Identified,
@@ -44,8 +43,9 @@ from .wire import (
     Progress,
     RelaxedCurves,
     Solved,
-    SolveRequest,
 )
+from .lanes import Busy
+from .requests import SolveRequest
 
 if TYPE_CHECKING:
     from ..geometry.realization import Realization

@@ -22,8 +22,9 @@ from ..io.obj import parse_obj
 from ..io.scaffold_json import scaffold_from_dict
 from ..io.sources import load
 from ..io.text import parse_json
+from .answers import OrbitView, ScaffoldView
 from .designs import default_block
-from .wire import MAX_UPLOAD, OrbitView, ScaffoldView
+from .wire import MAX_UPLOAD
 
 MAX_FACES = 20_000
 """Most faces of a scaffold the studio opens (a supercell past it is refused before it is built)."""
