@@ -16,13 +16,14 @@ from __future__ import annotations
 
 import json
 from collections.abc import Mapping
-from typing import TYPE_CHECKING, Any, Protocol, TypeAlias, runtime_checkable
+from typing import TYPE_CHECKING, Protocol, TypeAlias, runtime_checkable
 
 from ..errors import LkspaceError, TooLargeError, UsageError
 
 if TYPE_CHECKING:
     from starlette.requests import Request
     from starlette.responses import JSONResponse
+    from starlette.types import ASGIApp, Receive, Scope, Send
 
 JsonObject: TypeAlias = dict[str, object]
 """A JSON object as it arrives (values still to be checked) or as an answer writes it."""
@@ -86,10 +87,10 @@ def error_json(kind: str, message: str) -> JsonObject:
 class LocalHostOnly:
     """ASGI middleware: answer only requests addressed to this machine by name (DNS rebinding defence)."""
 
-    def __init__(self, app: Any) -> None:
+    def __init__(self, app: ASGIApp) -> None:
         self.app = app
 
-    async def __call__(self, scope: Any, receive: Any, send: Any) -> None:
+    async def __call__(self, scope: Scope, receive: Receive, send: Send) -> None:
         """Refuse (403, JSON) an HTTP request whose Host header is not a local name."""
         from starlette.responses import JSONResponse
 
