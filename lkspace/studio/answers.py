@@ -34,7 +34,7 @@ class JobStarted:
 
 
 @dataclass(frozen=True)
-class Progress:
+class JobProgress:
     """What a worker's long step reports: its description, the work done (as text) and a note."""
 
     step: str
@@ -47,7 +47,7 @@ class Progress:
 
 
 @dataclass(frozen=True)
-class Identified:
+class IdentifyAnswer:
     """An identify job's answer: the knot or link type as the page shows it."""
 
     name: str | None
@@ -145,7 +145,7 @@ class Clearance:
         return out
 
 
-JobResult: TypeAlias = Identified | Solved | RelaxedCurves | Exported | Clearance
+JobResult: TypeAlias = IdentifyAnswer | Solved | RelaxedCurves | Exported | Clearance
 
 
 @dataclass(frozen=True)
@@ -156,7 +156,7 @@ class JobState:
     kind: JobKind
     state: JobStatus
     elapsed: float
-    progress: Progress | None = None
+    progress: JobProgress | None = None
     result: JobResult | None = None
     error: str | None = None
 

@@ -126,7 +126,7 @@ def endpoint(
 
 
 @dataclass(frozen=True, eq=False)
-class Design:
+class HeldDesign:
     """A request's design read on its scaffold: the scaffold held, labels, nulls and block translations."""
 
     held: Held
@@ -135,7 +135,7 @@ class Design:
     block: np.ndarray | None
 
     @classmethod
-    def of(cls, studio: Studio, request: DesignRequest) -> Design:
+    def of(cls, studio: Studio, request: DesignRequest) -> HeldDesign:
         """Check the request's design on its scaffold (lengths, ranges, block size)."""
         held = studio.registry.get(request.key)
         sc = held.scaffold
@@ -172,7 +172,7 @@ def orbits(studio: Studio, request: ScaffoldRequest) -> OrbitView:
 
 def redraw(studio: Studio, request: RedrawRequest) -> DesignView:
     """Trace and realize a design (no clearance measurement); ``relax: true`` for the relaxed curves."""
-    d = Design.of(studio, request.design)
+    d = HeldDesign.of(studio, request.design)
     relaxer = (lambda real: relax_in_worker(studio, real)) if request.relax else None
     if not request.relax:
         studio.jobs.stop("clearance")  # the last design's measurement: its answer is stale, its CPU is this one's
@@ -192,7 +192,7 @@ def relax_in_worker(studio: Studio, real: Realization) -> Realization:
 
 def measure(studio: Studio, request: DesignRequest) -> Clearance:
     """Return the embedding check of a design (from the realization the redraw kept)."""
-    d = Design.of(studio, request)
+    d = HeldDesign.of(studio, request)
     key = Cache.key(d.held.key, d.labels, d.nulls, d.block)
     real = studio.cache.get(key)
     if real is None:
@@ -210,7 +210,7 @@ def measure(studio: Studio, request: DesignRequest) -> Clearance:
 
 def identify(studio: Studio, request: DesignRequest) -> JobStarted:
     """Start identifying a design in a worker (cancelling the previous identification)."""
-    d = Design.of(studio, request)
+    d = HeldDesign.of(studio, request)
     if d.held.scaffold.periodic:
         return JobStarted(None, "periodic: an infinite structure, not a knot or link")
     return JobStarted(studio.jobs.start("identify", d.held.scaffold, d.labels, d.nulls).id)
@@ -274,7 +274,7 @@ def type_lookup(studio: Studio, request: LookupRequest) -> JsonObject:
 
 def knot_diagram(studio: Studio, request: DiagramRequest) -> DiagramView:
     """Return the 2D knot diagram of a design seen along ``view`` (:mod:`~lkspace.studio.diagrams`)."""
-    d = Design.of(studio, request.design)
+    d = HeldDesign.of(studio, request.design)
     return diagram(d.held.scaffold, d.held.key, d.labels, d.nulls, studio.cache, request.view)
 
 
@@ -290,7 +290,7 @@ MEDIA = {"json": "application/json", "png": "image/png", "glb": "model/gltf-bina
 
 def download(studio: Studio, request: ExportRequest) -> Response:
     """Return the design as a file (``format``: one of :data:`~lkspace.studio.designs.EXPORTS`), written by a worker."""
-    d = Design.of(studio, request.design)
+    d = HeldDesign.of(studio, request.design)
     content, name = studio.jobs.export(d.held.scaffold, d.labels, d.nulls, request.format)
     media = MEDIA.get(request.format, "application/octet-stream")
     return Response(content, media_type=media, headers={"Content-Disposition": f'attachment; filename="{name}"'})

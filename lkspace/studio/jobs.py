@@ -35,12 +35,12 @@ from ..workers import context, ignore_interrupts
 from .answers import (
     Clearance,
     Exported,
-    Identified,
+    IdentifyAnswer,
     JobKind,
+    JobProgress,
     JobResult,
     JobState,
     JobStatus,
-    Progress,
     RelaxedCurves,
     Solved,
 )
@@ -87,13 +87,13 @@ class QueueReporter:
 
     def show(self, step: Step) -> None:
         """Send the state of ``step``."""
-        self._channel.put(("progress", Progress(step.description, step.done, step.text)))
+        self._channel.put(("progress", JobProgress(step.description, step.done, step.text)))
 
     def close(self, step: Step) -> None:
         """Nothing to remove."""
 
 
-def identify_payload(scaffold: Scaffold, labels: np.ndarray, nulls: np.ndarray | None) -> Identified:
+def identify_payload(scaffold: Scaffold, labels: np.ndarray, nulls: np.ndarray | None) -> IdentifyAnswer:
     """Return the knot or link type of a design (:func:`lkspace.identify`) as the page shows it.
 
     The one place the studio reads an identification.
@@ -102,7 +102,7 @@ def identify_payload(scaffold: Scaffold, labels: np.ndarray, nulls: np.ndarray |
     from ..linktypes.common_names import common_name
 
     found = identify(scaffold, labels, nulls, time_limit=IDENTIFY_SECONDS)
-    return Identified(
+    return IdentifyAnswer(
         name=found.name,
         common_name=common_name(found.name, found.mirror) if found.name else None,
         status=found.status,
@@ -190,7 +190,7 @@ class Job:
     started: float = field(default_factory=time.monotonic)
     ended: float | None = None
     state: JobStatus = "running"
-    progress: Progress | None = None
+    progress: JobProgress | None = None
     result: JobResult | None = None
     error: str | None = None
 

@@ -35,7 +35,8 @@ OPS = ("==", "!=", "<", "<=", ">", ">=", "contains")
 """Catalog filter operators."""
 
 Op = Literal["==", "!=", "<", "<=", ">", ">=", "contains"]
-Objective = Literal["min-abs", "min-nonzero"]
+FormObjective = Literal["min-abs", "min-nonzero"]
+"""The objectives the solve form offers (``None``: any design); :func:`lkspace.solve` checks its own again."""
 
 View = tuple[tuple[float, float, float], tuple[float, float, float], tuple[float, float, float]]
 """The page's camera axes ``(right, up, back)``."""
@@ -233,7 +234,7 @@ class SolveRequest:
     label_set: str = "-2..2"
     no_zero: bool = False
     fixes: tuple[tuple[int, int], ...] = ()
-    objective: Objective | None = None
+    objective: FormObjective | None = None
     count: int = 5
     time_limit: float = 60.0
 
