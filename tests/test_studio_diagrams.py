@@ -14,7 +14,8 @@ httpx = pytest.importorskip("httpx")
 
 from lkspace.linktypes.common_names import common_name  # noqa: E402
 from lkspace.studio.app import Studio  # noqa: E402
-from lkspace.studio.diagrams import MAX_THUMBS, runs  # noqa: E402
+from lkspace.studio.diagrams import runs  # noqa: E402
+from lkspace.studio.requests import MAX_THUMBS  # noqa: E402
 from tests.studio_harness import serving  # noqa: E402
 
 SVG = "{http://www.w3.org/2000/svg}"

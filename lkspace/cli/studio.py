@@ -53,7 +53,7 @@ def studio_cmd(mesh: str | None, port: int, host: str, no_browser: bool) -> None
         studio.initial = studio.registry.hold(scaffold, f"catalog {mesh}").key
     elif mesh is not None and not reads_builtin(mesh) and is_design_file(mesh):
         studio.design = open_path(studio.registry, mesh)  # a design file: its scaffold, labels and view
-        studio.initial = studio.design["key"]
+        studio.initial = studio.design.key
     elif mesh is not None and not reads_builtin(mesh) and os.path.lexists(mesh):
         studio.initial = studio.registry.open_file(mesh).key  # the one file the studio reads
     else:

@@ -14,6 +14,12 @@ API through these modules:
                                         processes (cancellable, bounded)
 :mod:`~lkspace.studio.lanes`            the line exports wait in; the busy answer (429)
 :mod:`~lkspace.studio.browse`           catalog filter / sort / page over Arrow data
+:mod:`~lkspace.studio.requests`         every request body as a frozen record (one
+                                        validating ``from_json`` each)
+:mod:`~lkspace.studio.answers`          every answer and job state as a record (one
+                                        ``to_json`` each) or a ``TypedDict`` view
+:mod:`~lkspace.studio.wire`             bodies read up to a limit, content types, JSON
+                                        errors, the local-host guard
 ======================================  ==================================================
 
 Nothing here is imported by ``import lkspace`` or ``lkspace --help``.

@@ -8,39 +8,63 @@ path.
 
 from __future__ import annotations
 
-import math
 import os
 from collections.abc import Awaitable, Callable
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, TypeAlias, TypeVar
 
+import numpy as np
 from starlette.applications import Starlette
 from starlette.exceptions import HTTPException
 from starlette.requests import Request
 from starlette.responses import FileResponse, JSONResponse, Response
 from starlette.routing import Mount, Route
 from starlette.staticfiles import StaticFiles
+from starlette.types import ASGIApp
 
 from .. import __version__
 from ..errors import GeometryError, LkspaceError, UsageError
 from ..scaffolds import DEFAULT
+from .answers import (
+    Clearance,
+    DesignView,
+    DiagramView,
+    Info,
+    JobStarted,
+    JobState,
+    OpenedDesign,
+    OrbitView,
+    RelaxedCurves,
+    ScaffoldView,
+    Thumbs,
+)
 from .browse import Browser
-from .curves import parse_have
 from .design_files import filename, open_upload, save_design
-from .designs import EXPORTS, Cache, design, is_count, labels_from_page, parse_block, parse_nulls
+from .designs import EXPORTS, Cache, design, labels_from_page, parse_block, parse_nulls
 from .diagrams import Thumbnails, diagram
 from .jobs import Job, Jobs, relaxed
 from .lanes import Lane
-from .scaffolds import MAX_UPLOAD, Registry, builtin_choices, dumps
-from .wire import BadRequest, LocalHostOnly, fail, file_of, json_of
+from .requests import (
+    CatalogRequest,
+    DesignFileRequest,
+    DesignRequest,
+    DiagramRequest,
+    ExportRequest,
+    JobRequest,
+    LookupRequest,
+    RedrawRequest,
+    ScaffoldRequest,
+    SolveRequest,
+    ThumbnailsRequest,
+)
+from .scaffolds import Held, Registry, builtin_choices
+from .wire import MAX_UPLOAD, Answer, BadRequest, JsonObject, LocalHostOnly, dumps, error_json, fail, file_of, json_of
 
 if TYPE_CHECKING:
     from .. import Realization
 
 STATIC = os.path.join(os.path.dirname(__file__), "static")
 """The page and its vendored three.js build (shipped in the wheel)."""
-
-OBJECTIVES = (None, "min-abs", "min-nonzero")
 
 
 @dataclass(eq=False)
@@ -55,7 +79,7 @@ class Studio:
     browser: Browser | None = None
     local_only: bool = True
     thumbs: Thumbnails = field(default_factory=Thumbnails)
-    design: dict[str, Any] | None = None
+    design: OpenedDesign | None = None
     """A design file opened on the command line (what ``/api/open-design`` answers), shown first."""
 
 
@@ -65,27 +89,33 @@ class Superseded(UsageError):
     status = 409
 
 
-Handler = Callable[[Studio, dict[str, Any]], Any]
+R = TypeVar("R")
+Reply: TypeAlias = Answer | Response
 
 
 def endpoint(
-    handler: Handler, lane: Callable[[Studio], Lane] | None = None
+    handler: Callable[[Studio, R], Reply],
+    read: Callable[[JsonObject], R],
+    lane: Callable[[Studio], Lane] | None = None,
 ) -> Callable[[Request], Awaitable[Response]]:
-    """Wrap ``handler(studio, body)`` as a route answering JSON or an error.
+    """Wrap ``handler(studio, read(body))`` as a route answering JSON or an error.
 
-    The handler runs in the thread pool that answers edits, or queued in ``lane(studio)`` (exports).
+    ``read`` is the request record's ``from_json``; a GET's body is its query parameters, and
+    path parameters join the body.  The handler runs in the thread pool that answers edits,
+    or queued in ``lane(studio)`` (exports).
     """
     from starlette.concurrency import run_in_threadpool
 
     async def route(request: Request) -> Response:
         studio: Studio = request.app.state.studio
         try:
-            body = await json_of(request) if request.method == "POST" else dict(request.query_params)
+            body: JsonObject = await json_of(request) if request.method == "POST" else dict(request.query_params)
             body.update(request.path_params)
+            parsed = read(body)
             if lane is None:
-                result = await run_in_threadpool(handler, studio, body)
+                result = await run_in_threadpool(handler, studio, parsed)
             else:
-                result = await lane(studio).run(handler, studio, body)
+                result = await lane(studio).run(handler, studio, parsed)
         except Exception as exc:  # noqa: BLE001 - every failure is an answer; the server runs on
             return fail(exc)
         if isinstance(result, Response):
@@ -95,161 +125,135 @@ def endpoint(
     return route
 
 
-def design_args(studio: Studio, body: dict[str, Any]) -> tuple[Any, ...]:
-    """``(held, labels, nulls, block)`` of a request naming a design."""
-    held = studio.registry.get(body.get("key"))
-    sc = held.scaffold
-    return (
-        held,
-        labels_from_page(sc, body.get("labels")),
-        parse_nulls(sc, body.get("nulls")),
-        parse_block(sc, body.get("block")),
+@dataclass(frozen=True, eq=False)
+class HeldDesign:
+    """A request's design read on its scaffold: the scaffold held, labels, nulls and block translations."""
+
+    held: Held
+    labels: np.ndarray
+    nulls: np.ndarray | None
+    block: np.ndarray | None
+
+    @classmethod
+    def of(cls, studio: Studio, request: DesignRequest) -> HeldDesign:
+        """Check the request's design on its scaffold (lengths, ranges, block size)."""
+        held = studio.registry.get(request.key)
+        sc = held.scaffold
+        labels = labels_from_page(sc, request.labels)
+        return cls(held, labels, parse_nulls(sc, request.nulls), parse_block(sc, request.block))
+
+
+def no_body(data: JsonObject) -> None:
+    """Read a request that takes no fields (any are ignored)."""
+
+
+def info(studio: Studio, _: None) -> Info:
+    """Return what the page needs first: built-in names, the scaffold to open, exports, the catalog."""
+    return Info(
+        version=__version__,
+        builtins=tuple(builtin_choices()),
+        initial=studio.initial,
+        exports=EXPORTS,
+        catalog=studio.browser.info() if studio.browser else None,
+        max_upload=MAX_UPLOAD,
+        design=studio.design,
     )
 
 
-def info(studio: Studio, body: dict[str, Any]) -> dict[str, Any]:
-    """Return what the page needs first: built-in names, the scaffold to open, exports, the catalog."""
-    return {
-        "version": __version__,
-        "builtins": builtin_choices(),
-        "initial": studio.initial,
-        "exports": list(EXPORTS),
-        "catalog": studio.browser.info() if studio.browser else None,
-        "max_upload": MAX_UPLOAD,
-        "design": studio.design,
-    }
-
-
-def scaffold(studio: Studio, body: dict[str, Any]) -> dict[str, Any]:
+def scaffold(studio: Studio, request: ScaffoldRequest) -> ScaffoldView:
     """Return the scaffold ``key``: geometry, edges, orbits, default labels."""
-    return studio.registry.get(body.get("key")).view()
+    return studio.registry.get(request.key).view()
 
 
-def orbits(studio: Studio, body: dict[str, Any]) -> dict[str, Any]:
+def orbits(studio: Studio, request: ScaffoldRequest) -> OrbitView:
     """Return the edge orbits of scaffold ``key`` under its rotations."""
-    return studio.registry.get(body.get("key")).orbit_view()
+    return studio.registry.get(request.key).orbit_view()
 
 
-def redraw(studio: Studio, body: dict[str, Any]) -> dict[str, Any]:
+def redraw(studio: Studio, request: RedrawRequest) -> DesignView:
     """Trace and realize a design (no clearance measurement); ``relax: true`` for the relaxed curves."""
-    held, labels, nulls, block = design_args(studio, body)
-    relax = body.get("relax", False)
-    if not isinstance(relax, bool):
-        raise BadRequest("relax: true or false")
-    relaxer = (lambda real: relax_in_worker(studio, real)) if relax else None
-    if not relax:
+    d = HeldDesign.of(studio, request.design)
+    relaxer = (lambda real: relax_in_worker(studio, real)) if request.relax else None
+    if not request.relax:
         studio.jobs.stop("clearance")  # the last design's measurement: its answer is stale, its CPU is this one's
-    return design(held.scaffold, labels, nulls, block, studio.cache, held.key, relaxer, parse_have(body.get("have")))
+    cache, key = studio.cache, d.held.key
+    return design(d.held.scaffold, d.labels, d.nulls, d.block, cache, key, relaxer, request.have)
 
 
 def relax_in_worker(studio: Studio, real: Realization) -> Realization:
     """Return ``real`` relaxed by a worker (a newer relaxation cancels this one: :class:`Superseded`)."""
     state = studio.jobs.wait(studio.jobs.start("relax", real))
-    if state["state"] == "cancelled":
+    if state.state == "cancelled":
         raise Superseded("relax stopped: a newer design asked to be relaxed")
-    if state["state"] == "error":
-        raise GeometryError(state["error"], usage=True)
-    return relaxed(real, state["result"])
+    if not isinstance(state.result, RelaxedCurves):
+        raise GeometryError(state.error or "relax stopped", usage=True)
+    return relaxed(real, state.result)
 
 
-def measure(studio: Studio, body: dict[str, Any]) -> dict[str, Any]:
+def measure(studio: Studio, request: DesignRequest) -> Clearance:
     """Return the embedding check of a design (from the realization the redraw kept)."""
-    held, labels, nulls, block = design_args(studio, body)
-    real = studio.cache.get(Cache.key(held.key, labels, nulls, block))
+    d = HeldDesign.of(studio, request)
+    key = Cache.key(d.held.key, d.labels, d.nulls, d.block)
+    real = studio.cache.get(key)
     if real is None:
-        design(held.scaffold, labels, nulls, block, studio.cache, held.key)
-        real = studio.cache.get(Cache.key(held.key, labels, nulls, block))
+        design(d.held.scaffold, d.labels, d.nulls, d.block, studio.cache, d.held.key)
+        real = studio.cache.get(key)
         if real is None:
             raise BadRequest("this design has no geometry to measure")
     state = studio.jobs.wait(studio.jobs.start("clearance", real))  # a worker: an edit meanwhile is never held up
-    if state["state"] == "cancelled":
+    if state.state == "cancelled":
         raise Superseded("clearance stopped: a newer design was asked for")
-    if state["state"] == "error":
-        raise GeometryError(state["error"])
-    return state["result"]
+    if not isinstance(state.result, Clearance):
+        raise GeometryError(state.error or "clearance stopped")
+    return state.result
 
 
-def identify(studio: Studio, body: dict[str, Any]) -> dict[str, Any]:
+def identify(studio: Studio, request: DesignRequest) -> JobStarted:
     """Start identifying a design in a worker (cancelling the previous identification)."""
-    held, labels, nulls, _ = design_args(studio, body)
-    if held.scaffold.periodic:
-        return {"job": None, "message": "periodic: an infinite structure, not a knot or link"}
-    return {"job": studio.jobs.start("identify", held.scaffold, labels, nulls).id}
+    d = HeldDesign.of(studio, request)
+    if d.held.scaffold.periodic:
+        return JobStarted(None, "periodic: an infinite structure, not a knot or link")
+    return JobStarted(studio.jobs.start("identify", d.held.scaffold, d.labels, d.nulls).id)
 
 
-def solve(studio: Studio, body: dict[str, Any]) -> dict[str, Any]:
+def solve(studio: Studio, request: SolveRequest) -> JobStarted:
     """Start a solve in a worker: ``components``, ``label_set``, ``no_zero``, ``fixes``, ``objective``, ``count``, ``time_limit``."""
-    held = studio.registry.get(body.get("key"))
-    components, count, limit = body.get("components"), body.get("count", 5), body.get("time_limit", 60)
-    if (
-        not isinstance(components, int)
-        or isinstance(components, bool)
-        or not 1 <= components <= held.scaffold.n_corners
-    ):
-        raise BadRequest(f"components: an integer in 1..{held.scaffold.n_corners}")
-    if not isinstance(count, int) or isinstance(count, bool) or not 1 <= count <= 50:
-        raise BadRequest("count: an integer in 1..50")
-    if not isinstance(limit, int | float) or isinstance(limit, bool) or not (math.isfinite(limit) and 0 < limit <= 600):
-        raise BadRequest("time_limit: seconds in (0, 600]")
-    label_set = body.get("label_set", "-2..2")
-    if not isinstance(label_set, str) or len(label_set) > 200:
-        raise BadRequest("label_set: text like -2..2 or -1,1")
-    if body.get("objective") not in OBJECTIVES:
-        raise BadRequest("objective: none, min-abs or min-nonzero")
-    fixes_in = body.get("fixes") or {}
-    if not isinstance(fixes_in, dict) or len(fixes_in) > held.scaffold.n_edges:
+    sc = studio.registry.get(request.key).scaffold
+    if not 1 <= request.components <= sc.n_corners:
+        raise BadRequest(f"components: an integer in 1..{sc.n_corners}")
+    if len(request.fixes) > sc.n_edges:
         raise BadRequest("fixes: an object edge -> label")
-    fixes = {}
-    for edge, value in fixes_in.items():
-        if not is_count(edge, 9) or not 0 <= int(edge) < held.scaffold.n_edges:
-            raise BadRequest(f"fixes: edge {str(edge)[:20]!r} out of range 0..{held.scaffold.n_edges - 1}")
-        if not isinstance(value, int) or isinstance(value, bool) or abs(value) > 10**6:
-            raise BadRequest(f"fixes: label of edge {edge} must be an integer within ±10**6")
-        fixes[int(edge)] = value
-    from ..model.specs import parse_label_set
-
-    parse_label_set(label_set)  # refused here, not in the worker
-    options = {
-        "label_set": label_set,
-        "no_zero": bool(body.get("no_zero")),
-        "fixes": fixes,
-        "count": count,
-        "objective": body.get("objective"),
-        "time_limit": float(limit),
-        "distinct_up_to": "none",
-        "workers": 2,
-    }
-    return {"job": studio.jobs.start("solve", held.scaffold, {"components": components, **options}).id}
+    for edge, _ in request.fixes:
+        if not 0 <= edge < sc.n_edges:
+            raise BadRequest(f"fixes: edge {str(edge)[:20]!r} out of range 0..{sc.n_edges - 1}")
+    return JobStarted(studio.jobs.start("solve", sc, request).id)
 
 
-def job_of(studio: Studio, body: dict[str, Any]) -> Job:
+def job_of(studio: Studio, request: JobRequest) -> Job:
     """Return the job ``id`` names (a 400 error if none)."""
-    found = studio.jobs.get(int(body["id"]) if is_count(body.get("id")) else None)
+    found = studio.jobs.get(request.id)
     if found is None:
-        raise BadRequest(f"no job {str(body.get('id'))[:20]!r}")
+        raise BadRequest(f"no job {str(request.id)[:20]!r}")
     return found
 
 
-def job(studio: Studio, body: dict[str, Any]) -> dict[str, Any]:
+def job(studio: Studio, request: JobRequest) -> JobState:
     """Return the state of job ``id`` (progress, result or error)."""
-    return job_of(studio, body).poll()
+    return job_of(studio, request).poll()
 
 
-def cancel(studio: Studio, body: dict[str, Any]) -> dict[str, Any]:
+def cancel(studio: Studio, request: JobRequest) -> JobState:
     """Cancel job ``id`` (terminating its worker)."""
-    found = job_of(studio, body)
+    found = job_of(studio, request)
     found.cancel()
     return found.poll()
 
 
-def catalog_query(studio: Studio, body: dict[str, Any]) -> dict[str, Any]:
+def catalog_query(studio: Studio, request: CatalogRequest) -> Answer:
     """One page of the catalog: ``filters``, ``sort``, ``descending``, ``offset``, ``limit``."""
     if studio.browser is None:
         raise BadRequest("no catalog: start the studio with a catalog (lkspace studio CATALOG.parquet)")
-    b = body
-    return studio.browser.query(
-        b.get("filters"), b.get("sort"), b.get("descending", False), b.get("offset", 0), b.get("limit", 50)
-    )
+    return studio.browser.query(request)
 
 
 class NoSuchDesign(LkspaceError):
@@ -258,41 +262,37 @@ class NoSuchDesign(LkspaceError):
     status = 404
 
 
-def type_lookup(studio: Studio, body: dict[str, Any]) -> dict[str, Any]:
+def type_lookup(studio: Studio, request: LookupRequest) -> JsonObject:
     """Return the simplest designs of the type ``name`` in the shipped atlas (``limit``, ``scaffold``): ``lookup --json``."""
     from ..linktypes.lookup import TypeNotFound, lookup
 
-    name, limit, on = body.get("name"), str(body.get("limit", 10)), body.get("scaffold")
-    if not isinstance(name, str) or not name.strip() or len(name) > 200:
-        raise BadRequest("name: a knot or link type, e.g. 5_2, m3_1 or Borromean rings")
-    if not is_count(limit, 4) or not 1 <= int(limit) <= 1000:
-        raise BadRequest("limit: an integer in 1..1000")
-    if on is not None and (not isinstance(on, str) or len(on) > 200):
-        raise BadRequest("scaffold: a built-in scaffold name")
     try:
-        return lookup(name, limit=int(limit), scaffold=on).to_json()
+        return dict(lookup(request.name, limit=request.limit, scaffold=request.scaffold).to_json())
     except TypeNotFound as exc:
         raise NoSuchDesign(str(exc)) from None
 
 
-def knot_diagram(studio: Studio, body: dict[str, Any]) -> dict[str, Any]:
+def knot_diagram(studio: Studio, request: DiagramRequest) -> DiagramView:
     """Return the 2D knot diagram of a design seen along ``view`` (:mod:`~lkspace.studio.diagrams`)."""
-    held, labels, nulls, _ = design_args(studio, body)
-    return diagram(held.scaffold, held.key, labels, nulls, studio.cache, body.get("view"))
+    d = HeldDesign.of(studio, request.design)
+    return diagram(d.held.scaffold, d.held.key, d.labels, d.nulls, studio.cache, request.view)
 
 
-def thumbnails(studio: Studio, body: dict[str, Any]) -> dict[str, Any]:
+def thumbnails(studio: Studio, request: ThumbnailsRequest) -> Thumbs:
     """Return thumbnails of ``designs`` on scaffold ``key`` and the common names of their ``names``."""
-    held = studio.registry.get(body.get("key"))
-    return studio.thumbs.answer(held.scaffold, held.key, body.get("designs"), body.get("names"))
+    held = studio.registry.get(request.key)
+    return studio.thumbs.answer(held.scaffold, held.key, request)
 
 
-def download(studio: Studio, body: dict[str, Any]) -> Response:
+MEDIA = {"json": "application/json", "png": "image/png", "glb": "model/gltf-binary"}
+"""Content types of the downloads that have one (others: ``application/octet-stream``)."""
+
+
+def download(studio: Studio, request: ExportRequest) -> Response:
     """Return the design as a file (``format``: one of :data:`~lkspace.studio.designs.EXPORTS`), written by a worker."""
-    held, labels, nulls, _ = design_args(studio, body)
-    content, name = studio.jobs.export(held.scaffold, labels, nulls, body.get("format"))
-    kinds = {"json": "application/json", "png": "image/png", "glb": "model/gltf-binary"}
-    media = kinds.get(str(body.get("format")), "application/octet-stream")
+    d = HeldDesign.of(studio, request.design)
+    content, name = studio.jobs.export(d.held.scaffold, d.labels, d.nulls, request.format)
+    media = MEDIA.get(request.format, "application/octet-stream")
     return Response(content, media_type=media, headers={"Content-Disposition": f'attachment; filename="{name}"'})
 
 
@@ -325,15 +325,8 @@ async def open_design(request: Request) -> Response:
 async def http_error(request: Request, exc: Exception) -> Response:
     """Unknown paths and methods: a JSON error too."""
     status = getattr(exc, "status_code", 500)
-    return JSONResponse(
-        {
-            "error": {
-                "type": "HTTPError",
-                "message": f"{request.method} {request.url.path[:80]}: {getattr(exc, 'detail', '')}",
-            }
-        },
-        status_code=status,
-    )
+    message = f"{request.method} {request.url.path[:80]}: {getattr(exc, 'detail', '')}"
+    return JSONResponse(error_json("HTTPError", message), status_code=status)
 
 
 async def page(request: Request) -> Response:
@@ -341,32 +334,34 @@ async def page(request: Request) -> Response:
     return FileResponse(os.path.join(STATIC, "index.html"), headers={"Cache-Control": "no-store"})
 
 
-def create_app(studio: Studio | None = None) -> Any:
+def create_app(studio: Studio | None = None) -> ASGIApp:
     """Return the ASGI app serving ``studio`` (a fresh one by default); local names only unless ``studio.local_only`` is off."""
-    posts = {
-        "scaffold": scaffold,
-        "design": redraw,
-        "orbits": orbits,
-        "clearance": measure,
-        "identify": identify,
-        "solve": solve,
-        "catalog": catalog_query,
-        "diagram": knot_diagram,
-        "thumbnails": thumbnails,
-        "design-file": save_design,
-        "filename": filename,
-    }
+    posts = [
+        Route("/api/scaffold", endpoint(scaffold, ScaffoldRequest.from_json), methods=["POST"]),
+        Route("/api/design", endpoint(redraw, RedrawRequest.from_json), methods=["POST"]),
+        Route("/api/orbits", endpoint(orbits, ScaffoldRequest.from_json), methods=["POST"]),
+        Route("/api/clearance", endpoint(measure, DesignRequest.from_json), methods=["POST"]),
+        Route("/api/identify", endpoint(identify, DesignRequest.from_json), methods=["POST"]),
+        Route("/api/solve", endpoint(solve, SolveRequest.from_json), methods=["POST"]),
+        Route("/api/catalog", endpoint(catalog_query, CatalogRequest.from_json), methods=["POST"]),
+        Route("/api/diagram", endpoint(knot_diagram, DiagramRequest.from_json), methods=["POST"]),
+        Route("/api/thumbnails", endpoint(thumbnails, ThumbnailsRequest.from_json), methods=["POST"]),
+        Route("/api/design-file", endpoint(save_design, DesignFileRequest.from_json), methods=["POST"]),
+        Route("/api/filename", endpoint(filename, DesignRequest.from_json), methods=["POST"]),
+    ]
     routes = [
         Route("/", page),
         Route("/favicon.ico", lambda request: Response(status_code=204)),
-        Route("/api/info", endpoint(info)),
-        Route("/api/lookup", endpoint(type_lookup)),
+        Route("/api/info", endpoint(info, no_body)),
+        Route("/api/lookup", endpoint(type_lookup, LookupRequest.from_json)),
         Route("/api/upload", upload, methods=["POST"]),
         Route("/api/open-design", open_design, methods=["POST"]),
-        Route("/api/job/{id}", endpoint(job)),
-        Route("/api/job/{id}/cancel", endpoint(cancel), methods=["POST"]),
-        Route("/api/export", endpoint(download, lambda studio: studio.exports), methods=["POST"]),
-        *[Route(f"/api/{name}", endpoint(fn), methods=["POST"]) for name, fn in posts.items()],
+        Route("/api/job/{id}", endpoint(job, JobRequest.from_json)),
+        Route("/api/job/{id}/cancel", endpoint(cancel, JobRequest.from_json), methods=["POST"]),
+        Route(
+            "/api/export", endpoint(download, ExportRequest.from_json, lambda studio: studio.exports), methods=["POST"]
+        ),
+        *posts,
         Mount("/static", StaticFiles(directory=STATIC), name="static"),
     ]
     app = Starlette(routes=routes, exception_handlers={HTTPException: http_error})

@@ -18,14 +18,9 @@ import numpy as np
 
 from ..catalog.verify import open_catalog
 from ..errors import CatalogError, UsageError
-
-OPS = ("==", "!=", "<", "<=", ">", ">=", "contains")
-"""Filter operators."""
-
-MAX_LIMIT = 200
-"""Most rows in one page."""
-
-MAX_FILTERS = 16
+from .answers import CatalogInfo, CatalogPage
+from .requests import CatalogRequest, Filter
+from .wire import JsonObject
 
 
 class Browser:
@@ -73,9 +68,9 @@ class Browser:
         """Wait until the catalog is read; return whether it is."""
         return self._ready.wait(timeout)
 
-    def info(self) -> dict[str, Any]:
+    def info(self) -> CatalogInfo:
         """Scaffold name, row count and columns (``ready`` false while reading)."""
-        out: dict[str, Any] = {
+        out: CatalogInfo = {
             "path": self.path,
             "scaffold": self.footer.settings.scaffold.name,
             "label_set": list(self.footer.settings.label_set),
@@ -89,22 +84,13 @@ class Browser:
             out["load_seconds"] = round(self.load_seconds, 3)
         return out
 
-    def _expression(self, filters: object) -> Any:
+    def _expression(self, filters: tuple[Filter, ...]) -> Any:
         import pyarrow.compute as pc
 
-        if filters is None:
-            return None
-        if not isinstance(filters, list) or len(filters) > MAX_FILTERS:
-            raise UsageError(f"filters: expected a list of at most {MAX_FILTERS} [column, op, value] triples")
         expr = None
-        for item in filters:
-            if not (isinstance(item, list) and len(item) == 3):
-                raise UsageError("filters: each filter is [column, op, value]")
-            column, op, value = item
+        for column, op, value in filters:
             if column not in self.columns:
-                raise UsageError(f"filter column {str(column)[:40]!r}: not a column ({', '.join(self.columns)})")
-            if op not in OPS:
-                raise UsageError(f"filter op {str(op)[:10]!r}: choose one of {' '.join(OPS)}")
+                raise UsageError(f"filter column {column[:40]!r}: not a column ({', '.join(self.columns)})")
             kind = self._table.schema.field(column).type
             value = self._value(column, kind, op, value)
             field = pc.field(column)
@@ -142,83 +128,76 @@ class Browser:
             raise UsageError(f"filter on {column}: {value} is out of range")
         return value
 
-    def query(
-        self,
-        filters: object = None,
-        sort: object = None,
-        descending: object = False,
-        offset: object = 0,
-        limit: object = 50,
-    ) -> dict[str, Any]:
-        """One page of rows: ``{"total", "offset", "columns", "rows": [[...]], "labels": [[...]], "seconds"}``."""
-        import pyarrow as pa
-        import pyarrow.compute as pc
-
+    def query(self, request: CatalogRequest | None = None) -> CatalogPage | JsonObject:
+        """One page of rows: ``{"ready", "total", "offset", "columns", "rows": [[...]], "labels": [[...]], "seconds"}``."""
         if not self._ready.is_set():
-            return {"ready": False, **self.info()}
+            waiting: JsonObject = {"ready": False, **self.info()}
+            return waiting
         if self._error is not None:
             raise CatalogError(self._error)
-        if not isinstance(offset, int) or isinstance(offset, bool) or offset < 0:
-            raise UsageError("offset: expected an integer >= 0")
-        if not isinstance(limit, int) or isinstance(limit, bool) or not 1 <= limit <= MAX_LIMIT:
-            raise UsageError(f"limit: expected an integer in 1..{MAX_LIMIT}")
-        if sort is not None and sort not in self.columns:
-            raise UsageError(f"sort column {str(sort)[:40]!r}: not a column")
+        req = request or CatalogRequest()
+        if req.sort is not None and req.sort not in self.columns:
+            raise UsageError(f"sort column {req.sort[:40]!r}: not a column")
         t0 = time.perf_counter()
-        fkey = repr(filters)
+        fkey = repr(req.filters)
         with self._lock:
             if self._filtered is not None and self._filtered[0] == fkey:
                 rows_in = self._filtered[1]
             else:
-                rows_in = self._matching(filters)
+                rows_in = self._matching(req.filters)
                 self._filtered = (fkey, rows_in)
         total = self._table.num_rows if rows_in is None else len(rows_in)
-        end = min(total, offset + limit)
-        if offset >= total:
-            chosen = pa.array([], pa.int64())
-        elif sort is None or sort == "row" and not descending:
-            chosen = pa.array(np.arange(offset, end)) if rows_in is None else rows_in[offset:end]
-        elif sort == "row":  # row numbers backwards: no sort to do
-            chosen = (
-                pa.array(np.arange(total - 1 - offset, total - 1 - end, -1))
-                if rows_in is None
-                else rows_in[::-1][offset:end]
-            )
+        end = min(total, req.offset + req.limit)
+        in_order = req.sort is None or req.sort == "row" and not req.descending
+        if rows_in is None and in_order:
+            page = self._table.slice(req.offset, max(0, end - req.offset))  # no filter, table order: no take at all
         else:
-            order = "descending" if descending else "ascending"
-            skey = (fkey, sort, order)
-            with self._lock:
-                top = self._sorted[1] if self._sorted is not None and self._sorted[0] == skey else None
-            if top is None or len(top) < end:
-                keys = [(sort, order), ("row", "ascending")]
-                k = min(total, max(2 * end, 1000))  # the next pages come from the same selection
-                both = self._table.select([sort, "row"])
-                both = both if rows_in is None else both.take(rows_in)  # two columns, not the whole rows
-                best = both.take(pc.select_k_unstable(both, k=k, sort_keys=keys))
-                top = best.take(pc.sort_indices(best, sort_keys=keys)).column("row").combine_chunks()
-                with self._lock:
-                    self._sorted = (skey, top)
-            chosen = top[offset:end]
-        if rows_in is None and (sort is None or sort == "row" and not descending):
-            page = self._table.slice(offset, max(0, end - offset))  # no filter, table order: no take at all
-        else:
-            page = self._table.take(chosen)
+            page = self._table.take(self._chosen(req, fkey, rows_in, total, end))
         rows = [[_plain(v) for v in r.values()] for r in page.select(self.columns).to_pylist()]
         return {
             "ready": True,
             "total": total,
-            "offset": offset,
+            "offset": req.offset,
             "columns": self.columns,
             "rows": rows,
             "labels": self._labels(page),
             "seconds": round(time.perf_counter() - t0, 4),
         }
 
-    def _matching(self, filters: object) -> Any:
+    def _chosen(self, req: CatalogRequest, fkey: str, rows_in: Any, total: int, end: int) -> Any:
+        """Row numbers (Arrow) of the page ``req.offset:end`` of the ``total`` rows ``rows_in`` (``None``: all)."""
+        import pyarrow as pa
+        import pyarrow.compute as pc
+
+        offset, sort, descending = req.offset, req.sort, req.descending
+        if offset >= total:
+            return pa.array([], pa.int64())
+        if sort is None or sort == "row" and not descending:
+            return pa.array(np.arange(offset, end)) if rows_in is None else rows_in[offset:end]
+        if sort == "row":  # row numbers backwards: no sort to do
+            if rows_in is None:
+                return pa.array(np.arange(total - 1 - offset, total - 1 - end, -1))
+            return rows_in[::-1][offset:end]
+        order = "descending" if descending else "ascending"
+        skey = (fkey, sort, order)
+        with self._lock:
+            top = self._sorted[1] if self._sorted is not None and self._sorted[0] == skey else None
+        if top is None or len(top) < end:
+            keys = [(sort, order), ("row", "ascending")]
+            k = min(total, max(2 * end, 1000))  # the next pages come from the same selection
+            both = self._table.select([sort, "row"])
+            both = both if rows_in is None else both.take(rows_in)  # two columns, not the whole rows
+            best = both.take(pc.select_k_unstable(both, k=k, sort_keys=keys))
+            top = best.take(pc.sort_indices(best, sort_keys=keys)).column("row").combine_chunks()
+            with self._lock:
+                self._sorted = (skey, top)
+        return top[offset:end]
+
+    def _matching(self, filters: tuple[Filter, ...]) -> Any:
         """Row numbers ``(n,) int64`` (Arrow) matching ``filters``; ``None`` for every row."""
         import pyarrow.dataset as ds
 
-        expr = self._expression(filters)
+        expr = self._expression(filters) if filters else None
         if expr is None:
             return None
         return ds.dataset(self._table).to_table(filter=expr, columns=["row"]).column("row").combine_chunks()

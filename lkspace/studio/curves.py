@@ -12,26 +12,11 @@ from __future__ import annotations
 
 import base64
 import hashlib
-from typing import Any
 
 import numpy as np
 
 from .. import Realization
-from ..errors import UsageError
-
-MAX_HAVE = 50_000
-"""Most curve keys a request may say the page holds."""
-
-
-def parse_have(value: object) -> frozenset[str]:
-    """Return the curve keys the page holds, from the request's ``have`` list (none when absent)."""
-    if value is None:
-        return frozenset()
-    if not isinstance(value, list) or not all(isinstance(v, str) and len(v) <= 32 for v in value):
-        raise UsageError("have: expected a list of curve keys (strings from an earlier answer)")
-    if len(value) > MAX_HAVE:
-        raise UsageError(f"have: {len(value):,} curve keys > {MAX_HAVE:,}; send the keys of the curves drawn")
-    return frozenset(value)
+from .answers import CurvesView
 
 
 def curve_key(points: np.ndarray, closed: bool) -> str:
@@ -41,7 +26,7 @@ def curve_key(points: np.ndarray, closed: bool) -> str:
     return h.hexdigest()
 
 
-def curves_view(real: Realization, have: frozenset[str] = frozenset()) -> dict[str, Any]:
+def curves_view(real: Realization, have: frozenset[str] = frozenset()) -> CurvesView:
     """Return the page's view of ``real``'s curves, with the points of the curves whose key is not in ``have``."""
     keys = [curve_key(c, bool(cl)) for c, cl in zip(real.curves, real.closed, strict=True)]
     sent = [c for c, key in zip(real.curves, keys, strict=True) if key not in have]

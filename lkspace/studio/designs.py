@@ -19,8 +19,8 @@ import tempfile
 import threading
 import time
 from collections import ChainMap, OrderedDict
-from collections.abc import Callable
-from typing import Any
+from collections.abc import Callable, Sequence
+from dataclasses import replace
 
 import numpy as np
 
@@ -31,6 +31,7 @@ from ..geometry.clearance import check_embedding
 from ..geometry.realization import StrandCurve, realize_reusing
 from ..io.scaffold_json import format_scaffold_json
 from ..model.validation import validate_labels, validate_nulls
+from .answers import Clearance, DesignView, StrandView, page_labels
 from .curves import curves_view
 from .filenames import design_stem
 
@@ -53,70 +54,50 @@ MAX_EXPORT_POINTS = 400_000
 """Most curve points of a downloaded file (tubes are 12 vertices a point)."""
 
 
-def is_count(value: object, digits: int = 18) -> bool:
-    """Return whether ``value`` is a non-negative integer written in at most ``digits`` ASCII digits."""
-    return (
-        isinstance(value, str | int)
-        and not isinstance(value, bool)
-        and bool(re.fullmatch(rf"[0-9]{{1,{digits}}}", str(value)))
-    )
-
-
-def labels_from_page(scaffold: Scaffold, value: object) -> np.ndarray:
-    """``(n_edges,) int64`` from the page's list (integers, or decimal strings for exact int64)."""
-    if value is None:
+def labels_from_page(scaffold: Scaffold, labels: Sequence[int] | None) -> np.ndarray:
+    """``(n_edges,) int64`` from the page's labels (``None``: the scaffold's own, else zeros)."""
+    if labels is None:
         if scaffold.labels is None:
             return np.zeros(scaffold.n_edges, np.int64)
         return scaffold.labels
-    if not isinstance(value, list):
-        raise LabelError("labels: expected a list with one integer per edge")
-    if len(value) != scaffold.n_edges:
-        raise LabelError(f"{scaffold.name}: expected {scaffold.n_edges} twist labels (one per edge), got {len(value)}")
-    items: list[int] = []
-    for i, v in enumerate(value):
-        if isinstance(v, str) and re.fullmatch(r"[+-]?\d{1,25}", v.strip()):
-            v = int(v)
-        if isinstance(v, bool) or not isinstance(v, int):
-            raise LabelError(f"label of edge {scaffold.edge_name(i)}: {str(v)[:30]!r} is not an integer")
-        items.append(v)
+    if len(labels) != scaffold.n_edges:
+        raise LabelError(f"{scaffold.name}: expected {scaffold.n_edges} twist labels (one per edge), got {len(labels)}")
     try:
-        array = np.array(items, dtype=np.int64)
+        array = np.array(labels, dtype=np.int64)
     except OverflowError:  # past int64: validate_labels names the edge and the range
-        array = np.array(items, dtype=object)
+        array = np.array(labels, dtype=object)
     return validate_labels(scaffold, array)
 
 
-def parse_nulls(scaffold: Scaffold, value: object) -> np.ndarray | None:
-    """Null edge-sides ``(n_corners,) bool`` from the page's list of side indices (``None``: the scaffold's own)."""
-    if value is None:
+def parse_nulls(scaffold: Scaffold, sides: Sequence[int] | None) -> np.ndarray | None:
+    """Null edge-sides ``(n_corners,) bool`` from the page's side indices (``None``: the scaffold's own)."""
+    if sides is None:
         return scaffold.nulls
-    if not isinstance(value, list) or not all(isinstance(v, int) and not isinstance(v, bool) for v in value):
-        raise LabelError("nulls: expected a list of side indices (integers)")
-    if len(value) > scaffold.n_corners:
-        raise LabelError(f"nulls: {len(value)} sides, but {scaffold.name} has {scaffold.n_corners}")
-    if any(not 0 <= v < scaffold.n_corners for v in value):  # before numpy: 10**30 fits no int64
+    if len(sides) > scaffold.n_corners:
+        raise LabelError(f"nulls: {len(sides)} sides, but {scaffold.name} has {scaffold.n_corners}")
+    if any(not 0 <= v < scaffold.n_corners for v in sides):  # before numpy: 10**30 fits no int64
         raise LabelError(f"nulls: side indices in 0..{scaffold.n_corners - 1}")
-    return validate_nulls(scaffold, np.array(value, dtype=np.int64))
+    return validate_nulls(scaffold, np.array(sides, dtype=np.int64))
 
 
-def parse_block(scaffold: Scaffold, value: object) -> np.ndarray | None:
+def parse_block(scaffold: Scaffold, sizes: Sequence[int] | None) -> np.ndarray | None:
     """Lattice translations ``(n, dim)`` of the page's block sizes ``[A, B, C]`` (``None``: one cell)."""
-    if value is None or not scaffold.periodic:
+    if sizes is None or not scaffold.periodic:
         return None
-    if not isinstance(value, list) or len(value) != scaffold.dim:
+    if len(sizes) != scaffold.dim:
         raise UsageError(f"block: give {scaffold.dim} sizes for a {scaffold.dim}D lattice")
-    if not all(isinstance(v, int) and not isinstance(v, bool) and 1 <= v <= MAX_BLOCK for v in value):
+    if not all(1 <= v <= MAX_BLOCK for v in sizes):
         raise UsageError(f"block: sizes must be integers in 1..{MAX_BLOCK}")
-    copies = int(np.prod(value))
+    copies = int(np.prod(sizes))
     if copies > MAX_BLOCK:
         raise TooLargeError(f"block: {copies} copies > {MAX_BLOCK}")
     if copies > 1 and copies * scaffold.n_faces > MAX_BLOCK_FACES:
-        size, fits = ("x".join(map(str, sizes)) for sizes in (value, default_block(scaffold)))
+        size, fits = ("x".join(map(str, s)) for s in (sizes, default_block(scaffold)))
         raise TooLargeError(
             f"block {size}: {copies} copies of {scaffold.n_faces:,} faces make {copies * scaffold.n_faces:,} faces"
             f" > {MAX_BLOCK_FACES:,} the studio draws at once; choose a smaller block, such as {fits}"
         )
-    grids = np.meshgrid(*[np.arange(n) for n in value], indexing="ij")
+    grids = np.meshgrid(*[np.arange(n) for n in sizes], indexing="ij")
     return np.column_stack([g.reshape(-1) for g in grids])
 
 
@@ -200,6 +181,39 @@ class Cache:
         return ChainMap(*kept)
 
 
+def trace_view(tr: Trace) -> DesignView:
+    """Return the trace's summary as the page shows it: components, strands (kind, length, period, edges, port)."""
+    scaffold = tr.scaffold
+    kinds, lengths = tr.strand_kinds, tr.strand_lengths.tolist()
+    periods = tr.periods.tolist() if scaffold.periodic else [None] * tr.components
+    ports = first_ports(tr.steps, tr.strand_starts)
+    strands: list[StrandView] = [
+        {
+            "kind": kind,
+            "length": length,
+            "period": period if kind != "open" else None,
+            "closed": kind == "loop",
+            "edges": edges,
+            "port": port,
+        }
+        for kind, length, period, edges, port in zip(kinds, lengths, periods, strand_edges(tr), ports, strict=True)
+    ]
+    out: DesignView = {
+        "components": tr.components,
+        "holds_together": tr.holds_together,
+        "pieces": tr.n_pieces,
+        "strands": strands,
+        "labels": page_labels(tr.labels),
+        "nulls": [] if tr.nulls is None else np.flatnonzero(tr.nulls).tolist(),
+        "periodic": scaffold.periodic,
+    }
+    if scaffold.periodic:
+        out["closed_loops"] = kinds.count("loop")
+        out["infinite_threads"] = kinds.count("thread")
+        out["lift_index"] = tr.holding.lift_index
+    return out
+
+
 def design(
     scaffold: Scaffold,
     labels: np.ndarray,
@@ -209,7 +223,7 @@ def design(
     key: str,
     relaxer: Callable[[Realization], Realization] | None = None,
     have: frozenset[str] = frozenset(),
-) -> dict[str, Any]:
+) -> DesignView:
     """Return the page's view of a design: the trace's summary and the strand curves (or the error, on its edge).
 
     With ``relaxer``, the curves are ``relaxer(realization)`` (kept in the cache); its
@@ -219,33 +233,7 @@ def design(
     """
     t0 = time.perf_counter()
     tr = trace(scaffold, labels, nulls)
-    kinds, lengths = tr.strand_kinds, tr.strand_lengths.tolist()
-    periods = tr.periods.tolist() if scaffold.periodic else [None] * tr.components
-    out: dict[str, Any] = {
-        "components": tr.components,
-        "holds_together": tr.holds_together,
-        "pieces": tr.n_pieces,
-        "strands": [
-            {
-                "kind": kind,
-                "length": length,
-                "period": period if kind != "open" else None,
-                "closed": kind == "loop",
-                "edges": edges,
-                "port": port,
-            }
-            for kind, length, period, edges, port in zip(
-                kinds, lengths, periods, strand_edges(tr), first_ports(tr.steps, tr.strand_starts), strict=True
-            )
-        ],
-        "labels": [str(int(t)) if abs(int(t)) > 2**53 else int(t) for t in tr.labels],
-        "nulls": [] if tr.nulls is None else np.flatnonzero(tr.nulls).tolist(),
-        "periodic": scaffold.periodic,
-    }
-    if scaffold.periodic:
-        out["closed_loops"] = kinds.count("loop")
-        out["infinite_threads"] = kinds.count("thread")
-        out["lift_index"] = tr.holding.lift_index
+    out = trace_view(tr)
     t1 = time.perf_counter()
     relaxed_key = Cache.key(key, tr.labels, nulls, block, True)
     real = cache.get(relaxed_key) if relaxer is not None else None
@@ -279,31 +267,28 @@ def first_ports(steps: np.ndarray, starts: np.ndarray) -> list[int]:
     return np.minimum.reduceat(steps, starts[:-1]).tolist() if len(starts) > 1 else []
 
 
-def clearance(real: Realization) -> dict[str, Any]:
+def clearance(real: Realization) -> Clearance:
     """Measure the embedding of ``real``: ``min_distance`` against ``min_separation``, and where (the edge)."""
     best, where = check_embedding(real.curves, real.closed, real.min_separation, real.scale)
-    out: dict[str, Any] = {
-        "min_distance": best,
-        "min_separation": real.min_separation,
-        "ok": best >= real.min_separation,
-    }
-    if where is not None:
-        point = np.asarray(where.point)
-        if real.scaffold.lattice is not None and real.translations is not None:
-            shift = real.scaffold.lattice.translate(real.translations[real.copy_of[where.curves[0]]][None])[0]
-            point = point - shift
-        out["edge"] = nearest_edge(real.scaffold, point)
-        out["curves"] = list(where.curves)
-    if not out["ok"]:
-        out["message"] = (
-            f"strands {out['curves'][0]} and {out['curves'][1]} come within {best:.3g} "
-            f"(< min_separation {real.min_separation:.3g}) near edge {real.scaffold.edge_name(out['edge'])}: "
-            "the geometry would self-intersect"
-        )
-    return out
+    if where is None:
+        return Clearance(best, real.min_separation)
+    point = np.asarray(where.point)
+    if real.scaffold.lattice is not None and real.translations is not None:
+        shift = real.scaffold.lattice.translate(real.translations[real.copy_of[where.curves[0]]][None])[0]
+        point = point - shift
+    edge = nearest_edge(real.scaffold, point)
+    a, b = (int(c) for c in where.curves)
+    found = Clearance(best, real.min_separation, edge, (a, b))
+    if found.ok:
+        return found
+    message = (
+        f"strands {a} and {b} come within {best:.3g} (< min_separation {real.min_separation:.3g}) near edge "
+        f"{real.scaffold.edge_name(edge)}: the geometry would self-intersect"
+    )
+    return replace(found, message=message)
 
 
-def export_bytes(scaffold: Scaffold, labels: np.ndarray, nulls: np.ndarray | None, fmt: object) -> tuple[bytes, str]:
+def export_bytes(scaffold: Scaffold, labels: np.ndarray, nulls: np.ndarray | None, fmt: str) -> tuple[bytes, str]:
     """Return the design written as ``fmt`` (one of :data:`EXPORTS`): ``(content, file name)``."""
     if fmt not in EXPORTS:
         raise UsageError(f"format {str(fmt)[:20]!r}: choose one of {', '.join(EXPORTS)}")

@@ -23,7 +23,7 @@ import threading
 import time
 from collections import OrderedDict
 from collections.abc import Sequence
-from typing import Any
+from typing import TypeAlias
 
 import numpy as np
 from scipy.spatial.transform import Rotation
@@ -32,7 +32,9 @@ from .. import GeometryParams, Realization, RealizeOptions, Scaffold, realize
 from ..errors import DiagramError, GeometryError, TooLargeError, UsageError
 from ..knots.diagram import near_pairs, project, transverse
 from ..linktypes.common_names import common_name
+from .answers import DiagramView, Thumbs
 from .designs import Cache, design, labels_from_page
+from .requests import ThumbnailsRequest, View
 
 SIZE = 360.0
 """Longer side of a diagram's viewBox (SVG user units)."""
@@ -42,9 +44,6 @@ THUMB_SIZE = 64.0
 
 MAX_DIAGRAM_POINTS = 300_000
 """Most curve points drawn as a diagram."""
-
-MAX_THUMBS = 50
-"""Most designs in one thumbnail request."""
 
 MAX_THUMB_POINTS = 50_000
 """Most curve points of a design drawn as a thumbnail (past it: an empty box)."""
@@ -56,15 +55,8 @@ MAX_CROSSINGS_DRAWN = 20_000
 """Most crossings drawn with gaps (past it the diagram is refused: it would be a tangle of ink)."""
 
 
-def rotation_of(view: object) -> np.ndarray:
-    """Return the rotation (rows: right, up, towards the viewer) of the page's ``view`` ``[right, up, back]``."""
-    if not (
-        isinstance(view, list)
-        and len(view) == 3
-        and all(isinstance(v, list) and len(v) == 3 for v in view)
-        and all(isinstance(x, int | float) and not isinstance(x, bool) and abs(x) <= 1e6 for v in view for x in v)
-    ):
-        raise UsageError("view: three directions [right, up, back], each three numbers within ±10**6")
+def rotation_of(view: View) -> np.ndarray:
+    """Return the rotation (rows: right, up, towards the viewer) of the page's ``view`` ``(right, up, back)``."""
     right, _, back = (np.array(v, np.float64) for v in view)
     if np.linalg.norm(np.cross(right, back)) <= 1e-9 * np.linalg.norm(right) * np.linalg.norm(back):
         raise UsageError("view: right and back must be non-zero and not parallel")
@@ -74,9 +66,7 @@ def rotation_of(view: object) -> np.ndarray:
     return np.array([right, np.cross(back, right), back])
 
 
-def crossings(
-    curves: Sequence[np.ndarray], closed: Sequence[bool]
-) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+def crossings(curves: Sequence[np.ndarray], closed: Sequence[bool]) -> Crossings:
     """Return the crossings, seen along ``z``, of polylines ``curves`` (closed or open).
 
     Returns ``(over, under, t_over, t_under, owner, index)``: the segments and where along
@@ -101,7 +91,13 @@ def crossings(
     return over, under, t_over, t_under, own, at
 
 
-def seen(curves: Sequence[np.ndarray], closed: Sequence[bool], rotation: np.ndarray) -> tuple[list[np.ndarray], Any]:
+Crossings: TypeAlias = tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]
+"""``(over, under, t_over, t_under, owner, index)`` of :func:`crossings`."""
+
+
+def seen(
+    curves: Sequence[np.ndarray], closed: Sequence[bool], rotation: np.ndarray
+) -> tuple[list[np.ndarray], Crossings]:
     """Rotate ``curves`` by ``rotation`` and find their crossings; a non-generic view is nudged (three tries)."""
     for attempt in range(3):
         rot = rotation if attempt == 0 else Rotation.from_rotvec([1e-3 * attempt, 7e-4, 0]).as_matrix() @ rotation
@@ -178,7 +174,7 @@ def svg(paths: list[str], strands: Sequence[int], width: float, height: float, s
     )
 
 
-def diagram_of(real: Realization, view: object = None) -> dict[str, Any]:
+def diagram_of(real: Realization, view: View | None = None) -> DiagramView:
     """Return the diagram of ``real`` (a finite scaffold's) seen along ``view`` (or the generic rotation): SVG, crossings, PD code."""
     t0 = time.perf_counter()
     if not real.curves:
@@ -200,7 +196,7 @@ def diagram_of(real: Realization, view: object = None) -> dict[str, Any]:
         cuts[c].append(float(starts[c][k] + t * steps[c][k]))
     stroke = 2.4
     paths = [path_data(p, shut, cut, 2.6 * stroke, 0.8) for p, shut, cut in zip(flat, closed, cuts, strict=True)]
-    out: dict[str, Any] = {
+    out: DiagramView = {
         "svg": svg(paths, real.strand_of.tolist(), width, height, stroke, "knot-diagram"),
         "crossings": int(len(over)),
         "components": len(real.curves),
@@ -217,8 +213,8 @@ def diagram_of(real: Realization, view: object = None) -> dict[str, Any]:
 
 
 def diagram(
-    scaffold: Scaffold, key: str, labels: np.ndarray, nulls: np.ndarray | None, cache: Cache, view: object
-) -> dict[str, Any]:
+    scaffold: Scaffold, key: str, labels: np.ndarray, nulls: np.ndarray | None, cache: Cache, view: View | None
+) -> DiagramView:
     """Return the diagram of a design, from the realization its redraw kept (realized now if it was not)."""
     if scaffold.periodic:
         return {"svg": None, "message": "periodic: an infinite structure has no knot diagram"}
@@ -268,14 +264,9 @@ class Thumbnails:
                 self._items.popitem(last=False)
         return drawn
 
-    def answer(self, scaffold: Scaffold, key: str, designs: object, names: object) -> dict[str, Any]:
-        """Thumbnails of ``designs`` (label lists) and the common names of ``names`` (table names or null)."""
-        if not isinstance(designs, list) or len(designs) > MAX_THUMBS or not all(isinstance(d, list) for d in designs):
-            raise UsageError(f"designs: a list of at most {MAX_THUMBS} label lists")
-        if names is not None and (not isinstance(names, list) or len(names) != len(designs)):
-            raise UsageError("names: a list with one name (or null) per design")
+    def answer(self, scaffold: Scaffold, key: str, request: ThumbnailsRequest) -> Thumbs:
+        """Thumbnails of the request's designs (label lists) and the common names of its table names."""
         if scaffold.periodic:
             raise UsageError(f"{scaffold.name}: periodic scaffolds have no thumbnails")
-        thumbs = [self.get(scaffold, key, labels_from_page(scaffold, d)) for d in designs]
-        common = [common_name(n[:200]) if isinstance(n, str) and n else None for n in names or [None] * len(designs)]
-        return {"thumbs": thumbs, "common_names": common}
+        thumbs = tuple(self.get(scaffold, key, labels_from_page(scaffold, d)) for d in request.designs)
+        return Thumbs(thumbs, tuple(common_name(n) if n else None for n in request.names))

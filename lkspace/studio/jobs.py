@@ -18,7 +18,6 @@ bounds them: they neither count against the cap nor show by id.
 
 from __future__ import annotations
 
-import base64
 import itertools
 import queue as queues
 import threading
@@ -33,7 +32,20 @@ from .. import Scaffold
 from ..errors import LkspaceError, UsageError
 from ..progress import Step, install
 from ..workers import context, ignore_interrupts
+from .answers import (
+    Clearance,
+    Exported,
+    IdentifyAnswer,
+    JobKind,
+    JobProgress,
+    JobResult,
+    JobState,
+    JobStatus,
+    RelaxedCurves,
+    Solved,
+)
 from .lanes import Busy
+from .requests import SolveRequest
 
 if TYPE_CHECKING:
     from ..geometry.realization import Realization
@@ -51,7 +63,7 @@ PRELOAD = [
 IDENTIFY_SECONDS = 30.0
 """Time limit of one identification."""
 
-REPLACED = ("identify", "relax", "solve", "clearance")
+REPLACED: tuple[JobKind, ...] = ("identify", "relax", "solve", "clearance")
 """The page's job kinds, run one at a time: starting one cancels the one running."""
 
 MAX_RUNNING = len(REPLACED)
@@ -75,82 +87,77 @@ class QueueReporter:
 
     def show(self, step: Step) -> None:
         """Send the state of ``step``."""
-        self._channel.put(("progress", {"step": step.description, "done": step.done, "note": step.text}))
+        self._channel.put(("progress", JobProgress(step.description, step.done, step.text)))
 
     def close(self, step: Step) -> None:
         """Nothing to remove."""
 
 
-def identify_payload(scaffold: Scaffold, labels: np.ndarray, nulls: np.ndarray | None) -> dict[str, Any]:
-    """Return the knot or link type of a design (:func:`lkspace.identify`) as the page shows it."""
+def identify_payload(scaffold: Scaffold, labels: np.ndarray, nulls: np.ndarray | None) -> IdentifyAnswer:
+    """Return the knot or link type of a design (:func:`lkspace.identify`) as the page shows it.
+
+    The one place the studio reads an identification.
+    """
     from .. import identify
     from ..linktypes.common_names import common_name
 
     found = identify(scaffold, labels, nulls, time_limit=IDENTIFY_SECONDS)
-    return {
-        "name": found.name,
-        "common_name": common_name(found.name, found.mirror) if found.name else None,
-        "status": found.status,
-        "components": found.components,
-        "linking_matrix": found.linking_matrix,
-        "mirror": found.mirror,
-        "split": found.split,
-        "crossings": found.crossings,
-    }
+    return IdentifyAnswer(
+        name=found.name,
+        common_name=common_name(found.name, found.mirror) if found.name else None,
+        status=found.status,
+        components=found.components,
+        linking_matrix=found.linking_matrix,
+        mirror=found.mirror,
+        split=found.split,
+        crossings=found.crossings,
+    )
 
 
-def solve_payload(scaffold: Scaffold, options: dict[str, Any]) -> dict[str, Any]:
-    """Designs answering a query (:func:`lkspace.solve`); ``options`` are its keyword arguments."""
+def solve_payload(scaffold: Scaffold, query: SolveRequest) -> Solved:
+    """Designs answering the page's query (:func:`lkspace.solve`)."""
     from .. import solve
 
-    result = solve(scaffold, **options)
-    out = result.to_dict()
-    out["solutions"] = [{"labels": s.labels.tolist(), "components": s.components} for s in result.solutions]
-    return out
+    result = solve(scaffold, **query.options())  # type: ignore[arg-type]
+    designs = tuple((s.labels.tolist(), s.components) for s in result.solutions)
+    return Solved(result.to_dict(), designs)
 
 
-def relax_payload(real: Realization) -> dict[str, Any]:
-    """Return the curves of ``real`` relaxed (:func:`lkspace.relax`): ``points`` (base64 ``float64``), ``counts``, tube, clearance."""
+def relax_payload(real: Realization) -> RelaxedCurves:
+    """Return the curves of ``real`` relaxed (:func:`lkspace.relax`), with their tube and clearance."""
     from .. import relax
-    from ..geometry.clearance import closest_json
 
     out = relax(real)
-    return {
-        "points": base64.b64encode(np.vstack(out.curves).astype("<f8").tobytes()).decode("ascii"),
-        "counts": [len(c) for c in out.curves],
-        "tube_radius": out.tube_radius,
-        "min_distance": out.min_distance,
-        "closest": closest_json(out.closest),
-    }
+    return RelaxedCurves(tuple(out.curves), out.tube_radius, out.min_distance, out.closest)
 
 
-def relaxed(real: Realization, payload: dict[str, Any]) -> Realization:
+def relaxed(real: Realization, answer: RelaxedCurves) -> Realization:
     """Return ``real`` with the curves of a :func:`relax_payload`."""
-    points = np.frombuffer(base64.b64decode(payload["points"]), "<f8").reshape(-1, 3)
-    curves = np.split(points, np.cumsum(payload["counts"])[:-1])
-    from ..geometry.clearance import Closest
+    curves = [np.array(c, dtype="<f8").copy() for c in answer.curves]
+    return replace(
+        real,
+        curves=curves,
+        tube_radius=answer.tube_radius,
+        min_distance=answer.min_distance,
+        closest=answer.closest,
+    )
 
-    closest = Closest.from_json(payload["closest"])
-    fields = {k: payload[k] for k in ("tube_radius", "min_distance")}
-    return replace(real, curves=[c.copy() for c in curves], closest=closest, **fields)
 
-
-def export_payload(scaffold: Scaffold, labels: np.ndarray, nulls: np.ndarray | None, fmt: str) -> dict[str, Any]:
-    """Return the design written as ``fmt``: ``content`` (bytes) and the file ``name``."""
+def export_payload(scaffold: Scaffold, labels: np.ndarray, nulls: np.ndarray | None, fmt: str) -> Exported:
+    """Return the design written as ``fmt``: the file's content and name."""
     from .designs import export_bytes
 
-    content, name = export_bytes(scaffold, labels, nulls, fmt)
-    return {"content": content, "name": name}
+    return Exported(*export_bytes(scaffold, labels, nulls, fmt))
 
 
-def clearance_payload(real: Realization) -> dict[str, Any]:
+def clearance_payload(real: Realization) -> Clearance:
     """Return the embedding check of ``real`` (:func:`lkspace.studio.designs.clearance`)."""
     from .designs import clearance
 
     return clearance(real)
 
 
-TASKS: dict[str, Callable[..., dict[str, Any]]] = {
+TASKS: dict[JobKind, Callable[..., JobResult]] = {
     "identify": identify_payload,
     "solve": solve_payload,
     "relax": relax_payload,
@@ -160,7 +167,7 @@ TASKS: dict[str, Callable[..., dict[str, Any]]] = {
 """Job kinds -> the function a worker runs."""
 
 
-def run_job(kind: str, args: tuple[Any, ...], channel: Any) -> None:
+def run_job(kind: JobKind, args: tuple[Any, ...], channel: Any) -> None:
     """Worker entry point: run ``TASKS[kind](*args)`` and send ``("done", result)`` or ``("error", message)``."""
     ignore_interrupts()
     install(QueueReporter(channel))
@@ -177,18 +184,18 @@ class Job:
     """One job: its process, what it reported and its state (``running``, ``done``, ``error``, ``cancelled``)."""
 
     id: int
-    kind: str
+    kind: JobKind
     process: Any
     channel: Any
     started: float = field(default_factory=time.monotonic)
     ended: float | None = None
-    state: str = "running"
-    progress: dict[str, Any] = field(default_factory=dict)
-    result: Any = None
+    state: JobStatus = "running"
+    progress: JobProgress | None = None
+    result: JobResult | None = None
     error: str | None = None
 
-    def poll(self) -> dict[str, Any]:
-        """Take what the worker sent; return the job's JSON view."""
+    def poll(self) -> JobState:
+        """Take what the worker sent; return the job's state."""
         while self.state == "running":
             try:
                 what, value = self.channel.get_nowait()
@@ -207,15 +214,8 @@ class Job:
         if self.state != "running":
             self.ended = self.ended or time.monotonic()
             self.process.join(timeout=0.5)
-        return {
-            "id": self.id,
-            "kind": self.kind,
-            "state": self.state,
-            "elapsed": round((self.ended or time.monotonic()) - self.started, 2),
-            "progress": self.progress,
-            "result": self.result,
-            "error": self.error,
-        }
+        elapsed = round((self.ended or time.monotonic()) - self.started, 2)
+        return JobState(self.id, self.kind, self.state, elapsed, self.progress, self.result, self.error)
 
     def cancel(self) -> None:
         """Stop the worker (if running) and mark the job cancelled."""
@@ -239,14 +239,14 @@ class Jobs:
         self._starting = threading.Lock()
         self.max_running = max_running
         self.closed = False
-        self.latest: dict[str, Job] = {}
+        self.latest: dict[JobKind, Job] = {}
 
     def running(self) -> list[Job]:
         """Return the page's jobs whose worker is still at work (:data:`REPLACED` kinds)."""
         jobs = list(self._jobs.values())
         return [j for j in jobs if j.kind in REPLACED and j.state == "running" and j.process.is_alive()]
 
-    def start(self, kind: str, *args: Any) -> Job:
+    def start(self, kind: JobKind, *args: Any) -> Job:
         """Start a ``kind`` job, cancelling the one of that kind running (:data:`REPLACED`).
 
         Raises :class:`~lkspace.studio.lanes.Busy` when :attr:`max_running` workers of other
@@ -275,7 +275,7 @@ class Jobs:
                 self.latest[kind] = job
             return job
 
-    def run(self, kind: str, *args: Any) -> dict[str, Any]:
+    def run(self, kind: JobKind, *args: Any) -> JobState:
         """Run a ``kind`` job to its end and forget it; return its final state (the export lane's jobs)."""
         job = self.start(kind, *args)
         try:
@@ -284,27 +284,25 @@ class Jobs:
             with self._lock:
                 self._jobs.pop(job.id, None)
 
-    def export(
-        self, scaffold: Scaffold, labels: np.ndarray, nulls: np.ndarray | None, fmt: object
-    ) -> tuple[bytes, str]:
+    def export(self, scaffold: Scaffold, labels: np.ndarray, nulls: np.ndarray | None, fmt: str) -> tuple[bytes, str]:
         """Return the design written as ``fmt`` by a worker: ``(content, file name)``; :class:`ExportFailed` if it could not."""
         from .designs import EXPORTS
 
         if fmt not in EXPORTS:
             raise UsageError(f"format {str(fmt)[:20]!r}: choose one of {', '.join(EXPORTS)}")
         state = self.run("export", scaffold, labels, nulls, fmt)
-        if state["state"] != "done":
-            raise ExportFailed(f"cannot export this design: {state['error'] or state['state']}")
-        return state["result"]["content"], state["result"]["name"]
+        if not isinstance(state.result, Exported):
+            raise ExportFailed(f"cannot export this design: {state.error or state.state}")
+        return state.result.content, state.result.name
 
-    def stop(self, kind: str) -> None:
+    def stop(self, kind: JobKind) -> None:
         """Cancel the newest ``kind`` job if it still runs (a newer design made its answer stale)."""
         if kind in self.latest:
             self.latest[kind].cancel()
 
-    def wait(self, job: Job, pause: float = 0.05) -> dict[str, Any]:
-        """Return the JSON view of ``job`` once it has ended (done, error or cancelled by a newer one)."""
-        while (state := job.poll())["state"] == "running":
+    def wait(self, job: Job, pause: float = 0.05) -> JobState:
+        """Return the state of ``job`` once it has ended (done, error or cancelled by a newer one)."""
+        while (state := job.poll()).state == "running":
             time.sleep(pause)
         return state
 

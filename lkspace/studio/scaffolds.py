@@ -8,12 +8,10 @@ as a studio holds it.
 
 from __future__ import annotations
 
-import json
 import os
 import threading
 from dataclasses import dataclass
 from functools import cached_property
-from typing import Any
 
 import numpy as np
 
@@ -24,13 +22,9 @@ from ..io.obj import parse_obj
 from ..io.scaffold_json import scaffold_from_dict
 from ..io.sources import load
 from ..io.text import parse_json
+from .answers import OrbitView, ScaffoldView
 from .designs import default_block
-
-MAX_UPLOAD = 8_000_000
-"""Largest uploaded scaffold file, in bytes."""
-
-UPLOAD_TYPE = "application/octet-stream"
-"""The content type an upload must declare: not one a cross-site form can send without asking."""
+from .wire import MAX_UPLOAD
 
 MAX_FACES = 20_000
 """Most faces of a scaffold the studio opens (a supercell past it is refused before it is built)."""
@@ -46,12 +40,6 @@ MAX_HELD = 32
 
 MAX_NAME = 200
 """Longest built-in name accepted from the page."""
-
-
-class NotAFile(UsageError):
-    """An upload not sent as :data:`UPLOAD_TYPE` (a cross-site form could send text/plain or multipart; 415)."""
-
-    status = 415
 
 
 @dataclass(frozen=True, eq=False)
@@ -77,7 +65,7 @@ class Held:
             return [[e] for e in range(self.scaffold.n_edges)]
         return [np.flatnonzero(orbit == o).tolist() for o in range(int(orbit.max()) + 1 if len(orbit) else 0)]
 
-    def orbit_view(self) -> dict[str, Any]:
+    def orbit_view(self) -> OrbitView:
         """Return the edge orbits and each edge's orbit (asked for when the page first edits an orbit)."""
         if self.scaffold.n_edges > MAX_ORBIT_EDGES:
             raise TooLargeError(
@@ -89,10 +77,10 @@ class Held:
             orbit_of[orbit] = i
         return {"orbits": self.orbits, "orbit_of": orbit_of.tolist()}
 
-    def view(self) -> dict[str, Any]:
+    def view(self) -> ScaffoldView:
         """Return what the page draws and edits: geometry, edges, default labels (JSON-ready)."""
         sc = self.scaffold
-        out: dict[str, Any] = {
+        out: ScaffoldView = {
             "key": self.key,
             "name": sc.name,
             "origin": self.origin,
@@ -156,7 +144,7 @@ class Registry:
                 del self._held[key]
         return held
 
-    def get(self, key: object) -> Held:
+    def get(self, key: str) -> Held:
         """Return the scaffold named ``key``: a built-in name or the id of one held here."""
         if isinstance(key, str) and key in self._held:
             return self._held[key]
@@ -199,8 +187,3 @@ def builtin_choices() -> list[str]:
     """Built-in names offered in the page's menu (families with a small parameter)."""
     names = [n.replace(":N", ":3").replace(":K", ":3") for n in builtins.builtin_names()]
     return names + ["honeycomb:cP@3x3x3", "tiling:square@10x10", "honeycomb:cP@7x7x7", "tiling:square@32x32"]
-
-
-def dumps(payload: Any) -> str:
-    """JSON text of ``payload`` (numpy scalars made plain)."""
-    return json.dumps(payload, default=lambda v: v.item() if hasattr(v, "item") else str(v))

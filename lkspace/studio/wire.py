@@ -1,4 +1,9 @@
-"""Reading requests and writing answers: bodies read up to a limit, declared content types, JSON errors.
+"""The studio's HTTP boundary: JSON bodies read up to a limit, declared content types, answers and errors written.
+
+What crosses the boundary is typed on both sides: every request body is read by the one
+``from_json`` of its record (:mod:`~lkspace.studio.requests`), every answer and job state is a
+record with one ``to_json`` or a ``TypedDict`` view (:mod:`~lkspace.studio.answers`), and
+:func:`dumps` writes either.
 
 Every failure becomes ``{"error": {"type", "message"}}`` with a 4xx status (:func:`fail`); a
 request addressed to a host that is not this machine's name is refused before any endpoint
@@ -10,16 +15,27 @@ uploads :data:`UPLOAD_TYPE`.
 from __future__ import annotations
 
 import json
-from typing import Any
-
-from starlette.requests import Request
-from starlette.responses import JSONResponse
+from collections.abc import Mapping
+from typing import TYPE_CHECKING, Protocol, TypeAlias, runtime_checkable
 
 from ..errors import LkspaceError, TooLargeError, UsageError
-from .scaffolds import MAX_UPLOAD, UPLOAD_TYPE, NotAFile
+
+if TYPE_CHECKING:
+    from starlette.requests import Request
+    from starlette.responses import JSONResponse
+    from starlette.types import ASGIApp, Receive, Scope, Send
+
+JsonObject: TypeAlias = dict[str, object]
+"""A JSON object as it arrives (values still to be checked) or as an answer writes it."""
 
 MAX_JSON = 2_000_000
 """Largest JSON request body, in bytes."""
+
+MAX_UPLOAD = 8_000_000
+"""Largest uploaded scaffold file, in bytes."""
+
+UPLOAD_TYPE = "application/octet-stream"
+"""The content type an upload must declare: not one a cross-site form can send without asking."""
 
 
 class BadRequest(UsageError):
@@ -34,34 +50,64 @@ class NotJson(BadRequest):
     status = 415
 
 
+class NotAFile(UsageError):
+    """An upload not sent as :data:`UPLOAD_TYPE` (a cross-site form could send text/plain or multipart; 415)."""
+
+    status = 415
+
+
+@runtime_checkable
+class Record(Protocol):
+    """An answer with its JSON form."""
+
+    def to_json(self) -> JsonObject:
+        """Return the JSON form."""
+
+
+Answer: TypeAlias = Record | Mapping[str, object]
+"""What an endpoint answers: a record, or a view the page reads as it is."""
+
+
+def dumps(answer: Answer) -> str:
+    """JSON text of an answer (numpy scalars made plain)."""
+    data = answer.to_json() if isinstance(answer, Record) else answer
+    return json.dumps(data, default=lambda v: v.item() if hasattr(v, "item") else str(v))
+
+
+# ---- HTTP: bodies, content types, errors
+
 LOCAL_NAMES = ("127.0.0.1", "localhost", "::1")
+
+
+def error_json(kind: str, message: str) -> JsonObject:
+    """Return the JSON of an error answer."""
+    return {"error": {"type": kind, "message": message}}
 
 
 class LocalHostOnly:
     """ASGI middleware: answer only requests addressed to this machine by name (DNS rebinding defence)."""
 
-    def __init__(self, app: Any) -> None:
+    def __init__(self, app: ASGIApp) -> None:
         self.app = app
 
-    async def __call__(self, scope: Any, receive: Any, send: Any) -> None:
+    async def __call__(self, scope: Scope, receive: Receive, send: Send) -> None:
         """Refuse (403, JSON) an HTTP request whose Host header is not a local name."""
+        from starlette.responses import JSONResponse
+
         if scope["type"] == "http":
             host = dict(scope.get("headers") or []).get(b"host", b"").decode("latin-1")
             name = host[1:].split("]")[0] if host.startswith("[") else host.split(":")[0]
             if name not in LOCAL_NAMES:
-                error = {
-                    "error": {
-                        "type": "HTTPError",
-                        "message": f"host {name[:60]!r} refused: the studio answers 127.0.0.1",
-                    }
-                }
-                await JSONResponse(error, status_code=403)(scope, receive, send)
+                message = f"host {name[:60]!r} refused: the studio answers 127.0.0.1"
+                await JSONResponse(error_json("HTTPError", message), status_code=403)(scope, receive, send)
                 return
         await self.app(scope, receive, send)
 
 
 def fail(exc: Exception) -> JSONResponse:
     """Return the JSON error answer to ``exc``."""
+    from starlette.responses import JSONResponse
+
     if isinstance(exc, LkspaceError):
         status = getattr(exc, "status", 413 if isinstance(exc, TooLargeError) else 400 if exc.exit_code == 2 else 422)
         kind = type(exc).__name__
@@ -69,7 +115,7 @@ def fail(exc: Exception) -> JSONResponse:
     else:
         status, kind = 500, "InternalError"
         message = f"internal error ({type(exc).__name__}: {exc})"
-    return JSONResponse({"error": {"type": kind, "message": message}}, status_code=status)
+    return JSONResponse(error_json(kind, message), status_code=status)
 
 
 async def body_of(request: Request, limit: int) -> bytes:
@@ -91,7 +137,7 @@ def content_type(request: Request) -> str:
     return request.headers.get("content-type", "").split(";")[0].strip().lower()
 
 
-async def json_of(request: Request) -> dict[str, Any]:
+async def json_of(request: Request) -> JsonObject:
     """Return the JSON object of the request body (``Content-Type: application/json`` required)."""
     if content_type(request) != "application/json":
         raise NotJson("send the request body as application/json")
