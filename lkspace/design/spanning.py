@@ -21,6 +21,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import LabelError
+from ..loops import UnionFind
 from .space import DesignSpace
 from .walk import residue_row
 
@@ -41,13 +42,6 @@ def dual_edges(space: DesignSpace) -> tuple[np.ndarray, np.ndarray]:
     return np.array(ids, np.int64), np.array(pairs, np.int64).reshape(-1, 2)
 
 
-def _find(parent: list[int], x: int) -> int:
-    while parent[x] != x:
-        parent[x] = parent[parent[x]]
-        x = parent[x]
-    return x
-
-
 def all_spanning_trees(n_nodes: int, pairs: np.ndarray, limit: int = MAX_TREES) -> Iterator[tuple[int, ...]]:
     """Yield every spanning tree of a multigraph as a sorted tuple of edge positions."""
     m = len(pairs)
@@ -55,16 +49,11 @@ def all_spanning_trees(n_nodes: int, pairs: np.ndarray, limit: int = MAX_TREES) 
     count = 0
 
     def connected(allowed: list[int]) -> bool:
-        parent = list(range(n_nodes))
-        comps = n_nodes
-        for i in allowed:
-            a, b = _find(parent, pairs[i][0]), _find(parent, pairs[i][1])
-            if a != b:
-                parent[a] = b
-                comps -= 1
-        return comps == 1
+        pieces = UnionFind(n_nodes)
+        pieces.join_pairs(pairs[allowed])
+        return pieces.pieces == 1
 
-    def rec(i: int, parent: list[int]) -> Iterator[tuple[int, ...]]:
+    def rec(i: int, pieces: UnionFind) -> Iterator[tuple[int, ...]]:
         nonlocal count
         if len(chosen) == n_nodes - 1:
             count += 1
@@ -74,22 +63,21 @@ def all_spanning_trees(n_nodes: int, pairs: np.ndarray, limit: int = MAX_TREES) 
             return
         if i == m or m - i < n_nodes - 1 - len(chosen):
             return
-        a, b = _find(parent, pairs[i][0]), _find(parent, pairs[i][1])
-        if a != b:
-            p2 = parent.copy()
-            p2[a] = b
+        if pieces.find(int(pairs[i][0])) != pieces.find(int(pairs[i][1])):
+            joined = pieces.copy()
+            joined.join(int(pairs[i][0]), int(pairs[i][1]))
             chosen.append(i)
-            yield from rec(i + 1, p2)
+            yield from rec(i + 1, joined)
             chosen.pop()
         if connected(chosen + list(range(i + 1, m))):
-            yield from rec(i + 1, parent)
+            yield from rec(i + 1, pieces)
 
     if n_nodes == 1:
         yield ()
         return
     if not connected(list(range(m))):
         return
-    yield from rec(0, list(range(n_nodes)))
+    yield from rec(0, UnionFind(n_nodes))
 
 
 def spanning_tree_rows(

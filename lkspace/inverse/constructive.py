@@ -25,12 +25,12 @@ and the caller falls back to CP-SAT.  Every design is re-traced by the caller.
 from __future__ import annotations
 
 import time
-from collections.abc import Callable
 
 import numpy as np
 import scipy.sparse
 import scipy.sparse.csgraph
 
+from ..loops import UnionFind
 from ..model.scaffold import Scaffold
 from ..progress import Step
 from ..words import plural
@@ -186,18 +186,6 @@ def _meets_lower_bound(
     return cost == bound
 
 
-def _finder(parent: np.ndarray) -> Callable[[int], int]:
-    """Union-find lookup with path halving over ``parent`` (updated in place)."""
-
-    def find(x: int) -> int:
-        while parent[x] != x:
-            parent[x] = parent[parent[x]]
-            x = parent[x]
-        return int(x)
-
-    return find
-
-
 GREEDY_ATTEMPTS = 16
 
 
@@ -242,20 +230,19 @@ def _greedy_designs(
             break
         must_merge = np.array([a is None for a in stay])
         order = np.lexsort((rng.random(scaffold.n_edges), -degrees, ~must_merge))
-        parent = np.arange(scaffold.n_faces)
-        find = _finder(parent)
+        pieces = UnionFind(scaffold.n_faces)
         labels = np.zeros(scaffold.n_edges, np.int64)
         n_strands = scaffold.n_faces
         stuck = False
         for e in order.tolist():
             k = int(degrees[e])
-            roots = {find(int(f)) for f in faces_of[e]}
+            roots = {pieces.find(int(f)) for f in faces_of[e]}
             distinct = k > 1 and len(roots) == k and merge[e] is not None
             if distinct and (n_strands - (k - 1) >= query.components or stay[e] is None):
                 labels[e] = merge[e][1]
                 first, *rest = roots
                 for r in rest:
-                    parent[r] = first
+                    pieces.join(first, r)
                 n_strands -= k - 1
             elif stay[e] is not None:
                 labels[e] = stay[e][1]
