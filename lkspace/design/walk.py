@@ -41,7 +41,7 @@ import numpy as np
 
 from ..strands.tracing import trace
 from .batch import BATCH_ASSIGNMENTS, ClassTraces, batches_of, expand_batch, holds_batch, trace_batch
-from .batch_kernels import expand_class_range, rows_hold_together_finite
+from .batch_kernels import Actions, ClassOptions, Rows, expand_class_range, rows_hold_together_finite
 from .space import ClassInfo, DesignSpace
 
 CHUNK = 1 << 20
@@ -144,17 +144,18 @@ def _large_class(space: DesignSpace, c: int, traces: ClassTraces) -> Iterator[De
     perms, signs = space.action
     inv = np.ascontiguousarray(np.argsort(perms, axis=1))
     signs = np.ascontiguousarray(signs)
-    n_opts_t, opts_t = space.residue_table.n_opts, space.residue_table.opts
+    options = ClassOptions(opts=space.residue_table.opts, n_opts=space.residue_table.n_opts)
+    actions = Actions(inv_perms=inv, signs=signs)
     e = np.arange(space.scaffold.n_edges)
     index = np.ascontiguousarray(co.indices[c])
-    n_opts = n_opts_t[e, index]
+    n_opts = options.n_opts[e, index]
     h = np.ascontiguousarray(co.stabilizers[c][1:], np.int64)
     size = math.prod(n_opts.tolist())
     for start in range(0, size, CHUNK):
         stop = min(size, start + CHUNK)
         out = np.empty((stop - start, len(e)), np.int8)
         stab = np.empty(stop - start, np.int64)
-        m = expand_class_range(index, opts_t, n_opts_t, inv, signs, h, start, stop, out, stab)
+        m = expand_class_range(index, options, actions, h, start, stop, Rows(out, stab))
         labels = out[:m]
         row_class = np.zeros(m, np.int64)
         holds = holds_batch(space, traces, labels, row_class)
