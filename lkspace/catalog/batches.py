@@ -14,7 +14,7 @@ import numpy as np
 import pyarrow as pa
 
 from ..design.batch import concat_traces
-from ..design.space import DesignSpace
+from ..design.space import DesignSpace, WalkMode
 from ..design.spanning import spanning_tree_rows
 from ..design.walk import DesignBlock, walk_blocks
 from ..kernels import kernel
@@ -121,7 +121,7 @@ def gather_blocks(
 
 def space_batches(
     space: DesignSpace,
-    mode: str,
+    mode: WalkMode,
     class_ids: Iterable[int] | None = None,
     components: int | None = None,
     max_designs: int | None = None,

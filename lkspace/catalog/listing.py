@@ -5,10 +5,11 @@ from __future__ import annotations
 from collections.abc import Iterator
 from typing import TYPE_CHECKING
 
-from ..design.space import WALK_MODES, make_space
+from ..design.space import WALK_MODES, WalkMode, make_space
 from ..errors import LabelError
 from ..model.scaffold import Scaffold
 from ..model.specs import LabelSetSpec
+from ..symmetry.group import SymmetryMode
 from .batches import design_batches, residue_batches, space_batches
 
 if TYPE_CHECKING:
@@ -19,9 +20,9 @@ if TYPE_CHECKING:
 def designs(
     scaffold: Scaffold,
     label_set: LabelSetSpec = "-2..2",
-    symmetry: str = "rotations",
+    symmetry: SymmetryMode = "rotations",
     *,
-    mode: str = "designs",
+    mode: WalkMode = "designs",
     components: int | None = None,
     no_zero: bool = False,
     max_designs: int | None = None,

@@ -33,6 +33,7 @@ from ..io.scaffold_json import scaffold_to_dict
 from ..model.scaffold import Scaffold
 from ..model.specs import LabelSetSpec
 from ..progress import task
+from ..symmetry.group import SymmetryMode
 from ..symmetry.tolerance import resolve_tolerance
 from ..words import plural
 from ..workers import context, ignored_signals
@@ -105,7 +106,7 @@ class CatalogWritten:
     shards_resumed: int
     group_order: int
     acting_order: int
-    symmetry: str
+    symmetry: SymmetryMode
     label_set: list[int]
     mode: WalkMode
     format_version: int = FORMAT_VERSION
@@ -154,7 +155,7 @@ def write_catalog(
     space: DesignSpace | Scaffold,
     path: str | os.PathLike[str],
     label_set: LabelSetSpec = "-2..2",
-    symmetry: str = "rotations",
+    symmetry: SymmetryMode = "rotations",
     *,
     no_zero: bool = False,
     selection: Selection | None = None,

@@ -22,6 +22,7 @@ from ..design.space import DesignSpace
 from ..errors import CatalogError
 from ..model.scaffold import Scaffold
 from ..model.specs import LabelSetSpec, parse_label_set
+from ..symmetry.group import SymmetryMode
 from .batches import gather_blocks
 from .lock import catalog_lock
 from .options import Selection
@@ -39,7 +40,7 @@ def invariant_space(
     scaffold: Scaffold,
     subgroup: str,
     label_set: LabelSetSpec = "-2..2",
-    symmetry: str = "rotations",
+    symmetry: SymmetryMode = "rotations",
     no_zero: bool = False,
 ) -> InvariantSpace:
     """Return the :class:`~lkspace.design.invariant.InvariantSpace` of user-level arguments (a label SET as text)."""
@@ -58,7 +59,7 @@ def symmetric_designs(
     scaffold: Scaffold,
     subgroup: str,
     label_set: LabelSetSpec = "-2..2",
-    symmetry: str = "rotations",
+    symmetry: SymmetryMode = "rotations",
     *,
     components: int | None = None,
     no_zero: bool = False,

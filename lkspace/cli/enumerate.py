@@ -11,6 +11,7 @@ from ..catalog.plan import MAX_JOBS, MAX_SHARDS
 from ..design.space import WALK_MODES, DesignSpace, WalkMode, make_space
 from ..errors import CatalogError, TooLargeError, UsageError
 from ..symmetry.group import MODES as SYMMETRY_MODES
+from ..symmetry.group import SymmetryMode
 from ..words import plural
 from .common import (
     Context,
@@ -28,7 +29,7 @@ from .flags import flags_in
 
 def _count_payload(
     space: DesignSpace,
-    mode: str,
+    mode: WalkMode,
     components: int | None,
     max_designs: int | None,
     sample: int | None,
@@ -154,7 +155,7 @@ def _where_it_ran(
 def enumerate_cmd(
     mesh: str | None,
     labels_spec: str,
-    symmetry: str,
+    symmetry: SymmetryMode,
     output: str | None,
     mode: WalkMode,
     components: int | None,
@@ -211,7 +212,7 @@ def enumerate_cmd(
     if identify and (output is None or count_only):
         raise UsageError("--identify names the rows of a written catalog: give -o CATALOG.parquet")
     if invariant is not None:
-        from .invariant import refuse_with_invariant, run_invariant
+        from .invariant import InvariantOutput, refuse_with_invariant, run_invariant
 
         refuse_with_invariant(mode=mode != "designs", sample=sample, shards=shards, resume=resume, identify=identify)
         refuse_with_invariant(jobs=jobs > 1, scheduler=scheduler)
@@ -221,11 +222,8 @@ def enumerate_cmd(
             label_set(labels_spec),
             symmetry,
             invariant,
-            output,
-            count_only,
-            components,
             no_zero,
-            max_designs,
+            InvariantOutput(output, count_only, components, max_designs),
         )
     try:
         scaffold = load_mesh(ctx, mesh)

@@ -396,7 +396,7 @@ def check_count_digits(scaffold: Scaffold, n_labels: int) -> None:
 def make_space(
     scaffold: Scaffold,
     label_set: LabelSetSpec = "-2..2",
-    symmetry: str = "rotations",
+    symmetry: SymmetryMode = "rotations",
     no_zero: bool = False,
     tolerance: float | None = None,
 ) -> DesignSpace:

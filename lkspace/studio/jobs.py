@@ -100,10 +100,12 @@ def identify_payload(scaffold: Scaffold, labels: np.ndarray, nulls: np.ndarray |
 
 
 def solve_payload(scaffold: Scaffold, options: dict[str, Any]) -> dict[str, Any]:
-    """Designs answering a query (:func:`lkspace.solve`); ``options`` are its keyword arguments."""
-    from .. import solve
+    """Designs answering a query (:func:`lkspace.solve`); ``options`` are its keyword arguments and :class:`~lkspace.SolveOptions` fields."""
+    from .. import SolveOptions, solve
 
-    result = solve(scaffold, **options)
+    search = {k: options[k] for k in ("count", "distinct_up_to", "time_limit", "workers") if k in options}
+    query = {k: v for k, v in options.items() if k not in search}
+    result = solve(scaffold, **query, options=SolveOptions(**search))
     out = result.to_dict()
     out["solutions"] = [{"labels": s.labels.tolist(), "components": s.components} for s in result.solutions]
     return out
