@@ -16,14 +16,13 @@ class orbit (the schema of ``--mode residues``), with a representative label row
 from __future__ import annotations
 
 from collections.abc import Iterator
-from typing import Any
 
 import numpy as np
 
 from ..errors import LabelError
 from ..loops import UnionFind
 from .space import DesignSpace
-from .walk import residue_row
+from .walk import ResidueRow, residue_row
 
 MAX_TREES = 200_000
 
@@ -86,7 +85,7 @@ def spanning_tree_rows(
     seed: int = 0,
     max_designs: int | None = None,
     stats: dict[str, int] | None = None,
-) -> list[dict[str, Any]]:
+) -> list[ResidueRow]:
     """One-component residue-class rows (``--mode residues`` form) seeded from dual spanning trees."""
     sc = space.scaffold
     ids, pairs = dual_edges(space)
@@ -110,7 +109,7 @@ def spanning_tree_rows(
     else:
         trees = all_spanning_trees(sc.n_faces, pairs)
     seen: set[bytes] = set()
-    rows: list[dict[str, Any]] = []
+    rows: list[ResidueRow] = []
     stats = stats if stats is not None else {}
     stats.update(trees=0, rejected=0, classes=0)
     for tree in trees:

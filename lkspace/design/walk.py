@@ -35,7 +35,7 @@ from __future__ import annotations
 import math
 from collections.abc import Iterable, Iterator
 from dataclasses import dataclass
-from typing import Any
+from typing import NotRequired, TypedDict
 
 import numpy as np
 
@@ -45,6 +45,24 @@ from .batch_kernels import Actions, ClassOptions, Rows, expand_class_range, rows
 from .space import ClassInfo, DesignSpace
 
 CHUNK = 1 << 20
+
+
+class ResidueRow(TypedDict):
+    """One ``--mode residues`` row (a residue-class orbit), the columns of the residues schema (:mod:`lkspace.catalog.schema`)."""
+
+    residues: list[int]
+    labels: list[int]
+    components: int
+    orbit_size: int
+    designs: int
+    classes: int
+    holds_together: bool
+    n_zero: int
+    n_odd: int
+    residue_class: int
+    strand_lengths: list[int]
+    n_infinite: NotRequired[int]
+    strand_periods: NotRequired[list[list[int]]]
 
 
 def holds_together_rows(space: DesignSpace, residues: np.ndarray, info: ClassInfo, labels: np.ndarray) -> np.ndarray:
@@ -164,7 +182,7 @@ def _large_class(space: DesignSpace, c: int, traces: ClassTraces) -> Iterator[De
 
 def residue_row(
     space: DesignSpace, indices: np.ndarray, stabilizer: np.ndarray, info: ClassInfo | None = None
-) -> dict[str, Any]:
+) -> ResidueRow:
     """Return the ``--mode residues`` row of the class orbit of ``indices`` (a representative)."""
     e = np.arange(len(indices))
     residues = space.residue_table.values[e, indices]
@@ -175,7 +193,7 @@ def residue_row(
     big = 2**63 - 1  # counts past int64 are stored as -1 (possible only for huge spaces)
     assignments = space.size_of(indices) * n_classes
     designs = space.design_count(indices, stabilizer)
-    row = {
+    row: ResidueRow = {
         "residues": residues.astype(np.int8).tolist(),
         "labels": labels.tolist(),
         "components": info.components,

@@ -13,7 +13,7 @@ import threading
 import time
 from collections.abc import Iterator, Mapping
 from dataclasses import dataclass, field
-from typing import Any, TypeAlias
+from typing import Any, TypeAlias, TypedDict
 
 import numpy as np
 
@@ -34,6 +34,14 @@ MAX_COUNT = 10_000
 
 EdgeAction: TypeAlias = tuple[np.ndarray, int]
 """A signed edge permutation ``(perm (n_edges,) int64, sign)``: label ``t`` on ``e`` becomes ``sign * t`` on ``perm[e]``."""
+
+
+class SolveStats(TypedDict, total=False):
+    """What the CP-SAT model and search measured: ``model_nodes`` (super-nodes), ``fixed_cycles``, ``search_time`` (s)."""
+
+    model_nodes: int
+    fixed_cycles: int
+    search_time: float
 
 
 @dataclass(frozen=True)
@@ -66,7 +74,7 @@ class SolveResult:
     wall_time: float
     reason: str = ""
     exhausted: bool = False
-    stats: dict[str, Any] = field(default_factory=dict)
+    stats: SolveStats = field(default_factory=SolveStats)
 
     def __repr__(self) -> str:
         found = plural(len(self.solutions), "solution")
@@ -315,7 +323,7 @@ def solve_cp_sat(
     if step is not None:
         step.note("building the CP-SAT model")
     dm = build_model(scaffold, query, None if time_limit is None else t0 + time_limit)
-    stats: dict[str, Any] = {"model_nodes": dm.n_nodes, "fixed_cycles": dm.n_fixed_cycles}
+    stats: SolveStats = {"model_nodes": dm.n_nodes, "fixed_cycles": dm.n_fixed_cycles}
     if dm.decided == "unknown":
         return SolveResult("unknown", [], "cp-sat", time.perf_counter() - t0, dm.reason, False, stats)
     if dm.decided:
