@@ -352,16 +352,11 @@ def rows_hold_together_lift(labels: np.ndarray, row_class: np.ndarray, lift: Lif
                         pot[a, j] = -v[j]
                     size[b] += size[a]
                     pieces -= 1
-        if pieces != 1:
-            out[i] = False
+        if pieces != 1 or dim == 0:
+            out[i] = pieces == 1
             continue
-        if dim == 0:
-            continue
-        for k in range(n):
-            for j in range(dim):
-                vec[n_vec, j] = periods[c, k, j]
-            n_vec += 1
-        out[i] = lattice_index_rows(vec, n_vec, basis, has, v) == 1
+        vec[n_vec : n_vec + n] = periods[c, :n]
+        out[i] = lattice_index_rows(vec, n_vec + n, basis, has, v) == 1
     return out
 
 
