@@ -355,7 +355,9 @@ def rows_hold_together_lift(labels: np.ndarray, row_class: np.ndarray, lift: Lif
         if pieces != 1 or dim == 0:
             out[i] = pieces == 1
             continue
-        vec[n_vec : n_vec + n] = periods[c, :n]
+        for k in range(n):  # loops, not a slice assignment: that measured 10% slower here
+            for j in range(dim):
+                vec[n_vec + k, j] = periods[c, k, j]
         out[i] = lattice_index_rows(vec, n_vec + n, basis, has, v) == 1
     return out
 

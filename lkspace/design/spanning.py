@@ -47,9 +47,12 @@ def all_spanning_trees(n_nodes: int, pairs: np.ndarray, limit: int = MAX_TREES) 
     chosen: list[int] = []
     count = 0
 
+    ends = [(int(a), int(b)) for a, b in pairs.tolist()]
+
     def connected(allowed: list[int]) -> bool:
         pieces = UnionFind(n_nodes)
-        pieces.join_pairs(pairs[allowed])
+        for i in allowed:
+            pieces.join(*ends[i])
         return pieces.pieces == 1
 
     def rec(i: int, pieces: UnionFind) -> Iterator[tuple[int, ...]]:
@@ -62,9 +65,9 @@ def all_spanning_trees(n_nodes: int, pairs: np.ndarray, limit: int = MAX_TREES) 
             return
         if i == m or m - i < n_nodes - 1 - len(chosen):
             return
-        if pieces.find(int(pairs[i][0])) != pieces.find(int(pairs[i][1])):
+        if pieces.find(ends[i][0]) != pieces.find(ends[i][1]):
             joined = pieces.copy()
-            joined.join(int(pairs[i][0]), int(pairs[i][1]))
+            joined.join(*ends[i])
             chosen.append(i)
             yield from rec(i + 1, joined)
             chosen.pop()

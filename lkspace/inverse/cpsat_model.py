@@ -87,6 +87,8 @@ if TYPE_CHECKING:
         list[cp_model.IntVar], list[cp_model.IntVar], dict[tuple[int, int], cp_model.IntVar], list[cp_model.IntVar]
     ]
     """``(starts, ends, arcs, labels)``: the route and labelling variables of :func:`build_model`."""
+    PairLits: TypeAlias = dict[tuple[int, int], list[cp_model.BoolVarT]]
+    """Per pair of free paths ``(a, b)``, ``a < b``, the residue literals linking them."""
 
 
 @dataclass(eq=False)
@@ -294,13 +296,13 @@ def _presolve(scaffold: Scaffold, query: Query) -> tuple[DesignModel, tuple[np.n
 
 def _edge_literals(
     dm: DesignModel, node_of_port: np.ndarray, super_of: np.ndarray, deadline: float | None
-) -> tuple[dict[tuple[int, int], list[cp_model.BoolVarT]], list[cp_model.LinearExprT]] | None:
+) -> tuple[PairLits, list[cp_model.LinearExprT]] | None:
     """Add a literal per residue choice of each free edge; return those joining each pair of free paths and the objective's terms (``None``: past ``deadline``)."""
     model, scaffold, query = dm.model, dm.scaffold, dm.query
     assert model is not None
     degrees = scaffold.edge_degrees
     pm = port_model(scaffold)
-    pair_lits: dict[tuple[int, int], list[cp_model.BoolVarT]] = {}
+    pair_lits: PairLits = {}
     objective: list[cp_model.LinearExprT] = []
     for done, e in enumerate(np.flatnonzero(dm.fixed_residues < 0).tolist()):
         if done % 256 == 0 and _late(dm, deadline):
@@ -330,25 +332,21 @@ def _edge_literals(
     return pair_lits, objective
 
 
-def _add_routes(
-    dm: DesignModel,
-    pair_lits: dict[tuple[int, int], list[cp_model.BoolVarT]],
-    m: int,
-    need: int,
-    deadline: float | None,
-) -> bool:
+def _add_routes(dm: DesignModel, pair_lits: PairLits, m: int, need: int, deadline: float | None) -> bool:
     """Add the circuit over the ``m`` free paths and the labels counting ``need`` components (False: past ``deadline``)."""
     model = dm.model
     assert model is not None
     arcs = []
     starts = [model.new_bool_var(f"start{u}") for u in range(m)]
     ends = [model.new_bool_var(f"end{u}") for u in range(m)]
-    dm.route_vars = (starts, ends, {}, [])
+    arc_vars: dict[tuple[int, int], cp_model.IntVar] = {}
+    label_vars: list[cp_model.IntVar] = []
+    dm.route_vars = (starts, ends, arc_vars, label_vars)
     for u in range(m):
         arcs += [(0, u + 1, starts[u]), (u + 1, 0, ends[u])]
     for (a, b), joining in pair_lits.items():
         for tail, head in ((a, b), (b, a)):
-            arc = dm.route_vars[2][(tail, head)] = model.new_bool_var(f"arc{tail}_{head}")
+            arc = arc_vars[(tail, head)] = model.new_bool_var(f"arc{tail}_{head}")
             if len(joining) == 1:
                 model.add_implication(arc, joining[0])
             else:
@@ -363,7 +361,7 @@ def _add_routes(
         model.add(starts[0] == 1)
     elif need > 1:
         label = [model.new_int_var(0, u, f"L{u}") for u in range(m)]
-        dm.route_vars[3].extend(label)
+        label_vars.extend(label)
         for (a, b), joining in pair_lits.items():
             for lit in {x.Index(): x for x in joining}.values():
                 model.add(label[a] == label[b]).only_enforce_if(lit)
