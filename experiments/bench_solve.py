@@ -77,7 +77,10 @@ def meshes(quick: bool):
 def run_query(scaffold, n, no_zero, fast, args):
     t0 = time.perf_counter()
     result = lkspace.solve(
-        scaffold, n, no_zero=no_zero, fast_path=fast, time_limit=args.time_limit, workers=args.workers, seed=0
+        scaffold,
+        n,
+        no_zero=no_zero,
+        options=lkspace.SolveOptions(fast_path=fast, time_limit=args.time_limit, workers=args.workers, seed=0),
     )
     wall = time.perf_counter() - t0
     return {
@@ -103,7 +106,7 @@ def main(argv=None):
     parser.add_argument("-o", "--output", default=os.path.join("results", "bench_solve.csv"))
     args = parser.parse_args(argv)
     lkspace.solve(lkspace.load("tetrahedron"), 1)  # warm up numba ...
-    lkspace.solve(lkspace.load("tetrahedron"), 2, fast_path=False)  # ... and ortools
+    lkspace.solve(lkspace.load("tetrahedron"), 2, options=lkspace.SolveOptions(fast_path=False))  # ... and ortools
     rows = []
     for scaffold in meshes(args.quick):
         queries = [(1, True, True), (2, False, True), (5, False, True), (1, True, False)]

@@ -50,7 +50,7 @@ if TYPE_CHECKING:
     from .geometry.realization import GeometryParams, Realization
     from .geometry.relax import relax
     from .inverse import pipeline
-    from .inverse.pipeline import Solution, SolveResult
+    from .inverse.pipeline import Solution, SolveOptions, SolveResult
     from .io.sources import load
     from .knots import recognition
     from .knots.recognition import Identification
@@ -91,6 +91,7 @@ _LAZY = {
     "CatalogCheck": "catalog.verify",
     "solve": "inverse.pipeline",
     "SolveResult": "inverse.pipeline",
+    "SolveOptions": "inverse.pipeline",
     "Solution": "inverse.pipeline",
     "realize": "geometry.realization",
     "Realization": "geometry.realization",
@@ -125,6 +126,7 @@ __all__ = [
     "CatalogCheck",
     "solve",
     "SolveResult",
+    "SolveOptions",
     "Solution",
     "realize",
     "Realization",

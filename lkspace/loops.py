@@ -5,8 +5,11 @@
 * The canonical test: :func:`stabilizer_if_smallest`, whether labels are the smallest of
   their orbit under signed edge permutations, and how many of them fix the labels.  Action
   ``a`` maps labels ``t`` to ``signs[a] * t[inv_perms[a]]`` (:mod:`lkspace.symmetry.group`).
-* Union-find: :func:`find` (the root of a strand's piece) and :func:`join` (union by
-  size with lattice potentials: on a periodic scaffold, the translations closed by cycles).
+* Union-find, the one of the package: :func:`find` (the root of an item's piece) and
+  :func:`join` (union by size with potentials: on a periodic scaffold the lattice
+  translations closed by cycles, for signed edge orbits parities taken mod 2), the kernel
+  :func:`join_pairs` joining many pairs in one call, and :class:`UnionFind`, the same
+  arrays for plain Python callers.
   Two of the hottest loops keep a step written out, measured faster so: the walk's
   mixed-radix step in :func:`~lkspace.design.batch_kernels.canonical_rows` and ``join`` in
   :func:`~lkspace.design.batch_kernels.rows_hold_together_lift`.
@@ -20,7 +23,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .kernels import helper
+from .kernels import SMALL_WORK, helper, kernel
 
 
 @helper
@@ -91,7 +94,7 @@ def stabilizer_if_smallest(
 
 
 @helper
-def find(parent: np.ndarray, a: int) -> int:
+def find(parent: np.ndarray | list[int], a: int) -> int:
     """Return the root of ``a`` in the forest ``parent`` (``parent[r] == r`` at a root)."""
     while parent[a] != a:
         a = parent[a]
@@ -100,7 +103,13 @@ def find(parent: np.ndarray, a: int) -> int:
 
 @helper
 def join(
-    parent: np.ndarray, size: np.ndarray, pot: np.ndarray, a: int, b: int, shift: np.ndarray, rel: np.ndarray
+    parent: np.ndarray | list[int],
+    size: np.ndarray | list[int],
+    pot: np.ndarray,
+    a: int,
+    b: int,
+    shift: np.ndarray,
+    rel: np.ndarray,
 ) -> bool:
     """Join the pieces of strands ``a`` and ``b``; return False when they were one piece already.
 
@@ -134,6 +143,118 @@ def join(
             pot[a, j] = -rel[j]
         size[b] += size[a]
     return True
+
+
+@kernel
+def join_pairs(
+    parent: np.ndarray, size: np.ndarray, pot: np.ndarray, pairs: np.ndarray, shifts: np.ndarray, closed: np.ndarray
+) -> np.ndarray:
+    """Join ``pairs[k, 0]`` and ``pairs[k, 1]`` for each ``k`` in order (:func:`join`); return ``(m,) bool``, which joined two pieces.
+
+    ``shifts (m, dim)``: the potential of each pair's second item relative to its first;
+    ``closed (m, dim)`` receives, for a pair already in one piece, the potential its link
+    closes (the rows of joining pairs are left as they were).
+    """
+    m = pairs.shape[0]
+    joined = np.zeros(m, np.bool_)
+    rel = np.zeros(pot.shape[1], np.int64)
+    for k in range(m):
+        if join(parent, size, pot, pairs[k, 0], pairs[k, 1], shifts[k], rel):
+            joined[k] = True
+        else:
+            closed[k] = rel
+    return joined
+
+
+class UnionFind:
+    """Union-find over ``n`` items with potentials ``(n, dim)``, on the arrays of :func:`find` and :func:`join`.
+
+    For plain Python callers (the kernels call the helpers on their own arrays).
+    ``dim = 0``: no potentials, and ``parent`` and ``size`` are Python lists (the helpers
+    index them as they index arrays, and plain Python indexes lists about 3x faster than
+    numpy arrays); :meth:`join_pairs` hands large jobs to the compiled kernel on arrays.
+    ``pieces`` counts the pieces; ``rel (dim,)`` holds what the last :meth:`join` closed
+    (see :func:`join`).
+
+    Examples
+    --------
+    >>> uf = UnionFind(4)
+    >>> uf.join(0, 1), uf.join(2, 3), uf.join(1, 0), uf.pieces
+    (True, True, False, 2)
+    >>> uf.find(1) == uf.find(0), uf.find(2) == uf.find(0)
+    (True, False)
+    """
+
+    def __init__(self, n: int, dim: int = 0) -> None:
+        self.parent: list[int] | np.ndarray = list(range(n)) if dim == 0 else np.arange(n, dtype=np.int64)
+        self.size: list[int] | np.ndarray = [1] * n if dim == 0 else np.ones(n, np.int64)
+        self.pot = np.zeros((n, dim), np.int64)
+        self.rel = np.zeros(dim, np.int64)
+        self.pieces = n
+        self._no_shift = np.zeros(dim, np.int64)
+
+    def find(self, a: int) -> int:
+        """Return the root of ``a``'s piece."""
+        return int(find(self.parent, a))
+
+    def join(self, a: int, b: int, shift: np.ndarray | None = None) -> bool:
+        """Join the pieces of ``a`` and ``b`` (``shift (dim,)``: ``b``'s potential relative to ``a``'s); False if one already."""
+        if join(self.parent, self.size, self.pot, a, b, self._no_shift if shift is None else shift, self.rel):
+            self.pieces -= 1
+            return True
+        return False
+
+    def join_pairs(self, pairs: np.ndarray, shifts: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
+        """Join every row of ``pairs (m, 2) int64`` in order (:func:`join_pairs`, compiled for large ``m``).
+
+        Returns ``(joined (m,) bool, closed (m, dim) int64)``: whether each pair joined two
+        pieces, and for the others the potential their link closes.
+        """
+        pairs = np.ascontiguousarray(pairs, np.int64).reshape(-1, 2)
+        dim = self.pot.shape[1]
+        if shifts is None:
+            shifts = np.zeros((len(pairs), dim), np.int64)
+        closed = np.zeros((len(pairs), dim), np.int64)
+        shifts = np.ascontiguousarray(shifts, np.int64)
+        if isinstance(self.parent, list) and len(pairs) < SMALL_WORK:  # dim 0: closed has no columns
+            no_shift, rel = self._no_shift, self.rel
+            flags = [join(self.parent, self.size, self.pot, a, b, no_shift, rel) for a, b in pairs.tolist()]
+            joined = np.array(flags, np.bool_)
+        else:
+            parent, size = np.asarray(self.parent, np.int64), np.asarray(self.size, np.int64)
+            joined = join_pairs.run(len(pairs), parent, size, self.pot, pairs, shifts, closed)
+            if isinstance(self.parent, list):
+                self.parent, self.size = parent.tolist(), size.tolist()
+        self.pieces -= int(joined.sum())
+        return joined, closed
+
+    def roots(self) -> np.ndarray:
+        """``(n,) int64``: the root of every item's piece."""
+        parent = np.asarray(self.parent, np.int64)
+        roots = parent.copy()
+        while True:
+            up = parent[roots]
+            if np.array_equal(up, roots):
+                return roots
+            roots = up
+
+    def potentials(self) -> np.ndarray:
+        """``(n, dim) int64``: every item's potential relative to its root."""
+        parent, out = np.asarray(self.parent, np.int64), self.pot.copy()
+        up = parent.copy()
+        while True:  # out[i] sums pot along the path from i to up[i]
+            done = up == parent[up]
+            if done.all():
+                return out
+            out[~done] += self.pot[up[~done]]
+            up = np.where(done, up, parent[up])
+
+    def copy(self) -> UnionFind:
+        """Return an independent copy."""
+        other = UnionFind.__new__(UnionFind)  # no arrays allocated only to be replaced
+        other.parent, other.size, other.pot = self.parent.copy(), self.size.copy(), self.pot.copy()
+        other.rel, other._no_shift, other.pieces = self.rel.copy(), self._no_shift, self.pieces
+        return other
 
 
 @helper

@@ -115,9 +115,9 @@ def test_solve_library_bounds():
     from lkspace.errors import TooLargeError, UsageError
 
     with pytest.raises(TooLargeError, match="MAX_COUNT"):
-        lkspace.solve("cube", 1, count=10**30)
+        lkspace.solve("cube", 1, options=lkspace.SolveOptions(count=10**30))
     with pytest.raises(UsageError, match="^time_limit nan: "):
-        lkspace.solve("cube", 1, time_limit=float("nan"))
+        lkspace.solve("cube", 1, options=lkspace.SolveOptions(time_limit=float("nan")))
 
 
 def test_solve_time_limit_covers_every_stage_and_shows_progress(tmp_path):

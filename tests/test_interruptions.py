@@ -163,7 +163,7 @@ def test_ctrl_c_after_a_cp_sat_search_is_still_ours():
     """CP-SAT left SIGINT at the default action after a search: the next Ctrl-C killed the program silently."""
     script = (
         "import os, signal, lkspace\n"
-        "r = lkspace.solve('cube', 3, count=2, fast_path=False)\n"
+        "r = lkspace.solve('cube', 3, options=lkspace.SolveOptions(count=2, fast_path=False))\n"
         "assert r.method == 'cp-sat', r\n"
         "try:\n"
         "    os.kill(os.getpid(), signal.SIGINT)\n"

@@ -10,8 +10,9 @@ from hypothesis import strategies as st
 
 import lkspace
 from lkspace.kernels import SMALL_WORK, Kernel, kernel
+from lkspace.loops import join_pairs
 from lkspace.model.specs import parse_label_set
-from lkspace.strands.holding_together import echelon_index, union_with_potentials, winding_links
+from lkspace.strands.holding_together import echelon_index, winding_links
 from lkspace.strands.ports import edge_partner, port_model
 from lkspace.strands.walk import walk_strands
 
@@ -23,6 +24,15 @@ def _walk_args(scaffold, labels):
     partner = edge_partner(model, scaffold.edge_degrees, labels)
     translation = scaffold.side_translation if scaffold.periodic else np.zeros((scaffold.n_corners, 0), np.int64)
     return model.corner_partner, partner, np.ascontiguousarray(translation)
+
+
+def _joins(kernel_func, pairs, shifts, n):
+    """``join_pairs`` as run by ``kernel_func`` (plain or compiled): pieces and the closed translations."""
+    dim = shifts.shape[1]
+    parent, size, pot = np.arange(n), np.ones(n, np.int64), np.zeros((n, dim), np.int64)
+    closed = np.zeros((len(pairs), dim), np.int64)
+    joined = kernel_func(parent, size, pot, pairs, np.ascontiguousarray(shifts), closed)
+    return n - int(joined.sum()), closed[~joined]
 
 
 def _same(a, b):
@@ -39,8 +49,8 @@ def test_walk_and_holding_together_agree_compiled_and_plain(scaffold, seed):
     assert _same(walk_strands.py_func(*args), walk_strands.compiled(*args))
     trace = lkspace.trace(scaffold, labels)
     pairs, shifts = winding_links(trace)
-    plain = union_with_potentials.py_func(pairs, shifts, trace.components)
-    assert _same(plain, union_with_potentials.compiled(pairs, shifts, trace.components))
+    plain = _joins(join_pairs.py_func, pairs, shifts, trace.components)
+    assert _same(plain, _joins(join_pairs.compiled, pairs, shifts, trace.components))
 
 
 def test_periodic_kernels_agree():
@@ -52,8 +62,8 @@ def test_periodic_kernels_agree():
             assert _same(walk_strands.py_func(*args), walk_strands.compiled(*args))
             trace = lkspace.trace(scaffold, labels)
             pairs, shifts = winding_links(trace)
-            plain = union_with_potentials.py_func(pairs, shifts, trace.components)
-            compiled = union_with_potentials.compiled(pairs, shifts, trace.components)
+            plain = _joins(join_pairs.py_func, pairs, shifts, trace.components)
+            compiled = _joins(join_pairs.compiled, pairs, shifts, trace.components)
             assert _same(plain, compiled)
             vectors = np.concatenate([trace.periods, plain[1]])
             assert echelon_index.py_func(vectors) == echelon_index.compiled(vectors)

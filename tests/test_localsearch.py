@@ -19,7 +19,7 @@ from .strategies import traceable_scaffolds
 @pytest.mark.parametrize("no_zero", [False, True])
 def test_fast_path_answers_honeycomb_supercells(name, no_zero):
     s = lkspace.load(name)
-    result = lkspace.solve(s, 1, no_zero=no_zero, time_limit=20)
+    result = lkspace.solve(s, 1, no_zero=no_zero, options=lkspace.SolveOptions(time_limit=20))
     assert result.status in ("feasible", "optimal") and result.method == "fast-path"
     labels = result.solutions[0].labels
     assert trace(s, labels).components == 1

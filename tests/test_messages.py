@@ -121,7 +121,7 @@ def test_export_tube_bound_names_the_bound(capsys, tmp_path):
             "--fix 0-1=0 contradicts --no-zero",
         ),
         (
-            partial(lkspace.solve, "cube", 1, distinct_up_to="mirrors"),
+            partial(lkspace.solve, "cube", 1, options=lkspace.SolveOptions(distinct_up_to="mirrors")),
             ["solve", "cube", "-n", "1", "--distinct-up-to", "mirrors"],
             "distinct_up_to 'mirrors': expected rotations, isometries or none",
             None,  # click checks the choice on the command line

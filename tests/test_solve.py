@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import json
 
 import numpy as np
@@ -13,7 +14,7 @@ from lkspace import solve as solve_design
 from lkspace.cli import main
 from lkspace.errors import LabelError, SolveVerificationError
 from lkspace.inverse.cpsat_model import build_model
-from lkspace.inverse.pipeline import verify
+from lkspace.inverse.pipeline import SolveOptions, verify
 from lkspace.inverse.query import Query
 from lkspace.model.specs import parse_label_set
 from tests.brute import allowed_per_edge, component_census, residue_classes
@@ -54,7 +55,7 @@ def mobius(n: int = 5) -> Scaffold:
 
 
 def solve(scaffold, n, **kw):
-    kw.setdefault("workers", 1)
+    kw["options"] = dataclasses.replace(kw.get("options") or SolveOptions(), workers=1)
     return solve_design(scaffold, n, **kw)
 
 
@@ -97,7 +98,7 @@ def _check_against_census(scaffold, labels, **query):
     census = component_census(scaffold, allowed)
     for n in range(1, max(census) + 2):
         for fast in (True, False):
-            result = solve(scaffold, n, label_set=labels, fast_path=fast, **query)
+            result = solve(scaffold, n, label_set=labels, **query, options=SolveOptions(fast_path=fast))
             assert result.status == ("feasible" if n in census else "infeasible"), (scaffold.name, labels, n, fast)
             for sol in result.solutions:
                 assert sol.components == n == trace(scaffold, sol.labels).components
@@ -159,7 +160,7 @@ def test_count_returns_every_distinct_design_and_no_more(name, labels, n):
     scaffold = _scaffold(name)
     allowed = allowed_per_edge(scaffold, parse_label_set(labels))
     classes = residue_classes(scaffold, allowed, n)
-    result = solve(scaffold, n, label_set=labels, count=len(classes) + 3)
+    result = solve(scaffold, n, label_set=labels, options=SolveOptions(count=len(classes) + 3))
     got = {tuple((s.labels % scaffold.edge_degrees).tolist()) for s in result.solutions}
     assert got == classes and len(result.solutions) == len(classes)
     assert result.exhausted and result.status == "feasible"
@@ -168,7 +169,7 @@ def test_count_returns_every_distinct_design_and_no_more(name, labels, n):
 @pytest.mark.parametrize("fast", [True, False])
 def test_count_gives_distinct_single_component_designs(fast):
     cube = lkspace.load("cube")
-    result = solve(cube, 1, no_zero=True, count=4, fast_path=fast)
+    result = solve(cube, 1, no_zero=True, options=SolveOptions(count=4, fast_path=fast))
     residues = {tuple((s.labels % 2).tolist()) for s in result.solutions}
     assert len(result.solutions) == 4 == len(residues)
     assert all(np.all(s.labels != 0) for s in result.solutions)
@@ -203,10 +204,10 @@ def test_fast_path_respects_pinned_edges_or_falls_back():
 def test_objectives_agree_between_fast_path_and_cp_sat(name):
     scaffold = lkspace.load(name)
     fast = solve(scaffold, 1, objective="min-abs")
-    slow = solve(scaffold, 1, objective="min-abs", fast_path=False)
+    slow = solve(scaffold, 1, objective="min-abs", options=SolveOptions(fast_path=False))
     assert fast.method == "fast-path" and fast.status == slow.status == "optimal"
     assert np.abs(fast.solutions[0].labels).sum() == np.abs(slow.solutions[0].labels).sum() == scaffold.n_faces - 1
-    nonzero = solve(scaffold, 2, objective="min-nonzero", fast_path=False)
+    nonzero = solve(scaffold, 2, objective="min-nonzero", options=SolveOptions(fast_path=False))
     assert nonzero.status == "optimal"
 
 
@@ -227,7 +228,7 @@ def _designs(scaffold, allowed):
 
 
 def test_time_out_is_unknown_never_infeasible():
-    result = solve(lkspace.load("dodecahedron"), 3, time_limit=0.0, fast_path=False)
+    result = solve(lkspace.load("dodecahedron"), 3, options=SolveOptions(time_limit=0.0, fast_path=False))
     assert result.status == "unknown" and result.solutions == []
 
 
@@ -355,7 +356,7 @@ def test_distinct_up_to_symmetry_gives_one_design_per_orbit():
         images = [c] + [tuple(np.array(c)[np.argsort(perm)].tolist()) for perm, _ in actions]
         orbits.add(min(images))
     query = Query(2, label_set=np.array([0, 1]))
-    result = solve_cp_sat(scaffold, query, 50, actions, None, 1, 0, 0.0)
+    result = solve_cp_sat(scaffold, query, SolveOptions(count=50, workers=1), actions, 0.0)
     got = {
         min([tuple((s.labels % 2).tolist())] + [tuple((s.labels % 2)[np.argsort(p)].tolist()) for p, _ in actions])
         for s in result.solutions
@@ -378,7 +379,7 @@ def test_distinct_up_to_symmetry_matches_the_residue_orbits(name, labels, mode):
     import pandas as pd
 
     scaffold = lkspace.load(name)
-    result = solve(scaffold, 1, label_set=labels, count=500, distinct_up_to=mode, fast_path=False)
+    result = solve(scaffold, 1, label_set=labels, options=SolveOptions(count=500, distinct_up_to=mode, fast_path=False))
     orbits = pd.concat(
         list(lkspace.designs(scaffold, labels, mode, selection=lkspace.Selection(mode="residues", components=1)))
     )
@@ -389,13 +390,13 @@ def test_distinct_up_to_symmetry_matches_the_residue_orbits(name, labels, mode):
 
 def test_distinct_up_to_isometries_needs_a_symmetric_label_set():
     with pytest.raises(LabelError):
-        solve(lkspace.load("cube"), 1, label_set="0,1", count=2, distinct_up_to="isometries")
+        solve(lkspace.load("cube"), 1, label_set="0,1", options=SolveOptions(count=2, distinct_up_to="isometries"))
 
 
 def test_real_time_out_reports_unknown():
     from lkspace.scaffolds.spheres import cube_sphere
 
-    result = solve(cube_sphere(10), 1, no_zero=True, fast_path=False, time_limit=1.0)
+    result = solve(cube_sphere(10), 1, no_zero=True, options=SolveOptions(fast_path=False, time_limit=1.0))
     assert result.status in ("unknown", "feasible")
     assert (result.status == "unknown") == (result.solutions == [])
 

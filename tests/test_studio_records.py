@@ -76,12 +76,9 @@ def test_a_well_formed_body_reads_as_the_page_sends_it():
         "label_set": "-2..2",
         "no_zero": False,
         "fixes": {3: -2},
-        "count": 5,
         "objective": None,
-        "time_limit": 60.0,
-        "distinct_up_to": "none",
-        "workers": 2,
     }
+    assert (solve.count, solve.time_limit) == (5, 60.0)
     assert rq.JobRequest.from_json({"id": "12"}) == rq.JobRequest(12)
     assert rq.LookupRequest.from_json({"name": "3_1", "limit": "3"}) == rq.LookupRequest("3_1", 3, None)
     with pytest.raises(LkspaceError, match="^relax: true or false$"):

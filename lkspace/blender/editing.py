@@ -6,6 +6,8 @@ maps them to and from the mesh's ``lk_twist`` attribute (:mod:`lkspace.blender.m
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 from numpy.typing import ArrayLike
 
@@ -14,8 +16,11 @@ from ..model.scaffold import Scaffold
 from ..model.specs import parse_label_set
 from ..strands.tracing import Trace
 
+if TYPE_CHECKING:
+    from ..symmetry.group import SymmetryMode
 
-def fill_orbit(scaffold: Scaffold, labels: ArrayLike, edge: int, mode: str = "rotations") -> np.ndarray:
+
+def fill_orbit(scaffold: Scaffold, labels: ArrayLike, edge: int, mode: SymmetryMode = "rotations") -> np.ndarray:
     """Copy the label of ``edge`` to every edge of its orbit under the scaffold's symmetry.
 
     ``mode`` is ``"rotations"`` (a rotation keeps a label) or ``"isometries"`` (a mirror

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from collections.abc import Mapping, Sequence
 from typing import Any
 
 import numpy as np
@@ -88,7 +89,7 @@ def strand_columns(traces: ClassTraces, row_class: np.ndarray, periodic: bool) -
     return cols
 
 
-def residue_rows_to_batch(rows: list[dict[str, Any]], periodic: bool) -> pa.RecordBatch:
+def residue_rows_to_batch(rows: Sequence[Mapping[str, Any]], periodic: bool) -> pa.RecordBatch:
     """Record batch of the residues schema from row dicts (few rows: one per class orbit)."""
     schema = residue_schema(periodic)
     data = {f.name: [r[f.name] for r in rows] for f in schema}

@@ -17,16 +17,13 @@ import json
 from collections.abc import Callable
 from dataclasses import dataclass
 from enum import Enum
-from typing import Final, TypeAlias, TypeVar
+from typing import Final, TypeVar
 
 from ..design.space import WALK_MODES, WalkMode
 from ..errors import CatalogError
+from ..io.json_values import Json as Json
+from ..io.json_values import JsonObject as JsonObject
 from ..symmetry.group import MODES, SymmetryMode
-
-Json: TypeAlias = None | bool | int | float | str | list["Json"] | dict[str, "Json"]
-"""A JSON value as :func:`json.loads` returns it."""
-
-JsonObject: TypeAlias = dict[str, Json]
 
 FORMAT_VERSION = 1
 """The catalog format version lkspace writes."""

@@ -20,7 +20,7 @@ import contextlib
 import os
 from collections.abc import Callable
 from dataclasses import asdict, dataclass, replace
-from typing import TYPE_CHECKING, TypeAlias
+from typing import TYPE_CHECKING, TypeAlias, cast
 
 import pyarrow as pa
 import pyarrow.parquet as pq
@@ -218,7 +218,7 @@ def _planned(space: DesignSpace, selection: Selection, execution: Execution, sho
 def catalog_metadata(space: DesignSpace, selection: Selection) -> CatalogMetadata:
     """Return the ``lkspace`` metadata common to every part of a catalog (its signature for resuming)."""
     sc = space.scaffold
-    geometry = {k: v for k, v in scaffold_to_dict(sc).items() if k not in ("labels", "nulls")}
+    geometry = cast(JsonObject, {k: v for k, v in scaffold_to_dict(sc).items() if k not in ("labels", "nulls")})
     return CatalogMetadata(
         format_version=FORMAT_VERSION,
         scaffold=ScaffoldInfo(sc.name, sc.content_hash(), sc.n_edges, sc.n_faces, sc.periodic, geometry),

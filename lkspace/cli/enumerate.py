@@ -181,14 +181,19 @@ def enumerate_cmd(
     writes = output is not None and not count_only
     _check_before_work(mesh, output if writes else None, selection, execution)
     if invariant is not None:
-        from .invariant import refuse_with_invariant, run_invariant
+        from .invariant import InvariantOutput, refuse_with_invariant, run_invariant
 
         refuse_with_invariant(mode=mode != "designs", sample=sample, shards=shards, resume=resume, identify=identify)
         refuse_with_invariant(jobs=jobs > 1, scheduler=scheduler)
-        scaffold = load_mesh(ctx, mesh)
-        labels = label_set(labels_spec)
-        args = (output, count_only, components, no_zero, max_designs)
-        return run_invariant(ctx, scaffold, labels, symmetry, invariant, *args)
+        return run_invariant(
+            ctx,
+            load_mesh(ctx, mesh),
+            label_set(labels_spec),
+            symmetry,
+            invariant,
+            no_zero,
+            InvariantOutput(output, count_only, components, max_designs),
+        )
     try:
         scaffold = load_mesh(ctx, mesh)
         labels = label_set(labels_spec)

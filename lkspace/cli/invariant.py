@@ -3,12 +3,14 @@
 from __future__ import annotations
 
 import time
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 
 from ..errors import TooLargeError, UsageError
 from ..model.scaffold import Scaffold
+from ..symmetry.group import SymmetryMode
 from ..words import plural
 from .common import Context, emit, symmetry_tolerance, usage_errors
 
@@ -20,19 +22,31 @@ def refuse_with_invariant(**given: object) -> None:
             raise UsageError(f"--invariant writes one catalog file of designs; it does not combine with --{name}")
 
 
+@dataclass(frozen=True)
+class InvariantOutput:
+    """What ``enumerate --invariant`` makes of the designs it finds.
+
+    A catalog at ``output`` (``None``: a count), or a count anyway with ``count_only``; the
+    designs with ``components`` strands only (``None``: all), at most ``max_designs``.
+    """
+
+    output: str | None
+    count_only: bool
+    components: int | None
+    max_designs: int | None
+
+
 def run_invariant(
     ctx: Context,
     scaffold: Scaffold,
     labels: np.ndarray,
-    symmetry: str,
+    symmetry: SymmetryMode,
     subgroup: str,
-    output: str | None,
-    count_only: bool,
-    components: int | None,
     no_zero: bool,
-    max_designs: int | None,
+    made: InvariantOutput,
 ) -> None:
     """Count or write the symmetric designs and report them (JSON or a table)."""
+    output, count_only, components, max_designs = made.output, made.count_only, made.components, made.max_designs
     from ..catalog.symmetric import count_invariant, write_invariant_catalog
     from ..design.invariant import make_invariant_space
 

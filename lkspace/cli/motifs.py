@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import click
 import numpy as np
@@ -10,6 +10,9 @@ import numpy as np
 from ..errors import UsageError
 from ..words import plural
 from .common import Context, emit, json_option, label_set, labels_option, load_mesh, usage_errors
+
+if TYPE_CHECKING:
+    from ..symmetry.group import SymmetryMode
 
 
 def _sizes(text: str, option: str) -> list[int]:
@@ -56,7 +59,7 @@ def motifs_cmd(
     offsets: str,
     gradient: str | None,
     labels_spec: str,
-    symmetry: str,
+    symmetry: SymmetryMode,
     as_json: bool,
 ) -> None:
     """Repeat a motif (labels on a block of cells) over a supercell of the periodic MESH.

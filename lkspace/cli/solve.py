@@ -199,7 +199,7 @@ def solve_cmd(
       lkspace solve tetrahedron --type L6a4
       lkspace solve octahedron --linking-matrix "0,1,0;1,0,1;0,1,0" --labels -1..1
     """
-    from ..inverse.pipeline import solve
+    from ..inverse.pipeline import SolveOptions, solve
     from ..inverse.query import check_objective
     from ..symmetry.group import check_mode
 
@@ -229,6 +229,7 @@ def solve_cmd(
             from ..symmetry.edge_orbits import invariant_edge_orbits
 
             invariant_edge_orbits(scaffold, invariant)  # a bad subgroup name is bad usage (exit 2)
+    mode = check_mode(distinct_up_to)  # checked before the objective, as the flags are listed
     result = solve(
         scaffold,
         components,
@@ -236,15 +237,17 @@ def solve_cmd(
         no_zero=no_zero,
         fixes=fixes,
         parities=parities,
-        count=count,
-        distinct_up_to=check_mode(distinct_up_to),
         objective=check_objective(None if objective == "none" else objective),
-        time_limit=time_limit or None,
-        workers=workers,
-        seed=seed,
-        fast_path=not no_fast_path,
-        tolerance=symmetry_tolerance(),
-        invariant=invariant,
+        options=SolveOptions(
+            count=count,
+            distinct_up_to=mode,
+            invariant=invariant,
+            tolerance=symmetry_tolerance(),
+            time_limit=time_limit or None,
+            workers=workers,
+            seed=seed,
+            fast_path=not no_fast_path,
+        ),
     )
     written = None
     if target is not None and output is not None and result.solutions:

@@ -20,6 +20,12 @@ import numpy as np
 
 from ..strands.ports import port_model
 from .batch_kernels import (
+    Actions,
+    ClassOptions,
+    LiftInputs,
+    Rows,
+    TraceArrays,
+    WalkPorts,
     expand_classes,
     rows_hold_together_finite,
     rows_hold_together_lift,
@@ -72,50 +78,57 @@ class ClassTraces:
         return self.components, self.lengths, self.periods, self.walk_periods, self.port_strand, self.port_shift
 
 
-def _ports(space: DesignSpace) -> tuple[np.ndarray, ...]:
-    """Port-model arrays of the scaffold for :func:`trace_classes`, and the edge -> ports lists."""
+def walk_ports(space: DesignSpace) -> WalkPorts:
+    """Port-model arrays of the scaffold for :func:`trace_classes`."""
     sc = space.scaffold
     model = port_model(sc)
     translation = sc.side_translation if sc.periodic else np.zeros((sc.n_corners, 0), np.int64)
+    return WalkPorts(
+        corner_partner=model.corner_partner,
+        port_a=model.port_a,
+        port_b=model.port_b,
+        edge_starts=model.edge_starts,
+        slot_edge=model.slot_edge,
+        slot_index=model.slot_index,
+        degrees=np.asarray(sc.edge_degrees, np.int64),
+        translation=np.ascontiguousarray(translation, np.int64),
+    )
+
+
+def edge_ports(space: DesignSpace) -> tuple[np.ndarray, np.ndarray]:
+    """Return the ports of each edge, its leader first: ``(ptr (n_edges + 1,), ports)`` (CSR)."""
+    sc = space.scaffold
+    model = port_model(sc)
     edge_of_port = np.repeat(sc.side_edge, 2)
     leader = model.port_a[model.edge_starts[:-1]]
     ports = np.arange(2 * sc.n_corners)
     is_leader = ports == leader[edge_of_port]
     order = np.lexsort((~is_leader, edge_of_port))  # by edge; each edge's leader first
     ptr = np.searchsorted(edge_of_port[order], np.arange(sc.n_edges + 1))
-    return (
-        model.corner_partner,
-        model.port_a,
-        model.port_b,
-        model.edge_starts,
-        model.slot_edge,
-        model.slot_index,
-        np.asarray(sc.edge_degrees, np.int64),
-        np.ascontiguousarray(translation, np.int64),
-        ptr.astype(np.int64),
-        order.astype(np.int64),
-    )
+    return ptr.astype(np.int64), order.astype(np.int64)
 
 
 def trace_batch(space: DesignSpace, residues: np.ndarray) -> ClassTraces:
     """Trace every class of ``residues (n_c, n_edges)`` (one compiled call)."""
-    p = _ports(space)
+    ports = walk_ports(space)
     n_c = len(residues)
-    n_ports = len(p[0])
-    dim = p[7].shape[1]
-    comp = np.empty(n_c, np.int64)
-    lengths = np.empty((n_c, n_ports // 2), np.int64)
-    periods = np.zeros((n_c, n_ports // 2, dim), np.int64)
-    port_strand = np.empty((n_c, n_ports), np.int64)
-    port_shift = np.zeros((n_c, n_ports, dim), np.int64)
-    res = np.ascontiguousarray(residues, np.int64)
-    trace_classes(res, *p[:8], comp, lengths, periods, port_strand, port_shift)
+    n_ports = len(ports.corner_partner)
+    dim = ports.translation.shape[1]
+    out = TraceArrays(
+        components=np.empty(n_c, np.int64),
+        lengths=np.empty((n_c, n_ports // 2), np.int64),
+        periods=np.zeros((n_c, n_ports // 2, dim), np.int64),
+        port_strand=np.empty((n_c, n_ports), np.int64),
+        port_shift=np.zeros((n_c, n_ports, dim), np.int64),
+    )
+    trace_classes(np.ascontiguousarray(residues, np.int64), ports, out)
+    comp = out.components
     n_s = int(comp.max()) if n_c else 0
-    lengths, walk_periods = lengths[:, :n_s], periods[:, :n_s]
+    lengths, walk_periods = out.lengths[:, :n_s], out.periods[:, :n_s]
     order = np.argsort(-lengths, axis=1, kind="stable")  # padding (-1) sorts last
     sorted_lengths = np.take_along_axis(lengths, order, axis=1)
     sorted_periods = np.take_along_axis(walk_periods, order[:, :, None], axis=1)
-    return ClassTraces(comp, sorted_lengths, sorted_periods, walk_periods, port_strand, port_shift)
+    return ClassTraces(comp, sorted_lengths, sorted_periods, walk_periods, out.port_strand, out.port_shift)
 
 
 def holds_batch(space: DesignSpace, traces: ClassTraces, labels: np.ndarray, row_class: np.ndarray) -> np.ndarray:
@@ -124,7 +137,6 @@ def holds_batch(space: DesignSpace, traces: ClassTraces, labels: np.ndarray, row
     Finite scaffolds: union-find over each class's distinct strands per edge.  Periodic
     ones: over every port, with lattice potentials, and the index of the lift.
     """
-    p = _ports(space)
     if not space.scaffold.periodic:
         ptr, strands = edge_strands(space, traces.port_strand)
         return rows_hold_together_finite(
@@ -134,16 +146,18 @@ def holds_batch(space: DesignSpace, traces: ClassTraces, labels: np.ndarray, row
             ptr,
             strands,
         )
+    port_ptr, ports = edge_ports(space)
+    lift = LiftInputs(
+        components=traces.components,
+        periods=np.ascontiguousarray(traces.walk_periods),
+        port_strand=traces.port_strand,
+        port_shift=np.ascontiguousarray(traces.port_shift),
+        edge_port_ptr=port_ptr,
+        edge_ports=ports,
+        tau=walk_ports(space).translation,
+    )
     return rows_hold_together_lift(
-        np.ascontiguousarray(labels, np.int8),
-        np.ascontiguousarray(row_class, np.int64),
-        traces.components,
-        np.ascontiguousarray(traces.walk_periods),
-        traces.port_strand,
-        np.ascontiguousarray(traces.port_shift),
-        p[8],
-        p[9],
-        p[7],
+        np.ascontiguousarray(labels, np.int8), np.ascontiguousarray(row_class, np.int64), lift
     )
 
 
@@ -189,7 +203,8 @@ def expand_batch(space: DesignSpace, class_ids: np.ndarray) -> tuple[np.ndarray,
     out = np.empty((total, space.scaffold.n_edges), np.int8)
     stab, cls = np.empty(total, np.int64), np.empty(total, np.int64)
     ptr, ids = stabilizer_csr(space, class_ids, identity=False)
-    m = expand_classes(indices, opts, n_opts, inv, np.ascontiguousarray(signs), ptr, ids, out, stab, cls)
+    actions = Actions(inv_perms=inv, signs=np.ascontiguousarray(signs))
+    m = expand_classes(indices, ClassOptions(opts=opts, n_opts=n_opts), actions, ptr, ids, Rows(out, stab), cls)
     return out[:m], stab[:m], cls[:m]
 
 

@@ -28,7 +28,6 @@ enough that Ctrl-C (seen between calls) stops a census within a moment.
 
 from __future__ import annotations
 
-import math
 from collections.abc import Callable
 from dataclasses import dataclass
 
@@ -38,7 +37,7 @@ from ..engine import run_tasks
 from ..errors import LabelError
 from ..progress import task
 from ..strands.ports import port_model
-from .census_kernel import census_range
+from .census_kernel import CensusPorts, Term, census_range
 from .space import DesignSpace
 
 SHARD_CHOICES = 1 << 24
@@ -50,23 +49,6 @@ this short, so that Ctrl-C, which Python sees only between calls, stops it promp
 
 MAX_VALUE_KINDS = 3
 """Distinct label counts per residue class (besides 1) a census keeps apart exactly."""
-
-
-@dataclass(frozen=True, eq=False)
-class Term:
-    """The residue vectors fixed by one group action: variables (cycles) and their choices."""
-
-    var_ptr: np.ndarray
-    var_edges: np.ndarray
-    var_signs: np.ndarray
-    n_choices: np.ndarray
-    choice_res: np.ndarray
-    choice_val: np.ndarray
-
-    @property
-    def size(self) -> int:
-        """Number of residue vectors (exact)."""
-        return math.prod(int(x) for x in self.n_choices)
 
 
 @dataclass
@@ -156,24 +138,9 @@ def shard_term(shared: tuple[DesignSpace, list[Term]], item: tuple[int, int, int
     if 0 in t.n_choices.tolist():
         return hist
     step = max(1, CALL_PORT_VISITS // max(len(model.corner_partner), 1))
+    ports = CensusPorts(model.corner_partner, model.port_a, model.port_b, model.edge_starts)
     for a in range(first, stop, step):
-        census_range(
-            a,
-            min(stop, a + step),
-            t.var_ptr,
-            t.var_edges,
-            t.var_signs,
-            t.n_choices,
-            t.choice_res,
-            t.choice_val,
-            n_vals,
-            space.moduli,
-            model.corner_partner,
-            model.port_a,
-            model.port_b,
-            model.edge_starts,
-            hist,
-        )
+        census_range(a, min(stop, a + step), t, n_vals, space.moduli, ports, hist)
     return hist
 
 

@@ -10,29 +10,47 @@ changed are rebuilt.
 
 from __future__ import annotations
 
+import math
+from typing import NamedTuple
+
 import numpy as np
 
 from ..kernels import kernel
 from ..loops import next_digits, set_digits
 
 
+class Term(NamedTuple):
+    """The residue vectors fixed by one group action: variables (cycles) and their choices.
+
+    A NamedTuple: :func:`~lkspace.design.census_kernel.census_range` takes it as it is
+    (see there for the arrays).
+    """
+
+    var_ptr: np.ndarray
+    var_edges: np.ndarray
+    var_signs: np.ndarray
+    n_choices: np.ndarray
+    choice_res: np.ndarray
+    choice_val: np.ndarray
+
+    @property
+    def size(self) -> int:
+        """Number of residue vectors (exact)."""
+        return math.prod(int(x) for x in self.n_choices)
+
+
+class CensusPorts(NamedTuple):
+    """The arrays of :class:`~lkspace.strands.ports.PortModel` the census walk reads."""
+
+    corner_partner: np.ndarray
+    port_a: np.ndarray
+    port_b: np.ndarray
+    edge_starts: np.ndarray
+
+
 @kernel
 def census_range(
-    first: int,
-    stop: int,
-    var_ptr: np.ndarray,
-    var_edges: np.ndarray,
-    var_signs: np.ndarray,
-    n_choices: np.ndarray,
-    choice_res: np.ndarray,
-    choice_val: np.ndarray,
-    n_vals: int,
-    moduli: np.ndarray,
-    corner_partner: np.ndarray,
-    port_a: np.ndarray,
-    port_b: np.ndarray,
-    edge_starts: np.ndarray,
-    hist: np.ndarray,
+    first: int, stop: int, term: Term, n_vals: int, moduli: np.ndarray, ports: CensusPorts, hist: np.ndarray
 ) -> None:
     """Add choices ``first..stop`` (mixed radix, variable 0 most significant) to ``hist``.
 
@@ -40,8 +58,12 @@ def census_range(
     to ``var_signs[...] * choice_res[v, choice] mod K``; ``choice_val[v, choice]`` is the
     index of its label count among the ``n_vals`` counted ones (-1: a factor 1, not
     counted).  ``hist[components, cell]`` counts choices; the cell is the mixed-radix
-    number (base ``n_var + 1``) of how many variables have each counted value.
+    number (base ``n_var + 1``) of how many variables have each counted value.  The
+    variables are the arrays of ``term`` (:class:`~lkspace.design.census.Term`).
     """
+    var_ptr, var_edges, var_signs = term.var_ptr, term.var_edges, term.var_signs
+    n_choices, choice_res, choice_val = term.n_choices, term.choice_res, term.choice_val
+    corner_partner, port_a, port_b, edge_starts = ports.corner_partner, ports.port_a, ports.port_b, ports.edge_starts
     n_var = len(n_choices)
     n_ports = len(corner_partner)
     partner = np.empty(n_ports, np.int64)

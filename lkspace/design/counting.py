@@ -18,6 +18,7 @@ import numpy as np
 from ..engine import is_dask
 from ..model.scaffold import Scaffold
 from ..model.specs import LabelSetSpec
+from ..symmetry.group import SymmetryMode
 from ..words import plural
 from .batch import class_components, design_counts
 from .census import census
@@ -141,7 +142,7 @@ def count_space(
 def count_designs(
     scaffold: Scaffold,
     label_set: LabelSetSpec = "-2..2",
-    symmetry: str = "rotations",
+    symmetry: SymmetryMode = "rotations",
     *,
     components: int | None = None,
     no_zero: bool = False,

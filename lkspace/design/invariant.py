@@ -174,7 +174,7 @@ class InvariantSpace:
 def make_invariant_space(
     scaffold: Scaffold,
     label_set: np.ndarray,
-    mode: str,
+    mode: SymmetryMode,
     subgroup: str,
     no_zero: bool = False,
     tolerance: float | None = None,

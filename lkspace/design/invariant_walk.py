@@ -11,6 +11,7 @@ class traced once (:func:`~lkspace.design.batch.trace_batch`), and returned as
 from __future__ import annotations
 
 from collections.abc import Iterator
+from typing import NamedTuple
 
 import numpy as np
 
@@ -18,6 +19,7 @@ from ..errors import TooLargeError
 from ..kernels import kernel
 from ..loops import next_digits, set_digits, stabilizer_if_smallest
 from .batch import holds_batch, trace_batch
+from .batch_kernels import Actions, Rows
 from .invariant import InvariantSpace
 from .walk import DesignBlock
 
@@ -28,40 +30,48 @@ MAX_FIXED = 1 << 28
 """Largest number of fixed assignments listed (counting by Burnside has no bound)."""
 
 
-@kernel
-def invariant_canonical(
-    opts: np.ndarray,
-    n_opts: np.ndarray,
-    edge_orbit: np.ndarray,
-    edge_rel: np.ndarray,
-    moduli: np.ndarray,
-    inv_perms: np.ndarray,
-    signs: np.ndarray,
-    start: int,
-    stop: int,
-    out_labels: np.ndarray,
-    out_stab: np.ndarray,
-) -> int:
-    """Keep the fixed assignments ``start..stop`` that are canonical under ``N``; return how many.
+class FixedAssignments(NamedTuple):
+    """The assignments fixed by ``H`` as :func:`invariant_canonical` walks them.
 
     ``opts (n_orbits, max_o)``, ``n_opts (n_orbits,)``: representative labels per orbit;
     ``edge_orbit``, ``edge_rel (n_edges,)``: edge label = ``edge_rel * u[edge_orbit]``;
-    ``inv_perms (n_a, n_edges)``, ``signs (n_a,)``: the actions of ``N`` (identity first),
-    the image of ``t`` being ``signs[a] * t[inv_perms[a]]``.
+    ``moduli (n_edges,)``: ``K`` per edge.
     """
+
+    opts: np.ndarray
+    n_opts: np.ndarray
+    edge_orbit: np.ndarray
+    edge_rel: np.ndarray
+    moduli: np.ndarray
+
+
+@kernel
+def invariant_canonical(fixed: FixedAssignments, actions: Actions, start: int, stop: int, out: Rows) -> int:
+    """Keep the fixed assignments ``start..stop`` that are canonical under ``N``; return how many.
+
+    ``actions``: those of ``N``, identity first.  Kept rows go to ``out``.
+    """
+    opts, n_opts, edge_orbit, edge_rel, moduli = (
+        fixed.opts,
+        fixed.n_opts,
+        fixed.edge_orbit,
+        fixed.edge_rel,
+        fixed.moduli,
+    )
+    inv_perms, signs, out_labels, out_stab = actions.inv_perms, actions.signs, out.labels, out.stab
     n_e = len(edge_orbit)
     n_a = len(signs)
     digits = np.zeros(len(n_opts), np.int64)
     set_digits(digits, n_opts, start)
     x = np.empty(n_e, np.int64)
     res = np.empty(n_e, np.int64)
-    actions = np.arange(n_a)
+    ids = np.arange(n_a)
     m = 0
     for _ in range(start, stop):
         for j in range(n_e):
             x[j] = edge_rel[j] * opts[edge_orbit[j], digits[edge_orbit[j]]]
             res[j] = x[j] % moduli[j]
-        stab = stabilizer_if_smallest(x, res, moduli, inv_perms, signs, actions, 1, n_a)
+        stab = stabilizer_if_smallest(x, res, moduli, inv_perms, signs, ids, 1, n_a)
         if stab:
             for j in range(n_e):
                 out_labels[m, j] = x[j]
@@ -93,15 +103,15 @@ def invariant_blocks(space: InvariantSpace, components: int | None = None) -> It
     for i, o in enumerate(space.options):
         opts[i, : len(o)] = o
     perms, signs = space.action
-    inv = np.ascontiguousarray(np.argsort(perms, axis=1))
-    moduli = space.base.moduli
+    actions = Actions(inv_perms=np.ascontiguousarray(np.argsort(perms, axis=1)), signs=signs)
+    fixed = FixedAssignments(opts, n_opts, orbit, rel, space.base.moduli)
     n_e = space.scaffold.n_edges
     for start in range(0, n_fixed, CHUNK):
         stop = min(n_fixed, start + CHUNK)
         out = np.empty((stop - start, n_e), np.int8)
         stab = np.empty(stop - start, np.int64)
         work = (stop - start) * max(1, len(signs)) * n_e
-        m = invariant_canonical.run(work, opts, n_opts, orbit, rel, moduli, inv, signs, start, stop, out, stab)
+        m = invariant_canonical.run(work, fixed, actions, start, stop, Rows(out, stab))
         if m:
             block = rows_block(space, out[:m], len(signs) // stab[:m], components)
             if block is not None:

@@ -8,10 +8,39 @@
 
 from __future__ import annotations
 
+from typing import NamedTuple
+
 import numpy as np
 
 from ..kernels import kernel
 from ..loops import next_digits, set_digits
+
+
+class ResidueCodes(NamedTuple):
+    """The residues of a design space as the orbit kernels read them (:class:`~lkspace.design.space.ResidueTable`).
+
+    Edge ``j`` has ``n_res[j]`` residues ``values[j, :n_res[j]]`` mod ``moduli[j]``;
+    ``lookup[j, r]`` is the index of residue ``r`` (-1 if none).
+    """
+
+    n_res: np.ndarray
+    values: np.ndarray
+    lookup: np.ndarray
+    moduli: np.ndarray
+
+
+class SignedPerms(NamedTuple):
+    """Group actions as forward maps: action ``g`` puts ``signs[g] * t[j]`` on edge ``perms[g, j]``."""
+
+    perms: np.ndarray
+    signs: np.ndarray
+
+
+class MinimaOut(NamedTuple):
+    """What :func:`orbit_minima` writes per class code: ``is_rep (n,) bool`` and ``n_fix (n,) int64``."""
+
+    is_rep: np.ndarray
+    n_fix: np.ndarray
 
 
 @kernel
@@ -49,24 +78,15 @@ def burnside_classes(
 
 
 @kernel
-def orbit_minima(
-    first: int,
-    stop: int,
-    n_res: np.ndarray,
-    values: np.ndarray,
-    lookup: np.ndarray,
-    moduli: np.ndarray,
-    perms: np.ndarray,
-    signs: np.ndarray,
-    is_rep: np.ndarray,
-    n_fix: np.ndarray,
-) -> None:
+def orbit_minima(first: int, stop: int, residues: ResidueCodes, group: SignedPerms, out: MinimaOut) -> None:
     """For class codes ``first..stop``: whether each is its orbit's smallest code, and how many actions fix it.
 
     Codes are mixed radix over the edges' residue indices (edge 0 most significant); the
     image of a class under action ``(perm, sign)`` puts residue ``sign * r`` of edge ``j``
-    on edge ``perm[j]``.
+    on edge ``perm[j]``.  Writes ``out.is_rep[i]`` and ``out.n_fix[i]`` for code ``first + i``.
     """
+    n_res, values, lookup, moduli = residues.n_res, residues.values, residues.lookup, residues.moduli
+    perms, signs, is_rep, n_fix = group.perms, group.signs, out.is_rep, out.n_fix
     n_e = len(n_res)
     n_g = len(signs)
     digits = np.zeros(n_e, np.int64)
@@ -96,16 +116,10 @@ def orbit_minima(
 
 @kernel
 def stabilizer_ids(
-    indices: np.ndarray,
-    values: np.ndarray,
-    lookup: np.ndarray,
-    moduli: np.ndarray,
-    perms: np.ndarray,
-    signs: np.ndarray,
-    ptr: np.ndarray,
-    out: np.ndarray,
+    indices: np.ndarray, residues: ResidueCodes, group: SignedPerms, ptr: np.ndarray, out: np.ndarray
 ) -> None:
     """Write the actions fixing each class ``indices (n_c, n_edges)``, ascending, to ``out[ptr[c]:ptr[c+1]]``."""
+    values, lookup, moduli, perms, signs = residues.values, residues.lookup, residues.moduli, group.perms, group.signs
     n_c, n_e = indices.shape
     for c in range(n_c):
         m = ptr[c]

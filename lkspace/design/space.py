@@ -24,7 +24,7 @@ from ..model.specs import LabelSetSpec, parse_label_set
 from ..model.validation import validate_labels
 from ..strands.walk import walk
 from ..symmetry.group import SymmetryGroup, SymmetryMode, check_label_set, check_mode, symmetry_group
-from .orbit_kernels import orbit_minima, stabilizer_ids
+from .orbit_kernels import MinimaOut, ResidueCodes, SignedPerms, orbit_minima, stabilizer_ids
 
 MAX_CLASSES = 1 << 21
 MAX_COUNT_DIGITS = 4000
@@ -332,7 +332,8 @@ def class_orbits(space: DesignSpace) -> ClassOrbits:
     perms, signs = space.action
     is_rep = np.empty(n_cls, np.bool_)
     n_fix = np.empty(n_cls, np.int64)
-    orbit_minima(0, n_cls, n_res, values, lookup, k, perms, signs, is_rep, n_fix)
+    residues, group = ResidueCodes(n_res, values, lookup, k), SignedPerms(perms, signs)
+    orbit_minima(0, n_cls, residues, group, MinimaOut(is_rep, n_fix))
     reps = np.flatnonzero(is_rep)
     idx = np.stack(np.unravel_index(reps, dims), axis=1).astype(np.int64)
     e = np.arange(len(dims))
@@ -341,7 +342,7 @@ def class_orbits(space: DesignSpace) -> ClassOrbits:
     np.cumsum(n_fix[reps], out=ptr[1:])
     orbit_sizes = len(perms) // n_fix[reps]
     stab_ids = np.empty(ptr[-1], np.int64)  # per class, ascending (identity first)
-    stabilizer_ids(idx, values, lookup, k, perms, signs, ptr, stab_ids)
+    stabilizer_ids(idx, residues, group, ptr, stab_ids)
     return ClassOrbits(idx, val, reps, orbit_sizes.astype(np.int64), ptr, stab_ids)
 
 
@@ -395,7 +396,7 @@ def check_count_digits(scaffold: Scaffold, n_labels: int) -> None:
 def make_space(
     scaffold: Scaffold,
     label_set: LabelSetSpec = "-2..2",
-    symmetry: str = "rotations",
+    symmetry: SymmetryMode = "rotations",
     no_zero: bool = False,
     tolerance: float | None = None,
 ) -> DesignSpace:

@@ -16,13 +16,13 @@ class orbit (the schema of ``--mode residues``), with a representative label row
 from __future__ import annotations
 
 from collections.abc import Iterator
-from typing import Any
 
 import numpy as np
 
 from ..errors import LabelError
+from ..loops import UnionFind
 from .space import DesignSpace
-from .walk import residue_row
+from .walk import ResidueRow, residue_row
 
 MAX_TREES = 200_000
 
@@ -41,30 +41,21 @@ def dual_edges(space: DesignSpace) -> tuple[np.ndarray, np.ndarray]:
     return np.array(ids, np.int64), np.array(pairs, np.int64).reshape(-1, 2)
 
 
-def _find(parent: list[int], x: int) -> int:
-    while parent[x] != x:
-        parent[x] = parent[parent[x]]
-        x = parent[x]
-    return x
-
-
 def all_spanning_trees(n_nodes: int, pairs: np.ndarray, limit: int = MAX_TREES) -> Iterator[tuple[int, ...]]:
     """Yield every spanning tree of a multigraph as a sorted tuple of edge positions."""
     m = len(pairs)
     chosen: list[int] = []
     count = 0
 
-    def connected(allowed: list[int]) -> bool:
-        parent = list(range(n_nodes))
-        comps = n_nodes
-        for i in allowed:
-            a, b = _find(parent, pairs[i][0]), _find(parent, pairs[i][1])
-            if a != b:
-                parent[a] = b
-                comps -= 1
-        return comps == 1
+    ends = [(int(a), int(b)) for a, b in pairs.tolist()]
 
-    def rec(i: int, parent: list[int]) -> Iterator[tuple[int, ...]]:
+    def connected(allowed: list[int]) -> bool:
+        pieces = UnionFind(n_nodes)
+        for i in allowed:
+            pieces.join(*ends[i])
+        return pieces.pieces == 1
+
+    def rec(i: int, pieces: UnionFind) -> Iterator[tuple[int, ...]]:
         nonlocal count
         if len(chosen) == n_nodes - 1:
             count += 1
@@ -74,22 +65,21 @@ def all_spanning_trees(n_nodes: int, pairs: np.ndarray, limit: int = MAX_TREES) 
             return
         if i == m or m - i < n_nodes - 1 - len(chosen):
             return
-        a, b = _find(parent, pairs[i][0]), _find(parent, pairs[i][1])
-        if a != b:
-            p2 = parent.copy()
-            p2[a] = b
+        if pieces.find(ends[i][0]) != pieces.find(ends[i][1]):
+            joined = pieces.copy()
+            joined.join(*ends[i])
             chosen.append(i)
-            yield from rec(i + 1, p2)
+            yield from rec(i + 1, joined)
             chosen.pop()
         if connected(chosen + list(range(i + 1, m))):
-            yield from rec(i + 1, parent)
+            yield from rec(i + 1, pieces)
 
     if n_nodes == 1:
         yield ()
         return
     if not connected(list(range(m))):
         return
-    yield from rec(0, list(range(n_nodes)))
+    yield from rec(0, UnionFind(n_nodes))
 
 
 def spanning_tree_rows(
@@ -98,7 +88,7 @@ def spanning_tree_rows(
     seed: int = 0,
     max_designs: int | None = None,
     stats: dict[str, int] | None = None,
-) -> list[dict[str, Any]]:
+) -> list[ResidueRow]:
     """One-component residue-class rows (``--mode residues`` form) seeded from dual spanning trees."""
     sc = space.scaffold
     ids, pairs = dual_edges(space)
@@ -122,7 +112,7 @@ def spanning_tree_rows(
     else:
         trees = all_spanning_trees(sc.n_faces, pairs)
     seen: set[bytes] = set()
-    rows: list[dict[str, Any]] = []
+    rows: list[ResidueRow] = []
     stats = stats if stats is not None else {}
     stats.update(trees=0, rejected=0, classes=0)
     for tree in trees:

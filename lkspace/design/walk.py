@@ -35,16 +35,34 @@ from __future__ import annotations
 import math
 from collections.abc import Iterable, Iterator
 from dataclasses import dataclass
-from typing import Any
+from typing import NotRequired, TypedDict
 
 import numpy as np
 
 from ..strands.tracing import trace
 from .batch import BATCH_ASSIGNMENTS, ClassTraces, batches_of, expand_batch, holds_batch, trace_batch
-from .batch_kernels import expand_class_range, rows_hold_together_finite
+from .batch_kernels import Actions, ClassOptions, Rows, expand_class_range, rows_hold_together_finite
 from .space import ClassInfo, DesignSpace
 
 CHUNK = 1 << 20
+
+
+class ResidueRow(TypedDict):
+    """One ``--mode residues`` row (a residue-class orbit), the columns of the residues schema (:mod:`lkspace.catalog.schema`)."""
+
+    residues: list[int]
+    labels: list[int]
+    components: int
+    orbit_size: int
+    designs: int
+    classes: int
+    holds_together: bool
+    n_zero: int
+    n_odd: int
+    residue_class: int
+    strand_lengths: list[int]
+    n_infinite: NotRequired[int]
+    strand_periods: NotRequired[list[list[int]]]
 
 
 def holds_together_rows(space: DesignSpace, residues: np.ndarray, info: ClassInfo, labels: np.ndarray) -> np.ndarray:
@@ -144,17 +162,18 @@ def _large_class(space: DesignSpace, c: int, traces: ClassTraces) -> Iterator[De
     perms, signs = space.action
     inv = np.ascontiguousarray(np.argsort(perms, axis=1))
     signs = np.ascontiguousarray(signs)
-    n_opts_t, opts_t = space.residue_table.n_opts, space.residue_table.opts
+    options = ClassOptions(opts=space.residue_table.opts, n_opts=space.residue_table.n_opts)
+    actions = Actions(inv_perms=inv, signs=signs)
     e = np.arange(space.scaffold.n_edges)
     index = np.ascontiguousarray(co.indices[c])
-    n_opts = n_opts_t[e, index]
+    n_opts = options.n_opts[e, index]
     h = np.ascontiguousarray(co.stabilizers[c][1:], np.int64)
     size = math.prod(n_opts.tolist())
     for start in range(0, size, CHUNK):
         stop = min(size, start + CHUNK)
         out = np.empty((stop - start, len(e)), np.int8)
         stab = np.empty(stop - start, np.int64)
-        m = expand_class_range(index, opts_t, n_opts_t, inv, signs, h, start, stop, out, stab)
+        m = expand_class_range(index, options, actions, h, start, stop, Rows(out, stab))
         labels = out[:m]
         row_class = np.zeros(m, np.int64)
         holds = holds_batch(space, traces, labels, row_class)
@@ -163,7 +182,7 @@ def _large_class(space: DesignSpace, c: int, traces: ClassTraces) -> Iterator[De
 
 def residue_row(
     space: DesignSpace, indices: np.ndarray, stabilizer: np.ndarray, info: ClassInfo | None = None
-) -> dict[str, Any]:
+) -> ResidueRow:
     """Return the ``--mode residues`` row of the class orbit of ``indices`` (a representative)."""
     e = np.arange(len(indices))
     residues = space.residue_table.values[e, indices]
@@ -174,7 +193,7 @@ def residue_row(
     big = 2**63 - 1  # counts past int64 are stored as -1 (possible only for huge spaces)
     assignments = space.size_of(indices) * n_classes
     designs = space.design_count(indices, stabilizer)
-    row = {
+    row: ResidueRow = {
         "residues": residues.astype(np.int8).tolist(),
         "labels": labels.tolist(),
         "components": info.components,

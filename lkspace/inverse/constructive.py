@@ -25,12 +25,13 @@ and the caller falls back to CP-SAT.  Every design is re-traced by the caller.
 from __future__ import annotations
 
 import time
-from collections.abc import Callable
+from dataclasses import dataclass
 
 import numpy as np
 import scipy.sparse
 import scipy.sparse.csgraph
 
+from ..loops import UnionFind
 from ..model.scaffold import Scaffold
 from ..progress import Step
 from ..words import plural
@@ -77,17 +78,60 @@ def spanning_designs(
         if len(designs) < count and partial and time_budget > 0:
             designs += local_search(scaffold, query, partial[0][1], count - len(designs), seed, time_budget, step)
         return designs, False
-    allowed = allowed_labels(scaffold, query)
+    choices = _parity_choices(scaffold, query)
+    dual = None if choices is None else _dual_edges(scaffold, choices)
+    if choices is None or dual is None:
+        return [], False
+    designs = _tree_designs(scaffold, choices, dual, count, seed, deadline)
+    if not designs:
+        return [], False
+    return designs, _meets_lower_bound(designs[0], choices, dual, scaffold, query)
+
+
+@dataclass(frozen=True, eq=False)
+class ParityChoices:
+    """The cheapest allowed label of each edge per parity (a K <= 2 scaffold).
+
+    ``base (n_edges,)``: the even pick (on an edge of degree 1 any label), ``odd
+    (n_edges,)``: the odd pick, ``costs (n_edges, 2)`` their costs and ``can (n_edges, 2)
+    bool`` whether each exists, ``[even, odd]``.
+    """
+
+    base: np.ndarray
+    odd: np.ndarray
+    costs: np.ndarray
+    can: np.ndarray
+
+
+@dataclass(frozen=True, eq=False)
+class DualEdges:
+    """The edges of degree 2 (``two``), between faces ``f0`` and ``f1``.
+
+    ``candidate``: may take an odd label (allowed, and not a loop); ``forced``: must (no
+    even label); ``delta``: the cost of odd minus that of even.
+    """
+
+    two: np.ndarray
+    f0: np.ndarray
+    f1: np.ndarray
+    candidate: np.ndarray
+    forced: np.ndarray
+    delta: np.ndarray
+
+
+def _parity_choices(scaffold: Scaffold, query: Query) -> ParityChoices | None:
+    """Return the cheapest label of each parity per edge, ``None`` if some edge has none."""
+    degrees = scaffold.edge_degrees
     n_edges = scaffold.n_edges
     base = np.zeros(n_edges, np.int64)
     odd = np.zeros(n_edges, np.int64)
     costs = np.zeros((n_edges, 2), np.int64)
     can = np.zeros((n_edges, 2), bool)  # [even, odd]
-    for e, labels in enumerate(allowed):
+    for e, labels in enumerate(allowed_labels(scaffold, query)):
         if degrees[e] == 1:
             pick = cheapest_label(labels, query.objective)
             if pick is None:
-                return [], False
+                return None
             costs[e, 0], base[e] = pick
             can[e, 0] = True
             continue
@@ -98,21 +142,33 @@ def spanning_designs(
                 costs[e, parity], chosen = pick
                 (base if parity == 0 else odd)[e] = chosen
     if not can.any(axis=1).all():
-        return [], False
-    two = np.flatnonzero(degrees == 2)
+        return None
+    return ParityChoices(base, odd, costs, can)
+
+
+def _dual_edges(scaffold: Scaffold, choices: ParityChoices) -> DualEdges | None:
+    """Return the edges of degree 2 as the dual graph's edges, ``None`` if a loop must be odd."""
+    two = np.flatnonzero(scaffold.edge_degrees == 2)
     sides = scaffold.radial.edge_sides
     starts = scaffold.radial.edge_starts
     f0 = scaffold.corner_face[sides[starts[two]]]
     f1 = scaffold.corner_face[sides[starts[two] + 1]]
     loop = f0 == f1
+    can = choices.can
     if np.any(loop & ~can[two, 0]):
-        return [], False
+        return None
     candidate = can[two, 1] & ~loop
-    forced = candidate & ~can[two, 0]
-    delta = costs[two, 1] - costs[two, 0]
-    n_faces = scaffold.n_faces
+    delta = choices.costs[two, 1] - choices.costs[two, 0]
+    return DualEdges(two, f0, f1, candidate, candidate & ~can[two, 0], delta)
+
+
+def _tree_designs(
+    scaffold: Scaffold, choices: ParityChoices, dual: DualEdges, count: int, seed: int, deadline: float | None
+) -> list[np.ndarray]:
+    """Up to ``count`` one-component designs: odd labels on random dual spanning trees, even elsewhere."""
+    two, forced, candidate, delta = dual.two, dual.forced, dual.candidate, dual.delta
     rng = np.random.default_rng(seed)
-    designs = []
+    designs: list[np.ndarray] = []
     seen: set[bytes] = set()
     lightest = delta.min(initial=0)  # no two-face edge at all: one strand per face, any labels
     for _ in range(4 * count):
@@ -121,24 +177,22 @@ def spanning_designs(
         weights = np.where(
             forced, 1e-3 * (1 + rng.random(len(two))), 1 + (delta - lightest) + 0.5 * rng.random(len(two))
         )
-        tree = _spanning_tree(n_faces, f0[candidate], f1[candidate], weights[candidate])
+        tree = _spanning_tree(scaffold.n_faces, dual.f0[candidate], dual.f1[candidate], weights[candidate])
         if tree is None:
             break
         in_tree = np.zeros(len(two), bool)
         in_tree[np.flatnonzero(candidate)[tree]] = True
         if np.any(forced & ~in_tree):
             break
-        labels = base.copy()
-        labels[two[in_tree]] = odd[two[in_tree]]
+        labels = choices.base.copy()
+        labels[two[in_tree]] = choices.odd[two[in_tree]]
         key = in_tree.tobytes()
         if key not in seen:
             seen.add(key)
             designs.append(labels)
         if len(designs) == count:
             break
-    if not designs:
-        return [], False
-    return designs, _meets_lower_bound(designs[0], costs, can, degrees, delta, forced, two, n_faces, query)
+    return designs
 
 
 def _spanning_tree(n_faces: int, u: np.ndarray, v: np.ndarray, weights: np.ndarray) -> np.ndarray | None:
@@ -160,19 +214,13 @@ def _spanning_tree(n_faces: int, u: np.ndarray, v: np.ndarray, weights: np.ndarr
 
 
 def _meets_lower_bound(
-    labels: np.ndarray,
-    costs: np.ndarray,
-    can: np.ndarray,
-    degrees: np.ndarray,
-    delta: np.ndarray,
-    forced: np.ndarray,
-    two: np.ndarray,
-    n_faces: int,
-    query: Query,
+    labels: np.ndarray, choices: ParityChoices, dual: DualEdges, scaffold: Scaffold, query: Query
 ) -> bool:
     """Whether ``labels`` reaches the bound: >= F - 1 odd degree-2 edges, each edge at its cheapest."""
     if query.objective is None:
         return True
+    costs, can, degrees, n_faces = choices.costs, choices.can, scaffold.edge_degrees, scaffold.n_faces
+    two, forced, delta = dual.two, dual.forced, dual.delta
     cost = int(label_cost(labels, query.objective).sum())
     bound = int(costs[degrees == 1, 0].sum())
     both = can[two, 0] & can[two, 1]
@@ -184,18 +232,6 @@ def _meets_lower_bound(
         return False
     bound += int(gains[:take].sum())
     return cost == bound
-
-
-def _finder(parent: np.ndarray) -> Callable[[int], int]:
-    """Union-find lookup with path halving over ``parent`` (updated in place)."""
-
-    def find(x: int) -> int:
-        while parent[x] != x:
-            parent[x] = parent[parent[x]]
-            x = parent[x]
-        return int(x)
-
-    return find
 
 
 GREEDY_ATTEMPTS = 16
@@ -242,20 +278,19 @@ def _greedy_designs(
             break
         must_merge = np.array([a is None for a in stay])
         order = np.lexsort((rng.random(scaffold.n_edges), -degrees, ~must_merge))
-        parent = np.arange(scaffold.n_faces)
-        find = _finder(parent)
+        pieces = UnionFind(scaffold.n_faces)
         labels = np.zeros(scaffold.n_edges, np.int64)
         n_strands = scaffold.n_faces
         stuck = False
         for e in order.tolist():
             k = int(degrees[e])
-            roots = {find(int(f)) for f in faces_of[e]}
+            roots = {pieces.find(int(f)) for f in faces_of[e]}
             distinct = k > 1 and len(roots) == k and merge[e] is not None
             if distinct and (n_strands - (k - 1) >= query.components or stay[e] is None):
                 labels[e] = merge[e][1]
                 first, *rest = roots
                 for r in rest:
-                    parent[r] = first
+                    pieces.join(first, r)
                 n_strands -= k - 1
             elif stay[e] is not None:
                 labels[e] = stay[e][1]

@@ -87,6 +87,8 @@ if TYPE_CHECKING:
         list[cp_model.IntVar], list[cp_model.IntVar], dict[tuple[int, int], cp_model.IntVar], list[cp_model.IntVar]
     ]
     """``(starts, ends, arcs, labels)``: the route and labelling variables of :func:`build_model`."""
+    PairLits: TypeAlias = dict[tuple[int, int], list[cp_model.BoolVarT]]
+    """Per pair of free paths ``(a, b)``, ``a < b``, the residue literals linking them."""
 
 
 @dataclass(eq=False)
@@ -243,6 +245,27 @@ def build_model(scaffold: Scaffold, query: Query, deadline: float | None = None)
     """
     from ortools.sat.python import cp_model
 
+    dm, structure = _presolve(scaffold, query)
+    if structure is None:
+        return dm
+    node_of_port, super_of, m, need = structure
+    dm.model = cp_model.CpModel()
+    found = _edge_literals(dm, node_of_port, super_of, deadline)
+    if found is None:
+        return dm
+    pair_lits, objective = found
+    if query.invariant_orbits is not None:
+        _tie_orbits(dm, query.invariant_orbits.orbit, query.invariant_orbits.rel)
+    if not _add_routes(dm, pair_lits, m, need, deadline):
+        return dm
+    _add_swap_cut(dm)
+    if objective:
+        dm.model.minimize(sum(objective))
+    return dm
+
+
+def _presolve(scaffold: Scaffold, query: Query) -> tuple[DesignModel, tuple[np.ndarray, np.ndarray, int, int] | None]:
+    """Return the model's residue choices and fixed structure (``node_of_port``, ``super_of``, the ``m`` free paths, the ``need`` ed components; ``None``: decided already)."""
     if scaffold.nulls is not None and np.any(scaffold.nulls):
         raise LabelError(f"{scaffold.name}: solve does not handle null edge-sides; remove them from the scaffold")
     allowed = allowed_labels(scaffold, query)
@@ -254,7 +277,7 @@ def build_model(scaffold: Scaffold, query: Query, deadline: float | None = None)
     if empty:
         dm.decided = "infeasible"
         dm.reason = f"edge {scaffold.edge_name(empty[0])} has no allowed label"
-        return dm
+        return dm, None
     node_of_port, super_of, n_fixed_cycles, m = _fixed_structure(scaffold, fixed)
     dm.n_fixed_cycles, dm.n_nodes = n_fixed_cycles, m
     need = int(query.components) - n_fixed_cycles
@@ -267,16 +290,24 @@ def build_model(scaffold: Scaffold, query: Query, deadline: float | None = None)
             f"{plural(m, 'free path remains', 'free paths remain')}: "
             f"only {n_fixed_cycles + 1}..{n_fixed_cycles + m} components are possible"
         )
-        return dm
-    model = cp_model.CpModel()
-    dm.model = model
+        return dm, None
+    return dm, (node_of_port, super_of, m, need)
+
+
+def _edge_literals(
+    dm: DesignModel, node_of_port: np.ndarray, super_of: np.ndarray, deadline: float | None
+) -> tuple[PairLits, list[cp_model.LinearExprT]] | None:
+    """Add a literal per residue choice of each free edge; return those joining each pair of free paths and the objective's terms (``None``: past ``deadline``)."""
+    model, scaffold, query = dm.model, dm.scaffold, dm.query
+    assert model is not None
+    degrees = scaffold.edge_degrees
     pm = port_model(scaffold)
-    pair_lits: dict[tuple[int, int], list[cp_model.BoolVarT]] = {}
-    objective = []
-    for done, e in enumerate(np.flatnonzero(fixed < 0).tolist()):
+    pair_lits: PairLits = {}
+    objective: list[cp_model.LinearExprT] = []
+    for done, e in enumerate(np.flatnonzero(dm.fixed_residues < 0).tolist()):
         if done % 256 == 0 and _late(dm, deadline):
-            return dm
-        opts = choices[e]
+            return None
+        opts = dm.choices[e]
         k = int(degrees[e])
         start = int(pm.edge_starts[e])
         lits: list[tuple[int, cp_model.BoolVarT]] = []
@@ -298,24 +329,31 @@ def build_model(scaffold: Scaffold, query: Query, deadline: float | None = None)
         if len(opts) > 2:
             model.add_exactly_one([lit for _, lit in lits])
         dm.residue_literals[e] = lits
-    if query.invariant_orbits is not None:
-        _tie_orbits(dm, query.invariant_orbits.orbit, query.invariant_orbits.rel)
+    return pair_lits, objective
+
+
+def _add_routes(dm: DesignModel, pair_lits: PairLits, m: int, need: int, deadline: float | None) -> bool:
+    """Add the circuit over the ``m`` free paths and the labels counting ``need`` components (False: past ``deadline``)."""
+    model = dm.model
+    assert model is not None
     arcs = []
     starts = [model.new_bool_var(f"start{u}") for u in range(m)]
     ends = [model.new_bool_var(f"end{u}") for u in range(m)]
-    dm.route_vars = (starts, ends, {}, [])
+    arc_vars: dict[tuple[int, int], cp_model.IntVar] = {}
+    label_vars: list[cp_model.IntVar] = []
+    dm.route_vars = (starts, ends, arc_vars, label_vars)
     for u in range(m):
         arcs += [(0, u + 1, starts[u]), (u + 1, 0, ends[u])]
     for (a, b), joining in pair_lits.items():
         for tail, head in ((a, b), (b, a)):
-            arc = dm.route_vars[2][(tail, head)] = model.new_bool_var(f"arc{tail}_{head}")
+            arc = arc_vars[(tail, head)] = model.new_bool_var(f"arc{tail}_{head}")
             if len(joining) == 1:
                 model.add_implication(arc, joining[0])
             else:
                 model.add_bool_or(joining).only_enforce_if(arc)
             arcs.append((tail + 1, head + 1, arc))
     if _late(dm, deadline):
-        return dm
+        return False
     if m:
         model.add_multiple_circuit(arcs)
         model.add(sum(starts) == need)
@@ -323,7 +361,7 @@ def build_model(scaffold: Scaffold, query: Query, deadline: float | None = None)
         model.add(starts[0] == 1)
     elif need > 1:
         label = [model.new_int_var(0, u, f"L{u}") for u in range(m)]
-        dm.route_vars[3].extend(label)
+        label_vars.extend(label)
         for (a, b), joining in pair_lits.items():
             for lit in {x.Index(): x for x in joining}.values():
                 model.add(label[a] == label[b]).only_enforce_if(lit)
@@ -333,22 +371,26 @@ def build_model(scaffold: Scaffold, query: Query, deadline: float | None = None)
                 model.add(label[u] <= u - 1).only_enforce_if(starts[u].Not())
             else:
                 model.add(starts[0] == 1)
-    # Redundant cut: residue r on an edge of degree K is K - gcd(K, r) swaps (2-opt moves) away
-    # from residue 0, each changing the component count by at most one, and all-zero labels
-    # give one component per face.  So the total swap distance is at least |F - N|.
-    base = sum(int(k) - math.gcd(int(k), int(r)) for k, r in zip(degrees, fixed, strict=True) if r > 0)
+    return True
+
+
+def _add_swap_cut(dm: DesignModel) -> None:
+    """Add the redundant cut: residue r on an edge of degree K is K - gcd(K, r) swaps (2-opt moves)
+    from residue 0, each changing the component count by at most one, and all-zero labels
+    give one component per face; so the total swap distance is at least |F - N|.
+    """  # noqa: D205
+    assert dm.model is not None
+    degrees = dm.scaffold.edge_degrees
+    base = sum(int(k) - math.gcd(int(k), int(r)) for k, r in zip(degrees, dm.fixed_residues, strict=True) if r > 0)
     distance = [
         (int(degrees[e]) - math.gcd(int(degrees[e]), r)) * lit
         for e, lits in dm.residue_literals.items()
         for r, lit in lits
         if r
     ]
-    gap = abs(scaffold.n_faces - int(query.components)) - base
+    gap = abs(dm.scaffold.n_faces - int(dm.query.components)) - base
     if distance and gap > 0:
-        model.add(sum(distance) >= gap)
-    if objective:
-        model.minimize(sum(objective))
-    return dm
+        dm.model.add(sum(distance) >= gap)
 
 
 def _tie_orbits(dm: DesignModel, orbit: np.ndarray, rel: np.ndarray) -> None:

@@ -13,7 +13,7 @@ import threading
 import time
 from collections.abc import Iterator, Mapping
 from dataclasses import dataclass, field
-from typing import Any, TypeAlias
+from typing import Any, TypeAlias, TypedDict
 
 import numpy as np
 
@@ -34,6 +34,14 @@ MAX_COUNT = 10_000
 
 EdgeAction: TypeAlias = tuple[np.ndarray, int]
 """A signed edge permutation ``(perm (n_edges,) int64, sign)``: label ``t`` on ``e`` becomes ``sign * t`` on ``perm[e]``."""
+
+
+class SolveStats(TypedDict, total=False):
+    """What the CP-SAT model and search measured: ``model_nodes`` (super-nodes), ``fixed_cycles``, ``search_time`` (s)."""
+
+    model_nodes: int
+    fixed_cycles: int
+    search_time: float
 
 
 @dataclass(frozen=True)
@@ -66,7 +74,7 @@ class SolveResult:
     wall_time: float
     reason: str = ""
     exhausted: bool = False
-    stats: dict[str, Any] = field(default_factory=dict)
+    stats: SolveStats = field(default_factory=SolveStats)
 
     def __repr__(self) -> str:
         found = plural(len(self.solutions), "solution")
@@ -108,6 +116,42 @@ def _orbit(residues: np.ndarray, actions: list[EdgeAction], degrees: np.ndarray)
     return images
 
 
+@dataclass(frozen=True)
+class SolveOptions:
+    """How :func:`solve` searches: how many designs, told apart how, with what budget.
+
+    Attributes
+    ----------
+    count : int
+        Distinct solutions wanted (different strand connectivity), ``1..MAX_COUNT``.
+    distinct_up_to : ``"none"``, ``"rotations"`` or ``"isometries"``
+        With a symmetry group, no two solutions lie in one orbit.
+    invariant : str, optional
+        Only designs fixed by this subgroup of the symmetries (a name of
+        :func:`~lkspace.symmetry.subgroups.parse_subgroup`, e.g. ``"C3"``); CP-SAT only.
+    tolerance : float, optional
+        Symmetry search tolerance for ``distinct_up_to`` and ``invariant``, in mesh units
+        (default: 1/100 of the shortest edge).
+    time_limit : float, optional
+        Seconds for the whole call; running out gives status ``"unknown"`` (or
+        ``"feasible"`` if some solutions were found).
+    workers, seed : int
+        CP-SAT search workers (0: all cores) and random seed.
+    fast_path : bool
+        Try the spanning-tree/forest construction of :mod:`lkspace.inverse.constructive` first (it
+        answers many queries with N <= F in linear time; CP-SAT takes over otherwise).
+    """
+
+    count: int = 1
+    distinct_up_to: SymmetryMode = "none"
+    invariant: str | None = None
+    tolerance: float | None = None
+    time_limit: float | None = None
+    workers: int = 0
+    seed: int = 0
+    fast_path: bool = True
+
+
 def solve(
     scaffold: Scaffold,
     components: int,
@@ -116,17 +160,10 @@ def solve(
     no_zero: bool = False,
     fixes: Mapping[int, int] | None = None,
     parities: Mapping[int, int] | None = None,
-    count: int = 1,
-    distinct_up_to: SymmetryMode = "none",
     objective: Objective | None = None,
-    time_limit: float | None = None,
-    workers: int = 0,
-    seed: int = 0,
-    fast_path: bool = True,
-    tolerance: float | None = None,
-    invariant: str | None = None,
+    options: SolveOptions | None = None,
 ) -> SolveResult:
-    """Find up to ``count`` designs on ``scaffold`` with exactly ``components`` strands.
+    """Find up to ``options.count`` designs on ``scaffold`` with exactly ``components`` strands.
 
     Parameters
     ----------
@@ -142,24 +179,9 @@ def solve(
         Edge index -> label.
     parities : dict of int -> {0, 1}, optional
         Edge index -> 0 (even) or 1 (odd).
-    count : int
-        Distinct solutions wanted (different strand connectivity).
-    distinct_up_to : ``"none"``, ``"rotations"`` or ``"isometries"``
-        With a symmetry group, no two solutions lie in one orbit.
     objective : None, ``"min-abs"`` or ``"min-nonzero"``
-    time_limit : float, optional
-        Seconds for the whole call; running out gives status ``"unknown"`` (or
-        ``"feasible"`` if some solutions were found).
-    workers, seed : int
-        CP-SAT search workers (0: all cores) and random seed.
-    fast_path : bool
-        Try the spanning-tree/forest construction of :mod:`lkspace.inverse.constructive` first (it
-        answers many queries with N <= F in linear time; CP-SAT takes over otherwise).
-    tolerance : float, optional
-        Symmetry search tolerance for ``distinct_up_to``, in mesh units (default: 1/100 of the shortest edge).
-    invariant : str, optional
-        Only designs fixed by this subgroup of the symmetries (a name of
-        :func:`~lkspace.symmetry.subgroups.parse_subgroup`, e.g. ``"C3"``); CP-SAT only.
+    options : SolveOptions, optional
+        How many designs, told apart how, the subgroup they keep, time, workers, seed.
 
     Examples
     --------
@@ -173,28 +195,19 @@ def solve(
     1
     """
     t0 = time.perf_counter()
-    check_budget(count, time_limit)
-    label_set = parse_label_set(label_set) if isinstance(label_set, str) else np.unique(np.asarray(label_set, np.int64))
-    orbits = None if invariant is None else invariant_edge_orbits(scaffold, invariant, tolerance)
-    query = Query(int(components), label_set, bool(no_zero), dict(fixes or {}), dict(parities or {}), objective, orbits)
-    fast_path = fast_path and invariant is None  # the constructions know nothing of symmetry
-    deadline = None if not time_limit else t0 + time_limit
+    opts = SolveOptions() if options is None else options
+    check_budget(opts.count, opts.time_limit)
+    labels = parse_label_set(label_set) if isinstance(label_set, str) else np.unique(np.asarray(label_set, np.int64))
+    orbits = None if opts.invariant is None else invariant_edge_orbits(scaffold, opts.invariant, opts.tolerance)
+    query = Query(int(components), labels, bool(no_zero), dict(fixes or {}), dict(parities or {}), objective, orbits)
     with task(f"solving {scaffold.name} for {plural(query.components, 'component')}") as step:
-        step.note("symmetry" if distinct_up_to != "none" else "fast path")
-        actions = symmetry_actions(scaffold, distinct_up_to, label_set, tolerance)
-        if fast_path and (count == 1 or distinct_up_to == "none"):
-            step.note("fast path")
-            # the local search behind the fast path gets half of the time left (30 s without a limit)
-            budget = 0.5 * (time_limit - (time.perf_counter() - t0)) if time_limit else LOCAL_SEARCH_SECONDS
-            found, optimal = spanning_designs(scaffold, query, count, seed, budget, deadline, step)
-            if len(found) == count and (objective is None or optimal):
-                sols = [verify(scaffold, t, query.components) for t in found]
-                status: SolveStatus = "optimal" if objective is not None else "feasible"
-                return SolveResult(status, sols, "fast-path", time.perf_counter() - t0)
-        else:
-            found = []
+        step.note("symmetry" if opts.distinct_up_to != "none" else "fast path")
+        actions = symmetry_actions(scaffold, opts.distinct_up_to, labels, opts.tolerance)
+        found, answer = fast_path_designs(scaffold, query, opts, t0, step)
+        if answer is not None:
+            return answer
         hint = found[0] % scaffold.edge_degrees if found else None
-        result = solve_cp_sat(scaffold, query, count, actions, time_limit, workers, seed, t0, hint, step)
+        result = solve_cp_sat(scaffold, query, opts, actions, t0, hint, step)
     if found and result.status == "infeasible":
         raise SolveVerificationError(
             f"internal error: CP-SAT calls {scaffold.name} infeasible for "
@@ -212,6 +225,29 @@ def solve(
             result.stats,
         )
     return result
+
+
+def fast_path_designs(
+    scaffold: Scaffold, query: Query, opts: SolveOptions, t0: float, step: Step
+) -> tuple[list[np.ndarray], SolveResult | None]:
+    """Run the fast path where it applies: the designs it found, and the answer when they settle the query.
+
+    The constructions know nothing of symmetry: no fast path for ``invariant``, nor for
+    ``count > 1`` told apart up to symmetry.
+    """
+    if not opts.fast_path or opts.invariant is not None or (opts.count != 1 and opts.distinct_up_to != "none"):
+        return [], None
+    step.note("fast path")
+    time_limit = opts.time_limit
+    deadline = None if not time_limit else t0 + time_limit
+    # the local search behind the fast path gets half of the time left (30 s without a limit)
+    budget = 0.5 * (time_limit - (time.perf_counter() - t0)) if time_limit else LOCAL_SEARCH_SECONDS
+    found, optimal = spanning_designs(scaffold, query, opts.count, opts.seed, budget, deadline, step)
+    if len(found) == opts.count and (query.objective is None or optimal):
+        sols = [verify(scaffold, t, query.components) for t in found]
+        status: SolveStatus = "optimal" if query.objective is not None else "feasible"
+        return found, SolveResult(status, sols, "fast-path", time.perf_counter() - t0)
+    return found, None
 
 
 def check_budget(count: int, time_limit: float | None) -> None:
@@ -269,16 +305,13 @@ def symmetry_actions(
 def solve_cp_sat(
     scaffold: Scaffold,
     query: Query,
-    count: int,
+    opts: SolveOptions,
     actions: list[EdgeAction],
-    time_limit: float | None,
-    workers: int,
-    seed: int,
     t0: float,
     hint: np.ndarray | None = None,
     step: Step | None = None,
 ) -> SolveResult:
-    """Solve ``query`` with CP-SAT, solve-and-exclude, up to ``count`` designs; times count from ``t0``.
+    """Solve ``query`` with CP-SAT, solve-and-exclude, up to ``opts.count`` designs; times count from ``t0``.
 
     Every solution is re-traced (:func:`verify`) and excluded with its images under
     ``actions``; ``hint`` (a residue vector of a known design) seeds the search.  The time
@@ -286,10 +319,11 @@ def solve_cp_sat(
     """
     from ortools.sat.python import cp_model
 
+    count, time_limit = opts.count, opts.time_limit
     if step is not None:
         step.note("building the CP-SAT model")
     dm = build_model(scaffold, query, None if time_limit is None else t0 + time_limit)
-    stats: dict[str, Any] = {"model_nodes": dm.n_nodes, "fixed_cycles": dm.n_fixed_cycles}
+    stats: SolveStats = {"model_nodes": dm.n_nodes, "fixed_cycles": dm.n_fixed_cycles}
     if dm.decided == "unknown":
         return SolveResult("unknown", [], "cp-sat", time.perf_counter() - t0, dm.reason, False, stats)
     if dm.decided:
@@ -301,8 +335,8 @@ def solve_cp_sat(
     # CP-SAT would catch Ctrl-C itself and leave SIGINT at the default action when done (the
     # next Ctrl-C then killed the program without a word): search_interruptibly stops it instead
     solver.parameters.catch_sigint_signal = False
-    solver.parameters.num_workers = int(workers)
-    solver.parameters.random_seed = int(seed)
+    solver.parameters.num_workers = int(opts.workers)
+    solver.parameters.random_seed = int(opts.seed)
     degrees = scaffold.edge_degrees
     solutions: list[Solution] = []
     status: SolveStatus = "unknown"

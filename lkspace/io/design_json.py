@@ -23,7 +23,7 @@ from __future__ import annotations
 import json
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, NotRequired, TypedDict
 
 import numpy as np
 
@@ -32,8 +32,21 @@ from ..model.scaffold import Scaffold
 from ..model.validation import validate_labels
 from ..words import noun
 from .json_fields import array, integer, point, shown, text
-from .scaffold_json import scaffold_from_dict, scaffold_to_dict
+from .scaffold_json import ScaffoldJSON, scaffold_from_dict, scaffold_to_dict
 from .text import parse_json
+
+
+class DesignJSON(TypedDict):
+    """The object of a design file, as :func:`design_to_dict` writes it (see the module docstring)."""
+
+    format: str
+    version: int
+    scaffold: str | ScaffoldJSON
+    labels: list[int]
+    nulls: NotRequired[list[list[int]]]
+    block: NotRequired[list[int]]
+    view: NotRequired[dict[str, list[float]]]
+
 
 FORMAT = "lkspace-design"
 VERSION = 1
@@ -173,13 +186,13 @@ def design_to_dict(
     nulls: np.ndarray | None = None,
     block: tuple[int, ...] | None = None,
     view: dict[str, tuple[float, float, float]] | None = None,
-) -> dict[str, Any]:
+) -> DesignJSON:
     """Return the design file object: the scaffold by its built-in name, or embedded when ``builtin`` is ``None``."""
     if builtin is None:
         embedded = scaffold_to_dict(scaffold)
         embedded.pop("labels", None)  # the design's own labels and nulls are the ones that count
         embedded.pop("nulls", None)
-    out: dict[str, Any] = {
+    out: DesignJSON = {
         "format": FORMAT,
         "version": VERSION,
         "scaffold": builtin if builtin is not None else embedded,
@@ -197,7 +210,7 @@ def design_to_dict(
     return out
 
 
-def format_design(design: dict[str, Any]) -> str:
+def format_design(design: DesignJSON) -> str:
     """Return the file text of a design object: one line per field, labels on one line."""
     lines = [f" {json.dumps(key)}: {json.dumps(value)}" for key, value in design.items()]
     return "{\n" + ",\n".join(lines) + "\n}\n"

@@ -28,7 +28,7 @@ from __future__ import annotations
 
 import json
 import os
-from typing import Any
+from typing import Any, NotRequired, TypeAlias, TypedDict, cast
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -42,6 +42,33 @@ from ..scaffolds.periodic import voronoi_scaffold
 from ..words import noun
 from .json_fields import array, integer, point, shown, text, vectors
 from .text import parse_json, read_text
+
+JSONObject: TypeAlias = dict[str, Any]
+"""A JSON object as parsed, before a reader has checked it (each field is checked as it is read)."""
+
+
+class RadialOrderJSON(TypedDict):
+    """One entry of ``radial_orders``: the edge ``[a, b]`` (``[a, b, offset]`` when periodic) and its sides in order."""
+
+    edge: list[Any]
+    sides: list[list[int]]
+
+
+class ScaffoldJSON(TypedDict):
+    """The object of a scaffold file, as :func:`scaffold_to_dict` writes it (``docs/formats.md``)."""
+
+    format: str
+    version: int
+    name: str
+    vertices: list[list[float]]
+    faces: list[list[int]]
+    lattice: NotRequired[list[list[float]]]
+    offsets: NotRequired[list[list[list[int]]]]
+    radial_orders: NotRequired[list[RadialOrderJSON]]
+    edges: list[list[Any]]
+    labels: NotRequired[list[int]]
+    nulls: NotRequired[list[list[int]]]
+
 
 FORMAT = "lkspace-scaffold"
 VORONOI_FORMAT = "lkspace-voronoi"
@@ -71,7 +98,7 @@ def _side(faces: list[list[int]], value: Any, where: str, starts: np.ndarray) ->
     return int(starts[f] + k)
 
 
-def _faces(data: dict[str, Any], name: str, n_vertices: int) -> list[list[int]]:
+def _faces(data: JSONObject, name: str, n_vertices: int) -> list[list[int]]:
     faces = array(data.get("faces"), f"{name}: faces")
     for i, face in enumerate(faces):
         for j, v in enumerate(array(face, f"{name}: faces[{i}]")):
@@ -79,7 +106,7 @@ def _faces(data: dict[str, Any], name: str, n_vertices: int) -> list[list[int]]:
     return faces
 
 
-def _offsets(data: dict[str, Any], name: str, faces: list[list[int]], dim: int) -> list[list[list[int]]]:
+def _offsets(data: JSONObject, name: str, faces: list[list[int]], dim: int) -> list[list[list[int]]]:
     raw = array(data.get("offsets"), f"{name}: offsets", len(faces))
     for i, (face, offs) in enumerate(zip(faces, raw)):
         for j, o in enumerate(array(offs, f"{name}: offsets[{i}]", len(face))):
@@ -107,7 +134,7 @@ def _edge_key(value: Any, where: str, dim: int) -> tuple[int, int, tuple[int, ..
     return a, b, tuple(delta)
 
 
-def _radial_orders(data: dict[str, Any], name: str, faces: list[list[int]], dim: int) -> dict[tuple, tuple[int, ...]]:
+def _radial_orders(data: JSONObject, name: str, faces: list[list[int]], dim: int) -> dict[tuple, tuple[int, ...]]:
     starts = np.concatenate([[0], np.cumsum([len(f) for f in faces])]).astype(np.int64)
     radial: dict[tuple, tuple[int, ...]] = {}
     for i, entry in enumerate(array(data["radial_orders"], f"{name}: radial_orders")):
@@ -122,7 +149,7 @@ def _radial_orders(data: dict[str, Any], name: str, faces: list[list[int]], dim:
     return radial
 
 
-def scaffold_from_dict(data: dict[str, Any], name: str = "<json>") -> Scaffold:
+def scaffold_from_dict(data: JSONObject, name: str = "<json>") -> Scaffold:
     """Build a scaffold (with its labels and nulls, if any) from the parsed JSON."""
     if not isinstance(data, dict):
         raise ScaffoldError(f"{name}: expected a JSON object, got {type(data).__name__}")
@@ -175,7 +202,7 @@ def scaffold_from_dict(data: dict[str, Any], name: str = "<json>") -> Scaffold:
     return scaffold
 
 
-def _version(data: dict[str, Any], name: str) -> None:
+def _version(data: JSONObject, name: str) -> None:
     version = data.get("version", VERSION)
     if isinstance(version, bool) or not isinstance(version, int) or version != VERSION:
         raise ScaffoldError(f"{name}: file version {shown(version)} is not supported (expected {VERSION})")
@@ -185,7 +212,7 @@ MAX_VORONOI_POINTS = 200
 """Most generator points of a Voronoi file: Qhull works on 125 lattice translates of each."""
 
 
-def _known_keys(data: dict[str, Any], keys: set[str], name: str) -> None:
+def _known_keys(data: JSONObject, keys: set[str], name: str) -> None:
     """Refuse a key outside ``keys``: a misspelt key must not be silently ignored."""
     unknown = sorted(set(data) - keys)
     if unknown:
@@ -195,7 +222,7 @@ def _known_keys(data: dict[str, Any], keys: set[str], name: str) -> None:
         )
 
 
-def voronoi_from_dict(data: dict[str, Any], name: str) -> Scaffold:
+def voronoi_from_dict(data: JSONObject, name: str) -> Scaffold:
     """Build a generalized Voronoi scaffold from its parsed JSON.
 
     The object is ``{"format": "lkspace-voronoi", "version": 1, "lattice": [[...], ...],
@@ -213,7 +240,7 @@ def voronoi_from_dict(data: dict[str, Any], name: str) -> Scaffold:
 
 def scaffold_to_dict(
     scaffold: Scaffold, labels: ArrayLike | None = None, nulls: ArrayLike | None = None
-) -> dict[str, Any]:
+) -> ScaffoldJSON:
     """Return the JSON object of ``scaffold``; ``labels``/``nulls`` default to the scaffold's own."""
     labels = scaffold.labels if labels is None else np.asarray(labels)
     nulls = scaffold.nulls if nulls is None else nulls
@@ -223,7 +250,7 @@ def scaffold_to_dict(
         f = int(np.searchsorted(starts, s, side="right") - 1)
         return [f, int(s - starts[f])]
 
-    out: dict[str, Any] = {
+    out: dict[str, Any] = {  # keys in the file's order (a ScaffoldJSON literal would put edges before lattice)
         "format": FORMAT,
         "version": VERSION,
         "name": scaffold.name,
@@ -250,7 +277,7 @@ def scaffold_to_dict(
         sides = np.flatnonzero(mask) if mask.dtype == bool else mask
         if len(sides):
             out["nulls"] = [side_name(int(s)) for s in sides]
-    return out
+    return cast(ScaffoldJSON, out)
 
 
 def read_scaffold_json(path: str | os.PathLike) -> Scaffold:

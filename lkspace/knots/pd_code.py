@@ -8,6 +8,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..loops import UnionFind
+
 
 def pd_signs(pd: np.ndarray) -> np.ndarray:
     """Return ``(n,) int64`` crossing signs read from a PD code, and raise ``ValueError`` where they are not fixed.
@@ -51,16 +53,8 @@ def pd_signs(pd: np.ndarray) -> np.ndarray:
 
 def pd_components(pd: np.ndarray) -> int:
     """Return the number of components of the link a PD code draws (edges joined through crossings)."""
-    labels = sorted({int(v) for v in np.ravel(pd)})
-    root = {v: v for v in labels}
-
-    def find(v: int) -> int:
-        while root[v] != v:
-            root[v] = root[root[v]]
-            v = root[v]
-        return v
-
-    for a, b, c, d in np.asarray(pd, np.int64).tolist():
-        root[find(a)] = find(c)
-        root[find(b)] = find(d)
-    return len({find(v) for v in labels})
+    labels, ends = np.unique(np.asarray(pd, np.int64).reshape(-1, 4), return_inverse=True)
+    ends = ends.reshape(-1, 4)
+    pieces = UnionFind(len(labels))
+    pieces.join_pairs(np.concatenate([ends[:, [0, 2]], ends[:, [1, 3]]]))
+    return pieces.pieces

@@ -9,14 +9,12 @@ index holds ~10^4 label lists.
 from __future__ import annotations
 
 from collections.abc import Mapping
-from typing import TypeAlias, cast
+from typing import cast
 
 from ..errors import CatalogError
+from ..io.json_values import Json as Json
+from ..io.json_values import JsonObject as JsonObject
 from .spelling import CHIRALITIES, Chirality
-
-Json: TypeAlias = "None | bool | int | float | str | list[Json] | dict[str, Json]"
-"""A JSON value as :func:`json.loads` returns it."""
-JsonObject: TypeAlias = dict[str, Json]
 
 
 def get_field(data: Mapping[str, object], key: str, where: str) -> object:

@@ -23,7 +23,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ..kernels import kernel
-from ..loops import join, lattice_index_rows
+from ..loops import UnionFind, lattice_index_rows
 from .ports import port_model
 
 if TYPE_CHECKING:
@@ -80,28 +80,15 @@ def winding_links(trace: Trace) -> tuple[np.ndarray, np.ndarray]:
     return pairs, shifts
 
 
-@kernel
 def union_with_potentials(pairs: np.ndarray, shifts: np.ndarray, n: int) -> tuple[int, np.ndarray]:
-    """Union-find over ``n`` strands with lattice potentials (:func:`~lkspace.loops.join`).
+    """Union-find over ``n`` strands with lattice potentials (:class:`~lkspace.loops.UnionFind`).
 
     Returns the number of pieces in the quotient and the translations ``(m, dim) int64``
     closed by the links that join two strands already in one piece (cycle shifts).
     """
-    dim = shifts.shape[1]
-    parent = np.arange(n)
-    size = np.ones(n, np.int64)
-    pot = np.zeros((n, dim), np.int64)  # translation of a strand's copy relative to its parent's
-    cycles = np.zeros((pairs.shape[0], dim), np.int64)
-    rel = np.zeros(dim, np.int64)
-    n_cycles = 0
-    pieces = n
-    for k in range(pairs.shape[0]):
-        if join(parent, size, pot, pairs[k, 0], pairs[k, 1], shifts[k], rel):
-            pieces -= 1
-        else:
-            cycles[n_cycles] = rel
-            n_cycles += 1
-    return pieces, cycles[:n_cycles]
+    pieces = UnionFind(n, shifts.shape[1])
+    joined, closed = pieces.join_pairs(pairs, shifts)
+    return pieces.pieces, closed[~joined]
 
 
 @kernel
@@ -130,7 +117,7 @@ def lattice_index(vectors: ArrayLike, dim: int) -> int:
 def holding_together(trace: Trace) -> HoldingTogether:
     """Compute :class:`HoldingTogether` of a :class:`~lkspace.strands.tracing.Trace`."""
     pairs, shifts = winding_links(trace)
-    pieces, cycles = union_with_potentials.run(len(pairs), pairs, np.ascontiguousarray(shifts), trace.components)
+    pieces, cycles = union_with_potentials(pairs, shifts, trace.components)
     if not trace.scaffold.periodic or pieces != 1:
         return HoldingTogether(int(pieces), None)
     vectors = np.concatenate([trace.periods, cycles])

@@ -115,10 +115,11 @@ def identify_payload(scaffold: Scaffold, labels: np.ndarray, nulls: np.ndarray |
 
 
 def solve_payload(scaffold: Scaffold, query: SolveRequest) -> Solved:
-    """Designs answering the page's query (:func:`lkspace.solve`)."""
-    from .. import solve
+    """Designs answering the page's query (:func:`lkspace.solve`): two CP-SAT workers, solutions told apart as designs."""
+    from .. import SolveOptions, solve
 
-    result = solve(scaffold, **query.options())  # type: ignore[arg-type]
+    search = SolveOptions(count=query.count, distinct_up_to="none", time_limit=query.time_limit, workers=2)
+    result = solve(scaffold, **query.options(), options=search)  # type: ignore[arg-type]
     designs = tuple((s.labels.tolist(), s.components) for s in result.solutions)
     return Solved(result.to_dict(), designs)
 

@@ -274,17 +274,13 @@ class SolveRequest:
         )
 
     def options(self) -> JsonObject:
-        """Return the keyword arguments of :func:`lkspace.solve` (the studio's fixed ones included)."""
+        """Return the query's keyword arguments of :func:`lkspace.solve` (``count`` and ``time_limit`` go to its options)."""
         return {
             "components": self.components,
             "label_set": self.label_set,
             "no_zero": self.no_zero,
             "fixes": dict(self.fixes),
-            "count": self.count,
             "objective": self.objective,
-            "time_limit": self.time_limit,
-            "distinct_up_to": "none",
-            "workers": 2,
         }
 
 

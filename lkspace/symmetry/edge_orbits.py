@@ -14,6 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..loops import UnionFind
 from ..model.scaffold import Scaffold
 from .group import symmetry_group
 from .subgroups import parse_subgroup
@@ -50,35 +51,21 @@ def signed_components(perms: np.ndarray, signs: np.ndarray, n_edges: int) -> Sig
         ``+1`` (label kept) or ``-1`` (label negated) per generator.
     n_edges : int
     """
-    parent = list(range(n_edges))
-    parity = [0] * n_edges  # sign of the edge relative to its parent: 0 is +1, 1 is -1
-    odd = [False] * n_edges
-
-    def find(x: int) -> tuple[int, int]:
-        p = 0
-        while parent[x] != x:
-            p ^= parity[x]
-            x = parent[x]
-        return x, p
-
-    for perm, s in zip(np.asarray(perms).tolist(), np.asarray(signs).tolist(), strict=True):
-        flip = 0 if s > 0 else 1
-        for e, f in enumerate(perm):
-            (ra, pa), (rb, pb) = find(e), find(f)
-            if ra == rb:
-                odd[ra] |= (pa ^ pb) != flip
-                continue
-            lo, hi = min(ra, rb), max(ra, rb)
-            parent[hi], parity[hi] = lo, pa ^ pb ^ flip
-            odd[lo] |= odd[hi]
-    roots, rel = zip(*(find(e) for e in range(n_edges)), strict=True) if n_edges else ((), ())
-    root_arr = np.array(roots, np.int64)
-    uniq, orbit = np.unique(root_arr, return_inverse=True)
-    return SignedOrbits(
-        orbit.astype(np.int64),
-        np.where(np.array(rel, np.int64) == 0, 1, -1).astype(np.int64),
-        np.array([odd[r] for r in uniq.tolist()], bool),
-    )
+    flips = (np.asarray(signs, np.int64) < 0).astype(np.int64)
+    perms = np.asarray(perms, np.int64).reshape(len(flips), n_edges)  # parity of a label's sign: 0 is +1, 1 is -1
+    pairs = np.column_stack([np.tile(np.arange(n_edges), len(perms)), perms.ravel()])
+    pieces = UnionFind(n_edges, 1)  # potentials are parities, taken mod 2
+    joined, closed = pieces.join_pairs(pairs, np.repeat(flips, n_edges)[:, None])
+    roots, parity = pieces.roots(), pieces.potentials()[:, 0] % 2
+    _, first, orbit = np.unique(roots, return_index=True, return_inverse=True)
+    rank = np.argsort(np.argsort(first))  # orbits numbered by their smallest edge, the representative
+    orbit = rank[orbit.reshape(-1)]
+    representative = np.sort(first)[orbit]
+    odd = pairs[~joined & (closed[:, 0] % 2 == 1), 0]
+    forced_zero = np.zeros(len(first), bool)
+    forced_zero[orbit[odd]] = True
+    rel = np.where(parity == parity[representative], 1, -1)
+    return SignedOrbits(orbit.astype(np.int64), rel.astype(np.int64), forced_zero)
 
 
 def orbit_options(orbits: SignedOrbits, labels: np.ndarray) -> list[np.ndarray]:

@@ -127,7 +127,7 @@ def check_mode(mode: str) -> SymmetryMode:
     return mode
 
 
-def check_label_set(labels: np.ndarray, mode: str) -> None:
+def check_label_set(labels: np.ndarray, mode: SymmetryMode) -> None:
     """Isometries need a label set closed under negation (a mirror maps t to -t)."""
     if mode == "isometries":
         missing = sorted(set((-np.asarray(labels)).tolist()) - set(np.asarray(labels).tolist()))

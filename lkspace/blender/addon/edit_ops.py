@@ -113,7 +113,7 @@ class LKSPACE_OT_solve(MeshOperator):  # noqa: N801
 
     def apply(self, obj: Any, context: Any) -> None:
         """Write the first solution, or report why there is none."""
-        from lkspace.inverse.pipeline import solve
+        from lkspace.inverse.pipeline import SolveOptions, solve
 
         settings = context.scene.lkspace
         design, _, _ = meshio.read_design(obj)
@@ -122,8 +122,7 @@ class LKSPACE_OT_solve(MeshOperator):  # noqa: N801
             self.components,
             label_set=settings.label_set,
             no_zero=settings.no_zero,
-            time_limit=settings.time_limit,
-            seed=settings.seed,
+            options=SolveOptions(time_limit=settings.time_limit, seed=settings.seed),
         )
         if not result.solutions:
             raise LkspaceError(
