@@ -13,6 +13,7 @@ orientation are the trace's, so the linking matrix reads as
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -20,62 +21,145 @@ from numpy.typing import ArrayLike
 from ..errors import UsageError
 from ..kernels import helper, kernel
 from ..model.scaffold import Scaffold
-from .labels_diagram import DiagramTemplate, template
-
-WORK_ROWS = 7
-"""Rows of :func:`assemble_into`'s scratch array."""
+from .labels_diagram import DiagramTemplate, TemplateArrays, template
 
 
-def work_array(tmpl: DiagramTemplate) -> np.ndarray:
-    """Scratch for :func:`assemble_into`: ``(WORK_ROWS, 2 n_crossings + 1) int64``, row 0 all -1."""
-    work = np.zeros((WORK_ROWS, 2 * tmpl.n_crossings + 1), np.int64)
-    work[0] = -1
-    return work
+class Scratch(NamedTuple):
+    """Scratch of :func:`assemble_into`: ``(2 n_crossings + 1,) int64`` each (:func:`work_array`).
+
+    Attributes
+    ----------
+    local : the design's number of each template crossing, -1 where not met (all -1 between designs)
+    glob : the template crossing of each of the design's crossings
+    seq_cross, seq_over, seq_comp : per passage along the strands, its crossing (the design's
+        number), 1 if it passes over, its component
+    seq_into, seq_out : per passage, the PD edge it enters and leaves by
+    """
+
+    local: np.ndarray
+    glob: np.ndarray
+    seq_cross: np.ndarray
+    seq_over: np.ndarray
+    seq_comp: np.ndarray
+    seq_into: np.ndarray
+    seq_out: np.ndarray
+
+
+def work_array(tmpl: DiagramTemplate) -> Scratch:
+    """Scratch for :func:`assemble_into`, ``local`` all -1."""
+    size = 2 * tmpl.n_crossings + 1
+    return Scratch(np.full(size, -1, np.int64), *(np.zeros(size, np.int64) for _ in Scratch._fields[1:]))
+
+
+@helper
+def _pass_piece(
+    t: TemplateArrays,
+    vidx: np.ndarray,
+    work: Scratch,
+    signs: np.ndarray,
+    piece: int,
+    forward: bool,
+    state: tuple[int, int, int],
+) -> tuple[int, int]:
+    """Record the passages along ``piece`` (run forward, or back) whose other piece is in the design.
+
+    ``state`` is ``(m, n_seq, n_comp)``: crossings and passages so far, the component walked.
+    New crossings take the next numbers (their sign as the template's, flipped for each
+    piece run backwards).  Returns the new ``(m, n_seq)``.
+    """
+    m, n_seq, n_comp = state
+    n = len(t.port_a)
+    lo = t.pass_offsets[piece]
+    hi = t.pass_offsets[piece + 1]
+    for q in range(hi - lo):
+        k = lo + q if forward else hi - 1 - q
+        o = t.pass_other[k]
+        if o >= n and vidx[t.slot_edge[(o - n) % n]] != (o - n) // n:
+            continue  # the other piece is not in this design
+        c = t.pass_crossing[k]
+        if work.local[c] < 0:
+            work.local[c] = m
+            work.glob[m] = c
+            signs[m] = t.crossing_sign[c]
+            m += 1
+        if not forward:
+            signs[work.local[c]] = -signs[work.local[c]]
+        work.seq_cross[n_seq] = work.local[c]
+        work.seq_over[n_seq] = 1 if t.pass_over[k] else 0
+        work.seq_comp[n_seq] = n_comp
+        n_seq += 1
+    return m, n_seq
+
+
+@helper
+def _edge_link(t: TemplateArrays, vidx: np.ndarray, y: int) -> tuple[int, bool, int]:
+    """Follow the edge link from port ``y``: return the port it reaches, whether its slot's piece runs forward, and that piece.
+
+    The piece runs forward from end ``a``, back from end ``b``.
+    """
+    n = len(t.port_a)
+    j = t.slot_of_a[y]
+    if j >= 0:
+        e = t.slot_edge[j]
+        kk = t.degrees[e]
+        return (
+            t.port_b[t.edge_starts[e] + (t.slot_index[j] + t.label_values[vidx[e]] % kk) % kk],
+            True,
+            n + vidx[e] * n + j,
+        )
+    mb = t.slot_of_b[y]
+    e = t.slot_edge[mb]
+    kk = t.degrees[e]
+    j = t.edge_starts[e] + (t.slot_index[mb] - t.label_values[vidx[e]] % kk + kk) % kk
+    return t.port_a[j], False, n + vidx[e] * n + j
+
+
+@helper
+def _number_edges(work: Scratch, first: int, end: int) -> None:
+    """Label the PD edges of one component's passages ``first:end``: passage i enters by edge i, leaves by i + 1."""
+    count = end - first
+    for i in range(count):
+        work.seq_into[first + i] = first + (i - 1 + count) % count + 1
+        work.seq_out[first + i] = first + i + 1
+
+
+@helper
+def _write_pd(work: Scratch, n_seq: int, signs: np.ndarray, pd: np.ndarray, comps: np.ndarray) -> None:
+    """Write each crossing's PD row and its over and under component from the passages."""
+    for i in range(n_seq):
+        c = work.seq_cross[i]
+        if work.seq_over[i] == 1:
+            comps[c, 0] = work.seq_comp[i]
+            if signs[c] > 0:  # X[under in, over out, under out, over in]
+                pd[c, 1] = work.seq_out[i]
+                pd[c, 3] = work.seq_into[i]
+            else:  # X[under in, over in, under out, over out]
+                pd[c, 1] = work.seq_into[i]
+                pd[c, 3] = work.seq_out[i]
+        else:
+            comps[c, 1] = work.seq_comp[i]
+            pd[c, 0] = work.seq_into[i]
+            pd[c, 2] = work.seq_out[i]
 
 
 @helper
 def assemble_into(
-    tmpl: tuple[np.ndarray, ...],
+    t: TemplateArrays,
     vidx: np.ndarray,
     pd: np.ndarray,
     signs: np.ndarray,
     comps: np.ndarray,
-    work: np.ndarray,
+    work: Scratch,
 ) -> tuple[int, int, int]:
     """Assemble the PD code of the design whose edges take twists ``label_values[vidx]``.
 
-    ``tmpl`` is :meth:`DiagramTemplate.arrays`.  Writes ``pd[:m]`` (``(m, 4)``, 1-based), ``signs[:m]`` and ``comps[:m]`` (over and
-    under component of each crossing, ``(m, 2)``); returns ``(m, n_components, n_free)``
-    (``n_free``: components without a crossing).  ``work`` is scratch from
-    :func:`work_array` (row 0 is all -1 again on return).
+    ``t`` is :meth:`DiagramTemplate.arrays`.  Writes ``pd[:m]`` (``(m, 4)``, 1-based),
+    ``signs[:m]`` and ``comps[:m]`` (over and under component of each crossing, ``(m,
+    2)``); returns ``(m, n_components, n_free)`` (``n_free``: components without a
+    crossing).  ``work`` is scratch from :func:`work_array` (``local`` is all -1 again on
+    return).
     """
-    (
-        corner_partner,
-        port_a,
-        port_b,
-        slot_edge,
-        slot_index,
-        edge_starts,
-        degrees,
-        slot_of_a,
-        slot_of_b,
-        label_values,
-        pass_offsets,
-        pass_crossing,
-        pass_other,
-        pass_over,
-        crossing_sign,
-    ) = tmpl
-    local, glob, seq_cross, seq_over, seq_comp, seq_into, seq_out = (
-        work[0],
-        work[1],
-        work[2],
-        work[3],
-        work[4],
-        work[5],
-        work[6],
-    )
-    n = len(port_a)
+    n = len(t.port_a)
     visited = np.zeros(2 * n, np.bool_)
     m = 0  # crossings of the design so far
     n_seq = 0  # passages so far
@@ -87,83 +171,32 @@ def assemble_into(
         comp_first = n_seq
         x = x0
         while True:
-            y = corner_partner[x]  # the corner turn from x (turn s runs from port 2 s + 1)
+            y = t.corner_partner[x]  # the corner turn from x (turn s runs from port 2 s + 1)
             visited[x] = True
             visited[y] = True
-            piece = x // 2 if x % 2 == 1 else y // 2
-            forward = x % 2 == 1
-            for pass_round in range(2):
-                lo = pass_offsets[piece]
-                hi = pass_offsets[piece + 1]
-                for q in range(hi - lo):
-                    k = lo + q if forward else hi - 1 - q
-                    o = pass_other[k]
-                    if o >= n and vidx[slot_edge[(o - n) % n]] != (o - n) // n:
-                        continue  # the other piece is not in this design
-                    c = pass_crossing[k]
-                    if local[c] < 0:
-                        local[c] = m
-                        glob[m] = c
-                        signs[m] = crossing_sign[c]
-                        m += 1
-                    if not forward:
-                        signs[local[c]] = -signs[local[c]]
-                    seq_cross[n_seq] = local[c]
-                    seq_over[n_seq] = 1 if pass_over[k] else 0
-                    seq_comp[n_seq] = n_comp
-                    n_seq += 1
-                if pass_round == 1:
-                    break
-                # the edge link from y: its slot's piece passed forward from end a, or back from end b
-                j = slot_of_a[y]
-                if j >= 0:
-                    e = slot_edge[j]
-                    kk = degrees[e]
-                    y = port_b[edge_starts[e] + (slot_index[j] + label_values[vidx[e]] % kk) % kk]
-                    forward = True
-                else:
-                    mb = slot_of_b[y]
-                    e = slot_edge[mb]
-                    kk = degrees[e]
-                    j = edge_starts[e] + (slot_index[mb] - label_values[vidx[e]] % kk + kk) % kk
-                    y = port_a[j]
-                    forward = False
-                piece = n + vidx[e] * n + j
-            x = y
+            m, n_seq = _pass_piece(
+                t, vidx, work, signs, x // 2 if x % 2 == 1 else y // 2, x % 2 == 1, (m, n_seq, n_comp)
+            )
+            x, forward, piece = _edge_link(t, vidx, y)
+            m, n_seq = _pass_piece(t, vidx, work, signs, piece, forward, (m, n_seq, n_comp))
             if x == x0:
                 break
-        count = n_seq - comp_first
-        if count == 0:
+        if n_seq == comp_first:
             n_free += 1
-        for i in range(count):  # passage i enters by the component's edge i and leaves by edge i + 1
-            seq_into[comp_first + i] = comp_first + (i - 1 + count) % count + 1
-            seq_out[comp_first + i] = comp_first + i + 1
+        _number_edges(work, comp_first, n_seq)
         n_comp += 1
-    for i in range(n_seq):
-        c = seq_cross[i]
-        if seq_over[i] == 1:
-            comps[c, 0] = seq_comp[i]
-            if signs[c] > 0:  # X[under in, over out, under out, over in]
-                pd[c, 1] = seq_out[i]
-                pd[c, 3] = seq_into[i]
-            else:  # X[under in, over in, under out, over out]
-                pd[c, 1] = seq_into[i]
-                pd[c, 3] = seq_out[i]
-        else:
-            comps[c, 1] = seq_comp[i]
-            pd[c, 0] = seq_into[i]
-            pd[c, 2] = seq_out[i]
+    _write_pd(work, n_seq, signs, pd, comps)
     for i in range(m):
-        local[glob[i]] = -1
+        work.local[work.glob[i]] = -1
     return m, n_comp, n_free
 
 
 @kernel
 def assemble_one(
-    tmpl: tuple[np.ndarray, ...], vidx: np.ndarray, work: np.ndarray
+    tmpl: TemplateArrays, vidx: np.ndarray, work: Scratch
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, int, int]:
     """One design's ``(pd, signs, comps, n_components, n_free)`` (:func:`assemble_into`)."""
-    size = len(tmpl[14])
+    size = len(tmpl.crossing_sign)
     pd = np.zeros((size, 4), np.int64)
     signs = np.zeros(size, np.int64)
     comps = np.zeros((size, 2), np.int64)
