@@ -52,75 +52,85 @@ def work_array(tmpl: DiagramTemplate) -> Scratch:
 
 
 @helper
-def _pass_piece(
-    t: TemplateArrays,
-    vidx: np.ndarray,
-    work: Scratch,
-    signs: np.ndarray,
-    piece: int,
-    forward: bool,
-    state: tuple[int, int, int],
-) -> tuple[int, int]:
-    """Record the passages along ``piece`` (run forward, or back) whose other piece is in the design.
+def _walk(t: TemplateArrays, vidx: np.ndarray, signs: np.ndarray, work: Scratch) -> tuple[int, int, int, int]:
+    """Walk the design's strands, recording the passages at crossings of two of its pieces.
 
-    ``state`` is ``(m, n_seq, n_comp)``: crossings and passages so far, the component walked.
-    New crossings take the next numbers (their sign as the template's, flipped for each
-    piece run backwards).  Returns the new ``(m, n_seq)``.
+    From the smallest unvisited port, the corner turn then the edge link, as the trace
+    does; each piece is passed in the direction the walk meets it (an edge piece forward
+    from end ``a``, back from end ``b``).  New crossings take the next numbers, their sign
+    the template's, flipped for each piece run backwards.  Returns ``(m, n_seq, n_comp,
+    n_free)``: crossings, passages, components and components without a crossing.
     """
-    m, n_seq, n_comp = state
+    pass_offsets, pass_other, pass_crossing, pass_over = t.pass_offsets, t.pass_other, t.pass_crossing, t.pass_over
+    slot_edge, crossing_sign, label_values, degrees = t.slot_edge, t.crossing_sign, t.label_values, t.degrees
+    local, glob, seq_cross, seq_over, seq_comp = work.local, work.glob, work.seq_cross, work.seq_over, work.seq_comp
     n = len(t.port_a)
-    lo = t.pass_offsets[piece]
-    hi = t.pass_offsets[piece + 1]
-    for q in range(hi - lo):
-        k = lo + q if forward else hi - 1 - q
-        o = t.pass_other[k]
-        if o >= n and vidx[t.slot_edge[(o - n) % n]] != (o - n) // n:
-            continue  # the other piece is not in this design
-        c = t.pass_crossing[k]
-        if work.local[c] < 0:
-            work.local[c] = m
-            work.glob[m] = c
-            signs[m] = t.crossing_sign[c]
-            m += 1
-        if not forward:
-            signs[work.local[c]] = -signs[work.local[c]]
-        work.seq_cross[n_seq] = work.local[c]
-        work.seq_over[n_seq] = 1 if t.pass_over[k] else 0
-        work.seq_comp[n_seq] = n_comp
-        n_seq += 1
-    return m, n_seq
+    visited = np.zeros(2 * n, np.bool_)
+    m = n_seq = n_comp = n_free = 0
+    for x0 in range(2 * n):
+        if visited[x0]:
+            continue
+        comp_first = n_seq
+        x = x0
+        while True:
+            y = t.corner_partner[x]  # the corner turn from x (turn s runs from port 2 s + 1)
+            visited[x] = True
+            visited[y] = True
+            piece = x // 2 if x % 2 == 1 else y // 2
+            forward = x % 2 == 1
+            for pass_round in range(2):
+                lo = pass_offsets[piece]
+                hi = pass_offsets[piece + 1]
+                for q in range(hi - lo):
+                    k = lo + q if forward else hi - 1 - q
+                    o = pass_other[k]
+                    if o >= n and vidx[slot_edge[(o - n) % n]] != (o - n) // n:
+                        continue  # the other piece is not in this design
+                    c = pass_crossing[k]
+                    if local[c] < 0:
+                        local[c] = m
+                        glob[m] = c
+                        signs[m] = crossing_sign[c]
+                        m += 1
+                    if not forward:
+                        signs[local[c]] = -signs[local[c]]
+                    seq_cross[n_seq] = local[c]
+                    seq_over[n_seq] = 1 if pass_over[k] else 0
+                    seq_comp[n_seq] = n_comp
+                    n_seq += 1
+                if pass_round == 1:
+                    break
+                j = t.slot_of_a[y]  # the edge link from y
+                if j >= 0:
+                    e = slot_edge[j]
+                    kk = degrees[e]
+                    y = t.port_b[t.edge_starts[e] + (t.slot_index[j] + label_values[vidx[e]] % kk) % kk]
+                    forward = True
+                else:
+                    mb = t.slot_of_b[y]
+                    e = slot_edge[mb]
+                    kk = degrees[e]
+                    j = t.edge_starts[e] + (t.slot_index[mb] - label_values[vidx[e]] % kk + kk) % kk
+                    y = t.port_a[j]
+                    forward = False
+                piece = n + vidx[e] * n + j
+            x = y
+            if x == x0:
+                break
+        if n_seq == comp_first:
+            n_free += 1
+        _label_edges(work.seq_into, work.seq_out, comp_first, n_seq)
+        n_comp += 1
+    return m, n_seq, n_comp, n_free
 
 
 @helper
-def _edge_link(t: TemplateArrays, vidx: np.ndarray, y: int) -> tuple[int, bool, int]:
-    """Follow the edge link from port ``y``: return the port it reaches, whether its slot's piece runs forward, and that piece.
-
-    The piece runs forward from end ``a``, back from end ``b``.
-    """
-    n = len(t.port_a)
-    j = t.slot_of_a[y]
-    if j >= 0:
-        e = t.slot_edge[j]
-        kk = t.degrees[e]
-        return (
-            t.port_b[t.edge_starts[e] + (t.slot_index[j] + t.label_values[vidx[e]] % kk) % kk],
-            True,
-            n + vidx[e] * n + j,
-        )
-    mb = t.slot_of_b[y]
-    e = t.slot_edge[mb]
-    kk = t.degrees[e]
-    j = t.edge_starts[e] + (t.slot_index[mb] - t.label_values[vidx[e]] % kk + kk) % kk
-    return t.port_a[j], False, n + vidx[e] * n + j
-
-
-@helper
-def _number_edges(work: Scratch, first: int, end: int) -> None:
+def _label_edges(seq_into: np.ndarray, seq_out: np.ndarray, first: int, end: int) -> None:
     """Label the PD edges of one component's passages ``first:end``: passage i enters by edge i, leaves by i + 1."""
     count = end - first
     for i in range(count):
-        work.seq_into[first + i] = first + (i - 1 + count) % count + 1
-        work.seq_out[first + i] = first + i + 1
+        seq_into[first + i] = first + (i - 1 + count) % count + 1
+        seq_out[first + i] = first + i + 1
 
 
 @helper
@@ -159,32 +169,7 @@ def assemble_into(
     crossing).  ``work`` is scratch from :func:`work_array` (``local`` is all -1 again on
     return).
     """
-    n = len(t.port_a)
-    visited = np.zeros(2 * n, np.bool_)
-    m = 0  # crossings of the design so far
-    n_seq = 0  # passages so far
-    n_comp = 0
-    n_free = 0
-    for x0 in range(2 * n):
-        if visited[x0]:
-            continue
-        comp_first = n_seq
-        x = x0
-        while True:
-            y = t.corner_partner[x]  # the corner turn from x (turn s runs from port 2 s + 1)
-            visited[x] = True
-            visited[y] = True
-            m, n_seq = _pass_piece(
-                t, vidx, work, signs, x // 2 if x % 2 == 1 else y // 2, x % 2 == 1, (m, n_seq, n_comp)
-            )
-            x, forward, piece = _edge_link(t, vidx, y)
-            m, n_seq = _pass_piece(t, vidx, work, signs, piece, forward, (m, n_seq, n_comp))
-            if x == x0:
-                break
-        if n_seq == comp_first:
-            n_free += 1
-        _number_edges(work, comp_first, n_seq)
-        n_comp += 1
+    m, n_seq, n_comp, n_free = _walk(t, vidx, signs, work)
     _write_pd(work, n_seq, signs, pd, comps)
     for i in range(m):
         work.local[work.glob[i]] = -1
