@@ -63,7 +63,8 @@ def main() -> None:
     for name, twists in designs(args.random, rng):
         s = lkspace.load(name)
         t_real, real = best_of(lambda s=s, twists=twists: realize(s, twists))
-        t_id, res = best_of(lambda real=real: identify_curves(real.curves))
+        t_id, found = best_of(lambda real=real: identify_curves(real.curves))
+        res = found.to_json()
         row = {
             "scaffold": name,
             "twists": np.atleast_1d(twists).tolist(),

@@ -26,7 +26,7 @@ import pandas as pd
 
 import lkspace
 from lkspace import load
-from lkspace.knots.batch import identify_batch
+from lkspace.knots.batch import NamerOptions, identify_batch
 from lkspace.knots.recognition import identify
 
 DEFAULT = ["tetrahedron:-2..2", "cube:-1..1", "octahedron:-1..1"]
@@ -43,7 +43,7 @@ def compare(space: str, processes: int) -> dict:
     scaffold = load(name)
     labels = np.vstack([np.stack(b["labels"].to_numpy()) for b in lkspace.designs(scaffold, label_set)])
     t0 = time.monotonic()
-    fast = identify_batch(scaffold, labels, processes=processes, progress=False)
+    fast = identify_batch(scaffold, labels, NamerOptions(processes), progress=False)
     t_fast = time.monotonic() - t0
     saved = f"build/compare_keyed/{name}_{label_set}.json"  # the reference and its time, kept for reruns
     if os.path.exists(saved):

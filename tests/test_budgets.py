@@ -242,12 +242,12 @@ def test_identify_bad_numbers(capsys, args, words):
 
 def test_identify_batch_budget_per_design():
     pytest.importorskip("spherogram")
-    from lkspace.knots.batch import identify_batch
+    from lkspace.knots.batch import NamerOptions, identify_batch
 
     scaffold = lkspace.load("truncated-octahedron")
     big = 3 * np.array(BIG_KNOT.split(","), np.int64)  # 3-4 s to name on an idle machine: 1 s never suffices
     # the unlink has no crossing: it is named at once, in this process, however loaded the machine is
-    frame = identify_batch(scaffold, [big, np.zeros_like(big), np.full_like(big, 500)], time_limit=1.0)
+    frame = identify_batch(scaffold, [big, np.zeros_like(big), np.full_like(big, 500)], NamerOptions(time_limit=1.0))
     assert frame["status"][0].startswith("unknown: time limit 1 s") and frame["error"][0].startswith("time limit")
     assert frame["status"][1] == "identified" and frame["error"].isna()[1]  # an unlink of 14 circles
     assert "MAX_CROSSINGS" in frame["error"][2] and frame["status"][2].startswith("unknown: ")

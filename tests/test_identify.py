@@ -19,7 +19,7 @@ import lkspace  # noqa: E402
 from lkspace import identify  # noqa: E402
 from lkspace.cli import main  # noqa: E402
 from lkspace.errors import LkspaceError  # noqa: E402
-from lkspace.knots.batch import identify_batch  # noqa: E402
+from lkspace.knots.batch import NamerOptions, identify_batch  # noqa: E402
 from lkspace.knots.diagram import project  # noqa: E402
 from lkspace.knots.recognition import identify_curves  # noqa: E402
 
@@ -54,11 +54,11 @@ def test_projection_linking_number_matches_the_gauss_integral():
 @pytest.mark.parametrize("p, q, name", [(2, 3, "3_1"), (2, 5, "5_1"), (3, 4, "8_19"), (2, 4, "L4a1"), (3, 3, "L6n1")])
 def test_parametric_torus_links(p, q, name):
     r = identify_curves(torus(p, q))
-    assert r["name"] == name
+    assert r.name == name
     m = identify_curves(torus(p, q, sign=-1))
-    assert m["name"] == name
+    assert m.name == name
     if np.gcd(p, q) == 1:  # knots: KnotInfo's diagrams are the positive ones
-        assert (r["mirror"], m["mirror"]) == (False, True)
+        assert (r.mirror, m.mirror) == (False, True)
 
 
 @pytest.mark.parametrize(
@@ -135,7 +135,7 @@ def test_open_strands_cannot_be_identified(tetra):
 def test_identify_batch_in_two_processes():
     sc = lkspace.load("dihedron:3")
     labels = np.array([[1, 1, 1], [-1, -1, -1], [1, 0, 0], [2, 2, 1], [0, 0, 0]])
-    df = identify_batch(sc, labels, processes=2)
+    df = identify_batch(sc, labels, NamerOptions(processes=2))
     assert list(df["knot_name"][:4]) == ["3_1", "3_1", "0_1", "5_1"]
     assert list(df["mirror"][:2]) == [False, True]
     assert pd.isna(df["knot_name"][4]) and bool(df["split"][4]) and pd.isna(df["error"][4])  # two loops
@@ -209,7 +209,7 @@ def test_composite_knots_are_named_by_their_factors():
     trefoil = spherogram.Link("K3a1")
     granny = name_pd(one_based(trefoil.connected_sum(spherogram.Link("K3a1")).PD_code()), 1)
     square = name_pd(one_based(trefoil.connected_sum(trefoil.mirror()).PD_code()), 1)
-    assert granny["name"] == square["name"] == "3_1#3_1" and granny["prime"] is False
-    assert sorted(square["factors"]) == ["3_1", "m3_1"] and len(set(granny["factors"])) == 1
+    assert granny.name == square.name == "3_1#3_1" and granny.prime is False
+    assert sorted(map(str, square.factors or ())) == ["3_1", "m3_1"] and len(set(granny.factors or ())) == 1
     mixed = name_pd(one_based(trefoil.connected_sum(spherogram.Link("K4a1")).PD_code()), 1)
-    assert mixed["name"] == "3_1#4_1"
+    assert mixed.name == "3_1#4_1"

@@ -13,6 +13,7 @@ import pytest
 
 from lkspace import load
 from lkspace.knots.batch import identify_batch
+from lkspace.knots.identification import NameFields
 from lkspace.knots.key_names import KeyCache, candidates, disk_cache, trusted
 from lkspace.knots.keyed import keys_of
 from lkspace.knots.recognition import identify
@@ -69,15 +70,15 @@ def test_a_key_the_tables_share_is_not_trusted():
     five_one = jones(pd_51)
     found = candidates(five_one, 1)
     assert {name for name, _ in found} == {"5_1", "10_132"}
-    assert not trusted({"knot_name": "5_1", "mirror": False, "status": "identified"}, found)
+    assert not trusted(NameFields(knot_name="5_1", mirror=False, status="identified"), found)
     # a diagram of at most 9 crossings cannot be 10_132
     assert {name for name, _ in candidates(five_one, 1, None, 9)} == {"5_1"}
     # the trefoil's Jones polynomial is its own: trusted, and a wrong name is not
     trefoil = jones([[1, 5, 2, 4], [3, 1, 4, 6], [5, 3, 6, 2]])
     found = candidates(trefoil, 1)
-    assert trusted({"knot_name": "3_1", "mirror": False, "status": "identified"}, found)
-    assert not trusted({"knot_name": "4_1", "mirror": None, "status": "identified"}, found)
-    assert not trusted({"knot_name": "3_1", "mirror": False, "status": "unknown: time limit 1 s reached"}, found)
+    assert trusted(NameFields(knot_name="3_1", mirror=False, status="identified"), found)
+    assert not trusted(NameFields(knot_name="4_1", mirror=None, status="identified"), found)
+    assert not trusted(NameFields(knot_name="3_1", mirror=False, status="unknown: time limit 1 s reached"), found)
 
 
 def test_the_disk_cache_keeps_the_names_of_earlier_runs(tmp_path, monkeypatch):

@@ -67,7 +67,7 @@ def test_smoothing_keeps_the_link_type(capsys, tmp_path, design):
 
     mesh, twist, name, _ = DESIGNS[design]
     curves = [c for c, _ in exported(capsys, tmp_path, mesh, twist)]
-    assert identify_curves(curves)["name"] == name
+    assert identify_curves(curves).name == name
     raw = lkspace.realize(mesh, labels_of(twist), params=lkspace.GeometryParams(smooth=False))
     for i in range(len(curves)):  # linking numbers by the Gauss integral, an independent invariant
         for j in range(i):
@@ -84,7 +84,7 @@ def test_relax_tightens_and_keeps_the_type(design):
     after = lkspace.relax(before, iterations=1500)
     measured = ropelength([(c, True) for c in after.curves])
     assert least * 0.99 <= measured["ropelength"] <= 1.25 * least, measured
-    assert identify_curves(before.curves)["name"] == identify_curves(after.curves)["name"] == name
+    assert identify_curves(before.curves).name == identify_curves(after.curves).name == name
     assert 2 * after.tube_radius <= after.min_distance < np.inf  # measured (the Hopf link's was inf: out of reach)
     assert 0 < after.tube_radius <= measured["thickness"] * 1.05  # the tube fills the rope, no more
 

@@ -55,7 +55,7 @@ def test_diagram_is_the_link_identify_names(client, key, labels, view):
     assert d["components"] == found.components
     assert d["linking_matrix"] == found.linking_matrix  # linking numbers do not depend on the view
     named = name_pd(d["pd"], d["components"], floer=False)
-    assert (named["name"], named["mirror"]) == (found.name, found.mirror)  # chirality too: the trefoils differ
+    assert (named.name, named.mirror) == (found.name, found.mirror)  # chirality too: the trefoils differ
     drawn = paths_of(d["svg"])
     assert sorted(k for k, _ in drawn) == list(range(found.components))  # one path per strand, by strand index
     pieces = sum(n for _, n in drawn)  # a strand cut at c > 0 crossings is c pieces (close gaps merge)

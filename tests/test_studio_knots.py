@@ -66,7 +66,7 @@ def test_diagram_panel_follows_edits_and_the_view(page):
     answer = page.evaluate("window.studio.diagram.answer")
     assert int(page.inner_text("#diagram-crossings")) == answer["crossings"] == len(answer["pd"])
     named = name_pd(answer["pd"], 3, floer=False)
-    assert named["name"] == "L6a4" == lkspace.identify("tetrahedron", BORROMEAN).name
+    assert named.name == "L6a4" == lkspace.identify("tetrahedron", BORROMEAN).name
     # an edit: the diagram is redrawn for the new design
     svg = page.evaluate("window.studio.diagram.svg")
     click_edge(page, 0)

@@ -101,5 +101,5 @@ def test_answers_write_the_keys_the_page_reads_in_its_order():
     assert far.to_json() == {"min_distance": 0.5, "min_separation": 0.1, "ok": True, "edge": 2, "curves": [0, 1]}
     assert list(Clearance(0.01, 0.1, 2, (0, 1), "too close").to_json())[-1] == "message"
     curves = (np.arange(6.0).reshape(2, 3), np.ones((1, 3)))
-    relaxed = RelaxedCurves(curves, 0.1, 0.3, {}).to_json()
-    assert relaxed["counts"] == [2, 1] and json.dumps(relaxed)
+    relaxed = RelaxedCurves(curves, 0.1, 0.3, None).to_json()
+    assert relaxed["counts"] == [2, 1] and relaxed["closest"] == {} and json.dumps(relaxed)

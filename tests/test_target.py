@@ -217,7 +217,7 @@ def test_hoste_thistlethwaite_names_with_chirality():
         link = snappy.HTLinkExteriors[name].link()
         for mirrored, lk in ((False, link), (True, link.mirror())):
             got = name_pd(one_based(lk.PD_code()), len(lk.link_components))
-            assert (got["name"], got["table"], got["mirror"]) == (name, "HTLinkExteriors", mirrored)
+            assert (got.name, got.table, got.mirror) == (name, "HTLinkExteriors", mirrored)
     target = parse_type("K14n10910")
     assert (target.components, target.crossings, target.table) == (1, 14, "HTLinkExteriors")
 

@@ -149,7 +149,9 @@ def _identify_file(
 
     ``cache``: the names by invariant key of this run (:func:`lkspace.knots.key_names.disk_cache`).
     """
-    from ..knots.batch import identify_batch
+    from ..knots.batch import NamerOptions, identify_batch
+
+    options = NamerOptions(processes, isolate=isolate)
 
     table = pq.read_table(file)
     if "labels" not in table.column_names:
@@ -164,9 +166,7 @@ def _identify_file(
     pieces = []
     for start in range(0, len(labels), IDENTIFY_CHUNK):
         piece = labels[start : start + IDENTIFY_CHUNK]
-        pieces.append(
-            identify_batch(scaffold, piece, processes, seed, False, isolate=isolate, cache=cache, label_values=values)
-        )
+        pieces.append(identify_batch(scaffold, piece, options, seed, False, cache=cache, label_values=values))
         step.advance(len(piece))
     import pandas as pd
 

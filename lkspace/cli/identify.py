@@ -66,32 +66,33 @@ def identify_cmd(
     scaffold, labels, nulls = resolve_design(ctx, mesh, twist_spec, null_spec, row)
     check_identifiable(scaffold)
     params = params_of(radius, normal_offset, tube_radius)
-    result = identify(scaffold, labels, nulls, params, seed=seed, time_limit=time_limit or None).to_dict()
-    result["labels"] = np.asarray(labels).tolist()
-    result["common_name"] = common_name(result["name"], result.get("mirror")) if result["name"] else None
+    found = identify(scaffold, labels, nulls, params, seed=seed, time_limit=time_limit or None)
+    named = found.naming
+    common = common_name(found.name, found.mirror) if found.name else None
+    result = {**found.to_json(), "labels": np.asarray(labels).tolist(), "common_name": common}
 
     def human() -> None:
-        name = result["name"] or "unknown"
-        if result["status"] != "identified":
-            click.echo(f"{scaffold.name}: {result['status']}")
-        if result["status"].startswith("unknown: time limit"):
+        name = found.name or "unknown"
+        if found.status != "identified":
+            click.echo(f"{scaffold.name}: {found.status}")
+        if found.status.startswith("unknown: time limit"):
             click.echo(f"  raise --time-limit (now {time_limit:g} s; 0: no limit) to let it finish")
-        said = [result["common_name"]] if result["common_name"] else []
-        if result.get("mirror") is not None:
-            said.append("mirror of the table diagram" if result["mirror"] else "as in the table")
+        said = [common] if common else []
+        if found.mirror is not None:
+            said.append("mirror of the table diagram" if found.mirror else "as in the table")
         chir = f" ({', '.join(said)})" if said else ""
-        table = f" [{result['table']}]" if result.get("table") and result["name"] else ""
-        click.echo(f"{scaffold.name}: {plural(result['components'], 'component')}: {name}{chir}{table}")
-        if result.get("crossings") is not None:
-            click.echo(f"  crossings of the simplified diagram: {result['crossings']}")
+        table = f" [{named.table}]" if named.table and found.name else ""
+        click.echo(f"{scaffold.name}: {plural(found.components, 'component')}: {name}{chir}{table}")
+        if found.crossings is not None:
+            click.echo(f"  crossings of the simplified diagram: {found.crossings}")
         else:
-            click.echo(f"  crossings of the projection: {result.get('projected_crossings')}")
-        click.echo(f"  linking matrix: {result['linking_matrix']}")
-        if result.get("jones"):
-            click.echo(f"  Jones polynomial (in sqrt t): {result['jones']}")
-        if not result["name"] and result.get("candidates"):
-            click.echo(f"  candidates: {', '.join(result['candidates'])}")
-        if result.get("note"):
-            click.echo(f"  note: {result['note']}")
+            click.echo(f"  crossings of the projection: {found.details.get('projected_crossings')}")
+        click.echo(f"  linking matrix: {found.linking_matrix}")
+        if named.jones:
+            click.echo(f"  Jones polynomial (in sqrt t): {named.jones}")
+        if not found.name and named.candidates:
+            click.echo(f"  candidates: {', '.join(str(c) for c in named.candidates)}")
+        if named.note:
+            click.echo(f"  note: {named.note}")
 
     emit(ctx, result, human)

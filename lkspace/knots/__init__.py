@@ -3,5 +3,6 @@
 :mod:`~lkspace.knots.diagram` (projection, PD code) ·
 :mod:`~lkspace.knots.tables` (indexed tables) ·
 :mod:`~lkspace.knots.naming` (PD code -> name) ·
-:mod:`~lkspace.knots.recognition` (:func:`identify`: realize, project, name).
+:mod:`~lkspace.knots.recognition` (:func:`identify`: realize, project, name) ·
+:mod:`~lkspace.knots.identification` (the records it hands on, to and from JSON).
 """

@@ -13,6 +13,7 @@ orientation are the trace's, so the linking matrix reads as
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -20,74 +21,59 @@ from numpy.typing import ArrayLike
 from ..errors import UsageError
 from ..kernels import helper, kernel
 from ..model.scaffold import Scaffold
-from .labels_diagram import DiagramTemplate, template
-
-WORK_ROWS = 7
-"""Rows of :func:`assemble_into`'s scratch array."""
+from .labels_diagram import DiagramTemplate, TemplateArrays, template
 
 
-def work_array(tmpl: DiagramTemplate) -> np.ndarray:
-    """Scratch for :func:`assemble_into`: ``(WORK_ROWS, 2 n_crossings + 1) int64``, row 0 all -1."""
-    work = np.zeros((WORK_ROWS, 2 * tmpl.n_crossings + 1), np.int64)
-    work[0] = -1
-    return work
+class Scratch(NamedTuple):
+    """Scratch of :func:`assemble_into`: ``(2 n_crossings + 1,) int64`` each (:func:`work_array`).
+
+    Attributes
+    ----------
+    local : the design's number of each template crossing, -1 where not met (all -1 between designs)
+    glob : the template crossing of each of the design's crossings
+    seq_cross, seq_over, seq_comp : per passage along the strands, its crossing (the design's
+        number), 1 if it passes over, its component
+    seq_into, seq_out : per passage, the PD edge it enters and leaves by
+    """
+
+    local: np.ndarray
+    glob: np.ndarray
+    seq_cross: np.ndarray
+    seq_over: np.ndarray
+    seq_comp: np.ndarray
+    seq_into: np.ndarray
+    seq_out: np.ndarray
+
+
+def work_array(tmpl: DiagramTemplate) -> Scratch:
+    """Scratch for :func:`assemble_into`, ``local`` all -1."""
+    size = 2 * tmpl.n_crossings + 1
+    return Scratch(np.full(size, -1, np.int64), *(np.zeros(size, np.int64) for _ in Scratch._fields[1:]))
 
 
 @helper
-def assemble_into(
-    tmpl: tuple[np.ndarray, ...],
-    vidx: np.ndarray,
-    pd: np.ndarray,
-    signs: np.ndarray,
-    comps: np.ndarray,
-    work: np.ndarray,
-) -> tuple[int, int, int]:
-    """Assemble the PD code of the design whose edges take twists ``label_values[vidx]``.
+def _walk(t: TemplateArrays, vidx: np.ndarray, signs: np.ndarray, work: Scratch) -> tuple[int, int, int, int]:
+    """Walk the design's strands, recording the passages at crossings of two of its pieces.
 
-    ``tmpl`` is :meth:`DiagramTemplate.arrays`.  Writes ``pd[:m]`` (``(m, 4)``, 1-based), ``signs[:m]`` and ``comps[:m]`` (over and
-    under component of each crossing, ``(m, 2)``); returns ``(m, n_components, n_free)``
-    (``n_free``: components without a crossing).  ``work`` is scratch from
-    :func:`work_array` (row 0 is all -1 again on return).
+    From the smallest unvisited port, the corner turn then the edge link, as the trace
+    does; each piece is passed in the direction the walk meets it (an edge piece forward
+    from end ``a``, back from end ``b``).  New crossings take the next numbers, their sign
+    the template's, flipped for each piece run backwards.  Returns ``(m, n_seq, n_comp,
+    n_free)``: crossings, passages, components and components without a crossing.
     """
-    (
-        corner_partner,
-        port_a,
-        port_b,
-        slot_edge,
-        slot_index,
-        edge_starts,
-        degrees,
-        slot_of_a,
-        slot_of_b,
-        label_values,
-        pass_offsets,
-        pass_crossing,
-        pass_other,
-        pass_over,
-        crossing_sign,
-    ) = tmpl
-    local, glob, seq_cross, seq_over, seq_comp, seq_into, seq_out = (
-        work[0],
-        work[1],
-        work[2],
-        work[3],
-        work[4],
-        work[5],
-        work[6],
-    )
-    n = len(port_a)
+    pass_offsets, pass_other, pass_crossing, pass_over = t.pass_offsets, t.pass_other, t.pass_crossing, t.pass_over
+    slot_edge, crossing_sign, label_values, degrees = t.slot_edge, t.crossing_sign, t.label_values, t.degrees
+    local, glob, seq_cross, seq_over, seq_comp = work.local, work.glob, work.seq_cross, work.seq_over, work.seq_comp
+    n = len(t.port_a)
     visited = np.zeros(2 * n, np.bool_)
-    m = 0  # crossings of the design so far
-    n_seq = 0  # passages so far
-    n_comp = 0
-    n_free = 0
+    m = n_seq = n_comp = n_free = 0
     for x0 in range(2 * n):
         if visited[x0]:
             continue
         comp_first = n_seq
         x = x0
         while True:
-            y = corner_partner[x]  # the corner turn from x (turn s runs from port 2 s + 1)
+            y = t.corner_partner[x]  # the corner turn from x (turn s runs from port 2 s + 1)
             visited[x] = True
             visited[y] = True
             piece = x // 2 if x % 2 == 1 else y // 2
@@ -114,56 +100,88 @@ def assemble_into(
                     n_seq += 1
                 if pass_round == 1:
                     break
-                # the edge link from y: its slot's piece passed forward from end a, or back from end b
-                j = slot_of_a[y]
+                j = t.slot_of_a[y]  # the edge link from y
                 if j >= 0:
                     e = slot_edge[j]
                     kk = degrees[e]
-                    y = port_b[edge_starts[e] + (slot_index[j] + label_values[vidx[e]] % kk) % kk]
+                    y = t.port_b[t.edge_starts[e] + (t.slot_index[j] + label_values[vidx[e]] % kk) % kk]
                     forward = True
                 else:
-                    mb = slot_of_b[y]
+                    mb = t.slot_of_b[y]
                     e = slot_edge[mb]
                     kk = degrees[e]
-                    j = edge_starts[e] + (slot_index[mb] - label_values[vidx[e]] % kk + kk) % kk
-                    y = port_a[j]
+                    j = t.edge_starts[e] + (t.slot_index[mb] - label_values[vidx[e]] % kk + kk) % kk
+                    y = t.port_a[j]
                     forward = False
                 piece = n + vidx[e] * n + j
             x = y
             if x == x0:
                 break
-        count = n_seq - comp_first
-        if count == 0:
+        if n_seq == comp_first:
             n_free += 1
-        for i in range(count):  # passage i enters by the component's edge i and leaves by edge i + 1
-            seq_into[comp_first + i] = comp_first + (i - 1 + count) % count + 1
-            seq_out[comp_first + i] = comp_first + i + 1
+        _label_edges(work.seq_into, work.seq_out, comp_first, n_seq)
         n_comp += 1
+    return m, n_seq, n_comp, n_free
+
+
+@helper
+def _label_edges(seq_into: np.ndarray, seq_out: np.ndarray, first: int, end: int) -> None:
+    """Label the PD edges of one component's passages ``first:end``: passage i enters by edge i, leaves by i + 1."""
+    count = end - first
+    for i in range(count):
+        seq_into[first + i] = first + (i - 1 + count) % count + 1
+        seq_out[first + i] = first + i + 1
+
+
+@helper
+def _write_pd(work: Scratch, n_seq: int, signs: np.ndarray, pd: np.ndarray, comps: np.ndarray) -> None:
+    """Write each crossing's PD row and its over and under component from the passages."""
     for i in range(n_seq):
-        c = seq_cross[i]
-        if seq_over[i] == 1:
-            comps[c, 0] = seq_comp[i]
+        c = work.seq_cross[i]
+        if work.seq_over[i] == 1:
+            comps[c, 0] = work.seq_comp[i]
             if signs[c] > 0:  # X[under in, over out, under out, over in]
-                pd[c, 1] = seq_out[i]
-                pd[c, 3] = seq_into[i]
+                pd[c, 1] = work.seq_out[i]
+                pd[c, 3] = work.seq_into[i]
             else:  # X[under in, over in, under out, over out]
-                pd[c, 1] = seq_into[i]
-                pd[c, 3] = seq_out[i]
+                pd[c, 1] = work.seq_into[i]
+                pd[c, 3] = work.seq_out[i]
         else:
-            comps[c, 1] = seq_comp[i]
-            pd[c, 0] = seq_into[i]
-            pd[c, 2] = seq_out[i]
+            comps[c, 1] = work.seq_comp[i]
+            pd[c, 0] = work.seq_into[i]
+            pd[c, 2] = work.seq_out[i]
+
+
+@helper
+def assemble_into(
+    t: TemplateArrays,
+    vidx: np.ndarray,
+    pd: np.ndarray,
+    signs: np.ndarray,
+    comps: np.ndarray,
+    work: Scratch,
+) -> tuple[int, int, int]:
+    """Assemble the PD code of the design whose edges take twists ``label_values[vidx]``.
+
+    ``t`` is :meth:`DiagramTemplate.arrays`.  Writes ``pd[:m]`` (``(m, 4)``, 1-based),
+    ``signs[:m]`` and ``comps[:m]`` (over and under component of each crossing, ``(m,
+    2)``); returns ``(m, n_components, n_free)`` (``n_free``: components without a
+    crossing).  ``work`` is scratch from :func:`work_array` (``local`` is all -1 again on
+    return).
+    """
+    m, n_seq, n_comp, n_free = _walk(t, vidx, signs, work)
+    _write_pd(work, n_seq, signs, pd, comps)
     for i in range(m):
-        local[glob[i]] = -1
+        work.local[work.glob[i]] = -1
     return m, n_comp, n_free
 
 
 @kernel
 def assemble_one(
-    tmpl: tuple[np.ndarray, ...], vidx: np.ndarray, work: np.ndarray
+    tmpl: TemplateArrays, vidx: np.ndarray, work: Scratch
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, int, int]:
     """One design's ``(pd, signs, comps, n_components, n_free)`` (:func:`assemble_into`)."""
-    size = len(tmpl[14])
+    size = len(tmpl.crossing_sign)
     pd = np.zeros((size, 4), np.int64)
     signs = np.zeros(size, np.int64)
     comps = np.zeros((size, 2), np.int64)

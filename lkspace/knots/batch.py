@@ -9,6 +9,7 @@ in full, in worker processes under the time limit, only what the keys leave
 from __future__ import annotations
 
 import json
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -19,13 +20,15 @@ from ..model.scaffold import Scaffold
 from ..progress import task
 from ..workers import context, ignore_interrupts
 from .budget import MAX_CROSSINGS, TIME_LIMIT, TimeLimitReached
+from .identification import Json, NameFields
 from .key_names import KeyCache, share_names
 from .keyed import keys_of
 from .naming import presimplified
 from .recognition import check_identifiable, name_in_time, status_of
 from .tables import knot_modules, tables
 
-_WORKER: dict[str, Any] = {}
+_WORKER: dict[str, float | None] = {}
+"""The worker's time limit per design (``time_limit``), set by :func:`_init_worker`."""
 
 
 def _init_worker(time_limit: float | None = TIME_LIMIT, worker: bool = False) -> None:
@@ -34,31 +37,17 @@ def _init_worker(time_limit: float | None = TIME_LIMIT, worker: bool = False) ->
     _WORKER.update(time_limit=time_limit)
 
 
-def _name_fields(item: tuple[list[list[int]], int]) -> dict[str, Any]:
+def _name_fields(item: tuple[list[list[int]], int]) -> NameFields:
     """Name one design's PD code under the time limit: its row fields but ``components`` and ``linking_matrix``."""
     pd, n_components = item
     time_limit = _WORKER.get("time_limit", TIME_LIMIT)
     if len(pd) > MAX_CROSSINGS:
-        status = f"unknown: diagram too large: {len(pd):,} crossings > {MAX_CROSSINGS:,}"
-        return {"knot_name": None, "status": status, "error": status.removeprefix("unknown: ")}
+        return NameFields.refused(f"unknown: diagram too large: {len(pd):,} crossings > {MAX_CROSSINGS:,}")
     try:  # simplified first, so that most diagrams are small enough to be named without a child process
         named = name_in_time(presimplified(pd), n_components, time_limit or None, None, floer=False)
     except TimeLimitReached as exc:
-        status = f"unknown: time limit {time_limit:g} s reached (during {exc.stage})"
-        return {"knot_name": None, "status": status, "error": status.removeprefix("unknown: ")}
-    return {
-        "knot_name": named.get("name"),
-        "split": named.get("split"),
-        "mirror": named.get("mirror"),
-        "crossings": named.get("crossings"),
-        "jones": named.get("jones"),
-        "status": status_of(named),
-        "error": None,
-        "pieces": named.get("pieces"),
-        "table": named.get("table"),
-        "chiral_name": named.get("chiral_name"),
-        "candidates": named.get("candidates"),
-    }
+        return NameFields.refused(f"unknown: time limit {time_limit:g} s reached (during {exc.stage})")
+    return NameFields.of(named, status_of(named))
 
 
 COLUMNS = ["knot_name", "components", "split", "mirror", "crossings", "jones", "linking_matrix", "status", "error"]
@@ -67,15 +56,38 @@ BATCH = 20_000
 """Designs keyed per call of the compiled kernel (bounds the memory of one call)."""
 
 
+@dataclass(frozen=True)
+class NamerOptions:
+    """How designs are named in full (:class:`Namer`).
+
+    Attributes
+    ----------
+    processes : int
+        Worker processes naming the designs named in full (``1``: in this process).
+        Workers are started by :func:`lkspace.workers.context` (never a fork of this
+        program).
+    time_limit : float or None
+        Seconds per design named in full, as for :func:`identify` (default 60); a
+        design that runs out gets the status ``unknown: time limit ...`` and the same
+        text in ``error``.
+    isolate : bool
+        Name in worker processes even when ``processes`` is 1.  For callers that run
+        in a thread other than the main one (a Dask task): SnapPy's PARI works only in a
+        process's main thread, and a thread would leave exteriors undecided.
+    """
+
+    processes: int = 1
+    time_limit: float | None = TIME_LIMIT
+    isolate: bool = False
+
+
 def identify_batch(
     scaffold: Scaffold,
     labels_2d: ArrayLike,
-    processes: int = 1,
+    options: NamerOptions | None = None,
     seed: int = 0,
     progress: bool | None = None,
     *,
-    time_limit: float | None = TIME_LIMIT,
-    isolate: bool = False,
     cache: KeyCache | None = None,
     label_values: ArrayLike | None = None,
 ) -> pd.DataFrame:
@@ -89,22 +101,13 @@ def identify_batch(
     scaffold : Scaffold
         A finite scaffold (periodic ones are refused before any work).
     labels_2d : (n_designs, n_edges) int
-    processes : int
-        Worker processes naming the designs named in full (``1``: in this process).
-        Workers are started by :func:`lkspace.workers.context` (never a fork of this
-        program).
+    options : NamerOptions, optional
+        Worker processes, time limit per design named in full (default 60 s) and
+        isolation (default: one process, no isolation).
     seed : int
         Seed of the generic projection.
     progress : bool, optional
         Count the designs on the progress display (:mod:`lkspace.progress`; default on).
-    time_limit : float or None
-        Seconds per design named in full, as for :func:`identify` (default 60); a
-        design that runs out gets the status ``unknown: time limit ...`` and the same
-        text in ``error``.
-    isolate : bool
-        Name in worker processes even when ``processes`` is 1.  For callers that run
-        in a thread other than the main one (a Dask task): SnapPy's PARI works only in a
-        process's main thread, and a thread would leave exteriors undecided.
     cache : KeyCache, optional
         Names found by earlier calls (default: none); :func:`~lkspace.knots.key_names.disk_cache`
         holds the keys judged by earlier runs, kept under ``$LKSPACE_CACHE``.
@@ -130,8 +133,12 @@ def identify_batch(
     check_identifiable(scaffold)
     labels_2d = np.asarray(labels_2d, np.int64).reshape(-1, scaffold.n_edges)
     cache = cache if cache is not None else KeyCache()
-    rows: list[dict[str, Any]] = []
-    with Namer(processes, isolate, time_limit) as namer, task("identifying", total=len(labels_2d)) as step:
+    rows: list[dict[str, Json]] = []
+    opts = options or NamerOptions()
+    with (
+        Namer(opts.processes, opts.isolate, opts.time_limit) as namer,
+        task("identifying", total=len(labels_2d)) as step,
+    ):
         for start in range(0, len(labels_2d), BATCH):
             chunk = labels_2d[start : start + BATCH]
             rows.extend(identify_chunk(scaffold, chunk, seed, cache, namer, label_values))
@@ -147,13 +154,13 @@ def identify_chunk(
     cache: KeyCache,
     namer: Namer,
     label_values: ArrayLike | None,
-) -> list[dict[str, Any]]:
+) -> list[dict[str, Json]]:
     """Return the rows of one chunk: refused designs first set apart, the rest keyed and named.
 
     A row holds :data:`COLUMNS` and, where the design was named, ``pieces``, ``table``,
     ``chiral_name`` and ``candidates`` (as :func:`~lkspace.knots.naming.name_pd` gives them).
     """
-    rows: list[dict[str, Any]] = [dict.fromkeys(COLUMNS) for _ in range(len(labels_2d))]
+    rows: list[dict[str, Json]] = [dict.fromkeys(COLUMNS) for _ in range(len(labels_2d))]
     refusal = _refusal(scaffold)
     estimate = (np.abs(labels_2d) * np.maximum(scaffold.edge_degrees - 1, 0)).sum(axis=1)
     fits = estimate <= MAX_CROSSINGS if refusal is None else np.zeros(len(labels_2d), bool)
@@ -168,12 +175,13 @@ def identify_chunk(
         return rows
     found = keys_of(scaffold, labels_2d[todo], seed, label_values)
 
-    def name_designs(indices: list[int]) -> list[dict[str, Any]]:
+    def name_designs(indices: list[int]) -> list[NameFields]:
         return namer.name([found.diagram(d)[:2] for d in indices])
 
     for i, (d, fields) in enumerate(zip(todo.tolist(), share_names(found, cache, name_designs), strict=True)):
         assert fields is not None
-        rows[d].update(fields, components=int(found.components[i]), linking_matrix=json.dumps(found.linking_matrix(i)))
+        rows[d].update(fields.to_json())
+        rows[d].update(components=int(found.components[i]), linking_matrix=json.dumps(found.linking_matrix(i)))
     return rows
 
 
@@ -199,7 +207,7 @@ class Namer:
         _init_worker(self.time_limit)
         return self
 
-    def name(self, items: list[tuple[list[list[int]], int]]) -> list[dict[str, Any]]:
+    def name(self, items: list[tuple[list[list[int]], int]]) -> list[NameFields]:
         """Row fields of each ``(pd, n_components)``, in order (the knot libraries load on first need)."""
         if not items:
             return []

@@ -18,12 +18,19 @@ image (Gordon-Luecke); the meridian check costs nothing more.
 from __future__ import annotations
 
 import re
-from typing import Any
+from typing import Any, NamedTuple
 
 HT_NAME = re.compile(r"([KL])(\d+)([an])(\d+)")
 """A Hoste-Thistlethwaite name: ``K14n10910`` (knot) or ``L13n4723`` (link)."""
 
 TABLE = "HTLinkExteriors"
+
+
+class HTName(NamedTuple):
+    """A link named from ``HTLinkExteriors``: its name there, and whether it is that entry's mirror image."""
+
+    name: str
+    mirror: bool | None
 
 
 def ht_crossings(name: str) -> int | None:
@@ -60,7 +67,7 @@ def meridian_isometries(exterior: Any, table: Any) -> list[int]:
     return dets
 
 
-def ht_name(exterior: Any, n_components: int) -> dict[str, Any] | None:
+def ht_name(exterior: Any, n_components: int) -> HTName | None:
     """Name a hyperbolic link exterior from ``HTLinkExteriors`` through a meridian-preserving isometry.
 
     Parameters
@@ -72,15 +79,15 @@ def ht_name(exterior: Any, n_components: int) -> dict[str, Any] | None:
 
     Returns
     -------
-    dict or None
-        ``name``, ``table_name``, ``table`` (``"HTLinkExteriors"``) and ``mirror``, or
-        ``None`` when no single table link has a meridian-preserving isometric exterior.
+    HTName or None
+        ``name`` (in the table :data:`TABLE`) and ``mirror``, or ``None`` when no single
+        table link has a meridian-preserving isometric exterior.
 
     Examples
     --------
     >>> import snappy
     >>> link = snappy.HTLinkExteriors["L13n4723"].link()
-    >>> ht_name(link.exterior(), 2)["name"], ht_name(link.mirror().exterior(), 2)["mirror"]
+    >>> ht_name(link.exterior(), 2).name, ht_name(link.mirror().exterior(), 2).mirror
     ('L13n4723', True)
     """
     try:
@@ -97,7 +104,7 @@ def ht_name(exterior: Any, n_components: int) -> dict[str, Any] | None:
         dets = set(meridian_isometries(exterior, table))
         if dets:
             mirror = None if len(dets) == 2 else dets.pop() < 0
-            results.append({"name": name, "table_name": name, "table": TABLE, "mirror": mirror})
+            results.append(HTName(name, mirror))
     return results[0] if len(results) == 1 else None
 
 

@@ -15,9 +15,13 @@ from typing import Any
 
 import numpy as np
 
+from .identification import NameFields
 from .keyed import KEY_VERSION, DesignKeys
 from .naming import name_key
 from .tables import HOMFLY_MAX_CROSSINGS
+
+Key = tuple[int | str, ...]
+"""A key: ``(hash, hash)`` at the first level; the second adds the HOMFLY-PT polynomial and crossings."""
 
 
 @dataclass
@@ -39,12 +43,12 @@ class KeyCache:
         depend on invariants only, so they hold for every scaffold.
     """
 
-    named: dict[tuple[Any, ...], dict[str, Any]] = field(default_factory=dict)
-    own: set[tuple[Any, ...]] = field(default_factory=set)
+    named: dict[Key, NameFields] = field(default_factory=dict)
+    own: set[Key] = field(default_factory=set)
     full: int = 0
     path: str | None = None
 
-    def remember(self, key: tuple[Any, ...], fields: dict[str, Any] | None) -> None:
+    def remember(self, key: Key, fields: NameFields | None) -> None:
         """Trust ``key`` (its designs take ``fields``) or, with ``None``, not; appended to :attr:`path`."""
         if fields is None:
             self.own.add(key)
@@ -52,7 +56,7 @@ class KeyCache:
             self.named[key] = fields
         if self.path is None:
             return
-        line = json.dumps({"key": list(key), "fields": fields}) + "\n"
+        line = json.dumps({"key": list(key), "fields": None if fields is None else fields.to_json()}) + "\n"
         try:
             fd = os.open(self.path, os.O_WRONLY | os.O_APPEND | os.O_CREAT, 0o644)
             try:
@@ -84,16 +88,23 @@ def disk_cache() -> KeyCache:
             for line in fh:
                 try:
                     item = json.loads(line)
-                    key = tuple(item["key"])
+                    key = _key(item["key"])
                     if item["fields"] is None:
                         cache.own.add(key)
                     else:
-                        cache.named[key] = item["fields"]
-                except (json.JSONDecodeError, KeyError, TypeError):
+                        cache.named[key] = NameFields.from_json(item["fields"])
+                except (json.JSONDecodeError, KeyError, TypeError, ValueError):
                     continue
     except OSError:
         pass
     return cache
+
+
+def _key(value: object) -> Key:
+    """Read a key from its JSON list (ints, and a HOMFLY-PT text at the second level)."""
+    if not isinstance(value, list) or not all(isinstance(v, (int, str)) and not isinstance(v, bool) for v in value):
+        raise ValueError(f"key: expected a list of int or str, got {value!r}")
+    return tuple(value)
 
 
 def candidates(
@@ -135,16 +146,15 @@ def _table_homfly(pd_text: str, mirror: bool) -> str | None:
     return str(link.homfly())
 
 
-def trusted(named: dict[str, Any], found: set[tuple[str, bool]]) -> bool:
+def trusted(named: NameFields, found: set[tuple[str, bool]]) -> bool:
     """Whether every design with a key may take ``named`` (its first design's fields); ``found``: its :func:`candidates`."""
-    status = str(named.get("status"))
-    if status.startswith(("unknown: time limit", "unknown: diagram too large")) or named.get("error"):
+    if named.status.startswith(("unknown: time limit", "unknown: diagram too large")) or named.error:
         return False
     if not found:
         return True  # beyond the tables: the key is all there is to go by (module docstring)
     names = {name for name, _ in found}
     mirrors = {mirror for _, mirror in found}
-    return names == {named.get("knot_name")} and (len(mirrors) == 1 or named.get("mirror") is None)
+    return names == {named.knot_name} and (len(mirrors) == 1 or named.mirror is None)
 
 
 def _simplified(pd: list[list[int]]) -> Any:
@@ -172,8 +182,8 @@ def homfly_of(pd: list[list[int]]) -> tuple[str, int] | None:
 def share_names(
     found: DesignKeys,
     cache: KeyCache,
-    name_designs: Callable[[list[int]], list[dict[str, Any]]],
-) -> list[dict[str, Any] | None]:
+    name_designs: Callable[[list[int]], list[NameFields]],
+) -> list[NameFields | None]:
     """Row fields of every design of ``found``, shared by key where the key is trusted.
 
     First level: the compiled key.  Designs of an untrusted key get a second-level key:
@@ -183,11 +193,13 @@ def share_names(
     full (in worker processes, under the time limit): once per new key, then each design
     of a key trusted at neither level.
     """
-    first = [(int(a), int(b)) if ok else None for (a, b), ok in zip(found.keys.tolist(), found.keyed, strict=True)]
+    first: list[Key | None] = [
+        (int(a), int(b)) if ok else None for (a, b), ok in zip(found.keys.tolist(), found.keyed, strict=True)
+    ]
     rows = _share(found, first, cache, name_designs, second=False)
     left = [d for d, row in enumerate(rows) if row is None]
     diagrams = {d: found.diagram(d) for d in left}
-    second: list[tuple[Any, ...] | None] = [None] * len(rows)
+    second: list[Key | None] = [None] * len(rows)
     for d in left:
         key = first[d]
         invariants = homfly_of(diagrams[d][0]) if key is not None else None
@@ -205,14 +217,14 @@ def share_names(
 
 def _share(
     found: DesignKeys,
-    keys: list[tuple[Any, ...] | None],
+    keys: list[Key | None],
     cache: KeyCache,
-    name_designs: Callable[[list[int]], list[dict[str, Any]]],
+    name_designs: Callable[[list[int]], list[NameFields]],
     second: bool,
-) -> list[dict[str, Any] | None]:
+) -> list[NameFields | None]:
     """One level of :func:`share_names`: name each new key's first design, share the trusted keys' names."""
-    rows: list[dict[str, Any] | None] = [None] * len(keys)
-    firsts: dict[tuple[Any, ...], int] = {}
+    rows: list[NameFields | None] = [None] * len(keys)
+    firsts: dict[Key, int] = {}
     for d, k in enumerate(keys):
         if k is not None and k not in cache.named and k not in cache.own and k not in firsts:
             firsts[k] = d
@@ -221,7 +233,8 @@ def _share(
         rows[d] = named
         pd, n_comp, signs = found.diagram(d)
         jones = jones_of(pd, signs, n_comp)
-        if jones is not None and trusted(named, candidates(jones, n_comp, *(k[2:4] if second else ()))):
+        homfly, crossings = (str(k[2]), int(k[3])) if second else (None, None)
+        if jones is not None and trusted(named, candidates(jones, n_comp, homfly, crossings)):
             cache.remember(k, named)
         elif jones is not None:
             cache.remember(k, None)
@@ -235,7 +248,7 @@ def _share(
     return rows
 
 
-def _reaches_crossing_number(found: DesignKeys, d: int, named: dict[str, Any]) -> bool:
+def _reaches_crossing_number(found: DesignKeys, d: int, named: NameFields) -> bool:
     """Whether design ``d``'s diagram, simplified by regina, keeps at least the crossing number of ``named``'s table name.
 
     A diagram with fewer crossings proves the design another link with the same key
@@ -246,8 +259,8 @@ def _reaches_crossing_number(found: DesignKeys, d: int, named: dict[str, Any]) -
     split link of that many components has at least as many crossings; the tables hold
     every prime one).
     """
-    name = named.get("knot_name")
-    if not name or "#" in name or named.get("table") not in ("knotinfo", "linkinfo"):
+    name = named.knot_name
+    if not name or "#" in name or named.table not in ("knotinfo", "linkinfo"):
         return True
     need = name_key(name)[0]
     if need <= (5 if found.components[d] == 1 else 3):

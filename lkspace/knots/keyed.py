@@ -37,10 +37,10 @@ import numpy as np
 
 from ..kernels import helper, kernel
 from ..model.scaffold import Scaffold
-from .assembly import assemble_into, assemble_one, work_array
+from .assembly import Scratch, assemble_into, assemble_one, work_array
 from .budget import MAX_CROSSINGS
 from .jones import jones_buffer_size, jones_into
-from .labels_diagram import DiagramTemplate, template
+from .labels_diagram import DiagramTemplate, TemplateArrays, template
 from .tables import JONES_POINT
 
 KEY_VERSION = "k3"
@@ -62,11 +62,71 @@ def _mix(h: np.uint64, v: int) -> np.uint64:
     return x ^ (x >> np.uint64(31))
 
 
+@helper
+def _linking_into(comps: np.ndarray, signs: np.ndarray, m: int, n_comp: int, lk: np.ndarray) -> None:
+    """Write the linking matrix of a design's ``m`` crossings into ``lk`` (``(n_comp**2,)``, row by row)."""
+    lk[:] = 0
+    for c in range(m):
+        a = comps[c, 0]
+        b = comps[c, 1]
+        if a != b:
+            lk[a * n_comp + b] += signs[c]
+            lk[b * n_comp + a] += signs[c]
+    for i in range(n_comp * n_comp):
+        lk[i] //= 2
+
+
+@helper
+def _with_room(values: np.ndarray, used: int, need: int) -> np.ndarray:
+    """Return ``values``, or a copy twice ``need`` long (its first ``used`` kept) when shorter than ``need``."""
+    if need <= len(values):
+        return values
+    grown = np.zeros(2 * need, np.int64)
+    grown[:used] = values[:used]
+    return grown
+
+
+@helper
+def _hashes(lk: np.ndarray, n_comp: int, lowest: int, poly: np.ndarray, length: int) -> tuple[np.uint64, np.uint64]:
+    """Return the two 64-bit hashes of (components, sorted linking numbers of the pairs, Jones polynomial)."""
+    pairs = np.zeros(max(n_comp * (n_comp - 1) // 2, 1), np.int64)
+    k = 0
+    for i in range(n_comp):
+        for j in range(i + 1, n_comp):
+            pairs[k] = lk[i * n_comp + j]
+            k += 1
+    pairs = np.sort(pairs[:k])
+    h1 = np.uint64(0x243F6A8885A308D3)
+    h2 = np.uint64(0x13198A2E03707344)
+    h1 = _mix(h1, n_comp)
+    h2 = _mix(h2, n_comp + 7)
+    for i in range(k):
+        h1 = _mix(h1, pairs[i])
+        h2 = _mix(h2, pairs[i] * 31 + 5)
+    h1 = _mix(h1, lowest)
+    h2 = _mix(h2, lowest * 17 + 3)
+    for i in range(length):
+        h1 = _mix(h1, poly[i])
+        h2 = _mix(h2, poly[i] * 131 + i)
+    return h1, h2
+
+
+@helper
+def _residue_at(poly: np.ndarray, lowest: int, length: int, point: int, inverse: int) -> int:
+    """Return the Laurent polynomial ``poly[:length]`` (from ``x^lowest``) at ``x = point`` modulo :data:`PRIME`."""
+    value = 0
+    step = _power(point if lowest >= 0 else inverse, abs(lowest))
+    for i in range(length):
+        value = (value + (poly[i] % PRIME) * step) % PRIME
+        step = step * point % PRIME
+    return value
+
+
 @kernel
 def design_keys(
-    tmpl: tuple[np.ndarray, ...],
+    tmpl: TemplateArrays,
     vidx_2d: np.ndarray,
-    work: np.ndarray,
+    work: Scratch,
     max_crossings: int,
     point: int,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
@@ -95,12 +155,11 @@ def design_keys(
         The Jones polynomial at ``point``, modulo :data:`PRIME` (where ``keyed``).
     """
     n_designs = vidx_2d.shape[0]
-    size = len(tmpl[14])
-    n_slots = len(tmpl[1])
+    size = len(tmpl.crossing_sign)
     pd = np.zeros((size, 4), np.int64)
     signs = np.zeros(size, np.int64)
     comps = np.zeros((size, 2), np.int64)
-    poly = np.zeros(jones_buffer_size(size, n_slots), np.int64)
+    poly = np.zeros(jones_buffer_size(size, len(tmpl.port_a)), np.int64)
     keys = np.zeros((n_designs, 2), np.uint64)
     crossings = np.zeros(n_designs, np.int64)
     components = np.zeros(n_designs, np.int64)
@@ -117,54 +176,20 @@ def design_keys(
         free[d] = n_free
         base = link_offsets[d]
         need = base + n_comp * n_comp
-        if need > len(link_values):
-            grown = np.zeros(2 * need, np.int64)
-            grown[:base] = link_values[:base]
-            link_values = grown
+        link_values = _with_room(link_values, base, need)
         lk = link_values[base:need]
-        lk[:] = 0
-        for c in range(m):
-            a = comps[c, 0]
-            b = comps[c, 1]
-            if a != b:
-                lk[a * n_comp + b] += signs[c]
-                lk[b * n_comp + a] += signs[c]
-        for i in range(n_comp * n_comp):
-            lk[i] //= 2
+        _linking_into(comps, signs, m, n_comp, lk)
         link_offsets[d + 1] = need
         if m > max_crossings:
             continue
         lowest, length = jones_into(pd[:m], signs[:m], n_free, poly)
         if length < 0:
             continue
-        pairs = np.zeros(max(n_comp * (n_comp - 1) // 2, 1), np.int64)
-        k = 0
-        for i in range(n_comp):
-            for j in range(i + 1, n_comp):
-                pairs[k] = lk[i * n_comp + j]
-                k += 1
-        pairs = np.sort(pairs[:k])
-        h1 = np.uint64(0x243F6A8885A308D3)
-        h2 = np.uint64(0x13198A2E03707344)
-        h1 = _mix(h1, n_comp)
-        h2 = _mix(h2, n_comp + 7)
-        for i in range(k):
-            h1 = _mix(h1, pairs[i])
-            h2 = _mix(h2, pairs[i] * 31 + 5)
-        h1 = _mix(h1, lowest)
-        h2 = _mix(h2, lowest * 17 + 3)
-        for i in range(length):
-            h1 = _mix(h1, poly[i])
-            h2 = _mix(h2, poly[i] * 131 + i)
+        h1, h2 = _hashes(lk, n_comp, lowest, poly, length)
         keys[d, 0] = h1
         keys[d, 1] = h2
         keyed[d] = True
-        value = 0
-        step = _power(point if lowest >= 0 else inverse, abs(lowest))
-        for i in range(length):
-            value = (value + (poly[i] % PRIME) * step) % PRIME
-            step = step * point % PRIME
-        jones_at[d] = value
+        jones_at[d] = _residue_at(poly, lowest, length, point, inverse)
     return keys, crossings, components, keyed, link_offsets, link_values[: link_offsets[n_designs]], free, jones_at
 
 

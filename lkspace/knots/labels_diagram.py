@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import weakref
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -30,6 +31,29 @@ from ..geometry.tracks import side_tracks
 from ..model.scaffold import Scaffold
 from ..strands.ports import PortModel, edge_partner, port_model
 from .diagram import near_pairs, transverse
+
+
+class TemplateArrays(NamedTuple):
+    """The arrays of a :class:`DiagramTemplate` as compiled kernels take them (numba reads a NamedTuple by name).
+
+    Fields as the attributes of :class:`DiagramTemplate`: all ``int64`` but ``pass_over`` (``bool``).
+    """
+
+    corner_partner: np.ndarray
+    port_a: np.ndarray
+    port_b: np.ndarray
+    slot_edge: np.ndarray
+    slot_index: np.ndarray
+    edge_starts: np.ndarray
+    degrees: np.ndarray
+    slot_of_a: np.ndarray
+    slot_of_b: np.ndarray
+    label_values: np.ndarray
+    pass_offsets: np.ndarray
+    pass_crossing: np.ndarray
+    pass_other: np.ndarray
+    pass_over: np.ndarray
+    crossing_sign: np.ndarray
 
 
 @dataclass(frozen=True, eq=False)
@@ -94,25 +118,9 @@ class DiagramTemplate:
             )
         return idx
 
-    def arrays(self) -> tuple[np.ndarray, ...]:
-        """Return the arrays :func:`~lkspace.knots.assembly.assemble_into` takes, in its order."""
-        return (
-            self.corner_partner,
-            self.port_a,
-            self.port_b,
-            self.slot_edge,
-            self.slot_index,
-            self.edge_starts,
-            self.degrees,
-            self.slot_of_a,
-            self.slot_of_b,
-            self.label_values,
-            self.pass_offsets,
-            self.pass_crossing,
-            self.pass_other,
-            self.pass_over,
-            self.crossing_sign,
-        )
+    def arrays(self) -> TemplateArrays:
+        """Return the arrays the compiled kernels take (:func:`~lkspace.knots.assembly.assemble_into`)."""
+        return TemplateArrays(**{name: getattr(self, name) for name in TemplateArrays._fields})
 
 
 def build_template(scaffold: Scaffold, label_values: ArrayLike, seed: int = 0) -> DiagramTemplate:

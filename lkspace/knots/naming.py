@@ -11,7 +11,8 @@ from collections.abc import Callable, Iterable
 from types import ModuleType
 from typing import Any
 
-from .hoste import ht_name
+from .hoste import TABLE, ht_name
+from .identification import Naming
 from .tables import HOMFLY_MAX_CROSSINGS, JONES_POINT, knot_modules, laurent_value, tables
 
 KNOT_FLOER_MAX_CROSSINGS = 40
@@ -41,26 +42,25 @@ def _identify_names(link: Any) -> tuple[list[str], float | None, Any]:
         return [], None, None
 
 
-def name_diagram(pd: list[list[int]], n_components: int) -> dict[str, Any]:
+def name_diagram(pd: list[list[int]], n_components: int) -> Naming:
     """Name one non-split link diagram given by its PD code.
 
     Returns
     -------
-    dict
+    Naming
         ``name`` (or ``None``), ``table_name``, ``mirror``, ``candidates`` and invariants
         ``crossings`` (simplified diagram), ``jones``, ``homfly``, ``volume``.
     """
     spherogram, regina, _ = knot_modules()
-    out: dict[str, Any] = {"name": None, "table_name": None, "mirror": None, "candidates": []}
+    out = Naming.of(name=None, table_name=None, mirror=None, candidates=())
     if not pd:
-        out.update(crossings=0, jones="1", homfly=None, volume=0.0)
+        out = out.updated(crossings=0, jones="1", homfly=None, volume=0.0)
         if n_components == 1:
-            out.update(name="0_1", table_name="0_1", table="knotinfo")
+            out = out.updated(name="0_1", table_name="0_1", table="knotinfo")
         return out
     rl = regina.Link.fromPD(pd)
     jones = rl.jones()
-    out["crossings"] = len(pd)
-    out["jones"] = str(jones)
+    out = out.updated(crossings=len(pd), jones=str(jones))
     fp, fp_mirror = laurent_value(jones, JONES_POINT), laurent_value(jones, 1 / JONES_POINT)
     index = tables()
     cands = [(e, False) for e in index.get(fp, [])] + [(e, True) for e in index.get(fp_mirror, [])]
@@ -70,11 +70,12 @@ def name_diagram(pd: list[list[int]], n_components: int) -> dict[str, Any]:
         cands = [(e, m) for e, m in cands if e["pd"] and _homfly(regina, json.loads(e["pd"]), m) == homfly]
     link = spherogram.Link(pd)
     names, volume, exterior = _identify_names(link)
-    out["volume"] = volume
+    out = out.updated(volume=volume)
     if len({e["name"] for e, _ in cands}) > 1 and names:
         cands = [(e, m) for e, m in cands if e["name"] in names or _knot_alias(e["name"]) in names]
-    out["homfly"] = homfly
-    out["candidates"] = sorted({e["table_name"] + (" (mirror)" if m else "") for e, m in cands})
+    out = out.updated(
+        homfly=homfly, candidates=tuple(sorted({e["table_name"] + (" (mirror)" if m else "") for e, m in cands}))
+    )
     if not cands and exterior is not None:
         return _name_from_ht(out, exterior, n_components)
     if len({e["name"] for e, _ in cands}) != 1:
@@ -82,26 +83,25 @@ def name_diagram(pd: list[list[int]], n_components: int) -> dict[str, Any]:
     entry = cands[0][0]
     table_volume = entry["volume"] or 0.0
     if volume is None or abs(table_volume - volume) > 1e-4 * max(1.0, table_volume):
-        out["note"] = f"volume {volume} differs from {entry['table_name']}'s {table_volume}"
-        return out
+        return out.updated(note=f"volume {volume} differs from {entry['table_name']}'s {table_volume}")
     mirrors = {m for _, m in cands}
-    out.update(
+    out = out.updated(
         name=entry["name"], table_name=entry["table_name"], table="knotinfo" if n_components == 1 else "linkinfo"
     )
-    out["mirror"] = mirrors.pop() if len(mirrors) == 1 else None
-    if out["mirror"] is not None and n_components == 1:
-        out["chiral_name"] = ("m" if out["mirror"] else "") + entry["name"]
+    out = out.updated(mirror=mirrors.pop() if len(mirrors) == 1 else None)
+    if out.mirror is not None and n_components == 1:
+        out = out.updated(chiral_name=("m" if out.mirror else "") + entry["name"])
     return out
 
 
-def _name_from_ht(out: dict[str, Any], exterior: Any, n_components: int) -> dict[str, Any]:
+def _name_from_ht(out: Naming, exterior: Any, n_components: int) -> Naming:
     """Name a hyperbolic link in no KnotInfo/LinkInfo entry from ``HTLinkExteriors`` (:mod:`lkspace.knots.hoste`)."""
     found = ht_name(exterior, n_components)
     if found is None:
         return out
-    out.update(found)
-    if found["mirror"] is not None and n_components == 1:
-        out["chiral_name"] = ("m" if found["mirror"] else "") + found["name"]
+    out = out.updated(name=found.name, table_name=found.name, table=TABLE, mirror=found.mirror)
+    if found.mirror is not None and n_components == 1:
+        out = out.updated(chiral_name=("m" if found.mirror else "") + found.name)
     return out
 
 
@@ -122,7 +122,7 @@ def _quiet(text: str) -> None:
 
 def name_pd(
     pd: list[list[int]], n_components: int, stage: Callable[[str], None] = _quiet, *, floer: bool = True
-) -> dict[str, Any]:
+) -> Naming:
     """Simplify and name the link of a PD code (1-based, KnotTheory convention).
 
     Split links are named piece by piece (``name`` stays ``None``, ``pieces`` lists
@@ -133,22 +133,15 @@ def name_pd(
     knots, that catalogs do not keep).
     """
     spherogram, _, _ = knot_modules()
-    out: dict[str, Any]
     if pd:
         stage(f"simplification ({len(pd)} crossings)")
         pd = presimplified(pd)
     if not pd:
-        out = {
-            "name": "0_1" if n_components == 1 else None,
-            "table": "knotinfo" if n_components == 1 else None,
-            "crossings": 0,
-            "split": n_components > 1,
-            "mirror": None,
-            "jones": "1",
-        }
+        knot = n_components == 1
+        out = Naming.of(name="0_1" if knot else None, table="knotinfo" if knot else None, crossings=0)
+        out = out.updated(split=n_components > 1, mirror=None, jones="1")
         if n_components > 1:
-            out["pieces"] = ["0_1"] * n_components
-            out["note"] = f"unlink of {n_components} components"
+            out = out.updated(pieces=("0_1",) * n_components, note=f"unlink of {n_components} components")
         return out
     stage(f"simplification ({len(pd)} crossings)")
     link = spherogram.Link(pd)
@@ -159,35 +152,37 @@ def name_pd(
     n_free += link.unlinked_unknot_components
     if len(pieces) + n_free > 1:
         named = [name_pd(one_based(p.PD_code()), len(p.link_components), stage, floer=floer) for p in pieces]
-        out = {
-            "name": None,
-            "split": True,
-            "crossings": sum(p.get("crossings", 0) for p in named),
-            "pieces": [p["name"] for p in named] + ["0_1"] * n_free,
-            "mirror": None,
-        }
-        out["note"] = "split link: " + " + ".join(str(p) for p in out["pieces"])
-        return out
+        names = (*(p.name for p in named), *(["0_1"] * n_free))
+        out = Naming.of(name=None, split=True, crossings=sum(p.crossings or 0 for p in named), pieces=names)
+        return out.updated(mirror=None, note="split link: " + " + ".join(str(p) for p in names))
     simple = one_based(link.PD_code())
-    out = name_diagram(simple, n_components)
-    out["split"] = False
-    if out["name"] is None and simple:
-        factors = link.copy().deconnect_sum()
-        if len(factors) > 1:
-            named = [name_diagram(one_based(f.PD_code()), len(f.link_components)) for f in factors]
-            out["factors"] = [f.get("chiral_name") or f["name"] for f in named]
-            if all(f["name"] for f in named):
-                out.update(name="#".join(sorted((f["name"] for f in named), key=name_key)), prime=False, mirror=None)
-                out["table"] = "+".join(sorted({str(f.get("table")) for f in named}))
-                if all(f.get("chiral_name") or f["mirror"] is None for f in named) and n_components == 1:
-                    out["chiral_name"] = "#".join(sorted(out["factors"], key=name_key))
+    out = name_diagram(simple, n_components).updated(split=False)
+    if out.name is None and simple:
+        out = _name_sum(out, link, n_components)
     if floer and n_components == 1 and simple and len(simple) <= KNOT_FLOER_MAX_CROSSINGS:
         stage("knot Floer homology")
         try:
             hfk = link.knot_floer_homology()
-            out["knot_floer"] = {k: hfk[k] for k in ("seifert_genus", "fibered", "tau", "total_rank", "L_space_knot")}
+            keys = ("seifert_genus", "fibered", "tau", "total_rank", "L_space_knot")
+            out = out.updated(knot_floer={k: hfk[k] for k in keys})
         except Exception:  # noqa: BLE001 - optional invariant
             pass
+    return out
+
+
+def _name_sum(out: Naming, link: Any, n_components: int) -> Naming:
+    """Name a composite by its prime factors (``factors``; the name ``"3_1#4_1"`` when every factor is named)."""
+    factors = link.copy().deconnect_sum()
+    if len(factors) <= 1:
+        return out
+    named = [name_diagram(one_based(f.PD_code()), len(f.link_components)) for f in factors]
+    out = out.updated(factors=tuple(f.chiral_name or f.name for f in named))
+    if not all(f.name for f in named):
+        return out
+    out = out.updated(name="#".join(sorted((str(f.name) for f in named), key=name_key)), prime=False, mirror=None)
+    out = out.updated(table="+".join(sorted({str(f.table) for f in named})))
+    if all(f.chiral_name or f.mirror is None for f in named) and n_components == 1:
+        out = out.updated(chiral_name="#".join(sorted((str(f) for f in out.factors or ()), key=name_key)))
     return out
 
 

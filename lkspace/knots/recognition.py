@@ -22,8 +22,6 @@ from __future__ import annotations
 
 import time
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass, field
-from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -34,99 +32,43 @@ from ..geometry.realization import realize
 from ..model.scaffold import Scaffold
 from ..progress import Step, task
 from ..strands.tracing import trace
-from ..words import plural
 from .budget import INLINE_CROSSINGS, MAX_CROSSINGS, TIME_LIMIT, TimeLimitReached, run_in_time, twist_crossings
 from .diagram import project, project_generic
+from .identification import Identification, Naming
 from .naming import name_pd
 from .tables import knot_modules, tables
 
 
-@dataclass(frozen=True, repr=False)
-class Identification:
-    """The knot or link type of a closed structure.
-
-    Attributes
-    ----------
-    components : int
-    name : str or None
-        ``"0_1"``, Rolfsen (``"3_1"``) or Thistlethwaite (``"L6a4"``) name; ``None`` if unknown.
-    linking_matrix : list of list of int
-    mirror : bool or None
-        The structure is the table diagram's mirror image (``None``: the tables cannot tell).
-    split : bool or None
-    crossings : int or None
-        Crossings of the simplified diagram.
-    details : dict
-        Everything else: ``jones``, ``homfly``, ``volume``, ``candidates``, ``pieces``, ...
-    status : str
-        ``"identified"`` (named, or a split link with every piece named) or
-        ``"unknown: <why>"``: not in the tables, several entries match, ``diagram too
-        large: N crossings > 2000`` or ``time limit 60 s reached (during ...)``.
-    """
-
-    components: int
-    name: str | None
-    linking_matrix: list[list[int]]
-    mirror: bool | None = None
-    split: bool | None = None
-    crossings: int | None = None
-    details: dict[str, Any] = field(default_factory=dict)
-    status: str = "identified"
-
-    def __repr__(self) -> str:
-        chirality = {True: ", mirror", False: "", None: ""}[self.mirror]
-        crossings = "crossings unknown" if self.crossings is None else plural(self.crossings, "crossing")
-        counts = f"{plural(self.components, 'component')}, {crossings}"
-        return f"Identification({self.name or 'unknown'}{chirality}: {counts})"
-
-    def to_dict(self) -> dict[str, Any]:
-        """Return the JSON form (``status``, ``components``, ``name``, ``linking_matrix``, and every invariant)."""
-        return {
-            "status": self.status,
-            "components": self.components,
-            "name": self.name,
-            "linking_matrix": self.linking_matrix,
-            "mirror": self.mirror,
-            "split": self.split,
-            "crossings": self.crossings,
-            **self.details,
-        }
-
-
-def status_of(named: dict[str, Any]) -> str:
+def status_of(named: Naming) -> str:
     """Return the status of a :func:`~lkspace.knots.naming.name_pd` result: identified or why not."""
-    if named.get("name") is not None:
+    if named.name is not None:
         return "identified"
-    pieces = named.get("pieces")
-    if named.get("split") and pieces and all(p is not None for p in pieces):
+    pieces = named.pieces
+    if named.split and pieces and all(p is not None for p in pieces):
         return "identified"
-    if named.get("split"):
+    if named.split:
         return "unknown: a piece of the split link is not in the tables"
-    candidates = named.get("candidates") or []
+    candidates = named.candidates or ()
     if len(candidates) > 1:
-        return f"unknown: {len(candidates)} table entries match ({', '.join(candidates[:4])})"
-    if named.get("note"):
-        return f"unknown: {named['note']}"
+        return f"unknown: {len(candidates)} table entries match ({', '.join(str(c) for c in candidates[:4])})"
+    if named.note:
+        return f"unknown: {named.note}"
     return "unknown: not in the tables (KnotInfo/LinkInfo: knots up to 13 crossings, links up to 11; HTLinkExteriors: hyperbolic knots up to 15, links up to 14)"
 
 
-def identify_curves(curves: Sequence[np.ndarray], seed: int = 0) -> dict[str, Any]:
+def identify_curves(curves: Sequence[np.ndarray], seed: int = 0) -> Identification:
     """Identify the link formed by closed polylines ``curves`` (list of ``(n_k, 3)``), without a time limit.
 
     Returns
     -------
-    dict
-        ``components``, ``name``, ``linking_matrix``, ``projected_crossings`` and the
-        results of :func:`name_pd` (invariants, see the module docstring).
+    Identification
+        Its details hold ``projected_crossings`` and the invariants of :func:`name_pd`
+        (see the module docstring).
     """
     diagram = project(curves, seed=seed)
-    out = {
-        "components": len(curves),
-        "linking_matrix": diagram.linking_matrix().tolist(),
-        "projected_crossings": diagram.n_crossings,
-    }
-    out.update(name_pd(diagram.pd, len(curves)))
-    return out
+    named = name_pd(diagram.pd, len(curves))
+    lm = diagram.linking_matrix().tolist()
+    return Identification.of(named, status_of(named), len(curves), lm, {"projected_crossings": diagram.n_crossings})
 
 
 def check_identifiable(scaffold: Scaffold) -> None:
@@ -200,31 +142,23 @@ def identify(
         )
         step.note("diagram")
         diagram = project_generic(real.curves, seed)
-        head = {
-            "components": len(real.curves),
-            "linking_matrix": diagram.linking_matrix().tolist(),
-            "projected_crossings": diagram.n_crossings,
-        }
-        out: dict[str, Any]
+        named = Naming.of(name=None)
         if diagram.n_crossings > MAX_CROSSINGS:
             status = f"unknown: diagram too large: {diagram.n_crossings:,} crossings > {MAX_CROSSINGS:,}"
-            out = {**head, "name": None}
         else:
             left = None if not time_limit else max(time_limit - (time.monotonic() - t0), 1e-3)
             try:
-                out = {**head, **name_in_time(diagram.pd, diagram.n_components, left, step)}
-                status = status_of(out)
+                named = name_in_time(diagram.pd, diagram.n_components, left, step)
+                status = status_of(named)
             except TimeLimitReached as exc:
                 status = f"unknown: time limit {time_limit:g} s reached (during {exc.stage})"
-                out = {**head, "name": None}
-    out["min_distance"] = real.min_distance
-    main = {k: out.pop(k, None) for k in ("components", "name", "linking_matrix", "mirror", "split", "crossings")}
-    return Identification(**main, details=out, status=status)
+    extra = {"projected_crossings": diagram.n_crossings, "min_distance": real.min_distance}
+    return Identification.of(named, status, len(real.curves), diagram.linking_matrix().tolist(), extra)
 
 
 def name_in_time(
     pd: list[list[int]], n_components: int, time_limit: float | None, step: Step | None, *, floer: bool = True
-) -> dict[str, Any]:
+) -> Naming:
     """Name the PD code ``pd`` within ``time_limit`` seconds (:func:`~lkspace.knots.budget.run_in_time`).
 
     Diagrams of at most :data:`~lkspace.knots.budget.INLINE_CROSSINGS` crossings are
@@ -233,7 +167,7 @@ def name_in_time(
     knot_modules()
     tables()  # loaded here, shared with the forked child
 
-    def work(stage: Callable[[str], None]) -> dict[str, Any]:
+    def work(stage: Callable[[str], None]) -> Naming:
         return name_pd(pd, n_components, stage, floer=floer)
 
     return run_in_time(work, None if len(pd) <= INLINE_CROSSINGS else time_limit, step)
