@@ -21,7 +21,7 @@ import time
 import numpy as np
 from benchkit import RESULTS, load_average, provenance
 
-from lkspace.kernels import kernel
+from lkspace.compiled.kernels import kernel
 from lkspace.knots.diagram import project
 from lkspace.knots.jones import jones_buffer_size, jones_into
 

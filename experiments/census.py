@@ -45,7 +45,7 @@ from lkspace import load  # noqa: E402
 from lkspace.design.census import SHARD_CHOICES, census, shard_term, terms  # noqa: E402
 from lkspace.design.counting import burnside_total  # noqa: E402
 from lkspace.design.space import make_space  # noqa: E402
-from lkspace.engine import run_tasks  # noqa: E402
+from lkspace.runtime.schedulers import run_tasks  # noqa: E402
 
 OUT = os.path.join(ROOT, "results", "census")
 CHECKPOINTS = os.environ.get("LKSPACE_CENSUS_CHECKPOINTS", "/tmp/lkspace-census")

@@ -3,7 +3,7 @@
 The options are those of ``dask worker``.  SnapPy (extra ``lkspace[knots]``) installs a
 module named ``snappy``, which ``distributed`` mistakes for the python-snappy compressor
 when it is imported in a fresh interpreter; this entry point imports ``distributed``
-beside it (:func:`lkspace.engine.import_distributed`) and has the worker processes forked
+beside it (:func:`lkspace.runtime.schedulers.import_distributed`) and has the worker processes forked
 from it.  See ``docs/scale.md``.
 """
 
@@ -12,7 +12,7 @@ from __future__ import annotations
 
 def main() -> None:
     """Run ``dask worker`` with ``distributed`` imported beside SnapPy."""
-    from .engine import import_distributed
+    from .runtime.schedulers import import_distributed
 
     import_distributed("python -m lkspace.dask_worker")
     import dask

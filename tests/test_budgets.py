@@ -174,7 +174,7 @@ def test_identify_time_limit_ends_in_a_status(tmp_path):
 def test_identify_reports_its_stages(capsys, monkeypatch):
     """Plain progress lines (as in logs) name each stage, those of the naming child included."""
     pytest.importorskip("spherogram")
-    from lkspace import progress
+    from lkspace.runtime import progress
 
     monkeypatch.setenv("LKSPACE_PROGRESS", "1")
     monkeypatch.setattr(progress, "DELAY", 0.0)  # show every step at once, every note

@@ -22,8 +22,8 @@ from lkspace.catalog.transaction import MANIFEST, load_manifest, save_manifest
 from lkspace.design.census import census
 from lkspace.design.counting import count_space
 from lkspace.design.space import make_space
-from lkspace.engine import import_distributed, resolve_scheduler
 from lkspace.errors import UsageError
+from lkspace.runtime.schedulers import import_distributed, resolve_scheduler
 
 pytest.importorskip("dask")
 

@@ -227,7 +227,7 @@ def test_a_long_call_in_a_thread_lets_ctrl_c_through_at_once():
     of points held Ctrl-C back for seconds in ``export --block``)."""
     script = (
         "import os, signal, threading\n"
-        "from lkspace.workers import interruptible\n"
+        "from lkspace.runtime.workers import interruptible\n"
         "release = threading.Event()\n"
         "threading.Timer(0.2, os.kill, (os.getpid(), signal.SIGINT)).start()\n"
         "try:\n"

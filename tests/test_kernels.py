@@ -9,8 +9,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import lkspace
-from lkspace.kernels import SMALL_WORK, Kernel, kernel
-from lkspace.loops import join_pairs
+from lkspace.compiled.kernels import SMALL_WORK, Kernel, kernel
+from lkspace.compiled.loops import join_pairs
 from lkspace.model.specs import parse_label_set
 from lkspace.strands.holding_together import echelon_index, winding_links
 from lkspace.strands.ports import edge_partner, port_model
@@ -81,7 +81,7 @@ def test_run_picks_plain_python_for_small_jobs_only():
 
 
 HELPERS_MODULE = """
-from lkspace.kernels import helper
+from lkspace.compiled.kernels import helper
 
 
 @helper
@@ -98,7 +98,7 @@ def bump_all(a, out):
 KERNEL_MODULE = """
 import numpy as np
 
-from lkspace.kernels import kernel
+from lkspace.compiled.kernels import kernel
 
 from .helpers import bump_all
 

@@ -69,9 +69,8 @@ def test_data_flows_one_way():
 
 
 LAYERS = (
-    ("errors", "words", "progress", "kernels", "workers"),
-    ("loops",),
-    ("engine",),
+    ("errors", "words", "compiled"),
+    ("runtime",),
     ("model",),
     ("scaffolds",),
     ("io",),
@@ -93,39 +92,26 @@ LAYERS = (
 ALLOWED = {
     "errors": set(),
     "words": set(),
-    "progress": set(),
-    "kernels": set(),
-    "loops": {"kernels"},
-    "workers": set(),
-    "engine": {"errors", "workers"},
+    "compiled": set(),
+    "runtime": {"errors"},
     "model": {"errors", "words"},
     "scaffolds": {"errors", "model"},
-    "io": {"errors", "model", "progress", "scaffolds", "words"},
-    "strands": {"kernels", "loops", "model", "progress", "words"},
-    "symmetry": {"errors", "loops", "model", "progress", "words"},
-    "design": {"engine", "errors", "kernels", "loops", "model", "progress", "strands", "symmetry", "words"},
-    "inverse": {"errors", "loops", "model", "progress", "strands", "symmetry", "words"},
-    "geometry": {"errors", "model", "progress", "strands", "words", "workers"},
-    "knots": {"errors", "geometry", "io", "kernels", "loops", "model", "progress", "strands", "words", "workers"},
-    "formats": {"errors", "geometry", "io", "knots", "model", "progress", "words"},
-    "catalog": {
-        "design", "engine", "errors", "io", "kernels", "knots", "model", "progress", "strands", "symmetry", "words", "workers",
-    },
-    "linktypes": {
-        "catalog", "design", "errors", "formats", "geometry", "io", "knots", "model", "progress", "strands", "symmetry", "words",
-    },
+    "io": {"errors", "model", "runtime", "scaffolds", "words"},
+    "strands": {"compiled", "model", "runtime", "words"},
+    "symmetry": {"compiled", "errors", "model", "runtime", "words"},
+    "design": {"compiled", "errors", "model", "runtime", "strands", "symmetry", "words"},
+    "inverse": {"compiled", "errors", "model", "runtime", "strands", "symmetry", "words"},
+    "geometry": {"errors", "model", "runtime", "strands", "words"},
+    "knots": {"compiled", "errors", "geometry", "io", "model", "runtime", "strands", "words"},
+    "formats": {"errors", "geometry", "io", "knots", "model", "runtime", "words"},
+    "catalog": {"compiled", "design", "errors", "io", "knots", "model", "runtime", "strands", "symmetry", "words"},
+    "linktypes": {"catalog", "design", "errors", "formats", "geometry", "io", "knots", "model", "runtime", "strands", "symmetry", "words"},
     "api": {"io"},
     "lkspace": {"api", "errors"},
-    "studio": {
-        "catalog", "errors", "formats", "geometry", "io", "knots", "linktypes", "lkspace", "model", "progress",
-        "scaffolds", "symmetry", "workers",
-    },
+    "studio": {"catalog", "errors", "formats", "geometry", "io", "knots", "linktypes", "lkspace", "model", "runtime", "scaffolds", "symmetry"},
     "blender": {"cli", "errors", "formats", "geometry", "inverse", "io", "knots", "model", "strands", "symmetry", "words"},
-    "dask_worker": {"engine"},
-    "cli": {
-        "catalog", "design", "engine", "errors", "formats", "geometry", "inverse", "io", "knots", "linktypes",
-        "lkspace", "model", "progress", "scaffolds", "strands", "studio", "symmetry", "words", "workers",
-    },
+    "dask_worker": {"runtime"},
+    "cli": {"catalog", "design", "errors", "formats", "geometry", "inverse", "io", "knots", "linktypes", "lkspace", "model", "runtime", "scaffolds", "strands", "studio", "symmetry", "words"},
     "__main__": {"cli"},
 }  # fmt: skip
 """Package -> the packages it imports (at run time, anywhere in its modules): the code as it is.
@@ -149,10 +135,10 @@ STUDIO_INTERNALS = {
     "lkspace.linktypes.lookup": "the page asks the shipped atlas for the simplest designs of a type (/api/lookup)",
     "lkspace.model.specs": "the label set typed in the page's solve form",
     "lkspace.model.validation": "labels and null sides sent by the page",
-    "lkspace.progress": "progress of identify and solve jobs reported to the page",
+    "lkspace.runtime.progress": "progress of identify and solve jobs reported to the page",
     "lkspace.scaffolds": "the built-in names the page lists (and the default)",
     "lkspace.symmetry.edge_orbits": "a subgroup name typed in the page checked before a job starts",
-    "lkspace.workers": "identify and solve run in worker processes the studio owns",
+    "lkspace.runtime.workers": "identify and solve run in worker processes the studio owns",
 }
 """What the studio uses below the public API (``lkspace.errors`` aside), and why; it computes through
 the public functions (``trace``, ``realize``, ``export``, ``identify``, ``solve``, ``relax``)."""

@@ -1,7 +1,7 @@
-"""The helpers kernels share (lkspace/loops.py) against plain references, plain and compiled.
+"""The helpers kernels share (lkspace/compiled/loops.py) against plain references, plain and compiled.
 
 Each helper is run as the plain Python function kernels call in small jobs and, wrapped
-in a :class:`~lkspace.kernels.Kernel`, compiled; both must match a reference written here
+in a :class:`~lkspace.compiled.kernels.Kernel`, compiled; both must match a reference written here
 (``itertools.product``, tuple comparison of explicit images, networkx components, the gcd
 of maximal minors).
 """
@@ -16,8 +16,8 @@ import numpy as np
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from lkspace.kernels import kernel
-from lkspace.loops import join, lattice_index_rows, next_digits, set_digits, stabilizer_if_smallest
+from lkspace.compiled.kernels import kernel
+from lkspace.compiled.loops import join, lattice_index_rows, next_digits, set_digits, stabilizer_if_smallest
 
 COMPILED = {f: kernel(f).compiled for f in (set_digits, next_digits, stabilizer_if_smallest, join, lattice_index_rows)}
 

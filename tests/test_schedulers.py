@@ -15,7 +15,7 @@ import urllib.request
 
 import pytest
 
-from lkspace.engine import NO_DASHBOARD, dask_client, import_distributed
+from lkspace.runtime.schedulers import NO_DASHBOARD, dask_client, import_distributed
 
 pytest.importorskip("dask")
 

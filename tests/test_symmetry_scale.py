@@ -166,7 +166,7 @@ def test_candidates_past_the_bound(monkeypatch, capsys):
 
 
 def test_progress_is_reported(monkeypatch, capsys):
-    import lkspace.progress as progress
+    import lkspace.runtime.progress as progress
 
     monkeypatch.setenv("LKSPACE_PROGRESS", "1")
     monkeypatch.setattr(progress, "DELAY", 0.0)

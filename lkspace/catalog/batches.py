@@ -13,11 +13,11 @@ from typing import Any
 import numpy as np
 import pyarrow as pa
 
+from ..compiled.kernels import kernel
 from ..design.batch import concat_traces
 from ..design.space import DesignSpace, WalkMode
 from ..design.spanning import spanning_tree_rows
 from ..design.walk import DesignBlock, walk_blocks
-from ..kernels import kernel
 from ..model.scaffold import Scaffold
 from .columns import numpy_column, residue_rows_to_batch, strand_columns
 from .residue_rows import residue_batches

@@ -30,7 +30,7 @@ import pyarrow.parquet as pq
 from ..errors import CatalogError, UsageError
 from ..io.atomic import atomic_path
 from ..model.scaffold import Scaffold
-from ..progress import Step, task
+from ..runtime.progress import Step, task
 from .schema import IDENTIFY_COLUMNS, METADATA_KEY
 from .verify import file_metadata, open_catalog
 
@@ -85,11 +85,11 @@ def identify_catalog(
 ) -> Identified:
     """Add knot/link columns to every row of the catalog at ``path``; returns a summary.
 
-    Progress (rows identified) is reported through :func:`lkspace.progress.task`.  With a
-    Dask ``scheduler`` (:mod:`lkspace.engine`) each file (part) is one Dask task on one
+    Progress (rows identified) is reported through :func:`lkspace.runtime.progress.task`.  With a
+    Dask ``scheduler`` (:mod:`lkspace.runtime.schedulers`) each file (part) is one Dask task on one
     worker; otherwise files go one after the other, each over ``processes`` processes.
     """
-    from ..engine import is_dask, run_tasks
+    from ..runtime.schedulers import is_dask, run_tasks
 
     path = os.fspath(path)
     totals = Identified()

@@ -23,9 +23,9 @@ from dataclasses import dataclass, replace
 import pyarrow as pa
 
 from ..design.space import DesignSpace
-from ..engine import is_dask, run_tasks, worker_pool
 from ..errors import require
-from ..workers import ignore_interrupts
+from ..runtime.schedulers import is_dask, run_tasks, worker_pool
+from ..runtime.workers import ignore_interrupts
 from .batches import space_batches
 from .lock import pid_alive
 from .metadata import CatalogMetadata
@@ -158,7 +158,7 @@ def run_parts(
     ``tick(rows written so far)`` is called as rows are written (in this process) or at
     least every quarter second (rows of the finished parts, with workers).  An exception
     (KeyboardInterrupt included) terminates the workers before it propagates.  With a
-    Dask ``scheduler`` (:mod:`lkspace.engine`) each part is a Dask task.
+    Dask ``scheduler`` (:mod:`lkspace.runtime.schedulers`) each part is a Dask task.
     """
     if is_dask(scheduler):
         rows_done = 0

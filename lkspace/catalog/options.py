@@ -58,7 +58,7 @@ class Execution:
     shards : int or None
         Parts of the catalog (``None``: one per :data:`~lkspace.catalog.plan.PART_ROWS` designs).
     scheduler : str or None
-        Where parts run (:mod:`lkspace.engine`): ``"local"``, ``"dask"`` or a Dask scheduler
+        Where parts run (:mod:`lkspace.runtime.schedulers`): ``"local"``, ``"dask"`` or a Dask scheduler
         address; ``None``: ``$DASK_SCHEDULER_ADDRESS`` or local.
     resume : bool
         Keep the verified parts of an interrupted run and write the rest.

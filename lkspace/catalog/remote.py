@@ -29,8 +29,8 @@ from typing import Any
 import pyarrow as pa
 import pyarrow.parquet as pq
 
-from ..engine import is_dask
 from ..errors import CatalogError, ExportError, UsageError, require
+from ..runtime.schedulers import is_dask
 from .jobs import PartsJob, run_parts, write_part_remote
 from .metadata import CatalogMetadata, Json, decode, lkspace_mark
 from .options import Execution
@@ -124,7 +124,7 @@ def _kept_parts(fs: Any, root: str, settings: CatalogMetadata, plan: str) -> tup
 def write_remote(job: PartsJob, url: str, execution: Execution) -> tuple[list[PartSummary], int]:
     """Write the parts of ``job`` to ``url`` as ``execution`` says; return their summaries and how many were kept.
 
-    ``execution.scheduler`` is resolved (:func:`lkspace.engine.resolve_scheduler`).
+    ``execution.scheduler`` is resolved (:func:`lkspace.runtime.schedulers.resolve_scheduler`).
     """
     fs, root = _fs(url)
     jobs, scheduler = execution.jobs, str(execution.scheduler)

@@ -10,7 +10,7 @@ finished part's SHA-256), writes the parts in worker processes
 the target.  ``resume`` keeps the verified parts of an interrupted build and redoes the
 rest.  Nothing here sets process-wide state: a program that wants SIGTERM to stop a run
 as Ctrl-C does installs that itself (the command line does,
-:func:`lkspace.workers.interrupt_signals`); a Python caller's Ctrl-C (KeyboardInterrupt)
+:func:`lkspace.runtime.workers.interrupt_signals`); a Python caller's Ctrl-C (KeyboardInterrupt)
 cleans up the same way.
 """
 
@@ -26,17 +26,17 @@ import pyarrow as pa
 import pyarrow.parquet as pq
 
 from ..design.space import DesignSpace, WalkMode, make_space
-from ..engine import check_scheduler, resolve_scheduler
 from ..errors import CatalogError
 from ..io.atomic import remove_path, replace_path
 from ..io.scaffold_json import scaffold_to_dict
 from ..model.scaffold import Scaffold
 from ..model.specs import LabelSetSpec
-from ..progress import task
+from ..runtime.progress import task
+from ..runtime.schedulers import check_scheduler, resolve_scheduler
+from ..runtime.workers import context, ignored_signals
 from ..symmetry.group import SymmetryMode
 from ..symmetry.tolerance import resolve_tolerance
 from ..words import plural
-from ..workers import context, ignored_signals
 from .jobs import PartsJob, run_parts
 from .lock import catalog_lock
 from .metadata import FORMAT_VERSION, CatalogMetadata, Filters, JsonObject, ScaffoldInfo
@@ -196,7 +196,7 @@ def write_catalog(
 
 
 def _started(execution: Execution) -> Execution:
-    """Check ``execution`` before any work; return it with its scheduler resolved (:mod:`lkspace.engine`)."""
+    """Check ``execution`` before any work; return it with its scheduler resolved (:mod:`lkspace.runtime.schedulers`)."""
     check_jobs(execution.jobs)
     scheduler = resolve_scheduler(execution.scheduler)
     check_scheduler(scheduler)

@@ -18,8 +18,8 @@ import click
 
 from .. import __version__
 from ..errors import LkspaceError, LkspaceWarning
-from ..progress import install, stderr_reporter
-from ..workers import INTERRUPTED, Terminated, exit_now, interrupt_signals
+from ..runtime.progress import install, stderr_reporter
+from ..runtime.workers import INTERRUPTED, Terminated, exit_now, interrupt_signals
 from .flags import flags_in, in_flags
 
 COMMANDS = {
@@ -99,7 +99,7 @@ def main(argv: list[str] | None = None) -> int:
     under ``--json``, an ``{"error": {...}}`` object on stdout) and an exit status of 1
     (bad data), 2 (bad usage), 130 (Ctrl-C), 143 (SIGTERM) or 70 (a bug in lkspace; set
     ``LKSPACE_DEBUG=1`` for the traceback).  Run as the program (``argv`` left out), an
-    interrupted command ends the process at once (:func:`~lkspace.workers.exit_now`).
+    interrupted command ends the process at once (:func:`~lkspace.runtime.workers.exit_now`).
     """
     code = _run(sys.argv[1:] if argv is None else list(argv))
     if argv is None and code in INTERRUPTED:  # the program, not a call from Python: stop now

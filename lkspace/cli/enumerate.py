@@ -62,7 +62,7 @@ def _where_it_ran(
     A census and every part of a sharded, remote or identified catalog are Dask tasks; a
     one-file catalog and a count that needs no census run in this process.
     """
-    from ..engine import is_dask
+    from ..runtime.schedulers import is_dask
 
     if not is_dask(engine):
         return None
@@ -171,7 +171,7 @@ def enumerate_cmd(
     edge, then t per edge), lexicographically in edge order.
     """
     from ..catalog.transaction import CatalogInterrupted
-    from ..engine import check_scheduler, resolve_scheduler
+    from ..runtime.schedulers import check_scheduler, resolve_scheduler
 
     ctx = Context(as_json)
     engine = resolve_scheduler(scheduler)
@@ -228,7 +228,7 @@ def enumerate_cmd(
 
 def _check_before_work(mesh: str | None, output: str | None, selection: Selection, execution: Execution) -> None:
     """Refuse options that do not go together, and a bad catalog ``output`` (``None``: none written), before any work."""
-    from ..engine import is_dask
+    from ..runtime.schedulers import is_dask
 
     url = None
     if output is not None:  # a bad -o fails before any work

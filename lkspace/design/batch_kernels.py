@@ -18,7 +18,7 @@ The orbit kernels (representatives, stabilizers, Burnside counts) are in
 :mod:`lkspace.design.orbit_kernels`.
 
 The loops they share with other kernels (mixed-radix counting, the canonical test,
-union-find, the lattice index) are the helpers of :mod:`lkspace.loops`.
+union-find, the lattice index) are the helpers of :mod:`lkspace.compiled.loops`.
 """
 
 from __future__ import annotations
@@ -27,8 +27,8 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ..kernels import helper, kernel
-from ..loops import find, lattice_index_rows, set_digits, stabilizer_if_smallest
+from ..compiled.kernels import helper, kernel
+from ..compiled.loops import find, lattice_index_rows, set_digits, stabilizer_if_smallest
 
 
 class WalkPorts(NamedTuple):
@@ -244,7 +244,7 @@ def canonical_rows(
     The class's assignments put ``class_opts[j, d]`` on edge ``j`` for ``d < work[1, j]`` (the
     caller fills ``work[1]`` with the label count per edge), numbered in mixed radix (last
     edge fastest).  One is kept when it is the smallest under the ``stabilizer`` (action
-    ids of ``actions``, identity left out; :func:`~lkspace.loops.stabilizer_if_smallest`):
+    ids of ``actions``, identity left out; :func:`~lkspace.compiled.loops.stabilizer_if_smallest`):
     its labels go to ``out.labels[m]``, its stabilizer size to ``out.stab[m]``.
     ``work (3, n_edges) int64``: digits, radices, labels.
     """
@@ -319,7 +319,7 @@ def rows_hold_together_lift(labels: np.ndarray, row_class: np.ndarray, lift: Lif
             x = edge_ports[edge_port_ptr[e]]
             for p in range(edge_port_ptr[e] + 1, edge_port_ptr[e + 1]):
                 y = edge_ports[p]
-                # lkspace.loops.join written out: as a call it costs this kernel 1.4x (measured)
+                # lkspace.compiled.loops.join written out: as a call it costs this kernel 1.4x (measured)
                 a = port_strand[c, x]
                 b = port_strand[c, y]
                 for j in range(dim):

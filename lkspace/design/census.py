@@ -21,7 +21,7 @@ residue classes of labels ``{0, 1}`` with weight ``2^(odd edges)``: both label s
 from one pass over the ``2^E`` parity vectors.
 
 Shards are contiguous ranges of one term's choices (about :data:`SHARD_CHOICES` each);
-they run on any scheduler of :mod:`lkspace.engine` and their histograms are summed.  A
+they run on any scheduler of :mod:`lkspace.runtime.schedulers` and their histograms are summed.  A
 shard is walked in compiled calls of about :data:`CALL_PORT_VISITS` port visits, short
 enough that Ctrl-C (seen between calls) stops a census within a moment.
 """
@@ -33,9 +33,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..engine import run_tasks
 from ..errors import LabelError
-from ..progress import task
+from ..runtime.progress import task
+from ..runtime.schedulers import run_tasks
 from ..strands.ports import port_model
 from .census_kernel import CensusPorts, Term, census_range
 from .space import DesignSpace
@@ -167,7 +167,7 @@ def census(
     """Count the designs of ``space`` by components exactly, in shards (see the module docstring).
 
     ``progress(shards done, shards)`` is called as shards finish (and a ``census`` step
-    of :mod:`lkspace.progress` advances).
+    of :mod:`lkspace.runtime.progress` advances).
     """
     all_terms = terms(space)
     kinds = value_kinds(space).tolist()

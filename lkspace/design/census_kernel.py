@@ -15,8 +15,8 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ..kernels import kernel
-from ..loops import next_digits, set_digits
+from ..compiled.kernels import kernel
+from ..compiled.loops import next_digits, set_digits
 
 
 class Term(NamedTuple):

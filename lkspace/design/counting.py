@@ -15,9 +15,9 @@ from typing import Any
 
 import numpy as np
 
-from ..engine import is_dask
 from ..model.scaffold import Scaffold
 from ..model.specs import LabelSetSpec
+from ..runtime.schedulers import is_dask
 from ..symmetry.group import SymmetryMode
 from ..words import plural
 from .batch import class_components, design_counts

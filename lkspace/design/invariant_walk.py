@@ -3,7 +3,7 @@
 The fixed assignments are a product over ``H``'s edge orbits; a compiled kernel walks it
 in mixed radix (last orbit fastest), expands each to edge labels and keeps it when it is
 the smallest of its ``N``-orbit in (``t mod K`` per edge, then ``t`` per edge), counting its
-stabilizer in ``N`` on the way (the helpers of :mod:`lkspace.loops`).  Kept rows are grouped by residue vector, each residue
+stabilizer in ``N`` on the way (the helpers of :mod:`lkspace.compiled.loops`).  Kept rows are grouped by residue vector, each residue
 class traced once (:func:`~lkspace.design.batch.trace_batch`), and returned as
 :class:`~lkspace.design.walk.DesignBlock` s, the rows the catalog writer takes.
 """
@@ -15,9 +15,9 @@ from typing import NamedTuple
 
 import numpy as np
 
+from ..compiled.kernels import kernel
+from ..compiled.loops import next_digits, set_digits, stabilizer_if_smallest
 from ..errors import TooLargeError
-from ..kernels import kernel
-from ..loops import next_digits, set_digits, stabilizer_if_smallest
 from .batch import holds_batch, trace_batch
 from .batch_kernels import Actions, Rows
 from .invariant import InvariantSpace

@@ -19,8 +19,8 @@ from collections.abc import Iterator
 
 import numpy as np
 
+from ..compiled.loops import UnionFind
 from ..errors import LabelError
-from ..loops import UnionFind
 from .space import DesignSpace
 from .walk import ResidueRow, residue_row
 

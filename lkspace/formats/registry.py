@@ -40,7 +40,7 @@ from ..geometry.realization import Realization, realize
 from ..io.atomic import write_bytes
 from ..io.paths import only_extension, output_file
 from ..model.scaffold import Scaffold
-from ..progress import Step, task
+from ..runtime.progress import Step, task
 from .options import TUBE_SIDES, FormatOptions, GlbOptions, MeshOptions, PictureOptions, PrintOptions, TubeOptions
 
 ENCODERS = {

@@ -17,7 +17,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.spatial import cKDTree
 
-from ..workers import interruptible
+from ..runtime.workers import interruptible
 
 
 @dataclass(frozen=True)

@@ -31,7 +31,7 @@ from typing import Literal, NamedTuple
 import numpy as np
 from scipy.spatial import cKDTree
 
-from ..progress import task
+from ..runtime.progress import task
 
 FOLD = 1.5
 """Points on one curve are distinct pieces when farther apart along it than ``FOLD`` times their distance."""

@@ -31,9 +31,9 @@ import numpy as np
 import scipy.sparse
 import scipy.sparse.csgraph
 
-from ..loops import UnionFind
+from ..compiled.loops import UnionFind
 from ..model.scaffold import Scaffold
-from ..progress import Step
+from ..runtime.progress import Step
 from ..words import plural
 from .local_search import local_search
 from .query import Query, allowed_labels, cheapest_label, label_cost
@@ -54,7 +54,7 @@ def spanning_designs(
     N <= F components) greedy merging, :func:`_greedy_designs`, and where that gets stuck
     a local search from its closest attempt (:mod:`lkspace.inverse.local_search`, at most
     ``time_budget`` seconds).  Nothing runs past ``deadline`` (a ``time.perf_counter()``
-    value); ``step`` (a :func:`lkspace.progress.task` step) gets the closest count so far.
+    value); ``step`` (a :func:`lkspace.runtime.progress.task` step) gets the closest count so far.
     A mesh without two-face edges (one face, unwelded faces) has one strand per face
     whatever the labels: the answer is any allowed labelling when N = F, none otherwise.
 

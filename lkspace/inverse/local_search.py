@@ -19,7 +19,7 @@ import time
 import numpy as np
 
 from ..model.scaffold import Scaffold
-from ..progress import Step
+from ..runtime.progress import Step
 from ..strands.walk import walk
 from ..words import plural
 from .query import Query, allowed_labels, cheapest_label
@@ -53,7 +53,7 @@ def local_search(
 ) -> list[np.ndarray]:
     """Search for up to ``count`` distinct designs with ``query.components`` strands, from ``start``.
 
-    ``step`` (a :func:`lkspace.progress.task` step) is told the closest count so far.
+    ``step`` (a :func:`lkspace.runtime.progress.task` step) is told the closest count so far.
     ``time_budget`` counts from the call (the set-up included).
     """
     deadline = time.perf_counter() + time_budget

@@ -20,7 +20,7 @@ import numpy as np
 from ..errors import LabelError, SolveVerificationError, TooLargeError, UsageError
 from ..model.scaffold import Scaffold
 from ..model.specs import LabelSetSpec, parse_label_set
-from ..progress import Step, task
+from ..runtime.progress import Step, task
 from ..strands.tracing import trace
 from ..symmetry.edge_orbits import invariant_edge_orbits
 from ..symmetry.group import SymmetryMode, symmetry_group

@@ -16,7 +16,7 @@ import re
 from ..errors import ScaffoldError
 from ..model.scaffold import Scaffold
 from ..model.validation import MAX_COORDINATE
-from ..progress import task
+from ..runtime.progress import task
 from .text import read_text
 from .weld import default_tolerance, weld
 

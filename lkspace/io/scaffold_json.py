@@ -37,7 +37,7 @@ from ..errors import ScaffoldError
 from ..model.lattice import Lattice
 from ..model.scaffold import Scaffold
 from ..model.validation import MAX_LABEL
-from ..progress import task
+from ..runtime.progress import task
 from ..scaffolds.periodic import voronoi_scaffold
 from ..words import noun
 from .json_fields import array, integer, point, shown, text, vectors

@@ -17,7 +17,7 @@ from numpy.typing import ArrayLike
 
 from ..errors import ScaffoldError
 from ..model.scaffold import Scaffold
-from ..progress import task
+from ..runtime.progress import task
 
 DEFAULT_WELD = 1e-6
 """Default tolerance of ``--weld`` given without a value, as a fraction of the bounding-box diagonal."""

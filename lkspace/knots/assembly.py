@@ -18,8 +18,8 @@ from typing import NamedTuple
 import numpy as np
 from numpy.typing import ArrayLike
 
+from ..compiled.kernels import helper, kernel
 from ..errors import UsageError
-from ..kernels import helper, kernel
 from ..model.scaffold import Scaffold
 from .labels_diagram import DiagramTemplate, TemplateArrays, template
 

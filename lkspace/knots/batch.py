@@ -17,8 +17,8 @@ import pandas as pd
 from numpy.typing import ArrayLike
 
 from ..model.scaffold import Scaffold
-from ..progress import task
-from ..workers import context, ignore_interrupts
+from ..runtime.progress import task
+from ..runtime.workers import context, ignore_interrupts
 from .budget import MAX_CROSSINGS, TIME_LIMIT, TimeLimitReached
 from .identification import Json, NameFields
 from .key_names import KeyCache, share_names
@@ -64,7 +64,7 @@ class NamerOptions:
     ----------
     processes : int
         Worker processes naming the designs named in full (``1``: in this process).
-        Workers are started by :func:`lkspace.workers.context` (never a fork of this
+        Workers are started by :func:`lkspace.runtime.workers.context` (never a fork of this
         program).
     time_limit : float or None
         Seconds per design named in full, as for :func:`identify` (default 60); a
@@ -107,7 +107,7 @@ def identify_batch(
     seed : int
         Seed of the generic projection.
     progress : bool, optional
-        Count the designs on the progress display (:mod:`lkspace.progress`; default on).
+        Count the designs on the progress display (:mod:`lkspace.runtime.progress`; default on).
     cache : KeyCache, optional
         Names found by earlier calls (default: none); :func:`~lkspace.knots.key_names.disk_cache`
         holds the keys judged by earlier runs, kept under ``$LKSPACE_CACHE``.

@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..kernels import helper
+from ..compiled.kernels import helper
 
 MAX_FRONTIER = 16
 """Open edge ends a state may pair (4 bits each in an int64 key; the last one is implied)."""

@@ -22,7 +22,7 @@ from typing import Any, TypeVar
 import numpy as np
 
 from ..errors import LkspaceError
-from ..progress import Step, install
+from ..runtime.progress import Step, install
 
 TIME_LIMIT = 60.0
 """Default seconds for identifying one design (``identify --time-limit``; 0 or ``None``: no limit)."""

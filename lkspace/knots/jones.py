@@ -26,7 +26,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..kernels import helper, kernel
+from ..compiled.kernels import helper, kernel
 from .bracket import MAX_FRONTIER, read_ends, smoothing_order, state_sum
 from .pd_code import pd_components, pd_signs
 

@@ -35,7 +35,7 @@ from typing import Any
 
 import numpy as np
 
-from ..kernels import helper, kernel
+from ..compiled.kernels import helper, kernel
 from ..model.scaffold import Scaffold
 from .assembly import Scratch, assemble_into, assemble_one, work_array
 from .budget import MAX_CROSSINGS

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..loops import UnionFind
+from ..compiled.loops import UnionFind
 
 
 def pd_signs(pd: np.ndarray) -> np.ndarray:

@@ -30,7 +30,7 @@ from ..errors import LkspaceError, TooLargeError, UsageError
 from ..geometry.params import GeometryParams, RealizeOptions
 from ..geometry.realization import realize
 from ..model.scaffold import Scaffold
-from ..progress import Step, task
+from ..runtime.progress import Step, task
 from ..strands.tracing import trace
 from .budget import INLINE_CROSSINGS, MAX_CROSSINGS, TIME_LIMIT, TimeLimitReached, run_in_time, twist_crossings
 from .diagram import project, project_generic

@@ -35,7 +35,7 @@ import numpy as np
 
 from ..errors import CatalogError, TooLargeError, UsageError
 from ..model.scaffold import Scaffold
-from ..progress import task
+from ..runtime.progress import task
 from .candidates import OrderedWalk
 from .examples import Examples
 from .fields import JsonObject

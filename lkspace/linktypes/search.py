@@ -25,7 +25,7 @@ import numpy as np
 
 from ..errors import SolveVerificationError, UsageError
 from ..model.scaffold import Scaffold
-from ..progress import task
+from ..runtime.progress import task
 from ..strands.tracing import trace
 from ..words import plural
 from .answers import TargetSolution

@@ -29,7 +29,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ..model.scaffold import Scaffold, validate_labels, validate_nulls
-from ..progress import task
+from ..runtime.progress import task
 from ..words import plural
 from .holding_together import HoldingTogether, holding_together
 from .ports import port_model

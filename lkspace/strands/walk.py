@@ -13,7 +13,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ..kernels import kernel
+from ..compiled.kernels import kernel
 from ..model.scaffold import Scaffold
 from .ports import edge_partner, port_model
 

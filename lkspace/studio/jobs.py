@@ -1,9 +1,9 @@
 """Identify, relax, measure, solve and exports in worker processes: never blocking an edit, cancelled by terminating.
 
 Each job runs :func:`run_job` in a fresh process of lkspace's worker context
-(:func:`lkspace.workers.context`; the fork server preloads the heavy modules, so a job
+(:func:`lkspace.runtime.workers.context`; the fork server preloads the heavy modules, so a job
 starts in milliseconds after the first).  Progress of the library's long steps
-(:mod:`lkspace.progress`) and the result come back through a queue the server drains
+(:mod:`lkspace.runtime.progress`) and the result come back through a queue the server drains
 when the page polls.
 
 Jobs are bounded: one job of each kind at a time, and a new one stops the one running
@@ -30,8 +30,8 @@ import numpy as np
 
 from .. import Scaffold
 from ..errors import LkspaceError, UsageError
-from ..progress import Step, install
-from ..workers import context, ignore_interrupts
+from ..runtime.progress import Step, install
+from ..runtime.workers import context, ignore_interrupts
 from .answers import (
     Clearance,
     Exported,

@@ -14,7 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..loops import UnionFind
+from ..compiled.loops import UnionFind
 from ..model.scaffold import Scaffold
 from .group import symmetry_group
 from .subgroups import parse_subgroup

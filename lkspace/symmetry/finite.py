@@ -27,7 +27,7 @@ import numpy as np
 from ..errors import LkspaceWarning, TooLargeError
 from ..model.counts import count_text
 from ..model.scaffold import Scaffold
-from ..progress import task
+from ..runtime.progress import task
 from .pointset import Sites, SiteSearch, find_sites, standard_position
 from .slots import RadialCheck
 from .tolerance import FLOOR, mesh_unit

@@ -16,7 +16,7 @@ import numpy as np
 
 from ..errors import ScaffoldError, TooLargeError
 from ..model.scaffold import Scaffold
-from ..progress import task
+from ..runtime.progress import task
 from .tolerance import resolve_tolerance
 
 if TYPE_CHECKING:

@@ -36,7 +36,7 @@ from functools import cached_property
 import numpy as np
 
 from ..model.scaffold import Scaffold, unique_rows
-from ..progress import task
+from ..runtime.progress import task
 from .lattice_group import PointOperation, point_group
 
 SAMPLE = 16

@@ -31,7 +31,7 @@ import numpy as np
 
 from ..errors import TooLargeError
 from ..model.scaffold import unique_rows
-from ..progress import task
+from ..runtime.progress import task
 
 WELD = 1e-6
 """Distance (in units of the RMS radius about the centroid) below which two positions are one site."""

@@ -1,7 +1,7 @@
 """Where the shards of a big run execute: ``--scheduler local``, ``dask`` or ``tcp://HOST:PORT``.
 
 ``local`` (the default) runs shards in this process (``jobs`` = 1) or in a pool of
-``jobs`` worker processes (:mod:`lkspace.workers`).  ``dask`` starts a
+``jobs`` worker processes (:mod:`lkspace.runtime.workers`).  ``dask`` starts a
 ``distributed.LocalCluster`` of ``jobs`` single-threaded worker processes; ``tcp://...``
 connects to a running Dask scheduler (a cluster started by ``dask-jobqueue``, Kubernetes
 or ``dask scheduler`` / ``dask worker`` by hand).  Left unset, the scheduler is read from
@@ -18,7 +18,7 @@ worker (``distributed``'s own retry of lost tasks, up to :data:`ALLOWED_FAILURES
 deaths per task), so a lost worker costs only its shard.  Dask is imported only here and
 only when a Dask scheduler is asked for (the extra ``lkspace[dask]``).
 
-This module imports nothing of lkspace but :mod:`lkspace.errors` and :mod:`lkspace.workers`.
+This module imports nothing of lkspace but :mod:`lkspace.errors` and :mod:`lkspace.runtime.workers`.
 """
 
 from __future__ import annotations
@@ -31,7 +31,7 @@ from collections.abc import Callable, Iterator, Sequence
 from multiprocessing.pool import Pool
 from typing import Any
 
-from .errors import MissingDependencyError, UsageError, require
+from ..errors import MissingDependencyError, UsageError, require
 from .workers import context, deferred_signals, ignore_interrupts
 
 SCHEDULERS = ("local", "dask")
@@ -176,7 +176,7 @@ def dask_client(scheduler: str, jobs: int) -> Iterator[Any]:
 
 @contextlib.contextmanager
 def worker_pool(processes: int, initializer: Callable[..., object], initargs: tuple[object, ...]) -> Iterator[Pool]:
-    """Yield a pool of ``processes`` worker processes (:func:`lkspace.workers.context`), shut down when the body ends.
+    """Yield a pool of ``processes`` worker processes (:func:`lkspace.runtime.workers.context`), shut down when the body ends.
 
     Made whole before a signal is handled (a pool half made cannot be stopped); closed and
     joined when the body finishes, terminated at once (running tasks stopped, queued ones

@@ -1,4 +1,4 @@
-"""The loops compiled kernels share (helpers of :mod:`lkspace.kernels`), each idea written once.
+"""The loops compiled kernels share (helpers of :mod:`lkspace.compiled.kernels`), each idea written once.
 
 * Mixed-radix counting: :func:`set_digits` and :func:`next_digits` (the last digit
   runs fastest, as assignments and class codes are numbered).

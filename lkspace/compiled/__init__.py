@@ -1,0 +1,1 @@
+"""Compiled kernels that load on first use, and the loops they share."""

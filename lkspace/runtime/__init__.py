@@ -1,0 +1,1 @@
+"""How lkspace runs: where shards execute, worker processes and signals, progress on stderr."""
