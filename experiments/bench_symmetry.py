@@ -115,9 +115,9 @@ def run_info(tree: Path, command: list[str], timeout: float) -> dict:
         row: dict = {"seconds": round(seconds, 2), "peak_mb": None if peak is None else round(peak, 1)}
         if code == 0:
             data = json.loads(out.read())
-            if "symmetry_group_order" in data:
+            if command[0] == "info":
                 row.update(status="ok", vertices=data["vertices"], order=data["symmetry_group_order"])
-            else:
+            else:  # enumerate --count-only (its JSON names the group too, since the symmetry line was added)
                 row.update(status="ok", group_order=data["group_order"], designs=data["designs"])
         else:
             row.update(status=f"exit {code}", error=lines[-1] if lines else "")
