@@ -31,7 +31,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from fractions import Fraction
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
 
@@ -122,6 +122,30 @@ def _residue_at(poly: np.ndarray, lowest: int, length: int, point: int, inverse:
     return value
 
 
+class KeyArrays(NamedTuple):
+    """What :func:`design_keys` returns for ``n_designs`` designs (numba builds and returns it by name).
+
+    ``keys (n_designs, 2) uint64``: two independent 64-bit hashes of (components, sorted
+    linking numbers, Jones polynomial).  ``crossings``, ``components (n_designs,) int64``:
+    crossings of the assembled diagram, its components.  ``keyed (n_designs,) bool``: the
+    Jones polynomial was computed (else the key is not set: too many crossings, or a
+    diagram too wide for the compiled state sum).  ``link_offsets (n_designs + 1,) int64``,
+    ``link_values (sum of components**2,) int64``: each design's linking matrix, row by row
+    (the trace's component order).  ``free (n_designs,) int64``: components without any
+    crossing in the diagram.  ``jones_at (n_designs,) int64``: the Jones polynomial at the
+    kernel's ``point``, modulo :data:`PRIME` (where ``keyed``).
+    """
+
+    keys: np.ndarray
+    crossings: np.ndarray
+    components: np.ndarray
+    keyed: np.ndarray
+    link_offsets: np.ndarray
+    link_values: np.ndarray
+    free: np.ndarray
+    jones_at: np.ndarray
+
+
 @kernel
 def design_keys(
     tmpl: TemplateArrays,
@@ -129,7 +153,7 @@ def design_keys(
     work: Scratch,
     max_crossings: int,
     point: int,
-) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+) -> KeyArrays:
     """Keys of many designs of a template (``tmpl``: :meth:`DiagramTemplate.arrays`).
 
     ``vidx_2d`` ``(n_designs, n_edges)``: indices into the template's ``label_values``.
@@ -137,22 +161,7 @@ def design_keys(
     ``point`` is ``x = sqrt(t)`` modulo :data:`PRIME` at which the Jones polynomial is
     also evaluated (for filters comparing it with a target's, :func:`jones_residue`).
 
-    Returns
-    -------
-    keys : (n_designs, 2) uint64
-        Two independent 64-bit hashes of (components, sorted linking numbers, Jones polynomial).
-    crossings : (n_designs,) int64
-        Crossings of the assembled diagram.
-    components : (n_designs,) int64
-    keyed : (n_designs,) bool
-        The Jones polynomial was computed (else the key is not set: too many crossings,
-        or a diagram too wide for the compiled state sum).
-    link_offsets : (n_designs + 1,) int64, link_values : (sum of components**2,) int64
-        Each design's linking matrix, row by row (the trace's component order).
-    free : (n_designs,) int64
-        Components without any crossing in the diagram.
-    jones_at : (n_designs,) int64
-        The Jones polynomial at ``point``, modulo :data:`PRIME` (where ``keyed``).
+    Returns the :class:`KeyArrays` of the designs, in the order of ``vidx_2d``'s rows.
     """
     n_designs = vidx_2d.shape[0]
     size = len(tmpl.crossing_sign)
@@ -190,7 +199,16 @@ def design_keys(
         keys[d, 1] = h2
         keyed[d] = True
         jones_at[d] = _residue_at(poly, lowest, length, point, inverse)
-    return keys, crossings, components, keyed, link_offsets, link_values[: link_offsets[n_designs]], free, jones_at
+    return KeyArrays(
+        keys=keys,
+        crossings=crossings,
+        components=components,
+        keyed=keyed,
+        link_offsets=link_offsets,
+        link_values=link_values[: link_offsets[n_designs]],
+        free=free,
+        jones_at=jones_at,
+    )
 
 
 PRIME = 2_147_483_647
@@ -253,4 +271,15 @@ def keys_of(scaffold: Scaffold, labels_2d: np.ndarray, seed: int = 0, label_valu
     tmpl = template(scaffold, values, seed)
     vidx = tmpl.value_index(labels_2d)
     out = design_keys(tmpl.arrays(), np.ascontiguousarray(vidx), work_array(tmpl), MAX_CROSSINGS, jones_point())
-    return DesignKeys(tmpl, vidx, *out)
+    return DesignKeys(
+        template=tmpl,
+        vidx=vidx,
+        keys=out.keys,
+        crossings=out.crossings,
+        components=out.components,
+        keyed=out.keyed,
+        link_offsets=out.link_offsets,
+        link_values=out.link_values,
+        free=out.free,
+        jones_at=out.jones_at,
+    )
