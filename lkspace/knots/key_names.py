@@ -125,15 +125,15 @@ def candidates(
     found = set()
     for mirror, v in ((False, value), (True, mirror_value)):
         for e in index.get(v, []):
-            if e["components"] != n_components or (crossings is not None and e["crossings"] > crossings):
+            if e.components != n_components or (crossings is not None and e.crossings > crossings):
                 continue
-            if homfly is None or _table_homfly(e["pd"], mirror) == homfly:
-                found.add((str(e["name"]), mirror))
+            if homfly is None or _table_homfly(e.pd, mirror) == homfly:
+                found.add((str(e.name), mirror))
     return found
 
 
 @functools.lru_cache(maxsize=4096)
-def _table_homfly(pd_text: str, mirror: bool) -> str | None:
+def _table_homfly(pd_text: str | None, mirror: bool) -> str | None:
     """HOMFLY-PT polynomial (regina) of a table entry's PD code, or of its mirror image."""
     from .tables import knot_modules
 

@@ -64,33 +64,33 @@ def name_diagram(pd: list[list[int]], n_components: int) -> Naming:
     fp, fp_mirror = laurent_value(jones, JONES_POINT), laurent_value(jones, 1 / JONES_POINT)
     index = tables()
     cands = [(e, False) for e in index.get(fp, [])] + [(e, True) for e in index.get(fp_mirror, [])]
-    cands = [(e, m) for e, m in cands if e["components"] == n_components and e["crossings"] <= len(pd)]
+    cands = [(e, m) for e, m in cands if e.components == n_components and e.crossings <= len(pd)]
     homfly = str(rl.homfly()) if len(pd) <= HOMFLY_MAX_CROSSINGS else None
     if homfly is not None and cands:
-        cands = [(e, m) for e, m in cands if e["pd"] and _homfly(regina, json.loads(e["pd"]), m) == homfly]
+        cands = [(e, m) for e, m in cands if e.pd and _homfly(regina, json.loads(e.pd), m) == homfly]
     link = spherogram.Link(pd)
     names, volume, exterior = _identify_names(link)
     out = out.updated(volume=volume)
-    if len({e["name"] for e, _ in cands}) > 1 and names:
-        cands = [(e, m) for e, m in cands if e["name"] in names or _knot_alias(e["name"]) in names]
+    if len({e.name for e, _ in cands}) > 1 and names:
+        cands = [(e, m) for e, m in cands if e.name in names or _knot_alias(e.name) in names]
     out = out.updated(
-        homfly=homfly, candidates=tuple(sorted({e["table_name"] + (" (mirror)" if m else "") for e, m in cands}))
+        homfly=homfly, candidates=tuple(sorted({e.table_name + (" (mirror)" if m else "") for e, m in cands}))
     )
     if not cands and exterior is not None:
         return _name_from_ht(out, exterior, n_components)
-    if len({e["name"] for e, _ in cands}) != 1:
+    if len({e.name for e, _ in cands}) != 1:
         return out
     entry = cands[0][0]
-    table_volume = entry["volume"] or 0.0
+    table_volume = entry.volume or 0.0
     if volume is None or abs(table_volume - volume) > 1e-4 * max(1.0, table_volume):
-        return out.updated(note=f"volume {volume} differs from {entry['table_name']}'s {table_volume}")
+        return out.updated(note=f"volume {volume} differs from {entry.table_name}'s {table_volume}")
     mirrors = {m for _, m in cands}
     out = out.updated(
-        name=entry["name"], table_name=entry["table_name"], table="knotinfo" if n_components == 1 else "linkinfo"
+        name=entry.name, table_name=entry.table_name, table="knotinfo" if n_components == 1 else "linkinfo"
     )
     out = out.updated(mirror=mirrors.pop() if len(mirrors) == 1 else None)
     if out.mirror is not None and n_components == 1:
-        out = out.updated(chiral_name=("m" if out.mirror else "") + entry["name"])
+        out = out.updated(chiral_name=("m" if out.mirror else "") + entry.name)
     return out
 
 

@@ -7,8 +7,10 @@ few seconds, so it is pickled to ``~/.cache/lkspace`` per table version.
 
 from __future__ import annotations
 
+import json
 import os
 import pickle
+from dataclasses import dataclass
 from fractions import Fraction
 from functools import lru_cache
 from types import ModuleType
@@ -20,6 +22,32 @@ from ..io.atomic import write_bytes
 PURPOSE = "knot identification"
 HOMFLY_MAX_CROSSINGS = 40  # HOMFLY-PT (regina) of larger simplified diagrams is skipped
 JONES_POINT = Fraction(2, 3)
+
+
+@dataclass(frozen=True)
+class TableEntry:
+    """One KnotInfo or LinkInfo entry (a link once per orientation LinkInfo lists).
+
+    ``name``: identify's name (LinkInfo's without its orientation, ``L4a1``);
+    ``table_name``: the table's own (``L4a1{1}``); ``pd``: the PD code as JSON text
+    (``None`` where the table has none); ``fp``: the Jones polynomial at
+    ``sqrt t =`` :data:`JONES_POINT`; ``volume``: hyperbolic volume, ``None`` if blank.
+    """
+
+    name: str
+    table_name: str
+    components: int
+    pd: str | None
+    fp: Fraction
+    crossings: int
+    volume: float | None
+
+    def pd_code(self) -> list[list[int]]:
+        """Return the PD code (every entry of the current tables has one)."""
+        if self.pd is None:
+            raise ValueError(f"table entry {self.table_name} has no PD code")
+        code: list[list[int]] = json.loads(self.pd)
+        return code
 
 
 def knot_modules() -> tuple[ModuleType, ModuleType, ModuleType]:
@@ -57,11 +85,11 @@ def laurent_value(laurent: Any, x: Fraction) -> Fraction:
 def _cache_path(version: str) -> str:
 
     root = os.environ.get("LKSPACE_CACHE") or os.path.join(os.path.expanduser("~"), ".cache", "lkspace")
-    return os.path.join(root, f"knot-tables-{version}-v1.pickle")
+    return os.path.join(root, f"knot-tables-{version}-v2.pickle")
 
 
 @lru_cache(maxsize=1)
-def tables() -> dict[Fraction, list[dict[str, Any]]]:
+def tables() -> dict[Fraction, list[TableEntry]]:
     """Jones fingerprints of the KnotInfo and LinkInfo tables: ``{value: [entry, ...]}``.
 
     Built once from ``database_knotinfo`` (a few seconds) and kept in a pickle under
@@ -84,11 +112,11 @@ def tables() -> dict[Fraction, list[dict[str, Any]]]:
     return index
 
 
-def _build_tables(dki: ModuleType) -> dict[Fraction, list[dict[str, Any]]]:
-    index: dict[Fraction, list[dict[str, Any]]] = {}
+def _build_tables(dki: ModuleType) -> dict[Fraction, list[TableEntry]]:
+    index: dict[Fraction, list[TableEntry]] = {}
 
-    def add(entry: dict[str, Any]) -> None:
-        index.setdefault(entry["fp"], []).append(entry)
+    def add(entry: TableEntry) -> None:
+        index.setdefault(entry.fp, []).append(entry)
 
     for row in dki.link_list():
         name = row.get("name")
@@ -98,15 +126,15 @@ def _build_tables(dki: ModuleType) -> dict[Fraction, list[dict[str, Any]]]:
         if fp is None:
             continue
         add(
-            {
-                "name": name,
-                "table_name": name,
-                "components": 1,
-                "pd": row.get("pd_notation"),
-                "fp": fp,
-                "crossings": int(row.get("crossing_number") or 0),
-                "volume": _float(row.get("volume")),
-            }
+            TableEntry(
+                name=name,
+                table_name=name,
+                components=1,
+                pd=row.get("pd_notation"),
+                fp=fp,
+                crossings=int(row.get("crossing_number") or 0),
+                volume=_float(row.get("volume")),
+            )
         )
     for row in dki.link_list(proper_links=True):
         name = row.get("name")
@@ -117,15 +145,15 @@ def _build_tables(dki: ModuleType) -> dict[Fraction, list[dict[str, Any]]]:
             continue
         pd = row.get("pd_notation_vector")
         add(
-            {
-                "name": name.split("{")[0],
-                "table_name": name,
-                "components": int(row.get("components") or 0),
-                "pd": pd.replace("{", "[").replace("}", "]") if pd else None,
-                "fp": fp,
-                "crossings": int(row.get("crossing_number") or 0),
-                "volume": _float(row.get("volume")),
-            }
+            TableEntry(
+                name=name.split("{")[0],
+                table_name=name,
+                components=int(row.get("components") or 0),
+                pd=pd.replace("{", "[").replace("}", "]") if pd else None,
+                fp=fp,
+                crossings=int(row.get("crossing_number") or 0),
+                volume=_float(row.get("volume")),
+            )
         )
     return index
 

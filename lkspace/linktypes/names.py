@@ -21,7 +21,6 @@ ruled out by a chirality request.
 
 from __future__ import annotations
 
-import json
 from dataclasses import dataclass, field
 from fractions import Fraction
 from functools import lru_cache
@@ -32,7 +31,7 @@ import numpy as np
 from ..errors import UsageError
 from ..knots.hoste import HT_NAME, ht_crossings, ht_manifold
 from ..knots.naming import name_key, one_based
-from ..knots.tables import JONES_POINT, knot_modules, laurent_value, tables
+from ..knots.tables import JONES_POINT, TableEntry, knot_modules, laurent_value, tables
 from .common_names import common_type
 from .fields import JsonObject
 from .spelling import CHIRALITIES, Chirality, canonical_name, chiral_parts
@@ -94,12 +93,12 @@ class LinkType:
 
 
 @lru_cache(maxsize=1)
-def table_entries() -> dict[str, list[dict[str, Any]]]:
+def table_entries() -> dict[str, list[TableEntry]]:
     """KnotInfo/LinkInfo entries by name (``identify``'s names), every orientation of a link."""
-    out: dict[str, list[dict[str, Any]]] = {}
+    out: dict[str, list[TableEntry]] = {}
     for entries in tables().values():
         for e in entries:
-            out.setdefault(e["name"], []).append(e)
+            out.setdefault(e.name, []).append(e)
     return out
 
 
@@ -148,13 +147,13 @@ def _prime(name: str, chirality: Chirality, typed: str) -> LinkType:
     if entries:
         fps: set[Fraction] = set()
         for e in entries:
-            fps |= _jones_values(json.loads(e["pd"]))
+            fps |= _jones_values(e.pd_code())
         first = entries[0]
-        n = int(first["components"])
-        linking = _abs_linking(json.loads(first["pd"])) if n > 1 else None
+        n = int(first.components)
+        linking = _abs_linking(first.pd_code()) if n > 1 else None
         amphi = name in _amphichiral_knots() if n == 1 and chirality != "any" else None
         table = "knotinfo" if n == 1 else "linkinfo"
-        return LinkType(name, chirality, n, int(first["crossings"]), table, frozenset(fps), linking, amphi)
+        return LinkType(name, chirality, n, int(first.crossings), table, frozenset(fps), linking, amphi)
     small = (ht_crossings(name) or 99) <= (10 if name.startswith("K") else 11)
     manifold = ht_manifold(name) if HT_NAME.fullmatch(name) and not small else None
     if manifold is None:
