@@ -126,6 +126,7 @@ STUDIO_INTERNALS = {
     "lkspace.geometry.clearance": "a preview realized without measuring is measured when the page asks",
     "lkspace.geometry.realization": "an edit realizes only the strands it changed (realize_reusing)",
     "lkspace.io.design_json": "design files saved from and opened in the page (scaffold, labels, view)",
+    "lkspace.io.json_values": "request bodies typed as JSON values, the one type every wire record's from_json reads",
     "lkspace.io.obj": "an uploaded .obj is parsed from bytes (no file)",
     "lkspace.io.scaffold_json": "scaffolds sent to and uploaded from the page as JSON",
     "lkspace.io.sources": "the one scaffold file the studio reads: the MESH of lkspace studio FILE",

@@ -28,7 +28,7 @@ from __future__ import annotations
 
 import json
 import os
-from typing import Any, NotRequired, TypeAlias, TypedDict, cast
+from typing import Any, NotRequired, TypedDict, cast
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -41,10 +41,8 @@ from ..runtime.progress import task
 from ..scaffolds.periodic import voronoi_scaffold
 from ..words import noun
 from .json_fields import array, integer, point, shown, text, vectors
+from .json_values import JsonObject
 from .text import parse_json, read_text
-
-JSONObject: TypeAlias = dict[str, Any]
-"""A JSON object as parsed, before a reader has checked it (each field is checked as it is read)."""
 
 
 class RadialOrderJSON(TypedDict):
@@ -98,7 +96,7 @@ def _side(faces: list[list[int]], value: Any, where: str, starts: np.ndarray) ->
     return int(starts[f] + k)
 
 
-def _faces(data: JSONObject, name: str, n_vertices: int) -> list[list[int]]:
+def _faces(data: JsonObject, name: str, n_vertices: int) -> list[list[int]]:
     faces = array(data.get("faces"), f"{name}: faces")
     for i, face in enumerate(faces):
         for j, v in enumerate(array(face, f"{name}: faces[{i}]")):
@@ -106,7 +104,7 @@ def _faces(data: JSONObject, name: str, n_vertices: int) -> list[list[int]]:
     return faces
 
 
-def _offsets(data: JSONObject, name: str, faces: list[list[int]], dim: int) -> list[list[list[int]]]:
+def _offsets(data: JsonObject, name: str, faces: list[list[int]], dim: int) -> list[list[list[int]]]:
     raw = array(data.get("offsets"), f"{name}: offsets", len(faces))
     for i, (face, offs) in enumerate(zip(faces, raw)):
         for j, o in enumerate(array(offs, f"{name}: offsets[{i}]", len(face))):
@@ -134,7 +132,7 @@ def _edge_key(value: Any, where: str, dim: int) -> tuple[int, int, tuple[int, ..
     return a, b, tuple(delta)
 
 
-def _radial_orders(data: JSONObject, name: str, faces: list[list[int]], dim: int) -> dict[tuple, tuple[int, ...]]:
+def _radial_orders(data: JsonObject, name: str, faces: list[list[int]], dim: int) -> dict[tuple, tuple[int, ...]]:
     starts = np.concatenate([[0], np.cumsum([len(f) for f in faces])]).astype(np.int64)
     radial: dict[tuple, tuple[int, ...]] = {}
     for i, entry in enumerate(array(data["radial_orders"], f"{name}: radial_orders")):
@@ -149,7 +147,7 @@ def _radial_orders(data: JSONObject, name: str, faces: list[list[int]], dim: int
     return radial
 
 
-def scaffold_from_dict(data: JSONObject, name: str = "<json>") -> Scaffold:
+def scaffold_from_dict(data: JsonObject, name: str = "<json>") -> Scaffold:
     """Build a scaffold (with its labels and nulls, if any) from the parsed JSON."""
     if not isinstance(data, dict):
         raise ScaffoldError(f"{name}: expected a JSON object, got {type(data).__name__}")
@@ -202,7 +200,7 @@ def scaffold_from_dict(data: JSONObject, name: str = "<json>") -> Scaffold:
     return scaffold
 
 
-def _version(data: JSONObject, name: str) -> None:
+def _version(data: JsonObject, name: str) -> None:
     version = data.get("version", VERSION)
     if isinstance(version, bool) or not isinstance(version, int) or version != VERSION:
         raise ScaffoldError(f"{name}: file version {shown(version)} is not supported (expected {VERSION})")
@@ -212,7 +210,7 @@ MAX_VORONOI_POINTS = 200
 """Most generator points of a Voronoi file: Qhull works on 125 lattice translates of each."""
 
 
-def _known_keys(data: JSONObject, keys: set[str], name: str) -> None:
+def _known_keys(data: JsonObject, keys: set[str], name: str) -> None:
     """Refuse a key outside ``keys``: a misspelt key must not be silently ignored."""
     unknown = sorted(set(data) - keys)
     if unknown:
@@ -222,7 +220,7 @@ def _known_keys(data: JSONObject, keys: set[str], name: str) -> None:
         )
 
 
-def voronoi_from_dict(data: JSONObject, name: str) -> Scaffold:
+def voronoi_from_dict(data: JsonObject, name: str) -> Scaffold:
     """Build a generalized Voronoi scaffold from its parsed JSON.
 
     The object is ``{"format": "lkspace-voronoi", "version": 1, "lattice": [[...], ...],

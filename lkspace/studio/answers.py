@@ -16,7 +16,7 @@ from typing import Literal, NotRequired, TypeAlias, TypedDict
 import numpy as np
 
 from ..geometry.clearance import Closest, closest_json
-from .wire import JsonObject
+from .wire import JsonAnswer
 
 JobKind = Literal["identify", "relax", "solve", "clearance", "export"]
 JobStatus = Literal["running", "done", "error", "cancelled"]
@@ -29,7 +29,7 @@ class JobStarted:
     job: int | None
     message: str | None = None
 
-    def to_json(self) -> JsonObject:
+    def to_json(self) -> JsonAnswer:
         """Return the JSON form."""
         return {"job": self.job} if self.message is None else {"job": self.job, "message": self.message}
 
@@ -42,7 +42,7 @@ class JobProgress:
     done: str
     note: str
 
-    def to_json(self) -> JsonObject:
+    def to_json(self) -> JsonAnswer:
         """Return the JSON form."""
         return {"step": self.step, "done": self.done, "note": self.note}
 
@@ -60,7 +60,7 @@ class IdentifyAnswer:
     split: bool | None
     crossings: int | None
 
-    def to_json(self) -> JsonObject:
+    def to_json(self) -> JsonAnswer:
         """Return the JSON form."""
         return {
             "name": self.name,
@@ -82,7 +82,7 @@ class Solved:
     solutions: tuple[tuple[list[int], int], ...]
     """``(labels, components)`` of every design found."""
 
-    def to_json(self) -> JsonObject:
+    def to_json(self) -> JsonAnswer:
         """Return the JSON form."""
         designs = [{"labels": labels, "components": n} for labels, n in self.solutions]
         return {**self.summary, "solutions": designs}
@@ -97,7 +97,7 @@ class RelaxedCurves:
     min_distance: float
     closest: Closest | None
 
-    def to_json(self) -> JsonObject:
+    def to_json(self) -> JsonAnswer:
         """Return the JSON form: ``points`` (base64 little-endian ``float64``), ``counts``, tube, clearance."""
         points = np.vstack(self.curves).astype("<f8").tobytes()
         return {
@@ -116,7 +116,7 @@ class Exported:
     content: bytes
     name: str
 
-    def to_json(self) -> JsonObject:
+    def to_json(self) -> JsonAnswer:
         """Return the JSON form (the name and size; the bytes travel as the download)."""
         return {"name": self.name, "bytes": len(self.content)}
 
@@ -136,9 +136,9 @@ class Clearance:
         """Whether the strands keep ``min_separation`` apart."""
         return self.min_distance >= self.min_separation
 
-    def to_json(self) -> JsonObject:
+    def to_json(self) -> JsonAnswer:
         """Return the JSON form (``edge``, ``curves`` and ``message`` only when known)."""
-        out: JsonObject = {"min_distance": self.min_distance, "min_separation": self.min_separation, "ok": self.ok}
+        out: JsonAnswer = {"min_distance": self.min_distance, "min_separation": self.min_separation, "ok": self.ok}
         if self.curves is not None:
             out.update(edge=self.edge, curves=list(self.curves))
         if self.message is not None:
@@ -161,7 +161,7 @@ class JobState:
     result: JobResult | None = None
     error: str | None = None
 
-    def to_json(self) -> JsonObject:
+    def to_json(self) -> JsonAnswer:
         """Return the JSON form."""
         return {
             "id": self.id,
@@ -185,7 +185,7 @@ class OpenedDesign:
     view: Mapping[str, tuple[float, float, float]] | None
     name: str
 
-    def to_json(self) -> JsonObject:
+    def to_json(self) -> JsonAnswer:
         """Return the JSON form (labels past 2**53 as decimal strings: exact in JavaScript)."""
         return {
             "key": self.key,
@@ -209,7 +209,7 @@ class Thumbs:
     thumbs: tuple[str, ...]
     common_names: tuple[str | None, ...]
 
-    def to_json(self) -> JsonObject:
+    def to_json(self) -> JsonAnswer:
         """Return the JSON form."""
         return {"thumbs": list(self.thumbs), "common_names": list(self.common_names)}
 
@@ -220,7 +220,7 @@ class Stem:
 
     stem: str
 
-    def to_json(self) -> JsonObject:
+    def to_json(self) -> JsonAnswer:
         """Return the JSON form."""
         return {"stem": self.stem}
 
@@ -263,7 +263,7 @@ class Info:
     max_upload: int
     design: OpenedDesign | None
 
-    def to_json(self) -> JsonObject:
+    def to_json(self) -> JsonAnswer:
         """Return the JSON form."""
         return {
             "version": self.version,

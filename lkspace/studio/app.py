@@ -24,6 +24,7 @@ from starlette.types import ASGIApp
 
 from .. import __version__
 from ..errors import GeometryError, LkspaceError, UsageError
+from ..io.json_values import JsonObject
 from ..scaffolds import DEFAULT
 from .answers import (
     Clearance,
@@ -58,7 +59,18 @@ from .requests import (
     ThumbnailsRequest,
 )
 from .scaffolds import Held, Registry, builtin_choices
-from .wire import MAX_UPLOAD, Answer, BadRequest, JsonObject, LocalHostOnly, dumps, error_json, fail, file_of, json_of
+from .wire import (
+    MAX_UPLOAD,
+    Answer,
+    BadRequest,
+    JsonAnswer,
+    LocalHostOnly,
+    dumps,
+    error_json,
+    fail,
+    file_of,
+    json_of,
+)
 
 if TYPE_CHECKING:
     from .. import Realization
@@ -262,7 +274,7 @@ class NoSuchDesign(LkspaceError):
     status = 404
 
 
-def type_lookup(studio: Studio, request: LookupRequest) -> JsonObject:
+def type_lookup(studio: Studio, request: LookupRequest) -> JsonAnswer:
     """Return the simplest designs of the type ``name`` in the shipped atlas (``limit``, ``scaffold``): ``lookup --json``."""
     from ..linktypes.lookup import TypeNotFound, lookup
 

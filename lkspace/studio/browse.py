@@ -20,7 +20,7 @@ from ..catalog.verify import open_catalog
 from ..errors import CatalogError, UsageError
 from .answers import CatalogInfo, CatalogPage
 from .requests import CatalogRequest, Filter
-from .wire import JsonObject
+from .wire import JsonAnswer
 
 
 class Browser:
@@ -128,10 +128,10 @@ class Browser:
             raise UsageError(f"filter on {column}: {value} is out of range")
         return value
 
-    def query(self, request: CatalogRequest | None = None) -> CatalogPage | JsonObject:
+    def query(self, request: CatalogRequest | None = None) -> CatalogPage | JsonAnswer:
         """One page of rows: ``{"ready", "total", "offset", "columns", "rows": [[...]], "labels": [[...]], "seconds"}``."""
         if not self._ready.is_set():
-            waiting: JsonObject = {"ready": False, **self.info()}
+            waiting: JsonAnswer = {"ready": False, **self.info()}
             return waiting
         if self._error is not None:
             raise CatalogError(self._error)

@@ -17,7 +17,8 @@ from dataclasses import dataclass
 from typing import Literal
 
 from ..errors import LabelError, LkspaceError, UsageError
-from .wire import BadRequest, JsonObject
+from ..io.json_values import JsonObject
+from .wire import BadRequest
 
 MAX_HAVE = 50_000
 """Most curve keys a request may say the page holds."""
@@ -178,7 +179,8 @@ class RedrawRequest:
             raise UsageError("have: expected a list of curve keys (strings from an earlier answer)")
         if have is not None and len(have) > MAX_HAVE:
             raise UsageError(f"have: {len(have):,} curve keys > {MAX_HAVE:,}; send the keys of the curves drawn")
-        return cls(DesignRequest.from_json(data), flag(data, "relax"), frozenset(have or ()))
+        keys = frozenset(v for v in have or () if isinstance(v, str))  # every one is, checked above
+        return cls(DesignRequest.from_json(data), flag(data, "relax"), keys)
 
 
 @dataclass(frozen=True)
@@ -259,9 +261,14 @@ class SolveRequest:
         if not isinstance(label_set, str) or len(label_set) > 200:
             raise BadRequest("label_set: text like -2..2 or -1,1")
         parse_label_set(label_set)  # refused here, not in the worker
-        objective = data.get("objective")
-        if objective is not None and objective not in ("min-abs", "min-nonzero"):
-            raise BadRequest("objective: none, min-abs or min-nonzero")
+        objective: FormObjective | None
+        match data.get("objective"):
+            case None:
+                objective = None
+            case "min-abs" | "min-nonzero" as chosen:
+                objective = chosen
+            case _:
+                raise BadRequest("objective: none, min-abs or min-nonzero")
         return cls(
             key,
             components,
@@ -273,7 +280,7 @@ class SolveRequest:
             float(limit),
         )
 
-    def options(self) -> JsonObject:
+    def options(self) -> dict[str, object]:
         """Return the query's keyword arguments of :func:`lkspace.solve` (``count`` and ``time_limit`` go to its options)."""
         return {
             "components": self.components,
@@ -342,10 +349,11 @@ class CatalogRequest:
             column, op, value = item
             if not isinstance(column, str):
                 raise UsageError(f"filter column {str(column)[:40]!r}: not a column name")
-            if op == "==" or op == "!=" or op == "<" or op == "<=" or op == ">" or op == ">=" or op == "contains":
-                triples.append((column, op, value))
-            else:
-                raise UsageError(f"filter op {str(op)[:10]!r}: choose one of {' '.join(OPS)}")
+            match op:
+                case "==" | "!=" | "<" | "<=" | ">" | ">=" | "contains":
+                    triples.append((column, op, value))
+                case _:
+                    raise UsageError(f"filter op {str(op)[:10]!r}: choose one of {' '.join(OPS)}")
         sort = data.get("sort")
         if sort is not None and not isinstance(sort, str):
             raise UsageError(f"sort column {str(sort)[:40]!r}: not a column")

@@ -19,14 +19,20 @@ from collections.abc import Mapping
 from typing import TYPE_CHECKING, Protocol, TypeAlias, runtime_checkable
 
 from ..errors import LkspaceError, TooLargeError, UsageError
+from ..io.json_values import JsonObject
 
 if TYPE_CHECKING:
     from starlette.requests import Request
     from starlette.responses import JSONResponse
     from starlette.types import ASGIApp, Receive, Scope, Send
 
-JsonObject: TypeAlias = dict[str, object]
-"""A JSON object as it arrives (values still to be checked) or as an answer writes it."""
+JsonAnswer: TypeAlias = dict[str, object]
+"""A JSON object as an answer writes it (``to_json``, :func:`error_json`): the output side.
+
+Its values are whatever :func:`dumps` writes (sequences, ``TypedDict`` views, nested
+answers), so it is wider than :data:`~lkspace.io.json_values.JsonObject`, the input side
+that :func:`json_of` returns and every request's ``from_json`` reads (values as
+:func:`json.loads` returns them, still to be checked)."""
 
 MAX_JSON = 2_000_000
 """Largest JSON request body, in bytes."""
@@ -60,7 +66,7 @@ class NotAFile(UsageError):
 class Record(Protocol):
     """An answer with its JSON form."""
 
-    def to_json(self) -> JsonObject:
+    def to_json(self) -> JsonAnswer:
         """Return the JSON form."""
 
 
@@ -79,7 +85,7 @@ def dumps(answer: Answer) -> str:
 LOCAL_NAMES = ("127.0.0.1", "localhost", "::1")
 
 
-def error_json(kind: str, message: str) -> JsonObject:
+def error_json(kind: str, message: str) -> JsonAnswer:
     """Return the JSON of an error answer."""
     return {"error": {"type": kind, "message": message}}
 
