@@ -1,7 +1,7 @@
 """Assembling a design's PD code from a :class:`~lkspace.knots.labels_diagram.DiagramTemplate`.
 
 :func:`assemble_into` (compiled, called in the loops of :mod:`lkspace.knots.keyed`) walks
-the design's strands with the trace's walk (:func:`lkspace.strands.walk.walk_strand`:
+the design's strands exactly as the trace does (:func:`lkspace.strands.walk.walk_strands`:
 from the smallest unvisited port, corner link then edge link), passes the pieces in the
 order and direction the walk meets them, keeps the crossings whose two pieces are both
 in the design, and numbers the edges of the PD code along the way.  Component order and
@@ -21,7 +21,6 @@ from numpy.typing import ArrayLike
 from ..compiled.kernels import helper, kernel
 from ..errors import UsageError
 from ..model.scaffold import Scaffold
-from ..strands.walk import walk_strand
 from .labels_diagram import DiagramTemplate, TemplateArrays, template
 
 
@@ -56,8 +55,8 @@ def work_array(tmpl: DiagramTemplate) -> Scratch:
 def _walk(t: TemplateArrays, vidx: np.ndarray, signs: np.ndarray, work: Scratch) -> tuple[int, int, int, int]:
     """Walk the design's strands, recording the passages at crossings of two of its pieces.
 
-    The strands are the trace's (:func:`~lkspace.strands.walk.walk_strand` on the design's
-    edge links, from the smallest unvisited port); each piece is passed in the direction the walk meets it (an edge piece forward
+    From the smallest unvisited port, the corner turn then the edge link, as the trace
+    does; each piece is passed in the direction the walk meets it (an edge piece forward
     from end ``a``, back from end ``b``).  New crossings take the next numbers, their sign
     the template's, flipped for each piece run backwards.  Returns ``(m, n_seq, n_comp,
     n_free)``: crossings, passages, components and components without a crossing.
@@ -66,28 +65,19 @@ def _walk(t: TemplateArrays, vidx: np.ndarray, signs: np.ndarray, work: Scratch)
     slot_edge, crossing_sign, label_values, degrees = t.slot_edge, t.crossing_sign, t.label_values, t.degrees
     local, glob, seq_cross, seq_over, seq_comp = work.local, work.glob, work.seq_cross, work.seq_over, work.seq_comp
     n = len(t.port_a)
-    partner = np.empty(2 * n, np.int64)  # the design's edge links
-    for q in range(n):
-        e = slot_edge[q]
-        kk = degrees[e]
-        target = t.edge_starts[e] + (t.slot_index[q] + label_values[vidx[e]] % kk) % kk
-        partner[t.port_a[q]] = t.port_b[target]
-        partner[t.port_b[target]] = t.port_a[q]
     visited = np.zeros(2 * n, np.bool_)
-    steps = np.empty(n, np.int64)
-    port_strand = np.empty(2 * n, np.int64)
-    no_shift = np.zeros((2 * n, 0), np.int64)
     m = n_seq = n_comp = n_free = 0
     for x0 in range(2 * n):
         if visited[x0]:
             continue
         comp_first = n_seq
-        n_steps, _ = walk_strand(
-            t.corner_partner, partner, no_shift, x0, n_comp, visited, steps, 0, port_strand, no_shift, no_shift[0]
-        )
-        for i in range(n_steps):
-            x = steps[i]
+        x = x0
+        # lkspace.strands.walk.walk_strand written out: building the edge links first and passing its
+        # steps again for the crossings cost this kernel 3-21% in designs per second (measured, interleaved)
+        while True:
             y = t.corner_partner[x]  # the corner turn from x (turn s runs from port 2 s + 1)
+            visited[x] = True
+            visited[y] = True
             piece = x // 2 if x % 2 == 1 else y // 2
             forward = x % 2 == 1
             for pass_round in range(2):
@@ -112,12 +102,23 @@ def _walk(t: TemplateArrays, vidx: np.ndarray, signs: np.ndarray, work: Scratch)
                     n_seq += 1
                 if pass_round == 1:
                     break
-                z = partner[y]  # the edge link from y: its piece runs from the end-a port
-                j = t.slot_of_a[y]
-                forward = j >= 0
-                if not forward:
-                    j = t.slot_of_a[z]
-                piece = n + vidx[slot_edge[j]] * n + j
+                j = t.slot_of_a[y]  # the edge link from y
+                if j >= 0:
+                    e = slot_edge[j]
+                    kk = degrees[e]
+                    y = t.port_b[t.edge_starts[e] + (t.slot_index[j] + label_values[vidx[e]] % kk) % kk]
+                    forward = True
+                else:
+                    mb = t.slot_of_b[y]
+                    e = slot_edge[mb]
+                    kk = degrees[e]
+                    j = t.edge_starts[e] + (t.slot_index[mb] - label_values[vidx[e]] % kk + kk) % kk
+                    y = t.port_a[j]
+                    forward = False
+                piece = n + vidx[e] * n + j
+            x = y
+            if x == x0:
+                break
         if n_seq == comp_first:
             n_free += 1
         _label_edges(work.seq_into, work.seq_out, comp_first, n_seq)

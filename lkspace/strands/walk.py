@@ -37,8 +37,11 @@ def walk_strand(
 ) -> tuple[int, bool]:
     """Walk one strand from port ``x0``: its corner link, then its edge link, until back at ``x0`` or at a cut.
 
-    The strand walk of every kernel (the trace, :func:`~lkspace.design.batch_kernels.trace_classes`,
-    :func:`~lkspace.design.census_kernel.census_range`).  Each port ``x`` a corner link leaves
+    The strand walk of the trace (:func:`walk_strands`) and of
+    :func:`~lkspace.design.batch_kernels.trace_classes`; the census
+    (:func:`~lkspace.design.census_kernel.census_range`) and the PD assembly
+    (:func:`~lkspace.knots.assembly.assemble_into`) keep theirs written out, measured faster
+    so (see there).  Each port ``x`` a corner link leaves
     goes to ``steps[n_steps]``, ``steps[n_steps + 1]``, ...; both ports of the link are marked
     ``visited``, given ``port_strand = strand`` and ``port_shift (n_ports, dim)`` the
     translation reached so far, which ``period (dim,)`` (zero on entry) sums over the edge
