@@ -195,7 +195,7 @@ def markdown(data: dict) -> str:
     for lb in labels:
         m, d = data[lb]["machine"], data[lb]
         where = f"commit {d['commit']}, lkspace {d['lkspace']}, {m['cpus']} × {m.get('cpu')}; " if "commit" in d else ""
-        numpy = f"; `import numpy` {d['import_numpy']['best_s']} s" if "import_numpy" in d else ""
+        numpy = f"; `import numpy` {d['import_numpy']['best_s']} s" if d.get("import_numpy") else ""
         before = f"{d['load_average_before']} → " if "load_average_before" in d else ""
         lines.append(
             f"- `{lb}`: {where}{d['repeat']} run(s) each; load average {before}{m['load_average_at_end']}{numpy}"

@@ -5,7 +5,7 @@ assignment per class) spends its time in per-class Python calls unless many clas
 through one compiled call.  These kernels take a batch of classes as arrays:
 
 * :func:`trace_classes`: the strand walk of :mod:`lkspace.strands.walk` for each class's
-  residues (the same traversal, so strands come in the same order);
+  residues (its helper :func:`~lkspace.strands.walk.walk_strand`, so strands come in the same order);
 * :func:`expand_classes`: the canonical assignments of each class, and
   :func:`expand_class_range`: those of a part of one large class (both through the
   helpers :func:`class_options` and :func:`canonical_rows`);
@@ -29,6 +29,7 @@ import numpy as np
 
 from ..compiled.kernels import helper, kernel
 from ..compiled.loops import find, lattice_index_rows, set_digits, stabilizer_if_smallest
+from ..strands.walk import walk_strand
 
 
 class WalkPorts(NamedTuple):
@@ -125,6 +126,7 @@ def trace_classes(residues: np.ndarray, ports: WalkPorts, out: TraceArrays) -> N
     dim = translation.shape[1]
     partner = np.empty(n_ports, np.int64)
     visited = np.zeros(n_ports, np.bool_)
+    steps = np.empty(n_slots, np.int64)
     for c in range(n_c):
         for q in range(n_slots):
             e = slot_edge[q]
@@ -140,24 +142,19 @@ def trace_classes(residues: np.ndarray, ports: WalkPorts, out: TraceArrays) -> N
                 continue
             for j in range(dim):
                 periods[c, n_strands, j] = 0
-            x = x0
-            n_steps = 0
-            while True:
-                y = corner_partner[x]
-                n_steps += 1
-                visited[x] = True
-                visited[y] = True
-                port_strand[c, x] = n_strands
-                port_strand[c, y] = n_strands
-                for j in range(dim):
-                    port_shift[c, x, j] = periods[c, n_strands, j]
-                    port_shift[c, y, j] = periods[c, n_strands, j]
-                z = partner[y]
-                for j in range(dim):
-                    periods[c, n_strands, j] += translation[y // 2, j] - translation[z // 2, j]
-                if z == x0:
-                    break
-                x = z
+            n_steps, _ = walk_strand(
+                corner_partner,
+                partner,
+                translation,
+                x0,
+                n_strands,
+                visited,
+                steps,
+                0,
+                port_strand[c],
+                port_shift[c],
+                periods[c, n_strands],
+            )
             lengths[c, n_strands] = n_steps
             n_strands += 1
         components[c] = n_strands

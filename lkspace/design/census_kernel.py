@@ -98,6 +98,8 @@ def census_range(
             if visited[x0]:
                 continue
             x = x0
+            # lkspace.strands.walk.walk_strand written out: its records (steps, port_strand), unread here,
+            # cost this kernel 7-16% in choices per second (measured, interleaved)
             while True:
                 y = corner_partner[x]
                 visited[x] = True

@@ -72,6 +72,8 @@ def _walk(t: TemplateArrays, vidx: np.ndarray, signs: np.ndarray, work: Scratch)
             continue
         comp_first = n_seq
         x = x0
+        # lkspace.strands.walk.walk_strand written out: building the edge links first and passing its
+        # steps again for the crossings cost this kernel 3-21% in designs per second (measured, interleaved)
         while True:
             y = t.corner_partner[x]  # the corner turn from x (turn s runs from port 2 s + 1)
             visited[x] = True

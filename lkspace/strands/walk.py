@@ -13,12 +13,62 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ..compiled.kernels import kernel
+from ..compiled.kernels import helper, kernel
 from ..model.scaffold import Scaffold
 from .ports import edge_partner, port_model
 
 WalkArrays = tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]
 """``(steps, strand_starts, closed, periods, port_strand, port_shift)``: see :class:`~lkspace.strands.tracing.Trace`."""
+
+
+@helper
+def walk_strand(
+    corner_partner: np.ndarray,
+    edge_partner: np.ndarray,
+    translation: np.ndarray,
+    x0: int,
+    strand: int,
+    visited: np.ndarray,
+    steps: np.ndarray,
+    n_steps: int,
+    port_strand: np.ndarray,
+    port_shift: np.ndarray,
+    period: np.ndarray,
+) -> tuple[int, bool]:
+    """Walk one strand from port ``x0``: its corner link, then its edge link, until back at ``x0`` or at a cut.
+
+    The strand walk of the trace (:func:`walk_strands`) and of
+    :func:`~lkspace.design.batch_kernels.trace_classes`; the census
+    (:func:`~lkspace.design.census_kernel.census_range`) and the PD assembly
+    (:func:`~lkspace.knots.assembly.assemble_into`) keep theirs written out, measured faster
+    so (see there).  Each port ``x`` a corner link leaves
+    goes to ``steps[n_steps]``, ``steps[n_steps + 1]``, ...; both ports of the link are marked
+    ``visited``, given ``port_strand = strand`` and ``port_shift (n_ports, dim)`` the
+    translation reached so far, which ``period (dim,)`` (zero on entry) sums over the edge
+    links passed.  Returns ``(n_steps after the strand, closed)``: ``closed`` is False when
+    an edge link was cut (``edge_partner`` -1).
+    """
+    dim = len(period)
+    x = x0
+    while True:
+        y = corner_partner[x]
+        steps[n_steps] = x
+        n_steps += 1
+        visited[x] = True
+        visited[y] = True
+        port_strand[x] = strand
+        port_strand[y] = strand
+        for j in range(dim):
+            port_shift[x, j] = period[j]
+            port_shift[y, j] = period[j]
+        z = edge_partner[y]
+        if z == -1:
+            return n_steps, False
+        for j in range(dim):
+            period[j] += translation[y // 2, j] - translation[z // 2, j]
+        if z == x0:
+            return n_steps, True
+        x = z
 
 
 @kernel
@@ -44,28 +94,20 @@ def walk_strands(corner_partner: np.ndarray, edge_partner: np.ndarray, translati
             if visited[x0] or (phase == 0 and edge_partner[x0] != -1):
                 continue
             starts[n_strands] = n_steps
-            x = x0
-            while True:
-                y = corner_partner[x]
-                steps[n_steps] = x
-                n_steps += 1
-                visited[x] = True
-                visited[y] = True
-                port_strand[x] = n_strands
-                port_strand[y] = n_strands
-                for j in range(dim):
-                    port_shift[x, j] = periods[n_strands, j]
-                    port_shift[y, j] = periods[n_strands, j]
-                z = edge_partner[y]
-                if z == -1:
-                    closed[n_strands] = False
-                    break
-                for j in range(dim):
-                    periods[n_strands, j] += translation[y // 2, j] - translation[z // 2, j]
-                if z == x0:
-                    closed[n_strands] = True
-                    break
-                x = z
+            n_steps, is_closed = walk_strand(
+                corner_partner,
+                edge_partner,
+                translation,
+                x0,
+                n_strands,
+                visited,
+                steps,
+                n_steps,
+                port_strand,
+                port_shift,
+                periods[n_strands],
+            )
+            closed[n_strands] = is_closed
             n_strands += 1
     starts[n_strands] = n_steps
     return steps, starts[: n_strands + 1], closed[:n_strands], periods[:n_strands], port_strand, port_shift
