@@ -93,7 +93,8 @@ def test_answers_write_the_keys_the_page_reads_in_its_order():
     assert JobState(3, "solve", "cancelled", 0.0).to_json()["progress"] == {}
     named = IdentifyAnswer("3_1", "trefoil", "identified", 1, [[0]], False, False, 3)
     assert list(named.to_json()) == [
-        *("name", "common_name", "status", "components", "linking_matrix", "mirror", "split", "crossings")
+        *("name", "common_name", "status", "components", "linking_matrix", "mirror", "split", "crossings"),
+        "least_crossings",
     ]
     assert JobStarted(None, "periodic").to_json() == {"job": None, "message": "periodic"}
     assert JobStarted(4).to_json() == {"job": 4}

@@ -9,6 +9,7 @@ received.
 from __future__ import annotations
 
 import base64
+import re
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Literal, NotRequired, TypeAlias, TypedDict
@@ -49,7 +50,13 @@ class JobProgress:
 
 @dataclass(frozen=True)
 class IdentifyAnswer:
-    """An identify job's answer: the knot or link type as the page shows it."""
+    """An identify job's answer: the knot or link type as the page shows it.
+
+    ``name``: the table name, or a split link's type ``split: A + B`` (pieces sorted, as the
+    atlas and ``lookup`` name it); ``crossings``: crossings of the simplified diagram found;
+    ``least_crossings``: the type's crossing number from the tables (the number in a prime
+    table name: ``L6a4`` 6, ``3_1`` 3), ``None`` for a split link, a sum or an unnamed link.
+    """
 
     name: str | None
     common_name: str | None
@@ -59,6 +66,7 @@ class IdentifyAnswer:
     mirror: bool | None
     split: bool | None
     crossings: int | None
+    least_crossings: int | None = None
 
     def to_json(self) -> JsonAnswer:
         """Return the JSON form."""
@@ -71,7 +79,18 @@ class IdentifyAnswer:
             "mirror": self.mirror,
             "split": self.split,
             "crossings": self.crossings,
+            "least_crossings": self.least_crossings,
         }
+
+
+TABLE_NAME = re.compile(r"m?(?:[KL](\d+)[an]\d+|(\d+)_\d+|(\d+)[an]_\d+)")
+"""A prime table name: KnotInfo ``3_1``, ``11a_1``; LinkInfo ``L6a4``; HTLinkExteriors ``K15n1``; ``m`` for a mirror."""
+
+
+def table_crossings(name: str | None) -> int | None:
+    """Return the crossing number a prime table name states (``L6a4``: 6, ``m3_1``: 3, ``0_1``: 0), else ``None``."""
+    found = TABLE_NAME.fullmatch(name or "")
+    return None if found is None else int(next(g for g in found.groups() if g is not None))
 
 
 @dataclass(frozen=True)

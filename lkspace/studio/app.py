@@ -23,7 +23,7 @@ from starlette.staticfiles import StaticFiles
 from starlette.types import ASGIApp
 
 from .. import __version__
-from ..errors import GeometryError, LkspaceError, UsageError
+from ..errors import GeometryError, LkspaceError, ScaffoldError, UsageError
 from ..io.json_values import JsonObject
 from ..scaffolds import DEFAULT
 from .answers import (
@@ -63,6 +63,7 @@ from .wire import (
     MAX_UPLOAD,
     Answer,
     BadRequest,
+    BadUpload,
     JsonAnswer,
     LocalHostOnly,
     dumps,
@@ -113,7 +114,7 @@ def endpoint(
     """Wrap ``handler(studio, read(body))`` as a route answering JSON or an error.
 
     ``read`` is the request record's ``from_json``; a GET's body is its query parameters, and
-    path parameters join the body.  The handler runs in the thread pool that answers edits,
+    path parameters and the page id (header ``X-Lkspace-Page``, as ``page``) join the body.  The handler runs in the thread pool that answers edits,
     or queued in ``lane(studio)`` (exports).
     """
     from starlette.concurrency import run_in_threadpool
@@ -123,6 +124,8 @@ def endpoint(
         try:
             body: JsonObject = await json_of(request) if request.method == "POST" else dict(request.query_params)
             body.update(request.path_params)
+            if "x-lkspace-page" in request.headers:
+                body["page"] = request.headers["x-lkspace-page"]
             parsed = read(body)
             if lane is None:
                 result = await run_in_threadpool(handler, studio, parsed)
@@ -185,16 +188,17 @@ def orbits(studio: Studio, request: ScaffoldRequest) -> OrbitView:
 def redraw(studio: Studio, request: RedrawRequest) -> DesignView:
     """Trace and realize a design (no clearance measurement); ``relax: true`` for the relaxed curves."""
     d = HeldDesign.of(studio, request.design)
-    relaxer = (lambda real: relax_in_worker(studio, real)) if request.relax else None
+    page = request.design.page
+    relaxer = (lambda real: relax_in_worker(studio, real, page)) if request.relax else None
     if not request.relax:
-        studio.jobs.stop("clearance")  # the last design's measurement: its answer is stale, its CPU is this one's
+        studio.jobs.stop("clearance", page)  # the page's last measurement: its answer is stale, its CPU is this one's
     cache, key = studio.cache, d.held.key
     return design(d.held.scaffold, d.labels, d.nulls, d.block, cache, key, relaxer, request.have)
 
 
-def relax_in_worker(studio: Studio, real: Realization) -> Realization:
-    """Return ``real`` relaxed by a worker (a newer relaxation cancels this one: :class:`Superseded`)."""
-    state = studio.jobs.wait(studio.jobs.start("relax", real))
+def relax_in_worker(studio: Studio, real: Realization, page: str = "") -> Realization:
+    """Return ``real`` relaxed by a worker (a newer relaxation of ``page`` cancels this one: :class:`Superseded`)."""
+    state = studio.jobs.wait(studio.jobs.start("relax", real, page=page))
     if state.state == "cancelled":
         raise Superseded("relax stopped: a newer design asked to be relaxed")
     if not isinstance(state.result, RelaxedCurves):
@@ -212,7 +216,9 @@ def measure(studio: Studio, request: DesignRequest) -> Clearance:
         real = studio.cache.get(key)
         if real is None:
             raise BadRequest("this design has no geometry to measure")
-    state = studio.jobs.wait(studio.jobs.start("clearance", real))  # a worker: an edit meanwhile is never held up
+    state = studio.jobs.wait(
+        studio.jobs.start("clearance", real, page=request.page)
+    )  # a worker: an edit meanwhile is never held up
     if state.state == "cancelled":
         raise Superseded("clearance stopped: a newer design was asked for")
     if not isinstance(state.result, Clearance):
@@ -225,7 +231,7 @@ def identify(studio: Studio, request: DesignRequest) -> JobStarted:
     d = HeldDesign.of(studio, request)
     if d.held.scaffold.periodic:
         return JobStarted(None, "periodic: an infinite structure, not a knot or link")
-    return JobStarted(studio.jobs.start("identify", d.held.scaffold, d.labels, d.nulls).id)
+    return JobStarted(studio.jobs.start("identify", d.held.scaffold, d.labels, d.nulls, page=request.page).id)
 
 
 def solve(studio: Studio, request: SolveRequest) -> JobStarted:
@@ -238,7 +244,7 @@ def solve(studio: Studio, request: SolveRequest) -> JobStarted:
     for edge, _ in request.fixes:
         if not 0 <= edge < sc.n_edges:
             raise BadRequest(f"fixes: edge {str(edge)[:20]!r} out of range 0..{sc.n_edges - 1}")
-    return JobStarted(studio.jobs.start("solve", sc, request).id)
+    return JobStarted(studio.jobs.start("solve", sc, request, page=request.page).id)
 
 
 def job_of(studio: Studio, request: JobRequest) -> Job:
@@ -309,7 +315,7 @@ def download(studio: Studio, request: ExportRequest) -> Response:
 
 
 async def upload(request: Request) -> Response:
-    """Hold an uploaded ``.obj`` / ``.json`` scaffold (:func:`~lkspace.studio.wire.file_of`)."""
+    """Hold an uploaded ``.obj`` / ``.json`` scaffold (:func:`~lkspace.studio.wire.file_of`); bytes that are not one: 400."""
     from starlette.concurrency import run_in_threadpool
 
     studio: Studio = request.app.state.studio
@@ -317,6 +323,8 @@ async def upload(request: Request) -> Response:
         name, data = await file_of(request)
         held = await run_in_threadpool(studio.registry.upload, name or "upload.json", data)
         return Response(dumps(held.view()), media_type="application/json")
+    except ScaffoldError as exc:  # the bytes sent are not a scaffold file: the body's fault (400)
+        return fail(BadUpload(str(exc)))
     except Exception as exc:  # noqa: BLE001 - every failure is an answer
         return fail(exc)
 
@@ -330,6 +338,8 @@ async def open_design(request: Request) -> Response:
         name, data = await file_of(request)
         answer = await run_in_threadpool(open_upload, studio.registry, name, data)
         return Response(dumps(answer), media_type="application/json")
+    except ScaffoldError as exc:  # the bytes sent are not a design file: the body's fault (400)
+        return fail(BadUpload(str(exc)))
     except Exception as exc:  # noqa: BLE001 - every failure is an answer
         return fail(exc)
 

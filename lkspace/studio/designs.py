@@ -81,9 +81,14 @@ def parse_nulls(scaffold: Scaffold, sides: Sequence[int] | None) -> np.ndarray |
 
 
 def parse_block(scaffold: Scaffold, sizes: Sequence[int] | None) -> np.ndarray | None:
-    """Lattice translations ``(n, dim)`` of the page's block sizes ``[A, B, C]`` (``None``: one cell)."""
-    if sizes is None or not scaffold.periodic:
+    """Lattice translations ``(n, dim)`` of the page's block sizes ``[A, B, C]`` (``None``: one cell).
+
+    A block on a finite scaffold is refused (:class:`~lkspace.errors.UsageError`): it has no lattice to copy along.
+    """
+    if sizes is None:
         return None
+    if not scaffold.periodic:
+        raise UsageError("block: this scaffold is finite (no lattice to copy along); send no block")
     if len(sizes) != scaffold.dim:
         raise UsageError(f"block: give {scaffold.dim} sizes for a {scaffold.dim}D lattice")
     if not all(1 <= v <= MAX_BLOCK for v in sizes):

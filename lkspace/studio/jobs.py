@@ -6,10 +6,11 @@ starts in milliseconds after the first).  Progress of the library's long steps
 (:mod:`lkspace.runtime.progress`) and the result come back through a queue the server drains
 when the page polls.
 
-Jobs are bounded: one job of each kind at a time, and a new one stops the one running
-(an identification, relaxation or clearance measurement of an older design is stale; a
-new solve is the page asking again with other settings, and the page follows only its
-latest solve).  So at most :data:`MAX_RUNNING` workers run at once; a job past a lower
+Jobs are bounded: one job of each kind at a time per page, and a new one stops the page's
+one running (an identification, relaxation or clearance measurement of an older design is
+stale; a new solve is the page asking again with other settings, and the page follows only
+its latest solve).  A page is named by the id it sends (``X-Lkspace-Page``), so two tabs on
+one studio never cancel each other's jobs.  So at most :data:`MAX_RUNNING` workers run at once; a job past a lower
 cap is refused with :class:`~lkspace.studio.lanes.Busy` (HTTP 429) naming what runs, so
 the user can wait or cancel one.  Exports run here too (their CPU apart from the threads
 that redraw), one at a time from the export lane (:mod:`~lkspace.studio.lanes`), which
@@ -43,6 +44,7 @@ from .answers import (
     JobStatus,
     RelaxedCurves,
     Solved,
+    table_crossings,
 )
 from .lanes import Busy
 from .requests import SolveRequest
@@ -66,8 +68,8 @@ IDENTIFY_SECONDS = 30.0
 REPLACED: tuple[JobKind, ...] = ("identify", "relax", "solve", "clearance")
 """The page's job kinds, run one at a time: starting one cancels the one running."""
 
-MAX_RUNNING = len(REPLACED)
-"""Most workers running at once (one of each kind); a studio may set a lower cap."""
+MAX_RUNNING = 2 * len(REPLACED)
+"""Most workers running at once over all pages (one of each kind for two pages); a studio may set a lower cap."""
 
 MAX_JOBS = 64
 """Finished jobs remembered (the oldest are forgotten)."""
@@ -102,15 +104,20 @@ def identify_payload(scaffold: Scaffold, labels: np.ndarray, nulls: np.ndarray |
     from ..linktypes.common_names import common_name
 
     found = identify(scaffold, labels, nulls, time_limit=IDENTIFY_SECONDS)
+    pieces = found.details.get("pieces")
+    name = found.name
+    if name is None and found.split and isinstance(pieces, list) and pieces and all(pieces):
+        name = "split: " + " + ".join(sorted(str(p) for p in pieces))  # the atlas type (lookup finds it)
     return IdentifyAnswer(
-        name=found.name,
-        common_name=common_name(found.name, found.mirror) if found.name else None,
+        name=name,
+        common_name=common_name(name, found.mirror) if name else None,
         status=found.status,
         components=found.components,
         linking_matrix=found.linking_matrix,
         mirror=found.mirror,
         split=found.split,
         crossings=found.crossings,
+        least_crossings=table_crossings(name),
     )
 
 
@@ -240,24 +247,25 @@ class Jobs:
         self._starting = threading.Lock()
         self.max_running = max_running
         self.closed = False
-        self.latest: dict[JobKind, Job] = {}
+        self.latest: dict[tuple[str, JobKind], Job] = {}
+        """The newest job of each page and kind: ``(page id, kind) -> job``."""
 
     def running(self) -> list[Job]:
         """Return the page's jobs whose worker is still at work (:data:`REPLACED` kinds)."""
         jobs = list(self._jobs.values())
         return [j for j in jobs if j.kind in REPLACED and j.state == "running" and j.process.is_alive()]
 
-    def start(self, kind: JobKind, *args: Any) -> Job:
-        """Start a ``kind`` job, cancelling the one of that kind running (:data:`REPLACED`).
+    def start(self, kind: JobKind, *args: Any, page: str = "") -> Job:
+        """Start a ``kind`` job for ``page``, cancelling that page's one of that kind running (:data:`REPLACED`).
 
-        Raises :class:`~lkspace.studio.lanes.Busy` when :attr:`max_running` workers of other
-        kinds run.  Starts are taken one at a time, so a burst of requests leaves one job running.
+        Raises :class:`~lkspace.studio.lanes.Busy` when :attr:`max_running` other workers run.
+        Starts are taken one at a time, so a burst of requests from one page leaves one job running.
         """
         with self._starting:
             if self.closed:
                 raise Busy("the studio is stopping")
-            if kind in REPLACED and kind in self.latest:
-                self.latest[kind].cancel()
+            if kind in REPLACED and (page, kind) in self.latest:
+                self.latest[page, kind].cancel()
             running = self.running()
             if len(running) >= self.max_running:
                 kinds = ", ".join(j.kind for j in running)
@@ -273,7 +281,9 @@ class Jobs:
                 for old in finished[: max(0, len(self._jobs) - MAX_JOBS)]:
                     del self._jobs[old.id]
             if kind in REPLACED:
-                self.latest[kind] = job
+                self.latest[page, kind] = job
+                if len(self.latest) > MAX_JOBS:  # pages that went away: forget their ended jobs
+                    self.latest = {k: j for k, j in self.latest.items() if j.process.is_alive()}
             return job
 
     def run(self, kind: JobKind, *args: Any) -> JobState:
@@ -296,10 +306,10 @@ class Jobs:
             raise ExportFailed(f"cannot export this design: {state.error or state.state}")
         return state.result.content, state.result.name
 
-    def stop(self, kind: JobKind) -> None:
-        """Cancel the newest ``kind`` job if it still runs (a newer design made its answer stale)."""
-        if kind in self.latest:
-            self.latest[kind].cancel()
+    def stop(self, kind: JobKind, page: str = "") -> None:
+        """Cancel ``page``'s newest ``kind`` job if it still runs (a newer design made its answer stale)."""
+        if (page, kind) in self.latest:
+            self.latest[page, kind].cancel()
 
     def wait(self, job: Job, pause: float = 0.05) -> JobState:
         """Return the state of ``job`` once it has ended (done, error or cancelled by a newer one)."""

@@ -86,6 +86,14 @@ def scaffold_key(data: Mapping[str, object]) -> str:
     return key
 
 
+def page_id(data: Mapping[str, object]) -> str:
+    """Return the ``page`` field: the id a page sends (``X-Lkspace-Page``) so its jobs are its own ("" when absent)."""
+    page = data.get("page", "")
+    if not isinstance(page, str) or not re.fullmatch(r"[A-Za-z0-9_-]{0,64}", page):
+        raise BadRequest("page: an id of at most 64 letters, digits, - or _ (the page makes one when it opens)")
+    return page
+
+
 def label_list(value: object, name: str = "labels") -> tuple[int, ...] | None:
     """Return the page's labels (integers, or decimal strings for exact int64), ``None`` when absent."""
     if value is None:
@@ -143,12 +151,13 @@ class ScaffoldRequest:
 
 @dataclass(frozen=True)
 class DesignRequest:
-    """A design: scaffold ``key``, ``labels`` (``None``: the scaffold's own), null ``nulls`` sides, periodic ``block``."""
+    """A design: scaffold ``key``, ``labels`` (``None``: its own), null ``nulls`` sides, ``block``, asking ``page`` (:func:`page_id`)."""
 
     key: str
     labels: tuple[int, ...] | None = None
     nulls: tuple[int, ...] | None = None
     block: tuple[int, ...] | None = None
+    page: str = ""
 
     @classmethod
     def from_json(cls, data: JsonObject) -> DesignRequest:
@@ -158,6 +167,7 @@ class DesignRequest:
             label_list(data.get("labels")),
             integer_list(data.get("nulls"), LabelError("nulls: expected a list of side indices (integers)")),
             integer_list(data.get("block"), UsageError("block: a list of sizes, one per lattice direction")),
+            page_id(data),
         )
 
 
@@ -239,6 +249,7 @@ class SolveRequest:
     objective: FormObjective | None = None
     count: int = 5
     time_limit: float = 60.0
+    page: str = ""
 
     @classmethod
     def from_json(cls, data: JsonObject) -> SolveRequest:
@@ -278,6 +289,7 @@ class SolveRequest:
             objective,
             count,
             float(limit),
+            page_id(data),
         )
 
     def options(self) -> dict[str, object]:

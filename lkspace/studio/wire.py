@@ -15,6 +15,7 @@ uploads :data:`UPLOAD_TYPE`.
 from __future__ import annotations
 
 import json
+import math
 from collections.abc import Mapping
 from typing import TYPE_CHECKING, Protocol, TypeAlias, runtime_checkable
 
@@ -54,6 +55,10 @@ class NotJson(BadRequest):
     """A POST without ``Content-Type: application/json`` (a cross-site form cannot send one without asking)."""
 
     status = 415
+
+
+class BadUpload(BadRequest):
+    """An uploaded file whose bytes are not a scaffold or design file (not UTF-8, not JSON, no faces; 400)."""
 
 
 class NotAFile(UsageError):
@@ -143,13 +148,32 @@ def content_type(request: Request) -> str:
     return request.headers.get("content-type", "").split(";")[0].strip().lower()
 
 
+class NotFinite(BadRequest):
+    """A request number that is not finite: ``NaN``, ``Infinity`` or one past ±1.8e308 (400)."""
+
+
+def not_finite(text: str) -> float:
+    """Refuse ``NaN`` / ``Infinity`` / ``-Infinity`` in a request body (Python reads them; JSON has no such numbers)."""
+    raise NotFinite(f"request body: {text} is not a JSON number; send finite numbers")
+
+
+def finite(text: str) -> float:
+    """Return the JSON number ``text`` as a float; :class:`NotFinite` if it is past the largest double (``1e999``)."""
+    value = float(text)
+    if not math.isfinite(value):
+        raise NotFinite(f"request body: {text[:30]} is past the largest number (±1.8e308); send finite numbers")
+    return value
+
+
 async def json_of(request: Request) -> JsonObject:
     """Return the JSON object of the request body (``Content-Type: application/json`` required)."""
     if content_type(request) != "application/json":
         raise NotJson("send the request body as application/json")
     raw = await body_of(request, MAX_JSON)
     try:
-        data = json.loads(raw or b"{}", parse_constant=lambda c: None)
+        data = json.loads(raw or b"{}", parse_constant=not_finite, parse_float=finite)
+    except NotFinite:
+        raise
     except (ValueError, RecursionError):
         raise BadRequest("request body: not valid JSON") from None
     if not isinstance(data, dict):

@@ -19,12 +19,16 @@ const handles = new Handles(view, S), strands = new StrandPicker(view, handles, 
 window.studio = { state: S, view, edgeScreen: (e) => view.screenOf(view.edgeMid(e)), colors: () => view.colors };
 Object.assign(window.studio, { handles, strands });
 
+// this page's id: its jobs (identify, clearance, relax, solve) replace only its own, never another tab's
+const PAGE = Math.random().toString(36).slice(2, 12) + Date.now().toString(36);
 async function api(path, body) {
-  const res = await fetch('/api/' + path, body === undefined ? {} : { method: 'POST', headers: { 'Content-Type': 'application/json' }, body: JSON.stringify(body) });
+  const headers = { 'X-Lkspace-Page': PAGE, ...(body === undefined ? {} : { 'Content-Type': 'application/json' }) };
+  const res = await fetch('/api/' + path, body === undefined ? { headers } : { method: 'POST', headers, body: JSON.stringify(body) });
   const data = await res.json().catch(() => ({ error: { message: `HTTP ${res.status}` } }));
-  if (data && data.error && typeof data.error === 'object') throw new Error(data.error.message); // a job's own `error` is text
+  if (data && data.error && typeof data.error === 'object') throw Object.assign(new Error(data.error.message), { status: res.status }); // a job's own `error` is text
   return data;
 }
+const transient = (err) => err.status === 409 || err.status === 429; // superseded or busy: worth asking again
 function message(text) { $('message').hidden = !text; $('message').textContent = text || ''; }
 function esc(s) { return String(s).replace(/[&<>"]/g, (c) => ({ '&': '&amp;', '<': '&lt;', '>': '&gt;', '"': '&quot;' })[c]); }
 
@@ -88,6 +92,7 @@ async function update(t0) {
   const seq = ++S.seq; $('busy').hidden = false;
   clearTimeout(S.measureTimer); // an edit is on its way: the last design's clearance would only compete with it
   const body = { key: S.key, labels: S.labels, nulls: [...S.nulls], block: S.block };
+  if (identifyKey(body) !== S.identifyKey) pending(); // the read-out names the last design: say so at once
   let d;
   try { d = await api('design', { ...body, have: view.strands.have() }); } catch (err) { if (seq === S.seq) { message(err.message); $('busy').hidden = true; } return; }
   if (seq !== S.seq) return; // a newer edit is on its way: this answer is stale
@@ -97,7 +102,7 @@ async function update(t0) {
     await view.setStrands(d.curves || null, d.strands);
   }
   if (seq !== S.seq) return;
-  S.design = d; S.labels = d.labels.map(norm);
+  S.design = d; S.labels = d.labels.map(norm); $('right').classList.remove('pending');
   const t2 = performance.now();
   view.markError(null);
   message(d.failure ? d.failure.message : '');
@@ -129,7 +134,13 @@ async function relaxDraw(seq, body) {
   $('relax-status').textContent = `relaxed in ${d.timing.realize.toFixed(1)} s, clearance ${c.min_distance === null ? '—' : c.min_distance.toFixed(3)}${c.ok ? '' : ' (too close)'}`;
 }
 
-async function measure(seq, body) {
+function pending() { // an edit on its way: the name, matrix and counts shown are the last design's
+  clearTimeout(S.identifyTimer); S.identifyKey = null;
+  $('identify').textContent = 'identify: waiting for the redraw…'; $('linking').innerHTML = '';
+  $('clearance').textContent = 'clearance: waiting for the redraw…'; $('right').classList.add('pending');
+}
+
+async function measure(seq, body, tries = 0) {
   $('clearance').textContent = 'clearance: measuring…';
   try {
     const c = await api('clearance', body);
@@ -138,12 +149,17 @@ async function measure(seq, body) {
     $('clearance').textContent = 'clearance: too close';
     clearTimeout(S.identifyTimer); S.identifyKey = null; $('identify').textContent = 'identify: no embedding to identify'; $('linking').innerHTML = '';
     message(c.message); view.setEdgeColors(S.labels, S.selected, S.pins, c.edge); view.markError(view.edgeMid(c.edge)); view.render();
-  } catch (err) { if (seq === S.seq) $('clearance').textContent = 'clearance: ' + err.message; }
+  } catch (err) {
+    if (seq !== S.seq) return;
+    if (transient(err) && tries < 5) { S.measureTimer = setTimeout(() => measure(seq, body, tries + 1), 500 * (tries + 1)); return; } // stopped or busy: ask again
+    $('clearance').textContent = 'clearance: ' + err.message;
+  }
 }
 
-function scheduleIdentify(body) {
-  const key = JSON.stringify([body.key, body.labels, [...body.nulls].sort((a, b) => a - b)]);
-  if (key === S.identifyKey) return; // the same design: keep its answer (or the identification under way)
+function identifyKey(body) { return JSON.stringify([body.key, body.labels, [...body.nulls].sort((a, b) => a - b)]); }
+function scheduleIdentify(body, tries = 0) {
+  const key = identifyKey(body);
+  if (key === S.identifyKey && !tries) return; // the same design: keep its answer (or the identification under way)
   clearTimeout(S.identifyTimer); S.identifyKey = key;
   $('identify').textContent = S.sc.dim ? 'periodic: an infinite structure (no knot name)' : 'identify: waiting…';
   $('linking').innerHTML = '';
@@ -160,15 +176,22 @@ function scheduleIdentify(body) {
         const j = await api('job/' + job);
         if (S.identifyKey !== key) return;
         if (j.state === 'running') continue;
-        if (j.state !== 'done') { $('identify').textContent = 'identify: ' + (j.error || j.state); if (j.state === 'cancelled') S.identifyKey = null; return; } // cancelled elsewhere: a redraw asks again
+        if (j.state === 'cancelled' && tries < 5) { scheduleIdentify(body, tries + 1); return; } // stopped, not by this page's newer design: ask again
+        if (j.state !== 'done') { $('identify').textContent = 'identify: ' + (j.error || j.state); if (j.state === 'cancelled') S.identifyKey = null; return; }
         const r = j.result;
-        $('identify').innerHTML = `name: <b id="knot-name">${esc(r.name || 'unknown')}</b>${r.common_name ? ` <b id="common-name">(${esc(r.common_name)})</b>` : ''}${r.mirror ? ' (mirror)' : ''} <span class="dim">${esc(r.status)}, ${r.crossings ?? '?'} crossings</span>`;
+        const least = r.least_crossings ?? null, drawn = r.crossings ?? null; // the type's crossing number (tables), or only the diagram found
+        const count = least !== null ? `${least} crossings` : drawn !== null ? `a diagram of ${drawn} crossings found` : 'crossings unknown';
+        $('identify').innerHTML = `name: <b id="knot-name">${esc(r.name || 'unknown')}</b>${r.common_name ? ` <b id="common-name">(${esc(r.common_name)})</b>` : ''}${r.mirror ? ' (mirror)' : ''} <span class="dim">${esc(r.status)}, <span id="knot-crossings">${count}</span></span>`;
         document.dispatchEvent(new CustomEvent('studio:identified', { detail: { key, result: r } }));
         const lm = r.linking_matrix;
         if (lm && lm.length > 1 && lm.length <= 16) $('linking').innerHTML = '<div class="dim">linking matrix</div><table>' + lm.map((row) => '<tr>' + row.map((x) => `<td>${x}</td>`).join('') + '</tr>').join('') + '</table>';
         return;
       }
-    } catch (err) { if (S.identifyKey === key) $('identify').textContent = 'identify: ' + err.message; }
+    } catch (err) {
+      if (S.identifyKey !== key) return;
+      if (transient(err) && tries < 5) { setTimeout(() => S.identifyKey === key && scheduleIdentify(body, tries + 1), 500 * (tries + 1)); return; } // busy: ask again
+      $('identify').textContent = 'identify: ' + err.message;
+    }
   }, 350);
 }
 

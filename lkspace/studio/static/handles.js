@@ -7,6 +7,7 @@ import * as THREE from 'three';
 const COLORS = { pos: '#2050c0', neg: '#c03030', zero: '#8a8a8a', selected: '#ffb000', orbit: '#ffd24a', pin: '#00a060', error: '#ff0000' };
 const LENGTH = 0.8; // a rod covers this fraction of its edge: the gaps at the vertices keep rods apart
 const SLACK_PX = 5; // a click this many pixels off a rod still hits it
+const MID_PX = 8; // a click this near an edge's midpoint on screen picks the edge, even through the strand crossing there
 const MIN_LABEL_PX = 40; // labels of edges shorter than this on screen are left out (zoom in to see them)
 const MAX_LABELS = 200;
 const CELL = [34, 20]; // label grid cell in pixels: one label a cell, nearest first
@@ -96,10 +97,17 @@ export class Handles {
     rc.setFromCamera(new THREE.Vector2(((clientX - rect.left) / rect.width) * 2 - 1, -((clientY - rect.top) / rect.height) * 2 + 1), this.view.camera);
     return { o: rc.ray.origin, d: rc.ray.direction, perPx: 2 * Math.tan((this.view.camera.fov * Math.PI) / 360) / rect.height };
   }
-  pickAt(clientX, clientY) { // {edge, distance along the ray} or null: the nearest rod the ray passes through, else the closest in pixels
+  pickAt(clientX, clientY) { // {edge, distance along the ray} or null: an edge whose midpoint is at the pixel, else the nearest rod the ray passes through, else the closest in pixels
     if (!this.mesh) return null;
     const { o, d, perPx } = this.ray(clientX, clientY), a = this.a, b = this.b, n = a.length / 3, r = this.radius * 1.5;
     let best = null;
+    for (let e = 0; e < n; e++) { // midpoints first: a strand crosses every edge there, and the edge is what a click there means
+      const m = [0, 1, 2].map((k) => (a[3 * e + k] + b[3 * e + k]) / 2), t = (m[0] - o.x) * d.x + (m[1] - o.y) * d.y + (m[2] - o.z) * d.z;
+      if (t <= 0) continue;
+      const px = Math.hypot(o.x + t * d.x - m[0], o.y + t * d.y - m[1], o.z + t * d.z - m[2]) / (perPx * t);
+      if (px <= MID_PX && (!best || px < best.px - 0.5 || (px < best.px + 0.5 && t < best.t))) best = { edge: e, t, px };
+    }
+    if (best) return best;
     for (let e = 0; e < n; e++) {
       const hit = raySegment(o, d, a, 3 * e, b, 3 * e);
       if (!hit) continue;

@@ -1,0 +1,145 @@
+"""Two pages on one studio keep their own jobs; requests with non-finite numbers, a block on a finite
+scaffold or an upload that is not a file are refused with 400; split links and crossing numbers named."""
+
+import time
+
+import pytest
+
+import lkspace
+
+pytest.importorskip("starlette")
+pytest.importorskip("uvicorn")
+httpx = pytest.importorskip("httpx")
+
+from lkspace.studio.answers import table_crossings  # noqa: E402
+from lkspace.studio.app import Studio  # noqa: E402
+from lkspace.studio.server import start_in_thread  # noqa: E402
+
+SLOW_IDENTIFY = {"key": "dodecahedron", "labels": [2] * 30}  # about 10 s to name
+UPLOAD = {"Content-Type": "application/octet-stream"}
+JSON = {"Content-Type": "application/json"}
+
+
+@pytest.fixture(scope="module")
+def url():
+    address, stop = start_in_thread(Studio())
+    yield address
+    stop()
+
+
+def page(url, name):
+    return httpx.Client(base_url=url, timeout=120, headers={"X-Lkspace-Page": name})
+
+
+def state(client, job):
+    return client.get(f"/api/job/{job}").json()["state"]
+
+
+def test_two_pages_never_cancel_each_others_identify(url):
+    with page(url, "tabA") as a, page(url, "tabB") as b:
+        first = a.post("/api/identify", json=SLOW_IDENTIFY).json()["job"]
+        other = b.post("/api/identify", json={**SLOW_IDENTIFY, "labels": [2] * 29 + [1]}).json()["job"]
+        assert state(a, first) == "running" and state(b, other) == "running"  # before: tab B's start cancelled A's
+        again = a.post("/api/identify", json=SLOW_IDENTIFY).json()["job"]  # the same page asking again replaces its own
+        assert state(a, first) == "cancelled" and state(a, again) == "running" and state(b, other) == "running"
+        for client, job in ((a, again), (b, other)):
+            assert client.post(f"/api/job/{job}/cancel", json={}).json()["state"] == "cancelled"
+
+
+def test_a_redraw_on_one_page_leaves_the_other_pages_clearance_running(url):
+    with page(url, "tabA") as a, page(url, "tabB") as b:
+        studio = Studio()  # the jobs of a studio of our own, to start a clearance that stays running
+        real = lkspace.realize("cube", [1] * 12)
+        job = studio.jobs.start("clearance", real, page="tabA")
+        studio.jobs.stop("clearance", "tabB")  # what tab B's redraw does
+        assert job.state == "running"
+        studio.jobs.stop("clearance", "tabA")
+        assert job.state == "cancelled"
+        studio.jobs.shutdown()
+        for client in (a, b):  # and over HTTP: both measured, neither superseded
+            r = client.post("/api/clearance", json={"key": "cube", "labels": [1] * 12})
+            assert r.status_code == 200 and r.json()["ok"], r.text
+
+
+@pytest.mark.parametrize("page_id", ["", "x" * 65, "a b", "é"])
+def test_a_page_id_is_checked(url, page_id):
+    with httpx.Client(base_url=url, timeout=60) as c:
+        r = c.post("/api/clearance", json={"key": "cube", "page": page_id})
+        if page_id == "":
+            assert r.status_code == 200
+        else:
+            assert r.status_code == 400 and r.json()["error"]["message"].startswith("page: "), r.text
+
+
+@pytest.mark.parametrize("number", ["NaN", "Infinity", "-Infinity", "1e999", "-2.5e400"])
+@pytest.mark.parametrize(
+    ("path", "template"),
+    [
+        ("/api/design", '{"key": "cube", "labels": [%s, 1]}'),
+        ("/api/solve", '{"key": "cube", "components": 1, "time_limit": %s}'),
+        ("/api/diagram", '{"key": "cube", "view": [[%s, 0, 0], [0, 1, 0], [0, 0, 1]]}'),
+        ("/api/design-file", '{"key": "cube", "view": {"position": [%s, 0, 0]}}'),
+        ("/api/catalog", '{"offset": %s}'),
+        ("/api/identify", '{"key": "cube", "nulls": [%s]}'),
+    ],
+)
+def test_a_non_finite_number_anywhere_is_refused_with_400_naming_it(url, path, template, number):
+    with httpx.Client(base_url=url, timeout=60) as c:
+        r = c.post(path, content=(template % number).encode(), headers=JSON)
+    assert r.status_code == 400, r.text
+    message = r.json()["error"]["message"]
+    assert message.startswith(f"request body: {number} ") and "finite numbers" in message
+
+
+@pytest.mark.parametrize("path", ["/api/design", "/api/clearance", "/api/identify", "/api/diagram", "/api/export"])
+def test_a_block_on_a_finite_scaffold_is_refused(url, path):
+    with httpx.Client(base_url=url, timeout=60) as c:
+        r = c.post(path, json={"key": "cube", "block": [2, 2, 2], "format": "svg"})
+        assert r.status_code == 400, r.text
+        assert (
+            r.json()["error"]["message"] == "block: this scaffold is finite (no lattice to copy along); send no block"
+        )
+        assert c.post(path, json={"key": "honeycomb:cP", "block": [1, 1, 1], "format": "svg"}).status_code == 200
+
+
+@pytest.mark.parametrize("endpoint", ["/api/upload", "/api/open-design"])
+@pytest.mark.parametrize(
+    ("name", "body"),
+    [("x.obj", b"\xff\xfe\x00"), ("x.json", b"{bad"), ("x.obj", b""), ("x.obj", b"v 0 0 0\n"), ("x.json", b"[1, 2]")],
+)
+def test_an_upload_whose_bytes_are_not_a_file_is_a_400(url, endpoint, name, body):
+    with httpx.Client(base_url=url, timeout=60) as c:
+        r = c.post(endpoint, content=body, headers={**UPLOAD, "X-Filename": name})
+    assert r.status_code == 400 and r.json()["error"]["message"].startswith("x."), r.text
+
+
+def test_crossing_numbers_read_from_names_agree_with_the_tables():
+    pytest.importorskip("database_knotinfo")
+    from lkspace.knots.tables import tables
+
+    entries = [e for group in tables().values() for e in group]
+    assert len(entries) > 1000
+    for e in entries:  # every KnotInfo and LinkInfo name: the table's own crossing_number column
+        assert table_crossings(e.name) == e.crossings, e.name
+        assert table_crossings("m" + e.name) == e.crossings
+    assert [table_crossings(n) for n in ("split: 0_1 + 3_1", "3_1#4_1", None, "unknown")] == [None] * 4
+
+
+@pytest.mark.parametrize(
+    ("labels", "name", "common"),
+    [
+        ([0, 0, -1, -1, 0, 0, 0, 1, 0, 0, 1, 1], "split: 0_1 + 3_1", None),
+        ([1, 1, -1, -1, 1, 1, 0, -1, -1, 0, 1, -1], "split: 0_1 + 0_1", "unlink of 2 components"),
+    ],
+)
+def test_a_split_link_is_named_by_its_pieces(url, labels, name, common):
+    pytest.importorskip("regina")
+    found = lkspace.identify("cube", labels)
+    assert found.split and found.name is None and sorted(found.details["pieces"]) == name[7:].split(" + ")
+    with page(url, "split") as c:
+        job = c.post("/api/identify", json={"key": "cube", "labels": labels}).json()["job"]
+        while (j := c.get(f"/api/job/{job}").json())["state"] == "running":
+            time.sleep(0.2)
+    assert j["state"] == "done", j
+    r = j["result"]
+    assert (r["name"], r["common_name"], r["split"], r["least_crossings"]) == (name, common, True, None)
