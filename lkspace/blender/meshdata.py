@@ -17,7 +17,10 @@ Conventions
   (a loose edge).  ``blender_edge[e]`` goes the other way.
 * **Attributes**: ``lk_twist`` is an ``INT`` attribute on the ``EDGE`` domain (the twist of
   each Blender edge), ``lk_null`` a ``BOOLEAN`` attribute on the ``CORNER`` domain (loop
-  ``l`` null: the side starting at ``l`` is a null edge-side).
+  ``l`` null: the side starting at ``l`` is a null edge-side).  An ``lk_twist`` of another
+  integer type (``INT8``) is read as well, a ``FLOAT`` one when every value is a whole number
+  within ±(2^31 - 1); anything else (another domain or type, a fraction, a huge float) is
+  refused by :func:`check_attribute` / :func:`whole_twists` with a message naming the problem.
 """
 
 from __future__ import annotations
@@ -27,13 +30,53 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ..errors import ScaffoldError
+from ..errors import LabelError, ScaffoldError
 from ..model.scaffold import Scaffold
 
 TWIST = "lk_twist"
 """Name of the edge attribute holding twist labels."""
 NULL = "lk_null"
 """Name of the face-corner attribute marking null edge-sides."""
+
+EXPECTED = {TWIST: ("EDGE", ("INT", "INT8", "FLOAT")), NULL: ("CORNER", ("BOOLEAN",))}
+"""Attribute name -> (its domain, the data types read)."""
+DOMAINS = {"POINT": "Vertex", "EDGE": "Edge", "FACE": "Face", "CORNER": "Face Corner"}
+TYPES = {"INT": "Integer", "INT8": "8-Bit Integer", "FLOAT": "Float", "BOOLEAN": "Boolean", "STRING": "String"}
+TYPES |= {"FLOAT_VECTOR": "Vector", "FLOAT_COLOR": "Color", "BYTE_COLOR": "Byte Color", "FLOAT2": "2D Vector"}
+TYPES |= {"INT32_2D": "2D Integer Vector", "QUATERNION": "Quaternion", "FLOAT4X4": "4x4 Matrix"}
+"""Blender's names (as its Attributes panel shows them) of attribute domains and data types."""
+MAX_TWIST = 2**31 - 1
+"""Largest twist an ``lk_twist`` attribute holds (Blender's integers are 32-bit)."""
+
+
+def check_attribute(name: str, domain: str, data_type: str) -> None:
+    """Refuse (:class:`~lkspace.errors.LabelError`) attribute ``name`` (:data:`TWIST` or :data:`NULL`) of the wrong domain or type."""
+    want_domain, want_types = EXPECTED[name]
+    if domain == want_domain and data_type in want_types:
+        return
+    have = f"{TYPES.get(data_type, data_type)} attribute on the {DOMAINS.get(domain, domain)} domain"
+    want = f"{TYPES[want_types[0]]} attribute on the {DOMAINS[want_domain]} domain"
+    article = "an" if have[0] in "AEIOU8" else "a"
+    raise LabelError(
+        f"{name} is {article} {have}; lkspace reads it as an {want} (Object Data > Attributes: "
+        f"remove {name}, or re-create it as {TYPES[want_types[0]]} on {DOMAINS[want_domain]})"
+    )
+
+
+def whole_twists(values: ArrayLike) -> np.ndarray:
+    """Return the twists of a ``FLOAT`` ``lk_twist`` as int64 if every one is a whole number within ±:data:`MAX_TWIST`.
+
+    Raises :class:`~lkspace.errors.LabelError` naming the first edge that is not (1.5, 2**40, nan).
+    """
+    v = np.asarray(values, np.float64)
+    bad = np.flatnonzero(~np.isfinite(v) | (np.abs(v) > MAX_TWIST) | (v != np.round(v)))
+    if len(bad):
+        e = int(bad[0])
+        raise LabelError(
+            f"{TWIST}: edge {e} holds {v[e]:.10g}, not a whole twist within ±{MAX_TWIST:,} "
+            f"(twists are integers: make {TWIST} an Integer attribute on the Edge domain)"
+        )
+    return v.astype(np.int64)
 
 
 @dataclass(frozen=True)

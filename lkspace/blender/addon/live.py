@@ -4,8 +4,12 @@
 curves; the result (components, holding together, or the error) is kept on the object's
 ``lkspace`` properties for the panel and for scripts.  The handler regenerates the active
 mesh after an edit when the scene's ``lkspace.live`` toggle is on and the mesh, its
-labels or its null sides changed since the last build (:func:`state_key`).  With the
-scene's ``lkspace.relax`` on, the curves are relaxed (:func:`lkspace.relax`).
+labels or its null sides changed since the last build (:func:`state_key`): moving, turning
+or scaling the object rebuilds nothing (the curves are its children and follow it).  With the
+scene's ``lkspace.relax`` on, the curves are relaxed (:func:`lkspace.relax`).  The shape
+controls of the panel (inset, normal offset, tube radius) go to :class:`GeometryParams`, and
+lkspace's advice is reworded to name those controls (:func:`panel_advice`).  The mesh read is
+the mesh as edited: modifiers are not applied (``docs/blender.md``).
 """
 
 from __future__ import annotations
@@ -18,7 +22,7 @@ import numpy as np
 
 from lkspace.blender.meshdata import MeshDesign
 from lkspace.errors import LkspaceError
-from lkspace.geometry.params import RealizeOptions
+from lkspace.geometry.params import GeometryParams, RealizeOptions
 from lkspace.geometry.realization import realize
 from lkspace.strands.tracing import trace
 
@@ -30,11 +34,44 @@ BUSY: set[str] = set()
 """Objects being regenerated now (their own updates must not start another round)."""
 
 
-def state_key(design: MeshDesign, labels: np.ndarray, nulls: np.ndarray, obj: Any, relax: bool = False) -> str:
-    """Return a digest of everything the strands depend on: mesh, labels, nulls, placement, relaxed or not."""
+CONTROLS = {
+    "(try a smaller `radius` or `normal_offset`)": (
+        "(try a smaller Inset or Normal offset in the panel; faces of the mesh that cross or nearly touch need mending first)"
+    ),
+    "`radius`": "Inset",
+    "`normal_offset`": "Normal offset",
+    "`tube_radius`": "Tube radius",
+    "(or a smaller block)": "(or a mesh with fewer faces)",
+}
+"""lkspace's advice -> the panel's words for it: the controls the panel has (Shape row)."""
+
+
+def panel_advice(message: str) -> str:
+    """Return lkspace's error ``message`` with the parameters it advises named as the panel's controls."""
+    for said, control in CONTROLS.items():
+        message = message.replace(said, control)
+    return message
+
+
+def shape(settings: Any) -> GeometryParams:
+    """Return the shape the panel asks for: ``0`` on a control means lkspace's default for the mesh."""
+    if settings is None:
+        return GeometryParams()
+    radius, offset, tube = (float(getattr(settings, k)) for k in ("radius", "normal_offset", "tube_radius"))
+    return GeometryParams(radius=radius or None, normal_offset=offset or None, tube_radius=tube or None)
+
+
+def state_key(
+    design: MeshDesign, labels: np.ndarray, nulls: np.ndarray, relax: bool = False, params: GeometryParams | None = None
+) -> str:
+    """Return a digest of everything the strands depend on: mesh, labels, nulls, relaxed or not, the shape asked for.
+
+    Not the object's placement: the curves are its children, so a move needs no rebuild.
+    """
     h = hashlib.sha256(design.scaffold.content_hash().encode())
-    for arr in (labels, nulls, np.array(obj.matrix_world, np.float64), np.array([relax])):
+    for arr in (labels, nulls, np.array([relax])):
         h.update(np.ascontiguousarray(arr).tobytes())
+    h.update(repr(params).encode())
     return h.hexdigest()[:16]
 
 
@@ -52,21 +89,22 @@ def regenerate(
     ``lkspace.relax``).
     """
     result = obj.lkspace
+    settings = getattr(scene, "lkspace", None)
     if relax is None:
-        settings = getattr(scene, "lkspace", None)
         relax = bool(settings.relax) if settings is not None else False
     BUSY.add(obj.name)
     try:
         design, labels, nulls = meshio.read_design(obj)
-        key = state_key(design, labels, nulls, obj, relax)
+        params = shape(settings)
+        key = state_key(design, labels, nulls, relax, params)
         if measure is None:
             measure = design.scaffold.n_faces <= MEASURE_FACES
         if not force and key == result.key and (result.measured or not measure):
             return True
         traced = trace(design.scaffold, labels, nulls)
         options = RealizeOptions(embedding="refuse" if measure else "later", trace=traced)
-        real = realize(design.scaffold, labels, nulls, relax=relax, options=options)
-        strands.build(obj, real, scene)
+        real = realize(design.scaffold, labels, nulls, params, relax=relax, options=options)
+        strands.build(obj, real, scene, resolution=settings.resolution if settings is not None else 3)
         result.relaxed = relax
         result.components = traced.components
         result.holds_together = traced.holds_together
@@ -78,7 +116,7 @@ def regenerate(
         result.key = key
         return True
     except LkspaceError as exc:
-        result.message = str(exc)
+        result.message = panel_advice(str(exc))
         return False
     finally:
         BUSY.discard(obj.name)
@@ -86,7 +124,7 @@ def regenerate(
 
 @bpy.app.handlers.persistent
 def on_depsgraph_update(scene: Any, depsgraph: Any) -> None:
-    """Regenerate the active mesh after an edit, when ``scene.lkspace.live`` is on."""
+    """Regenerate the active mesh after an edit of its mesh data (not a move), when ``scene.lkspace.live`` is on."""
     settings = getattr(scene, "lkspace", None)
     obj = bpy.context.view_layer.objects.active if bpy.context.view_layer else None
     if settings is None or not settings.live or obj is None or obj.type != "MESH" or obj.name in BUSY:
@@ -94,7 +132,8 @@ def on_depsgraph_update(scene: Any, depsgraph: Any) -> None:
     if not obj.lkspace.key:  # never regenerated: live updates start with the first Regenerate
         return
     for update in depsgraph.updates:
-        if getattr(update.id, "original", None) in (obj, obj.data):
+        original = getattr(update.id, "original", None)
+        if original is obj.data or (original is obj and update.is_updated_geometry):
             regenerate(obj, scene, force=False)
             return
 

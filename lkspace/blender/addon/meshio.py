@@ -14,7 +14,7 @@ from typing import Any
 import bpy
 import numpy as np
 
-from lkspace.blender.meshdata import NULL, TWIST, MeshArrays, MeshDesign, mesh_design
+from lkspace.blender.meshdata import NULL, TWIST, MeshArrays, MeshDesign, check_attribute, mesh_design, whole_twists
 
 
 @contextmanager
@@ -52,23 +52,36 @@ def mesh_arrays(mesh: Any) -> MeshArrays:
     )
 
 
-def attribute_values(mesh: Any, name: str, domain: str, count: int, dtype: type) -> np.ndarray:
-    """Values of attribute ``name`` (zeros when the mesh has none), ``(count,)``."""
-    out: np.ndarray = np.zeros(count, dtype)
-    attribute = mesh.attributes.get(name)
-    if attribute is not None and attribute.domain == domain:
-        attribute.data.foreach_get("value", out)
-    return out
+def attribute(mesh: Any, name: str) -> Any:
+    """Return attribute ``name`` (:data:`TWIST` or :data:`NULL`) of ``mesh``, ``None`` if absent; refuse one of the wrong domain or type."""
+    found = mesh.attributes.get(name)
+    if found is not None:
+        check_attribute(name, found.domain, found.data_type)
+    return found
 
 
 def twists(mesh: Any) -> np.ndarray:
-    """(n_blender_edges,) int64: the ``lk_twist`` of every edge (0 where unset)."""
-    return attribute_values(mesh, TWIST, "EDGE", len(mesh.edges), np.int32).astype(np.int64)
+    """(n_blender_edges,) int64: the ``lk_twist`` of every edge (0 where unset); a float one must hold whole numbers."""
+    values = np.zeros(len(mesh.edges), np.int64)
+    found = attribute(mesh, TWIST)
+    if found is not None and found.data_type == "FLOAT":
+        floats = np.zeros(len(mesh.edges), np.float32)
+        found.data.foreach_get("value", floats)
+        return whole_twists(floats)
+    if found is not None:
+        ints = np.zeros(len(mesh.edges), np.int32)
+        found.data.foreach_get("value", ints)
+        values[:] = ints
+    return values
 
 
 def loop_nulls(mesh: Any) -> np.ndarray:
-    """(n_loops,) bool: the ``lk_null`` of every face corner."""
-    return attribute_values(mesh, NULL, "CORNER", len(mesh.loops), bool)
+    """(n_loops,) bool: the ``lk_null`` of every face corner (none when the mesh has no ``lk_null``)."""
+    out = np.zeros(len(mesh.loops), bool)
+    found = attribute(mesh, NULL)
+    if found is not None:
+        found.data.foreach_get("value", out)
+    return out
 
 
 def read_design(obj: Any) -> tuple[MeshDesign, np.ndarray, np.ndarray]:

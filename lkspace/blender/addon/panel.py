@@ -38,6 +38,24 @@ class LkspaceSettings(bpy.types.PropertyGroup):
     live: bpy.props.BoolProperty(name="Live", default=True, update=live_toggled, description="Regenerate on edits")  # type: ignore[valid-type]
     relax: bpy.props.BoolProperty(name="Relax", description="Strands drawn tight (lkspace.relax, up to ~10 s)")  # type: ignore[valid-type]
     engine: bpy.props.EnumProperty(name="Engine", items=ENGINES)  # type: ignore[valid-type]
+    radius: bpy.props.FloatProperty(  # type: ignore[valid-type]
+        name="Inset",
+        min=0.0,
+        default=0.0,
+        description="Distance of the strands from the edges in their faces (0: automatic)",
+    )
+    normal_offset: bpy.props.FloatProperty(  # type: ignore[valid-type]
+        name="Normal offset", min=0.0, default=0.0, description="Lift of the strands off the faces (0: automatic)"
+    )
+    tube_radius: bpy.props.FloatProperty(  # type: ignore[valid-type]
+        name="Tube radius",
+        min=0.0,
+        default=0.0,
+        description="Radius of the strand tubes (0: automatic, clear of each other)",
+    )
+    resolution: bpy.props.IntProperty(  # type: ignore[valid-type]
+        name="Resolution", min=0, max=16, default=3, description="Bevel resolution of the tubes (round segments)"
+    )
 
 
 class LkspaceResult(bpy.types.PropertyGroup):
@@ -51,6 +69,7 @@ class LkspaceResult(bpy.types.PropertyGroup):
     measured: bpy.props.BoolProperty(name="Clearance measured")  # type: ignore[valid-type]
     relaxed: bpy.props.BoolProperty(name="Relaxed")  # type: ignore[valid-type]
     key: bpy.props.StringProperty(name="State")  # type: ignore[valid-type]
+    strands: bpy.props.StringProperty(name="Strand collection")  # type: ignore[valid-type]
 
 
 class LKSPACE_OT_scene_preset(bpy.types.Operator):  # noqa: N801
@@ -110,6 +129,14 @@ class LKSPACE_PT_design(bpy.types.Panel):  # noqa: N801
         row.prop(settings, "live")
         row.prop(settings, "relax")
         row.operator("lkspace.regenerate", text="Regenerate")
+        row = read.row(align=True)
+        row.prop(settings, "radius")
+        row.prop(settings, "normal_offset")
+        row = read.row(align=True)
+        row.prop(settings, "tube_radius")
+        row.prop(settings, "resolution")
+        if any(m.show_viewport for m in obj.modifiers):
+            read.label(text="Modifiers not applied: strands follow the mesh as edited", icon="INFO")
         result = obj.lkspace
         if result.message:
             for line in wrap(result.message):

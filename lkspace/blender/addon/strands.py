@@ -1,5 +1,10 @@
 """Strands as Blender curve objects: one per component, in a collection named after the mesh.
 
+The collection made for a mesh object is remembered on it (``object.lkspace.strands``), so
+after a rename the next build renames that collection and replaces its curves rather than
+leaving them beside a new one.  Each curve is a child of the mesh object: it follows the
+object's moves without a rebuild.
+
 Each curve is a poly spline through the realized points (``lkspace.realize``) with a
 round bevel (the tube) and the material of its colour slot: slot ``k`` is the ``k``-th
 strand in :func:`lkspace.blender.editing.component_order`, coloured by lkspace's palette
@@ -39,11 +44,15 @@ def material(slot: int) -> Any:
 
 
 def strand_collection(obj: Any, scene: Any) -> Any:
-    """Return the collection named after mesh object ``obj``, linked into ``scene`` (created if needed)."""
-    coll = bpy.data.collections.get(obj.name)
+    """Return the strand collection of mesh object ``obj`` named after it, linked into ``scene`` (created if needed)."""
+    made = bpy.data.collections.get(obj.lkspace.strands) if obj.lkspace.strands else None
+    coll = made if made is not None and made.get(SOURCE) is not None else bpy.data.collections.get(obj.name)
     if coll is None:
         coll = bpy.data.collections.new(obj.name)
-        coll[SOURCE] = obj.name
+    if coll.name != obj.name and bpy.data.collections.get(obj.name) is None:
+        coll.name = obj.name  # the object was renamed: its collection follows
+    coll[SOURCE] = obj.name
+    obj.lkspace.strands = coll.name
     if coll.name not in scene.collection.children and not any(
         c.name == coll.name for c in scene.collection.children_recursive
     ):
@@ -62,13 +71,13 @@ def clear(coll: Any) -> None:
             bpy.data.curves.remove(data)
 
 
-def curve_object(name: str, points: np.ndarray, closed: bool, radius: float, slot: int) -> Any:
-    """Make a curve object through ``points (n, 3)`` with a round bevel of ``radius``."""
+def curve_object(name: str, points: np.ndarray, closed: bool, radius: float, slot: int, resolution: int = 3) -> Any:
+    """Make a curve object through ``points (n, 3)`` with a round bevel of ``radius`` (``resolution``: Blender's bevel resolution)."""
     data = bpy.data.curves.new(name, type="CURVE")
     data.dimensions = "3D"
     data.bevel_mode = "ROUND"
     data.bevel_depth = radius
-    data.bevel_resolution = 3
+    data.bevel_resolution = resolution
     data.fill_mode = "FULL"
     data.use_fill_caps = not closed
     spline = data.splines.new("POLY")
@@ -79,10 +88,12 @@ def curve_object(name: str, points: np.ndarray, closed: bool, radius: float, slo
     return bpy.data.objects.new(name, data)
 
 
-def build(obj: Any, real: Realization, scene: Any, colour_slots: np.ndarray | None = None) -> list[Any]:
+def build(
+    obj: Any, real: Realization, scene: Any, colour_slots: np.ndarray | None = None, resolution: int = 3
+) -> list[Any]:
     """Replace the strand curves of mesh object ``obj`` with those of ``real``; return them.
 
-    Curves follow the mesh object (they share its world matrix); ``colour_slots[s]`` is the
+    Curves are children of the mesh object (they follow its moves); ``colour_slots[s]`` is the
     colour slot of strand ``s`` (default: :func:`component_order`).  Each curve carries the
     custom properties ``lk_strand`` (its strand in lkspace's trace) and ``lk_faces`` (the
     polygon of each corner it turns around, in order: ``faces`` of ``lkspace trace --json``).
@@ -98,11 +109,12 @@ def build(obj: Any, real: Realization, scene: Any, colour_slots: np.ndarray | No
     for k, points in enumerate(real.curves):
         slot = int(slots[real.strand_of[k]])
         name = f"{obj.name}.strand.{k:02d}"
-        curve = curve_object(name, np.asarray(points, np.float64), bool(real.closed[k]), real.tube_radius, slot)
+        points = np.asarray(points, np.float64)
+        curve = curve_object(name, points, bool(real.closed[k]), real.tube_radius, slot, resolution)
         curve[SOURCE] = obj.name
         curve["lk_strand"] = int(real.strand_of[k])
         curve["lk_faces"] = real.trace.strand_faces(int(real.strand_of[k])).tolist()
-        curve.matrix_world = obj.matrix_world.copy()
+        curve.parent = obj  # object-space points: the curve follows the mesh object wherever it goes
         coll.objects.link(curve)
         made.append(curve)
     return made
