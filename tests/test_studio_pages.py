@@ -143,3 +143,70 @@ def test_a_split_link_is_named_by_its_pieces(url, labels, name, common):
     assert j["state"] == "done", j
     r = j["result"]
     assert (r["name"], r["common_name"], r["split"], r["least_crossings"]) == (name, common, True, None)
+
+
+BASES = {  # each endpoint with a body it answers 200, and the fields it reads
+    "scaffold": {"key": "cube"},
+    "orbits": {"key": "tetrahedron"},
+    "design": {"key": "cube", "labels": [1] * 12, "nulls": [], "relax": False, "have": []},
+    "clearance": {"key": "cube", "labels": [1] * 12},
+    "identify": {"key": "tetrahedron", "labels": [1] * 6},
+    "solve": {
+        "key": "tetrahedron",
+        "components": 1,
+        "label_set": "-1..1",
+        "no_zero": True,
+        "count": 1,
+        "time_limit": 1,
+    },
+    "diagram": {"key": "cube", "labels": [1] * 12, "view": [[1, 0, 0], [0, 1, 0], [0, 0, 1]]},
+    "thumbnails": {"key": "cube", "designs": [[1] * 12], "names": [None]},
+    "design-file": {"key": "cube", "labels": [1] * 12, "view": None},
+    "filename": {"key": "cube", "labels": [1] * 12},
+    "export": {"key": "tetrahedron", "labels": [1] * 6, "format": "json"},
+}
+KINDS = {  # every kind of JSON value, as the text a client sends
+    "null": "null",
+    "true": "true",
+    "zero": "0",
+    "negative": "-1",
+    "huge int": "1" + "0" * 30,
+    "fraction": "1.5",
+    "tiny": "5e-324",
+    "string": '"x"',
+    "empty list": "[]",
+    "list of string": '["x"]',
+    "nested list": "[[1]]",
+    "object": '{"a": 1}',
+}
+NON_FINITE = ["NaN", "Infinity", "-Infinity", "1e999"]
+
+
+def with_field(base, field, text):
+    """The base body as JSON text with ``field`` replaced by the raw JSON ``text``."""
+    import json
+
+    return (
+        "{" + ", ".join(f'"{k}": {text if k == field else json.dumps(v)}' for k, v in {**base, field: 0}.items()) + "}"
+    )
+
+
+SLOW = {"export", "identify", "solve", "clearance", "design"}
+"""Endpoints whose accepted bodies start a worker or relax (seconds each): their sweep runs with ``-m slow``."""
+
+
+@pytest.mark.parametrize("path", [pytest.param(p, marks=pytest.mark.slow) if p in SLOW else p for p in sorted(BASES)])
+def test_every_field_of_every_endpoint_with_every_json_value_kind(url, path):
+    base = BASES[path]
+    with page(url, "fuzz-" + path.replace("-", "")) as c:
+        assert c.post(f"/api/{path}", json=base).status_code == 200
+        for field in [*base, "page", "block"]:
+            for kind, text in KINDS.items():
+                r = c.post(f"/api/{path}", content=with_field(base, field, text).encode(), headers=JSON)
+                assert r.status_code < 500, (field, kind, r.text)
+                if r.status_code != 200:
+                    error = r.json()["error"]
+                    assert set(error) == {"type", "message"} and error["message"], (field, kind, r.text)
+            for token in NON_FINITE:
+                r = c.post(f"/api/{path}", content=with_field(base, field, f"[{token}]").encode(), headers=JSON)
+                assert r.status_code == 400 and "finite numbers" in r.json()["error"]["message"], (field, token)
