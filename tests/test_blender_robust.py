@@ -149,3 +149,16 @@ def test_the_shape_controls_reach_the_strands(blender):
     key = obj.lkspace.key
     blender.scene.lkspace.radius = 0.1
     assert regenerate() == {"FINISHED"} and obj.lkspace.key != key  # another shape: another state
+
+
+def test_too_many_points_is_advised_in_the_panels_terms():
+    from lkspace.errors import TooLargeError
+    from lkspace.geometry.limits import check_points
+
+    with pytest.raises(TooLargeError) as refused:  # what a 50,000-face grid gets from realize
+        check_points("Grid", 7.29e6, 4_000_000)
+    advice = live.panel_advice(str(refused.value))
+    assert (
+        advice
+        == "the curves of Grid would have about 7,290,000 points > 4,000,000; use smaller twists (or a mesh with fewer faces)"
+    )

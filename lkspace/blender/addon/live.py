@@ -42,6 +42,7 @@ CONTROLS = {
     "`normal_offset`": "Normal offset",
     "`tube_radius`": "Tube radius",
     "(or a smaller block)": "(or a mesh with fewer faces)",
+    "max_points: ": "",
 }
 """lkspace's advice -> the panel's words for it: the controls the panel has (Shape row)."""
 
