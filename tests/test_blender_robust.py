@@ -149,6 +149,9 @@ def test_the_shape_controls_reach_the_strands(blender):
     key = obj.lkspace.key
     blender.scene.lkspace.radius = 0.1
     assert regenerate() == {"FINISHED"} and obj.lkspace.key != key  # another shape: another state
+    blender.scene.lkspace.live = True
+    blender.scene.lkspace.tube_radius = 0.07  # with Live on, a shape change rebuilds at once
+    assert bpy.data.objects["Cube.strand.00"].data.bevel_depth == pytest.approx(0.07)
 
 
 def test_too_many_points_is_advised_in_the_panels_terms():

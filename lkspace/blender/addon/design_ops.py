@@ -96,10 +96,11 @@ class LKSPACE_OT_export(DesignOperator):  # noqa: N801
                 bpy.path.abspath(self.filepath),
                 labels,
                 nulls,
+                params=live.shape(context.scene.lkspace),  # the strands' shape as the panel sets it
                 options=PrintOptions(thickness=self.thickness, clearance=self.clearance, scale=self.scale),
             )
         except LkspaceError as exc:
-            self.report({"ERROR"}, str(exc))
+            self.report({"ERROR"}, live.panel_advice(str(exc)))
             return {"CANCELLED"}
         self.report({"INFO"}, f"wrote {self.filepath}")
         return {"FINISHED"}

@@ -22,6 +22,13 @@ def live_toggled(settings: Any, context: Any) -> None:
         live.regenerate(obj, context.scene)
 
 
+def shape_changed(settings: Any, context: Any) -> None:
+    """Rebuild the active mesh's strands when a shape control changes, if it was built and *Live* is on."""
+    obj = context.active_object
+    if settings.live and obj is not None and obj.type == "MESH" and obj.lkspace.key:
+        live.regenerate(obj, context.scene)
+
+
 class LkspaceSettings(bpy.types.PropertyGroup):
     """Scene settings of the lkspace panel."""
 
@@ -40,21 +47,32 @@ class LkspaceSettings(bpy.types.PropertyGroup):
     engine: bpy.props.EnumProperty(name="Engine", items=ENGINES)  # type: ignore[valid-type]
     radius: bpy.props.FloatProperty(  # type: ignore[valid-type]
         name="Inset",
+        update=shape_changed,
         min=0.0,
         default=0.0,
         description="Distance of the strands from the edges in their faces (0: automatic)",
     )
     normal_offset: bpy.props.FloatProperty(  # type: ignore[valid-type]
-        name="Normal offset", min=0.0, default=0.0, description="Lift of the strands off the faces (0: automatic)"
+        name="Normal offset",
+        update=shape_changed,
+        min=0.0,
+        default=0.0,
+        description="Lift of the strands off the faces (0: automatic)",
     )
     tube_radius: bpy.props.FloatProperty(  # type: ignore[valid-type]
         name="Tube radius",
+        update=shape_changed,
         min=0.0,
         default=0.0,
         description="Radius of the strand tubes (0: automatic, clear of each other)",
     )
     resolution: bpy.props.IntProperty(  # type: ignore[valid-type]
-        name="Resolution", min=0, max=16, default=3, description="Bevel resolution of the tubes (round segments)"
+        name="Resolution",
+        update=shape_changed,
+        min=0,
+        max=16,
+        default=3,
+        description="Bevel resolution of the tubes (round segments)",
     )
 
 
