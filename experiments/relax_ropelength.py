@@ -176,7 +176,9 @@ def main() -> None:
             kept.write_text(json.dumps(row) + "\n")
             load.append(os.getloadavg()[0])
         rows.append(row)
-        shown = f"{row['ratio']:.3f} in {row['steps']} steps, {row['seconds']:.1f} s" if "ratio" in row else row["error"]
+        shown = (
+            f"{row['ratio']:.3f} in {row['steps']} steps, {row['seconds']:.1f} s" if "ratio" in row else row["error"]
+        )
         print(f"{name}: {shown}", flush=True)
     data = {
         "provenance": provenance(ROOT),

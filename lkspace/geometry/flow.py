@@ -235,6 +235,7 @@ def rope_flow(
     diameter = float(options.diameter)
     h = diameter / options.points_per_diameter
     pts_list = [resample_closed(np.asarray(c, np.float64), h) for c in curves]
+    ring, points = _Ring.of(pts_list), np.vstack(pts_list)
     best: FlowResult | None = None
     anchor, anchored = np.inf, 0  # the best ropelength when it last dropped by TOLERANCE, and the iteration
     stopped: Stop = "steps"
@@ -247,7 +248,7 @@ def rope_flow(
                 break
             if it % RESAMPLE_EVERY == 0:
                 h = diameter / options.points_per_diameter
-                pts_list = [resample_closed(c, h) for c in pts_list]
+                pts_list = [resample_closed(c, h) for c in np.split(points, ring.starts[1:])]
                 ring = _Ring.of(pts_list)
                 points = np.vstack(pts_list)
                 lengths = _ring_lengths(points, ring)
@@ -268,7 +269,6 @@ def rope_flow(
                 if gap >= 0.98 * diameter and thick >= 0.49 * diameter:
                     diameter *= 1 + options.grow
             points = points + _step(points, ring, radius, near, diameter, h, options.pull)
-            pts_list = np.split(points, ring.starts[1:])
             lengths = _ring_lengths(points, ring)
             it += 1
             step.advance()
@@ -276,7 +276,8 @@ def rope_flow(
                 step.note(f"ropelength {(best.ropelength if best else lengths.sum() / (0.5 * diameter)):.1f}")
     if best is not None:
         return replace(best, iterations=it, stopped=stopped)
-    return FlowResult(pts_list, diameter, float(lengths.sum()) / (0.5 * diameter), it, stopped)
+    curves_out = np.split(points, ring.starts[1:])
+    return FlowResult(curves_out, diameter, float(lengths.sum()) / (0.5 * diameter), it, stopped)
 
 
 def _step(
@@ -296,8 +297,9 @@ def _step(
     n = len(points)
     near = np.full(n, max(diameter, 4 * h))
     if len(d):
-        np.minimum.at(near, i, d)
-        np.minimum.at(near, j, d)
+        close = d < 0.75 * h  # only these lower the cap below h / 4
+        np.minimum.at(near, i[close], d[close])
+        np.minimum.at(near, j[close], d[close])
         over = d < diameter
         if over.any():
             oi, oj, od = i[over], j[over], d[over]
