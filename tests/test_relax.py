@@ -171,3 +171,24 @@ def test_prints_pass_at_one_millimetre(capsys, tmp_path, mesh, relax):
     code, out, err = run(capsys, "export", mesh, "--thickness", 1, "--units", "mm", "--scale", 20, "-o", path, *relax)
     assert code == 0 and path.stat().st_size > 0, err
     assert "smallest gap" in out
+
+
+def test_neighbour_list_holds_every_close_pair_after_capped_steps():
+    # the list built at a resampling must hold every pair within reach after the steps
+    # until the next one: each step moves a point at most h / 4 (the flow's cap)
+    rng = np.random.default_rng(7)
+    curves = lkspace.realize("dihedron:3", 1).curves
+    h = 0.02
+    pts = [flow.resample_closed(c, h) for c in curves]
+    ring = flow._Ring.of(pts)
+    points = np.vstack(pts)
+    reach = 8 * h
+    listed = flow._neighbour_list(points, ring, reach, flow.RESAMPLE_EVERY, h, 0.0)
+    for _ in range(flow.RESAMPLE_EVERY - 1):
+        kick = rng.normal(size=points.shape)
+        points = points + 0.25 * h * kick / np.linalg.norm(kick, axis=1)[:, None]
+    lengths = flow._ring_lengths(points, ring)
+    got = listed.within(points, lengths, reach)
+    want = flow.distinct_pairs(points, ring, lengths, reach)
+    assert len(want.i) > 0
+    assert sorted(zip(got.i.tolist(), got.j.tolist())) == sorted(zip(want.i.tolist(), want.j.tolist()))
