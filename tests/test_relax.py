@@ -175,20 +175,22 @@ def test_prints_pass_at_one_millimetre(capsys, tmp_path, mesh, relax):
 
 def test_neighbour_list_holds_every_close_pair_after_capped_steps():
     # the list built at a resampling must hold every pair within reach after the steps
-    # until the next one: each step moves a point at most h / 4 (the flow's cap)
-    rng = np.random.default_rng(7)
-    curves = lkspace.realize("dihedron:3", 1).curves
-    h = 0.02
-    pts = [flow.resample_closed(c, h) for c in curves]
-    ring = flow._Ring.of(pts)
-    points = np.vstack(pts)
-    reach = 8 * h
+    # until the next one (each moves a point at most h / 4, the flow's cap): two circles
+    # in parallel planes, just beyond reach apart, close in at full speed
+    h, reach = 0.02, 0.16
+    t = np.linspace(0, 2 * np.pi, 315, endpoint=False)
+    circle = np.column_stack([np.cos(t), np.sin(t), 0 * t])
+    gap = reach + 0.5 * h * (flow.RESAMPLE_EVERY - 1) - 0.01 * h
+    points = np.vstack([circle, circle + [0, 0, gap]])
+    ring = flow._Ring.of([circle, circle])
     listed = flow._neighbour_list(points, ring, reach, flow.RESAMPLE_EVERY, h, 0.0)
-    for _ in range(flow.RESAMPLE_EVERY - 1):
-        kick = rng.normal(size=points.shape)
-        points = points + 0.25 * h * kick / np.linalg.norm(kick, axis=1)[:, None]
-    lengths = flow._ring_lengths(points, ring)
-    got = listed.within(points, lengths, reach)
-    want = flow.distinct_pairs(points, ring, lengths, reach)
-    assert len(want.i) > 0
+    closer = points + np.where(np.arange(len(points)) < len(circle), 1, -1)[:, None] * [
+        0,
+        0,
+        (flow.RESAMPLE_EVERY - 1) * h / 4,
+    ]
+    lengths = flow._ring_lengths(closer, ring)
+    got = listed.within(closer, lengths, reach)
+    want = flow.distinct_pairs(closer, ring, lengths, reach)
+    assert len(want.i) >= len(circle)
     assert sorted(zip(got.i.tolist(), got.j.tolist())) == sorted(zip(want.i.tolist(), want.j.tolist()))
