@@ -106,7 +106,7 @@ def ropelength(curves: list[tuple[np.ndarray, bool]], n_points: int = 6000) -> d
             crit = _doubly_critical(pts, prev, nxt, i, j)
             if crit.any():
                 best = float(np.linalg.norm(pts[i[crit]] - pts[j[crit]], axis=1).min())
-        radius *= 2
+        radius *= 1.25  # the first radius holding a doubly critical pair holds the least one
     half = best / 2  # inf when no approach is closer than twice the curvature radius
     thickness = min(rc, half)
     return {

@@ -19,7 +19,7 @@ from .numbers import Finite
 
 if TYPE_CHECKING:
     from ..formats.options import FormatOptions, PictureOptions
-    from ..geometry.realization import GeometryParams
+    from ..geometry.realization import GeometryParams, Realization
 
 F = TypeVar("F", bound=Callable[..., Any])
 
@@ -198,6 +198,18 @@ def format_options(
 FORMAT_HELP = "Output file: .obj, .ply, .glb, .stl, .3mf, .png or .svg (the format follows the extension)."
 
 
+def relaxed(real: Realization, steps: int | None, time_limit: float | None) -> Realization:
+    """Return ``real`` relaxed (:func:`lkspace.geometry.relax.relax`); say on stderr when a limit stopped it first."""
+    from ..geometry.relax import RELAX_STEPS, relax
+
+    out = relax(real, RELAX_STEPS if steps is None else steps, time_limit)
+    note = None if out.relaxation is None else out.relaxation.note()
+    if note is not None:
+        flag = "--relax-steps" if out.relaxation is not None and out.relaxation.stopped == "steps" else "--relax-time"
+        click.echo(f"lkspace: note: {note}; raise {flag} to draw it tighter", err=True)
+    return out
+
+
 def picture_options(func: F) -> F:
     """Add the picture options --view, --size, --background, --colors, --diagram, --title."""
     options = [
@@ -276,7 +288,19 @@ def fabrication_options(func: F) -> F:
 @click.option(
     "--relax",
     is_flag=True,
-    help="Relax the strands toward a tight shape without changing the link type (finite scaffolds; up to 10 s).",
+    help="Relax the strands toward a tight shape without changing the link type (finite scaffolds; until it converges).",
+)
+@click.option(
+    "--relax-steps",
+    type=click.IntRange(1),
+    metavar="N",
+    help="Relax (implies --relax) for at most N steps (default 50,000; designs converge in hundreds to thousands).",
+)
+@click.option(
+    "--relax-time",
+    type=Finite(0, low_open=True),
+    metavar="SECONDS",
+    help="Relax (implies --relax) for at most SECONDS, > 0 (default: no limit; a run it stops depends on the load).",
 )
 @fabrication_options
 @picture_options
@@ -296,6 +320,8 @@ def export_cmd(
     helix_radius: float | None,
     pitch: float | None,
     relax: bool,
+    relax_steps: int | None,
+    relax_time: float | None,
     thickness: float | None,
     clearance: float | None,
     units: str | None,
@@ -315,6 +341,7 @@ def export_cmd(
       lkspace export dihedron:3 --twist 1 -o trefoil.png
       lkspace export dihedron:3 --twist 1 --diagram -o trefoil.svg
       lkspace export dihedron:3 --twist 1 --relax -o tight-trefoil.png
+      lkspace export dodecahedron --twist 1 --relax-time 60 -o tight.obj
       lkspace export tetrahedron --twist 1 -o borromean.glb
       lkspace export cube --twist 2 -o chainmail.stl --thickness 0.1 --clearance 0.05 --scale 10
       lkspace export honeycomb:cP --twist 2,1,1 --block 2x2x2 -o block.png --size 480x480
@@ -340,6 +367,7 @@ def export_cmd(
         )
     if thickness is not None and tube_radius is not None:
         raise UsageError("--thickness (a diameter in output units) and --tube-radius are exclusive")
+    relax = relax or relax_steps is not None or relax_time is not None
     scaffold, labels, nulls = resolve_design(ctx, mesh, twist_spec, null_spec, row)
     params = params_of(radius, normal_offset, tube_radius, helix_radius, pitch)
     sizes = block_sizes(scaffold, block)
@@ -352,7 +380,9 @@ def export_cmd(
             real = realize_block(scaffold, labels, nulls, params, sizes, max_points=max_points)
     else:
         with point_budget(output, tubes) as max_points:
-            real = realize(scaffold, labels, nulls, params, relax=relax, options=RealizeOptions(max_points=max_points))
+            real = realize(scaffold, labels, nulls, params, options=RealizeOptions(max_points=max_points))
+            if relax:
+                real = relaxed(real, relax_steps, relax_time)
     options = format_options(ext, tubes, thickness, clearance, units, scale, picture)
     pieces = None
     if isinstance(options, PrintOptions):

@@ -25,7 +25,7 @@ ropelength (length / thickness) in the manner of Pierański's SONO algorithm; wi
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Literal, NamedTuple
 
 import numpy as np
@@ -39,8 +39,14 @@ FOLD = 1.5
 RESAMPLE_EVERY = 5
 """Iterations between uniform resamplings."""
 
-PATIENCE = 400
-"""A growing flow stops when its best ropelength has not dropped by 0.1 % in this many iterations."""
+WINDOW = 400
+"""A growing flow has converged when its best ropelength dropped by less than :data:`TOLERANCE` over this many iterations."""
+
+TOLERANCE = 1e-3
+"""Relative drop of the best ropelength over :data:`WINDOW` iterations below which a growing flow has converged."""
+
+Stop = Literal["converged", "steps", "time"]
+"""Why a flow stopped: its ropelength converged, or it reached its step or time limit first."""
 
 
 @dataclass(frozen=True)
@@ -60,7 +66,8 @@ class FlowOptions:
     iterations : int
         Most iterations.
     time_limit : float or None
-        Seconds after which the flow stops (``None``: none).
+        Seconds after which the flow stops early (``None``: none, the default, so that
+        the result depends on the input only, never on the machine's load).
     """
 
     diameter: float
@@ -86,12 +93,15 @@ class FlowResult:
         Total length / (``diameter`` / 2).
     iterations : int
         Iterations run.
+    stopped : {"converged", "steps", "time"}
+        Why the flow stopped (:data:`Stop`; a flow without growth runs all its iterations: ``"steps"``).
     """
 
     curves: list[np.ndarray]
     diameter: float
     ropelength: float
     iterations: int
+    stopped: Stop = "steps"
 
 
 def resample_closed(curve: np.ndarray, spacing: float, least: int = 12) -> np.ndarray:
@@ -150,23 +160,62 @@ class Pairs(NamedTuple):
     """(n_pairs,) float64: their distance"""
 
 
+class _Near(NamedTuple):
+    """Candidate pairs of flow points, with what tells distinct pieces apart (:meth:`within`)."""
+
+    i: np.ndarray
+    j: np.ndarray
+    owner: np.ndarray
+    """(m,) int64: the curve of ``i``"""
+    share: np.ndarray
+    """(m,) float64: the points' separation along their curve as a share of its length (``inf``: two curves)"""
+
+    @staticmethod
+    def of(pairs: np.ndarray, ring: _Ring) -> _Near:
+        """Candidates of the ``(m, 2)`` index ``pairs`` on ``ring``."""
+        i, j = pairs[:, 0], pairs[:, 1]
+        oi = ring.owner[i]
+        steps = np.abs(ring.index[i] - ring.index[j])
+        steps = np.minimum(steps, ring.sizes[oi] - steps)
+        share = np.where(oi == ring.owner[j], steps / ring.sizes[oi], np.inf)
+        return _Near(i, j, oi, share)
+
+    def within(self, points: np.ndarray, lengths: np.ndarray, radius: float) -> Pairs:
+        """Return the candidates on distinct pieces within ``radius`` (:class:`Pairs`); ``lengths``: of the curves."""
+        diff = points[self.i] - points[self.j]
+        d2 = np.einsum("ij,ij->i", diff, diff)
+        m = d2 <= radius * radius
+        d = np.sqrt(d2[m])
+        keep = self.share[m] * lengths[self.owner[m]] > FOLD * d
+        return Pairs(self.i[m][keep], self.j[m][keep], d[keep])
+
+
 def distinct_pairs(points: np.ndarray, ring: _Ring, lengths: np.ndarray, radius: float) -> Pairs:
     """Return the pairs of points on distinct pieces within ``radius`` (:class:`Pairs`)."""
     pairs = cKDTree(points).query_pairs(radius, output_type="ndarray")
-    if not len(pairs):
-        return Pairs(np.zeros(0, np.int64), np.zeros(0, np.int64), np.zeros(0))
-    i, j = pairs[:, 0], pairs[:, 1]
-    d = np.linalg.norm(points[i] - points[j], axis=1)
-    oi = ring.owner[i]
-    steps = np.abs(ring.index[i] - ring.index[j])
-    steps = np.minimum(steps, ring.sizes[oi] - steps)
-    along = steps * lengths[oi] / ring.sizes[oi]
-    keep = (oi != ring.owner[j]) | (along > FOLD * d)
-    return Pairs(i[keep], j[keep], d[keep])
+    return _Near.of(pairs.reshape(-1, 2), ring).within(points, lengths, radius)
 
 
 def _lengths(curves: list[np.ndarray]) -> np.ndarray:
     return np.array([np.linalg.norm(np.diff(np.vstack([c, c[:1]]), axis=0), axis=1).sum() for c in curves])
+
+
+def _ring_lengths(points: np.ndarray, ring: _Ring) -> np.ndarray:
+    """Length of every closed curve of the concatenated ``points`` ``(n_curves,)``."""
+    seg = points[ring.next] - points
+    return np.bincount(ring.owner, np.sqrt(np.einsum("ij,ij->i", seg, seg)), minlength=len(ring.sizes))
+
+
+def _neighbour_list(points: np.ndarray, ring: _Ring, reach: float, steps: int, h: float, grow: float) -> _Near:
+    """Return the pairs of ``points`` that may come within ``reach`` in the next ``steps`` steps.
+
+    A step moves a point at most ``h / 4`` (the cap of :func:`_step`), so two points close
+    in by at most ``h / 2`` per step; the reach itself grows with the diameter, by at
+    most ``(1 + grow)`` per step.
+    """
+    radius = reach * (1 + grow) ** steps + 0.5 * h * steps
+    tree = cKDTree(points, compact_nodes=False, balanced_tree=False)
+    return _Near.of(tree.query_pairs(radius, output_type="ndarray").reshape(-1, 2), ring)
 
 
 def rope_flow(
@@ -177,50 +226,58 @@ def rope_flow(
     ``label`` names the task in the progress lines.
 
     With ``grow`` > 0 the result is the iterate of lowest ropelength among those where
-    the rope fitted; with ``grow`` = 0 the last iterate.
+    the rope fitted, and the flow stops when it has **converged**: its best ropelength
+    dropped by less than :data:`TOLERANCE` (relative) over the last :data:`WINDOW`
+    iterations; else at ``options.iterations`` or ``options.time_limit`` (``stopped``
+    says which).  With ``grow`` = 0 the last iterate after all the iterations.  The
+    result depends on the curves and options only (a time limit only stops early).
     """
     diameter = float(options.diameter)
     h = diameter / options.points_per_diameter
     pts_list = [resample_closed(np.asarray(c, np.float64), h) for c in curves]
+    ring, points = _Ring.of(pts_list), np.vstack(pts_list)
     best: FlowResult | None = None
-    improved = 0
-    started = time.monotonic()
+    anchor, anchored = np.inf, 0  # the best ropelength when it last dropped by TOLERANCE, and the iteration
+    stopped: Stop = "steps"
+    deadline = None if options.time_limit is None else time.monotonic() + options.time_limit
     it = 0
     with task(label, total=options.iterations) as step:
         while it < options.iterations:
-            if options.time_limit is not None and time.monotonic() - started > options.time_limit:
+            if it and deadline is not None and time.monotonic() > deadline:  # a step at least
+                stopped = "time"
                 break
             if it % RESAMPLE_EVERY == 0:
                 h = diameter / options.points_per_diameter
-                pts_list = [resample_closed(c, h) for c in pts_list]
+                pts_list = [resample_closed(c, h) for c in np.split(points, ring.starts[1:])]
                 ring = _Ring.of(pts_list)
                 points = np.vstack(pts_list)
-                lengths = _lengths(pts_list)
+                lengths = _ring_lengths(points, ring)
+                candidates = _neighbour_list(points, ring, max(diameter, 4 * h), RESAMPLE_EVERY, h, options.grow)
             radius = circumradii(points, ring)
-            near = distinct_pairs(points, ring, lengths, max(diameter, 4 * h))
+            near = candidates.within(points, lengths, max(diameter, 4 * h))
             gap = float(near.d.min()) if len(near.d) else max(diameter, 4 * h)
             thick = min(0.5 * gap, float(radius.min()))
             if options.grow > 0:
                 rope = float(lengths.sum()) / thick
                 if best is None or rope < best.ropelength:
-                    if best is None or rope < 0.999 * best.ropelength:
-                        improved = it
-                    best = FlowResult([p.copy() for p in pts_list], 2 * thick, rope, it)
-                if it - improved > PATIENCE:
+                    best = FlowResult(np.split(points.copy(), ring.starts[1:]), 2 * thick, rope, it)
+                if rope < (1 - TOLERANCE) * anchor:
+                    anchor, anchored = rope, it
+                if it - anchored >= WINDOW:
+                    stopped = "converged"
                     break
                 if gap >= 0.98 * diameter and thick >= 0.49 * diameter:
                     diameter *= 1 + options.grow
-            move = _step(points, ring, radius, near, diameter, h, options.pull)
-            points = points + move
-            pts_list = np.split(points, ring.starts[1:])
-            lengths = _lengths(pts_list)
+            points = points + _step(points, ring, radius, near, diameter, h, options.pull)
+            lengths = _ring_lengths(points, ring)
             it += 1
             step.advance()
             if it % 50 == 0:
-                step.note(f"ropelength {lengths.sum() / (0.5 * diameter):.1f}")
+                step.note(f"ropelength {(best.ropelength if best else lengths.sum() / (0.5 * diameter)):.1f}")
     if best is not None:
-        return best
-    return FlowResult(pts_list, diameter, float(lengths.sum()) / (0.5 * diameter), it)
+        return replace(best, iterations=it, stopped=stopped)
+    curves_out = np.split(points, ring.starts[1:])
+    return FlowResult(curves_out, diameter, float(lengths.sum()) / (0.5 * diameter), it, stopped)
 
 
 def _step(
@@ -237,22 +294,23 @@ def _step(
     mid = 0.5 * (points[ring.prev] + points[ring.next]) - points
     weight = np.where(radius < 0.5 * diameter, 0.5, pull)
     move = weight[:, None] * mid
-    near = np.full(len(points), max(diameter, 4 * h))
+    n = len(points)
+    near = np.full(n, max(diameter, 4 * h))
     if len(d):
-        np.minimum.at(near, i, d)
-        np.minimum.at(near, j, d)
+        close = d < 0.75 * h  # only these lower the cap below h / 4
+        np.minimum.at(near, i[close], d[close])
+        np.minimum.at(near, j[close], d[close])
         over = d < diameter
         if over.any():
             oi, oj, od = i[over], j[over], d[over]
-            unit = (points[oi] - points[oj]) / np.maximum(od, 1e-300)[:, None]
-            push = 0.5 * (diameter - od)[:, None] * unit
-            count = np.bincount(np.concatenate([oi, oj]), minlength=len(points)).astype(np.float64)
-            total = np.zeros_like(points)
-            np.add.at(total, oi, push)
-            np.add.at(total, oj, -push)
+            push = (0.5 * (diameter - od) / np.maximum(od, 1e-300))[:, None] * (points[oi] - points[oj])
+            both = np.concatenate([oi, oj])
+            count = np.bincount(both, minlength=n).astype(np.float64)
+            signed = np.concatenate([push, -push])
+            total = np.column_stack([np.bincount(both, signed[:, k], minlength=n) for k in range(3)])
             move += total / np.maximum(count, 1.0)[:, None]
     cap = np.minimum(0.25 * h, near / 3.0)
-    size = np.linalg.norm(move, axis=1)
+    size = np.sqrt(np.einsum("ij,ij->i", move, move))
     scale = np.where(size > cap, cap / np.maximum(size, 1e-300), 1.0)
     return move * scale[:, None]
 

@@ -75,6 +75,7 @@ from .tracks import Tracks, lattice_shift, place_name, side_tracks
 
 if TYPE_CHECKING:
     from .block import CellBlock
+    from .relax import Relaxation
 
 
 @dataclass(frozen=True, eq=False, repr=False)
@@ -102,6 +103,8 @@ class Realization:
     block : CellBlock or None
         Set by :func:`lkspace.geometry.block.realize_block`: the block of cells the
         curves were cut to (threads end on its faces; closed loops are whole).
+    relaxation : Relaxation or None
+        Set by :func:`lkspace.geometry.relax.relax`: steps run and whether it converged.
     """
 
     scaffold: Scaffold
@@ -120,6 +123,7 @@ class Realization:
     closest: Closest | None = None
     translations: np.ndarray | None = None
     block: CellBlock | None = None
+    relaxation: Relaxation | None = None
 
     def __repr__(self) -> str:
         points = sum(len(c) for c in self.curves)
@@ -134,8 +138,8 @@ class Realization:
         return len(self.curves)
 
     def summary(self) -> dict[str, object]:
-        """Return a JSON-ready description of the realization."""
-        return {
+        """Return a JSON-ready description of the realization (``"relaxation"`` when relaxed)."""
+        out: dict[str, object] = {
             "curves": self.n_curves,
             "points": int(sum(len(c) for c in self.curves)),
             "closed": self.closed.tolist(),
@@ -147,6 +151,9 @@ class Realization:
             "min_separation": self.min_separation,
             "closest": closest_json(self.closest),
         }
+        if self.relaxation is not None:
+            out["relaxation"] = self.relaxation.to_json()
+        return out
 
 
 def realize(
@@ -173,7 +180,8 @@ def realize(
     params : GeometryParams, optional
         The shape: distances, sampling, smoothing.
     relax : bool
-        Relax the curves toward a tight shape (:func:`~lkspace.geometry.relax.relax`).
+        Relax the curves toward a tight shape (:func:`~lkspace.geometry.relax.relax`, its
+        default limits: until it converges; call it directly to set ``steps`` or ``time_limit``).
     options : RealizeOptions, optional
         How to go about it: the embedding check (``"refuse"`` by default), lattice
         translations of a block of copies, a trace to reuse, the point bound ``max_points``.

@@ -3,8 +3,11 @@
 :func:`relax` runs the rope flow of :mod:`~lkspace.geometry.flow` with a growing rope
 diameter (Pierański's SONO: shrink on no overlaps): the curves shorten while their distinct
 pieces are kept a rope's width apart, and every step is capped so that no strand passes
-through another.  The result is scaled back to the realization's size and centre; its tube
-radius is the rope's (the tube fills the space the relaxation found).
+through another.  The flow runs until it **converges** (its best ropelength drops by less
+than 0.1% over 400 steps), or stops early at a step or time limit, which
+:class:`Relaxation` records.  Without a time limit the result depends on the design only:
+the same bytes at any load.  The result is scaled back to the realization's size and
+centre; its tube radius is the rope's (the tube fills the space the relaxation found).
 
 Periodic scaffolds are refused: a thread's period is fixed by the lattice, which the flow
 does not keep.
@@ -12,23 +15,20 @@ does not keep.
 
 from __future__ import annotations
 
-from dataclasses import replace
+from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ..errors import GeometryError
 from .clearance import check_embedding
-from .flow import FlowOptions, rope_flow, rope_thickness
+from .flow import FlowOptions, Stop, rope_flow, rope_thickness
 
 if TYPE_CHECKING:
     from .realization import Realization
 
-RELAX_TIME = 10.0
-"""Default seconds of relaxation."""
-
-RELAX_ITERATIONS = 4000
-"""Default most iterations."""
+RELAX_STEPS = 50_000
+"""Default most steps: far beyond what the designs of the atlas need to converge (hundreds to a few thousand)."""
 
 GROW = 0.004
 """Relative growth of the rope diameter per fitting iteration."""
@@ -37,32 +37,80 @@ TUBE_FILL = 0.9
 """Tube radius of the relaxed curves, in rope radii."""
 
 
-def relax(
-    realization: Realization, time_limit: float | None = RELAX_TIME, iterations: int = RELAX_ITERATIONS
-) -> Realization:
+@dataclass(frozen=True)
+class Relaxation:
+    """How a relaxation ended (``Realization.relaxation``).
+
+    Attributes
+    ----------
+    steps : int
+        Flow steps run.
+    stopped : {"converged", "steps", "time"}
+        ``"converged"``: the ropelength settled; ``"steps"`` or ``"time"``: the step or time
+        limit stopped it first (the curves are tighter than before, not as tight as they get).
+    ropelength : float
+        Length / rope radius of the relaxed curves, as the flow measured it (sampled).
+    """
+
+    steps: int
+    stopped: Stop
+    ropelength: float
+
+    @property
+    def converged(self) -> bool:
+        """Whether the ropelength settled before any limit."""
+        return self.stopped == "converged"
+
+    def to_json(self) -> dict[str, object]:
+        """Return ``{"steps", "converged", "stopped", "ropelength"}``."""
+        return {
+            "steps": self.steps,
+            "converged": self.converged,
+            "stopped": self.stopped,
+            "ropelength": self.ropelength,
+        }
+
+    def note(self) -> str | None:
+        """One line saying the relaxation stopped at a limit before converging; ``None`` when it converged."""
+        if self.converged:
+            return None
+        return (
+            f"relax stopped at its {'step' if self.stopped == 'steps' else 'time'} limit after {self.steps:,} steps, "
+            f"before converging (ropelength {self.ropelength:.1f})"
+        )
+
+
+def relax(realization: Realization, steps: int = RELAX_STEPS, time_limit: float | None = None) -> Realization:
     """Return ``realization`` with its curves relaxed toward a tight shape (module docstring).
 
     Parameters
     ----------
     realization : Realization
         Of a finite scaffold with closed strands.
+    steps : int
+        Most flow steps (default :data:`RELAX_STEPS`), at least 1.
     time_limit : float or None
-        Seconds of relaxation (default :data:`RELAX_TIME`; ``None``: no limit).
-    iterations : int
-        Most iterations of the flow.
+        Seconds after which to stop early (``None``, the default: none; a run stopped by
+        it depends on the machine's speed and load).
+
+    Returns
+    -------
+    Realization
+        With ``relaxation`` (:class:`Relaxation`) saying whether it converged.
 
     Raises
     ------
     GeometryError
-        For a periodic scaffold or open strands (a usage error).
+        For a periodic scaffold, open strands or limits out of range (a usage error).
 
     Examples
     --------
     >>> from lkspace import realize
-    >>> r = relax(realize("dihedron:3", 1), iterations=200)
-    >>> r.n_curves, r.min_distance > r.min_separation
-    (1, True)
+    >>> r = relax(realize("dihedron:3", 1), steps=200)
+    >>> r.n_curves, r.min_distance > r.min_separation, r.relaxation.stopped
+    (1, True, 'steps')
     """
+    _check_limits(steps, time_limit)
     name = realization.scaffold.name
     if realization.scaffold.dim:
         raise GeometryError(
@@ -74,7 +122,7 @@ def relax(
     centre = np.vstack(curves).mean(axis=0)
     size = _spread(curves, centre)
     start = 2 * rope_thickness(curves)
-    flowed = rope_flow(curves, FlowOptions(diameter=start, grow=GROW, iterations=iterations, time_limit=time_limit))
+    flowed = rope_flow(curves, FlowOptions(diameter=start, grow=GROW, iterations=steps, time_limit=time_limit))
     new_centre = np.vstack(flowed.curves).mean(axis=0)
     factor = size / _spread(flowed.curves, new_centre)
     relaxed = [(c - new_centre) * factor + centre for c in flowed.curves]
@@ -89,7 +137,20 @@ def relax(
         tube_radius=float(TUBE_FILL * rope),
         min_distance=float(min_dist),
         closest=closest,
+        relaxation=Relaxation(flowed.iterations, flowed.stopped, flowed.ropelength),
     )
+
+
+def _check_limits(steps: int, time_limit: float | None) -> None:
+    """Refuse a step count below 1 or a time limit that is not a positive number of seconds."""
+    if isinstance(steps, bool) or not isinstance(steps, (int, np.integer)) or steps < 1:
+        raise GeometryError(f"steps: must be a whole number at least 1, got {steps!r}", usage=True, parameter="steps")
+    if time_limit is not None and not (isinstance(time_limit, (int, float)) and 0 < time_limit < float("inf")):
+        raise GeometryError(
+            f"time_limit: must be a positive number of seconds or None, got {time_limit!r}",
+            usage=True,
+            parameter="time_limit",
+        )
 
 
 def _spread(curves: list[np.ndarray], centre: np.ndarray) -> float:

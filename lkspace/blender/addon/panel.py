@@ -43,7 +43,7 @@ class LkspaceSettings(bpy.types.PropertyGroup):
     components: bpy.props.IntProperty(name="Components", default=1, min=1)  # type: ignore[valid-type]
     time_limit: bpy.props.FloatProperty(name="Time limit", default=20.0, min=0.5, description="Seconds for Solve")  # type: ignore[valid-type]
     live: bpy.props.BoolProperty(name="Live", default=True, update=live_toggled, description="Regenerate on edits")  # type: ignore[valid-type]
-    relax: bpy.props.BoolProperty(name="Relax", description="Strands drawn tight (lkspace.relax, up to ~10 s)")  # type: ignore[valid-type]
+    relax: bpy.props.BoolProperty(name="Relax", description="Strands drawn tight (lkspace.relax, until it converges)")  # type: ignore[valid-type]
     engine: bpy.props.EnumProperty(name="Engine", items=ENGINES)  # type: ignore[valid-type]
     radius: bpy.props.FloatProperty(  # type: ignore[valid-type]
         name="Inset",
