@@ -1,0 +1,66 @@
+"""The command line under bad input and odd files, run as the program (``python -m lkspace``)."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+
+import pytest
+
+
+def lk(*args, cwd=None, timeout=120):
+    """Run ``python -m lkspace ARGS`` as a process; return ``(code, out, err)``."""
+    proc = subprocess.run(
+        [sys.executable, "-m", "lkspace", *map(str, args)], capture_output=True, text=True, cwd=cwd, timeout=timeout
+    )
+    return proc.returncode, proc.stdout, proc.stderr
+
+
+def one_line(err: str, *words: str) -> None:
+    """Assert that ``err`` is one ``lkspace: error:`` line holding every word of ``words``."""
+    assert err.count("\n") == 1 and err.startswith("lkspace: error: "), err
+    assert "Traceback" not in err and "internal error" not in err, err
+    for word in words:
+        assert word in err, err
+
+
+def test_bare_command_prints_the_help_and_a_typo_gets_a_suggestion():
+    code, out, err = lk()
+    assert code == 2 and out.startswith("Usage: lkspace") and "Commands:" in out and "\n  enumerate " in out
+    assert "error" not in err
+    code, _, err = lk("enumrate")
+    assert code == 2
+    one_line(err, "'enumrate'", "did you mean 'enumerate'?")
+    code, _, err = lk("frobnicate")
+    assert code == 2
+    one_line(err, "no such command 'frobnicate'")
+
+
+def test_a_clearance_past_any_gap_is_one_line_with_a_fix(tmp_path):
+    """``--clearance 1e308`` overflowed in the advice (an internal error); now: the gap measured and a clearance that fits."""
+    for ext in ("stl", "3mf", "glb"):
+        code, _, err = lk("export", "cube", "--twist", "2", "--clearance", "1e308", "-o", tmp_path / f"x.{ext}")
+        assert code == 1
+        one_line(err, "< clearance 1e+308", "no --scale up to 1e+09 reaches clearance 1e+308", "use --clearance 0.")
+        assert not (tmp_path / f"x.{ext}").exists()
+        gap = float(err.split("leave a gap of ")[1].split()[0])
+        assert 0.05 < gap < 0.3  # the cube's strands, 0.12 thick, are ~0.23 apart: measured, not -3e306
+
+
+@pytest.mark.parametrize(
+    ("args", "words"),
+    [
+        (["--supercell", "4x4", "--block", "2x2", "--offsets", "x"], ["--offsets 'x'", "integers"]),
+        (["--supercell", "4x4", "--block", "2x2", "--offsets", "9" * 20], ["--offsets", "within"]),
+        (["--supercell", "2x2", "--block", "1x2", "--offsets", ",,"], ["--offsets ',,'"]),
+        (["--supercell", "2x2", "--block", "9" * 20 + "x1"], ["--block", "within"]),
+        (["--supercell", "2x2", "--gradient", "1,0:" + "9" * 23], ["--gradient", "within"]),
+        (["--supercell", "2x2", "--gradient", "9" * 20 + ",0:1"], ["--gradient", "within"]),
+        (["--supercell", "2x2", "--gradient", "1,0"], ["--gradient '1,0'", "DIRECTION:VALUES"]),
+        (["--supercell", "2x2", "--gradient", "1,0:1,,2"], ["--gradient"]),
+    ],
+)
+def test_a_malformed_motif_is_one_usage_line(args, words):
+    code, _, err = lk("motifs", "tiling:square", *args)
+    assert code == 2
+    one_line(err, *words)
