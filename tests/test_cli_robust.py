@@ -64,3 +64,28 @@ def test_a_malformed_motif_is_one_usage_line(args, words):
     code, _, err = lk("motifs", "tiling:square", *args)
     assert code == 2
     one_line(err, *words)
+
+
+def test_an_output_through_a_symlink_is_refused_and_its_target_kept(tmp_path):
+    """``-o LINK`` replaced the file the link points to; now refused (one line), the link and its target as they were."""
+    (tmp_path / "precious.obj").write_text("mine\n")
+    (tmp_path / "precious.parquet").write_text("mine\n")
+    cases = [
+        (["export", "cube", "--twist", "1", "-o", "link.obj"], "precious.obj"),
+        (["scaffold", "cube", "-o", "link.obj"], "precious.obj"),
+        (["solve", "cube", "-n", "1", "-o", "link.json"], "precious.obj"),
+        (["enumerate", "tetrahedron", "--labels", "-1,1", "-o", "link.parquet"], "precious.parquet"),
+        (["export", "cube", "--twist", "1", "-o", "dangling.obj"], "nowhere/x.obj"),
+    ]
+    for args, target in cases:
+        link = tmp_path / args[-1]
+        link.unlink(missing_ok=True)
+        link.symlink_to(target)
+        code, _, err = lk(*args, cwd=tmp_path)
+        assert code == 2, (args, err)
+        one_line(err, "is a symbolic link", target)
+        assert link.is_symlink()
+    assert (tmp_path / "precious.obj").read_text() == (tmp_path / "precious.parquet").read_text() == "mine\n"
+    assert sorted(p.name for p in tmp_path.iterdir()) == [
+        "dangling.obj", "link.json", "link.obj", "link.parquet", "precious.obj", "precious.parquet"
+    ]  # fmt: skip

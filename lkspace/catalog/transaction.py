@@ -27,7 +27,7 @@ from dataclasses import dataclass
 
 from ..errors import CatalogError, ExportError
 from ..io.atomic import remove_path, write_text
-from ..io.paths import not_an_input, only_extension, output_folder
+from ..io.paths import not_a_link, not_an_input, only_extension, output_folder
 from .metadata import Json, lkspace_mark
 from .records import Manifest, PartSummary, Signature
 
@@ -55,7 +55,7 @@ class CatalogInterrupted(KeyboardInterrupt):
 
 @dataclass(frozen=True)
 class Destination:
-    """Where a catalog goes: ``path`` (symlinks resolved), and the names of its run's files beside it."""
+    """Where a catalog goes: ``path`` (its folders' symlinks resolved), and the names of its run's files beside it."""
 
     path: str
     shown: str
@@ -91,7 +91,7 @@ def catalog_target(
 
     Messages call the output ``argument`` as the caller does (the command line: ``-o``).
 
-    A symlink is followed (its target is replaced, the link kept).  Only a catalog
+    A symbolic link is refused (:func:`~lkspace.io.paths.not_a_link`).  Only a catalog
     lkspace wrote is replaced (:func:`foreign_reason`).  Refused, each with one line: an
     empty name, a name that is only ``.parquet``, an extension other than ``.parquet``,
     a device, FIFO or socket, anything that is not an lkspace catalog, one of ``inputs``,
@@ -108,6 +108,7 @@ def catalog_target(
             f"{text}: a catalog is written as Parquet; give a name ending in .parquet (not {ext!r}); "
             "pandas converts it to CSV or JSON afterwards"
         )
+    not_a_link(bare)
     not_an_input(bare, inputs)
     path = os.path.realpath(bare)
     if os.path.lexists(path):
