@@ -89,3 +89,29 @@ def test_an_output_through_a_symlink_is_refused_and_its_target_kept(tmp_path):
     assert sorted(p.name for p in tmp_path.iterdir()) == [
         "dangling.obj", "link.json", "link.obj", "link.parquet", "precious.obj", "precious.parquet"
     ]  # fmt: skip
+
+
+def test_a_second_writer_of_the_same_catalog_stops_before_any_work(tmp_path):
+    """The lock is taken at start: a run held by another process is refused before planning, not at write."""
+    import json
+    import socket
+
+    holder = subprocess.Popen([sys.executable, "-c", "import time; time.sleep(120)"])
+    try:
+        lock = tmp_path / ".same.parquet.lkspace-lock"
+        lock.write_text(json.dumps({"pid": holder.pid, "host": socket.gethostname(), "started": "now"}))
+        # planned, this run is refused as too large ("pass --yes"); locked, it must not get that far
+        code, _, err = lk("enumerate", "cube", "--labels", "-3..3", "-o", "same.parquet", cwd=tmp_path)
+        assert code == 1
+        one_line(err, "another lkspace run is writing this catalog", f"pid {holder.pid}")
+        code, _, err = lk("enumerate", "cube", "--labels", "-3..3", "--invariant", "C3:vertex=0", "-o", "same.parquet",
+                          cwd=tmp_path)  # fmt: skip
+        assert code == 1
+        one_line(err, "another lkspace run is writing this catalog")
+        assert sorted(p.name for p in tmp_path.iterdir()) == [lock.name] and str(holder.pid) in lock.read_text()
+    finally:
+        holder.kill()
+        holder.wait()
+    code, _, err = lk("enumerate", "tetrahedron", "--labels", "-1,1", "-o", "same.parquet", cwd=tmp_path)
+    assert code == 0, err  # the holder is gone: its lock is stale, taken over, and removed after the run
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["same.parquet"]

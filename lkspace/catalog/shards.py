@@ -190,8 +190,9 @@ def write_catalog(
         summaries, kept = write_remote(job, remote, execution)
         return _totals(job, summaries, kept, remote)
     target = catalog_target(path)
-    run = _Run(_planned(space, selection, execution, target.shown), target, execution)
-    summaries, kept = run.write(progress)
+    with catalog_lock(target.lock, target.shown):  # before planning: a second run stops at once
+        run = _Run(_planned(space, selection, execution, target.shown), target, execution)
+        summaries, kept = run.write(progress)
     return replace(_totals(run.job, summaries, kept, os.path.abspath(path)), identified=run.identified)
 
 
