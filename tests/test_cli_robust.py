@@ -115,3 +115,56 @@ def test_a_second_writer_of_the_same_catalog_stops_before_any_work(tmp_path):
     code, _, err = lk("enumerate", "tetrahedron", "--labels", "-1,1", "-o", "same.parquet", cwd=tmp_path)
     assert code == 0, err  # the holder is gone: its lock is stale, taken over, and removed after the run
     assert sorted(p.name for p in tmp_path.iterdir()) == ["same.parquet"]
+
+
+def catalogs(folder):
+    """Write a one-file and a sharded catalog of the tetrahedron (labels -1..1, 87 designs) into ``folder``."""
+    assert lk("enumerate", "tetrahedron", "--labels", "-1..1", "-o", "one.parquet", cwd=folder)[0] == 0
+    assert lk("enumerate", "tetrahedron", "--labels", "-1..1", "--shards", "3", "-o", "sh.parquet", cwd=folder)[0] == 0
+    return folder / "one.parquet", folder / "sh.parquet"
+
+
+def readers(path):
+    """Every reader of a catalog, as the program: ``(name, argv)``; ``read_catalog`` through ``python -c``."""
+    code = f"import lkspace; lkspace.read_catalog({str(path)!r})"
+    return [
+        ("verify", ["-m", "lkspace", "verify", str(path)]),
+        ("atlas", ["-m", "lkspace", "atlas", str(path)]),
+        ("export --row", ["-m", "lkspace", "export", str(path), "--row", "1", "-o", str(path) + "-row.obj"]),
+        ("read_catalog", ["-c", code]),
+    ]
+
+
+def refused_by_every_reader(path, *words, every=True):
+    """Assert that every reader of ``path`` ends at once (no hang) with one error line holding ``words``.
+
+    ``every=False``: ``verify`` and ``read_catalog`` only (the others open catalogs with the same function).
+    """
+    for name, argv in readers(path):
+        if not every and name not in ("verify", "read_catalog"):
+            continue
+        proc = subprocess.run([sys.executable, *argv], capture_output=True, text=True, timeout=60)
+        assert proc.returncode == 1, (name, proc.stderr[-600:])
+        if name == "read_catalog":
+            assert proc.stderr.strip().splitlines()[-1].startswith("lkspace.errors.CatalogError: "), proc.stderr
+            assert all(w in proc.stderr for w in words), (name, proc.stderr)
+        else:
+            one_line(proc.stderr, *words)
+
+
+def test_a_fifo_in_place_of_a_catalog_file_is_refused_not_waited_on(tmp_path):
+    """A part, a manifest or a one-file catalog replaced by a FIFO hung verify, read_catalog and atlas."""
+    import os
+
+    one, sharded = catalogs(tmp_path)
+    part = sorted(sharded.glob("part-*.parquet"))[1]
+    part.unlink()
+    os.mkfifo(part)
+    refused_by_every_reader(sharded, part.name, "not a regular file")
+    one.unlink()
+    os.mkfifo(one)
+    refused_by_every_reader(one, "one.parquet", "not a regular file", every=False)
+    manifest = sharded / "_lkspace.json"
+    manifest.unlink()
+    os.mkfifo(manifest)
+    refused_by_every_reader(sharded, "_lkspace.json", "not a regular file", every=False)

@@ -17,6 +17,7 @@ import contextlib
 import json
 import os
 import socket
+import stat
 import sys
 import time
 from collections.abc import Iterator
@@ -81,6 +82,8 @@ class LockHolder:
 def _holder(lock: str) -> LockHolder | None:
     """Return the lock's holder, or ``None`` when the file is empty, torn or not a lock record."""
     try:
+        if not stat.S_ISREG(os.stat(lock).st_mode):  # a FIFO would block the read
+            return None
         with open(lock, encoding="utf-8") as fh:
             data = json.load(fh)
     except (OSError, ValueError):

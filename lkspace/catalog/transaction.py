@@ -172,8 +172,21 @@ def remove_temporaries(target: Destination, keep_build: bool) -> None:
                 remove_path(os.path.join(target.build, entry))
 
 
+def check_regular(path: str, what: str = "part") -> None:
+    """Raise a one-line :class:`CatalogError` unless ``path`` is a regular file (a FIFO would block a read for ever).
+
+    ``FileNotFoundError`` propagates (a catalog replaced while read).
+    """
+    if not stat.S_ISREG(os.stat(path).st_mode):
+        raise CatalogError(
+            f"{path}: not a regular file (a FIFO, socket or device) where the catalog's {what} belongs; "
+            "replace it with the file it stands for"
+        )
+
+
 def file_sha256(path: str) -> str:
-    """Hex SHA-256 of the bytes of ``path``."""
+    """Hex SHA-256 of the bytes of ``path`` (a regular file: :func:`check_regular`)."""
+    check_regular(path)
     with open(path, "rb") as fh:
         return hashlib.file_digest(fh, "sha256").hexdigest()
 
@@ -184,9 +197,12 @@ def part_name(index: int, run: str) -> str:
 
 
 def _manifest_json(folder: str) -> Json:
-    """Return the JSON of the manifest of ``folder`` (``None`` if missing or not JSON)."""
+    """Return the JSON of the manifest of ``folder`` (``None`` if missing, not a regular file or not JSON)."""
+    where = os.path.join(folder, MANIFEST)
     try:
-        with open(os.path.join(folder, MANIFEST), encoding="utf-8") as fh:
+        if not stat.S_ISREG(os.stat(where).st_mode):
+            return None
+        with open(where, encoding="utf-8") as fh:
             data: Json = json.load(fh)
     except (OSError, ValueError):
         return None

@@ -38,7 +38,7 @@ from ..errors import CatalogError
 from .metadata import CatalogMetadata, JsonObject, decode
 from .records import Manifest, PartFooter
 from .schema import IDENTIFY_COLUMNS, METADATA_KEY, expected_schema
-from .transaction import MANIFEST, file_sha256
+from .transaction import MANIFEST, check_regular, file_sha256
 
 
 @dataclass(frozen=True, eq=False)
@@ -102,6 +102,7 @@ def file_metadata(file: str) -> tuple[PartFooter, int]:
     ``FileNotFoundError`` propagates (a catalog replaced while read); anything else wrong
     is a :class:`~lkspace.errors.CatalogError`.
     """
+    check_regular(file)
     try:
         info = pq.read_metadata(file)
         raw = (info.metadata or {}).get(METADATA_KEY)
@@ -163,6 +164,7 @@ def _manifest(folder: str) -> Manifest:
     """Read the manifest of the catalog ``folder``: well formed (:meth:`Manifest.from_json`) and complete."""
     where = os.path.join(folder, MANIFEST)
     try:
+        check_regular(where, "manifest")
         with open(where, "rb") as fh:
             raw = fh.read()
     except FileNotFoundError:
@@ -312,6 +314,7 @@ def verify_catalog(path: str | os.PathLike[str]) -> CatalogCheck:
 
 def read_pages(file: str) -> None:
     """Read every data page of ``file``, verifying the page checksums it carries."""
+    check_regular(file)
     try:
         parquet = pq.ParquetFile(file, page_checksum_verification=True)
         for group in range(parquet.metadata.num_row_groups):
