@@ -224,12 +224,26 @@ def save_manifest(folder: str, manifest: Manifest) -> None:
 
 
 def verified_parts(folder: str, manifest: Manifest) -> dict[int, PartSummary]:
-    """Return the finished parts recorded in ``manifest`` (with their totals) whose file in ``folder`` still has its SHA-256."""
+    """Return the finished parts recorded in ``manifest`` (with their totals) that are still what it records.
+
+    A part's file in ``folder`` must have the SHA-256 the manifest lists, and its own footer
+    must name the manifest's run, plan, settings and part number and hold the totals the
+    manifest lists (:func:`~lkspace.catalog.verify.part_footer`): a part of another run or
+    other settings whose checksum was written into the manifest, or an edited total, is
+    not kept (it is written again).
+    """
+    from .verify import part_footer  # verify imports this module
+
     good = {}
     for index, entry in manifest.parts.items():
         file = os.path.join(folder, str(entry.file))
-        if entry.counted and os.path.isfile(file) and file_sha256(file) == entry.sha256:
-            good[index] = entry
+        if not (entry.counted and os.path.isfile(file) and file_sha256(file) == entry.sha256):
+            continue
+        try:
+            part_footer(file, index, manifest)
+        except CatalogError:
+            continue
+        good[index] = entry
     return good
 
 
