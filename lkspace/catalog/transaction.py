@@ -23,6 +23,7 @@ import json
 import os
 import re
 import stat
+from collections.abc import Callable
 from dataclasses import dataclass
 
 from ..errors import CatalogError, ExportError
@@ -223,17 +224,19 @@ def save_manifest(folder: str, manifest: Manifest) -> None:
     write_text(os.path.join(folder, MANIFEST), manifest.encode())
 
 
-def verified_parts(folder: str, manifest: Manifest) -> dict[int, PartSummary]:
+PartCheck = Callable[[str, int, Manifest], object]
+"""``check(file, index, manifest)`` raises :class:`CatalogError` unless ``file`` is part ``index`` of ``manifest``'s
+catalog by its own footer (:func:`lkspace.catalog.verify.part_footer`)."""
+
+
+def verified_parts(folder: str, manifest: Manifest, part_footer: PartCheck) -> dict[int, PartSummary]:
     """Return the finished parts recorded in ``manifest`` (with their totals) that are still what it records.
 
-    A part's file in ``folder`` must have the SHA-256 the manifest lists, and its own footer
-    must name the manifest's run, plan, settings and part number and hold the totals the
-    manifest lists (:func:`~lkspace.catalog.verify.part_footer`): a part of another run or
-    other settings whose checksum was written into the manifest, or an edited total, is
-    not kept (it is written again).
+    A part's file in ``folder`` must have the SHA-256 the manifest lists, and ``part_footer``
+    must find its own footer naming the manifest's run, plan, settings and part number with
+    the totals the manifest lists: a part of another run or other settings whose checksum
+    was written into the manifest, or an edited total, is not kept (it is written again).
     """
-    from .verify import part_footer  # verify imports this module
-
     good = {}
     for index, entry in manifest.parts.items():
         file = os.path.join(folder, str(entry.file))
@@ -262,12 +265,15 @@ def new_run() -> str:
     return secrets.token_hex(4)
 
 
-def seed_build(target: Destination, build: str, signature: Signature) -> tuple[str, dict[int, PartSummary]]:
+def seed_build(
+    target: Destination, build: str, signature: Signature, part_footer: PartCheck
+) -> tuple[str, dict[int, PartSummary]]:
     """Start a build from the finished catalog at the target, if it is of the same run settings.
 
     Returns ``(run id, parts)``: the build takes over the old catalog's run id (its parts'
     footers name it) and its parts whose checksums verify, linked (or copied) into
-    ``build``; a new run id and no parts when there is no such catalog.
+    ``build`` (checked with ``part_footer``, :func:`verified_parts`); a new run id and no
+    parts when there is no such catalog.
     """
     old = load_manifest(target.path) if os.path.isdir(target.path) else None
     if old is None or not signature.resumes(old.signature):
@@ -275,7 +281,7 @@ def seed_build(target: Destination, build: str, signature: Signature) -> tuple[s
     import shutil
 
     seeded = {}
-    for index, entry in verified_parts(target.path, old).items():
+    for index, entry in verified_parts(target.path, old, part_footer).items():
         name = str(entry.file)
         if name != part_name(index, old.run):
             continue
