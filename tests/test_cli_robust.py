@@ -168,3 +168,40 @@ def test_a_fifo_in_place_of_a_catalog_file_is_refused_not_waited_on(tmp_path):
     manifest.unlink()
     os.mkfifo(manifest)
     refused_by_every_reader(sharded, "_lkspace.json", "not a regular file", every=False)
+
+
+def test_big_counts_are_whole_whatever_the_width():
+    """A table sized to an 80- or 40-column terminal cut 10^69 designs with '…'."""
+    import os
+
+    for columns in ("40", "80"):
+        proc = subprocess.run(
+            [sys.executable, "-m", "lkspace", "enumerate", "dodecahedron", "--labels", "-100..100", "--count-only"],
+            capture_output=True, text=True, timeout=120, env={**os.environ, "COLUMNS": columns},
+        )  # fmt: skip
+        assert proc.returncode == 0, proc.stderr
+        code, out, _ = lk("enumerate", "dodecahedron", "--labels", "-100..100", "--count-only", "--json")
+        import json
+
+        data = json.loads(out)
+        assert "…" not in proc.stdout
+        assert f" designs      {data['designs']:,}\n" in proc.stdout
+        assert f" assignments  {data['assignments']:,}\n" in proc.stdout
+
+
+def test_a_census_past_any_machine_is_refused_up_front_and_a_feasible_one_says_its_cost():
+    """--jobs 2 on 5.9e48 residue vectors ran silently for ever (its shard list never finished); now: one line."""
+    code, _, err = lk("enumerate", "honeycomb:cP@3x3x3", "--labels", "-1..2", "--jobs", "2", timeout=60)
+    assert code == 2
+    one_line(err, "a census of 5.85e+48 residue vectors", "past what lkspace runs", "leave out --jobs")
+
+
+@pytest.mark.slow
+def test_a_feasible_census_says_its_cost_first():
+    import json
+
+    code, out, err = lk("enumerate", "dihedron:22", "--labels", "0,1", "--jobs", "2", "--json")
+    assert code == 0, err  # 2^22 residue classes (> MAX_CLASSES): a census in parts, its cost said first
+    assert err.startswith("lkspace: note: counting by a census of") and "2 workers share it" in err
+    code, whole, _ = lk("enumerate", "dihedron:22", "--labels", "0,1", "--json")  # Burnside, no census
+    assert json.loads(out)["designs"] == json.loads(whole)["designs"] == sum(json.loads(out)["by_components"].values())

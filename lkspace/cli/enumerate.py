@@ -23,6 +23,7 @@ from .common import (
     labels_option,
     load_mesh,
     mesh_argument,
+    print_rows,
     symmetry_facts,
     symmetry_tolerance,
 )
@@ -33,9 +34,15 @@ if TYPE_CHECKING:
 
 
 def _count_payload(space: DesignSpace, selection: Selection, scheduler: str = "local", jobs: int = 1) -> dict[str, Any]:
-    from ..design.counting import count_space
+    from ..design.counting import census_planned, count_space
 
     if selection.mode == "designs":
+        if census_planned(space, selection.components, scheduler, jobs):  # the cost up front, then progress
+            from ..design.census import census_estimate
+
+            estimate = census_estimate(space)
+            split = f"; {jobs} workers share it" if jobs > 1 else ""
+            click.echo(f"lkspace: note: counting by {estimate}{split}; progress follows", err=True)
         totals = count_space(space, selection.components, scheduler, jobs).to_dict()
         if totals.get("note"):
             totals["note"] = flags_in(totals["note"])
@@ -293,21 +300,20 @@ def _written(space: DesignSpace, output: str, selection: Selection, execution: E
 def _show(headline: str, payload: dict[str, Any]) -> None:
     """Print the ``headline`` and the totals of ``payload`` as a table (the command's human output)."""
     from rich.console import Console
-    from rich.table import Table
 
     con = Console(highlight=False)
     con.print(headline)
-    table = Table(show_header=False, box=None)
-    table.add_row("designs", f"{payload['designs']:,}")
-    table.add_row("assignments", f"{payload['assignments']:,}")
+    rows: list[tuple[str, str]] = []
+    rows.append(("designs", f"{payload['designs']:,}"))
+    rows.append(("assignments", f"{payload['assignments']:,}"))
     for k, v in (payload["by_components"] or {}).items():
-        table.add_row(f"  {plural(int(k), 'component')}", f"{v:,}")
-    table.add_row("written", str(payload.get("written") or "- (count only; give -o FILE to write)"))
+        rows.append((f"  {plural(int(k), 'component')}", f"{v:,}"))
+    rows.append(("written", str(payload.get("written") or "- (count only; give -o FILE to write)")))
     if "identified" in payload:
         identified = payload["identified"]
         top = ", ".join(f"{k} ({v})" for k, v in list(identified["names"].items())[:6])
-        table.add_row("identified", f"{identified['named']:,} of {identified['rows']:,} named: {top}")
+        rows.append(("identified", f"{identified['named']:,} of {identified['rows']:,} named: {top}"))
     if "ran_in" in payload:
-        table.add_row("ran in", payload["ran_in"])
-    table.add_row("seconds", str(payload["seconds"]))
-    con.print(table)
+        rows.append(("ran in", payload["ran_in"]))
+    rows.append(("seconds", str(payload["seconds"])))
+    print_rows(rows)
