@@ -205,3 +205,33 @@ def test_a_feasible_census_says_its_cost_first():
     assert err.startswith("lkspace: note: counting by a census of") and "2 workers share it" in err
     code, whole, _ = lk("enumerate", "dihedron:22", "--labels", "0,1", "--json")  # Burnside, no census
     assert json.loads(out)["designs"] == json.loads(whole)["designs"] == sum(json.loads(out)["by_components"].values())
+
+
+def limited_memory():
+    """In the child: at most 2 GB of address space, so a regression fails the test instead of the machine."""
+    import resource
+
+    resource.setrlimit(resource.RLIMIT_AS, (2 << 30, 2 << 30))
+
+
+@pytest.mark.parametrize(
+    ("graph", "words"),
+    [
+        ("ring.obj", ["100,000 vertices", "at most 10,000"]),  # listing its 2 x 10^5 automorphisms took 16 GB
+        ("ring.obj --own-faces", ["100,000 vertices"]),
+        ("book:12", ["958,003,200 automorphisms", "too many to list"]),  # ran out of memory
+        ("book:12 --own-faces", ["automorphisms", "too many to list"]),
+    ],
+)
+def test_surfaces_refuses_a_graph_too_big_to_list_before_memory_grows(tmp_path, graph, words):
+    import math
+
+    n = 100_000
+    with open(tmp_path / "ring.obj", "w") as fh:  # one face on a cycle of 10^5 vertices
+        fh.writelines(f"v {math.cos(2 * math.pi * i / n)} {math.sin(2 * math.pi * i / n)} 0\n" for i in range(n))
+        fh.write("f " + " ".join(str(i + 1) for i in range(n)) + "\n")
+    proc = subprocess.run([sys.executable, "-m", "lkspace", "surfaces", *graph.split()], capture_output=True,
+                          text=True, timeout=300, cwd=tmp_path, preexec_fn=limited_memory)  # fmt: skip
+    assert proc.returncode == 2, proc.stderr
+    progress = [line for line in proc.stderr.splitlines(keepends=True) if line.startswith("lkspace: reading")]
+    one_line(proc.stderr.replace("".join(progress), ""), *words)  # a progress line of the slow read may come first
