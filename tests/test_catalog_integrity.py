@@ -301,7 +301,11 @@ def test_a_flipped_bit_of_a_one_file_catalog_never_reads_as_other_rows(written, 
 def test_edited_metadata_of_a_one_file_catalog(written, tmp_path, capsys, edit, words):
     one = tmp_path / "one.parquet"
     meta = json.loads(pq.read_metadata(written / "one.parquet").metadata[b"lkspace"])
-    changed = edit(meta if "digest" in words else {k: v for k, v in meta.items() if k != "digest"})
+    changed = edit(meta)
+    if "digest" not in words:  # edited and sealed again: the checks behind the digest find it
+        from lkspace.catalog.metadata import metadata_digest
+
+        changed["digest"] = metadata_digest(changed)
     shutil.copy(written / "one.parquet", one)
     rewrite_footer(one, json.dumps(changed).encode())
     code, _, err = run(capsys, "export", one, "--row", 3, "-o", tmp_path / "x.obj")

@@ -149,7 +149,7 @@ def test_lock_stops_a_second_writer_and_a_stale_lock_is_taken_over(tmp_path, cap
         ("t.json", "ending in .parquet"),
         ("missing/t.parquet", "does not exist"),
         ("file.txt/t.parquet", "is not a folder"),
-        ("dev.parquet", "device"),
+        ("dev.parquet", "symbolic link"),
     ],
 )
 def test_bad_outputs_are_one_line(tmp_path, capsys, output, message):
@@ -172,10 +172,11 @@ def test_read_only_folder_is_one_line(tmp_path, capsys):
     assert code == 2 and "cannot write" in err
 
 
-def test_symlink_is_followed_and_kept(tmp_path, capsys):
+def test_a_symlink_is_refused_and_its_target_kept(tmp_path, capsys):
     assert run(capsys, "enumerate", "tetrahedron", "--labels", "-2,2", "-o", tmp_path / "real.parquet")[0] == 0
     os.symlink("real.parquet", tmp_path / "link.parquet")
-    assert run(capsys, "enumerate", "tetrahedron", "--labels", "-1,1", "-o", tmp_path / "link.parquet")[0] == 0
+    code, _, err = run(capsys, "enumerate", "tetrahedron", "--labels", "-1,1", "-o", tmp_path / "link.parquet")
+    assert code == 2 and "symbolic link (to real.parquet)" in err
     assert os.path.islink(tmp_path / "link.parquet") and len(pd.read_parquet(tmp_path / "real.parquet")) == 12
 
 

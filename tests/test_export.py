@@ -279,15 +279,18 @@ def test_export_refuses_devices_and_fifos(tmp_path, capsys):
     one_line_error(err, "FIFO")
 
 
-def test_export_keeps_the_symlink_and_leaves_nothing_on_failure(tmp_path, capsys):
+def test_export_refuses_a_symlink_and_leaves_nothing_on_failure(tmp_path, capsys):
     real = tmp_path / "real.obj"
     link = tmp_path / "link.obj"
-    link.symlink_to(real)
-    code, _, err = run(capsys, "export", "dihedron:3", "--twist", "1", "-o", str(link))
+    code, _, err = run(capsys, "export", "dihedron:3", "--twist", "1", "-o", str(real))
     assert code == 0, err
-    assert link.is_symlink() and real.read_text().startswith("# lkspace strands")
+    link.symlink_to(real)
     before = real.read_text()
-    code, _, err = run(capsys, "export", "dihedron:3", "--twist", "3000", "-o", str(link))
+    code, _, err = run(capsys, "export", "dihedron:3", "--twist", "1", "-o", str(link))
+    assert code == 2
+    one_line_error(err, "symbolic link")
+    assert link.is_symlink() and real.read_text() == before
+    code, _, err = run(capsys, "export", "dihedron:3", "--twist", "3000", "-o", str(real))
     assert code == 1
     one_line_error(err, "twist 3000", "self-intersect")
     assert real.read_text() == before and sorted(p.name for p in tmp_path.iterdir()) == ["link.obj", "real.obj"]

@@ -65,8 +65,8 @@ def things(tmp_path):
         ("notes.parquet", ["not an lkspace catalog"]),
         ("pandas.parquet", ["no 'lkspace' metadata"]),
         ("mine", ["holds no lkspace catalog"]),
-        ("link.parquet", ["holds no lkspace catalog"]),
-        ("to-empty.parquet", ["empty folder"]),
+        ("link.parquet", ["symbolic link"]),
+        ("to-empty.parquet", ["symbolic link"]),
     ],
 )
 def test_enumerate_replaces_only_its_own_catalogs(things, capsys, name, words):
@@ -87,9 +87,10 @@ def test_own_catalogs_are_replaced(tmp_path, capsys):
                                   "-o", out, "--json")  # fmt: skip
         assert code == 0, err
         assert len(lkspace.read_catalog(out)) == json.loads(out_text)["designs"] == 87
-    os.symlink("real", tmp_path / "link.parquet")  # a link to an lkspace catalog: followed, kept
-    assert run(capsys, "enumerate", "tetrahedron", "--labels", "-2,2", "-o", tmp_path / "link.parquet")[0] == 0
-    assert os.path.islink(tmp_path / "link.parquet") and len(lkspace.read_catalog(folder)) == 12
+    os.symlink("real", tmp_path / "link.parquet")  # a link, even to an lkspace catalog: refused, nothing replaced
+    refused(capsys, tmp_path, ["enumerate", "tetrahedron", "--labels", "-2,2", "-o", tmp_path / "link.parquet"],
+            "symbolic link (to real)")  # fmt: skip
+    assert os.path.islink(tmp_path / "link.parquet") and len(lkspace.read_catalog(folder)) == 87
 
 
 def test_write_catalog_refuses_too(things):

@@ -6,6 +6,9 @@ and stops with :class:`~lkspace.errors.CatalogLockedError` naming the first.  A 
 left by a run that was killed (its pid no longer runs on this host) is stale and taken
 over; a lock from another host is never guessed at: the message says which file to
 delete once that run is known to be gone.
+
+A process may take a lock it holds again (nested: the command line takes it before any
+work, the writer once more around the build); only the outer hold removes it.
 """
 
 from __future__ import annotations
@@ -14,12 +17,16 @@ import contextlib
 import json
 import os
 import socket
+import stat
 import sys
 import time
 from collections.abc import Iterator
 from dataclasses import dataclass
 
 from ..errors import CatalogLockedError
+
+HELD: set[str] = set()
+"""Lock files this process holds (absolute paths): taking one again is a no-op."""
 
 TORN_LOCK_SECONDS = 10.0
 """A lock file still empty or unreadable after this many seconds is stale (its writer died while creating it)."""
@@ -75,6 +82,8 @@ class LockHolder:
 def _holder(lock: str) -> LockHolder | None:
     """Return the lock's holder, or ``None`` when the file is empty, torn or not a lock record."""
     try:
+        if not stat.S_ISREG(os.stat(lock).st_mode):  # a FIFO would block the read
+            return None
         with open(lock, encoding="utf-8") as fh:
             data = json.load(fh)
     except (OSError, ValueError):
@@ -98,7 +107,11 @@ def _is_stale(lock: str, holder: LockHolder | None) -> bool:
 
 @contextlib.contextmanager
 def catalog_lock(lock: str, target: str) -> Iterator[None]:
-    """Hold the lock file ``lock`` of catalog ``target`` for the body; remove it afterwards."""
+    """Hold the lock file ``lock`` of catalog ``target`` for the body; remove it afterwards (module docstring)."""
+    key = os.path.abspath(lock)
+    if key in HELD:
+        yield
+        return
     record = LockHolder.this_process().to_json()
     for _ in range(3):
         try:
@@ -119,8 +132,10 @@ def catalog_lock(lock: str, target: str) -> Iterator[None]:
         break
     else:  # pragma: no cover - three stale locks in a row: a race with other writers
         raise CatalogLockedError(f"{target}: could not take the lock {lock}; try again")
+    HELD.add(key)
     try:
         yield
     finally:
+        HELD.discard(key)
         with contextlib.suppress(FileNotFoundError):
             os.remove(lock)

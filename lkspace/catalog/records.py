@@ -155,12 +155,16 @@ class PartFooter:
         ``None`` in the schema's copy, written before the rows.
     identified : bool
         Whether the knot/link columns are there (:mod:`lkspace.catalog.identified`).
+    sealed : bool
+        Whether the metadata read carried its ``digest`` (lkspace writes one with the totals;
+        without it an edit cannot be told: removed, or an older lkspace wrote the file).
     """
 
     settings: CatalogMetadata
     shard: Shard | None = None
     totals: PartSummary | None = None
     identified: bool = False
+    sealed: bool = field(default=True, compare=False)
 
     def to_json(self) -> JsonObject:
         """JSON form: settings, ``shard``, totals, ``digest`` (with totals), ``identified`` (when true)."""
@@ -197,6 +201,7 @@ class PartFooter:
             None if shard is None else Shard.from_json(shard, where),
             PartSummary.from_json(meta, where) if "rows" in meta else None,
             meta.get("identified") is True,
+            digest is not None,
         )
 
 

@@ -58,7 +58,7 @@ from .transaction import (
     seed_build,
     verified_parts,
 )
-from .verify import open_catalog
+from .verify import open_catalog, part_footer
 from .writer import write_batches
 
 if TYPE_CHECKING:
@@ -190,8 +190,9 @@ def write_catalog(
         summaries, kept = write_remote(job, remote, execution)
         return _totals(job, summaries, kept, remote)
     target = catalog_target(path)
-    run = _Run(_planned(space, selection, execution, target.shown), target, execution)
-    summaries, kept = run.write(progress)
+    with catalog_lock(target.lock, target.shown):  # before planning: a second run stops at once
+        run = _Run(_planned(space, selection, execution, target.shown), target, execution)
+        summaries, kept = run.write(progress)
     return replace(_totals(run.job, summaries, kept, os.path.abspath(path)), identified=run.identified)
 
 
@@ -325,12 +326,14 @@ class _Run:
         old = load_manifest(build) if self.execution.resume and os.path.isdir(build) else None
         if old is not None and self.signature.resumes(old.signature):
             run_id = old.run
-            self.parts = verified_parts(build, old)
+            self.parts = verified_parts(build, old, part_footer)
         else:
             remove_path(build)
             os.mkdir(build)
             run_id, self.parts = (
-                seed_build(self.target, build, self.signature) if self.execution.resume else (new_run(), {})
+                seed_build(self.target, build, self.signature, part_footer)
+                if self.execution.resume
+                else (new_run(), {})
             )
         prune_build(build, self.parts)
         self._save(run_id)

@@ -23,11 +23,12 @@ import json
 import os
 import re
 import stat
+from collections.abc import Callable
 from dataclasses import dataclass
 
 from ..errors import CatalogError, ExportError
 from ..io.atomic import remove_path, write_text
-from ..io.paths import not_an_input, only_extension, output_folder
+from ..io.paths import not_a_link, not_an_input, only_extension, output_folder
 from .metadata import Json, lkspace_mark
 from .records import Manifest, PartSummary, Signature
 
@@ -55,7 +56,7 @@ class CatalogInterrupted(KeyboardInterrupt):
 
 @dataclass(frozen=True)
 class Destination:
-    """Where a catalog goes: ``path`` (symlinks resolved), and the names of its run's files beside it."""
+    """Where a catalog goes: ``path`` (its folders' symlinks resolved), and the names of its run's files beside it."""
 
     path: str
     shown: str
@@ -91,7 +92,7 @@ def catalog_target(
 
     Messages call the output ``argument`` as the caller does (the command line: ``-o``).
 
-    A symlink is followed (its target is replaced, the link kept).  Only a catalog
+    A symbolic link is refused (:func:`~lkspace.io.paths.not_a_link`).  Only a catalog
     lkspace wrote is replaced (:func:`foreign_reason`).  Refused, each with one line: an
     empty name, a name that is only ``.parquet``, an extension other than ``.parquet``,
     a device, FIFO or socket, anything that is not an lkspace catalog, one of ``inputs``,
@@ -108,6 +109,7 @@ def catalog_target(
             f"{text}: a catalog is written as Parquet; give a name ending in .parquet (not {ext!r}); "
             "pandas converts it to CSV or JSON afterwards"
         )
+    not_a_link(bare)
     not_an_input(bare, inputs)
     path = os.path.realpath(bare)
     if os.path.lexists(path):
@@ -171,8 +173,21 @@ def remove_temporaries(target: Destination, keep_build: bool) -> None:
                 remove_path(os.path.join(target.build, entry))
 
 
+def check_regular(path: str, what: str = "part") -> None:
+    """Raise a one-line :class:`CatalogError` unless ``path`` is a regular file (a FIFO would block a read for ever).
+
+    ``FileNotFoundError`` propagates (a catalog replaced while read).
+    """
+    if not stat.S_ISREG(os.stat(path).st_mode):
+        raise CatalogError(
+            f"{path}: not a regular file (a FIFO, socket or device) where the catalog's {what} belongs; "
+            "replace it with the file it stands for"
+        )
+
+
 def file_sha256(path: str) -> str:
-    """Hex SHA-256 of the bytes of ``path``."""
+    """Hex SHA-256 of the bytes of ``path`` (a regular file: :func:`check_regular`)."""
+    check_regular(path)
     with open(path, "rb") as fh:
         return hashlib.file_digest(fh, "sha256").hexdigest()
 
@@ -183,9 +198,12 @@ def part_name(index: int, run: str) -> str:
 
 
 def _manifest_json(folder: str) -> Json:
-    """Return the JSON of the manifest of ``folder`` (``None`` if missing or not JSON)."""
+    """Return the JSON of the manifest of ``folder`` (``None`` if missing, not a regular file or not JSON)."""
+    where = os.path.join(folder, MANIFEST)
     try:
-        with open(os.path.join(folder, MANIFEST), encoding="utf-8") as fh:
+        if not stat.S_ISREG(os.stat(where).st_mode):
+            return None
+        with open(where, encoding="utf-8") as fh:
             data: Json = json.load(fh)
     except (OSError, ValueError):
         return None
@@ -206,13 +224,29 @@ def save_manifest(folder: str, manifest: Manifest) -> None:
     write_text(os.path.join(folder, MANIFEST), manifest.encode())
 
 
-def verified_parts(folder: str, manifest: Manifest) -> dict[int, PartSummary]:
-    """Return the finished parts recorded in ``manifest`` (with their totals) whose file in ``folder`` still has its SHA-256."""
+PartCheck = Callable[[str, int, Manifest], object]
+"""``check(file, index, manifest)`` raises :class:`CatalogError` unless ``file`` is part ``index`` of ``manifest``'s
+catalog by its own footer (:func:`lkspace.catalog.verify.part_footer`)."""
+
+
+def verified_parts(folder: str, manifest: Manifest, part_footer: PartCheck) -> dict[int, PartSummary]:
+    """Return the finished parts recorded in ``manifest`` (with their totals) that are still what it records.
+
+    A part's file in ``folder`` must have the SHA-256 the manifest lists, and ``part_footer``
+    must find its own footer naming the manifest's run, plan, settings and part number with
+    the totals the manifest lists: a part of another run or other settings whose checksum
+    was written into the manifest, or an edited total, is not kept (it is written again).
+    """
     good = {}
     for index, entry in manifest.parts.items():
         file = os.path.join(folder, str(entry.file))
-        if entry.counted and os.path.isfile(file) and file_sha256(file) == entry.sha256:
-            good[index] = entry
+        if not (entry.counted and os.path.isfile(file) and file_sha256(file) == entry.sha256):
+            continue
+        try:
+            part_footer(file, index, manifest)
+        except CatalogError:
+            continue
+        good[index] = entry
     return good
 
 
@@ -231,12 +265,15 @@ def new_run() -> str:
     return secrets.token_hex(4)
 
 
-def seed_build(target: Destination, build: str, signature: Signature) -> tuple[str, dict[int, PartSummary]]:
+def seed_build(
+    target: Destination, build: str, signature: Signature, part_footer: PartCheck
+) -> tuple[str, dict[int, PartSummary]]:
     """Start a build from the finished catalog at the target, if it is of the same run settings.
 
     Returns ``(run id, parts)``: the build takes over the old catalog's run id (its parts'
     footers name it) and its parts whose checksums verify, linked (or copied) into
-    ``build``; a new run id and no parts when there is no such catalog.
+    ``build`` (checked with ``part_footer``, :func:`verified_parts`); a new run id and no
+    parts when there is no such catalog.
     """
     old = load_manifest(target.path) if os.path.isdir(target.path) else None
     if old is None or not signature.resumes(old.signature):
@@ -244,7 +281,7 @@ def seed_build(target: Destination, build: str, signature: Signature) -> tuple[s
     import shutil
 
     seeded = {}
-    for index, entry in verified_parts(target.path, old).items():
+    for index, entry in verified_parts(target.path, old, part_footer).items():
         name = str(entry.file)
         if name != part_name(index, old.run):
             continue

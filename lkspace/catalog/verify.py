@@ -28,17 +28,18 @@ file and what is wrong.
 from __future__ import annotations
 
 import os
+import warnings
 from dataclasses import dataclass
 from typing import Literal
 
 import pyarrow as pa
 import pyarrow.parquet as pq
 
-from ..errors import CatalogError
+from ..errors import CatalogError, LkspaceWarning
 from .metadata import CatalogMetadata, JsonObject, decode
 from .records import Manifest, PartFooter
 from .schema import IDENTIFY_COLUMNS, METADATA_KEY, expected_schema
-from .transaction import MANIFEST, file_sha256
+from .transaction import MANIFEST, check_regular, file_sha256
 
 
 @dataclass(frozen=True, eq=False)
@@ -59,6 +60,8 @@ class CatalogParts:
         The manifest's SHA-256 of each part; ``None`` for a one-file catalog.
     run : str, optional
         The run id of a folder's parts; ``None`` for a one-file catalog.
+    unsealed : str, optional
+        The first file whose metadata has no ``digest`` (:attr:`PartFooter.sealed`); ``None``: none.
     """
 
     path: str
@@ -67,6 +70,7 @@ class CatalogParts:
     footer: PartFooter
     checksums: tuple[str, ...] | None
     run: str | None = None
+    unsealed: str | None = None
 
     @property
     def n_rows(self) -> int:
@@ -102,6 +106,7 @@ def file_metadata(file: str) -> tuple[PartFooter, int]:
     ``FileNotFoundError`` propagates (a catalog replaced while read); anything else wrong
     is a :class:`~lkspace.errors.CatalogError`.
     """
+    check_regular(file)
     try:
         info = pq.read_metadata(file)
         raw = (info.metadata or {}).get(METADATA_KEY)
@@ -139,12 +144,30 @@ def _check_columns(file: str, schema: pa.Schema, settings: CatalogMetadata) -> N
 def open_catalog(path: str | os.PathLike[str]) -> CatalogParts:
     """Open the catalog file or folder at ``path`` and check its structure (module docstring).
 
+    A file whose metadata has no ``digest`` is read with a warning (its metadata cannot be
+    checked); :func:`verify_catalog` refuses it.
+
     Raises
     ------
     CatalogError
         One line naming the file and what is wrong with it.
     """
-    path = os.fspath(path)
+    parts = _structure(os.fspath(path))
+    if parts.unsealed is not None:
+        warnings.warn(LkspaceWarning(unsealed(parts.unsealed) + "; read as it stands"), stacklevel=2)
+    return parts
+
+
+def unsealed(file: str) -> str:
+    """Say that the metadata of ``file`` has no digest, so an edit of it cannot be told."""
+    return (
+        f"{file}: its 'lkspace' metadata has no digest (removed, or written by an lkspace from before "
+        "2026-12-02), so a change to it cannot be detected"
+    )
+
+
+def _structure(path: str) -> CatalogParts:
+    """Open the catalog at ``path`` as :func:`open_catalog` does, without the warning."""
     if os.path.isdir(path):
         return _open_folder(path)
     if not os.path.exists(path):
@@ -156,13 +179,14 @@ def open_catalog(path: str | os.PathLike[str]) -> CatalogParts:
             f"{path}: part {shard.index} of a catalog of {shard.count} parts, not a whole catalog; "
             "open the folder it belongs to"
         )
-    return CatalogParts(path, (path,), (rows,), footer, None)
+    return CatalogParts(path, (path,), (rows,), footer, None, None, None if footer.sealed else path)
 
 
 def _manifest(folder: str) -> Manifest:
     """Read the manifest of the catalog ``folder``: well formed (:meth:`Manifest.from_json`) and complete."""
     where = os.path.join(folder, MANIFEST)
     try:
+        check_regular(where, "manifest")
         with open(where, "rb") as fh:
             raw = fh.read()
     except FileNotFoundError:
@@ -204,14 +228,19 @@ def _open_folder(folder: str) -> CatalogParts:
             f"{os.path.join(folder, extra[0])}: not a part of this catalog (its manifest does not list it, "
             "but pandas and Dask would read it): remove it"
         )
-    footers = [_part_footer(os.path.join(folder, name), i, manifest) for i, name in enumerate(listed)]
+    footers = [part_footer(os.path.join(folder, name), i, manifest) for i, name in enumerate(listed)]
     files = tuple(os.path.join(folder, name) for name in listed)
     rows = tuple(e.rows for e in entries)
-    return CatalogParts(folder, files, rows, footers[0], tuple(str(e.sha256) for e in entries), run)
+    loose = next((f for f, footer in zip(files, footers, strict=True) if not footer.sealed), None)
+    return CatalogParts(folder, files, rows, footers[0], tuple(str(e.sha256) for e in entries), run, loose)
 
 
-def _part_footer(file: str, i: int, manifest: Manifest) -> PartFooter:
-    """Return the footer of ``file``, checked to be part ``i`` of the catalog of ``manifest``."""
+def part_footer(file: str, i: int, manifest: Manifest) -> PartFooter:
+    """Return the footer of ``file``, checked to be part ``i`` of the catalog of ``manifest``.
+
+    Its run, plan, settings and part number are the manifest's, and its totals (rows, rows
+    by components, assignments covered) are the ones the manifest lists for part ``i``.
+    """
     footer, rows = file_metadata(file)
     count, run, shard = manifest.signature.shards, manifest.run, footer.shard
     other = run if shard is None or shard.run is None else shard.run
@@ -225,9 +254,18 @@ def _part_footer(file: str, i: int, manifest: Manifest) -> PartFooter:
         raise CatalogError(
             f"{file}: holds {where}, but the manifest lists it as part {i} of {count}: parts swapped or renamed"
         )
-    listed = manifest.parts[i].rows
-    if rows != listed:
-        raise CatalogError(f"{file}: holds {rows:,} rows, the manifest says {listed:,}: replaced or damaged")
+    listed = manifest.parts[i]
+    if rows != listed.rows:
+        raise CatalogError(f"{file}: holds {rows:,} rows, the manifest says {listed.rows:,}: replaced or damaged")
+    totals = footer.totals
+    if totals is not None and (totals.by_components, totals.assignments_covered) != (
+        listed.by_components,
+        listed.assignments_covered,
+    ):
+        raise CatalogError(
+            f"{file}: the manifest's totals of part {i} (rows by components, assignments covered) are not the "
+            "ones the part records: the manifest was edited or damaged"
+        )
     return footer
 
 
@@ -290,7 +328,9 @@ def verify_catalog(path: str | os.PathLike[str]) -> CatalogCheck:
     >>> lkspace.verify_catalog(out).parts
     2
     """
-    parts = open_catalog(path)
+    parts = _structure(os.fspath(path))
+    if parts.unsealed is not None:
+        raise CatalogError(unsealed(parts.unsealed) + ": not verified (write the catalog again)")
     checks: Checks
     if parts.checksums is not None:
         parts.verify_all()
@@ -312,6 +352,7 @@ def verify_catalog(path: str | os.PathLike[str]) -> CatalogCheck:
 
 def read_pages(file: str) -> None:
     """Read every data page of ``file``, verifying the page checksums it carries."""
+    check_regular(file)
     try:
         parquet = pq.ParquetFile(file, page_checksum_verification=True)
         for group in range(parquet.metadata.num_row_groups):

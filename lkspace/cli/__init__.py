@@ -8,6 +8,7 @@ and its exit status (1 bad data, 2 bad usage); nothing reaches the user as a tra
 
 from __future__ import annotations
 
+import difflib
 import importlib
 import json
 import os
@@ -81,6 +82,17 @@ class LazyGroup(click.Group):
         module, attribute = COMMANDS[cmd_name].split(":")
         return getattr(importlib.import_module(f"{__name__}.{module}"), attribute)
 
+    def resolve_command(
+        self, ctx: click.Context, args: list[str]
+    ) -> tuple[str | None, click.Command | None, list[str]]:
+        """Resolve ``args[0]`` as click does; an unknown name names the closest commands (``enumrate``)."""
+        name = args[0]
+        if name not in COMMANDS and not name.startswith("-"):
+            close = difflib.get_close_matches(name, list(COMMANDS), n=3, cutoff=0.6)
+            hint = f"; did you mean {' or '.join(repr(c) for c in close)}?" if close else ""
+            raise click.UsageError(f"no such command {name[:40]!r}{hint} ('lkspace --help' lists them)", ctx)
+        return super().resolve_command(ctx, args)
+
 
 @click.group(cls=LazyGroup, context_settings={"help_option_names": ["-h", "--help"]})
 @click.version_option(__version__, prog_name="lkspace")
@@ -124,6 +136,9 @@ def _run(args: list[str]) -> int:
             return _fail(as_json, type(exc).__name__, in_flags(exc), exc.exit_code)
         except (click.exceptions.Abort, KeyboardInterrupt) as exc:  # click turns KeyboardInterrupt into Abort
             return _interrupted(as_json, _interrupt_behind(exc))
+        except click.exceptions.NoArgsIsHelpError as exc:  # bare ``lkspace``: the help as it is, exit 2
+            click.echo(exc.ctx.get_help())
+            return 2
         except click.ClickException as exc:
             return _fail(as_json, "UsageError", exc.format_message(), exc.exit_code or 2)
         except click.exceptions.Exit as exc:

@@ -154,6 +154,17 @@ def emit(ctx: Context, payload: dict[str, Any], human: Callable[[], object] | No
         human()
 
 
+def print_rows(rows: list[tuple[str, str]]) -> None:
+    """Print ``(name, value)`` rows as an aligned two-column list, values whole.
+
+    A table sized to the terminal cut long values (a count of 10^28 designs) with ``…``;
+    these lines are as long as their values, whatever the width of the terminal or pipe.
+    """
+    width = max((len(name) for name, _ in rows), default=0)
+    for name, value in rows:
+        click.echo(f" {name:<{width}}  {value}".rstrip())
+
+
 def _jsonable(value: object) -> int | float | list[Any]:
     if isinstance(value, np.integer):
         return int(value)

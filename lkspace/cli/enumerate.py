@@ -2,8 +2,9 @@
 
 from __future__ import annotations
 
+import contextlib
 import time
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import click
 
@@ -22,16 +23,26 @@ from .common import (
     labels_option,
     load_mesh,
     mesh_argument,
+    print_rows,
     symmetry_facts,
     symmetry_tolerance,
 )
 from .flags import flags_in
 
+if TYPE_CHECKING:
+    from ..catalog.transaction import Destination
+
 
 def _count_payload(space: DesignSpace, selection: Selection, scheduler: str = "local", jobs: int = 1) -> dict[str, Any]:
-    from ..design.counting import count_space
+    from ..design.counting import census_planned, count_space
 
     if selection.mode == "designs":
+        if census_planned(space, selection.components, scheduler, jobs):  # the cost up front, then progress
+            from ..design.census import census_estimate
+
+            estimate = census_estimate(space)
+            split = f"; {jobs} workers share it" if jobs > 1 else ""
+            click.echo(f"lkspace: note: counting by {estimate}{split}; progress follows", err=True)
         totals = count_space(space, selection.components, scheduler, jobs).to_dict()
         if totals.get("note"):
             totals["note"] = flags_in(totals["note"])
@@ -179,65 +190,77 @@ def enumerate_cmd(
     selection = Selection(mode, components, max_designs, sample, seed, identify)
     execution = Execution(jobs, shards, engine, resume, allow_large=yes)
     writes = output is not None and not count_only
-    _check_before_work(mesh, output if writes else None, selection, execution)
-    if invariant is not None:
-        from .invariant import InvariantOutput, refuse_with_invariant, run_invariant
+    target = _check_before_work(mesh, output if writes else None, selection, execution)
+    with contextlib.ExitStack() as held:
+        if target is not None:  # the lock before any work: a second run on the same -o stops at once
+            from ..catalog.lock import catalog_lock
 
-        refuse_with_invariant(mode=mode != "designs", sample=sample, shards=shards, resume=resume, identify=identify)
-        refuse_with_invariant(jobs=jobs > 1, scheduler=scheduler)
-        return run_invariant(
-            ctx,
-            load_mesh(ctx, mesh),
-            label_set(labels_spec),
-            symmetry,
-            invariant,
-            no_zero,
-            InvariantOutput(output, count_only, components, max_designs),
-        )
-    try:
-        scaffold = load_mesh(ctx, mesh)
-        labels = label_set(labels_spec)
-        space = make_space(scaffold, labels, symmetry, no_zero, symmetry_tolerance())
-        facts = symmetry_facts(scaffold) if symmetry != "none" else {}
-    except KeyboardInterrupt as exc:  # Ctrl-C or SIGTERM while the symmetry group is computed
-        if not writes:
-            raise
-        code = 128 + getattr(exc, "signum", 2)
-        raise CatalogInterrupted(f"interrupted; nothing was written to {output}", code) from None
-    started = time.perf_counter()
-    if output is None or count_only:
-        payload = _count_payload(space, selection, engine, jobs)
-        payload.update(
-            group_order=space.group_order, written=None, mode=mode, symmetry=symmetry, label_set=labels.tolist()
-        )
-        if output is None and not count_only:
-            ctx.notes["note"] = "no -o given: counted, nothing written"
-    else:
-        payload = _written(space, output, selection, execution)
-    payload["seconds"] = round(time.perf_counter() - started, 3)
-    payload.update(facts)
-    ran_in = _where_it_ran(engine, payload, not writes, identify, output)
-    if ran_in is not None:
-        payload["ran_in"] = ran_in
-    found = f"group order {space.group_order}"
-    if facts:
-        found += f"; found {facts['group']} within {facts['symmetry_tolerance']:.3g}"
-    headline = f"{scaffold.name}: label set {labels.tolist()}, symmetry {symmetry} ({found}), mode {mode}"
-    emit(ctx, payload, lambda: _show(headline, payload))
+            held.enter_context(catalog_lock(target.lock, target.shown))
+        if invariant is not None:
+            from .invariant import InvariantOutput, refuse_with_invariant, run_invariant
+
+            refuse_with_invariant(
+                mode=mode != "designs", sample=sample, shards=shards, resume=resume, identify=identify
+            )
+            refuse_with_invariant(jobs=jobs > 1, scheduler=scheduler)
+            return run_invariant(
+                ctx,
+                load_mesh(ctx, mesh),
+                label_set(labels_spec),
+                symmetry,
+                invariant,
+                no_zero,
+                InvariantOutput(output, count_only, components, max_designs),
+            )
+        try:
+            scaffold = load_mesh(ctx, mesh)
+            labels = label_set(labels_spec)
+            space = make_space(scaffold, labels, symmetry, no_zero, symmetry_tolerance())
+            facts = symmetry_facts(scaffold) if symmetry != "none" else {}
+        except KeyboardInterrupt as exc:  # Ctrl-C or SIGTERM while the symmetry group is computed
+            if not writes:
+                raise
+            code = 128 + getattr(exc, "signum", 2)
+            raise CatalogInterrupted(f"interrupted; nothing was written to {output}", code) from None
+        started = time.perf_counter()
+        if output is None or count_only:
+            payload = _count_payload(space, selection, engine, jobs)
+            payload.update(
+                group_order=space.group_order, written=None, mode=mode, symmetry=symmetry, label_set=labels.tolist()
+            )
+            if output is None and not count_only:
+                ctx.notes["note"] = "no -o given: counted, nothing written"
+        else:
+            payload = _written(space, output, selection, execution)
+        payload["seconds"] = round(time.perf_counter() - started, 3)
+        payload.update(facts)
+        ran_in = _where_it_ran(engine, payload, not writes, identify, output)
+        if ran_in is not None:
+            payload["ran_in"] = ran_in
+        found = f"group order {space.group_order}"
+        if facts:
+            found += f"; found {facts['group']} within {facts['symmetry_tolerance']:.3g}"
+        headline = f"{scaffold.name}: label set {labels.tolist()}, symmetry {symmetry} ({found}), mode {mode}"
+        emit(ctx, payload, lambda: _show(headline, payload))
 
 
-def _check_before_work(mesh: str | None, output: str | None, selection: Selection, execution: Execution) -> None:
-    """Refuse options that do not go together, and a bad catalog ``output`` (``None``: none written), before any work."""
+def _check_before_work(
+    mesh: str | None, output: str | None, selection: Selection, execution: Execution
+) -> Destination | None:
+    """Refuse options that do not go together, and a bad catalog ``output`` (``None``: none written), before any work.
+
+    Returns where a local catalog goes (``None``: a URL, or nothing written).
+    """
     from ..runtime.schedulers import is_dask
 
-    url = None
+    url, target = None, None
     if output is not None:  # a bad -o fails before any work
         from ..catalog.remote import check_remote, remote_url  # pyarrow: only when a catalog is written
         from ..catalog.transaction import catalog_target
 
         url = remote_url(output)
         if url is None:
-            catalog_target(output, (mesh,), "-o")
+            target = catalog_target(output, (mesh,), "-o")
         else:
             check_remote(output, "-o")
     sel = selection
@@ -249,6 +272,7 @@ def _check_before_work(mesh: str | None, output: str | None, selection: Selectio
         raise UsageError(f"{url}: memory:// is private to this process; use --jobs 1 and --scheduler local")
     if sel.identify and output is None:
         raise UsageError("--identify names the rows of a written catalog: give -o CATALOG.parquet")
+    return target
 
 
 def _written(space: DesignSpace, output: str, selection: Selection, execution: Execution) -> dict[str, Any]:
@@ -276,21 +300,20 @@ def _written(space: DesignSpace, output: str, selection: Selection, execution: E
 def _show(headline: str, payload: dict[str, Any]) -> None:
     """Print the ``headline`` and the totals of ``payload`` as a table (the command's human output)."""
     from rich.console import Console
-    from rich.table import Table
 
     con = Console(highlight=False)
     con.print(headline)
-    table = Table(show_header=False, box=None)
-    table.add_row("designs", f"{payload['designs']:,}")
-    table.add_row("assignments", f"{payload['assignments']:,}")
+    rows: list[tuple[str, str]] = []
+    rows.append(("designs", f"{payload['designs']:,}"))
+    rows.append(("assignments", f"{payload['assignments']:,}"))
     for k, v in (payload["by_components"] or {}).items():
-        table.add_row(f"  {plural(int(k), 'component')}", f"{v:,}")
-    table.add_row("written", str(payload.get("written") or "- (count only; give -o FILE to write)"))
+        rows.append((f"  {plural(int(k), 'component')}", f"{v:,}"))
+    rows.append(("written", str(payload.get("written") or "- (count only; give -o FILE to write)")))
     if "identified" in payload:
         identified = payload["identified"]
         top = ", ".join(f"{k} ({v})" for k, v in list(identified["names"].items())[:6])
-        table.add_row("identified", f"{identified['named']:,} of {identified['rows']:,} named: {top}")
+        rows.append(("identified", f"{identified['named']:,} of {identified['rows']:,} named: {top}"))
     if "ran_in" in payload:
-        table.add_row("ran in", payload["ran_in"])
-    table.add_row("seconds", str(payload["seconds"]))
-    con.print(table)
+        rows.append(("ran in", payload["ran_in"]))
+    rows.append(("seconds", str(payload["seconds"])))
+    print_rows(rows)

@@ -12,7 +12,7 @@ from ..errors import TooLargeError, UsageError
 from ..model.scaffold import Scaffold
 from ..symmetry.group import SymmetryMode
 from ..words import plural
-from .common import Context, emit, symmetry_tolerance, usage_errors
+from .common import Context, emit, print_rows, symmetry_tolerance, usage_errors
 
 
 def refuse_with_invariant(**given: object) -> None:
@@ -74,7 +74,6 @@ def run_invariant(
 
     def human() -> None:
         from rich.console import Console
-        from rich.table import Table
 
         inv = payload["invariant"]
         con = Console(highlight=False)
@@ -82,17 +81,17 @@ def run_invariant(
             f"{scaffold.name}: label set {labels.tolist()}, designs fixed by {subgroup} (order {inv['order']}), "
             f"up to its normalizer in {symmetry} (order {inv['normalizer_order']})"
         )
-        table = Table(show_header=False, box=None)
-        table.add_row("edge orbits", f"{inv['edge_orbits']} ({inv['zero_orbits']} forced to 0)")
-        table.add_row("fixed assignments", f"{payload['fixed_assignments']:,}")
         designs = payload["designs"]
-        table.add_row("designs", "-" if designs is None else f"{designs:,}")
-        for k, v in (payload["by_components"] or {}).items():
-            table.add_row(f"  {plural(int(k), 'component')}", f"{v:,}")
-        table.add_row("written", str(payload.get("written") or "- (count only; give -o FILE to write)"))
+        rows = [
+            ("edge orbits", f"{inv['edge_orbits']} ({inv['zero_orbits']} forced to 0)"),
+            ("fixed assignments", f"{payload['fixed_assignments']:,}"),
+            ("designs", "-" if designs is None else f"{designs:,}"),
+        ]
+        rows += [(f"  {plural(int(k), 'component')}", f"{v:,}") for k, v in (payload["by_components"] or {}).items()]
+        rows.append(("written", str(payload.get("written") or "- (count only; give -o FILE to write)")))
         if payload.get("note"):
-            table.add_row("note", str(payload["note"]))
-        table.add_row("seconds", str(payload["seconds"]))
-        con.print(table)
+            rows.append(("note", str(payload["note"])))
+        rows.append(("seconds", str(payload["seconds"])))
+        print_rows(rows)
 
     emit(ctx, payload, human)

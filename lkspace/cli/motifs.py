@@ -8,6 +8,7 @@ import click
 import numpy as np
 
 from ..errors import UsageError
+from ..model.validation import MAX_LABEL
 from ..words import plural
 from .common import Context, emit, json_option, label_set, labels_option, load_mesh, usage_errors
 
@@ -15,24 +16,35 @@ if TYPE_CHECKING:
     from ..symmetry.group import SymmetryMode
 
 
-def _sizes(text: str, option: str) -> list[int]:
+MAX_INT = 10**6
+"""Largest block size, offset or direction entry (a supercell holds at most 200000 faces)."""
+
+
+def _integers(text: str, option: str, sep: str, example: str, bound: int = MAX_INT) -> list[int]:
+    """Parse ``text`` as integers separated by ``sep``, each within ``-bound..bound`` (usage errors, one line)."""
     try:
-        sizes = [int(x) for x in text.lower().split("x")]
+        numbers = [int(x) for x in text.lower().split(sep)]
     except ValueError:
-        raise UsageError(f"{option} {text!r}: expected sizes such as 2x2 or 2x1x1") from None
+        raise UsageError(f"{option} {text[:60]!r}: expected integers such as {example}") from None
+    if any(abs(n) > bound for n in numbers):
+        raise UsageError(f"{option} {text[:60]!r}: integers must lie within -{bound}..{bound}")
+    return numbers
+
+
+def _sizes(text: str, option: str) -> list[int]:
+    sizes = _integers(text, option, "x", "2x2 or 2x1x1")
     if min(sizes) < 1:
         raise UsageError(f"{option} {text!r}: sizes must be at least 1")
     return sizes
 
 
 def _gradient(text: str, dim: int) -> tuple[list[int], list[int]]:
-    direction, _, values = text.partition(":")
-    try:
-        d = [int(x) for x in direction.split(",")]
-        v = [int(x) for x in values.split(",")]
-    except ValueError:
-        raise UsageError(f"--gradient {text!r}: expected DIRECTION:VALUES such as 1,0:0,1,2") from None
-    if len(d) != dim or not v:
+    direction, colon, values = text.partition(":")
+    if not colon or not values:
+        raise UsageError(f"--gradient {text[:60]!r}: expected DIRECTION:VALUES such as 1,0:0,1,2")
+    d = _integers(direction, "--gradient", ",", "1,0:0,1,2")
+    v = _integers(values, "--gradient", ",", "1,0:0,1,2", MAX_LABEL)
+    if len(d) != dim:
         raise UsageError(f"--gradient {text!r}: the direction needs {dim} integers and at least one value")
     return d, v
 
@@ -95,7 +107,8 @@ def motifs_cmd(
     else:
         with usage_errors():
             tiling = tiling_matrix(
-                _sizes(block or "x".join(["1"] * base.dim), "--block"), [int(s) for s in offsets.split(",") if s]
+                _sizes(block or "x".join(["1"] * base.dim), "--block"),
+                _integers(offsets, "--offsets", ",", "1 or 1,0,2") if offsets else [],
             )
             if len(tiling) != base.dim:
                 raise UsageError(f"--block: {mesh} has {base.dim} directions")

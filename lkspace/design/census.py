@@ -33,19 +33,36 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import LabelError
+from ..errors import LabelError, TooLargeError
 from ..runtime.progress import task
 from ..runtime.schedulers import run_tasks
 from ..strands.ports import port_model
+from ..words import plural
 from .census_kernel import CensusPorts, Term, census_range
 from .space import DesignSpace
 
 SHARD_CHOICES = 1 << 24
-"""Residue vectors per shard (seconds of work on one core for a polyhedron)."""
+"""Most residue vectors per shard (seconds of work on one core for a polyhedron)."""
+
+MIN_SHARD_CHOICES = 1 << 18
+"""Fewest residue vectors per shard: a census is cut into about :data:`TARGET_SHARDS` shards
+between the two bounds, so that its progress moves every second or so."""
+
+TARGET_SHARDS = 1000
 
 CALL_PORT_VISITS = 1 << 24
 """Port visits per compiled call (about a tenth of a second): a shard is walked in calls
 this short, so that Ctrl-C, which Python sees only between calls, stops it promptly."""
+
+NS_PER_PORT_VECTOR = 3.36
+"""CPU nanoseconds per port and residue vector, the median measured in ``results/census/plan.md``."""
+
+MAX_CENSUS_VECTORS = 1 << 45
+"""Most residue vectors a census takes on (3.5e13: about 2 million shards, thousands of core-hours).
+
+Past it a census is refused before any work (its shard list alone would fill memory);
+the exact total without the split by components (Burnside over the whole group) is instant.
+"""
 
 MAX_VALUE_KINDS = 3
 """Distinct label counts per residue class (besides 1) a census keeps apart exactly."""
@@ -157,18 +174,72 @@ def cell_weights(n_var: int, kinds: list[int]) -> list[int]:
     return out
 
 
+@dataclass(frozen=True)
+class CensusEstimate:
+    """What a census of a space costs, known before any work.
+
+    Attributes
+    ----------
+    vectors : int
+        Residue vectors over every Burnside term.
+    shards : int
+        Tasks of about :data:`SHARD_CHOICES` vectors.
+    cpu_seconds : float
+        CPU time at :data:`NS_PER_PORT_VECTOR` per port and vector (one core; ``jobs`` split it).
+    """
+
+    vectors: int
+    shards: int
+    cpu_seconds: float
+
+    def __str__(self) -> str:
+        hours = self.cpu_seconds / 3600
+        cost = f"{hours:.3g} CPU hours" if hours >= 1 else f"{self.cpu_seconds / 60:.2g} CPU minutes"
+        parts = plural(self.shards, "part") if self.shards < 10**9 else f"{self.shards:.3g} parts"
+        return f"a census of {self.vectors:.3g} residue vectors in {parts} (about {cost})"
+
+
+def shard_size(vectors: int) -> int:
+    """Residue vectors per shard of a census of ``vectors``: about :data:`TARGET_SHARDS` shards, within bounds."""
+    return min(SHARD_CHOICES, max(MIN_SHARD_CHOICES, vectors // TARGET_SHARDS))
+
+
+def census_estimate(space: DesignSpace, shard_choices: int | None = None) -> CensusEstimate:
+    """Return the cost of :func:`census` on ``space``; raise :class:`TooLargeError` past :data:`MAX_CENSUS_VECTORS`.
+
+    ``shard_choices``: vectors per shard (default :func:`shard_size`).
+    """
+    sizes = [t.size for t in terms(space)]
+    vectors = sum(sizes)
+    shard_choices = shard_choices or shard_size(vectors)
+    ports = 2 * space.scaffold.n_corners
+    estimate = CensusEstimate(
+        vectors, sum(-(-n // shard_choices) for n in sizes), vectors * ports * NS_PER_PORT_VECTOR * 1e-9
+    )
+    if vectors > MAX_CENSUS_VECTORS:
+        raise TooLargeError(
+            f"{space.scaffold.name}: {estimate} is past what lkspace runs ({MAX_CENSUS_VECTORS:.3g} vectors); "
+            "leave out `jobs`, `components` and `scheduler` for the exact total without the split by "
+            "components (instant), or use a smaller label set or scaffold"
+        )
+    return estimate
+
+
 def census(
     space: DesignSpace,
     scheduler: str = "local",
     jobs: int = 1,
-    shard_choices: int = SHARD_CHOICES,
+    shard_choices: int | None = None,
     progress: Callable[[int, int], object] | None = None,
 ) -> Census:
     """Count the designs of ``space`` by components exactly, in shards (see the module docstring).
 
     ``progress(shards done, shards)`` is called as shards finish (and a ``census`` step
-    of :mod:`lkspace.runtime.progress` advances).
+    of :mod:`lkspace.runtime.progress` advances).  Refused before any work past
+    :data:`MAX_CENSUS_VECTORS` (:func:`census_estimate`).
     """
+    estimate = census_estimate(space, shard_choices)
+    shard_choices = shard_choices or shard_size(estimate.vectors)
     all_terms = terms(space)
     kinds = value_kinds(space).tolist()
     items = []

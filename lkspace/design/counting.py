@@ -89,6 +89,12 @@ def burnside_total(space: DesignSpace) -> int:
     return total // space.n_actions
 
 
+def census_planned(space: DesignSpace, components: int | None, scheduler: str, jobs: int) -> bool:
+    """Whether :func:`count_space` counts ``space`` by a census (see there)."""
+    wanted = components is not None or jobs > 1 or is_dask(scheduler)
+    return space.n_classes > MAX_CLASSES and (wanted or space.n_classes <= CENSUS_AUTO)
+
+
 def count_space(
     space: DesignSpace, components: int | None = None, scheduler: str = "local", jobs: int = 1
 ) -> DesignCount:
@@ -103,8 +109,7 @@ def count_space(
     group and ``by_components`` is ``None``.
     """
     if space.n_classes > MAX_CLASSES:
-        wanted = components is not None or jobs > 1 or is_dask(scheduler)
-        if not wanted and space.n_classes > CENSUS_AUTO:
+        if not census_planned(space, components, scheduler, jobs):
             return DesignCount(
                 burnside_total(space),
                 space.assignments,

@@ -30,7 +30,15 @@ import numpy as np
 
 from ..errors import ScaffoldError, TooLargeError
 from ..model.scaffold import Scaffold
-from .graph_faces import CycleSpace, canonical_cycle, cover_orbits, cycle_space, graph_automorphisms
+from .graph_faces import (
+    MAX_CYCLES,
+    CycleSpace,
+    canonical_cycle,
+    check_graph,
+    cover_orbits,
+    cycle_space,
+    graph_automorphisms,
+)
 
 MAX_LISTED = 1 << 20
 """Most structures :func:`list_structures` walks."""
@@ -172,6 +180,11 @@ def scaffold_structure(scaffold: Scaffold) -> FaceStructure:
     """
     if scaffold.periodic:
         raise ScaffoldError(f"{scaffold.name}: embeddings of periodic scaffolds are not supported")
+    check_graph(scaffold.n_vertices, [(0, 0)] * scaffold.n_edges)  # before the faces are listed
+    if scaffold.n_faces > MAX_CYCLES:
+        raise TooLargeError(
+            f"{scaffold.name}: {scaffold.n_faces:,} faces; face structures are counted on at most {MAX_CYCLES:,}"
+        )
     cycles = [canonical_cycle(f) for f in scaffold.faces()]
     if len(set(cycles)) != len(cycles) or any(len(set(c)) != len(c) for c in cycles):
         raise ScaffoldError(f"{scaffold.name}: faces must be distinct simple cycles to count embeddings")

@@ -28,6 +28,13 @@ NAMED_GRAPHS = ("K4", "cube", "K3,3", "petersen", "octahedron", "K5")
 MAX_CYCLES = 4096
 """Most cycles a graph may offer as faces (the cover search is exponential in them)."""
 
+MAX_GRAPH_EDGES = 10_000
+"""Most edges of a graph whose face sets are sought (its cycles and automorphisms are listed)."""
+
+MAX_AUTOMORPHISM_ENTRIES = 1 << 24
+"""Most ``automorphisms x vertices`` listed (128 MB of vertex images; a ring of 10^5 vertices has 2 x 10^5
+automorphisms, 2 x 10^10 entries): counted first, refused past this before any is listed."""
+
 MAX_STEPS = 2_000_000
 """Most branches the cover search takes before it gives up with :class:`~lkspace.errors.TooLargeError`."""
 
@@ -81,11 +88,33 @@ def simple_cycles(n_vertices: int, edges: Sequence[tuple[int, int]], max_length:
     return sorted(found, key=lambda c: (len(c), c))
 
 
+def check_graph(n_vertices: int, edges: Sequence[tuple[int, int]]) -> None:
+    """Refuse a graph past :data:`MAX_GRAPH_EDGES` edges (or vertices) before any work (one line)."""
+    size = max(n_vertices, len(edges))
+    if size > MAX_GRAPH_EDGES:
+        raise TooLargeError(
+            f"a graph of {n_vertices:,} vertices and {len(edges):,} edges: face sets are sought on graphs of at most "
+            f"{MAX_GRAPH_EDGES:,} vertices and edges (their cycles and automorphisms are listed); use a smaller graph"
+        )
+
+
 def graph_automorphisms(n_vertices: int, edges: Sequence[tuple[int, int]]) -> np.ndarray:
-    """``(n_aut, n_vertices) int64``: every automorphism of the graph (vertex images), identity first."""
+    """``(n_aut, n_vertices) int64``: every automorphism of the graph (vertex images), identity first.
+
+    Counted first (BLISS, without listing them): past :data:`MAX_AUTOMORPHISM_ENTRIES` it
+    is a :class:`~lkspace.errors.TooLargeError`, before memory grows.
+    """
     import igraph as ig
 
-    perms = np.array(ig.Graph(n=n_vertices, edges=list(edges)).get_automorphisms_vf2(), np.int64)
+    check_graph(n_vertices, edges)
+    graph = ig.Graph(n=n_vertices, edges=list(edges))
+    count = int(graph.count_automorphisms())
+    if count * max(n_vertices, 1) > MAX_AUTOMORPHISM_ENTRIES:
+        raise TooLargeError(
+            f"the graph ({n_vertices:,} vertices) has {count:,} automorphisms: too many to list "
+            f"(at most {MAX_AUTOMORPHISM_ENTRIES:,} vertex images); use a less symmetric or smaller graph"
+        )
+    perms = np.array(graph.get_automorphisms_vf2(), np.int64)
     order = np.lexsort(perms.T[::-1])  # the identity is the lexicographically smallest
     return perms[order]
 
@@ -139,6 +168,7 @@ class CycleSpace:
 def cycle_space(n_vertices: int, edges: Sequence[tuple[int, int]], max_length: int) -> CycleSpace:
     """Return the :class:`CycleSpace` of a graph with cycles of length up to ``max_length``."""
     edges = sorted((min(a, b), max(a, b)) for a, b in edges)
+    check_graph(n_vertices, edges)
     return CycleSpace(
         n_vertices, edges, simple_cycles(n_vertices, edges, max_length), graph_automorphisms(n_vertices, edges)
     )

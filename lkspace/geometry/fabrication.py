@@ -179,18 +179,21 @@ def check_gaps(
     want = 2 * radius + clearance
     total = sum(float(np.linalg.norm(np.diff(np.vstack([c, c[:1]]) if cl else c, axis=0), axis=1).sum())
                 for c, cl in zip(curves, closed, strict=True))  # fmt: skip
+    pts_all = np.vstack(curves)
+    span = float(np.linalg.norm(pts_all.max(axis=0) - pts_all.min(axis=0))) + 2 * radius
+    near = min(want, span)  # no two points are farther apart: a clearance past the pieces' span measures as it
     # at most REACH_STEPS samples per search radius: the pairs grow with samples, not with want / spacing
-    spacing = max(min(radius, clearance if clearance > 0 else radius) / 3, want / REACH_STEPS, total / MAX_GAP_SAMPLES)
+    spacing = max(min(radius, clearance if clearance > 0 else radius) / 3, near / REACH_STEPS, total / MAX_GAP_SAMPLES)
     pts, arc, owner, lengths = samples(curves, closed, spacing)
     tree = sample_tree(pts)
-    reach = want + spacing + radius
-    exclusion = max(4 * want, np.pi * (radius + spacing))
+    reach = near + spacing + radius
+    exclusion = max(4 * near, np.pi * (radius + spacing))
     while True:  # widen the search until a gap is found (a number to report), within bounds
         pairs = tree.query_pairs(reach, output_type="ndarray")
         keep = np.zeros(0, bool)
         if len(pairs):
             keep = pieces_apart(owner, arc, lengths, closed, pairs[:, 0], pairs[:, 1], exclusion)
-        if np.any(keep) or reach > 0.5 * max(lengths.max(), want) or 8 * len(pairs) > MAX_GAP_PAIRS:
+        if np.any(keep) or reach > 0.5 * max(lengths.max(), near) or 8 * len(pairs) > MAX_GAP_PAIRS:
             break  # (doubling the radius may multiply the pairs by 8)
         reach *= 2
     if not np.any(keep):
@@ -221,9 +224,12 @@ def gap_fixes(centre: float, thickness: float, clearance: float, scale: float) -
     >>> gap_fixes(0.3, 0.1, 0.5, 1.0)
     'no `thickness` reaches clearance 0.5 at `scale` 1 (the centrelines are 0.3 apart); use `scale` 2 or more, or `clearance` 0.2 or less'
     """
-    need_scale = math.ceil(100 * scale * (clearance + thickness) / max(centre, 1e-12)) / 100
+    ratio = scale * (clearance + thickness) / max(centre, 1e-12)  # inf for a clearance near the float limit
     fits = math.floor(100 * max(centre - thickness, 0.0)) / 100  # rounded down: it must still fit
-    other = f"`scale` {need_scale:g} or more, or `clearance` {fits:g} or less"
+    if ratio <= MAX_SCALE:
+        other = f"`scale` {math.ceil(100 * ratio) / 100:g} or more, or `clearance` {fits:g} or less"
+    else:  # no allowed scale reaches it
+        other = f"`clearance` {fits:g} or less (no `scale` up to {MAX_SCALE:g} reaches clearance {clearance:g})"
     if centre <= clearance:
         return (
             f"no `thickness` reaches clearance {clearance:g} at `scale` {scale:g} "

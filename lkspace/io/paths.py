@@ -1,8 +1,9 @@
 """Checks on the files lkspace reads and writes, made before any work is done.
 
 Inputs must be regular files (a FIFO or a device would block or never end); outputs
-must be writable files in an existing folder, never a device or a folder, and a symlink
-is followed (the file it points to is replaced, the link kept).  An output is never one
+must be writable files in an existing folder, never a device or a folder, and never a
+symbolic link: lkspace does not write through a link (the file it points to would be
+replaced without a word), so an output named by a link is refused.  An output is never one
 of the command's inputs (the same file by any name: a symlink or a hard link too), and
 never a name that is only an extension (``.obj`` would be a hidden file).
 """
@@ -37,7 +38,7 @@ def input_file(path: str | os.PathLike[str], what: str = "input") -> str:
 def output_file(
     path: str | os.PathLike[str], extensions: tuple[str, ...] = (), inputs: Iterable[str | None] = ()
 ) -> str:
-    """Return the file to write for output ``path``: checked, with a symlink resolved.
+    """Return the file to write for output ``path``: checked, its folders' symlinks resolved.
 
     ``extensions`` (lower case, with the dot) are the ones the format may have; another
     extension is an error naming them.  The folder must exist and be writable; an
@@ -50,6 +51,7 @@ def output_file(
     if text.endswith(("/", os.sep)):
         raise ExportError(f"{text}: output path names a folder; give a file name")
     only_extension(text, extensions)
+    not_a_link(text)
     not_an_input(text, inputs)
     target = os.path.realpath(text)
     if os.path.lexists(target):
@@ -76,6 +78,16 @@ def output_folder(folder: str, shown: str | None = None) -> None:
         raise ExportError(f"{name}: {folder} is not a folder")
     if not os.access(folder, os.W_OK | os.X_OK):
         raise ExportError(f"{name}: cannot write in folder {folder} (permission denied)")
+
+
+def not_a_link(path: str) -> None:
+    """Raise if ``path`` (its last name; links among its folders are fine) is a symbolic link, dangling or not."""
+    bare = path.rstrip("/" + os.sep) or path
+    if os.path.islink(bare):
+        raise ExportError(
+            f"{path}: is a symbolic link (to {os.readlink(bare)}); lkspace does not write through links, "
+            "so the file it points to is not replaced: give that path itself, or remove the link"
+        )
 
 
 def only_extension(path: str, extensions: Iterable[str]) -> None:

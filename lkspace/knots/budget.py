@@ -5,6 +5,12 @@ homology) can take minutes and gigabytes on a big diagram, inside C extensions t
 cannot be interrupted.  So :func:`run_in_time` runs it in a forked child process that is
 killed when the time limit is reached; the caller then reports the status
 ``"unknown: time limit 60 s reached (during simplification)"`` instead of waiting.
+
+The limit counts the child's **CPU time** (user + system, read from ``/proc`` every
+:data:`POLL_SECONDS`; elsewhere the kernel's ``RLIMIT_CPU`` in whole seconds), so a busy
+machine answers what an idle one answers, only later.  A child that gets no CPU at all
+for :data:`WALL_FACTOR` times the limit of wall time is stopped too (a backstop, never
+reached by work that runs).
 Sizes are bounded before any work: :func:`twist_crossings` estimates the crossings the
 twists alone make, and :data:`MAX_CROSSINGS` bounds the projected diagram.
 """
@@ -43,6 +49,12 @@ They take milliseconds (every bounded invariant included), less than forking a c
 process costs; the time limit guards the bigger ones.
 """
 
+POLL_SECONDS = 0.1
+"""How often the parent reads the child's CPU time (seconds of wall time)."""
+
+WALL_FACTOR = 20.0
+"""A child still running after this many times its CPU limit in wall time is stopped (load past 20 per core)."""
+
 T = TypeVar("T")
 
 
@@ -65,8 +77,31 @@ def twist_crossings(degrees: np.ndarray, labels: np.ndarray) -> int:
     return int(np.sum(np.where(k > 1, t * (k - 1), 0.0)))
 
 
+def cpu_seconds(pid: int) -> float | None:
+    """Return the CPU time (user + system, seconds) process ``pid`` has used; ``None`` without ``/proc``."""
+    try:
+        with open(f"/proc/{pid}/stat", "rb") as fh:
+            data = fh.read()
+        fields = data[data.rindex(b")") + 2 :].split()  # after the command name, which may hold spaces
+        return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")  # utime, stime
+    except (OSError, ValueError, IndexError):
+        return None
+
+
+def _limit_cpu(seconds: float) -> None:
+    """In the child: let the kernel end it with SIGXCPU past ``seconds`` of CPU (where ``/proc`` cannot be read)."""
+    with contextlib.suppress(ImportError, ValueError, OSError):
+        import math
+        import resource
+
+        hard = resource.getrlimit(resource.RLIMIT_CPU)[1]
+        soft = max(1, math.ceil(seconds))
+        if hard == resource.RLIM_INFINITY or soft <= hard:
+            resource.setrlimit(resource.RLIMIT_CPU, (soft, hard))
+
+
 def run_in_time(func: Callable[[Callable[[str], None]], T], time_limit: float | None, step: Step | None = None) -> T:
-    """Return ``func(stage)``, run in a forked child process killed after ``time_limit`` seconds.
+    """Return ``func(stage)``, run in a forked child process killed after ``time_limit`` seconds of its CPU time.
 
     ``func`` calls ``stage("simplification")`` etc. as it goes; the stages are shown on
     ``step``.  Raises :class:`TimeLimitReached` when time runs out.  Without a limit (or
@@ -84,6 +119,8 @@ def run_in_time(func: Callable[[Callable[[str], None]], T], time_limit: float | 
     if pid == 0:  # pragma: no cover - the child: its coverage is not collected
         recv.close()
         install(None)
+        if cpu_seconds(os.getpid()) is None:
+            _limit_cpu(time_limit)
         try:
             send.send(("done", func(lambda text: send.send(("stage", text)))))
         except BaseException as exc:  # noqa: BLE001 - everything goes back to the parent
@@ -92,18 +129,25 @@ def run_in_time(func: Callable[[Callable[[str], None]], T], time_limit: float | 
             os._exit(0)
     send.close()
     stage = "starting the worker"
-    deadline = time.monotonic() + time_limit
+    started = noted = time.monotonic()
+    reaped = False
     try:
         while True:
-            left = deadline - time.monotonic()
-            if left <= 0:
+            used = cpu_seconds(pid)
+            if (used is not None and used >= time_limit) or time.monotonic() - started >= WALL_FACTOR * time_limit:
                 raise TimeLimitReached(stage)
-            if not recv.poll(min(left, 1.0)):
-                note(stage)  # keeps the plain progress lines coming
+            if not recv.poll(POLL_SECONDS):
+                if time.monotonic() - noted >= 1.0:
+                    note(stage)  # keeps the plain progress lines coming
+                    noted = time.monotonic()
                 continue
             try:
                 kind, value = recv.recv()
             except EOFError:
+                status = os.waitpid(pid, 0)[1]
+                reaped = True
+                if os.WIFSIGNALED(status) and os.WTERMSIG(status) == getattr(signal, "SIGXCPU", None):
+                    raise TimeLimitReached(stage) from None
                 raise LkspaceError(f"identification ended without an answer during {stage} (out of memory?)") from None
             if kind == "stage":
                 stage = value
@@ -113,9 +157,10 @@ def run_in_time(func: Callable[[Callable[[str], None]], T], time_limit: float | 
             else:
                 _reraise(*value)
     finally:
-        with contextlib.suppress(ProcessLookupError):
-            os.kill(pid, signal.SIGKILL)
-        os.waitpid(pid, 0)
+        if not reaped:
+            with contextlib.suppress(ProcessLookupError):
+                os.kill(pid, signal.SIGKILL)
+            os.waitpid(pid, 0)
         recv.close()
 
 

@@ -1,0 +1,54 @@
+"""identify's time limit counts the worker's CPU time: a busy machine answers as an idle one, only later."""
+
+from __future__ import annotations
+
+import os
+import time
+
+import pytest
+
+from lkspace.knots import budget
+from lkspace.knots.budget import TimeLimitReached, run_in_time
+
+pytestmark = pytest.mark.skipif(not hasattr(os, "fork"), reason="the time limit needs os.fork")
+
+
+def waits_then_answers(stage):
+    """Work that gets no CPU for a while (as on a machine whose cores are busy), then answers."""
+    stage("waiting for a core")
+    time.sleep(1.0)
+    return "answer"
+
+
+def burns(stage):
+    """Work that uses CPU without end."""
+    stage("spinning")
+    while True:
+        pass
+
+
+def test_time_without_cpu_does_not_count():
+    """The wall-clock limit answered 'unknown' after 0.3 s of waiting; CPU time lets the work finish."""
+    assert run_in_time(waits_then_answers, 0.3) == "answer"
+
+
+def test_cpu_time_past_the_limit_stops_the_work():
+    with pytest.raises(TimeLimitReached) as caught:
+        run_in_time(burns, 0.3)
+    assert caught.value.stage == "spinning"
+
+
+def test_without_proc_the_kernel_limits_cpu(monkeypatch):
+    """Where /proc cannot be read, the child's RLIMIT_CPU (whole seconds) ends it with SIGXCPU."""
+    monkeypatch.setattr(budget, "cpu_seconds", lambda pid: None)
+    with pytest.raises(TimeLimitReached) as caught:
+        run_in_time(burns, 0.3)
+    assert caught.value.stage == "spinning"
+    assert run_in_time(waits_then_answers, 0.3) == "answer"
+
+
+def test_cpu_seconds_reads_this_process():
+    used = budget.cpu_seconds(os.getpid())
+    if used is None:
+        pytest.skip("no /proc here")
+    assert abs(used - time.process_time()) < 0.5  # the same clock, in clock ticks
