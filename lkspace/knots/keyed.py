@@ -111,6 +111,12 @@ def _hashes(lk: np.ndarray, n_comp: int, lowest: int, poly: np.ndarray, length: 
     return h1, h2
 
 
+@kernel
+def key_hashes(lk: np.ndarray, n_comp: int, lowest: int, poly: np.ndarray) -> tuple[np.uint64, np.uint64]:
+    """Return the key of one link (:func:`design_keys`'s): ``lk (n_comp**2,) int64`` its linking matrix, ``poly`` its Jones coefficients from ``x^lowest``."""
+    return _hashes(lk, n_comp, lowest, poly, len(poly))
+
+
 @helper
 def _residue_at(poly: np.ndarray, lowest: int, length: int, point: int, inverse: int) -> int:
     """Return the Laurent polynomial ``poly[:length]`` (from ``x^lowest``) at ``x = point`` modulo :data:`PRIME`."""
