@@ -33,7 +33,7 @@ from importlib.metadata import version
 from pathlib import Path
 
 from lkspace.knots.keyed import KEY_VERSION
-from lkspace.knots.shipped_keys import SHIPPED
+from lkspace.knots.shipped_keys import SHIPPED, shipped_lines
 from lkspace.knots.table_keys import line, table_keys
 from lkspace.knots.tables import SHIPPED_TABLES, build_tables, knot_modules
 
@@ -70,8 +70,14 @@ def main() -> None:
     parser.add_argument("--knots", type=int, default=12, help="most crossings of the knots kept")
     parser.add_argument("--links", type=int, default=11, help="most crossings of the links kept")
     parser.add_argument("--harvest", nargs="*", default=HARVEST, help="spaces scaffold:labels to harvest")
+    parser.add_argument("--harvest-only", action="store_true", help="keep the shipped files, add the spaces' keys")
     args = parser.parse_args()
     start = time.perf_counter()
+    if args.harvest_only:
+        with lzma.open(SHIPPED, "rt", encoding="utf-8") as fh:
+            header = json.loads(fh.readline())
+        add_harvest(header, dict(shipped_lines()), args.harvest)
+        return
     dki = knot_modules()[2]
     index = (str(dki.version()), build_tables(dki))
     Path(SHIPPED_TABLES).write_bytes(lzma.compress(pickle.dumps(index, protocol=pickle.HIGHEST_PROTOCOL), preset=9))
@@ -87,16 +93,22 @@ def main() -> None:
     }
     write(header, lines)
     print(f"tables: {len(keys):,} keys ({sum(v is not None for v in keys.values()):,} trusted)", flush=True)
+    add_harvest(header, lines, args.harvest)
+    print(f"{time.perf_counter() - start:.0f} s")
+
+
+def add_harvest(header: dict[str, object], lines: dict[tuple[int | str, ...], str], spaces: list[str]) -> None:
+    """Add the keys each space's cold run judges to ``lines`` and write the shipped file after each."""
     with tempfile.TemporaryDirectory() as folder:
-        for space in args.harvest:
+        for space in spaces:
             found = {k: v for k, v in harvest(space, folder).items() if k not in lines}
             lines.update(found)
-            header["harvested"] = [*header["harvested"], space]  # type: ignore[list-item]
+            done = [s for s in header.get("harvested", []) if s != space]  # type: ignore[attr-defined]
+            header["harvested"] = [*done, space]
             write(header, lines)
             print(f"{space}: {len(found):,} keys added", flush=True)
     size, packed = write({**header, "keys": len(lines)}, lines)
     print(f"{len(lines):,} keys, {size:,} bytes of text, {packed:,} compressed -> {SHIPPED}")
-    print(f"{time.perf_counter() - start:.0f} s")
 
 
 if __name__ == "__main__":
