@@ -29,7 +29,7 @@ from ..runtime.progress import task
 from ..strands.tracing import trace
 from ..words import plural
 from .answers import TargetSolution
-from .candidates import OrderedWalk
+from .candidates import Candidates, OrderedWalk
 from .fields import Json, JsonObject
 from .screen import Goal, Screening, screen, screen_batch
 
@@ -154,11 +154,13 @@ def solve_target(
         task(f"searching {scaffold.name} for {goal.label}") as step,
         _screener(scaffold, goal, o, label_set) as run,
     ):
-        for batch in walk:
-            for labels, orbit, verdict in run(batch.labels, batch.orbit_sizes):
+        for batch, rows, orbits in _pieces(walk):
+            if deadline is not None and time.monotonic() > deadline:
+                timed_out = True
+                break
+            for labels, orbit, verdict in run(rows, orbits):
                 tally["designs"] += 1
                 tally[f"{verdict.verdict}: {verdict.reason}"] += 1
-                step.note(f"{tally['designs']:,} designs screened (|t| <= {batch.shell}), {len(solutions)} found")
                 if verdict.verdict == "undetermined":
                     undetermined.append(labels.tolist())
                 elif verdict.verdict == "match":
@@ -173,6 +175,7 @@ def solve_target(
                 if deadline is not None and time.monotonic() > deadline:
                     timed_out = True
                     break
+            step.note(f"{tally['designs']:,} designs screened (|t| <= {batch.shell}), {len(solutions)} found")
             if len(solutions) >= o.count or timed_out:
                 break
     complete = walk.complete and not timed_out and len(solutions) < o.count
@@ -188,6 +191,23 @@ def solve_target(
     stats: JsonObject = dict(sorted(tally.items()))
     stats["undetermined_examples"] = undetermined[:5]
     return TargetResult(status, tuple(solutions), goal, time.monotonic() - t0, complete, stats, reason)
+
+
+FIRST_PIECE = 64
+"""Designs screened in the first call; each next call screens 4 times more, up to :data:`PIECE`."""
+PIECE = 2048
+"""Most designs screened in one call: the time limit and signals are looked at between calls."""
+
+
+def _pieces(walk: OrderedWalk) -> Iterator[tuple[Candidates, np.ndarray, np.ndarray]]:
+    """Yield ``(batch, labels, orbit sizes)``: the walk's designs in order, few at first (simplest first, answered soon)."""
+    size = FIRST_PIECE
+    for batch in walk:
+        start = 0
+        while start < len(batch.labels):
+            yield batch, batch.labels[start : start + size], batch.orbit_sizes[start : start + size]
+            start += size
+            size = min(4 * size, PIECE)
 
 
 def _solution(labels: np.ndarray, orbit: int, goal: Goal, again: Screening) -> TargetSolution:
