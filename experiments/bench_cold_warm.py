@@ -7,7 +7,8 @@ load drifts hit both alike; the ratio cold/warm is of medians.  Each tree (``--t
 default this one; ``--before /work/main`` adds the tree before the change) runs with
 ``PYTHONPATH`` set to it.
 
-Usage: ``python experiments/bench_cold_warm.py [--runs 3] [--before TREE] [--space cube:-1..1 ...]``;
+Usage: ``python experiments/bench_cold_warm.py [--runs 3] [--space cube:-1..1 ...] [--before TREE
+--before-runs 1 --before-space cube:-1..1]``;
 writes ``results/bench_cold_warm.{json,md}``.
 """
 
@@ -23,7 +24,7 @@ from pathlib import Path
 
 from benchkit import RESULTS, ROOT, load_average, provenance, summary, timed
 
-SPACES = ["cube:-1..1", "whitehead:-2..2"]
+SPACES = ["cube:-1..1", "whitehead:-1..1"]
 
 
 def run(tree: Path, space: str, runs: int) -> dict:
@@ -50,14 +51,17 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--runs", type=int, default=3)
     parser.add_argument("--before", type=Path, help="the tree before the change (e.g. /work/main)")
+    parser.add_argument("--before-runs", type=int, default=1, help="runs of the tree before (its cold runs are long)")
+    parser.add_argument("--before-space", nargs="*", default=SPACES[:1], help="spaces timed before the change")
     parser.add_argument("--space", nargs="*", default=SPACES, help="scaffold:labels")
     args = parser.parse_args()
     trees = {"after": ROOT} if args.before is None else {"before": args.before, "after": ROOT}
     report: dict = {"provenance": provenance(), "load_start": load_average(), "spaces": {}}
     for label, tree in trees.items():
         report[f"{label}_commit"] = provenance(tree)["commit"]
-        for space in args.space:
-            report["spaces"].setdefault(space, {})[label] = run(tree, space, args.runs)
+        spaces, runs = (args.before_space, args.before_runs) if label == "before" else (args.space, args.runs)
+        for space in spaces:
+            report["spaces"].setdefault(space, {})[label] = run(tree, space, runs)
     report["load_end"] = load_average()
     (RESULTS / "bench_cold_warm.json").write_text(json.dumps(report, indent=1) + "\n")
     lines = [

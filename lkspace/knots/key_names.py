@@ -185,10 +185,16 @@ def trusted(named: NameFields, found: set[tuple[str, bool]]) -> bool:
 
 
 def _simplified(pd: list[list[int]]) -> Any:
-    """Return regina's link of a PD code after regina's greedy simplification."""
+    """Return regina's link of a PD code after regina's greedy simplification.
+
+    Regina's random moves start from its default seed each time, so a design's
+    simplified diagram, and so its second-level key, is the same in every run.
+    """
     from .tables import regina_module
 
-    link = regina_module().Link.fromPD(pd)
+    regina = regina_module()
+    regina.RandomEngine.reseedWithDefault()
+    link = regina.Link.fromPD(pd)
     link.simplify()
     return link
 
