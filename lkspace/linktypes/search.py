@@ -243,13 +243,16 @@ class _screener:
         self.scaffold, self.goal, self.seed, self.label_set = scaffold, goal, options.seed, label_set
         self.namer = Namer(options.processes, False, options.identify_time_limit)
         self.cache = disk_cache()
+        self.deadline = None if not options.time_limit else time.monotonic() + options.time_limit
 
     def __enter__(self) -> Any:
         self.namer.__enter__()
         return self.run
 
     def run(self, labels: np.ndarray, orbits: np.ndarray) -> Iterator[tuple[np.ndarray, int, Screening]]:
-        """Screen the rows of one batch of the walk."""
+        """Screen the rows of one batch of the walk (names within the search's time left, 1 s at least)."""
+        if self.deadline is not None:
+            self.namer.within(max(1.0, self.deadline - time.monotonic()))
         verdicts = screen_batch(self.scaffold, labels, self.goal, self.seed, self.cache, self.namer, self.label_set)
         for i, verdict in enumerate(verdicts):
             yield labels[i].astype(np.int64), int(orbits[i]), verdict
