@@ -86,12 +86,14 @@ def test_the_disk_cache_keeps_the_names_of_earlier_runs(tmp_path, monkeypatch):
     tetra = load("tetrahedron")
     labels = np.random.default_rng(3).integers(-2, 3, size=(30, 6))
     first = disk_cache()
+    first.shipped = {}  # the user cache alone (the shipped file: tests/test_shipped_keys.py)
     a = identify_batch(tetra, labels, cache=first, progress=False)
     assert first.full > 0
     (path,) = tmp_path.glob("names-by-key-*.jsonl")
     with open(path, "a", encoding="utf-8") as fh:
         fh.write('{"key": [1, 2], "fie')  # a run interrupted mid-line
     again = disk_cache()
+    again.shipped = {}
     b = identify_batch(tetra, labels, cache=again, progress=False)
     assert again.full < first.full  # only designs of keys trusted at no level are named again
     assert set(first.named) <= set(again.named)

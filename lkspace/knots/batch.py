@@ -207,6 +207,10 @@ class Namer:
         _init_worker(self.time_limit)
         return self
 
+    def within(self, seconds: float) -> None:
+        """Name with at most ``seconds`` (> 0) per design from now on, in this process (workers keep their limit)."""
+        _init_worker(seconds if self.time_limit is None else min(self.time_limit, seconds))
+
     def name(self, items: list[tuple[list[list[int]], int]]) -> list[NameFields]:
         """Row fields of each ``(pd, n_components)``, in order (the knot libraries load on first need)."""
         if not items:

@@ -1,4 +1,4 @@
-"""Sharing names by key: the trust rule, the second level, and the cache kept on disk.
+"""Sharing names by key: the trust rule, the second and third levels, and the cache kept on disk.
 
 See :mod:`lkspace.knots.keyed` for the keys and what sharing promises.
 """
@@ -6,6 +6,7 @@ See :mod:`lkspace.knots.keyed` for the keys and what sharing promises.
 from __future__ import annotations
 
 import functools
+import hashlib
 import json
 import os
 from collections.abc import Callable
@@ -21,7 +22,7 @@ from .naming import name_key
 from .tables import HOMFLY_MAX_CROSSINGS
 
 Key = tuple[int | str, ...]
-"""A key: ``(hash, hash)`` at the first level; the second adds the HOMFLY-PT polynomial and crossings."""
+"""A key: ``(hash, hash)`` at the first level; the second adds the HOMFLY-PT polynomial and crossings; the third is ``("diagram", digest)``."""
 
 
 @dataclass
@@ -41,12 +42,34 @@ class KeyCache:
     path : str or None
         File the trusted keys are appended to and read from (:func:`disk_cache`); keys
         depend on invariants only, so they hold for every scaffold.
+    shipped : dict
+        Key -> its line in the file shipped with lkspace
+        (:func:`~lkspace.knots.shipped_keys.shipped_lines`), read when the key is met
+        and not in :attr:`named` or :attr:`own`.
     """
 
     named: dict[Key, NameFields] = field(default_factory=dict)
     own: set[Key] = field(default_factory=set)
     full: int = 0
     path: str | None = None
+    shipped: dict[Key, str] = field(default_factory=dict)
+
+    def known(self, key: Key) -> bool:
+        """Whether ``key`` was judged (by this run, an earlier one, or the shipped file); moves shipped keys in."""
+        if key in self.named or key in self.own:
+            return True
+        text = self.shipped.get(key)
+        if text is None:
+            return False
+        try:
+            item = json.loads(text)
+            if item["fields"] is None:
+                self.own.add(key)
+            else:
+                self.named[key] = NameFields.from_json(item["fields"])
+        except (json.JSONDecodeError, KeyError, TypeError, ValueError):
+            return False
+        return True
 
     def remember(self, key: Key, fields: NameFields | None) -> None:
         """Trust ``key`` (its designs take ``fields``) or, with ``None``, not; appended to :attr:`path`."""
@@ -72,8 +95,12 @@ def disk_cache() -> KeyCache:
 
     The file is ``names-by-key-<KEY_VERSION>-tables-<database_knotinfo version>.jsonl`` under ``$LKSPACE_CACHE``
     (default ``~/.cache/lkspace``); a torn last line (an interrupted run) is skipped.
+    Keys it lacks are looked up in the file shipped with lkspace (every table type's key:
+    :mod:`lkspace.knots.shipped_keys`).
     """
     from importlib.metadata import PackageNotFoundError, version
+
+    from .shipped_keys import shipped_lines
 
     try:
         tables_version = version("database_knotinfo")
@@ -81,7 +108,7 @@ def disk_cache() -> KeyCache:
         tables_version = "none"
     root = os.environ.get("LKSPACE_CACHE") or os.path.join(os.path.expanduser("~"), ".cache", "lkspace")
     path = os.path.join(root, f"names-by-key-{KEY_VERSION}-tables-{tables_version}.jsonl")
-    cache = KeyCache(path=path)
+    cache = KeyCache(path=path, shipped=shipped_lines())
     try:
         os.makedirs(root, exist_ok=True)
         with open(path, encoding="utf-8") as fh:
@@ -127,19 +154,19 @@ def candidates(
         for e in index.get(v, []):
             if e.components != n_components or (crossings is not None and e.crossings > crossings):
                 continue
-            if homfly is None or _table_homfly(e.pd, mirror) == homfly:
+            if homfly is None or table_homfly(e.pd, mirror) == homfly:
                 found.add((str(e.name), mirror))
     return found
 
 
 @functools.lru_cache(maxsize=4096)
-def _table_homfly(pd_text: str | None, mirror: bool) -> str | None:
+def table_homfly(pd_text: str | None, mirror: bool) -> str | None:
     """HOMFLY-PT polynomial (regina) of a table entry's PD code, or of its mirror image."""
-    from .tables import knot_modules
+    from .tables import regina_module
 
     if not pd_text:
         return None
-    regina = knot_modules()[1]
+    regina = regina_module()
     link = regina.Link.fromPD(json.loads(pd_text))
     if mirror:
         link.changeAll()
@@ -158,10 +185,16 @@ def trusted(named: NameFields, found: set[tuple[str, bool]]) -> bool:
 
 
 def _simplified(pd: list[list[int]]) -> Any:
-    """Return regina's link of a PD code after regina's greedy simplification."""
-    from .tables import knot_modules
+    """Return regina's link of a PD code after regina's greedy simplification.
 
-    link = knot_modules()[1].Link.fromPD(pd)
+    Regina's random moves start from its default seed each time, so a design's
+    simplified diagram, and so its second-level key, is the same in every run.
+    """
+    from .tables import regina_module
+
+    regina = regina_module()
+    regina.RandomEngine.reseedWithDefault()
+    link = regina.Link.fromPD(pd)
     link.simplify()
     return link
 
@@ -191,7 +224,8 @@ def share_names(
     simplifying it, trusted when these separate the table entries (a table entry with
     more crossings than the design's simplified diagram is not the design's type).  ``name_designs(indices)`` names designs in
     full (in worker processes, under the time limit): once per new key, then each design
-    of a key trusted at neither level.
+    of a key trusted at neither level, whose name is kept by its own diagram (the PD code
+    the template gives it, the same in every run: :func:`_diagram_key`).
     """
     first: list[Key | None] = [
         (int(a), int(b)) if ok else None for (a, b), ok in zip(found.keys.tolist(), found.keyed, strict=True)
@@ -208,11 +242,26 @@ def share_names(
     for d, row in enumerate(_share(found, second, cache, name_designs, second=True)):
         if rows[d] is None:
             rows[d] = row
-    own = [d for d in left if rows[d] is None]
-    for d, named in zip(own, name_designs(own), strict=True):
+    own: dict[int, Key] = {}
+    for d in left:
+        if rows[d] is None:
+            mine = _diagram_key(diagrams[d][0], diagrams[d][1])
+            if cache.known(mine) and mine in cache.named:
+                rows[d] = cache.named[mine]
+            else:
+                own[d] = mine
+    for (d, mine), named in zip(own.items(), name_designs(list(own)), strict=True):
         cache.full += 1
         rows[d] = named
+        if not named.error:
+            cache.remember(mine, named)
     return rows
+
+
+def _diagram_key(pd: list[list[int]], n_components: int) -> Key:
+    """Return the third-level key: a design's own diagram (its PD code's digest), named once whichever run meets it again."""
+    digest = hashlib.blake2b(json.dumps([pd, n_components]).encode(), digest_size=16).hexdigest()
+    return ("diagram", digest)
 
 
 def _share(
@@ -226,7 +275,7 @@ def _share(
     rows: list[NameFields | None] = [None] * len(keys)
     firsts: dict[Key, int] = {}
     for d, k in enumerate(keys):
-        if k is not None and k not in cache.named and k not in cache.own and k not in firsts:
+        if k is not None and k not in firsts and not cache.known(k):
             firsts[k] = d
     for (k, d), named in zip(firsts.items(), name_designs(list(firsts.values())), strict=True):
         cache.full += 1

@@ -1,13 +1,16 @@
 """The KnotInfo / LinkInfo tables (``database_knotinfo``), indexed by Jones value, cached on disk.
 
 Each entry's Jones polynomial is evaluated exactly at ``sqrt(t) = 2/3``; the index maps
-that value to the table entries (and mirrors) sharing it.  Building the index takes a
-few seconds, so it is pickled to ``~/.cache/lkspace`` per table version.
+that value to the table entries (and mirrors) sharing it.  Building the index takes
+seconds (15-20 s on a busy machine), so lkspace ships it for one table version
+(``lkspace/data/knot-tables.pickle.xz``, :data:`SHIPPED_TABLES`, written by
+``experiments/build_key_names.py``) and pickles it to ``~/.cache/lkspace`` for others.
 """
 
 from __future__ import annotations
 
 import json
+import lzma
 import os
 import pickle
 from dataclasses import dataclass
@@ -62,6 +65,11 @@ def knot_modules() -> tuple[ModuleType, ModuleType, ModuleType]:
     return spherogram, regina, dki
 
 
+def regina_module() -> ModuleType:
+    """Return regina alone (simplification and HOMFLY-PT need neither SnapPy nor the tables)."""
+    return require("regina", "knots", PURPOSE)
+
+
 def _eval_table(poly: str, var: str, x: Fraction) -> Fraction | None:
     value = x * x if var == "t" else x
     try:
@@ -82,6 +90,20 @@ def laurent_value(laurent: Any, x: Fraction) -> Fraction:
     return total
 
 
+SHIPPED_TABLES = os.path.join(os.path.dirname(os.path.dirname(__file__)), "data", "knot-tables.pickle.xz")
+"""The index shipped with lkspace: ``(database_knotinfo version, index)`` pickled, xz-compressed."""
+
+
+def shipped_tables(version: str) -> dict[Fraction, list[TableEntry]] | None:
+    """Return the shipped index when it was built from tables ``version``, else ``None``."""
+    try:
+        with lzma.open(SHIPPED_TABLES, "rb") as fh:
+            built, index = pickle.load(fh)
+    except Exception:  # noqa: BLE001 - a missing or broken file: build the index
+        return None
+    return index if built == version and isinstance(index, dict) else None
+
+
 def _cache_path(version: str) -> str:
 
     root = os.environ.get("LKSPACE_CACHE") or os.path.join(os.path.expanduser("~"), ".cache", "lkspace")
@@ -92,18 +114,24 @@ def _cache_path(version: str) -> str:
 def tables() -> dict[Fraction, list[TableEntry]]:
     """Jones fingerprints of the KnotInfo and LinkInfo tables: ``{value: [entry, ...]}``.
 
-    Built once from ``database_knotinfo`` (a few seconds) and kept in a pickle under
-    ``$LKSPACE_CACHE`` (default ``~/.cache/lkspace``), keyed by the database version.
+    The shipped index (:data:`SHIPPED_TABLES`) when the installed ``database_knotinfo``
+    is the version it was built from; else built once from ``database_knotinfo`` and kept
+    in a pickle under ``$LKSPACE_CACHE`` (default ``~/.cache/lkspace``), keyed by the
+    database version.
     """
     _, _, dki = knot_modules()
-    path = _cache_path(str(getattr(dki, "version", lambda: "0")()))
+    version = str(getattr(dki, "version", lambda: "0")())
+    path = _cache_path(version)
     if os.path.exists(path):
         try:
             with open(path, "rb") as fh:
                 return pickle.load(fh)
         except Exception:  # noqa: BLE001 - a broken cache is rebuilt
             pass
-    index = _build_tables(dki)
+    shipped = shipped_tables(version)
+    if shipped is not None:
+        return shipped
+    index = build_tables(dki)
     try:
         os.makedirs(os.path.dirname(path), exist_ok=True)
         write_bytes(path, pickle.dumps(index, protocol=pickle.HIGHEST_PROTOCOL))
@@ -112,7 +140,8 @@ def tables() -> dict[Fraction, list[TableEntry]]:
     return index
 
 
-def _build_tables(dki: ModuleType) -> dict[Fraction, list[TableEntry]]:
+def build_tables(dki: ModuleType) -> dict[Fraction, list[TableEntry]]:
+    """Return the index :func:`tables` keeps, read from the module ``database_knotinfo`` (seconds)."""
     index: dict[Fraction, list[TableEntry]] = {}
 
     def add(entry: TableEntry) -> None:

@@ -29,7 +29,7 @@ from ..runtime.progress import task
 from ..strands.tracing import trace
 from ..words import plural
 from .answers import TargetSolution
-from .candidates import OrderedWalk
+from .candidates import Candidates, OrderedWalk
 from .fields import Json, JsonObject
 from .screen import Goal, Screening, screen, screen_batch
 
@@ -154,11 +154,13 @@ def solve_target(
         task(f"searching {scaffold.name} for {goal.label}") as step,
         _screener(scaffold, goal, o, label_set) as run,
     ):
-        for batch in walk:
-            for labels, orbit, verdict in run(batch.labels, batch.orbit_sizes):
+        for batch, rows, orbits in _pieces(walk):
+            if deadline is not None and time.monotonic() > deadline:
+                timed_out = True
+                break
+            for labels, orbit, verdict in run(rows, orbits):
                 tally["designs"] += 1
                 tally[f"{verdict.verdict}: {verdict.reason}"] += 1
-                step.note(f"{tally['designs']:,} designs screened (|t| <= {batch.shell}), {len(solutions)} found")
                 if verdict.verdict == "undetermined":
                     undetermined.append(labels.tolist())
                 elif verdict.verdict == "match":
@@ -173,6 +175,7 @@ def solve_target(
                 if deadline is not None and time.monotonic() > deadline:
                     timed_out = True
                     break
+            step.note(f"{tally['designs']:,} designs screened (|t| <= {batch.shell}), {len(solutions)} found")
             if len(solutions) >= o.count or timed_out:
                 break
     complete = walk.complete and not timed_out and len(solutions) < o.count
@@ -188,6 +191,23 @@ def solve_target(
     stats: JsonObject = dict(sorted(tally.items()))
     stats["undetermined_examples"] = undetermined[:5]
     return TargetResult(status, tuple(solutions), goal, time.monotonic() - t0, complete, stats, reason)
+
+
+FIRST_PIECE = 64
+"""Designs screened in the first call; each next call screens 4 times more, up to :data:`PIECE`."""
+PIECE = 2048
+"""Most designs screened in one call: the time limit and signals are looked at between calls."""
+
+
+def _pieces(walk: OrderedWalk) -> Iterator[tuple[Candidates, np.ndarray, np.ndarray]]:
+    """Yield ``(batch, labels, orbit sizes)``: the walk's designs in order, few at first (simplest first, answered soon)."""
+    size = FIRST_PIECE
+    for batch in walk:
+        start = 0
+        while start < len(batch.labels):
+            yield batch, batch.labels[start : start + size], batch.orbit_sizes[start : start + size]
+            start += size
+            size = min(4 * size, PIECE)
 
 
 def _solution(labels: np.ndarray, orbit: int, goal: Goal, again: Screening) -> TargetSolution:
@@ -223,13 +243,16 @@ class _screener:
         self.scaffold, self.goal, self.seed, self.label_set = scaffold, goal, options.seed, label_set
         self.namer = Namer(options.processes, False, options.identify_time_limit)
         self.cache = disk_cache()
+        self.deadline = None if not options.time_limit else time.monotonic() + options.time_limit
 
     def __enter__(self) -> Any:
         self.namer.__enter__()
         return self.run
 
     def run(self, labels: np.ndarray, orbits: np.ndarray) -> Iterator[tuple[np.ndarray, int, Screening]]:
-        """Screen the rows of one batch of the walk."""
+        """Screen the rows of one batch of the walk (names within the search's time left, 1 s at least)."""
+        if self.deadline is not None:
+            self.namer.within(max(1.0, self.deadline - time.monotonic()))
         verdicts = screen_batch(self.scaffold, labels, self.goal, self.seed, self.cache, self.namer, self.label_set)
         for i, verdict in enumerate(verdicts):
             yield labels[i].astype(np.int64), int(orbits[i]), verdict

@@ -1,0 +1,88 @@
+"""A first ``--identify`` run on a fresh machine against later ones: cold and warm, in fresh processes.
+
+Cold: ``$LKSPACE_CACHE`` an empty folder (no names by key, no tables index: what a new
+install meets; lkspace's shipped files, ``lkspace/data/*.xz``, are what make it cheap).
+Warm: the folder the cold run left.  Runs alternate cold, warm, cold, warm... so that
+load drifts hit both alike; the ratio cold/warm is of medians.  Each tree (``--tree``,
+default this one; ``--before /work/main`` adds the tree before the change) runs with
+``PYTHONPATH`` set to it.
+
+Usage: ``python experiments/bench_cold_warm.py [--runs 3] [--space cube:-1..1 ...] [--before TREE
+--before-runs 1 --before-space cube:-1..1]``;
+writes ``results/bench_cold_warm.{json,md}``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import shutil
+import sys
+import tempfile
+from pathlib import Path
+
+from benchkit import RESULTS, ROOT, load_average, provenance, summary, timed
+
+SPACES = ["cube:-1..1", "whitehead:-1..1"]
+
+
+def run(tree: Path, space: str, runs: int) -> dict:
+    """Cold and warm :func:`benchkit.summary` of ``enumerate SPACE --identify`` with ``tree``'s lkspace."""
+    name, labels = space.split(":")
+    cold, warm = [], []
+    for _ in range(runs):
+        folder = tempfile.mkdtemp(prefix="lkspace-cold-")
+        env = {**os.environ, "PYTHONPATH": str(tree), "LKSPACE_CACHE": os.path.join(folder, "cache")}
+        out = os.path.join(folder, "x.parquet")
+        cmd = [sys.executable, "-m", "lkspace", "enumerate", name, "--labels", labels, "--identify", "-o", out]
+        cold.append({**timed(cmd, env), "load": load_average()[0]})
+        os.remove(out)
+        warm.append({**timed(cmd, env), "load": load_average()[0]})
+        shutil.rmtree(folder)
+        print(f"{tree} {space}: cold {cold[-1]['wall']:.2f} s, warm {warm[-1]['wall']:.2f} s", flush=True)
+    c, w = summary(cold), summary(warm)
+    c["load_1min"] = [s["load"] for s in cold]
+    w["load_1min"] = [s["load"] for s in warm]
+    return {"cold": c, "warm": w, "ratio": round(c["median_s"] / w["median_s"], 2)}
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--runs", type=int, default=3)
+    parser.add_argument("--before", type=Path, help="the tree before the change (e.g. /work/main)")
+    parser.add_argument("--before-runs", type=int, default=1, help="runs of the tree before (its cold runs are long)")
+    parser.add_argument("--before-space", nargs="*", default=SPACES[:1], help="spaces timed before the change")
+    parser.add_argument("--space", nargs="*", default=SPACES, help="scaffold:labels")
+    args = parser.parse_args()
+    trees = {"after": ROOT} if args.before is None else {"before": args.before, "after": ROOT}
+    report: dict = {"provenance": provenance(), "load_start": load_average(), "spaces": {}}
+    for label, tree in trees.items():
+        report[f"{label}_commit"] = provenance(tree)["commit"]
+        spaces, runs = (args.before_space, args.before_runs) if label == "before" else (args.space, args.runs)
+        for space in spaces:
+            report["spaces"].setdefault(space, {})[label] = run(tree, space, runs)
+    report["load_end"] = load_average()
+    (RESULTS / "bench_cold_warm.json").write_text(json.dumps(report, indent=1) + "\n")
+    lines = [
+        "# First run against later ones: `enumerate SPACE --identify`, cold (empty cache) and warm",
+        "",
+        f"Commit {report['provenance']['commit']}, lkspace {report['provenance']['lkspace']}, "
+        f"{report['provenance']['machine']['cpu_count']} CPUs, {report['provenance']['date']}; "
+        f"load average {report['load_start']} at the start, {report['load_end']} at the end.",
+        "",
+        "| space | tree | cold median (s) | warm median (s) | cold / warm | load (1 min) during cold runs |",
+        "|---|---|---|---|---|---|",
+    ]
+    for space, by_tree in report["spaces"].items():
+        for label, r in by_tree.items():
+            lines.append(
+                f"| {space} | {label} ({report[f'{label}_commit']}) | {r['cold']['median_s']} | "
+                f"{r['warm']['median_s']} | {r['ratio']} | {r['cold']['load_1min']} |"
+            )
+    (RESULTS / "bench_cold_warm.md").write_text("\n".join(lines) + "\n")
+    print("\n".join(lines))
+
+
+if __name__ == "__main__":
+    main()
