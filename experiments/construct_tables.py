@@ -32,7 +32,7 @@ from lkspace import __version__
 from lkspace.errors import LkspaceError
 from lkspace.knots.assembly import assemble_pd
 from lkspace.knots.naming import name_pd
-from lkspace.scaffolds.constructed import LAYOUTS, TABLE_FILE, design_scaffold
+from lkspace.scaffolds.constructed import LAYOUTS, TABLE_FILE, design_scaffold, layouts
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
@@ -43,13 +43,14 @@ def table_types(max_knot_all: int = 12, max_link_all: int = 11) -> dict[str, dic
     for row in dki.link_list()[1:]:
         c = int(row.get("crossing_number") or 99)
         if row.get("pd_notation") and 0 < c <= max_knot_all:
-            out[row["name"]] = {"pd": json.loads(row["pd_notation"]), "components": 1, "crossings": c}
+            amphichiral = "amphicheiral" in str(row.get("symmetry_type") or "")
+            out[row["name"]] = {"pd": json.loads(row["pd_notation"]), "components": 1, "crossings": c, "amphichiral": amphichiral}
     for row in dki.link_list(proper_links=True)[1:]:
         name = row["name"].split("{")[0]
         c = int(row.get("crossing_number") or 99)
         if name not in out and row.get("pd_notation_vector") and c <= max_link_all:
             pd = json.loads(row["pd_notation_vector"].replace("{", "[").replace("}", "]"))
-            out[name] = {"pd": pd, "components": int(row["components"]), "crossings": c}
+            out[name] = {"pd": pd, "components": int(row["components"]), "crossings": c, "amphichiral": None}
     return out
 
 
@@ -57,18 +58,21 @@ def check(name: str, entry: dict) -> dict:
     """Try each placement; return the row of the report."""
     t0 = time.perf_counter()
     row: dict = {"name": name, "components": entry["components"], "table_crossings": entry["crossings"]}
-    for layout in LAYOUTS:
+    n_faces = design_scaffold(entry["pd"], name).n_faces
+    for layout in layouts(n_faces):
         try:
             s = design_scaffold(entry["pd"], name, layout)
             d = assemble_pd(s, s.labels)
             got = name_pd([[int(v) for v in x] for x in d.pd], d.n_components, floer=False)
         except LkspaceError as exc:
-            row.setdefault("errors", []).append(f"{layout}: {exc}")
+            if len(row.setdefault("errors", [])) < 3:
+                row["errors"].append(f"{layout}: {exc}")
             continue
         row.update(
             constructed=True, design_crossings=int(abs(s.labels).sum()), edges=s.n_edges, faces=s.n_faces
         )
-        row.setdefault("names", []).append(f"{layout}: {got.chiral_name or got.name}")
+        if len(row.setdefault("names", [])) < 3:
+            row["names"].append(f"{layout}: {got.chiral_name or got.name}")
         if got.name == name:
             row["identified"] = True
             if got.mirror in (False, None):
@@ -106,7 +110,8 @@ def main() -> None:
         "mirror_right": sum(bool(r.get("mirror_right")) for r in rows),
         "minimal_crossings": sum(r.get("design_crossings") == r["table_crossings"] for r in rows),
         "seconds_per_type": round(sum(r["seconds"] for r in rows) / max(1, len(rows)), 3),
-        "by_layout": {k: sum(r.get("layout") == k for r in rows) for k in LAYOUTS},
+        "by_layout": {k: sum(str(r.get("layout")).split(":")[0] == k for r in rows) for k in LAYOUTS},
+        "largest_face_outside": sum(r.get("layout") in LAYOUTS for r in rows),
         "max_knot": args.max_knot,
         "max_link": args.max_link,
         "commit": subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True, text=True, cwd=ROOT).stdout.strip(),

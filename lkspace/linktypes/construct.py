@@ -3,10 +3,10 @@
 The type's diagram (KnotInfo/LinkInfo's PD code, SnapPy's for ``K14n10910``-style names,
 spherogram's connected sum of the factors' for ``3_1#4_1``, or a PD code given) becomes
 its checkerboard mesh (:mod:`lkspace.scaffolds.diagram_mesh`), placed by one of
-:data:`~lkspace.scaffolds.constructed.LAYOUTS`.  The result is checked before it is
-returned: the diagram of the labels (:func:`~lkspace.knots.assembly.assemble_pd`) is named
-and must be the type asked for, in the chirality asked for; a placement that fails the
-check is replaced by the next one.
+:func:`~lkspace.scaffolds.constructed.layouts` (the one the shipped table checked first).
+The result is checked before it is returned: the diagram of the labels
+(:func:`~lkspace.knots.assembly.assemble_pd`) is named and must be the type asked for, in
+the chirality asked for; a placement that fails the check is replaced by the next one.
 """
 
 from __future__ import annotations
@@ -20,7 +20,7 @@ from ..knots.identification import Naming
 from ..knots.naming import name_pd, one_based
 from ..knots.tables import knot_modules
 from ..model.scaffold import Scaffold
-from ..scaffolds.constructed import LAYOUTS, design_scaffold, table
+from ..scaffolds.constructed import design_scaffold, layouts, table
 from .names import LinkType, parse_type, table_entries
 
 
@@ -91,7 +91,7 @@ def construct(type_name: str | None = None, pd: Sequence[Sequence[int]] | None =
     """
     if (type_name is None) == (pd is None):
         raise ScaffoldError("give a type name or a PD code, not both", usage=True)
-    builtin = None
+    builtin, first = None, None
     if pd is not None:
         code, mirror, label = [list(map(int, x)) for x in pd], False, "diagram"
         want = name_pd(code, _components(code), floer=False)
@@ -105,8 +105,10 @@ def construct(type_name: str | None = None, pd: Sequence[Sequence[int]] | None =
         if target.name in table() and not target.factors:
             kind = "knot" if target.components == 1 else "link"
             builtin = f"{kind}:{'m' if mirror else ''}{target.name}"
-    tried = []
-    for layout in LAYOUTS:
+            first = table()[target.name]["layout"]
+    tried: list[str] = []
+    n_faces = design_scaffold(code, label).n_faces
+    for layout in dict.fromkeys([first or "sphere", *layouts(n_faces)]):
         scaffold = design_scaffold(code, label, layout)
         assert scaffold.labels is not None
         if mirror:
@@ -119,7 +121,10 @@ def construct(type_name: str | None = None, pd: Sequence[Sequence[int]] | None =
         if _matches(got, want):
             return Construction(scaffold, got.name, got.mirror, layout, len(code), builtin)
         tried.append(f"{layout}: strands named {got.chiral_name or got.name}")
-    raise ScaffoldError(f"{label}: no placement of its mesh realizes the diagram ({'; '.join(tried)}); please report it")
+    raise ScaffoldError(
+        f"{label}: none of {len(tried)} placements of its mesh realizes the diagram "
+        f"({'; '.join(tried[:2])}, ...); please report it"
+    )
 
 
 def _components(pd: list[list[int]]) -> int:

@@ -32,7 +32,13 @@ from .diagram_mesh import diagram_mesh
 from .plane_layout import plane_layout, sphere_layout
 
 LAYOUTS = {"sphere": sphere_layout, "flat": plane_layout}
-"""Placements of a diagram's mesh, in the order they are tried."""
+"""Placements of a diagram's mesh; a layout is spelled ``sphere`` or ``flat``, with the outer face
+after a colon where it is not the largest face (``sphere:3``)."""
+
+
+def layouts(n_faces: int) -> list[str]:
+    """Every layout of a mesh with ``n_faces`` faces, in the order they are tried: the largest face outside first."""
+    return ["sphere", "flat"] + [f"{kind}:{f}" for f in range(n_faces) for kind in LAYOUTS]
 
 PREFIXES = ("knot:", "link:")
 TABLE_FILE = os.path.join(os.path.dirname(os.path.dirname(__file__)), "data", "diagrams.json.gz")
@@ -48,7 +54,11 @@ def design_scaffold(pd: Sequence[Sequence[int]], name: str, layout: str = "spher
     (2, 3)
     """
     mesh = diagram_mesh(pd, where)
-    scaffold = Scaffold.from_faces(LAYOUTS[layout](mesh.n_vertices, mesh.faces), mesh.faces, name=name)
+    kind, _, outer = layout.partition(":")
+    if kind not in LAYOUTS or not (outer == "" or (outer.isdigit() and int(outer) < len(mesh.faces))):
+        raise ScaffoldError(f"{where}: layout {layout!r}: expected sphere or flat, or sphere:F / flat:F with a face F")
+    positions = LAYOUTS[kind](mesh.n_vertices, mesh.faces, int(outer) if outer else None)
+    scaffold = Scaffold.from_faces(positions, mesh.faces, name=name)
     by_pair = {(min(u, v), max(u, v)): t for (u, v), t in zip(mesh.edges, mesh.labels)}
     labels = np.array([by_pair[int(a), int(b)] for a, b in scaffold.edge_vertices], np.int64)
     return scaffold.with_labels(labels)

@@ -35,7 +35,12 @@ def _signed_area(points: np.ndarray) -> float:
     return 0.5 * float((x * np.roll(y, -1) - np.roll(x, -1) * y).sum())
 
 
-def plane_layout(n_vertices: int, faces: Sequence[Sequence[int]]) -> np.ndarray:
+def largest_face(faces: Sequence[Sequence[int]]) -> int:
+    """The default outer face: the largest, the first of equals."""
+    return max(range(len(faces)), key=lambda f: (len(faces[f]), -f))
+
+
+def plane_layout(n_vertices: int, faces: Sequence[Sequence[int]], outer: int | None = None) -> np.ndarray:
     """Tutte drawing of a plane mesh (faces as vertex cycles, one orientation): ``(n_vertices, 3) float64``, z = 0.
 
     Examples
@@ -44,7 +49,7 @@ def plane_layout(n_vertices: int, faces: Sequence[Sequence[int]]) -> np.ndarray:
     >>> pos[:, 2].tolist(), round(float(abs(pos[:, :2]).max()), 6)
     ([0.0, 0.0, 0.0, 0.0], 1.0)
     """
-    outer = max(range(len(faces)), key=lambda f: (len(faces[f]), -f))
+    outer = largest_face(faces) if outer is None else outer
     for turn in (-1, 1):
         pos = _tutte(n_vertices, faces, outer, turn, {})
         inner = next(f for f in range(len(faces)) if f != outer)
@@ -140,9 +145,9 @@ def lift_to_sphere(points: np.ndarray) -> np.ndarray:
     return np.c_[2 * q, r2 - 1] / (r2 + 1)[:, None]
 
 
-def sphere_layout(n_vertices: int, faces: Sequence[Sequence[int]]) -> np.ndarray:
+def sphere_layout(n_vertices: int, faces: Sequence[Sequence[int]], outer: int | None = None) -> np.ndarray:
     """The drawing of :func:`plane_layout` lifted onto the unit sphere, fins standing out radially."""
-    flat = plane_layout(n_vertices, faces)
+    flat = plane_layout(n_vertices, faces, outer)
     out = lift_to_sphere(flat[:, :2])
     for w in np.flatnonzero(flat[:, 2] > 0):  # fins stand out radially
         u, v = sorted({x for face in faces for i, x in enumerate(face) if w in (face[i - 1], face[(i + 1) % len(face)])})
