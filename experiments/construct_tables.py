@@ -44,7 +44,12 @@ def table_types(max_knot_all: int = 12, max_link_all: int = 11) -> dict[str, dic
         c = int(row.get("crossing_number") or 99)
         if row.get("pd_notation") and 0 < c <= max_knot_all:
             amphichiral = "amphicheiral" in str(row.get("symmetry_type") or "")
-            out[row["name"]] = {"pd": json.loads(row["pd_notation"]), "components": 1, "crossings": c, "amphichiral": amphichiral}
+            out[row["name"]] = {
+                "pd": json.loads(row["pd_notation"]),
+                "components": 1,
+                "crossings": c,
+                "amphichiral": amphichiral,
+            }
     for row in dki.link_list(proper_links=True)[1:]:
         name = row["name"].split("{")[0]
         c = int(row.get("crossing_number") or 99)
@@ -68,9 +73,7 @@ def check(name: str, entry: dict) -> dict:
             if len(row.setdefault("errors", [])) < 3:
                 row["errors"].append(f"{layout}: {exc}")
             continue
-        row.update(
-            constructed=True, design_crossings=int(abs(s.labels).sum()), edges=s.n_edges, faces=s.n_faces
-        )
+        row.update(constructed=True, design_crossings=int(abs(s.labels).sum()), edges=s.n_edges, faces=s.n_faces)
         if len(row.setdefault("names", [])) < 3:
             row["names"].append(f"{layout}: {got.chiral_name or got.name}")
         if got.name == name:
@@ -114,7 +117,9 @@ def main() -> None:
         "largest_face_outside": sum(r.get("layout") in LAYOUTS for r in rows),
         "max_knot": args.max_knot,
         "max_link": args.max_link,
-        "commit": subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True, text=True, cwd=ROOT).stdout.strip(),
+        "commit": subprocess.run(
+            ["git", "rev-parse", "--short", "HEAD"], capture_output=True, text=True, cwd=ROOT
+        ).stdout.strip(),
         "version": __version__,
         "machine": platform.node(),
         "load_average": os.getloadavg(),

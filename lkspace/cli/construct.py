@@ -10,7 +10,9 @@ import click
 @click.command("construct")
 @click.argument("type_name", metavar="TYPE", required=False)
 @click.option("--pd", "pd_text", metavar="CODE", default=None, help="Build from this PD code instead of a name.")
-@click.option("-o", "--output", type=click.Path(dir_okay=False), required=True, help="The scaffold file to write (.json).")
+@click.option(
+    "-o", "--output", type=click.Path(dir_okay=False), required=True, help="The scaffold file to write (.json)."
+)
 @click.option("--json", "as_json", is_flag=True, help="Print one JSON object on stdout and nothing else.")
 def construct_cmd(type_name: str | None, pd_text: str | None, output: str, as_json: bool) -> None:
     """Write a scaffold file with twist labels whose strands are the knot or link TYPE.

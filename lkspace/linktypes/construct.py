@@ -41,7 +41,7 @@ class Construction:
 
 
 def _diagram(target: LinkType, typed: str) -> tuple[list[list[int]], bool]:
-    """The PD code to build for a parsed type, and whether the mirror image is wanted."""
+    """Return the PD code to build for a parsed type, and whether the mirror image is wanted."""
     mirror = target.chirality == "mirror"
     if target.factors or "#" in target.name:
         spherogram = knot_modules()[0]

@@ -40,6 +40,7 @@ def layouts(n_faces: int) -> list[str]:
     """Every layout of a mesh with ``n_faces`` faces, in the order they are tried: the largest face outside first."""
     return ["sphere", "flat"] + [f"{kind}:{f}" for f in range(n_faces) for kind in LAYOUTS]
 
+
 PREFIXES = ("knot:", "link:")
 TABLE_FILE = os.path.join(os.path.dirname(os.path.dirname(__file__)), "data", "diagrams.json.gz")
 

@@ -103,7 +103,7 @@ def _faces(pd: list[tuple[int, int, int, int]]) -> tuple[list[int], list[int], i
 
 
 def _corner_face(face_of: list[int], c: int, k: int) -> int:
-    """The region in corner k of crossing c (between positions k and k + 1)."""
+    """Return the region in corner k of crossing c (between positions k and k + 1)."""
     return face_of[4 * c + (k + 1) % 4]
 
 
@@ -118,7 +118,12 @@ def smooth_nugatory(pd: list[tuple[int, int, int, int]]) -> tuple[list[tuple[int
     while pd:
         _, face_of, _ = _faces(pd)
         found = next(
-            ((c, k) for c in range(len(pd)) for k in (0, 1) if _corner_face(face_of, c, k) == _corner_face(face_of, c, k + 2)),
+            (
+                (c, k)
+                for c in range(len(pd))
+                for k in (0, 1)
+                if _corner_face(face_of, c, k) == _corner_face(face_of, c, k + 2)
+            ),
             None,
         )
         if found is None:
@@ -169,7 +174,7 @@ class _Mesh:
 
 
 def _build(pd: list[tuple[int, int, int, int]], colour: int) -> _Mesh:
-    """The checkerboard mesh whose faces are the regions of ``colour`` (0 or 1)."""
+    """Return the checkerboard mesh whose faces are the regions of ``colour`` (0 or 1)."""
     alpha, face_of, n_regions = _faces(pd)
     colours = _checkerboard(alpha, face_of, n_regions)
     mesh = _Mesh()
@@ -270,10 +275,9 @@ def _split_composite(mesh: _Mesh, f: int, w: int) -> None:
     at = [i for i, corner in enumerate(order) if corner[0] == f]
     i, j = at[0], at[1]
     one, two = order[i + 1 : j], order[j + 1 :] + order[:i]
-    pick = next((c for c in one if c[0] != f), None), next((c for c in two if c[0] != f), None)
-    if pick[0] is None or pick[1] is None:
+    c1, c2 = next((c for c in one if c[0] != f), None), next((c for c in two if c[0] != f), None)
+    if c1 is None or c2 is None:
         raise ScaffoldError("the diagram has a nugatory crossing left (a region meets itself at a crossing)")
-    c1, c2 = pick
     k1, k2 = order.index(c1), order.index(c2)
     arc = [order[(k1 + s) % len(order)] for s in range(1, (k2 - k1) % len(order) + 1)]
     arc_edges = {c[1] for c in arc}  # edges e_out(c1) .. e_in(c2) go to the new vertex x1
@@ -300,7 +304,12 @@ def _repair(mesh: _Mesh) -> None:
     """Split edges and vertices until every face is a cycle of >= 3 distinct vertices and edges are simple."""
     while True:
         bad = next(
-            ((f, v) for f, face in enumerate(mesh.faces) for v in {x for _, x in face} if sum(x == v for _, x in face) > 1),
+            (
+                (f, v)
+                for f, face in enumerate(mesh.faces)
+                for v in {x for _, x in face}
+                if sum(x == v for _, x in face) > 1
+            ),
             None,
         )
         if bad is None:
@@ -346,7 +355,9 @@ def diagram_mesh(pd: Sequence[Sequence[int]], where: str = "PD code") -> Diagram
     """
     code, freed = smooth_nugatory(check_pd(pd, where))
     if not code:
-        raise ScaffoldError(f"{where}: the diagram has no crossing left after smoothing its kinks (an unknot or unlink)")
+        raise ScaffoldError(
+            f"{where}: the diagram has no crossing left after smoothing its kinks (an unknot or unlink)"
+        )
     alpha, face_of, n_regions = _faces(code)
     components = link_components(code)
     if n_regions != len(code) + 2 or freed:
@@ -367,7 +378,7 @@ def diagram_mesh(pd: Sequence[Sequence[int]], where: str = "PD code") -> Diagram
 
 
 def link_components(pd: list[tuple[int, int, int, int]]) -> int:
-    """Number of link components of a PD code (strands continue straight through each crossing)."""
+    """Count the link components of a PD code (strands continue straight through each crossing)."""
     parent: dict[int, int] = {}
 
     def find(x: int) -> int:

@@ -36,7 +36,7 @@ def _signed_area(points: np.ndarray) -> float:
 
 
 def largest_face(faces: Sequence[Sequence[int]]) -> int:
-    """The default outer face: the largest, the first of equals."""
+    """Return the default outer face: the largest, the first of equals."""
     return max(range(len(faces)), key=lambda f: (len(faces[f]), -f))
 
 
@@ -146,10 +146,12 @@ def lift_to_sphere(points: np.ndarray) -> np.ndarray:
 
 
 def sphere_layout(n_vertices: int, faces: Sequence[Sequence[int]], outer: int | None = None) -> np.ndarray:
-    """The drawing of :func:`plane_layout` lifted onto the unit sphere, fins standing out radially."""
+    """Return the drawing of :func:`plane_layout` lifted onto the unit sphere, fins standing out radially."""
     flat = plane_layout(n_vertices, faces, outer)
     out = lift_to_sphere(flat[:, :2])
     for w in np.flatnonzero(flat[:, 2] > 0):  # fins stand out radially
-        u, v = sorted({x for face in faces for i, x in enumerate(face) if w in (face[i - 1], face[(i + 1) % len(face)])})
+        u, v = sorted(
+            {x for face in faces for i, x in enumerate(face) if w in (face[i - 1], face[(i + 1) % len(face)])}
+        )
         out[w] *= 1 + FIN * float(np.linalg.norm(out[v] - out[u]))
     return out
