@@ -63,8 +63,7 @@ def check(name: str, entry: dict) -> dict:
     """Try each placement; return the row of the report."""
     t0 = time.perf_counter()
     row: dict = {"name": name, "components": entry["components"], "table_crossings": entry["crossings"]}
-    n_faces = design_scaffold(entry["pd"], name).n_faces
-    for layout in layouts(n_faces):
+    for layout in layouts(entry["pd"]):
         try:
             s = design_scaffold(entry["pd"], name, layout)
             d = assemble_pd(s, s.labels)
@@ -73,13 +72,15 @@ def check(name: str, entry: dict) -> dict:
             if len(row.setdefault("errors", [])) < 3:
                 row["errors"].append(f"{layout}: {exc}")
             continue
-        row.update(constructed=True, design_crossings=int(abs(s.labels).sum()), edges=s.n_edges, faces=s.n_faces)
+        if "layout" not in row and not row.get("constructed"):  # the design reported: the first made, or the kept one
+            row.update(constructed=True, design_crossings=int(abs(s.labels).sum()), edges=s.n_edges, faces=s.n_faces)
         if len(row.setdefault("names", [])) < 3:
             row["names"].append(f"{layout}: {got.chiral_name or got.name}")
         if got.name == name:
             row["identified"] = True
             if got.mirror in (False, None):
-                row.update(layout=layout, mirror_right=True)
+                row.update(layout=layout, mirror_right=True, design_crossings=int(abs(s.labels).sum()))
+                row.update(edges=s.n_edges, faces=s.n_faces, tries=len(row.get("names", [])) + len(row.get("errors", [])))
                 break
     row["seconds"] = round(time.perf_counter() - t0, 3)
     return row
@@ -89,18 +90,29 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--max-knot", type=int, default=10)
     parser.add_argument("--max-link", type=int, default=9)
+    parser.add_argument("--resume", action="store_true", help="keep the rows of results/construct/report.json")
     args = parser.parse_args()
     types = table_types()
+    out = os.path.join(ROOT, "results", "construct")
+    done: dict[str, dict] = {}
+    if args.resume and os.path.exists(os.path.join(out, "report.json")):
+        with open(os.path.join(out, "report.json")) as fh:
+            done = {r["name"]: r for r in json.load(fh)["types"]}
     rows = []
-    for name, entry in types.items():
+    for i, (name, entry) in enumerate(types.items()):
         limit = args.max_knot if entry["components"] == 1 else args.max_link
+        entry["layout"] = None
         if entry["crossings"] <= limit:
-            rows.append(check(name, entry))
+            rows.append(done.get(name) or check(name, entry))
             entry["layout"] = rows[-1].get("layout")
             if "layout" not in rows[-1]:
                 print("MISS", name, rows[-1].get("names"), rows[-1].get("errors"), flush=True)
-        else:
-            entry["layout"] = None
+        if i % 500 == 499 or i == len(types) - 1:
+            write(types, rows, args, out)
+
+
+def write(types: dict[str, dict], rows: list[dict], args: argparse.Namespace, out: str) -> None:
+    """Write the shipped table and the report (every type not checked yet has ``layout: null``)."""
     payload = json.dumps(types, separators=(",", ":")).encode()
     tmp = TABLE_FILE + ".tmp"
     with gzip.GzipFile(tmp, "wb", mtime=0) as fh:
@@ -113,7 +125,8 @@ def main() -> None:
         "mirror_right": sum(bool(r.get("mirror_right")) for r in rows),
         "minimal_crossings": sum(r.get("design_crossings") == r["table_crossings"] for r in rows),
         "seconds_per_type": round(sum(r["seconds"] for r in rows) / max(1, len(rows)), 3),
-        "by_layout": {k: sum(str(r.get("layout")).split(":")[0] == k for r in rows) for k in LAYOUTS},
+        "by_layout": {k: sum(str(r.get("layout")).split(":")[0].split("/")[0] == k for r in rows) for k in LAYOUTS},
+        "other_colouring": sum(str(r.get("layout")).endswith("/more") for r in rows),
         "largest_face_outside": sum(r.get("layout") in LAYOUTS for r in rows),
         "max_knot": args.max_knot,
         "max_link": args.max_link,
@@ -124,7 +137,6 @@ def main() -> None:
         "machine": platform.node(),
         "load_average": os.getloadavg(),
     }
-    out = os.path.join(ROOT, "results", "construct")
     os.makedirs(out, exist_ok=True)
     with open(os.path.join(out, "report.json"), "w") as fh:
         json.dump({"summary": summary, "types": rows}, fh, indent=1)

@@ -107,8 +107,7 @@ def construct(type_name: str | None = None, pd: Sequence[Sequence[int]] | None =
             builtin = f"{kind}:{'m' if mirror else ''}{target.name}"
             first = table()[target.name]["layout"]
     tried: list[str] = []
-    n_faces = design_scaffold(code, label).n_faces
-    for layout in dict.fromkeys([first or "sphere", *layouts(n_faces)]):
+    for layout in dict.fromkeys([first or "sphere", *layouts(code)]):
         scaffold = design_scaffold(code, label, layout)
         assert scaffold.labels is not None
         if mirror:

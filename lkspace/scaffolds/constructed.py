@@ -32,13 +32,19 @@ from .diagram_mesh import diagram_mesh
 from .plane_layout import plane_layout, sphere_layout
 
 LAYOUTS = {"sphere": sphere_layout, "flat": plane_layout}
-"""Placements of a diagram's mesh; a layout is spelled ``sphere`` or ``flat``, with the outer face
-after a colon where it is not the largest face (``sphere:3``)."""
+"""Placements of a diagram's mesh.  A layout is spelled ``sphere`` or ``flat``, with the outer face
+after a colon where it is not the largest face (``sphere:3``), and ``/more`` at the end for the
+mesh of the other colouring (the one with more edges: ``flat:2/more``)."""
 
 
-def layouts(n_faces: int) -> list[str]:
-    """Every layout of a mesh with ``n_faces`` faces, in the order they are tried: the largest face outside first."""
-    return ["sphere", "flat"] + [f"{kind}:{f}" for f in range(n_faces) for kind in LAYOUTS]
+def layouts(pd: Sequence[Sequence[int]]) -> list[str]:
+    """Every layout of the diagram ``pd``, in the order they are tried: fewer edges, largest face outside first."""
+    out = []
+    for colouring in ("fewer", "more"):
+        n_faces = len(diagram_mesh(pd, colouring=colouring).faces)
+        tail = "" if colouring == "fewer" else "/more"
+        out += [f"sphere{tail}", f"flat{tail}"] + [f"{k}:{f}{tail}" for f in range(n_faces) for k in LAYOUTS]
+    return out
 
 
 PREFIXES = ("knot:", "link:")
@@ -54,10 +60,15 @@ def design_scaffold(pd: Sequence[Sequence[int]], name: str, layout: str = "spher
     >>> s.n_faces, int(abs(s.labels).sum())
     (2, 3)
     """
-    mesh = diagram_mesh(pd, where)
-    kind, _, outer = layout.partition(":")
-    if kind not in LAYOUTS or not (outer == "" or (outer.isdigit() and int(outer) < len(mesh.faces))):
-        raise ScaffoldError(f"{where}: layout {layout!r}: expected sphere or flat, or sphere:F / flat:F with a face F")
+    placement, _, colouring = layout.partition("/")
+    mesh = diagram_mesh(pd, where, "more" if colouring == "more" else "fewer")
+    kind, _, outer = placement.partition(":")
+    if (
+        kind not in LAYOUTS
+        or colouring not in ("", "more")
+        or not (outer == "" or (outer.isdigit() and int(outer) < len(mesh.faces)))
+    ):
+        raise ScaffoldError(f"{where}: layout {layout!r}: expected sphere or flat, then :F (a face F) and /more, both optional")
     positions = LAYOUTS[kind](mesh.n_vertices, mesh.faces, int(outer) if outer else None)
     scaffold = Scaffold.from_faces(positions, mesh.faces, name=name)
     by_pair = {(min(u, v), max(u, v)): t for (u, v), t in zip(mesh.edges, mesh.labels)}

@@ -340,11 +340,11 @@ def _finish(mesh: _Mesh, crossings: int) -> DiagramMesh:
     return DiagramMesh(len(used), faces, edges, labels, crossings)
 
 
-def diagram_mesh(pd: Sequence[Sequence[int]], where: str = "PD code") -> DiagramMesh:
+def diagram_mesh(pd: Sequence[Sequence[int]], where: str = "PD code", colouring: str = "fewer") -> DiagramMesh:
     """Return the checkerboard mesh of a connected link diagram, with twist labels (module docstring).
 
-    Of the two colourings, the one giving the mesh with fewer edges is kept (ties: fewer
-    vertices, then colour 0).  Raises :class:`~lkspace.errors.ScaffoldError` for a code
+    ``colouring``: ``"fewer"`` keeps the colouring whose mesh has fewer edges (ties: fewer
+    vertices, then the first colour), ``"more"`` the other one.  Raises :class:`~lkspace.errors.ScaffoldError` for a code
     that is no link diagram, a split diagram or a diagram with no crossing left.
 
     Examples
@@ -365,16 +365,14 @@ def diagram_mesh(pd: Sequence[Sequence[int]], where: str = "PD code") -> Diagram
             f"{where}: not a connected diagram on the sphere ({len(code)} crossings, {n_regions} regions, "
             f"{components + freed} components); split links are made one piece at a time"
         )
-    best = None
+    made = []
     for colour in (0, 1):
         mesh = _build(code, colour)
         _merge_series(mesh)
         _repair(mesh)
-        made = _finish(mesh, len(code))
-        if best is None or (len(made.edges), made.n_vertices) < (len(best.edges), best.n_vertices):
-            best = made
-    assert best is not None
-    return best
+        made.append(_finish(mesh, len(code)))
+    made.sort(key=lambda m: (len(m.edges), m.n_vertices))
+    return made[0] if colouring == "fewer" else made[1]
 
 
 def link_components(pd: list[tuple[int, int, int, int]]) -> int:
