@@ -80,7 +80,9 @@ def check(name: str, entry: dict) -> dict:
             row["identified"] = True
             if got.mirror in (False, None):
                 row.update(layout=layout, mirror_right=True, design_crossings=int(abs(s.labels).sum()))
-                row.update(edges=s.n_edges, faces=s.n_faces, tries=len(row.get("names", [])) + len(row.get("errors", [])))
+                row.update(
+                    edges=s.n_edges, faces=s.n_faces, tries=len(row.get("names", [])) + len(row.get("errors", []))
+                )
                 break
     row["seconds"] = round(time.perf_counter() - t0, 3)
     return row

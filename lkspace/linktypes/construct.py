@@ -105,7 +105,7 @@ def construct(type_name: str | None = None, pd: Sequence[Sequence[int]] | None =
         if target.name in table() and not target.factors:
             kind = "knot" if target.components == 1 else "link"
             builtin = f"{kind}:{'m' if mirror else ''}{target.name}"
-            first = table()[target.name]["layout"]
+            first = table()[target.name].get("layout")
     tried: list[str] = []
     for layout in dict.fromkeys([first or "sphere", *layouts(code)]):
         scaffold = design_scaffold(code, label, layout)

@@ -68,7 +68,9 @@ def design_scaffold(pd: Sequence[Sequence[int]], name: str, layout: str = "spher
         or colouring not in ("", "more")
         or not (outer == "" or (outer.isdigit() and int(outer) < len(mesh.faces)))
     ):
-        raise ScaffoldError(f"{where}: layout {layout!r}: expected sphere or flat, then :F (a face F) and /more, both optional")
+        raise ScaffoldError(
+            f"{where}: layout {layout!r}: expected sphere or flat, then :F (a face F) and /more, both optional"
+        )
     positions = LAYOUTS[kind](mesh.n_vertices, mesh.faces, int(outer) if outer else None)
     scaffold = Scaffold.from_faces(positions, mesh.faces, name=name)
     by_pair = {(min(u, v), max(u, v)): t for (u, v), t in zip(mesh.edges, mesh.labels)}

@@ -23,8 +23,9 @@ edge labels at a crossing counter-clockwise, ``a`` and ``c`` on the under-strand
 * **Nugatory crossings** (a region meeting itself at a crossing) are smoothed first, the
   way that keeps the diagram connected: the link type does not change.
 * **Composite diagrams** (a face meeting a vertex twice: a circle through that face and
-  vertex cuts the diagram in two points) get a Reidemeister II move across the neck: the
-  vertex splits in two, joined by two edges with labels +1 and -1 around a new face.
+  vertex cuts the diagram in two points): the vertex splits in two, joined by a new edge
+  with label 0.  A label 0 is no crossing (the black regions at its ends are one), so the
+  strands do not change, and the face meets each half once.
 
 :func:`diagram_mesh` returns faces and labels; :mod:`lkspace.scaffolds.sphere_layout`
 places the vertices.
@@ -270,7 +271,12 @@ def _rotation(mesh: _Mesh, w: int) -> list[tuple[int, int, int]]:
 
 
 def _split_composite(mesh: _Mesh, f: int, w: int) -> None:
-    """Face f meets vertex w twice: split w in two, joined by edges +1 and -1 around a new face (RII)."""
+    """Face f meets vertex w twice: split w in two, joined by a new edge with label 0.
+
+    An edge with label 0 is no crossing: the two black regions at its ends are one, so the
+    strands are unchanged.  The split runs from a corner of another face between f's two
+    corners to one on the other side, so f meets each half of w once.
+    """
     order = _rotation(mesh, w)
     at = [i for i, corner in enumerate(order) if corner[0] == f]
     i, j = at[0], at[1]
@@ -280,7 +286,7 @@ def _split_composite(mesh: _Mesh, f: int, w: int) -> None:
         raise ScaffoldError("the diagram has a nugatory crossing left (a region meets itself at a crossing)")
     k1, k2 = order.index(c1), order.index(c2)
     arc = [order[(k1 + s) % len(order)] for s in range(1, (k2 - k1) % len(order) + 1)]
-    arc_edges = {c[1] for c in arc}  # edges e_out(c1) .. e_in(c2) go to the new vertex x1
+    arc_edges = {c[1] for c in arc}  # edges e_out(c1) .. e_in(c2) stay at w (x1), the others move to x2
     x1, x2 = w, mesh.n_vertices
     mesh.n_vertices += 1
     for e, ends in enumerate(mesh.ends):
@@ -290,14 +296,13 @@ def _split_composite(mesh: _Mesh, f: int, w: int) -> None:
         for i2, (e, v) in enumerate(face):
             if v == w and e not in arc_edges:
                 face[i2] = (e, x2)
-    e1, e2 = len(mesh.ends), len(mesh.ends) + 1
-    mesh.ends += [[x2, x1], [x1, x2]]
-    mesh.labels += [1, -1]
-    for corner, (new_edge, reached) in ((c1, (e1, x1)), (c2, (e2, x2))):
+    new = len(mesh.ends)
+    mesh.ends.append([x1, x2])
+    mesh.labels.append(0)
+    for corner, reached in ((c1, x1), (c2, x2)):  # c1's face enters at x2 and leaves at x1; c2's the other way
         face = mesh.faces[corner[0]]
         k = next(k for k, entry in enumerate(face) if entry[0] == corner[1])
-        face.insert(k + 1, (new_edge, reached))
-    mesh.faces.append([(e1, x2), (e2, x1)])
+        face.insert(k + 1, (new, reached))
 
 
 def _repair(mesh: _Mesh) -> None:
