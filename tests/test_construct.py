@@ -105,20 +105,28 @@ def test_the_shipped_table_holds_every_type_up_to_its_range():
     entries = table()
     knots_ = [n for n, e in entries.items() if e["components"] == 1]
     links = [n for n, e in entries.items() if e["components"] > 1]
-    assert len(knots_) == 2977 and len(links) == 4188
+    assert len(knots_) == 2977 and len(links) == 1424  # LinkInfo: 4,188 entries, one per orientation
     assert sum(1 for n in knots_ if entries[n]["crossings"] <= 10) == 249
     assert sum(1 for n in links if entries[n]["crossings"] <= 9) == 130
 
 
 @pytest.mark.parametrize("name", ["3_1", "4_1", "5_2", "6_2", "7_4", "8_17", "9_35", "10_100", "10_161"])
 def test_constructions_are_named_alike_by_topoly(name):
-    """Independent: topoly's HOMFLY-PT on the curves lkspace realizes for the built-in design."""
+    """Independent: topoly's HOMFLY-PT names the curves lkspace realizes, and tells the mirror image apart."""
     topoly = pytest.importorskip("topoly")
     from lkspace import realize
 
-    curves = realize(builtin(f"knot:{name}")).curves
-    assert len(curves) == 1
-    assert topoly.homfly(np.asarray(curves[0]).tolist(), closure=0) == name
+    marks = []
+    for typed in (name, "m" + name):
+        curves = realize(builtin(f"knot:{typed}")).curves
+        assert len(curves) == 1
+        found = topoly.homfly(np.asarray(curves[0]).tolist(), closure=0, max_cross=80, chiral=True)
+        assert found.lstrip("+-") == name, (typed, found)
+        marks.append(found[0] if found[0] in "+-" else "")
+    if name in {"4_1", "8_17"}:  # amphichiral (8_17 equals its mirror image reversed: unoriented, the same)
+        assert marks == ["", ""], marks
+    else:
+        assert "" not in marks and marks[0] != marks[1], marks
 
 
 def test_construct_on_the_command_line(tmp_path, capsys):
