@@ -32,6 +32,7 @@ def construct_cmd(type_name: str | None, pd_text: str | None, output: str, as_js
     from ..io.atomic import write_text
     from ..io.scaffold_json import format_scaffold_json
     from ..linktypes.construct import construct
+    from ..words import plural
     from .common import Context, emit
 
     ctx = Context(as_json)
@@ -45,7 +46,10 @@ def construct_cmd(type_name: str | None, pd_text: str | None, output: str, as_js
             raise UsageError(f"--pd: not a PD code ({exc.args[0]}); write it as [[1,5,2,4],[3,1,4,6],...]") from exc
         if not isinstance(pd, list):
             raise UsageError("--pd: expected a list of crossings such as [[1,5,2,4],[3,1,4,6],[5,3,6,2]]")
-    made = construct(type_name, pd)
+    try:
+        made = construct(type_name, pd)
+    except UsageError as exc:  # the type names of solve --type, spoken of as TYPE here
+        raise UsageError(str(exc).replace("type_name ", "TYPE ").replace("--type ", "TYPE ")) from None
     s = made.scaffold
     write_text(output, format_scaffold_json(s, s.labels))
     assert s.labels is not None
@@ -67,7 +71,7 @@ def construct_cmd(type_name: str | None, pd_text: str | None, output: str, as_js
         chiral = {True: " (mirror image)", False: "", None: ""}[made.mirror]
         also = f"; also the built-in {made.builtin}" if made.builtin else ""
         click.echo(
-            f"wrote {output}: {made.name}{chiral} on {s.n_faces} faces, {s.n_edges} edges, "
+            f"wrote {output}: {made.name}{chiral} on {plural(s.n_faces, 'face')}, {plural(s.n_edges, 'edge')}, "
             f"sum |t| = {answer['sum_abs']}, from a {made.crossings}-crossing diagram{also}"
         )
 

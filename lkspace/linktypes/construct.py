@@ -95,8 +95,12 @@ def construct(type_name: str | None = None, pd: Sequence[Sequence[int]] | None =
     if pd is not None:
         code, mirror, label = [list(map(int, x)) for x in pd], False, "diagram"
         want = name_pd(code, _components(code), floer=False)
+        if want.name == "0_1":
+            return _unknot(len(code))
     else:
         target = parse_type(type_name or "")
+        if target.name == "0_1":
+            return _unknot(0)
         code, mirror = _diagram(target, type_name or "")
         label = target.label
         want = name_pd(code, target.components, floer=False)
@@ -124,6 +128,12 @@ def construct(type_name: str | None = None, pd: Sequence[Sequence[int]] | None =
         f"{label}: none of {len(tried)} placements of its mesh realizes the diagram "
         f"({'; '.join(tried[:2])}, ...); please report it"
     )
+
+
+def _unknot(crossings: int) -> Construction:
+    """The unknot: one triangle, its strand running once around it."""
+    scaffold = Scaffold.from_faces([[1.0, 0.0, 0.0], [-0.5, 0.866, 0.0], [-0.5, -0.866, 0.0]], [[0, 1, 2]], name="0_1")
+    return Construction(scaffold.with_labels([0, 0, 0]), "0_1", None, "flat", crossings, None)
 
 
 def _components(pd: list[list[int]]) -> int:
