@@ -131,7 +131,7 @@ def construct(type_name: str | None = None, pd: Sequence[Sequence[int]] | None =
 
 
 def _unknot(crossings: int) -> Construction:
-    """The unknot: one triangle, its strand running once around it."""
+    """Return the unknot: one triangle, its strand running once around it."""
     scaffold = Scaffold.from_faces([[1.0, 0.0, 0.0], [-0.5, 0.866, 0.0], [-0.5, -0.866, 0.0]], [[0, 1, 2]], name="0_1")
     return Construction(scaffold.with_labels([0, 0, 0]), "0_1", None, "flat", crossings, None)
 
