@@ -60,8 +60,13 @@ def table_types(max_knot_all: int = 12, max_link_all: int = 11) -> dict[str, dic
 
 
 def check(name: str, entry: dict) -> dict:
-    """Try each placement; return the row of the report."""
+    """Try each placement; return the row of the report.
+
+    The target is the table diagram's own name and chirality (``name_pd`` of its PD code):
+    a LinkInfo orientation may be named as the mirror image of the entry's name.
+    """
     t0 = time.perf_counter()
+    want = name_pd(entry["pd"], entry["components"], floer=False)
     row: dict = {"name": name, "components": entry["components"], "table_crossings": entry["crossings"]}
     for layout in layouts(entry["pd"]):
         try:
@@ -78,7 +83,7 @@ def check(name: str, entry: dict) -> dict:
             row["names"].append(f"{layout}: {got.chiral_name or got.name}")
         if got.name == name:
             row["identified"] = True
-            if got.mirror in (False, None):
+            if want.mirror is None or got.mirror == want.mirror:
                 row.update(layout=layout, mirror_right=True, design_crossings=int(abs(s.labels).sum()))
                 row.update(
                     edges=s.n_edges, faces=s.n_faces, tries=len(row.get("names", [])) + len(row.get("errors", []))
@@ -105,7 +110,8 @@ def main() -> None:
         limit = args.max_knot if entry["components"] == 1 else args.max_link
         entry["layout"] = None
         if entry["crossings"] <= limit:
-            rows.append(done.get(name) or check(name, entry))
+            kept = done.get(name)
+            rows.append(kept if kept and kept.get("layout") else check(name, entry))
             entry["layout"] = rows[-1].get("layout")
             if "layout" not in rows[-1]:
                 print("MISS", name, rows[-1].get("names"), rows[-1].get("errors"), flush=True)
