@@ -105,7 +105,7 @@ ALLOWED = {
     "knots": {"compiled", "errors", "geometry", "io", "model", "runtime", "strands", "words"},
     "formats": {"errors", "geometry", "io", "knots", "model", "runtime", "words"},
     "catalog": {"compiled", "design", "errors", "io", "knots", "model", "runtime", "strands", "symmetry", "words"},
-    "linktypes": {"catalog", "design", "errors", "formats", "geometry", "io", "knots", "model", "runtime", "strands", "symmetry", "words"},
+    "linktypes": {"catalog", "design", "errors", "formats", "geometry", "io", "knots", "model", "runtime", "scaffolds", "strands", "symmetry", "words"},
     "api": {"io"},
     "lkspace": {"api", "errors"},
     "studio": {"catalog", "errors", "formats", "geometry", "io", "knots", "linktypes", "lkspace", "model", "runtime", "scaffolds", "symmetry"},

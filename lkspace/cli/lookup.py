@@ -30,8 +30,10 @@ def lookup_cmd(name: str, limit: int, scaffold: str | None, atlas_file: str | No
     NAME is a table name (5_2, L6a4; m3_1 asks for the mirror image only, 3_1 for both)
     or a common name ("Borromean rings", "Whitehead link", trefoil, "left-handed
     trefoil").  Each design is listed with its scaffold, label set, sum |t|, crossings
-    and the command that identifies it again.  A type the atlas does not hold exits
-    with status 1 and names the spaces searched.
+    and the command that identifies it again.  A table type the atlas does not hold is
+    answered by its constructed design (scaffold knot:NAME or link:NAME, label set
+    "constructed"; `constructed: true` in --json); any other type the atlas does not
+    hold exits with status 1 and names the spaces searched.
 
     \b
     Examples:
@@ -50,10 +52,16 @@ def lookup_cmd(name: str, limit: int, scaffold: str | None, atlas_file: str | No
         common = f" ({answer.common_name})" if answer.common_name else ""
         spaces = f"{len(answer.found_in)} of {plural(len(answer.searched), 'space')}"
         shown = len(answer.designs)
-        click.echo(
-            f"{answer.asked}{common}: {plural(answer.designs_total, 'design')} in {spaces}; "
-            + (f"the simplest {shown}:" if shown > 1 else "the simplest:")
-        )
+        if all(d.constructed for d in answer.designs):
+            click.echo(
+                f"{answer.asked}{common}: no design in the {plural(len(answer.searched), 'space')} of the atlas; "
+                "made from its diagram (lkspace construct):"
+            )
+        else:
+            click.echo(
+                f"{answer.asked}{common}: {plural(answer.designs_total, 'design')} in {spaces}; "
+                + (f"the simplest {shown}:" if shown > 1 else "the simplest:")
+            )
         rows = [("type", "scaffold", "labels", "sum|t|", "crossings", "identify again")]
         for d in answer.designs:
             crossings = "?" if d.crossings is None else str(d.crossings)

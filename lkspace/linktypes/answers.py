@@ -45,6 +45,7 @@ class LookupDesign:
     chiral_name: str
     designs_of_type: int
     command: str
+    constructed: bool = False
 
     @classmethod
     def from_json(cls, data: object, where: str = "lookup design") -> LookupDesign:
@@ -63,6 +64,7 @@ class LookupDesign:
             read_str(d, "chiral_name", where),
             read_int(d, "designs_of_type", where),
             read_str(d, "command", where),
+            read_opt_bool(d, "constructed", where) or False,
         )
 
     def to_json(self) -> JsonObject:
@@ -80,6 +82,7 @@ class LookupDesign:
             "chiral_name": self.chiral_name,
             "designs_of_type": self.designs_of_type,
             "command": self.command,
+            "constructed": self.constructed,
         }
 
 

@@ -35,6 +35,7 @@ import json
 import os
 
 from ..errors import CatalogError, LkspaceError
+from ..scaffolds.constructed import table, table_design
 from .answers import LookupAnswer, LookupDesign
 from .common_names import common_name, resolve_type
 from .fields import JsonObject
@@ -156,6 +157,8 @@ def lookup(name: str, atlas: str | None = None, *, limit: int = LIMIT, scaffold:
             if key not in found:
                 found[key] = _design(row, ex)
     designs = sorted(found.values(), key=_simplest)
+    if not designs and scaffold is None:
+        designs = constructed_designs(wanted, chirality)
     if not designs:
         raise TypeNotFound(_absent(wanted, chirality, hits, spaces, atlas, scaffold))
     return LookupAnswer(
@@ -198,6 +201,43 @@ def _same_type(row_type: str, wanted: str) -> bool:
         return row_type == wanted
     factors = sorted(p[1:] if p.startswith("m") else p for p in wanted.split("#"))
     return sorted(row_type.split("#")) == factors
+
+
+def constructed_designs(name: str, chirality: Chirality) -> list[LookupDesign]:
+    """Return the constructed design of a table type (``knot:NAME``, ``link:NAME``), each chirality asked for.
+
+    Empty when ``name`` is not in the shipped table of diagrams (:mod:`lkspace.scaffolds.constructed`).
+    """
+    entry = table().get(name)
+    if entry is None:
+        return []
+    kind = "knot" if entry["components"] == 1 else "link"
+    sides = [False, True] if chirality == "any" else [chirality == "mirror"]
+    if entry.get("amphichiral"):
+        sides = sides[:1]
+    out = []
+    for mirror in sides:
+        builtin = f"{kind}:{'m' if mirror else ''}{name}"
+        labels = tuple(int(t) for t in table_design(builtin).labels)  # type: ignore[union-attr]
+        known = None if entry.get("amphichiral") else mirror
+        out.append(
+            LookupDesign(
+                type=name,
+                common_name=common_name(name, known),
+                scaffold=builtin,
+                labels=labels,
+                label_set="constructed",
+                sum_abs=sum(abs(t) for t in labels),
+                nonzero=sum(t != 0 for t in labels),
+                crossings=int(entry["crossings"]),
+                mirror=known,
+                chiral_name=("m" if known else "") + name,
+                designs_of_type=1,
+                command=f"lkspace identify {builtin}",
+                constructed=True,
+            )
+        )
+    return out
 
 
 def _design(row: IndexRow, ex: Example) -> LookupDesign:

@@ -30,6 +30,10 @@ laves                      the Laves graph (srs net), periodic: its 10-rings as 
 voronoi:cube-faces         Voronoi scaffold of a cubic lattice with points at the
                            cube's face centres (the paper's figure; 12 triangles)
 NAME@AxBxC                 the A x B x C supercell of a periodic NAME (AxB in 2D)
+knot:NAME, link:NAME       a table type made from its diagram, with its labels
+                           (``knot:8_17``, ``knot:m3_1``, ``link:L6a4``; every prime
+                           knot of KnotInfo to 12 crossings, link of LinkInfo to 11;
+                           see :mod:`lkspace.scaffolds.constructed`)
 =========================  ==========================================================
 
 Bounds, checked before building: ``N, K <= MAX_FAMILY_PARAMETER`` (1000); a supercell
@@ -47,7 +51,7 @@ from collections.abc import Callable
 
 from ..errors import ScaffoldError, UsageError
 from ..model.scaffold import Scaffold
-from . import hinged, kaleidocycle, laves, paper, periodic, polyhedra, special
+from . import constructed, hinged, kaleidocycle, laves, paper, periodic, polyhedra, special
 
 SOLIDS: dict[str, Callable[[], Scaffold]] = {
     "tetrahedron": polyhedra.tetrahedron,
@@ -82,6 +86,7 @@ def builtin_names() -> list[str]:
         + [f"{f}:N" if f == "dihedron" else f"{f}:K" for f in FAMILIES]
         + list(periodic.LATTICES)
         + list(periodic.VORONOI_EXAMPLES)
+        + ["knot:NAME", "link:NAME"]
     )
 
 
@@ -89,7 +94,11 @@ def is_builtin_name(name: str) -> bool:
     """Whether ``name`` looks like a built-in name rather than a path."""
     head = name.split(":", 1)[0].split("@", 1)[0]
     return (
-        name in SOLIDS or head in SOLIDS or head in FAMILIES or name.startswith(("tiling:", "honeycomb:", "voronoi:"))
+        name in SOLIDS
+        or head in SOLIDS
+        or head in FAMILIES
+        or name.startswith(("tiling:", "honeycomb:", "voronoi:"))
+        or constructed.is_table_design(name)
     )
 
 
@@ -101,6 +110,8 @@ def builtin(name: str) -> Scaffold:
     >>> builtin("book:3").edge_degrees.max()
     np.int64(3)
     """
+    if constructed.is_table_design(name):
+        return constructed.table_design(name)
     if "@" in name:
         base_name, _, sizes = name.partition("@")
         base = builtin(base_name)

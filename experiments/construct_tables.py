@@ -1,0 +1,162 @@
+"""Construct every type of the knot and link tables and check each construction.
+
+For every prime knot of KnotInfo up to ``--max-knot`` crossings and every prime link of
+LinkInfo up to ``--max-link``, build the checkerboard design of the table's diagram in
+each placement (``lkspace.scaffolds.constructed.LAYOUTS``), name its strands with
+lkspace's identification (the combinatorial diagram of the labels, then the tables), and
+keep the first placement that gives the type in the table's chirality.
+
+Writes ``lkspace/data/diagrams.json.gz`` (every type's PD code and checked placement:
+what ``knot:NAME`` / ``link:NAME`` load) and ``results/construct/report.{json,md}``:
+counts constructed / identified as the target / mirror right, time per type, and the
+crossings of each design against the table's crossing number.  Types above the checked
+range ship with their PD code and ``"layout": null`` (``lkspace construct`` still checks
+them when it runs).
+
+    python experiments/construct_tables.py --max-knot 10 --max-link 9
+"""
+
+from __future__ import annotations
+
+import argparse
+import gzip
+import json
+import os
+import platform
+import subprocess
+import time
+
+import database_knotinfo as dki
+
+from lkspace import __version__
+from lkspace.errors import LkspaceError
+from lkspace.knots.assembly import assemble_pd
+from lkspace.knots.naming import name_pd
+from lkspace.scaffolds.constructed import LAYOUTS, TABLE_FILE, design_scaffold, layouts
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+
+def table_types(max_knot_all: int = 12, max_link_all: int = 11) -> dict[str, dict]:
+    """Name -> ``{"pd", "components", "crossings"}`` for every prime knot to 12 and link to 11 crossings."""
+    out: dict[str, dict] = {}
+    for row in dki.link_list()[1:]:
+        c = int(row.get("crossing_number") or 99)
+        if row.get("pd_notation") and 0 < c <= max_knot_all:
+            amphichiral = "amphicheiral" in str(row.get("symmetry_type") or "")
+            out[row["name"]] = {
+                "pd": json.loads(row["pd_notation"]),
+                "components": 1,
+                "crossings": c,
+                "amphichiral": amphichiral,
+            }
+    for row in dki.link_list(proper_links=True)[1:]:
+        name = row["name"].split("{")[0]
+        c = int(row.get("crossing_number") or 99)
+        if name not in out and row.get("pd_notation_vector") and c <= max_link_all:
+            pd = json.loads(row["pd_notation_vector"].replace("{", "[").replace("}", "]"))
+            out[name] = {"pd": pd, "components": int(row["components"]), "crossings": c, "amphichiral": None}
+    return out
+
+
+def check(name: str, entry: dict) -> dict:
+    """Try each placement; return the row of the report.
+
+    The target is the table diagram's own name and chirality (``name_pd`` of its PD code):
+    a LinkInfo orientation may be named as the mirror image of the entry's name.
+    """
+    t0 = time.perf_counter()
+    want = name_pd(entry["pd"], entry["components"], floer=False)
+    row: dict = {"name": name, "components": entry["components"], "table_crossings": entry["crossings"]}
+    for layout in layouts(entry["pd"]):
+        try:
+            s = design_scaffold(entry["pd"], name, layout)
+            d = assemble_pd(s, s.labels)
+            got = name_pd([[int(v) for v in x] for x in d.pd], d.n_components, floer=False)
+        except LkspaceError as exc:
+            if len(row.setdefault("errors", [])) < 3:
+                row["errors"].append(f"{layout}: {exc}")
+            continue
+        if "layout" not in row and not row.get("constructed"):  # the design reported: the first made, or the kept one
+            row.update(constructed=True, design_crossings=int(abs(s.labels).sum()), edges=s.n_edges, faces=s.n_faces)
+        if len(row.setdefault("names", [])) < 3:
+            row["names"].append(f"{layout}: {got.chiral_name or got.name}")
+        if got.name == name:
+            row["identified"] = True
+            if want.mirror is None or got.mirror == want.mirror:
+                row.update(layout=layout, mirror_right=True, design_crossings=int(abs(s.labels).sum()))
+                row.update(
+                    edges=s.n_edges, faces=s.n_faces, tries=len(row.get("names", [])) + len(row.get("errors", []))
+                )
+                break
+    row["seconds"] = round(time.perf_counter() - t0, 3)
+    return row
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--max-knot", type=int, default=10)
+    parser.add_argument("--max-link", type=int, default=9)
+    parser.add_argument("--resume", action="store_true", help="keep the rows of results/construct/report.json")
+    args = parser.parse_args()
+    types = table_types()
+    out = os.path.join(ROOT, "results", "construct")
+    done: dict[str, dict] = {}
+    if args.resume and os.path.exists(os.path.join(out, "report.json")):
+        with open(os.path.join(out, "report.json")) as fh:
+            done = {r["name"]: r for r in json.load(fh)["types"]}
+    rows = []
+    for i, (name, entry) in enumerate(types.items()):
+        limit = args.max_knot if entry["components"] == 1 else args.max_link
+        entry["layout"] = None
+        if entry["crossings"] <= limit:
+            kept = done.get(name)
+            rows.append(kept if kept and kept.get("layout") else check(name, entry))
+            entry["layout"] = rows[-1].get("layout")
+            if "layout" not in rows[-1]:
+                print("MISS", name, rows[-1].get("names"), rows[-1].get("errors"), flush=True)
+        if i % 500 == 499 or i == len(types) - 1:
+            write(types, rows, args, out)
+
+
+def write(types: dict[str, dict], rows: list[dict], args: argparse.Namespace, out: str) -> None:
+    """Write the shipped table and the report (every type not checked yet has ``layout: null``)."""
+    payload = json.dumps(types, separators=(",", ":")).encode()
+    tmp = TABLE_FILE + ".tmp"
+    with gzip.GzipFile(tmp, "wb", mtime=0) as fh:
+        fh.write(payload)
+    os.replace(tmp, TABLE_FILE)
+    summary = {
+        "checked": len(rows),
+        "constructed": sum(bool(r.get("constructed")) for r in rows),
+        "identified": sum(bool(r.get("identified")) for r in rows),
+        "mirror_right": sum(bool(r.get("mirror_right")) for r in rows),
+        "minimal_crossings": sum(r.get("design_crossings") == r["table_crossings"] for r in rows),
+        "seconds_per_type": round(sum(r["seconds"] for r in rows) / max(1, len(rows)), 3),
+        "by_layout": {k: sum(str(r.get("layout")).split(":")[0].split("/")[0] == k for r in rows) for k in LAYOUTS},
+        "other_colouring": sum(str(r.get("layout")).endswith("/more") for r in rows),
+        "largest_face_outside": sum(r.get("layout") in LAYOUTS for r in rows),
+        "max_knot": args.max_knot,
+        "max_link": args.max_link,
+        "commit": subprocess.run(
+            ["git", "rev-parse", "--short", "HEAD"], capture_output=True, text=True, cwd=ROOT
+        ).stdout.strip(),
+        "version": __version__,
+        "machine": platform.node(),
+        "load_average": os.getloadavg(),
+    }
+    os.makedirs(out, exist_ok=True)
+    with open(os.path.join(out, "report.json"), "w") as fh:
+        json.dump({"summary": summary, "types": rows}, fh, indent=1)
+    lines = ["# Every table type constructed and identified", "", "| | count |", "|---|---|"]
+    lines += [f"| {k} | {v} |" for k, v in summary.items() if not isinstance(v, (dict, tuple))]
+    lines += ["", "Placements kept: " + ", ".join(f"{k} {v}" for k, v in summary["by_layout"].items()), ""]
+    misses = [r for r in rows if not r.get("mirror_right")]
+    lines += ["## Misses", ""] + [f"- {r['name']}: {r.get('names')} {r.get('errors', '')}" for r in misses]
+    with open(os.path.join(out, "README.md"), "w") as fh:
+        fh.write("\n".join(lines) + "\n")
+    print(json.dumps(summary))
+
+
+if __name__ == "__main__":
+    main()
