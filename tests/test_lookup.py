@@ -178,7 +178,7 @@ def test_lookup_json_fields():
     }  # fmt: skip
     assert set(out["designs"][0]) == {
         "type", "common_name", "scaffold", "labels", "label_set", "sum_abs", "nonzero", "crossings", "mirror",
-        "chiral_name", "designs_of_type", "command",
+        "chiral_name", "designs_of_type", "command", "constructed",
     }  # fmt: skip
     assert out["query"] == "trefoil" and set(out["found_in"]) <= set(out["searched"])
     assert out["designs_total"] >= out["simplest_kept"] >= 2
@@ -266,10 +266,12 @@ def test_build_script_writes_the_documented_index(small_atlas):
 
 
 def test_absent_type_exits_1_naming_the_spaces(small_atlas):
-    proc = lookup("figure-eight", "--atlas", str(small_atlas), check=False)
+    constructed = lookup_json("figure-eight", "--atlas", str(small_atlas))  # a table type: its construction
+    assert [d["scaffold"] for d in constructed["designs"]] == ["knot:4_1"] and constructed["designs"][0]["constructed"]
+    proc = lookup("K14n10910", "--atlas", str(small_atlas), check=False)  # beyond the tables: nothing to construct
     assert proc.returncode == 1, proc.stderr
     line = proc.stderr.strip()
-    assert line.count("\n") == 0 and line.startswith("lkspace: error: 4_1: no design in the atlas ")
+    assert line.count("\n") == 0 and line.startswith("lkspace: error: K14n10910: no design in the atlas ")
     assert "searched 1 space: dihedron:3 -1..1" in line and "experiments/build_atlas.py" in line
     assert "--atlas" in line
     found = lookup_json("3_1", "--atlas", str(small_atlas))

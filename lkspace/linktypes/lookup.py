@@ -157,7 +157,7 @@ def lookup(name: str, atlas: str | None = None, *, limit: int = LIMIT, scaffold:
             if key not in found:
                 found[key] = _design(row, ex)
     designs = sorted(found.values(), key=_simplest)
-    if not designs and scaffold is None:
+    if not hits and scaffold is None:  # no design of the type at all (not: none of the chirality asked)
         designs = constructed_designs(wanted, chirality)
     if not designs:
         raise TypeNotFound(_absent(wanted, chirality, hits, spaces, atlas, scaffold))
