@@ -67,11 +67,13 @@ class KeyCache:
             self.path = None  # a read-only cache folder: keep the names in memory only
 
 
-def disk_cache() -> KeyCache:
+def disk_cache(first: tuple[int, int] | None = None) -> KeyCache:
     """Return a :class:`KeyCache` holding the keys judged by earlier runs, appending new ones.
 
     The file is ``names-by-key-<KEY_VERSION>-tables-<database_knotinfo version>.jsonl`` under ``$LKSPACE_CACHE``
     (default ``~/.cache/lkspace``); a torn last line (an interrupted run) is skipped.
+    With ``first`` (a first-level key), only the lines of that key and of its second-level
+    keys are read: what one design needs, without parsing the whole file.
     """
     from importlib.metadata import PackageNotFoundError, version
 
@@ -85,7 +87,10 @@ def disk_cache() -> KeyCache:
     try:
         os.makedirs(root, exist_ok=True)
         with open(path, encoding="utf-8") as fh:
+            mark = None if first is None else f"[{first[0]}, {first[1]}"
             for line in fh:
+                if mark is not None and mark not in line:
+                    continue
                 try:
                     item = json.loads(line)
                     key = _key(item["key"])

@@ -22,7 +22,6 @@ from typing import NamedTuple
 
 import numpy as np
 from numpy.typing import ArrayLike
-from scipy.spatial.transform import Rotation
 
 from ..errors import DiagramError, UsageError
 from ..geometry.construction import corner_pieces, edge_pieces
@@ -30,7 +29,7 @@ from ..geometry.params import GeometryParams, Resolved
 from ..geometry.tracks import side_tracks
 from ..model.scaffold import Scaffold
 from ..strands.ports import PortModel, edge_partner, port_model
-from .diagram import near_pairs, transverse
+from .diagram import near_pairs, random_rotation, transverse
 
 
 class TemplateArrays(NamedTuple):
@@ -151,7 +150,7 @@ def build_template(scaffold: Scaffold, label_values: ArrayLike, seed: int = 0) -
 def _template(scaffold: Scaffold, values: np.ndarray, polylines: list[np.ndarray], seed: int) -> DiagramTemplate:
     n = scaffold.n_corners
     model = port_model(scaffold)
-    rot = Rotation.random(random_state=seed).as_matrix()
+    rot = random_rotation(seed)
     sizes = np.array([len(p) - 1 for p in polylines], np.int64)
     piece = np.repeat(np.arange(len(polylines)), sizes)
     step = np.concatenate([np.arange(k) for k in sizes])
