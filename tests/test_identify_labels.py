@@ -219,3 +219,28 @@ def test_projection_without_scipy_matches_scipy():
         assert set(zip(i.tolist(), j.tolist(), strict=True)) == {
             tuple(p) for p in cKDTree(points).query_pairs(radius, output_type="ndarray").tolist()
         }
+
+
+def test_a_known_key_is_named_without_the_heavy_libraries():
+    import subprocess
+    import sys
+
+    code = """
+import sys
+import numpy as np
+import lkspace
+from lkspace.knots import from_labels
+from lkspace.knots.identification import NameFields
+from lkspace.knots.key_names import KeyCache
+
+found = from_labels.design_keys_of(lkspace.load("dihedron:3"), np.array([1, 1, 1]))
+cache = KeyCache()
+key = (int(found.keys[0, 0]), int(found.keys[0, 1]))
+cache.named[key] = NameFields(knot_name="3_1", mirror=False, split=False, crossings=3, table="knotinfo")
+from_labels.disk_cache = lambda first=None: cache
+r = lkspace.identify("dihedron:3", 1)
+heavy = ("snappy", "spherogram", "regina", "database_knotinfo", "numba", "scipy", "pandas")
+print(r.name, r.details["method"], [m for m in heavy if m in sys.modules])
+"""
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
+    assert out.split() == ["3_1", "combinatorial", "[]"]
