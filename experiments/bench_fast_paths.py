@@ -9,12 +9,13 @@ the same rounds and every figure is also given as a ratio to it.
 
 Cases: ``identify`` of a trefoil, a 13-crossing knot and a 14-crossing link on the cube, a
 split link and the 6-component unlink on the cube, and a dodecahedron design (default
-path; the trefoil also ``--geometric``); ``--help``; ``trace tetrahedron``; ``enumerate
+path; the trefoil also ``--geometric``); ``--help`` (case ``help``); ``trace tetrahedron``; ``enumerate
 honeycomb:oF --labels -1..1 -o`` and ``enumerate cube --labels -2..2 --jobs 2 -o``.
 
 Run (a few minutes)::
 
-    python experiments/bench_fast_paths.py --before /path/to/main --runs 3
+    git archive COMMIT | tar -x -C /tmp/before_COMMIT
+    python experiments/bench_fast_paths.py --before /tmp/before_COMMIT --runs 3 [--only CASE ...]
 
 Writes ``results/bench_fast_paths.json`` and ``.md`` (commit of each tree, load average
 before and after, versions).
@@ -43,7 +44,7 @@ CASES: dict[str, list[str]] = {
     "identify cube split link": ["identify", "cube", "--twist", "1,1,1,1,0,0,0,0,0,0,0,0"],
     "identify cube unlink": ["identify", "cube", "--twist", "0"],
     "identify dodecahedron": ["identify", "dodecahedron", "--twist", ",".join(["1"] * 5 + ["0"] * 25)],
-    "--help": ["--help"],
+    "help": ["--help"],
     "trace tetrahedron": ["trace", "tetrahedron", "--twist", "1"],
     "enumerate oF -1..1 -o": ["enumerate", "honeycomb:oF", "--labels", "-1..1", "-o", "{out}"],
     "enumerate cube -2..2 --jobs 2 -o": ["enumerate", "cube", "--labels", "-2..2", "--jobs", "2", "-o", "{out}"],
@@ -58,7 +59,8 @@ def run(tree: Path, args: list[str], scratch: str) -> dict:
     out = tempfile.mkdtemp(dir=scratch)
     argv = [a.replace("{out}", os.path.join(out, "catalog.parquet")) for a in args]
     env = {**os.environ, "PYTHONPATH": str(tree)}
-    return timed([sys.executable, "-m", "lkspace", *argv], env=env)
+    # cwd: python -m puts the working folder first on sys.path, before PYTHONPATH
+    return timed([sys.executable, "-m", "lkspace", *argv], env=env, cwd=out)
 
 
 def applies(tree: Path, args: list[str]) -> bool:
@@ -134,10 +136,10 @@ def markdown(data: dict) -> str:
             cells.append("n/a" if f is None else f"{f['median_s']} ({f['cpu_median_s']}) = {f['ratio_to_numpy']}×")
         if any(c != "n/a" for c in cells):
             lines.append(f"| {name} | " + " | ".join(cells) + " |")
-    lines += ["", "| tree | commit | dirty | lkspace | python | CPU |", "|---|---|---|---|---|---|"]
-    for label, p in data["trees"].items():
+    lines += ["", "| tree | path | commit | dirty | lkspace | python | CPU |", "|---|---|---|---|---|---|---|"]
+    for label, p in data["trees"].items():  # a tree exported with git archive has no commit: its path names it
         lines.append(
-            f"| {label} | {p['commit']} | {p['dirty']} | {p['lkspace']} | {p['python']} | "
+            f"| {label} | {p['tree']} | {p['commit']} | {p['dirty']} | {p['lkspace']} | {p['python']} | "
             f"{p['machine']['cpu_count']} × {p['machine']['cpu']} |"
         )
     load = data["load_average"]

@@ -207,10 +207,12 @@ def test_projection_without_scipy_matches_scipy():
     from scipy.spatial import cKDTree
     from scipy.spatial.transform import Rotation
 
-    from lkspace.knots.diagram import close_pairs, random_rotation
+    from lkspace.knots.diagram import DRAWS, close_pairs, random_rotation
 
-    for seed in range(5):
+    for seed in range(6):
         assert np.allclose(random_rotation(seed), Rotation.random(random_state=seed).as_matrix(), atol=1e-14)
+    for seed, draw in DRAWS.items():
+        assert draw == tuple(np.random.RandomState(seed).normal(size=4).tolist())
     rng = np.random.default_rng(0)
     for n, radius in ((2, 0.5), (300, 0.05), (2000, 0.01)):
         points = rng.random((n, 2))

@@ -95,12 +95,10 @@ def identify_cmd(
         chir = f" ({', '.join(said)})" if said else ""
         table = f" [{named.table}]" if named.table and found.name else ""
         click.echo(f"{scaffold.name}: {plural(found.components, 'component')}: {name}{chir}{table}")
-        drawn = found.details.get("projected_crossings")
-        how = "from the labels" if found.details.get("method") == "combinatorial" else "of the realized strands"
         if found.crossings is not None:
-            click.echo(f"  crossings of the simplified diagram: {found.crossings} ({drawn} in the diagram {how})")
+            click.echo(f"  crossings of the simplified diagram: {found.crossings}")
         else:
-            click.echo(f"  crossings of the diagram {how}: {drawn}")
+            click.echo(f"  crossings of the projection: {found.details.get('projected_crossings')}")
         click.echo(f"  linking matrix: {found.linking_matrix}")
         if named.jones:
             click.echo(f"  Jones polynomial (in sqrt t): {named.jones}")

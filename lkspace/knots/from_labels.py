@@ -181,13 +181,13 @@ def _name_in_full(
 
 def naming_of(fields: NameFields) -> Naming:
     """Return the :class:`Naming` a design takes from a key's shared fields (the fields set, in order)."""
-    values = {
+    values = {  # in the order a naming in full finds them (name_pd)
         "name": fields.knot_name,
-        "table": fields.table,
         "mirror": fields.mirror,
         "candidates": fields.candidates,
         "crossings": fields.crossings,
         "jones": fields.jones,
+        "table": fields.table,
         "chiral_name": fields.chiral_name,
         "split": fields.split,
         "pieces": fields.pieces,

@@ -129,7 +129,7 @@ def build_template(scaffold: Scaffold, label_values: ArrayLike, seed: int = 0) -
     """
     if scaffold.periodic:
         raise UsageError(f"{scaffold.name}: a periodic scaffold has no finite diagram", parameter="scaffold")
-    values = np.unique(np.asarray(label_values, np.int64).reshape(-1))
+    values = np.array(sorted(set(np.asarray(label_values, np.int64).reshape(-1).tolist())), np.int64)
     if not len(values):
         values = np.zeros(1, np.int64)
     shape = Resolved.of(scaffold, GeometryParams(smooth=False))
@@ -232,7 +232,7 @@ _TEMPLATES: weakref.WeakKeyDictionary[Scaffold, dict[tuple[tuple[int, ...], int]
 
 def template(scaffold: Scaffold, label_values: ArrayLike, seed: int = 0) -> DiagramTemplate:
     """Return the scaffold's :class:`DiagramTemplate` for ``label_values`` and ``seed`` (built once per live scaffold)."""
-    values = tuple(int(v) for v in np.unique(np.asarray(label_values, np.int64)))
+    values = tuple(sorted(set(np.asarray(label_values, np.int64).reshape(-1).tolist())))  # np.unique imports numpy.ma
     per = _TEMPLATES.setdefault(scaffold, {})
     key = (values, seed)
     if key not in per:

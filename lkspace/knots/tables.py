@@ -62,6 +62,11 @@ def knot_modules() -> tuple[ModuleType, ModuleType, ModuleType]:
     return spherogram, regina, dki
 
 
+def regina_module() -> ModuleType:
+    """Return regina alone (for a simplification or a HOMFLY-PT polynomial: SnapPy's import is not needed)."""
+    return require("regina", "knots", PURPOSE)
+
+
 def check_knot_modules() -> None:
     """Raise what :func:`knot_modules` would when one of its modules is not installed, without importing any.
 
