@@ -8,7 +8,8 @@ The default path of :func:`lkspace.knots.recognition.identify` (``method: "combi
    ``enumerate --identify`` does;
 2. its key (:mod:`lkspace.knots.keyed`: components, sorted linking numbers, Jones
    polynomial) is computed in plain Python, the Jones polynomial in compiled code only
-   when the diagram is too wide for Python to be quick (:data:`PY_FRONTIER`);
+   when the diagram is too wide for Python to be quick (:data:`PY_FRONTIER`), and by
+   regina on the simplified link when it is too wide for the compiled state sum too;
 3. the key is looked up in the names judged by earlier runs
    (:func:`~lkspace.knots.key_names.disk_cache`, reading only that key's lines) under the
    trust rule of :func:`~lkspace.knots.key_names.share_names`.  Only a new or untrusted
@@ -78,6 +79,8 @@ def design_keys_of(scaffold: Scaffold, labels: np.ndarray, seed: int = 0) -> One
     lk_flat = (lk // 2).reshape(-1)
     keys = np.zeros((1, 2), np.uint64)
     keyed = m <= MAX_CROSSINGS and _jones_key(pd, signs, int(n_free), lk_flat, n_comp, keys)
+    if not keyed and 0 < m <= MAX_CROSSINGS:
+        keyed = _regina_key(pd, lk_flat, n_comp, keys)
     return OneDesign(
         template=tmpl,
         vidx=vidx[None],
@@ -105,6 +108,24 @@ def _jones_key(pd: np.ndarray, signs: np.ndarray, n_free: int, lk: np.ndarray, n
     if length < 0:
         return False
     keys[0] = key_hashes(lk, n_comp, int(lowest), poly[:length].tolist())
+    return True
+
+
+def _regina_key(pd: np.ndarray, lk: np.ndarray, n_comp: int, keys: np.ndarray) -> bool:
+    """Write the key of a diagram too wide for the state sum, its Jones polynomial regina's (of the link simplified).
+
+    The key holds invariants only, so any diagram of the link gives it: the one compiled
+    code would give if it could (``enumerate`` names such designs one by one instead).
+    """
+    from .tables import regina_module
+
+    link = regina_module().Link.fromPD(pd.tolist())
+    link.simplify()
+    jones = link.jones()
+    if jones.isZero():
+        return False
+    low, high = int(jones.minExp()), int(jones.maxExp())
+    keys[0] = key_hashes(lk, n_comp, low, [int(str(jones[e])) for e in range(low, high + 1)])
     return True
 
 
