@@ -3,7 +3,8 @@
 Every figure is the wall time (and CPU time) of a fresh ``python -m lkspace ...`` process
 run with ``PYTHONPATH`` set to the source tree tested, median of ``--runs`` rounds after
 one untimed warm-up per case (so the name cache under ``$LKSPACE_CACHE``, numba's cache and
-the ``.pyc`` files are warm, as for a user's second command).  Trees are interleaved case
+the ``.pyc`` files are warm, as for a user's second command; ``PYTHONDONTWRITEBYTECODE`` is
+dropped, as ``experiments/bench_startup.py`` does).  Trees are interleaved case
 by case so that both see the same machine load; ``python -c "import numpy"`` is timed in
 the same rounds and every figure is also given as a ratio to it.
 
@@ -58,7 +59,8 @@ def run(tree: Path, args: list[str], scratch: str) -> dict:
     """Time ``python -m lkspace ARGS`` on ``tree`` in a fresh process."""
     out = tempfile.mkdtemp(dir=scratch)
     argv = [a.replace("{out}", os.path.join(out, "catalog.parquet")) for a in args]
-    env = {**os.environ, "PYTHONPATH": str(tree)}
+    env = {k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"}  # .pyc files, as installed
+    env["PYTHONPATH"] = str(tree)
     # cwd: python -m puts the working folder first on sys.path, before PYTHONPATH
     return timed([sys.executable, "-m", "lkspace", *argv], env=env, cwd=out)
 
