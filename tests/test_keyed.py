@@ -23,7 +23,7 @@ pytest.importorskip("snappy")
 
 def reference(scaffold, labels):
     r = identify(scaffold, labels, geometric=True)
-    return r.name, r.mirror, r.components, r.linking_matrix
+    return None if r.split else r.name, r.mirror, r.components, r.linking_matrix  # rows keep a split link unnamed
 
 
 @pytest.mark.parametrize("name, label_set", [("tetrahedron", (-2, 3)), ("octahedron", (-1, 2)), ("book:3", (-2, 3))])
