@@ -34,7 +34,7 @@ DEFAULT = ["tetrahedron:-2..2", "cube:-1..1", "octahedron:-1..1"]
 
 def _reference(args: tuple[str, list[int]]) -> tuple:
     name, labels = args
-    r = identify(load(name), np.asarray(labels), time_limit=120)
+    r = identify(load(name), np.asarray(labels), time_limit=120, geometric=True)
     return (r.name, r.mirror, r.status.split(":")[0], r.components, r.linking_matrix)
 
 

@@ -122,9 +122,9 @@ def test_unknown_beyond_the_tables_keeps_invariants():
     assert len(r["linking_matrix"]) == 4
 
 
-def test_split_link_is_not_named():
+def test_split_link_is_named_as_such():
     r = name_of("cube", 0)  # six separate face loops
-    assert r["components"] == 6 and r["name"] is None and r["split"] is True
+    assert r["components"] == 6 and r["split"] is True and r["name"] == "split: " + " + ".join(["0_1"] * 6)
 
 
 def test_open_strands_cannot_be_identified(tetra):

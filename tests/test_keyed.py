@@ -22,8 +22,8 @@ pytest.importorskip("snappy")
 
 
 def reference(scaffold, labels):
-    r = identify(scaffold, labels)
-    return r.name, r.mirror, r.components, r.linking_matrix
+    r = identify(scaffold, labels, geometric=True)
+    return None if r.split else r.name, r.mirror, r.components, r.linking_matrix  # rows keep a split link unnamed
 
 
 @pytest.mark.parametrize("name, label_set", [("tetrahedron", (-2, 3)), ("octahedron", (-1, 2)), ("book:3", (-2, 3))])

@@ -145,7 +145,7 @@ def test_lookup_answers_are_identified_again():
     for answer, name, want_mirror in ((borromean, "L6a4", None), (mirror, "3_1", True)):
         assert answer["designs"]
         for d in answer["designs"]:
-            ident = lkspace.identify(d["scaffold"], d["labels"])
+            ident = lkspace.identify(d["scaffold"], d["labels"], geometric=True)
             assert ident.name == name, d
             if want_mirror is not None:
                 assert ident.mirror is want_mirror, d

@@ -17,7 +17,6 @@ import warnings
 
 import click
 
-from .. import __version__
 from ..errors import LkspaceError, LkspaceWarning
 from ..runtime.progress import install, stderr_reporter
 from ..runtime.workers import INTERRUPTED, Terminated, exit_now, interrupt_signals
@@ -96,8 +95,25 @@ class LazyGroup(click.Group):
         return super().resolve_command(ctx, args)
 
 
+def _show_version(ctx: click.Context, param: click.Parameter, value: bool) -> None:
+    """Print ``lkspace, version X`` and stop (as ``click.version_option``; the version is read only when asked)."""
+    if not value or ctx.resilient_parsing:
+        return
+    from .. import __version__  # importlib.metadata: tens of milliseconds every other command need not pay
+
+    click.echo(f"lkspace, version {__version__}")
+    ctx.exit()
+
+
 @click.group(cls=LazyGroup, context_settings={"help_option_names": ["-h", "--help"]})
-@click.version_option(__version__, prog_name="lkspace")
+@click.option(
+    "--version",
+    is_flag=True,
+    expose_value=False,
+    is_eager=True,
+    callback=_show_version,
+    help="Show the version and exit.",
+)
 def cli() -> None:
     """lkspace: design knots, links and chainmail with twist labels on polygon meshes.
 

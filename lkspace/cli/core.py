@@ -212,28 +212,27 @@ def trace_cmd(mesh: str | None, twist_spec: str | None, null_spec: str | None, a
     data = result.to_dict()
 
     def human() -> None:
-        from rich.table import Table
+        from .boxes import box_table  # rich's look without rich's import time: trace is a start-up figure
 
-        con = _console()
-        con.print(
+        click.echo(
             f"{scaffold.name}: {plural(result.components, 'component')}, "
             f"{'holds together' if result.holds_together else 'falls apart'}"
         )
         if scaffold.periodic:
-            con.print(
+            click.echo(
                 f"threads per module: {data['threads_per_module']} "
                 f"({plural(data['closed_loops'], 'closed loop')}, {plural(data['infinite_threads'], 'infinite thread')})"
             )
-        table = Table("strand", "kind", "length", "period", "faces")
-        for k, s in enumerate(data["strands"]):
-            faces = " ".join(map(str, s["faces"][:24])) + (" …" if len(s["faces"]) > 24 else "")
-            table.add_row(
+        rows = [
+            [
                 str(k),
                 KINDS[s["kind"]],
                 str(s["length"]),
                 "-" if s["period"] is None else str(s["period"]),
-                faces,
-            )
-        con.print(table)
+                " ".join(map(str, s["faces"][:24])) + (" …" if len(s["faces"]) > 24 else ""),
+            ]
+            for k, s in enumerate(data["strands"])
+        ]
+        click.echo(box_table(["strand", "kind", "length", "period", "faces"], rows))
 
     emit(ctx, data, human)

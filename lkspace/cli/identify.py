@@ -31,6 +31,11 @@ TIME_LIMIT = 60.0
     metavar="S",
     help="Stop after S seconds with the status 'unknown: time limit ...'; 0: no limit.",
 )
+@click.option(
+    "--geometric",
+    is_flag=True,
+    help="Realize the strands in 3D and project them (seconds) instead of assembling the diagram from the labels.",
+)
 @json_option
 def identify_cmd(
     mesh: str | None,
@@ -42,15 +47,20 @@ def identify_cmd(
     tube_radius: float | None,
     seed: int,
     time_limit: float,
+    geometric: bool,
     as_json: bool,
 ) -> None:
     """Name the knot or link that MESH labelled by --twist realizes.
 
     Needs the extra [knots] (snappy, spherogram, regina, database-knotinfo).  Names are
     Rolfsen's for knots (0_1, 3_1, 4_1, 8_19, ...) and Thistlethwaite's for links (L2a1,
-    L4a1, L6a4, ...), and SnapPy's HTLinkExteriors past them (K14n10910, L13n4723);
+    L4a1, L6a4, ...), and SnapPy's HTLinkExteriors past them (K14n10910, L13n4723); a split
+    link is 'split: 0_1 + 3_1' (pieces sorted), an unlink 'split: 0_1 + 0_1'.
     'table' says which table named it; 'name' is null when no table entry is certain.  The status says
     'identified' or 'unknown: <why>' (not in the tables, diagram too large, time limit).
+    The diagram is assembled from the labels (JSON 'method': combinatorial) unless
+    --geometric, null edge-sides or a geometry option ask for realized strands; 'pd_code'
+    is the PD code of the diagram named.
     Periodic scaffolds are refused; twists making more than 2,000 crossings too.
 
     \b
@@ -65,8 +75,10 @@ def identify_cmd(
     ctx = Context(as_json)
     scaffold, labels, nulls = resolve_design(ctx, mesh, twist_spec, null_spec, row)
     check_identifiable(scaffold)
-    params = params_of(radius, normal_offset, tube_radius)
-    found = identify(scaffold, labels, nulls, params, seed=seed, time_limit=time_limit or None)
+    shaped = (radius, normal_offset, tube_radius) != (None, None, None)
+    params = params_of(radius, normal_offset, tube_radius) if shaped else None
+    limit = time_limit or None
+    found = identify(scaffold, labels, nulls, params, seed=seed, time_limit=limit, geometric=geometric)
     named = found.naming
     common = common_name(found.name, found.mirror) if found.name else None
     result = {**found.to_json(), "labels": np.asarray(labels).tolist(), "common_name": common}

@@ -5,9 +5,7 @@ from __future__ import annotations
 import contextlib
 import errno
 import os
-import shutil
 import sys
-import tempfile
 from collections.abc import Iterator
 
 
@@ -20,6 +18,8 @@ def atomic_path(path: str | os.PathLike[str], suffix: str = "") -> Iterator[str]
     """
     path = os.path.realpath(os.fspath(path))
     directory = os.path.dirname(os.path.abspath(path))
+    import tempfile  # here: tempfile imports random, which commands that write nothing need not load
+
     fd, tmp = tempfile.mkstemp(prefix="." + os.path.basename(path) + ".", suffix=suffix or ".tmp", dir=directory)
     os.close(fd)
     try:
@@ -52,6 +52,8 @@ def write_bytes(path: str | os.PathLike, data: bytes) -> None:
 def remove_path(path: str) -> None:
     """Remove the file or folder ``path`` if it exists."""
     if os.path.isdir(path) and not os.path.islink(path):
+        import shutil
+
         shutil.rmtree(path, ignore_errors=True)
     else:
         with contextlib.suppress(FileNotFoundError):

@@ -23,8 +23,8 @@ from .budget import MAX_CROSSINGS, TIME_LIMIT, TimeLimitReached
 from .identification import Json, NameFields
 from .key_names import KeyCache, share_names
 from .keyed import keys_of
-from .naming import presimplified
-from .recognition import check_identifiable, name_in_time, status_of
+from .naming import name_in_time, presimplified, status_of
+from .recognition import check_identifiable
 from .tables import knot_modules, tables
 
 _WORKER: dict[str, float | None] = {}

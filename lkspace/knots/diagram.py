@@ -19,8 +19,6 @@ from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import ArrayLike
-from scipy.spatial import cKDTree
-from scipy.spatial.transform import Rotation
 
 from ..errors import DiagramError
 
@@ -96,7 +94,7 @@ def project(curves: Sequence[np.ndarray], seed: int = 0, rotation: ArrayLike | N
     >>> d.n_crossings, int(abs(d.linking_matrix()[0, 1]))
     (2, 1)
     """
-    rot = Rotation.random(random_state=seed).as_matrix() if rotation is None else np.asarray(rotation)
+    rot = random_rotation(seed) if rotation is None else np.asarray(rotation)
     curves = [np.asarray(c, np.float64) @ rot.T for c in curves]
     p0, p1, owner, index = _segments(curves)
     lengths = np.array([len(c) for c in curves])
@@ -135,8 +133,35 @@ def project(curves: Sequence[np.ndarray], seed: int = 0, rotation: ArrayLike | N
     return Diagram(pd.tolist(), signs, np.column_stack([owner[over], owner[under]]).astype(np.int64), len(curves), free)
 
 
+DRAWS = {
+    0: (1.764052345967664, 0.4001572083672233, 0.9787379841057392, 2.240893199201458),
+    1: (1.6243453636632417, -0.6117564136500754, -0.5281717522634557, -1.0729686221561705),
+    2: (-0.4167578474054706, -0.056266827226329474, -2.136196095668454, 1.6402708084049886),
+    3: (1.7886284734303186, 0.43650985051198943, 0.09649746807200862, -1.8634927033644908),
+}
+"""``numpy.random.RandomState(seed).normal(size=4)`` of the seeds 0-3 (a test checks them)."""
+
+
+def random_rotation(seed: int) -> np.ndarray:
+    """Return the ``(3, 3)`` rotation matrix of a uniform random unit quaternion drawn from ``RandomState(seed)``.
+
+    The rotation ``scipy.spatial.transform.Rotation.random(random_state=seed)`` returns
+    (the same draw, scalar last), without importing scipy; the draws of the first seeds
+    are written out (:data:`DRAWS`), so these do not import ``numpy.random`` either.
+    """
+    q = np.array(DRAWS[seed]) if seed in DRAWS else np.random.RandomState(seed).normal(size=4)
+    x, y, z, w = q / np.linalg.norm(q)
+    return np.array(
+        [
+            [1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+            [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
+            [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)],
+        ]
+    )
+
+
 def near_pairs(p0: np.ndarray, p1: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Pairs ``i < j`` of segments ``p0 -> p1`` (``(n, 3)``) whose projections to ``xy`` may meet.
+    """Pairs ``i < j`` of segments ``p0 -> p1`` (``(n, 3)``) whose projections to ``xy`` may meet, sorted.
 
     The test is on the circles around each projected segment: no crossing is missed.
     """
@@ -145,12 +170,51 @@ def near_pairs(p0: np.ndarray, p1: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     half = 0.5 * np.linalg.norm(b2 - a2, axis=1)
     if len(mid) < 2:
         return np.zeros(0, np.int64), np.zeros(0, np.int64)
-    pairs = cKDTree(mid).query_pairs(2 * half.max() + 1e-12, output_type="ndarray")
-    if not len(pairs):
-        return np.zeros(0, np.int64), np.zeros(0, np.int64)
-    i, j = pairs[:, 0], pairs[:, 1]
+    i, j = close_pairs(mid, 2 * half.max() + 1e-12)
     near = np.linalg.norm(mid[i] - mid[j], axis=1) <= half[i] + half[j]
     return i[near], j[near]
+
+
+_NEIGHBOURS = ((0, 0), (0, 1), (1, -1), (1, 0), (1, 1))
+"""Cell offsets compared on a grid: each cell with itself and half of its eight neighbours."""
+
+
+def close_pairs(points: np.ndarray, radius: float) -> tuple[np.ndarray, np.ndarray]:
+    """Pairs ``i < j`` of 2D ``points`` (``(n, 2)``) at most ``radius`` apart, sorted (``int64`` arrays).
+
+    A grid of square cells of side ``radius`` (at least a 2**-20th of the extent): only
+    points in the same or neighbouring cells are compared (numpy only, what ``cKDTree.query_pairs`` finds).
+    """
+    low = points.min(axis=0)
+    side = max(radius, float((points.max(axis=0) - low).max()) / 2**20)  # keys fit in int64 for any radius
+    cell = np.floor((points - low) / side).astype(np.int64)
+    rows = int(cell[:, 1].max()) + 2  # an offset of -1 or +1 in y never reaches another column
+    key = cell[:, 0] * rows + cell[:, 1]
+    order = np.argsort(key, kind="stable")
+    keys, starts, counts = np.unique(key[order], return_index=True, return_counts=True)
+    found_i, found_j = [], []
+    for dx, dy in _NEIGHBOURS:
+        wanted = keys + dx * rows + dy
+        at = np.minimum(np.searchsorted(keys, wanted), len(keys) - 1)
+        a = np.flatnonzero(keys[at] == wanted)
+        b = at[a]
+        sizes = counts[a] * counts[b]
+        pair = np.repeat(np.arange(len(a)), sizes)
+        rank = np.arange(int(sizes.sum())) - np.repeat(np.cumsum(sizes) - sizes, sizes)
+        width = counts[b][pair]
+        first = order[starts[a][pair] + rank // width]
+        second = order[starts[b][pair] + rank % width]
+        if (dx, dy) == (0, 0):
+            keep = starts[a][pair] + rank // width < starts[b][pair] + rank % width
+            first, second = first[keep], second[keep]
+        found_i.append(first)
+        found_j.append(second)
+    i, j = np.concatenate(found_i), np.concatenate(found_j)
+    lo, hi = np.minimum(i, j), np.maximum(i, j)
+    close = np.linalg.norm(points[lo] - points[hi], axis=1) <= radius
+    lo, hi = lo[close], hi[close]
+    sort = np.lexsort((hi, lo))
+    return lo[sort].astype(np.int64), hi[sort].astype(np.int64)
 
 
 def transverse(

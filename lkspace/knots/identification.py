@@ -290,7 +290,10 @@ NameFields.KEYS = tuple(f.name for f in fields(NameFields))
 MAIN = ("status", "components", "name", "linking_matrix", "mirror", "split", "crossings")
 """The keys of :class:`Identification`'s JSON that are attributes; the others are its ``details``."""
 
-DETAILS = ("projected_crossings", *(k for k in Naming.FIELDS if k not in MAIN), "min_distance")
+LAST = ("min_distance", "method", "pd_code")
+"""Keys of :attr:`Identification.details` written after the naming's, in this order."""
+
+DETAILS = ("projected_crossings", *(k for k in Naming.FIELDS if k not in MAIN), *LAST)
 """The keys :attr:`Identification.details` may hold."""
 
 
@@ -302,7 +305,8 @@ class Identification:
     ----------
     components : int
     name : str or None
-        ``"0_1"``, Rolfsen (``"3_1"``) or Thistlethwaite (``"L6a4"``) name; ``None`` if unknown.
+        ``"0_1"``, Rolfsen (``"3_1"``) or Thistlethwaite (``"L6a4"``) name, a split link's
+        ``"split: 0_1 + 3_1"`` (:func:`~lkspace.knots.naming.split_name`); ``None`` if unknown.
     linking_matrix : list of list of int
     mirror : bool or None
         The structure is the table diagram's mirror image (``None``: the tables cannot tell).
@@ -311,7 +315,8 @@ class Identification:
         Crossings of the simplified diagram.
     details : dict
         Everything else (JSON values): ``projected_crossings``, ``jones``, ``homfly``,
-        ``volume``, ``candidates``, ``pieces``, ... (the keys of :data:`DETAILS`), ``min_distance``.
+        ``volume``, ``candidates``, ``pieces``, ... (:data:`DETAILS`), then ``min_distance``
+        (geometric path), ``method`` and ``pd_code`` (the diagram named, 1-based).
     status : str
         ``"identified"`` (named, or a split link with every piece named) or
         ``"unknown: <why>"``: not in the tables, several entries match, ``diagram too
@@ -336,16 +341,15 @@ class Identification:
         linking_matrix: list[list[int]],
         extra: Mapping[str, Json],
     ) -> Identification:
-        """Return the identification of a ``naming``; ``extra`` (``projected_crossings``, ``min_distance``) joins the details.
+        """Return the identification of a ``naming``; ``extra`` (``projected_crossings``, ``min_distance``, ...) joins the details.
 
-        ``extra``'s ``projected_crossings`` comes first in the details, its
-        ``min_distance`` last, as ``identify --json`` has always printed them.
+        ``extra``'s ``projected_crossings`` comes first in the details, the keys of
+        :data:`LAST` last, as ``identify --json`` has always printed them.
         """
         named = naming.to_json()
-        details: dict[str, Json] = {k: v for k, v in extra.items() if k != "min_distance"}
+        details: dict[str, Json] = {k: v for k, v in extra.items() if k not in LAST}
         details.update((k, v) for k, v in named.items() if k not in MAIN)
-        if "min_distance" in extra:
-            details["min_distance"] = extra["min_distance"]
+        details.update((k, extra[k]) for k in LAST if k in extra)
         return cls(
             components=components,
             name=naming.name,

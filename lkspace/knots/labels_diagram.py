@@ -22,7 +22,6 @@ from typing import NamedTuple
 
 import numpy as np
 from numpy.typing import ArrayLike
-from scipy.spatial.transform import Rotation
 
 from ..errors import DiagramError, UsageError
 from ..geometry.construction import corner_pieces, edge_pieces
@@ -30,7 +29,7 @@ from ..geometry.params import GeometryParams, Resolved
 from ..geometry.tracks import side_tracks
 from ..model.scaffold import Scaffold
 from ..strands.ports import PortModel, edge_partner, port_model
-from .diagram import near_pairs, transverse
+from .diagram import near_pairs, random_rotation, transverse
 
 
 class TemplateArrays(NamedTuple):
@@ -130,7 +129,7 @@ def build_template(scaffold: Scaffold, label_values: ArrayLike, seed: int = 0) -
     """
     if scaffold.periodic:
         raise UsageError(f"{scaffold.name}: a periodic scaffold has no finite diagram", parameter="scaffold")
-    values = np.unique(np.asarray(label_values, np.int64).reshape(-1))
+    values = np.array(sorted(set(np.asarray(label_values, np.int64).reshape(-1).tolist())), np.int64)
     if not len(values):
         values = np.zeros(1, np.int64)
     shape = Resolved.of(scaffold, GeometryParams(smooth=False))
@@ -151,7 +150,7 @@ def build_template(scaffold: Scaffold, label_values: ArrayLike, seed: int = 0) -
 def _template(scaffold: Scaffold, values: np.ndarray, polylines: list[np.ndarray], seed: int) -> DiagramTemplate:
     n = scaffold.n_corners
     model = port_model(scaffold)
-    rot = Rotation.random(random_state=seed).as_matrix()
+    rot = random_rotation(seed)
     sizes = np.array([len(p) - 1 for p in polylines], np.int64)
     piece = np.repeat(np.arange(len(polylines)), sizes)
     step = np.concatenate([np.arange(k) for k in sizes])
@@ -233,7 +232,7 @@ _TEMPLATES: weakref.WeakKeyDictionary[Scaffold, dict[tuple[tuple[int, ...], int]
 
 def template(scaffold: Scaffold, label_values: ArrayLike, seed: int = 0) -> DiagramTemplate:
     """Return the scaffold's :class:`DiagramTemplate` for ``label_values`` and ``seed`` (built once per live scaffold)."""
-    values = tuple(int(v) for v in np.unique(np.asarray(label_values, np.int64)))
+    values = tuple(sorted(set(np.asarray(label_values, np.int64).reshape(-1).tolist())))  # np.unique imports numpy.ma
     per = _TEMPLATES.setdefault(scaffold, {})
     key = (values, seed)
     if key not in per:

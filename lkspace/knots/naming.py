@@ -11,6 +11,8 @@ from collections.abc import Callable, Iterable
 from types import ModuleType
 from typing import Any
 
+from ..runtime.progress import Step
+from .budget import INLINE_CROSSINGS, run_in_time
 from .hoste import TABLE, ht_name
 from .identification import Naming
 from .tables import HOMFLY_MAX_CROSSINGS, JONES_POINT, knot_modules, laurent_value, tables
@@ -205,3 +207,54 @@ def name_key(name: str) -> tuple[int, str]:
     """Sort key of a name: crossing number first (``"m3_1"``, ``"L6a4"``, ``"K14n10910"`` alike), then the text."""
     m = re.match(r"m?[KL]?(\d+)", name)
     return (int(m[1]) if m else 0, name)
+
+
+def status_of(named: Naming) -> str:
+    """Return the status of a :func:`~lkspace.knots.naming.name_pd` result: identified or why not."""
+    if named.name is not None:
+        return "identified"
+    pieces = named.pieces
+    if named.split and pieces and all(p is not None for p in pieces):
+        return "identified"
+    if named.split:
+        return "unknown: a piece of the split link is not in the tables"
+    candidates = named.candidates or ()
+    if len(candidates) > 1:
+        return f"unknown: {len(candidates)} table entries match ({', '.join(str(c) for c in candidates[:4])})"
+    if named.note:
+        return f"unknown: {named.note}"
+    return "unknown: not in the tables (KnotInfo/LinkInfo: knots up to 13 crossings, links up to 11; HTLinkExteriors: hyperbolic knots up to 15, links up to 14)"
+
+
+def name_in_time(
+    pd: list[list[int]], n_components: int, time_limit: float | None, step: Step | None, *, floer: bool = True
+) -> Naming:
+    """Name the PD code ``pd`` within ``time_limit`` seconds (:func:`~lkspace.knots.budget.run_in_time`).
+
+    Diagrams of at most :data:`~lkspace.knots.budget.INLINE_CROSSINGS` crossings are
+    named in this process: they take milliseconds.
+    """
+    knot_modules()
+    tables()  # loaded here, shared with the forked child
+
+    def work(stage: Callable[[str], None]) -> Naming:
+        return name_pd(pd, n_components, stage, floer=floer)
+
+    return run_in_time(work, None if len(pd) <= INLINE_CROSSINGS else time_limit, step)
+
+
+def split_name(pieces: tuple[str | None, ...] | None) -> str | None:
+    """Return the name of a split link from its pieces' names, sorted (``None`` when a piece is unnamed).
+
+    The spelling of :func:`lkspace.linktypes.atlas.type_key`, which ``lookup`` reads:
+    ``split: 0_1 + 3_1``; an unlink is ``split: 0_1 + 0_1`` (common name ``unlink of 2 components``).
+    """
+    if not pieces or not all(pieces):
+        return None
+    return "split: " + " + ".join(sorted(str(p) for p in pieces))
+
+
+def named_as_split(named: Naming) -> Naming:
+    """Return ``named`` with a split link's :func:`split_name` as its name (identify's ``name``; catalogs keep ``None``)."""
+    name = split_name(named.pieces) if named.split and named.name is None else None
+    return named if name is None else named.updated(name=name)

@@ -19,7 +19,7 @@ from functools import lru_cache
 from types import ModuleType
 from typing import Any
 
-from ..errors import require
+from ..errors import MissingDependencyError, require
 from ..io.atomic import write_bytes
 
 PURPOSE = "knot identification"
@@ -66,8 +66,23 @@ def knot_modules() -> tuple[ModuleType, ModuleType, ModuleType]:
 
 
 def regina_module() -> ModuleType:
-    """Return regina alone (simplification and HOMFLY-PT need neither SnapPy nor the tables)."""
+    """Return regina alone (for a simplification or a HOMFLY-PT polynomial: SnapPy's import is not needed)."""
     return require("regina", "knots", PURPOSE)
+
+
+def check_knot_modules() -> None:
+    """Raise what :func:`knot_modules` would when one of its modules is not installed, without importing any.
+
+    For a design named from the key cache, which needs none of them (a check of
+    milliseconds, where importing them takes a second).
+    """
+    import importlib.util
+    import sys
+
+    for name in ("spherogram", "regina", "snappy", "database_knotinfo"):
+        loaded = sys.modules.get(name, False)
+        if loaded is None or (loaded is False and importlib.util.find_spec(name) is None):
+            raise MissingDependencyError(name, "knots", PURPOSE)
 
 
 def _eval_table(poly: str, var: str, x: Fraction) -> Fraction | None:

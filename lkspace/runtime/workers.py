@@ -19,13 +19,15 @@ from __future__ import annotations
 
 import atexit
 import contextlib
-import multiprocessing as mp
 import os
 import signal
 import sys
 import threading
 from collections.abc import Callable, Iterator, Sequence
-from typing import TypeVar
+from typing import TYPE_CHECKING, TypeVar
+
+if TYPE_CHECKING:
+    import multiprocessing.context
 
 T = TypeVar("T")
 
@@ -33,7 +35,7 @@ IMPORTED_IN = os.getpid()
 """The process that imported this module; a fork of it (a Dask worker of our LocalCluster) has another pid."""
 
 
-def context(preload: Sequence[str] = ()) -> mp.context.BaseContext:
+def context(preload: Sequence[str] = ()) -> multiprocessing.context.BaseContext:
     """Return the multiprocessing context of lkspace's workers: ``forkserver`` where available, else ``spawn``.
 
     A process forked from one that had imported lkspace (the workers of the LocalCluster
@@ -42,6 +44,8 @@ def context(preload: Sequence[str] = ()) -> mp.context.BaseContext:
     here (:func:`start_fork_server`), importing the modules ``preload`` if this call
     starts it.
     """
+    import multiprocessing as mp  # here: importing it costs every command tens of milliseconds
+
     forked = os.getpid() != IMPORTED_IN
     if "forkserver" not in mp.get_all_start_methods() or forked:
         return mp.get_context("spawn")
