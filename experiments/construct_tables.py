@@ -81,8 +81,10 @@ def check(name: str, entry: dict) -> dict:
             row.update(constructed=True, design_crossings=int(abs(s.labels).sum()), edges=s.n_edges, faces=s.n_faces)
         if len(row.setdefault("names", [])) < 3:
             row["names"].append(f"{layout}: {got.chiral_name or got.name}")
-        if got.name == name:
+        if got.name == name or (want.name is None and got.name is None and _isometric(entry["pd"], d.pd)):
             row["identified"] = True
+            if want.name is None:
+                row["identified_by"] = "isometric exteriors (the tables' names miss this diagram)"
             if want.mirror is None or got.mirror == want.mirror:
                 row.update(layout=layout, mirror_right=True, design_crossings=int(abs(s.labels).sum()))
                 row.update(
@@ -91,6 +93,18 @@ def check(name: str, entry: dict) -> dict:
                 break
     row["seconds"] = round(time.perf_counter() - t0, 3)
     return row
+
+
+def _isometric(table_pd: list, design_pd) -> bool:
+    """Whether SnapPy finds the two diagrams' exteriors isometric (for links lkspace cannot name)."""
+    import snappy
+
+    one = snappy.Link([list(map(int, x)) for x in table_pd]).exterior()
+    two = snappy.Link([[int(v) for v in x] for x in design_pd]).exterior()
+    try:
+        return bool(one.is_isometric_to(two))
+    except RuntimeError:
+        return False
 
 
 def main() -> None:
@@ -132,6 +146,7 @@ def write(types: dict[str, dict], rows: list[dict], args: argparse.Namespace, ou
         "identified": sum(bool(r.get("identified")) for r in rows),
         "mirror_right": sum(bool(r.get("mirror_right")) for r in rows),
         "minimal_crossings": sum(r.get("design_crossings") == r["table_crossings"] for r in rows),
+        "identified_by_isometry": sum("identified_by" in r for r in rows),
         "seconds_per_type": round(sum(r["seconds"] for r in rows) / max(1, len(rows)), 3),
         "by_layout": {k: sum(str(r.get("layout")).split(":")[0].split("/")[0] == k for r in rows) for k in LAYOUTS},
         "other_colouring": sum(str(r.get("layout")).endswith("/more") for r in rows),
@@ -151,6 +166,20 @@ def write(types: dict[str, dict], rows: list[dict], args: argparse.Namespace, ou
     lines = ["# Every table type constructed and identified", "", "| | count |", "|---|---|"]
     lines += [f"| {k} | {v} |" for k, v in summary.items() if not isinstance(v, (dict, tuple))]
     lines += ["", "Placements kept: " + ", ".join(f"{k} {v}" for k, v in summary["by_layout"].items()), ""]
+    lines += [
+        "## By crossing number",
+        "",
+        "| | crossings | types | made and named right | seconds per type |",
+        "|---|---:|---:|---:|---:|",
+    ]
+    groups: dict[tuple[str, int], list[dict]] = {}
+    for r in rows:
+        groups.setdefault(("knots" if r["components"] == 1 else "links", r["table_crossings"]), []).append(r)
+    for (kind, c), members in sorted(groups.items()):
+        right = sum(bool(r.get("mirror_right")) for r in members)
+        mean = sum(r["seconds"] for r in members) / len(members)
+        lines.append(f"| {kind} | {c} | {len(members)} | {right} | {mean:.2f} |")
+    lines.append("")
     misses = [r for r in rows if not r.get("mirror_right")]
     lines += ["## Misses", ""] + [f"- {r['name']}: {r.get('names')} {r.get('errors', '')}" for r in misses]
     with open(os.path.join(out, "README.md"), "w") as fh:

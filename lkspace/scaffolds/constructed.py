@@ -2,9 +2,10 @@
 
 :func:`design_scaffold` turns a PD code into a scaffold carrying its twist labels: the
 checkerboard mesh of :mod:`~lkspace.scaffolds.diagram_mesh` placed by
-:mod:`~lkspace.scaffolds.plane_layout`.  Two placements exist (:data:`LAYOUTS`): ``sphere``
-(the plane drawing lifted onto the unit sphere) and ``flat`` (the drawing in the plane,
-the outer face behind the others, like the paper's figure-eight mesh).  The realized
+:mod:`~lkspace.scaffolds.plane_layout`.  Three placements exist (:data:`LAYOUTS`): ``sphere``
+(the plane drawing lifted onto the unit sphere), ``flat`` (the drawing in the plane,
+the outer face behind the others, like the paper's figure-eight mesh) and ``round`` (the
+sphere's positions evened out by a spherical Tutte iteration).  The realized
 strands follow the faces only where the faces are well shaped, so the command that makes
 a scaffold (``lkspace construct``) checks the result's knot type and takes the first
 placement that gives the diagram's own type.
@@ -29,10 +30,10 @@ import numpy as np
 from ..errors import ScaffoldError
 from ..model.scaffold import Scaffold
 from .diagram_mesh import diagram_mesh
-from .plane_layout import plane_layout, sphere_layout
+from .plane_layout import plane_layout, round_layout, sphere_layout
 
-LAYOUTS = {"sphere": sphere_layout, "flat": plane_layout}
-"""Placements of a diagram's mesh.  A layout is spelled ``sphere`` or ``flat``, with the outer face
+LAYOUTS = {"sphere": sphere_layout, "flat": plane_layout, "round": round_layout}
+"""Placements of a diagram's mesh.  A layout is spelled ``sphere``, ``flat`` or ``round``, with the outer face
 after a colon where it is not the largest face (``sphere:3``), and ``/more`` at the end for the
 mesh of the other colouring (the one with more edges: ``flat:2/more``)."""
 
@@ -43,7 +44,7 @@ def layouts(pd: Sequence[Sequence[int]]) -> list[str]:
     for colouring in ("fewer", "more"):
         n_faces = len(diagram_mesh(pd, colouring=colouring).faces)
         tail = "" if colouring == "fewer" else "/more"
-        out += [f"sphere{tail}", f"flat{tail}"] + [f"{k}:{f}{tail}" for f in range(n_faces) for k in LAYOUTS]
+        out += [f"{k}{tail}" for k in LAYOUTS] + [f"{k}:{f}{tail}" for f in range(n_faces) for k in LAYOUTS]
     return out
 
 

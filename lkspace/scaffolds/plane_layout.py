@@ -155,3 +155,40 @@ def sphere_layout(n_vertices: int, faces: Sequence[Sequence[int]], outer: int | 
         )
         out[w] *= 1 + FIN * float(np.linalg.norm(out[v] - out[u]))
     return out
+
+
+def round_layout(n_vertices: int, faces: Sequence[Sequence[int]], outer: int | None = None) -> np.ndarray:
+    """Return :func:`sphere_layout`'s positions smoothed on the sphere: each vertex the mean of its neighbours.
+
+    Every face (the outer one too) gets a centre vertex, which makes a triangulation of the
+    sphere; 200 rounds move each vertex to the normalized mean of its neighbours and the
+    whole set to a zero centroid (a spherical Tutte iteration), which evens out the faces.
+    """
+    outer = largest_face(faces) if outer is None else outer
+    start = sphere_layout(n_vertices, faces, outer)
+    fins = np.linalg.norm(start, axis=1) > 1 + 1e-9
+    n = n_vertices + len(faces)
+    rows: list[set[int]] = [set() for _ in range(n)]
+    for f, face in enumerate(faces):
+        for i, v in enumerate(face):
+            w = face[(i + 1) % len(face)]
+            rows[v] |= {w, n_vertices + f}
+            rows[w].add(v)
+            rows[n_vertices + f].add(v)
+    pos = np.zeros((n, 3))
+    pos[:n_vertices] = start / np.linalg.norm(start, axis=1, keepdims=True)
+    for f, face in enumerate(faces):
+        mean = pos[list(face)].mean(axis=0)
+        pos[n_vertices + f] = mean / np.linalg.norm(mean) if f != outer else -mean / np.linalg.norm(mean)
+    index = [sorted(r) for r in rows]
+    for _ in range(200):
+        new = np.array([pos[r].sum(axis=0) for r in index])
+        new -= new.mean(axis=0)
+        pos = new / np.linalg.norm(new, axis=1, keepdims=True)
+    out = pos[:n_vertices].copy()
+    for fin in np.flatnonzero(fins):
+        u, v = sorted(
+            {x for face in faces for i, x in enumerate(face) if fin in (face[i - 1], face[(i + 1) % len(face)])}
+        )
+        out[fin] *= 1 + FIN * float(np.linalg.norm(out[v] - out[u]))
+    return out
