@@ -109,6 +109,6 @@ def table_design(name: str) -> Scaffold:
             f"({'3_1, 8_17, 11a_1, 12n_242' if kind == 'knot' else 'L2a1, L6a4, L11n459'}), "
             "with m in front for the mirror image; `lkspace construct` takes every other spelling"
         )
-    scaffold = design_scaffold(entry["pd"], name, entry["layout"], where=name)
+    scaffold = design_scaffold(entry["pd"], name, entry.get("layout") or "sphere", where=name)
     assert scaffold.labels is not None
     return scaffold.with_labels(-scaffold.labels if mirror else scaffold.labels)
