@@ -2,8 +2,9 @@
 
 ``write_report``: ``results/builtin/coverage.json`` (every type's simplest design per
 scaffold, the run) and ``README.md`` (coverage by crossing number).  ``add_to_atlas``:
-rows with label set ``search`` for the (type, scaffold) pairs the shipped atlas lacks,
-each with the design in the table's chirality and its mirror image (labels negated).
+rows with label set ``search`` for the (type, scaffold) pairs the walked spaces lack
+(for a type they reach, only designs simpler than its simplest there), each with the
+design in the table's chirality and its mirror image (labels negated).
 """
 
 from __future__ import annotations
@@ -104,15 +105,23 @@ def write_report(out: str, types: dict[str, dict], rows: list[dict], run: dict) 
 
 
 def add_to_atlas(types: dict[str, dict], rows: list[dict]) -> None:
-    """Add rows (label set ``search``) for the (type, scaffold) pairs the shipped atlas lacks; keep every other row."""
+    """Add rows (label set ``search``) for the (type, scaffold) pairs the walked spaces lack; keep their rows.
+
+    A type the walked spaces reach gets only designs simpler (sum |t|, then non-zero
+    labels) than its simplest there, so its lookup changes only where it gets simpler.
+    """
     old, meta = read_index(SHIPPED)
     kept = [r for r in old if r.labels != LABEL_SET]
     have = {(r.type, r.scaffold) for r in kept}
+    best: dict[str, tuple[int, int]] = {}  # a walked type's simplest design: only simpler ones are added
+    for row in kept:
+        for e in row.examples:
+            best[row.type] = min(best.get(row.type, (1 << 30, 0)), (e.sum_abs, e.nonzero))
     new = []
     for r in rows:
         entry = types[r["name"]]
         for scaffold, d in sorted(r["designs"].items()):
-            if (r["name"], scaffold) in have:
+            if (r["name"], scaffold) in have or (d["sum_abs"], d["nonzero"]) >= best.get(r["name"], (1 << 30, 0)):
                 continue
             labels = tuple(d["labels"])
             mirrored = tuple(-t for t in labels)

@@ -229,13 +229,16 @@ def main() -> None:
     todo = {k: types[k] for k in args.types.split(",")} if args.types else types
     rows: dict[str, dict] = {}
     path = os.path.join(OUT, "coverage.json")
+    previous = None
     if args.resume and os.path.exists(path):
         with open(path) as fh:
-            rows = {r["name"]: r for r in json.load(fh)["types"]}
+            previous = json.load(fh)
+        rows = {r["name"]: r for r in previous["types"]}
+    fresh = [(k, v) for k, v in todo.items() if k not in rows]
     load_before = os.getloadavg()
     t0 = time.perf_counter()
     with Pool(args.processes, initializer=_init) as pool:
-        for i, row in enumerate(pool.imap(run_one, [(k, v) for k, v in todo.items() if k not in rows])):
+        for i, row in enumerate(pool.imap(run_one, fresh)):
             rows[row["name"]] = row
             print(f"{i + 1}/{len(todo)} {row['name']} {row['seconds']}s {len(row['designs'])} scaffolds", flush=True)
     run = {
@@ -252,7 +255,8 @@ def main() -> None:
         "scaffolds": HOSTS + ["dihedron:N"],
     }
     ordered = [rows[k] for k in types if k in rows]
-    write_report(OUT, types, ordered, run)
+    if fresh or previous is None:  # a resumed run that named nothing keeps the record of the run that did
+        write_report(OUT, types, ordered, run)
     if args.atlas:
         add_to_atlas(types, ordered)
 
