@@ -55,7 +55,7 @@ def test_the_mirror_image_is_the_design_negated():
     assert [-t for t in d["labels"]] in [e["labels"] for e in table if e["scaffold"] == d["scaffold"]]
 
 
-@pytest.mark.parametrize("name", ["10_1", "8_17", "9_32"])
+@pytest.mark.parametrize("name", ["8_17", "9_32", "10_120"])
 def test_search_designs_are_named_alike_by_topoly(name):
     """Independent: topoly's HOMFLY-PT on the realized curves of the simplest design."""
     topoly = pytest.importorskip("topoly")
