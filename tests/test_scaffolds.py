@@ -16,6 +16,13 @@ SOLIDS = {  # name: (V, E, F, face sizes)
     "dodecahedron": (20, 30, 12, {5}),
     "icosahedron": (12, 30, 20, {3}),
     "truncated-octahedron": (24, 36, 14, {4, 6}),
+    "truncated-tetrahedron": (12, 18, 8, {3, 6}),
+    "cuboctahedron": (12, 24, 14, {3, 4}),
+    "prism:3": (6, 9, 5, {3, 4}),
+    "prism:4": (8, 12, 6, {4}),
+    "prism:7": (14, 21, 9, {4, 7}),
+    "antiprism:3": (6, 12, 8, {3}),
+    "antiprism:5": (10, 20, 12, {3, 5}),
 }
 
 
@@ -72,7 +79,9 @@ def test_piano_hinge_can_hold_together():
 
 
 @pytest.mark.parametrize(
-    "name", ["tetrahedron", "cube", "octahedron", "dodecahedron", "icosahedron", "truncated-octahedron"]
+    "name",
+    ["tetrahedron", "cube", "octahedron", "dodecahedron", "icosahedron", "truncated-octahedron"]
+    + ["truncated-tetrahedron", "cuboctahedron"],
 )
 def test_built_in_solids_are_their_convex_hulls(name):
     from lkspace.scaffolds.polyhedra import convex_polyhedron
@@ -82,7 +91,24 @@ def test_built_in_solids_are_their_convex_hulls(name):
     assert solid.faces() == hull.faces() and np.array_equal(solid.vertices, hull.vertices)
 
 
-@pytest.mark.parametrize("name", ["book:1001", "dihedron:999999999999", "book:999999999999"])
+@pytest.mark.parametrize("name", ["prism:4", "prism:9", "antiprism:4", "antiprism:6"])
+def test_prisms_have_the_faces_of_their_convex_hulls(name):
+    from lkspace.scaffolds.polyhedra import convex_polyhedron
+
+    s = lkspace.load(name)
+    hull = convex_polyhedron(s.vertices, name)
+    assert sorted(sorted(f) for f in s.faces()) == sorted(sorted(f) for f in hull.faces())
+
+
+@pytest.mark.parametrize("name", ["prism:2", "antiprism:2", "prism:x"])
+def test_prisms_need_three_sides(name):
+    from lkspace.errors import ScaffoldError
+
+    with pytest.raises(ScaffoldError, match=name.split(":")[0]):
+        lkspace.load(name)
+
+
+@pytest.mark.parametrize("name", ["book:1001", "dihedron:999999999999", "book:999999999999", "prism:1001"])
 def test_family_parameters_are_bounded(name):
     from lkspace.errors import UsageError
     from lkspace.scaffolds import MAX_FAMILY_PARAMETER

@@ -52,7 +52,10 @@ def scaffold_cmd(name: str, output: str | None, as_json: bool) -> None:
     Built-in names:
       tetrahedron, cube, octahedron,      the Platonic solids
       dodecahedron, icosahedron
+      truncated-tetrahedron               4 triangles + 4 hexagons
+      cuboctahedron                       8 triangles + 6 squares
       truncated-octahedron                6 squares + 8 hexagons
+      prism:N, antiprism:N                uniform N-gonal prism, antiprism, 3 <= N <= 1000
       dihedron:N                          two-sided regular N-gon (two faces, one N-cycle), N <= 1000
       book:K                              K quads sharing one edge at equal angles, K <= 1000
       kaleidocycle:K                      a ring of K tetrahedra hinged edge to edge, K even

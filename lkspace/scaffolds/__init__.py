@@ -8,7 +8,11 @@ cube                       cube [-1, 1]^3 (6 squares, 12 edges)
 octahedron                 regular octahedron (8 triangles, 12 edges)
 dodecahedron               regular dodecahedron (12 pentagons, 30 edges)
 icosahedron                regular icosahedron (20 triangles, 30 edges)
+truncated-tetrahedron      truncated tetrahedron (4 triangles + 4 hexagons, 18 edges)
+cuboctahedron              cuboctahedron (8 triangles + 6 squares, 24 edges)
 truncated-octahedron       truncated octahedron (6 squares + 8 hexagons, 36 edges)
+prism:N                    uniform N-gonal prism (N + 2 faces, 3N edges), N >= 3
+antiprism:N                uniform N-gonal antiprism (2N + 2 faces, 4N edges), N >= 3
 dihedron:N                 two-sided regular N-gon (two faces on one N-cycle), N >= 3
 book:K                     K quads sharing one edge at equal angles, K >= 1
 kaleidocycle:K             a ring of K tetrahedra hinged edge to edge, K even >= 4
@@ -51,7 +55,7 @@ from collections.abc import Callable
 
 from ..errors import ScaffoldError, UsageError
 from ..model.scaffold import Scaffold
-from . import constructed, hinged, kaleidocycle, laves, paper, periodic, polyhedra, special
+from . import constructed, hinged, kaleidocycle, laves, paper, periodic, polyhedra, prisms, special
 
 SOLIDS: dict[str, Callable[[], Scaffold]] = {
     "tetrahedron": polyhedra.tetrahedron,
@@ -59,6 +63,8 @@ SOLIDS: dict[str, Callable[[], Scaffold]] = {
     "octahedron": polyhedra.octahedron,
     "dodecahedron": polyhedra.dodecahedron,
     "icosahedron": polyhedra.icosahedron,
+    "truncated-tetrahedron": polyhedra.truncated_tetrahedron,
+    "cuboctahedron": polyhedra.cuboctahedron,
     "truncated-octahedron": polyhedra.truncated_octahedron,
     "figure-eight": paper.figure_eight,
     "whitehead": paper.whitehead,
@@ -69,6 +75,8 @@ SOLIDS.update(hinged.HINGED)
 
 FAMILIES: dict[str, Callable[[int], Scaffold]] = {
     "dihedron": special.dihedron,
+    "prism": prisms.prism,
+    "antiprism": prisms.antiprism,
     "book": special.book,
     "kaleidocycle": kaleidocycle.kaleidocycle,
 }
@@ -76,14 +84,14 @@ FAMILIES: dict[str, Callable[[int], Scaffold]] = {
 DEFAULT = "tetrahedron"
 
 MAX_FAMILY_PARAMETER = 1000
-"""Largest N of ``dihedron:N`` and K of ``book:K`` (checked before anything is built)."""
+"""Largest N of ``dihedron:N``, ``prism:N``, ``antiprism:N`` and K of ``book:K`` (checked before anything is built)."""
 
 
 def builtin_names() -> list[str]:
     """Every built-in name, families written with their parameter (``book:K``)."""
     return (
         list(SOLIDS)
-        + [f"{f}:N" if f == "dihedron" else f"{f}:K" for f in FAMILIES]
+        + [f"{f}:K" if f in ("book", "kaleidocycle") else f"{f}:N" for f in FAMILIES]
         + list(periodic.LATTICES)
         + list(periodic.VORONOI_EXAMPLES)
         + ["knot:NAME", "link:NAME"]
@@ -130,7 +138,7 @@ def builtin(name: str) -> Scaffold:
             raise ScaffoldError(f"built-in {name[:40]!r}: expected {head}:N with an integer N")
         n = int(arg)
         if n > MAX_FAMILY_PARAMETER:
-            letter = "N" if head == "dihedron" else "K"
+            letter = "K" if head in ("book", "kaleidocycle") else "N"
             raise UsageError(f"built-in {name!r}: {head}:{letter} is limited to {letter} <= {MAX_FAMILY_PARAMETER}")
         return FAMILIES[head](n)
     raise ScaffoldError(f"unknown scaffold name {name[:60]!r}; built-in names: {', '.join(builtin_names())}")

@@ -1,4 +1,4 @@
-"""Convex polyhedra as scaffolds: the Platonic solids and the truncated octahedron.
+"""Convex polyhedra as scaffolds: the Platonic solids and three Archimedean ones (truncated tetrahedron, cuboctahedron, truncated octahedron).
 
 :func:`convex_polyhedron` takes the facets of the convex hull (scipy / Qhull), coplanar
 triangles merged into one polygon, each ordered counter-clockwise seen from outside
@@ -110,6 +110,32 @@ SOLID_FACES = {
         [22, 18, 13, 15, 19, 23],
         [21, 20, 22, 23],
     ],  # fmt: skip
+    "truncated-tetrahedron": [
+        [3, 0, 2],
+        [5, 1, 0, 3, 8, 9],
+        [6, 2, 0, 1, 4, 7],
+        [4, 1, 5],
+        [8, 3, 2, 6, 10, 11],
+        [10, 7, 4, 5, 9, 11],
+        [10, 6, 7],
+        [9, 8, 11],
+    ],  # fmt: skip
+    "cuboctahedron": [
+        [1, 0, 4],
+        [2, 0, 1, 3],
+        [4, 0, 5, 8],
+        [5, 0, 2],
+        [3, 1, 6],
+        [6, 1, 4, 9],
+        [5, 2, 7, 10],
+        [7, 2, 3],
+        [7, 3, 6, 11],
+        [9, 4, 8],
+        [8, 5, 10],
+        [11, 6, 9],
+        [10, 7, 11],
+        [9, 8, 10, 11],
+    ],  # fmt: skip
 }
 """Faces of the built-in solids, as :func:`convex_polyhedron` gives them for their points."""
 
@@ -165,3 +191,18 @@ def truncated_octahedron() -> Scaffold:
     """Build the truncated octahedron: 24 vertices, 36 edges, 6 squares and 8 hexagons."""
     points = sorted({p for v in itertools.permutations((0, 1, 2)) for p in _signs(v)}, reverse=True)
     return solid("truncated-octahedron", points)
+
+
+def truncated_tetrahedron() -> Scaffold:
+    """Build the truncated tetrahedron: 12 vertices (permutations of (3, 1, 1), even minus signs), 18 edges, 4 triangles and 4 hexagons."""
+    points = sorted(
+        {p for v in set(itertools.permutations((3, 1, 1))) for p in _signs(v) if sum(x < 0 for x in p) % 2 == 0},
+        reverse=True,
+    )
+    return solid("truncated-tetrahedron", points)
+
+
+def cuboctahedron() -> Scaffold:
+    """Build the cuboctahedron: 12 vertices (permutations of (1, 1, 0)), 24 edges, 8 triangles and 6 squares."""
+    points = sorted({p for v in set(itertools.permutations((1, 1, 0))) for p in _signs(v)}, reverse=True)
+    return solid("cuboctahedron", points)
