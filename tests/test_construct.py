@@ -190,3 +190,12 @@ def test_lookup_answers_a_type_the_atlas_lacks_with_its_construction(capsys, tmp
     assert {d["scaffold"] for d in designs} == {"knot:10_1", "knot:m10_1"}
     code, text, err = run(capsys, "lookup", "3_1", "--json")
     assert code == 0 and not any(d["constructed"] for d in json.loads(text)["designs"])
+
+
+def test_a_relaxed_table_design_prints_with_no_other_option(tmp_path, capsys):
+    """The issue's example: ``lkspace export knot:8_17 --relax -o 8_17.stl`` (a tight rope touches itself)."""
+    out = tmp_path / "3_1.stl"
+    code, text, err = run(capsys, "export", "knot:3_1", "--relax", "-o", out, "--json")
+    assert code == 0, err
+    printed = json.loads(text)["fabrication"]
+    assert printed["min_gap"] > 0 and printed["pieces"] == 1

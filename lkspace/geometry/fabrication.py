@@ -52,6 +52,8 @@ MAX_SCALE = 1e9
 MIN_SCALE = 1 / MAX_SCALE
 """Smallest ``scale``: smaller coordinates lose their digits in float32 (5e-324 made every point 0)."""
 
+RELAXED_PRINT_SHARE = 0.7
+"""A relaxed (tight) rope's tube touches itself: a print's default thickness is this share of it, for a gap."""
 MAX_GAP_SAMPLES = 3_000_000
 """Most centreline samples the clearance check takes (coarser sampling beyond)."""
 MAX_GAP_PAIRS = 5_000_000
@@ -138,7 +140,8 @@ def printable(
 ) -> Printable:
     """Return the :class:`Printable` pieces of ``real`` (``thickness``, ``clearance`` in output units).
 
-    ``thickness`` defaults to twice the realization's tube radius (scaled), ``clearance``
+    ``thickness`` defaults to twice the realization's tube radius (scaled; for a relaxed
+    realization, whose tube touches itself, :data:`RELAXED_PRINT_SHARE` of it), ``clearance``
     to 0 (tubes must not touch).  Raises :class:`GeometryError` when a tube would fold
     into itself or two pieces come closer than ``clearance``.
 
@@ -156,7 +159,8 @@ def printable(
     scaled = [np.asarray(c, np.float64) * scale for c in curves]
     bend, piece, point = tightest_bend(scaled, closed)
     if thickness is None:  # the picture's tube, thinned where the curves bend tighter
-        radius = min(real.tube_radius * scale, TUBE_BEND_SHARE * bend)
+        share = RELAXED_PRINT_SHARE if real.relaxation is not None else 1.0
+        radius = min(share * real.tube_radius * scale, TUBE_BEND_SHARE * bend)
     else:
         radius = 0.5 * thickness
     if bend < radius:
