@@ -84,7 +84,7 @@ def test_human_output(capsys):
         (["trace", "cube"], "no --twist given"),
         (["trace", "cube", "--twist", "1", "--null", "9.0"], "face 9 out of range"),
         (["info", "dodecahedronx"], "neither a file nor a built-in"),
-        (["scaffold", "prism"], "'prism' is neither a file nor a built-in scaffold name"),
+        (["scaffold", "pyramid"], "'pyramid' is neither a file nor a built-in scaffold name"),
         (["frobnicate"], "no such command"),
         (["trace", "--bogus"], "No such option"),
     ],

@@ -108,9 +108,12 @@ def mesh(tmp_path, capsys):
     return tmp_path
 
 
-@pytest.mark.parametrize("output", ["m.obj", "hard.obj", "soft.obj"])
-def test_export_never_writes_over_its_input(mesh, capsys, output):
-    refused(capsys, mesh, ["export", mesh / "m.obj", "--twist", "1", "-o", mesh / output], "is the input")
+@pytest.mark.parametrize(
+    "output, words", [("m.obj", ["is the input"]), ("hard.obj", ["is the input"]), ("soft.obj", ["symbolic link"])]
+)
+def test_export_never_writes_over_its_input(mesh, capsys, output, words):
+    """The input itself, a hard link to it, or a symbolic link (refused as every link is) is never written."""
+    refused(capsys, mesh, ["export", mesh / "m.obj", "--twist", "1", "-o", mesh / output], *words)
 
 
 def test_other_commands_never_write_over_their_input(mesh, capsys):

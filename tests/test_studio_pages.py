@@ -135,7 +135,7 @@ def test_crossing_numbers_read_from_names_agree_with_the_tables():
 def test_a_split_link_is_named_by_its_pieces(url, labels, name, common):
     pytest.importorskip("regina")
     found = lkspace.identify("cube", labels)
-    assert found.split and found.name is None and sorted(found.details["pieces"]) == name[7:].split(" + ")
+    assert found.split and found.name == name and sorted(found.details["pieces"]) == name[7:].split(" + ")
     with page(url, "split") as c:
         job = c.post("/api/identify", json={"key": "cube", "labels": labels}).json()["job"]
         while (j := c.get(f"/api/job/{job}").json())["state"] == "running":

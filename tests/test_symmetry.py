@@ -144,6 +144,8 @@ def test_isometries_need_negation_closed_labels():
 BUILTIN_ORDERS = {
     "tetrahedron": (24, 12),
     "cube": (48, 24),
+    "truncated-tetrahedron": (24, 12),
+    "cuboctahedron": (48, 24),
     "octahedron": (48, 24),
     "dodecahedron": (120, 60),
     "icosahedron": (120, 60),

@@ -37,6 +37,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 
 from ..errors import ScaffoldError
+from ..words import plural
 
 SIGN = -1
 """Label of a crossing whose counter-clockwise turn of the over-strand sweeps the face-coloured corners."""
@@ -72,7 +73,7 @@ def check_pd(pd: Sequence[Sequence[int]], where: str = "PD code") -> list[tuple[
     odd = sorted(v for v, n in seen.items() if n != 2)
     if odd:
         raise ScaffoldError(
-            f"{where}: edge label {odd[0]} occurs {seen[odd[0]]} time(s); in a link diagram every label occurs twice"
+            f"{where}: edge label {odd[0]} occurs {plural(seen[odd[0]], 'time')}; in a link diagram every label occurs twice"
         )
     return out
 
@@ -355,8 +356,8 @@ def diagram_mesh(pd: Sequence[Sequence[int]], where: str = "PD code", colouring:
     Examples
     --------
     >>> m = diagram_mesh([[1, 5, 2, 4], [3, 1, 4, 6], [5, 3, 6, 2]])  # KnotInfo's 3_1
-    >>> m.n_vertices, m.faces, m.labels
-    (3, [[1, 2, 0]], [-3]) if False else (m.n_vertices, len(m.faces), sorted(m.labels))
+    >>> m.n_vertices, len(m.faces), sum(abs(t) for t in m.labels)  # one twist region of 3 half twists
+    (3, 2, 3)
     """
     code, freed = smooth_nugatory(check_pd(pd, where))
     if not code:
