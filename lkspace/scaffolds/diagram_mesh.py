@@ -37,7 +37,6 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 
 from ..errors import ScaffoldError
-from ..words import plural
 
 SIGN = -1
 """Label of a crossing whose counter-clockwise turn of the over-strand sweeps the face-coloured corners."""
@@ -73,7 +72,8 @@ def check_pd(pd: Sequence[Sequence[int]], where: str = "PD code") -> list[tuple[
     odd = sorted(v for v, n in seen.items() if n != 2)
     if odd:
         raise ScaffoldError(
-            f"{where}: edge label {odd[0]} occurs {plural(seen[odd[0]], 'time')}; in a link diagram every label occurs twice"
+            f"{where}: edge label {odd[0]} occurs {seen[odd[0]]} {'time' if seen[odd[0]] == 1 else 'times'}; "
+            "in a link diagram every label occurs twice"
         )
     return out
 
