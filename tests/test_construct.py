@@ -103,11 +103,11 @@ def test_unknown_and_misfiled_builtin_names_are_refused():
 
 def test_the_shipped_table_holds_every_type_up_to_its_range():
     entries = table()
-    knots_ = [n for n, e in entries.items() if e["components"] == 1]
-    links = [n for n, e in entries.items() if e["components"] > 1]
+    knots_ = [n for n, e in entries.items() if e.components == 1]
+    links = [n for n, e in entries.items() if e.components > 1]
     assert len(knots_) == 2977 and len(links) == 1424  # LinkInfo: 4,188 entries, one per orientation
-    assert sum(1 for n in knots_ if entries[n]["crossings"] <= 10) == 249
-    assert sum(1 for n in links if entries[n]["crossings"] <= 9) == 130
+    assert sum(1 for n in knots_ if entries[n].crossings <= 10) == 249
+    assert sum(1 for n in links if entries[n].crossings <= 9) == 130
 
 
 @pytest.mark.parametrize("name", ["3_1", "4_1", "5_2", "6_2", "7_4", "8_17", "9_35", "10_100", "10_161"])

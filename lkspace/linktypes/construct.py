@@ -61,7 +61,7 @@ def _diagram(target: LinkType, typed: str) -> tuple[list[list[int]], bool]:
 def _table_pd(name: str, typed: str) -> list[list[int]]:
     shipped = table().get(name)
     if shipped is not None:
-        return [list(x) for x in shipped["pd"]]
+        return [list(x) for x in shipped.pd]
     entries = table_entries().get(name)
     if entries:
         return entries[0].pd_code()
@@ -112,7 +112,7 @@ def construct(type_name: str | None = None, pd: Sequence[Sequence[int]] | None =
         if target.name in table() and not target.factors:
             kind = "knot" if target.components == 1 else "link"
             builtin = f"{kind}:{'m' if mirror else ''}{target.name}"
-            first = table()[target.name].get("layout")
+            first = table()[target.name].layout
     tried: list[str] = []
     for layout in dict.fromkeys([first or "sphere", *layouts(code)]):
         scaffold = design_scaffold(code, label, layout)

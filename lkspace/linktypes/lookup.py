@@ -211,15 +211,15 @@ def constructed_designs(name: str, chirality: Chirality) -> list[LookupDesign]:
     entry = table().get(name)
     if entry is None:
         return []
-    kind = "knot" if entry["components"] == 1 else "link"
+    kind = "knot" if entry.components == 1 else "link"
     sides = [False, True] if chirality == "any" else [chirality == "mirror"]
-    if entry.get("amphichiral"):
+    if entry.amphichiral:
         sides = sides[:1]
     out = []
     for mirror in sides:
         builtin = f"{kind}:{'m' if mirror else ''}{name}"
         labels = tuple(int(t) for t in table_design(builtin).labels)  # type: ignore[union-attr]
-        known = None if entry.get("amphichiral") else mirror
+        known = None if entry.amphichiral else mirror
         out.append(
             LookupDesign(
                 type=name,
@@ -229,7 +229,7 @@ def constructed_designs(name: str, chirality: Chirality) -> list[LookupDesign]:
                 label_set="constructed",
                 sum_abs=sum(abs(t) for t in labels),
                 nonzero=sum(t != 0 for t in labels),
-                crossings=int(entry["crossings"]),
+                crossings=entry.crossings,
                 mirror=known,
                 chiral_name=("m" if known else "") + name,
                 designs_of_type=1,

@@ -23,6 +23,7 @@ import gzip
 import json
 import os
 from collections.abc import Sequence
+from dataclasses import dataclass
 from functools import lru_cache
 
 import numpy as np
@@ -79,15 +80,57 @@ def design_scaffold(pd: Sequence[Sequence[int]], name: str, layout: str = "spher
     return scaffold.with_labels(labels)
 
 
+@dataclass(frozen=True)
+class TableDiagram:
+    """One type of the shipped table: its diagram and the placement checked for it.
+
+    ``pd``: the tables' PD code; ``components``; ``crossings``: the crossing number;
+    ``amphichiral``: KnotInfo's symmetry type says so (``None`` for links); ``layout``: the
+    first placement that named right (``None``: not checked).
+    """
+
+    pd: tuple[tuple[int, ...], ...]
+    components: int
+    crossings: int
+    amphichiral: bool | None
+    layout: str | None
+
+    @classmethod
+    def from_json(cls, data: object, where: str) -> TableDiagram:
+        """Read one entry of the file (the object :meth:`to_json` writes)."""
+        if not isinstance(data, dict):
+            raise ScaffoldError(f"{where}: not a table entry (a JSON object); reinstall lkspace")
+        try:
+            return cls(
+                tuple(tuple(int(v) for v in x) for x in data["pd"]),
+                int(data["components"]),
+                int(data["crossings"]),
+                None if data.get("amphichiral") is None else bool(data["amphichiral"]),
+                None if data.get("layout") is None else str(data["layout"]),
+            )
+        except (KeyError, TypeError, ValueError) as exc:
+            raise ScaffoldError(f"{where}: not a table entry ({exc!r}); reinstall lkspace") from exc
+
+    def to_json(self) -> dict[str, object]:
+        """Return ``{pd, components, crossings, amphichiral, layout}``."""
+        return {
+            "pd": [list(x) for x in self.pd],
+            "components": self.components,
+            "crossings": self.crossings,
+            "amphichiral": self.amphichiral,
+            "layout": self.layout,
+        }
+
+
 @lru_cache(maxsize=1)
-def table() -> dict[str, dict]:
-    """Name -> ``{"pd": [[...], ...], "layout": str, "components": int, "crossings": int}`` (the shipped file)."""
+def table() -> dict[str, TableDiagram]:
+    """Name -> :class:`TableDiagram`, read once from the shipped file."""
     try:
         with gzip.open(TABLE_FILE, "rt", encoding="utf-8") as fh:
-            data: dict[str, dict] = json.load(fh)
-    except OSError as exc:
+            data = json.load(fh)
+    except (OSError, ValueError) as exc:
         raise ScaffoldError(f"the table of diagrams {TABLE_FILE} cannot be read ({exc}); reinstall lkspace") from exc
-    return data
+    return {name: TableDiagram.from_json(entry, f"{TABLE_FILE}: {name}") for name, entry in data.items()}
 
 
 def is_table_design(name: str) -> bool:
@@ -101,7 +144,7 @@ def table_design(name: str) -> Scaffold:
     mirror = typed.startswith("m") and typed[1:] in table()
     base = typed[1:] if mirror else typed
     entry = table().get(base)
-    if entry is None or (entry["components"] == 1) != (kind == "knot"):
+    if entry is None or (entry.components == 1) != (kind == "knot"):
         other = "link" if kind == "knot" else "knot"
         hint = f"; it is a {other}: write {other}:{typed}" if entry is not None else ""
         raise ScaffoldError(
@@ -109,6 +152,6 @@ def table_design(name: str) -> Scaffold:
             f"({'3_1, 8_17, 11a_1, 12n_242' if kind == 'knot' else 'L2a1, L6a4, L11n459'}), "
             "with m in front for the mirror image; `lkspace construct` takes every other spelling"
         )
-    scaffold = design_scaffold(entry["pd"], name, entry.get("layout") or "sphere", where=name)
+    scaffold = design_scaffold(entry.pd, name, entry.layout or "sphere", where=name)
     assert scaffold.labels is not None
     return scaffold.with_labels(-scaffold.labels if mirror else scaffold.labels)
