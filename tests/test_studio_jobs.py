@@ -271,3 +271,36 @@ def test_the_payloads_found_so_far(client):
     stray = client.get("/api/job/0%2F")  # once a redirect with no body
     assert stray.status_code == 404 and stray.json()["error"]["message"], stray.text
     assert client.get("/api/lookup", params={"name": "3_1", "limit": "²"}).status_code == 400
+
+
+class StubWorker:
+    """A worker process whose liveness is asked just as another thread cancels its job (the race CI met)."""
+
+    def __init__(self):
+        self.job, self.terminated, self.exitcode = None, False, None
+
+    def is_alive(self):
+        canceller = threading.Thread(target=self.job.cancel)
+        canceller.start()
+        canceller.join(timeout=0.5)  # the cancel waits for the poll, or (unguarded) kills the worker first
+        return not self.terminated
+
+    def terminate(self):
+        self.terminated, self.exitcode = True, -15
+
+    kill = terminate
+
+    def join(self, timeout=None):
+        pass
+
+
+def test_a_cancel_racing_a_poll_reads_as_cancelled_not_as_a_dead_worker():
+    import queue
+
+    from lkspace.studio.jobs import Job
+
+    worker = StubWorker()
+    job = worker.job = Job(1, "clearance", worker, queue.Queue())
+    first = job.poll().state
+    time.sleep(0.1)
+    assert (first, job.poll().state, job.error) == ("running", "cancelled", None)

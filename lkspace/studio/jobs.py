@@ -201,9 +201,21 @@ class Job:
     progress: JobProgress | None = None
     result: JobResult | None = None
     error: str | None = None
+    guard: threading.Lock = field(default_factory=threading.Lock, repr=False)
+    """Held while the state changes: a cancel (which kills the worker) is never read as the worker dying."""
 
     def poll(self) -> JobState:
         """Take what the worker sent; return the job's state."""
+        with self.guard:
+            self._take()
+        if self.state != "running":
+            self.ended = self.ended or time.monotonic()
+            self.process.join(timeout=0.5)
+        elapsed = round((self.ended or time.monotonic()) - self.started, 2)
+        return JobState(self.id, self.kind, self.state, elapsed, self.progress, self.result, self.error)
+
+    def _take(self) -> None:
+        """Read the worker's messages into the state (``guard`` held)."""
         while self.state == "running":
             try:
                 what, value = self.channel.get_nowait()
@@ -219,16 +231,13 @@ class Job:
                 self.state, self.result = "done", value
             else:
                 self.state, self.error = "error", value
-        if self.state != "running":
-            self.ended = self.ended or time.monotonic()
-            self.process.join(timeout=0.5)
-        elapsed = round((self.ended or time.monotonic()) - self.started, 2)
-        return JobState(self.id, self.kind, self.state, elapsed, self.progress, self.result, self.error)
 
     def cancel(self) -> None:
         """Stop the worker (if running) and mark the job cancelled."""
-        if self.state == "running":
-            self.state = "cancelled"
+        with self.guard:
+            running = self.state == "running"
+            self.state = "cancelled" if running else self.state
+        if running:
             self.process.terminate()
             self.process.join(timeout=2)
             if self.process.is_alive():
