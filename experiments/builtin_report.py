@@ -39,17 +39,17 @@ def write_report(out: str, types: dict[str, dict], rows: list[dict], run: dict) 
     table: dict[str, dict[str, int]] = {}
     for r in rows:
         entry = types[r["name"]]
-        kind = "knots" if entry["components"] == 1 else "links"
-        key = f"{kind} {entry['crossings']}"
+        kind = "knots" if entry.components == 1 else "links"
+        key = f"{kind} {entry.crossings}"
         best = simplest(r["designs"])
         cell = table.setdefault(key, {"types": 0, "search": 0, "minimal": 0, "atlas_before": 0, "builtin": 0})
         cell["types"] += 1
         cell["search"] += best is not None
-        cell["minimal"] += best is not None and best[1]["sum_abs"] == entry["crossings"]
+        cell["minimal"] += best is not None and best[1]["sum_abs"] == entry.crossings
         cell["atlas_before"] += r["name"] in before
         cell["builtin"] += best is not None or r["name"] in before
         r["simplest"] = None if best is None else {"scaffold": best[0], **best[1]}
-        r["crossing_number"] = entry["crossings"]
+        r["crossing_number"] = entry.crossings
     totals = {k: sum(c[k] for c in table.values()) for k in ("types", "search", "minimal", "atlas_before", "builtin")}
     os.makedirs(out, exist_ok=True)
     data = {"run": run, "totals": totals, "by_crossing_number": table, "types": rows}
@@ -132,10 +132,10 @@ def add_to_atlas(types: dict[str, dict], rows: list[dict]) -> None:
                 IndexRow(
                     type=r["name"],
                     common_name=common_name(r["name"]),
-                    components=entry["components"],
+                    components=entry.components,
                     crossing_number=crossing_number(r["name"]),
                     crossings=d["crossings"],
-                    table="knotinfo" if entry["components"] == 1 else "linkinfo",
+                    table="knotinfo" if entry.components == 1 else "linkinfo",
                     scaffold=scaffold,
                     labels=LABEL_SET,
                     designs=len(ex),

@@ -34,15 +34,15 @@ import platform
 import subprocess
 import time
 
-import igraph as ig
 import numpy as np
 
 from lkspace import __version__, load
 from lkspace.errors import LkspaceError
 from lkspace.knots.assembly import assemble_pd
 from lkspace.knots.naming import name_pd
+from lkspace.linktypes.tait_embedding import embedded_designs
 from lkspace.model.scaffold import Scaffold
-from lkspace.scaffolds.constructed import table
+from lkspace.scaffolds.constructed import TableDiagram, table
 from lkspace.scaffolds.diagram_mesh import diagram_mesh
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -55,69 +55,11 @@ HOSTS = (
 )
 """The closed built-in scaffolds searched (``dihedron:N`` besides, for meshes of two faces)."""
 TRIES = 4
+"""Distinct embeddings named per (type, colouring, scaffold) before giving up."""
 MAX_KINKS = 6
 """Most faces left over (each a kink, +1 in sum |t|) for a design on a scaffold to be searched."""
-"""Distinct embeddings named per (type, colouring, scaffold) before giving up."""
 LABEL_SET = "search"
 """The ``labels`` column of the atlas rows this search adds."""
-
-
-def dual_graph(s: Scaffold) -> tuple[ig.Graph, dict[tuple[int, int], int]]:
-    """The dual graph of a closed scaffold (faces as vertices) and ``(face, face) -> edge of S``."""
-    sides: dict[int, list[int]] = {}
-    for corner, e in enumerate(s.side_edge):
-        sides.setdefault(int(e), []).append(int(s.corner_face[corner]))
-    edge_of = {}
-    for e, (f, g) in sides.items():
-        edge_of[min(f, g), max(f, g)] = e
-    return ig.Graph(n=s.n_faces, edges=sorted(edge_of)), edge_of
-
-
-def tait_graph(pd: list, colouring: str) -> tuple[int, list[tuple[int, int, int]]] | None:
-    """``(faces, [(f, g, label), ...])``: the collapsed Tait graph of one colouring, parallel edges summed.
-
-    Summing is right for the edges of one twist region that the mesh kept apart, wrong for
-    two twist regions between the same faces (a pretzel): naming the design tells.
-    """
-    mesh = diagram_mesh(pd, colouring=colouring)
-    sides: dict[frozenset[int], list[int]] = {}
-    for f, face in enumerate(mesh.faces):
-        for a, b in zip(face, face[1:] + face[:1]):
-            sides.setdefault(frozenset((a, b)), []).append(f)
-    summed: dict[tuple[int, int], int] = {}
-    for (u, v), t in zip(mesh.edges, mesh.labels):
-        f, g = sides[frozenset((u, v))]
-        if f == g:
-            return None
-        summed[min(f, g), max(f, g)] = summed.get((min(f, g), max(f, g)), 0) + t
-    return len(mesh.faces), [(f, g, t) for (f, g), t in summed.items() if t]
-
-
-def embeddings(n: int, edges: list, host: ig.Graph, edge_of: dict, n_edges: int) -> list[np.ndarray]:
-    """Label vectors of S for the subgraph embeddings of the Tait graph (kinks on the faces left over)."""
-    pattern = ig.Graph(n=n, edges=[(f, g) for f, g, _ in edges])
-    maps = host.get_subisomorphisms_lad(pattern, induced=False)
-    out: dict[bytes, np.ndarray] = {}
-    step = max(1, len(maps) // (4 * TRIES))
-    for m in maps[::step]:
-        labels = np.zeros(n_edges, np.int64)
-        for f, g, t in edges:
-            a, b = m[f], m[g]
-            labels[edge_of[min(a, b), max(a, b)]] = t
-        covered, frontier = set(m), list(m)
-        while frontier:  # breadth first: join every face left over by a kink
-            nxt = []
-            for a in frontier:
-                for b in host.neighbors(a):
-                    if b not in covered:
-                        covered.add(b)
-                        labels[edge_of[min(a, b), max(a, b)]] = 1
-                        nxt.append(b)
-            frontier = nxt
-        out.setdefault(labels.tobytes(), labels)
-        if len(out) >= TRIES:
-            break
-    return list(out.values())
 
 
 def named(s: Scaffold, labels: np.ndarray) -> tuple[str | None, bool | None, int | None]:
@@ -130,7 +72,7 @@ def named(s: Scaffold, labels: np.ndarray) -> tuple[str | None, bool | None, int
     return got.name, got.mirror, got.crossings
 
 
-def dihedron_candidates(pd: list) -> list[tuple[str, np.ndarray]]:
+def dihedron_candidates(pd: tuple) -> list[tuple[str, np.ndarray]]:
     """Meshes of two faces: the labels around face 0 on ``dihedron:N`` (both directions)."""
     out = []
     for colouring in ("fewer", "more"):
@@ -153,7 +95,7 @@ def dihedron_candidates(pd: list) -> list[tuple[str, np.ndarray]]:
     return out
 
 
-def search_type(name: str, entry: dict, hosts: dict) -> dict[str, dict]:
+def search_type(name: str, entry: TableDiagram, hosts: dict[str, Scaffold]) -> dict[str, dict]:
     """Scaffold -> the simplest design found there: ``{labels, sum_abs, nonzero, mirror, kinks}`` (table chirality)."""
     found: dict[str, dict] = {}
 
@@ -176,28 +118,22 @@ def search_type(name: str, entry: dict, hosts: dict) -> dict[str, dict]:
             }
         return True
 
-    for scaffold, labels in dihedron_candidates(entry["pd"]):
+    for scaffold, labels in dihedron_candidates(entry.pd):
         if scaffold not in found:
             keep(scaffold, load(scaffold), labels, 0)
-    graphs = [g for g in (tait_graph(entry["pd"], c) for c in ("fewer", "more")) if g is not None]
-    for scaffold, (s, host, edge_of) in hosts.items():
-        for n, edges in sorted(graphs, key=lambda g: -g[0]):  # more faces first: fewer kinks
-            if n > s.n_faces or s.n_faces - n > MAX_KINKS:
-                continue
-            if scaffold in found and found[scaffold]["kinks"] <= s.n_faces - n:
+    for scaffold, s in hosts.items():
+        for kinks, labels in embedded_designs(s, entry.pd, TRIES, MAX_KINKS):  # fewest kinks first
+            if keep(scaffold, s, labels, kinks):
                 break
-            for labels in embeddings(n, edges, host, edge_of, s.n_edges):
-                if keep(scaffold, s, labels, s.n_faces - n):
-                    break
     return found
 
 
-def standard_types() -> dict[str, dict]:
+def standard_types() -> dict[str, TableDiagram]:
     """The 379 types: prime knots to 10 crossings, prime links to 9 (the shipped table of diagrams)."""
-    return {k: v for k, v in table().items() if v["crossings"] <= (10 if v["components"] == 1 else 9)}
+    return {k: v for k, v in table().items() if v.crossings <= (10 if v.components == 1 else 9)}
 
 
-def run_one(item: tuple[str, dict]) -> dict:
+def run_one(item: tuple[str, TableDiagram]) -> dict:
     """The search's row of one type (for a process pool)."""
     name, entry = item
     t0 = time.perf_counter()
@@ -205,13 +141,12 @@ def run_one(item: tuple[str, dict]) -> dict:
     return {"name": name, "seconds": round(time.perf_counter() - t0, 3), "designs": found}
 
 
-HOST_GRAPHS: dict = {}
+HOST_GRAPHS: dict[str, Scaffold] = {}
 
 
 def _init() -> None:
     for h in HOSTS:
-        s = load(h)
-        HOST_GRAPHS[h] = (s, *dual_graph(s))
+        HOST_GRAPHS[h] = load(h)
 
 
 def main() -> None:
@@ -255,7 +190,8 @@ def main() -> None:
         "scaffolds": HOSTS + ["dihedron:N"],
     }
     ordered = [rows[k] for k in types if k in rows]
-    if fresh or previous is None:  # a resumed run that named nothing keeps the record of the run that did
+    partial = args.types and not args.resume  # a few types alone: printed, never written over the whole table
+    if (fresh or previous is None) and not partial:  # a resumed run that named nothing keeps the record
         write_report(OUT, types, ordered, run)
     if args.atlas:
         add_to_atlas(types, ordered)

@@ -60,3 +60,53 @@ def test_a_time_limit_on_a_big_user_mesh_ends_the_search_as_unknown(tmp_path):
     data = json.loads(done.stdout)
     assert data["status"] == "unknown" and not data["solutions"] and not data["exhausted"]
     assert "time ran out" in data["reason"]
+
+
+def torus_obj(path, around=8, across=4):
+    """Write a quad torus (``2 * around * across`` edges, genus 1) as an OBJ file."""
+    rows = []
+    for i in range(around):
+        for j in range(across):
+            a, b = 2 * math.pi * i / around, 2 * math.pi * j / across
+            rows.append(
+                f"v {(2 + 0.7 * math.cos(b)) * math.cos(a):.6f} {(2 + 0.7 * math.cos(b)) * math.sin(a):.6f} {0.7 * math.sin(b):.6f}"
+            )
+
+    def at(i, j):
+        return (i % around) * across + j % across + 1
+
+    rows += [
+        f"f {at(i, j)} {at(i + 1, j)} {at(i + 1, j + 1)} {at(i, j + 1)}" for i in range(around) for j in range(across)
+    ]
+    path.write_text("\n".join(rows) + "\n")
+    return str(path)
+
+
+def test_on_a_mesh_too_big_to_walk_the_diagram_answers_or_the_refusal_names_the_labels_it_needs(tmp_path):
+    """Tori of 36 and 64 edges (3^36, 3^64 designs: too many to walk).  On the first, the trefoil's diagram fits
+    with labels -1..1 and its design comes back, said to be perhaps not the simplest; on the second (no
+    triangle of faces) the refusal names the label set that the diagram needs."""
+    topoly = pytest.importorskip("topoly")
+    from lkspace import load, realize
+
+    refused = solve(torus_obj(tmp_path / "torus8x4.obj", 8, 4), "--type", "m3_1")
+    assert refused.returncode == 2 and "--labels -3..3" in refused.stderr, refused.stderr
+    mesh = torus_obj(tmp_path / "torus6x3.obj", 6, 3)
+    done = solve(mesh, "--type", "m3_1")
+    assert done.returncode == 0, done.stderr
+    data = json.loads(done.stdout)
+    assert data["status"] == "found" and "need not be the simplest" in data["reason"]
+    labels = data["solutions"][0]["labels"]
+    curves = realize(load(mesh), np.array(labels)).curves
+    assert len(curves) == 1
+    assert topoly.homfly(np.asarray(curves[0]).tolist(), closure=0, max_cross=120, chiral=True) == "-3_1"
+
+
+def test_a_diagram_without_kinks_on_a_sphere_answers_at_once_as_the_simplest():
+    """prism:3 holds the Tait graph of 8_17 with no face left over: sum |t| = 8 = its crossing number,
+    as simple as a design of 8_17 can be, so the design built from its diagram answers and no walk runs."""
+    done = solve("prism:3", "--type", "8_17", "--labels", "-2..2")
+    assert done.returncode == 0, done.stderr
+    data = json.loads(done.stdout)
+    assert data["status"] == "found" and data["solutions"][0]["sum_abs"] == 8 and "reason" not in data
+    assert data["stats"]["designs"] == data["stats"]["designs built from the diagram"]  # the walk never ran

@@ -8,6 +8,12 @@ worker processes).  Every match is **re-identified** on the geometric path (the 
 realized and projected along another direction, :func:`~lkspace.linktypes.screen.screen`)
 before it is reported.
 
+On a closed scaffold (every edge between two faces) a table type is also built from its
+diagram (:mod:`~lkspace.linktypes.tait_embedding`), screened the same way, before the walk.
+Such a design with sum |t| equal to the crossing number on a scaffold of genus 0 is as simple
+as any can be, so it answers at once; others are kept and reported after the walk's, or alone
+when the space is too big to walk (``reason`` says they need not be the simplest).
+
 Status: ``found`` (``count`` designs, or fewer when the space ran out), ``exhausted``
 (the whole space walked and every design proved to be something else: the type is
 absent), ``unknown`` (time ran out, or some designs could not be identified).
@@ -23,7 +29,7 @@ from typing import Any, Literal, TypeAlias
 
 import numpy as np
 
-from ..errors import SolveVerificationError, UsageError
+from ..errors import SolveVerificationError, TooLargeError, UsageError
 from ..model.scaffold import Scaffold
 from ..runtime.progress import task
 from ..strands.tracing import trace
@@ -150,37 +156,54 @@ def solve_target(
     solutions: list[TargetSolution] = []
     undetermined: list[Json] = []
     timed_out = False
+    walked = True
     with (
         task(f"searching {scaffold.name} for {goal.label}") as step,
         _screener(scaffold, goal, o, label_set) as run,
     ):
-        for batch, rows, orbits in _pieces(walk):
-            if deadline is not None and time.monotonic() > deadline:
-                timed_out = True
-                break
-            for labels, orbit, verdict in run(rows, orbits):
-                tally["designs"] += 1
-                tally[f"{verdict.verdict}: {verdict.reason}"] += 1
-                if verdict.verdict == "undetermined":
-                    undetermined.append(labels.tolist())
-                elif verdict.verdict == "match":
-                    again = check_answer(scaffold, labels, goal, o.seed, o.identify_time_limit)
-                    if again.verdict != "match":
-                        tally["re-identification disagreed"] += 1
-                        undetermined.append(labels.tolist())
-                        continue
-                    solutions.append(_solution(labels, orbit, goal, again))
-                    if len(solutions) >= o.count:
-                        break
+        built, hint = _from_diagram(scaffold, goal, o, label_set, run, tally)
+        simplest = [b for b in built if goal.target is not None and b.sum_abs == goal.target.crossings]
+        if _genus(scaffold) == 0 and len(simplest) >= o.count:
+            solutions = simplest[: o.count]
+        try:
+            pieces = _pieces(walk) if len(solutions) < o.count else iter(())
+            for batch, rows, orbits in pieces:
                 if deadline is not None and time.monotonic() > deadline:
                     timed_out = True
                     break
-            step.note(f"{tally['designs']:,} designs screened (|t| <= {batch.shell}), {len(solutions)} found")
-            if len(solutions) >= o.count or timed_out:
-                break
+                for labels, orbit, verdict in run(rows, orbits):
+                    tally["designs"] += 1
+                    tally[f"{verdict.verdict}: {verdict.reason}"] += 1
+                    if verdict.verdict == "undetermined":
+                        undetermined.append(labels.tolist())
+                    elif verdict.verdict == "match":
+                        again = check_answer(scaffold, labels, goal, o.seed, o.identify_time_limit)
+                        if again.verdict != "match":
+                            tally["re-identification disagreed"] += 1
+                            undetermined.append(labels.tolist())
+                            continue
+                        solutions.append(_solution(labels, orbit, goal, again))
+                        if len(solutions) >= o.count:
+                            break
+                    if deadline is not None and time.monotonic() > deadline:
+                        timed_out = True
+                        break
+                step.note(f"{tally['designs']:,} designs screened (|t| <= {batch.shell}), {len(solutions)} found")
+                if len(solutions) >= o.count or timed_out:
+                    break
+        except TooLargeError as exc:
+            if not built:
+                raise TooLargeError(f"{exc}{hint}") from None
+            walked = False
     complete = walk.complete and not timed_out and len(solutions) < o.count
+    more = [b for b in built if all(b.labels != s.labels for s in solutions)] if not walk.complete else []
+    from_diagram = len(solutions) < o.count and bool(more)
+    solutions += more[: o.count - len(solutions)]
     status: TargetStatus
-    if solutions:
+    if from_diagram:
+        why = "the space is too big to walk" if not walked else "the walk did not reach them"
+        status, reason = "found", f"designs built from the diagram of {goal.label} need not be the simplest ({why})"
+    elif solutions:
         status, reason = "found", ""
     elif complete and not undetermined:
         status, reason = "exhausted", "every design of the space is proved to be another type"
@@ -259,3 +282,75 @@ class _screener:
 
     def __exit__(self, *exc: object) -> None:
         self.namer.__exit__(*exc)  # a found answer or Ctrl-C: the workers stop at once
+
+
+def _from_diagram(
+    scaffold: Scaffold, goal: Goal, o: SearchOptions, label_set: np.ndarray, run: Any, tally: Counter[str]
+) -> tuple[list[TargetSolution], str]:
+    """Return the designs built from the target's diagram that name right twice, simplest first (``run``: the screener).
+
+    And a hint for a refusal: ``"; ... --labels -3..3"`` when every design built needs labels past ``label_set``.
+    """
+    rows, orbits, wider = _diagram_candidates(scaffold, goal, o, label_set)
+    matches = []
+    for labels, orbit, verdict in run(rows, orbits):
+        tally["designs"] += 1
+        tally["designs built from the diagram"] += 1
+        if verdict.verdict == "match":
+            matches.append((int(np.abs(labels).sum()), int((labels != 0).sum()), labels.tobytes(), labels, orbit))
+    built: list[TargetSolution] = []
+    for *_, labels, orbit in sorted(matches, key=lambda m: m[:3]):
+        again = check_answer(scaffold, labels, goal, o.seed, o.identify_time_limit)
+        if again.verdict == "match":
+            built.append(_solution(labels, orbit, goal, again))
+        if len(built) >= o.count:
+            break
+    hint = "" if wider is None else f"; the diagram of {goal.label} fits here with --labels -{wider}..{wider}"
+    return built, hint
+
+
+def _genus(s: Scaffold) -> int | None:
+    """Return the genus of a closed connected scaffold (``None`` when ``2 - V + E - F`` is odd or negative)."""
+    twice = 2 - s.n_vertices + s.n_edges - s.n_faces
+    return twice // 2 if twice >= 0 and twice % 2 == 0 else None
+
+
+def _diagram_candidates(
+    scaffold: Scaffold, goal: Goal, options: SearchOptions, label_set: np.ndarray
+) -> tuple[np.ndarray, np.ndarray, int | None]:
+    """``(labels (n, n_edges) int64, orbit sizes (n,), wider)``: the target's diagram embedded in ``scaffold``, and mirrored.
+
+    Kept: designs in ``label_set`` that keep ``options``' fixes (none with ``no_zero``: they
+    have labels 0).  Empty unless the target is a table type and the scaffold closed; then
+    ``wider`` is the least largest ``|t|`` of the designs ``label_set`` left out (else ``None``).
+    """
+    from ..scaffolds.constructed import table
+    from .tait_embedding import embedded_designs
+
+    empty = np.zeros((0, scaffold.n_edges), np.int64), np.zeros(0, np.int64)
+    entry = table().get(goal.target.name) if goal.target is not None else None
+    if entry is None or entry.components != goal.components or options.no_zero:
+        return *empty, None
+    fixes = dict(options.fixes)
+    found = [x for _, labels in embedded_designs(scaffold, entry.pd) for x in (labels, -labels)]
+    found = [x for x in found if all(x[e] == t for e, t in fixes.items())]
+    kept = [x for x in found if np.isin(x, label_set).all()]
+    if not kept:
+        return *empty, min((int(np.abs(x).max()) for x in found), default=None)
+    rows = np.array(kept, np.int64)
+    return rows, _orbit_sizes(scaffold, rows, options), None
+
+
+def _orbit_sizes(scaffold: Scaffold, rows: np.ndarray, options: SearchOptions) -> np.ndarray:
+    """Return the size of each design's orbit under the scaffold's rotations (1 each with fixes)."""
+    from ..symmetry.group import symmetry_group
+
+    if options.fixes:
+        return np.ones(len(rows), np.int64)
+    perms, signs = symmetry_group(scaffold, options.tolerance).action("rotations")
+    sizes = []
+    for labels in rows:
+        images = np.zeros((len(perms), len(labels)), np.int64)
+        np.put_along_axis(images, perms, signs[:, None] * labels[None, :], axis=1)
+        sizes.append(len(np.unique(images, axis=0)))
+    return np.array(sizes, np.int64)
