@@ -103,6 +103,14 @@ def download(page, selector, timeout=30000):
     return d.suggested_filename, pathlib.Path(d.path()).read_bytes()
 
 
+def wait_for_camera(page, position, tol=1e-6):
+    """Wait (30 s at most) until the page's camera stands at ``position``."""
+    page.wait_for_function(
+        f"window.studio.view.camera.position.toArray().every((x, i) => Math.abs(x - {json.dumps(list(position))}[i]) <= {tol})",
+        timeout=30000,
+    )
+
+
 def close(a, b, tol):
     return all(math.isclose(x, y, abs_tol=tol) for x, y in zip(a, b, strict=True))
 
@@ -123,6 +131,7 @@ def test_save_change_open_back(page, tmp_path):
     path.write_bytes(content)
     page.set_input_files("#open-design", str(path))
     settle(page, labels)
+    wait_for_camera(page, saved["position"])  # set once the scaffold has loaded, just after the labels show
     back = state(page)
     assert back["key"] == "cube" and back["nulls"] == saved["nulls"] and not back["message"]
     assert close(back["position"], saved["position"], 1e-6) and close(back["target"], saved["target"], 1e-6)
