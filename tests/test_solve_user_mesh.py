@@ -90,7 +90,7 @@ def test_on_a_mesh_too_big_to_walk_the_diagram_answers_or_the_refusal_names_the_
     from lkspace import load, realize
 
     refused = solve(torus_obj(tmp_path / "torus8x4.obj", 8, 4), "--type", "m3_1")
-    assert refused.returncode == 2 and "--labels -3..3" in refused.stderr, refused.stderr
+    assert refused.returncode == 2 and "with labels in -3..3" in refused.stderr, refused.stderr
     mesh = torus_obj(tmp_path / "torus6x3.obj", 6, 3)
     done = solve(mesh, "--type", "m3_1")
     assert done.returncode == 0, done.stderr

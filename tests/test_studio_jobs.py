@@ -274,15 +274,12 @@ def test_the_payloads_found_so_far(client):
 
 
 class StubWorker:
-    """A worker process whose liveness is asked just as another thread cancels its job (the race CI met)."""
+    """A worker process and its pipe: reading the pipe (once armed) lets another thread cancel the job first (the race CI met)."""
 
     def __init__(self):
-        self.job, self.terminated, self.exitcode = None, False, None
+        self.job, self.armed, self.terminated, self.exitcode = None, False, False, None
 
     def is_alive(self):
-        canceller = threading.Thread(target=self.job.cancel)
-        canceller.start()
-        canceller.join(timeout=0.5)  # the cancel waits for the poll, or (unguarded) kills the worker first
         return not self.terminated
 
     def terminate(self):
@@ -293,14 +290,58 @@ class StubWorker:
     def join(self, timeout=None):
         pass
 
+    def poll(self):
+        if self.armed:
+            canceller = threading.Thread(target=self.job.cancel)
+            canceller.start()
+            canceller.join(timeout=0.5)  # the cancel stops the worker, then waits for this read to end
+        return self.armed  # the stopped worker's pipe reads as ended
+
+    def recv(self):
+        if self.terminated:
+            raise EOFError
+        return ("progress", None)
+
 
 def test_a_cancel_racing_a_poll_reads_as_cancelled_not_as_a_dead_worker():
-    import queue
-
     from lkspace.studio.jobs import Job
 
     worker = StubWorker()
-    job = worker.job = Job(1, "clearance", worker, queue.Queue())
+    job = worker.job = Job(1, "clearance", worker, worker)
     first = job.poll().state
+    worker.armed = True
+    second = job.poll()
     time.sleep(0.1)
-    assert (first, job.poll().state, job.error) == ("running", "cancelled", None)
+    assert (first, second.state, second.error, job.poll().state) == ("running", "cancelled", None, "cancelled")
+
+
+def _half_a_message(sending):
+    """A worker that dies while it sends: a message's header saying 1 MB, 10 bytes of it, then the end a moment later."""
+    import os
+    import struct
+
+    os.write(sending.fileno(), struct.pack("!i", 1 << 20) + b"x" * 10)
+    time.sleep(0.5)  # the server is reading by now
+    os._exit(1)
+
+
+def test_a_worker_that_dies_mid_message_is_read_as_stopped_not_waited_for():
+    """The studio hung at Ctrl-C in CI: a read of a worker's unfinished message waited forever (the server held
+    the pipe's other end too), and the shutdown waited for that read."""
+    import multiprocessing
+
+    from lkspace.studio.jobs import Job
+
+    ctx = multiprocessing.get_context("fork")
+    channel, sending = ctx.Pipe(duplex=False)
+    process = ctx.Process(target=_half_a_message, args=(sending,))
+    process.start()
+    sending.close()  # as Jobs.start does: the worker holds the only sending end
+    job = Job(1, "relax", process, channel)
+    assert channel.poll(timeout=30)  # the header has come
+    states = []
+    reader = threading.Thread(target=lambda: states.append(job.poll()), daemon=True)
+    reader.start()
+    reader.join(timeout=30)
+    assert not reader.is_alive(), "the read waits for a worker that has gone"
+    assert (states[0].state, states[0].error) == ("error", "the worker stopped (exit code 1)")

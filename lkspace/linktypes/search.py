@@ -305,7 +305,7 @@ def _from_diagram(
             built.append(_solution(labels, orbit, goal, again))
         if len(built) >= o.count:
             break
-    hint = "" if wider is None else f"; the diagram of {goal.label} fits here with --labels -{wider}..{wider}"
+    hint = "" if wider is None else f"; the diagram of {goal.label} fits here with labels in -{wider}..{wider}"
     return built, hint
 
 

@@ -3,8 +3,9 @@
 Each job runs :func:`run_job` in a fresh process of lkspace's worker context
 (:func:`lkspace.runtime.workers.context`; the fork server preloads the heavy modules, so a job
 starts in milliseconds after the first).  Progress of the library's long steps
-(:mod:`lkspace.runtime.progress`) and the result come back through a queue the server drains
-when the page polls.
+(:mod:`lkspace.runtime.progress`) and the result come back through a pipe the server drains
+when the page polls.  The server keeps only the pipe's reading end, so a worker that dies
+(or is stopped) mid-message is read as the end of the pipe, never waited for.
 
 Jobs are bounded: one job of each kind at a time per page, and a new one stops the page's
 one running (an identification, relaxation or clearance measurement of an older design is
@@ -20,7 +21,6 @@ bounds them: they neither count against the cap nor show by id.
 from __future__ import annotations
 
 import itertools
-import queue as queues
 import threading
 import time
 from collections.abc import Callable
@@ -50,6 +50,8 @@ from .lanes import Busy
 from .requests import SolveRequest
 
 if TYPE_CHECKING:
+    from multiprocessing.connection import Connection
+
     from ..geometry.realization import Realization
 
 PRELOAD = [
@@ -81,15 +83,15 @@ class ExportFailed(LkspaceError):
     status = 422
 
 
-class QueueReporter:
+class PipeReporter:
     """Sends the progress of a worker's long steps to the server."""
 
-    def __init__(self, channel: Any) -> None:
+    def __init__(self, channel: Connection) -> None:
         self._channel = channel
 
     def show(self, step: Step) -> None:
         """Send the state of ``step``."""
-        self._channel.put(("progress", JobProgress(step.description, step.done, step.text)))
+        self._channel.send(("progress", JobProgress(step.description, step.done, step.text)))
 
     def close(self, step: Step) -> None:
         """Nothing to remove."""
@@ -175,16 +177,16 @@ TASKS: dict[JobKind, Callable[..., JobResult]] = {
 """Job kinds -> the function a worker runs."""
 
 
-def run_job(kind: JobKind, args: tuple[Any, ...], channel: Any) -> None:
+def run_job(kind: JobKind, args: tuple[Any, ...], channel: Connection) -> None:
     """Worker entry point: run ``TASKS[kind](*args)`` and send ``("done", result)`` or ``("error", message)``."""
     ignore_interrupts()
-    install(QueueReporter(channel))
+    install(PipeReporter(channel))
     try:
-        channel.put(("done", TASKS[kind](*args)))
+        channel.send(("done", TASKS[kind](*args)))
     except LkspaceError as exc:
-        channel.put(("error", str(exc)))
+        channel.send(("error", str(exc)))
     except Exception as exc:  # noqa: BLE001 - reported to the page, the server keeps running
-        channel.put(("error", f"internal error ({type(exc).__name__}: {exc})"))
+        channel.send(("error", f"internal error ({type(exc).__name__}: {exc})"))
 
 
 @dataclass(eq=False)
@@ -194,15 +196,18 @@ class Job:
     id: int
     kind: JobKind
     process: Any
-    channel: Any
+    channel: Connection
+    """The reading end of the worker's pipe."""
     started: float = field(default_factory=time.monotonic)
     ended: float | None = None
     state: JobStatus = "running"
     progress: JobProgress | None = None
     result: JobResult | None = None
     error: str | None = None
+    stopping: bool = False
+    """Set before a cancel stops the worker: its end is then read as the cancel, not as the worker dying."""
     guard: threading.Lock = field(default_factory=threading.Lock, repr=False)
-    """Held while the state changes: a cancel (which kills the worker) is never read as the worker dying."""
+    """Held while the worker's messages are read, so two polls never read one message in halves."""
 
     def poll(self) -> JobState:
         """Take what the worker sent; return the job's state."""
@@ -215,15 +220,22 @@ class Job:
         return JobState(self.id, self.kind, self.state, elapsed, self.progress, self.result, self.error)
 
     def _take(self) -> None:
-        """Read the worker's messages into the state (``guard`` held)."""
+        """Read the worker's messages into the state (``guard`` held).
+
+        ``channel`` is the reading end only: once the worker has exited (or was stopped mid-message)
+        reading it raises :class:`EOFError`, so a read never waits for a worker that is gone.
+        """
         while self.state == "running":
             try:
-                what, value = self.channel.get_nowait()
-            except queues.Empty:
-                if not self.process.is_alive():
-                    time.sleep(0.05)  # a result sent just before exiting may still be in the pipe
-                    if self.channel.empty():
-                        self.state, self.error = "error", f"the worker stopped (exit code {self.process.exitcode})"
+                if not self.channel.poll():
+                    break
+                what, value = self.channel.recv()
+            except (EOFError, OSError):
+                self.process.join(timeout=1)
+                if self.stopping:
+                    self.state = "cancelled"
+                else:
+                    self.state, self.error = "error", f"the worker stopped (exit code {self.process.exitcode})"
                 break
             if what == "progress":
                 self.progress = value
@@ -233,16 +245,23 @@ class Job:
                 self.state, self.error = "error", value
 
     def cancel(self) -> None:
-        """Stop the worker (if running) and mark the job cancelled."""
-        with self.guard:
-            running = self.state == "running"
-            self.state = "cancelled" if running else self.state
-        if running:
-            self.process.terminate()
+        """Stop the worker (if running) and mark the job cancelled; never waits for a poll."""
+        if self.state != "running":
+            return
+        self.stopping = True
+        self.process.terminate()
+        self.process.join(timeout=2)
+        if self.process.is_alive():
+            self.process.kill()
             self.process.join(timeout=2)
-            if self.process.is_alive():
-                self.process.kill()
-                self.process.join(timeout=2)
+        if self.guard.acquire(timeout=5):  # a poll reading now meets the pipe's end at once
+            try:
+                if self.state == "running":
+                    self.state = "cancelled"
+            finally:
+                self.guard.release()
+        else:
+            self.state = "cancelled"
 
 
 class Jobs:
@@ -280,9 +299,10 @@ class Jobs:
                 kinds = ", ".join(j.kind for j in running)
                 n = len(running)
                 raise Busy(f"the studio is busy: {n} job{'s' if n != 1 else ''} running ({kinds}); wait or cancel one")
-            channel = self._ctx.Queue()
-            process = self._ctx.Process(target=run_job, args=(kind, args, channel), daemon=True)  # type: ignore[attr-defined]
+            channel, sending = self._ctx.Pipe(duplex=False)
+            process = self._ctx.Process(target=run_job, args=(kind, args, sending), daemon=True)  # type: ignore[attr-defined]
             process.start()
+            sending.close()  # the worker holds the only sending end: its exit ends the pipe
             with self._lock:
                 job = Job(next(self._ids), kind, process, channel)
                 self._jobs[job.id] = job
