@@ -20,15 +20,6 @@ DOMAINS = ["POINT", "EDGE", "FACE", "CORNER"]
 TYPES = ["INT", "INT8", "FLOAT", "BOOLEAN", "STRING", "FLOAT_VECTOR", "FLOAT_COLOR", "BYTE_COLOR", "FLOAT2", "INT32_2D"]
 
 
-@pytest.fixture
-def blender():
-    bpy.ops.wm.read_factory_settings(use_empty=True)
-    addon.register()
-    bpy.context.scene.lkspace.live = False
-    yield bpy.context
-    addon.unregister()
-
-
 def cube(context, name="Cube"):
     bpy.ops.mesh.primitive_cube_add()
     obj = context.active_object

@@ -19,19 +19,13 @@ pytest.importorskip("starlette")
 pytest.importorskip("uvicorn")
 Image = pytest.importorskip("PIL.Image")
 
-from .studio_harness import chromium, ready, running_studio, start_studio, stop_studio  # noqa: E402
+from .studio_harness import ready, running_studio, start_studio, stop_studio  # noqa: E402
 
 
 @pytest.fixture(scope="module")
 def studio():
     with running_studio("cube") as url:
         yield url
-
-
-@pytest.fixture(scope="module")
-def browser():
-    with chromium() as b:
-        yield b
 
 
 @pytest.fixture

@@ -19,7 +19,7 @@ from hypothesis import Phase, example, given, note, settings
 from hypothesis import strategies as st
 
 import lkspace
-from tests.studio_harness import chromium, click_edge, labels_of, ready, redraws, running_studio, wait_redraw
+from tests.studio_harness import click_edge, labels_of, ready, redraws, running_studio, wait_redraw
 
 SCAFFOLDS = ("tetrahedron", "cube", "octahedron", "dihedron:3", "upload")
 """Scaffolds the property test switches between (``upload``: the octahedron as ``octa.obj``)."""
@@ -42,12 +42,6 @@ def studio(tmp_path_factory):
     octa.write_bytes(OCTA_OBJ)
     with running_studio(catalog) as url:
         yield url, str(octa), catalog
-
-
-@pytest.fixture(scope="module")
-def browser():
-    with chromium() as b:
-        yield b
 
 
 class Watched:
