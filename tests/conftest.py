@@ -22,3 +22,29 @@ def cube():
 @pytest.fixture
 def rng():
     return np.random.default_rng(12345)
+
+
+@pytest.fixture(scope="module")
+def browser():
+    """Debian's Chromium under Playwright, one per test module (skips where either is missing).
+
+    Not one per session: a running Playwright keeps its event loop set in the main thread, so a later
+    module's ``asyncio.run`` (httpx, anyio) would fail with "cannot be called from a running event loop".
+    """
+    from tests.studio_harness import chromium
+
+    with chromium() as b:
+        yield b
+
+
+@pytest.fixture
+def blender():
+    """An empty Blender scene with the add-on registered (``bpy``: extra ``[blender]``); live off unless a test turns it on."""
+    bpy = pytest.importorskip("bpy")
+    import lkspace.blender.addon as addon
+
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    addon.register()
+    bpy.context.scene.lkspace.live = False
+    yield bpy.context
+    addon.unregister()

@@ -21,20 +21,9 @@ bpy = pytest.importorskip("bpy")
 import bmesh  # noqa: E402  (only after bpy)
 
 import lkspace  # noqa: E402
-import lkspace.blender.addon as addon  # noqa: E402
 from lkspace.blender.addon import identifying, scene  # noqa: E402
 
 TETRAHEDRON = [(1, 1, 1), (1, -1, -1), (-1, 1, -1), (-1, -1, 1)]
-
-
-@pytest.fixture
-def blender():
-    """An empty scene with the add-on registered; the scene's live toggle off unless a test turns it on."""
-    bpy.ops.wm.read_factory_settings(use_empty=True)
-    addon.register()
-    bpy.context.scene.lkspace.live = False
-    yield bpy.context
-    addon.unregister()
 
 
 def add_object(context, name, vertices, faces):

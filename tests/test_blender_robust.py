@@ -20,15 +20,6 @@ DOMAINS = ["POINT", "EDGE", "FACE", "CORNER"]
 TYPES = ["INT", "INT8", "FLOAT", "BOOLEAN", "STRING", "FLOAT_VECTOR", "FLOAT_COLOR", "BYTE_COLOR", "FLOAT2", "INT32_2D"]
 
 
-@pytest.fixture
-def blender():
-    bpy.ops.wm.read_factory_settings(use_empty=True)
-    addon.register()
-    bpy.context.scene.lkspace.live = False
-    yield bpy.context
-    addon.unregister()
-
-
 def cube(context, name="Cube"):
     bpy.ops.mesh.primitive_cube_add()
     obj = context.active_object
@@ -126,10 +117,33 @@ def test_moving_the_object_moves_the_strands_without_a_rebuild(blender):
         live.regenerate = real
 
 
-def test_advice_names_controls_the_panel_has(blender):
-    bpy.ops.mesh.primitive_monkey_add()
+def twins():
+    """Two unit cubes in one mesh, the second moved by (0, 0.3, 0.3) into the first: faces that cross."""
+    corners = [(x, y, z) for x in (0, 1) for y in (0, 1) for z in (0, 1)]
+    quads = [(0, 1, 3, 2), (4, 6, 7, 5), (0, 4, 5, 1), (2, 3, 7, 6), (0, 2, 6, 4), (1, 5, 7, 3)]
+    mesh = bpy.data.meshes.new("Twins")
+    mesh.from_pydata(
+        corners + [(x, y + 0.3, z + 0.3) for x, y, z in corners], [], quads + [tuple(i + 8 for i in q) for q in quads]
+    )
+    obj = bpy.data.objects.new("Twins", mesh)
+    bpy.context.scene.collection.objects.link(obj)
+    bpy.context.view_layer.objects.active = obj
+    obj.select_set(True)
+
+
+@pytest.mark.parametrize(
+    ("name", "add"),
+    [
+        ("Twins", twins),  # 12 faces: refused at once
+        # Suzanne's 500 faces are realized before the refusal: half a minute, a minute under load
+        pytest.param("Suzanne", lambda: bpy.ops.mesh.primitive_monkey_add(), marks=pytest.mark.slow),
+    ],
+    ids=["twins", "suzanne"],
+)
+def test_advice_names_controls_the_panel_has(blender, name, add):
+    add()
     answer = regenerate()
-    assert answer.startswith("Error: Suzanne: strands"), answer
+    assert answer.startswith(f"Error: {name}: strands"), answer
     props = blender.scene.lkspace.bl_rna.properties
     names = {p.name for p in props}
     assert "`" not in answer and "normal_offset" not in answer and "radius" not in answer

@@ -30,7 +30,12 @@ def cli(*args: str) -> dict:
     return json.loads(done.stdout)
 
 
-@pytest.mark.parametrize("name", SEARCHED)
+def slow_but(*kept: str) -> list:
+    """``SEARCHED``, those not in ``kept`` marked slow (each name is two CLI processes, seconds each)."""
+    return [n if n in kept else pytest.param(n, marks=pytest.mark.slow) for n in SEARCHED]
+
+
+@pytest.mark.parametrize("name", slow_but("10_1", "L9a3"))  # a knot and a link by default
 def test_lookup_answers_from_a_builtin_scaffold_named_again_by_identify(name):
     pytest.importorskip("snappy")
     answer = cli("lookup", name, "--limit", "3")
@@ -55,7 +60,7 @@ def test_the_mirror_image_is_the_design_negated():
     assert [-t for t in d["labels"]] in [e["labels"] for e in table if e["scaffold"] == d["scaffold"]]
 
 
-@pytest.mark.parametrize("name", ["8_17", "9_32", "10_120"])
+@pytest.mark.parametrize("name", ["9_32", *(pytest.param(n, marks=pytest.mark.slow) for n in ["8_17", "10_120"])])
 def test_search_designs_are_named_alike_by_topoly(name):
     """Independent: topoly's HOMFLY-PT on the realized curves of the simplest design."""
     topoly = pytest.importorskip("topoly")

@@ -22,6 +22,9 @@ A file the reader is shown is the file the example reads: ``<!-- console: file N
 on the line before any other fenced block (```` ```text ````, ```` ```json ````, …) writes
 that block's text to ``NAME`` in the folder of every later console block of the same page
 whose commands name it.
+
+A block that is the start of another (same files, same setup, the same first commands and outputs)
+is skipped with that reason: the other block runs the same commands in the same order.
 """
 
 import os
@@ -48,7 +51,33 @@ def _unindent(text, indent):
 
 
 def _blocks():
-    """One pytest param per console block: (files, setup commands, body)."""
+    """One pytest param per console block: (files, setup commands, body).
+
+    A block whose files, setup and commands with their output are the first commands of another
+    block's (README's copies of docs/ examples) is skipped: that block runs them, in the same order.
+    """
+    blocks = list(_page_blocks())
+    for i, block in enumerate(blocks):
+        files, setup, body = block.values
+        mine = _commands(body)
+        for j, other in enumerate(blocks):
+            theirs = _commands(other.values[2])
+            longer = len(theirs) > len(mine) or (len(theirs) == len(mine) and j < i)
+            if (
+                j != i
+                and not block.marks
+                and not other.marks
+                and (other.values[0], other.values[1]) == (files, setup)
+                and longer
+            ):
+                if theirs[: len(mine)] == mine:
+                    reason = f"its commands are the first {len(mine)} of {other.id}, which runs them"
+                    block = pytest.param(*block.values, marks=[pytest.mark.skip(reason=reason)], id=block.id)
+                    break
+        yield block
+
+
+def _page_blocks():
     for page in PAGES:
         text = page.read_text()
         shown = [(m.start(), m[1], _unindent(m[3], m[2])) for m in FILE.finditer(text)]

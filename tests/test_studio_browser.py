@@ -9,7 +9,7 @@ import pytest
 
 import lkspace
 
-from .studio_harness import chromium, click_edge, labels_of, ready, redraws, running_studio, wait_redraw
+from .studio_harness import click_edge, labels_of, ready, redraws, running_studio, wait_redraw
 
 
 @pytest.fixture(scope="module")
@@ -20,12 +20,6 @@ def studio(tmp_path_factory):
     lkspace.write_catalog("tetrahedron", catalog, label_set="-2..2")
     with running_studio(catalog) as url:
         yield url, catalog, folder
-
-
-@pytest.fixture(scope="module")
-def browser():
-    with chromium() as b:
-        yield b
 
 
 def test_edit_solve_browse_export_reload(studio, browser, tmp_path):

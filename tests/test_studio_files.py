@@ -19,19 +19,13 @@ pytest.importorskip("starlette")
 pytest.importorskip("uvicorn")
 Image = pytest.importorskip("PIL.Image")
 
-from .studio_harness import chromium, ready, running_studio, start_studio, stop_studio  # noqa: E402
+from .studio_harness import ready, running_studio, start_studio, stop_studio  # noqa: E402
 
 
 @pytest.fixture(scope="module")
 def studio():
     with running_studio("cube") as url:
         yield url
-
-
-@pytest.fixture(scope="module")
-def browser():
-    with chromium() as b:
-        yield b
 
 
 @pytest.fixture
@@ -264,6 +258,28 @@ def webm_ok(page, data):
     return size == page.evaluate("[document.getElementById('canvas').width, document.getElementById('canvas').height]")
 
 
+def test_twist_animation_and_a_cancelled_turntable(page):
+    make_design(page)
+    before = state(page)
+    click_edge(page, 5)
+    page.fill("#an-range", "0..1")
+    name, data = download(page, "#an-twist", timeout=90000)
+    assert webm_ok(page, data) and name.endswith("_twist-e5_0..1.webm") and name.startswith("cube_")
+    assert state(page)["labels"] == before["labels"]
+    # bounded and cancellable
+    page.fill("#an-range", "-50..50")
+    page.click("#an-twist")
+    page.wait_for_function("!document.getElementById('message').hidden")
+    assert "at most 41 labels" in state(page)["message"]
+    page.click("#an-turn")
+    page.wait_for_function("document.getElementById('an-status').textContent.includes('frame')")
+    page.click("#an-cancel")
+    page.wait_for_function("document.getElementById('an-status').textContent === 'cancelled'", timeout=30000)
+    after = state(page)
+    assert close(after["position"], before["position"], 1e-9) and after["labels"] == before["labels"]  # put back
+
+
+@pytest.mark.slow  # 121 frames in software rendering, then the 3-step twist: half a minute
 def test_turntable_and_twist_animations(page):
     make_design(page)
     before = state(page)

@@ -239,23 +239,55 @@ def answered_as_json(r):
         assert r.status_code == 200 and r.content
 
 
-@pytest.mark.parametrize("path", POSTS)
-@hypothesis.settings(max_examples=80, deadline=None, suppress_health_check=list(hypothesis.HealthCheck))
-@hypothesis.given(payload=body)
-def test_no_json_body_gets_a_5xx(client, path, payload):
+def fuzzed(n: int):
+    """Hypothesis settings of a fuzz test of the server: ``n`` examples, no deadline, no health checks."""
+    return hypothesis.settings(max_examples=n, deadline=None, suppress_health_check=list(hypothesis.HealthCheck))
+
+
+JOB_OR_QUERY = {
+    "job": st.text(min_size=1, max_size=30) | st.integers().map(str),
+    "params": st.dictionaries(st.sampled_from(["name", "limit", "scaffold", "x"]), st.text(max_size=20), max_size=3),
+}
+
+
+def post_answers_as_json(client, path, payload):
     answered_as_json(
         client.post(f"/api/{path}", content=json.dumps(payload), headers={"Content-Type": "application/json"})
     )
 
 
-@hypothesis.settings(max_examples=150, deadline=None, suppress_health_check=list(hypothesis.HealthCheck))
-@hypothesis.given(
-    job=st.text(min_size=1, max_size=30) | st.integers().map(str),
-    params=st.dictionaries(st.sampled_from(["name", "limit", "scaffold", "x"]), st.text(max_size=20), max_size=3),
-)
-def test_no_job_id_or_lookup_query_gets_a_5xx(client, job, params):
+def job_and_lookup_answer_as_json(client, job, params):
     answered_as_json(client.get("/api/job/" + urllib.parse.quote(job, safe="")))
     answered_as_json(client.get("/api/lookup", params=params))
+
+
+# the default run sends 25 bodies to each POST and 50 job ids and queries; the slow run 80 and 150
+@pytest.mark.parametrize("path", POSTS)
+@fuzzed(25)
+@hypothesis.given(payload=body)
+def test_no_json_body_gets_a_5xx(client, path, payload):
+    post_answers_as_json(client, path, payload)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("path", POSTS)
+@fuzzed(80)
+@hypothesis.given(payload=body)
+def test_no_json_body_of_many_gets_a_5xx(client, path, payload):
+    post_answers_as_json(client, path, payload)
+
+
+@fuzzed(50)
+@hypothesis.given(**JOB_OR_QUERY)
+def test_no_job_id_or_lookup_query_gets_a_5xx(client, job, params):
+    job_and_lookup_answer_as_json(client, job, params)
+
+
+@pytest.mark.slow
+@fuzzed(150)
+@hypothesis.given(**JOB_OR_QUERY)
+def test_no_job_id_or_lookup_query_of_many_gets_a_5xx(client, job, params):
+    job_and_lookup_answer_as_json(client, job, params)
 
 
 def test_the_payloads_found_so_far(client):

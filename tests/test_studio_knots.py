@@ -16,7 +16,7 @@ pytest.importorskip("spherogram")
 
 from lkspace.linktypes.common_names import common_name  # noqa: E402
 from lkspace.linktypes.lookup import lookup  # noqa: E402
-from tests.studio_harness import chromium, click_edge, labels_of, ready, running_studio  # noqa: E402
+from tests.studio_harness import click_edge, labels_of, ready, running_studio  # noqa: E402
 
 BORROMEAN = [1] * 6
 """The Borromean rings on the tetrahedron (L6a4)."""
@@ -29,12 +29,6 @@ def studio(tmp_path_factory):
     lkspace.write_catalog("tetrahedron", catalog, label_set="-1..1", selection=lkspace.Selection(identify=True))
     with running_studio(catalog) as url:
         yield url, catalog
-
-
-@pytest.fixture(scope="module")
-def browser():
-    with chromium() as b:
-        yield b
 
 
 @pytest.fixture

@@ -14,7 +14,7 @@ from lkspace.geometry.params import RealizeOptions
 pytest.importorskip("starlette")
 pytest.importorskip("uvicorn")
 from lkspace.studio.curves import curve_key  # noqa: E402
-from tests.studio_harness import chromium, running_studio  # noqa: E402
+from tests.studio_harness import running_studio  # noqa: E402
 
 NAME = "honeycomb:cP@3x3x3"
 BLOCK = [[0, 0, 0], [1, 0, 0]]  # the page's block 2x1x1: two lattice copies of every thread
@@ -42,48 +42,49 @@ def rgb(color):
     return "rgb({}, {}, {})".format(*(int(color[i : i + 2], 16) for i in (1, 3, 5)))
 
 
-def test_edits_redraw_the_new_strands_only_and_keep_colours(url):
+@pytest.mark.parametrize("keys", ["+-+", pytest.param("++-+--", marks=pytest.mark.slow)])  # a redraw a key
+def test_edits_redraw_the_new_strands_only_and_keep_colours(url, browser, keys):
     sc = lkspace.load(NAME)
-    with chromium() as browser:
-        page = browser.new_page(viewport={"width": 1200, "height": 800})
-        errors = []
-        page.on("pageerror", lambda e: errors.append(str(e)))
-        page.goto(f"{url}#s={NAME}&b=2x1x1")
-        page.wait_for_function("window.studio && window.studio.state.ready", timeout=60000)
-        for e in range(sc.n_edges):  # select an edge whose edits change some strands
-            pos = page.evaluate(f"window.studio.edgeScreen({e})")
-            page.mouse.click(pos["x"], pos["y"])
-            if page.evaluate("window.studio.state.selected") is not None:
-                break
-        before, rebuilt, kept = None, 0, 0
-        for key in "++-+--":
-            page.evaluate("window.studio.view.groups.strands.children.forEach((m, i) => { m.userData.mark = i; })")
-            n = page.evaluate("window.studio.state.latencies.length")
-            page.keyboard.press(key)
-            page.wait_for_function(f"window.studio.state.latencies.length > {n}", timeout=60000)
-            seen = page.evaluate(SEEN)
-            real = lkspace.realize(
-                sc, seen["labels"], options=RealizeOptions(embedding="later", translations=np.array(BLOCK))
-            )
-            keys = [curve_key(c, cl) for c, cl in zip(real.curves, real.closed, strict=True)]
-            # exactly the server's curves are drawn, one mesh each, in the colour of their strand
-            assert sorted(d["key"] for d in seen["drawn"]) == sorted(keys) == sorted(seen["curves"]["keys"])
-            color_of = {d["key"]: d["color"] for d in seen["drawn"]}
-            assert [color_of[k] for k in keys] == [seen["colors"][s] for s in real.strand_of]
-            assert seen["swatches"] == [rgb(c) for c in seen["colors"]]  # the Read panel uses the same colours
-            # a curve drawn before keeps its mesh; the others are new
-            old = [d for d in seen["drawn"] if d["mark"] is not None]
-            rebuilt += len(seen["drawn"]) - len(old)
-            kept += len(old)
-            assert sum(seen["curves"]["sent"]) <= len(seen["drawn"]) - len(old)  # points travel for new curves only
-            # a strand named by the same smallest port keeps its colour
-            now = {s["port"]: c for s, c in zip(seen["strands"], seen["colors"], strict=True)}
-            if before is not None:
-                common = set(now) & set(before)
-                assert common and all(now[q] == before[q] for q in common)
-            before = now
-        assert rebuilt > 0 and kept > rebuilt  # every edit changed some strands, most stayed as they were
-        assert len(set(seen["colors"])) > 1 and not errors, errors
+    page = browser.new_page(viewport={"width": 1200, "height": 800})
+    errors = []
+    page.on("pageerror", lambda e: errors.append(str(e)))
+    page.goto(f"{url}#s={NAME}&b=2x1x1")
+    page.wait_for_function("window.studio && window.studio.state.ready", timeout=60000)
+    for e in range(sc.n_edges):  # select an edge whose edits change some strands
+        pos = page.evaluate(f"window.studio.edgeScreen({e})")
+        page.mouse.click(pos["x"], pos["y"])
+        if page.evaluate("window.studio.state.selected") is not None:
+            break
+    before, rebuilt, kept = None, 0, 0
+    for key in keys:
+        page.evaluate("window.studio.view.groups.strands.children.forEach((m, i) => { m.userData.mark = i; })")
+        n = page.evaluate("window.studio.state.latencies.length")
+        page.keyboard.press(key)
+        page.wait_for_function(f"window.studio.state.latencies.length > {n}", timeout=60000)
+        seen = page.evaluate(SEEN)
+        real = lkspace.realize(
+            sc, seen["labels"], options=RealizeOptions(embedding="later", translations=np.array(BLOCK))
+        )
+        keys = [curve_key(c, cl) for c, cl in zip(real.curves, real.closed, strict=True)]
+        # exactly the server's curves are drawn, one mesh each, in the colour of their strand
+        assert sorted(d["key"] for d in seen["drawn"]) == sorted(keys) == sorted(seen["curves"]["keys"])
+        color_of = {d["key"]: d["color"] for d in seen["drawn"]}
+        assert [color_of[k] for k in keys] == [seen["colors"][s] for s in real.strand_of]
+        assert seen["swatches"] == [rgb(c) for c in seen["colors"]]  # the Read panel uses the same colours
+        # a curve drawn before keeps its mesh; the others are new
+        old = [d for d in seen["drawn"] if d["mark"] is not None]
+        rebuilt += len(seen["drawn"]) - len(old)
+        kept += len(old)
+        assert sum(seen["curves"]["sent"]) <= len(seen["drawn"]) - len(old)  # points travel for new curves only
+        # a strand named by the same smallest port keeps its colour
+        now = {s["port"]: c for s, c in zip(seen["strands"], seen["colors"], strict=True)}
+        if before is not None:
+            common = set(now) & set(before)
+            assert common and all(now[q] == before[q] for q in common)
+        before = now
+    assert rebuilt > 0 and kept > rebuilt  # every edit changed some strands, most stayed as they were
+    assert len(set(seen["colors"])) > 1 and not errors, errors
+    page.close()
 
 
 SEAM = """async () => {
@@ -102,10 +103,10 @@ SEAM = """async () => {
 }"""
 
 
-def test_closed_tubes_have_no_seam(url):
+def test_closed_tubes_have_no_seam(url, browser):
     """The last ring of a closed tube meets the first as any two neighbours meet (no pinch)."""
-    with chromium() as browser:
-        page = browser.new_page()
-        page.goto(url)
-        got = page.evaluate(SEAM)
+    page = browser.new_page()
+    page.goto(url)
+    got = page.evaluate(SEAM)
+    page.close()
     assert got["inner"] < 0.2 and got["seam"] < 1.5 * got["inner"], got

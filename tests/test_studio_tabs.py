@@ -8,7 +8,7 @@ import lkspace
 pytest.importorskip("starlette")
 pytest.importorskip("uvicorn")
 
-from .studio_harness import chromium, ready, running_studio  # noqa: E402
+from .studio_harness import ready, running_studio  # noqa: E402
 
 BORROMEAN = "#s=tetrahedron&t=1,1,1,1,1,1"  # L6a4: 6 crossings, the simplified diagram found has more
 SLOW = "#s=dodecahedron&t=" + ",".join(["2"] * 30)  # about 10 s to name
@@ -18,12 +18,6 @@ SLOW = "#s=dodecahedron&t=" + ",".join(["2"] * 30)  # about 10 s to name
 def studio():
     with running_studio("cube") as url:
         yield url
-
-
-@pytest.fixture(scope="module")
-def browser():
-    with chromium() as b:
-        yield b
 
 
 def named(page, timeout=90000):
