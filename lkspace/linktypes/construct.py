@@ -6,13 +6,17 @@ its checkerboard mesh (:mod:`lkspace.scaffolds.diagram_mesh`), placed by one of
 :func:`~lkspace.scaffolds.constructed.layouts` (the one the shipped table checked first).
 The result is checked before it is returned: the diagram of the labels
 (:func:`~lkspace.knots.assembly.assemble_pd`) is named and must be the type asked for, in
-the chirality asked for; a placement that fails the check is replaced by the next one.
+the chirality asked for, and its default geometry (:func:`~lkspace.geometry.realization.realize`,
+default parameters) must pass the embedding check, so ``export`` takes it as it is; a
+placement that fails either check is replaced by the next one.  When no placement passes
+the embedding check, the first one whose strands are right is returned (``clear`` false:
+``export`` needs a smaller ``--radius`` for it).
 """
 
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 from ..errors import LkspaceError, ScaffoldError
 from ..knots.assembly import assemble_pd
@@ -29,7 +33,8 @@ class Construction:
     """A constructed design: ``scaffold`` carries the labels; ``name``/``mirror`` as identify names it.
 
     ``layout``: the placement kept; ``crossings``: crossings of the diagram it was made from;
-    ``builtin``: the built-in name of the same design (``knot:8_17``) or ``None``.
+    ``builtin``: the built-in name of the same design (``knot:8_17``) or ``None``;
+    ``clear``: its default geometry passes the embedding check.
     """
 
     scaffold: Scaffold
@@ -38,6 +43,7 @@ class Construction:
     layout: str
     crossings: int
     builtin: str | None
+    clear: bool = True
 
 
 def _diagram(target: LinkType, typed: str) -> tuple[list[list[int]], bool]:
@@ -79,6 +85,17 @@ def _named(scaffold: Scaffold) -> Naming:
     return name_pd([[int(v) for v in x] for x in diagram.pd], diagram.n_components, floer=False)
 
 
+def clear(scaffold: Scaffold) -> str | None:
+    """Return why the default realization of ``scaffold`` is refused (strands too close), or ``None``."""
+    from ..geometry.realization import realize
+
+    try:
+        realize(scaffold)
+    except LkspaceError as exc:
+        return str(exc).splitlines()[0]
+    return None
+
+
 def _matches(got: Naming, want: Naming) -> bool:
     """Whether a design's naming is the target's: its name and chirality, or (unnamed) its invariants."""
     if want.name is None:  # beyond the tables: the same Jones and HOMFLY-PT polynomials, both computed
@@ -114,19 +131,28 @@ def construct(type_name: str | None = None, pd: Sequence[Sequence[int]] | None =
             builtin = f"{kind}:{'m' if mirror else ''}{target.name}"
             first = table()[target.name].layout
     tried: list[str] = []
+    fallback = None
     for layout in dict.fromkeys([first or "sphere", *layouts(code)]):
-        scaffold = design_scaffold(code, label, layout)
-        assert scaffold.labels is not None
-        if mirror:
-            scaffold = scaffold.with_labels(-scaffold.labels)
         try:
+            scaffold = design_scaffold(code, label, layout)
+            assert scaffold.labels is not None
+            if mirror:
+                scaffold = scaffold.with_labels(-scaffold.labels)
             got = _named(scaffold)
         except LkspaceError as exc:
             tried.append(f"{layout}: {exc}")
             continue
-        if _matches(got, want):
-            return Construction(scaffold, got.name, got.mirror, layout, len(code), builtin)
-        tried.append(f"{layout}: strands named {got.chiral_name or got.name}")
+        if not _matches(got, want):
+            tried.append(f"{layout}: strands named {got.chiral_name or got.name}")
+            continue
+        made = Construction(scaffold, got.name, got.mirror, layout, len(code), builtin if layout == first else None)
+        refused = clear(scaffold)
+        if refused is None:
+            return made
+        fallback = fallback or replace(made, clear=False)
+        tried.append(f"{layout}: {refused}")
+    if fallback is not None:
+        return fallback
     raise ScaffoldError(
         f"{label}: none of {len(tried)} placements of its mesh realizes the diagram "
         f"({'; '.join(tried[:2])}, ...); please report it"
