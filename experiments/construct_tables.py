@@ -34,7 +34,7 @@ from lkspace import __version__
 from lkspace.errors import LkspaceError
 from lkspace.knots.assembly import assemble_pd
 from lkspace.knots.naming import name_pd
-from lkspace.linktypes.construct import clear
+from lkspace.linktypes.construct import clear, reversals
 from lkspace.scaffolds.constructed import LAYOUTS, TABLE_FILE, design_scaffold, layouts
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -84,10 +84,13 @@ def check(name: str, entry: dict) -> dict:
             row.update(constructed=True, design_crossings=int(abs(s.labels).sum()), edges=s.n_edges, faces=s.n_faces)
         if len(row.setdefault("names", [])) < 3:
             row["names"].append(f"{layout}: {got.chiral_name or got.name}")
-        if got.name == name or (want.name is None and got.name is None and _isometric(entry["pd"], d.pd)):
+        by = None
+        if want.name is None and got.name is None:
+            by = _unnamed_match(entry["pd"], d.pd)
+        if got.name == name or by:
             row["identified"] = True
-            if want.name is None:
-                row["identified_by"] = "isometric exteriors (the tables' names miss this diagram)"
+            if by:
+                row["identified_by"] = by
             if want.mirror is None or got.mirror == want.mirror:
                 refused = clear(s) or clear(s.with_labels(-s.labels))  # both chiralities are built-ins
                 if refused is not None:
@@ -102,6 +105,19 @@ def check(name: str, entry: dict) -> dict:
                 break
     row["seconds"] = round(time.perf_counter() - t0, 3)
     return row
+
+
+def _unnamed_match(table_pd: list, design_pd) -> str | None:
+    """How a design the tables' names miss is identified with the table's diagram, or ``None``.
+
+    Isometric exteriors (SnapPy), else, where SnapPy cannot decide (a non-hyperbolic
+    link), equal Jones and HOMFLY-PT polynomials for some orientation of the components.
+    """
+    if _isometric(table_pd, design_pd):
+        return "isometric exteriors (the tables' names miss this diagram)"
+    if reversals(table_pd) & reversals([[int(v) for v in x] for x in design_pd]):
+        return "Jones and HOMFLY-PT equal for some orientation of the components (SnapPy cannot compare the exteriors)"
+    return None
 
 
 def _isometric(table_pd: list, design_pd) -> bool:
@@ -217,7 +233,8 @@ def write(
         "identified": sum(bool(r.get("identified")) for r in rows),
         "mirror_right": sum(bool(r.get("mirror_right")) for r in rows),
         "minimal_crossings": sum(r.get("design_crossings") == r["table_crossings"] for r in rows),
-        "identified_by_isometry": sum("identified_by" in r for r in rows),
+        "identified_by_isometry": sum("isometric" in r.get("identified_by", "") for r in rows),
+        "identified_by_polynomials": sum("HOMFLY" in r.get("identified_by", "") for r in rows),
         "seconds_per_type": round(sum(r["seconds"] for r in rows) / max(1, len(rows)), 3),
         "by_layout": {k: sum(str(r.get("layout")).split(":")[0].split("/")[0] == k for r in rows) for k in LAYOUTS},
         "other_colouring": sum(str(r.get("layout")).endswith("/more") for r in rows),

@@ -226,3 +226,25 @@ def test_export_relaxed_8_6_with_no_other_option(tmp_path, capsys):
     code, text, err = run(capsys, "export", "knot:8_6", "--relax", "-o", tmp_path / "8_6.stl", "--json")
     assert code == 0, err
     assert json.loads(text)["fabrication"]["pieces"] == 1
+
+
+def test_unnamed_links_are_compared_for_every_orientation_of_their_components():
+    """A link's Jones polynomial depends on its components' orientations: both of the Hopf link's are kept."""
+    pytest.importorskip("regina")
+    from lkspace.linktypes.construct import reversals
+
+    hopf = reversals(HOPF)
+    assert len(hopf) == 2 and len({jones for jones, _ in hopf}) == 2
+    assert len(reversals(TREFOIL)) == 1
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name", ["L11n432", "mL11n437"])
+def test_links_the_tables_names_miss_are_constructed(name):
+    """Non-hyperbolic: lkspace names neither the table's diagram nor the design; Jones and HOMFLY-PT must agree."""
+    pytest.importorskip("snappy")
+    from lkspace.linktypes.construct import clear, construct
+
+    made = construct(name)
+    assert made.clear and clear(made.scaffold) is None
+    assert made.crossings == 11 and int(abs(made.scaffold.labels).sum()) == 11

@@ -79,10 +79,34 @@ def _table_pd(name: str, typed: str) -> list[list[int]]:
     return one_based(manifold.link().PD_code())
 
 
-def _named(scaffold: Scaffold) -> Naming:
+def _named(scaffold: Scaffold) -> tuple[Naming, list[list[int]]]:
+    """Return the naming of the design's strands and the PD code of their diagram."""
     assert scaffold.labels is not None
     diagram = assemble_pd(scaffold, scaffold.labels)
-    return name_pd([[int(v) for v in x] for x in diagram.pd], diagram.n_components, floer=False)
+    pd = [[int(v) for v in x] for x in diagram.pd]
+    return name_pd(pd, diagram.n_components, floer=False), pd
+
+
+def reversals(pd: Sequence[Sequence[int]]) -> set[tuple[str, str]]:
+    """``(Jones, HOMFLY-PT)`` of the link of ``pd`` (simplified) under every reversal of components but the first.
+
+    The two polynomials of a link depend on its components' orientations, which a
+    design's trace and a table's PD code choose independently; two diagrams of one
+    oriented-up-to-reversal link share a pair.
+    """
+    spherogram, regina, _ = knot_modules()
+    link = spherogram.Link([list(map(int, x)) for x in pd])
+    link.simplify("global")
+    simple = one_based(link.PD_code())
+    k = len(link.link_components)
+    out = set()
+    for flips in range(2 ** (k - 1)):
+        turned = regina.Link.fromPD(simple)
+        for i in range(1, k):
+            if flips >> (i - 1) & 1:
+                turned.reverse(turned.component(i))
+        out.add((str(turned.jones()), str(turned.homfly())))
+    return out
 
 
 def clear(scaffold: Scaffold) -> str | None:
@@ -96,10 +120,13 @@ def clear(scaffold: Scaffold) -> str | None:
     return None
 
 
-def _matches(got: Naming, want: Naming) -> bool:
-    """Whether a design's naming is the target's: its name and chirality, or (unnamed) its invariants."""
-    if want.name is None:  # beyond the tables: the same Jones and HOMFLY-PT polynomials, both computed
-        return None not in (want.jones, want.homfly) and (got.jones, got.homfly) == (want.jones, want.homfly)
+def _matches(got: Naming, want: Naming, design: list[list[int]], target: list[list[int]]) -> bool:
+    """Whether a design's naming is the target's: its name and chirality, or (unnamed) its invariants.
+
+    ``design``, ``target``: PD codes of the design's diagram and of the type's (mirrored when asked).
+    """
+    if want.name is None:  # beyond the tables' names: Jones and HOMFLY-PT equal, for some orientation
+        return got.name is None and bool(reversals(design) & reversals(target))
     return got.name == want.name and (want.mirror is None or got.mirror == want.mirror)
 
 
@@ -130,6 +157,9 @@ def construct(type_name: str | None = None, pd: Sequence[Sequence[int]] | None =
             kind = "knot" if target.components == 1 else "link"
             builtin = f"{kind}:{'m' if mirror else ''}{target.name}"
             first = table()[target.name].layout
+    aim = code
+    if mirror and want.name is None:
+        aim = one_based(knot_modules()[0].Link(code).mirror().PD_code())
     tried: list[str] = []
     fallback = None
     for layout in dict.fromkeys([first or "sphere", *layouts(code)]):
@@ -138,11 +168,11 @@ def construct(type_name: str | None = None, pd: Sequence[Sequence[int]] | None =
             assert scaffold.labels is not None
             if mirror:
                 scaffold = scaffold.with_labels(-scaffold.labels)
-            got = _named(scaffold)
+            got, design = _named(scaffold)
         except LkspaceError as exc:
             tried.append(f"{layout}: {exc}")
             continue
-        if not _matches(got, want):
+        if not _matches(got, want, design, aim):
             tried.append(f"{layout}: strands named {got.chiral_name or got.name}")
             continue
         made = Construction(scaffold, got.name, got.mirror, layout, len(code), builtin if layout == first else None)
