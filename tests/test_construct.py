@@ -82,7 +82,7 @@ def _named(scaffold):
     return identify(scaffold, scaffold.labels).to_json()
 
 
-@pytest.mark.parametrize("name", ["3_1", "m3_1", "5_2", "8_17", "10_1", "L6a4", "mL7a1"])
+@pytest.mark.parametrize("name", ["3_1", "m3_1", "5_2", "8_17", "10_1", "L6a4", "mL7a1", "L10a91"])
 def test_builtin_table_designs_are_their_type(name):
     pytest.importorskip("snappy")
     kind = "link" if name.lstrip("m").startswith("L") else "knot"
@@ -201,7 +201,7 @@ def test_a_relaxed_table_design_prints_with_no_other_option(tmp_path, capsys):
     assert printed["min_gap"] > 0 and printed["pieces"] == 1
 
 
-@pytest.mark.parametrize("name", ["knot:8_6", "knot:m8_6", "knot:10_3", "knot:m10_3"])
+@pytest.mark.parametrize("name", ["knot:8_6", "knot:m8_6", "knot:10_3", "knot:m10_3", "link:L10a91", "link:L9a8"])
 def test_builtin_table_designs_pass_the_embedding_check(name):
     """These placements were shipped refused by ``export`` (strands within ``min_separation``)."""
     from lkspace import realize
