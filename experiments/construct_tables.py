@@ -194,6 +194,7 @@ def main() -> None:
     if (args.resume or only) and os.path.exists(os.path.join(out, "report.json")):
         with open(os.path.join(out, "report.json")) as fh:
             done = {r["name"]: r for r in json.load(fh)["types"]}
+        keep_moved(types, {n: r for n, r in done.items() if n not in only})
     rows = []
     for i, (name, entry) in enumerate(types.items()):
         limit = args.max_knot if entry["components"] == 1 else args.max_link
@@ -209,6 +210,15 @@ def main() -> None:
             write(types, rows, args, out)
 
 
+def keep_moved(types: dict[str, dict], rows: dict[str, dict]) -> None:
+    """Put back the shipped diagram of each type whose kept row was made from a moved one (``row["diagram"]``)."""
+    with gzip.open(TABLE_FILE, "rt", encoding="utf-8") as fh:
+        shipped = json.load(fh)
+    for name, row in rows.items():
+        if "diagram" in row and name in types:
+            types[name]["pd"] = shipped[name]["pd"]
+
+
 def clearance_pass(types: dict[str, dict], args: argparse.Namespace, out: str) -> None:
     """Check each kept placement's default geometry in both chiralities; check again the types refused.
 
@@ -220,6 +230,7 @@ def clearance_pass(types: dict[str, dict], args: argparse.Namespace, out: str) -
     with open(os.path.join(out, "report.json")) as fh:
         old = json.load(fh)
     rows = {r["name"]: r for r in old["types"]}
+    keep_moved(types, rows)
     path = os.path.join(out, "clearance.json")
     stats = {"checked": [], "refused_before": [], "refused_after": []}
     if os.path.exists(path):
@@ -250,10 +261,10 @@ def clearance_pass(types: dict[str, dict], args: argparse.Namespace, out: str) -
                 print(name, entry["layout"], flush=True)
         stats["checked"].append(name)
         if i % 50 == 49 or i == len(order) - 1:
-            write(types, list(rows.values()), args, out, old["summary"])
             counts = {f"n_{k}": len(v) for k, v in stats.items()}
             with open(path, "w") as fh:
                 json.dump({**counts, "load_average": os.getloadavg(), **stats}, fh, indent=1)
+            write(types, list(rows.values()), args, out, old["summary"])
             print(json.dumps(counts), flush=True)
 
 
