@@ -82,7 +82,7 @@ def _named(scaffold):
     return identify(scaffold, scaffold.labels).to_json()
 
 
-@pytest.mark.parametrize("name", ["3_1", "m3_1", "5_2", "8_17", "10_1", "L6a4", "mL7a1"])
+@pytest.mark.parametrize("name", ["3_1", "m3_1", "5_2", "8_17", "10_1", "L6a4", "mL7a1", "L10a91"])
 def test_builtin_table_designs_are_their_type(name):
     pytest.importorskip("snappy")
     kind = "link" if name.lstrip("m").startswith("L") else "knot"
@@ -199,3 +199,52 @@ def test_a_relaxed_table_design_prints_with_no_other_option(tmp_path, capsys):
     assert code == 0, err
     printed = json.loads(text)["fabrication"]
     assert printed["min_gap"] > 0 and printed["pieces"] == 1
+
+
+@pytest.mark.parametrize("name", ["knot:8_6", "knot:m8_6", "knot:10_3", "knot:m10_3", "link:L10a91", "link:L9a8"])
+def test_builtin_table_designs_pass_the_embedding_check(name):
+    """These placements were shipped refused by ``export`` (strands within ``min_separation``)."""
+    from lkspace import realize
+
+    real = realize(builtin(name))
+    assert real.min_distance >= real.min_separation
+
+
+def test_construct_skips_a_placement_whose_strands_come_too_close():
+    pytest.importorskip("snappy")
+    from lkspace.linktypes.construct import clear, construct
+
+    pd = [list(x) for x in table()["8_6"].pd]
+    assert "come within" in (clear(design_scaffold(pd, "8_6", "sphere")) or "")  # named 8_6, but refused
+    made = construct("8_6")
+    assert made.clear and made.layout != "sphere" and clear(made.scaffold) is None
+    assert made.builtin == "knot:8_6" and made.layout == table()["8_6"].layout
+
+
+def test_export_relaxed_8_6_with_no_other_option(tmp_path, capsys):
+    """``lkspace export knot:8_6 --relax -o 8_6.stl``: refused before its placement was checked for clearance."""
+    code, text, err = run(capsys, "export", "knot:8_6", "--relax", "-o", tmp_path / "8_6.stl", "--json")
+    assert code == 0, err
+    assert json.loads(text)["fabrication"]["pieces"] == 1
+
+
+def test_unnamed_links_are_compared_for_every_orientation_of_their_components():
+    """A link's Jones polynomial depends on its components' orientations: both of the Hopf link's are kept."""
+    pytest.importorskip("regina")
+    from lkspace.linktypes.construct import reversals
+
+    hopf = reversals(HOPF)
+    assert len(hopf) == 2 and len({jones for jones, _ in hopf}) == 2
+    assert len(reversals(TREFOIL)) == 1
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name", ["L11n432", "mL11n437"])
+def test_links_the_tables_names_miss_are_constructed(name):
+    """Non-hyperbolic: lkspace names neither the table's diagram nor the design; Jones and HOMFLY-PT must agree."""
+    pytest.importorskip("snappy")
+    from lkspace.linktypes.construct import clear, construct
+
+    made = construct(name)
+    assert made.clear and clear(made.scaffold) is None
+    assert made.crossings == 11 and int(abs(made.scaffold.labels).sum()) == 11

@@ -59,6 +59,7 @@ def construct_cmd(type_name: str | None, pd_text: str | None, output: str, as_js
         "mirror": made.mirror,
         "builtin": made.builtin,
         "layout": made.layout,
+        "clear": made.clear,
         "diagram_crossings": made.crossings,
         "vertices": s.n_vertices,
         "edges": s.n_edges,
@@ -70,6 +71,8 @@ def construct_cmd(type_name: str | None, pd_text: str | None, output: str, as_js
     def human() -> None:
         chiral = {True: " (mirror image)", False: "", None: ""}[made.mirror]
         also = f"; also the built-in {made.builtin}" if made.builtin else ""
+        if not made.clear:
+            also += "; its strands come too close at the default radius: export it with a smaller --radius"
         click.echo(
             f"wrote {output}: {made.name}{chiral} on {plural(s.n_faces, 'face')}, {plural(s.n_edges, 'edge')}, "
             f"sum |t| = {answer['sum_abs']}, from a {made.crossings}-crossing diagram{also}"

@@ -6,13 +6,17 @@ its checkerboard mesh (:mod:`lkspace.scaffolds.diagram_mesh`), placed by one of
 :func:`~lkspace.scaffolds.constructed.layouts` (the one the shipped table checked first).
 The result is checked before it is returned: the diagram of the labels
 (:func:`~lkspace.knots.assembly.assemble_pd`) is named and must be the type asked for, in
-the chirality asked for; a placement that fails the check is replaced by the next one.
+the chirality asked for, and its default geometry (:func:`~lkspace.geometry.realization.realize`,
+default parameters) must pass the embedding check, so ``export`` takes it as it is; a
+placement that fails either check is replaced by the next one.  When no placement passes
+the embedding check, the first one whose strands are right is returned (``clear`` false:
+``export`` needs a smaller ``--radius`` for it).
 """
 
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 from ..errors import LkspaceError, ScaffoldError
 from ..knots.assembly import assemble_pd
@@ -29,7 +33,8 @@ class Construction:
     """A constructed design: ``scaffold`` carries the labels; ``name``/``mirror`` as identify names it.
 
     ``layout``: the placement kept; ``crossings``: crossings of the diagram it was made from;
-    ``builtin``: the built-in name of the same design (``knot:8_17``) or ``None``.
+    ``builtin``: the built-in name of the same design (``knot:8_17``) or ``None``;
+    ``clear``: its default geometry passes the embedding check.
     """
 
     scaffold: Scaffold
@@ -38,6 +43,7 @@ class Construction:
     layout: str
     crossings: int
     builtin: str | None
+    clear: bool = True
 
 
 def _diagram(target: LinkType, typed: str) -> tuple[list[list[int]], bool]:
@@ -73,16 +79,54 @@ def _table_pd(name: str, typed: str) -> list[list[int]]:
     return one_based(manifold.link().PD_code())
 
 
-def _named(scaffold: Scaffold) -> Naming:
+def _named(scaffold: Scaffold) -> tuple[Naming, list[list[int]]]:
+    """Return the naming of the design's strands and the PD code of their diagram."""
     assert scaffold.labels is not None
     diagram = assemble_pd(scaffold, scaffold.labels)
-    return name_pd([[int(v) for v in x] for x in diagram.pd], diagram.n_components, floer=False)
+    pd = [[int(v) for v in x] for x in diagram.pd]
+    return name_pd(pd, diagram.n_components, floer=False), pd
 
 
-def _matches(got: Naming, want: Naming) -> bool:
-    """Whether a design's naming is the target's: its name and chirality, or (unnamed) its invariants."""
-    if want.name is None:  # beyond the tables: the same Jones and HOMFLY-PT polynomials, both computed
-        return None not in (want.jones, want.homfly) and (got.jones, got.homfly) == (want.jones, want.homfly)
+def reversals(pd: Sequence[Sequence[int]]) -> set[tuple[str, str]]:
+    """``(Jones, HOMFLY-PT)`` of the link of ``pd`` (simplified) under every reversal of components but the first.
+
+    The two polynomials of a link depend on its components' orientations, which a
+    design's trace and a table's PD code choose independently; two diagrams of one
+    oriented-up-to-reversal link share a pair.
+    """
+    spherogram, regina, _ = knot_modules()
+    link = spherogram.Link([list(map(int, x)) for x in pd])
+    link.simplify("global")
+    simple = one_based(link.PD_code())
+    k = len(link.link_components)
+    out = set()
+    for flips in range(2 ** (k - 1)):
+        turned = regina.Link.fromPD(simple)
+        for i in range(1, k):
+            if flips >> (i - 1) & 1:
+                turned.reverse(turned.component(i))
+        out.add((str(turned.jones()), str(turned.homfly())))
+    return out
+
+
+def clear(scaffold: Scaffold) -> str | None:
+    """Return why the default realization of ``scaffold`` is refused (strands too close), or ``None``."""
+    from ..geometry.realization import realize
+
+    try:
+        realize(scaffold)
+    except LkspaceError as exc:
+        return str(exc).splitlines()[0]
+    return None
+
+
+def _matches(got: Naming, want: Naming, design: list[list[int]], target: list[list[int]]) -> bool:
+    """Whether a design's naming is the target's: its name and chirality, or (unnamed) its invariants.
+
+    ``design``, ``target``: PD codes of the design's diagram and of the type's (mirrored when asked).
+    """
+    if want.name is None:  # beyond the tables' names: Jones and HOMFLY-PT equal, for some orientation
+        return got.name is None and bool(reversals(design) & reversals(target))
     return got.name == want.name and (want.mirror is None or got.mirror == want.mirror)
 
 
@@ -113,20 +157,32 @@ def construct(type_name: str | None = None, pd: Sequence[Sequence[int]] | None =
             kind = "knot" if target.components == 1 else "link"
             builtin = f"{kind}:{'m' if mirror else ''}{target.name}"
             first = table()[target.name].layout
+    aim = code
+    if mirror and want.name is None:
+        aim = one_based(knot_modules()[0].Link(code).mirror().PD_code())
     tried: list[str] = []
+    fallback = None
     for layout in dict.fromkeys([first or "sphere", *layouts(code)]):
-        scaffold = design_scaffold(code, label, layout)
-        assert scaffold.labels is not None
-        if mirror:
-            scaffold = scaffold.with_labels(-scaffold.labels)
         try:
-            got = _named(scaffold)
+            scaffold = design_scaffold(code, label, layout)
+            assert scaffold.labels is not None
+            if mirror:
+                scaffold = scaffold.with_labels(-scaffold.labels)
+            got, design = _named(scaffold)
         except LkspaceError as exc:
             tried.append(f"{layout}: {exc}")
             continue
-        if _matches(got, want):
-            return Construction(scaffold, got.name, got.mirror, layout, len(code), builtin)
-        tried.append(f"{layout}: strands named {got.chiral_name or got.name}")
+        if not _matches(got, want, design, aim):
+            tried.append(f"{layout}: strands named {got.chiral_name or got.name}")
+            continue
+        made = Construction(scaffold, got.name, got.mirror, layout, len(code), builtin if layout == first else None)
+        refused = clear(scaffold)
+        if refused is None:
+            return made
+        fallback = fallback or replace(made, clear=False)
+        tried.append(f"{layout}: {refused}")
+    if fallback is not None:
+        return fallback
     raise ScaffoldError(
         f"{label}: none of {len(tried)} placements of its mesh realizes the diagram "
         f"({'; '.join(tried[:2])}, ...); please report it"

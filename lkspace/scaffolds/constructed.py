@@ -12,7 +12,8 @@ placement that gives the diagram's own type.
 
 The diagrams of every prime knot of KnotInfo to 12 crossings and every prime link of
 LinkInfo to 11 ship in ``lkspace/data/diagrams.json.gz``, with the placement checked for
-each (``experiments/construct_tables.py`` writes the file and the report in
+each (where no placement of the tables' diagram passes, another minimal diagram of the
+type: the tables' moved by Reidemeister moves; ``experiments/construct_tables.py`` writes the file and the report in
 ``results/construct/``).  ``knot:8_17`` and ``link:L6a4`` name those designs; ``m`` in
 front of the table name (``knot:m3_1``) is the mirror image (every label negated).
 """
