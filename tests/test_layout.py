@@ -75,7 +75,7 @@ LAYERS = (
     ("scaffolds",),
     ("io",),
     ("strands", "symmetry"),
-    ("design", "inverse", "geometry"),
+    ("design", "inverse", "geometry", "dna"),
     ("knots",),
     ("formats",),
     ("catalog",),
@@ -102,6 +102,7 @@ ALLOWED = {
     "design": {"compiled", "errors", "model", "runtime", "strands", "symmetry", "words"},
     "inverse": {"compiled", "errors", "model", "runtime", "strands", "symmetry", "words"},
     "geometry": {"errors", "model", "runtime", "strands", "words"},
+    "dna": {"errors", "io", "model", "strands"},
     "knots": {"compiled", "errors", "geometry", "io", "model", "runtime", "strands", "words"},
     "formats": {"errors", "geometry", "io", "knots", "model", "runtime", "words"},
     "catalog": {"compiled", "design", "errors", "io", "knots", "model", "runtime", "strands", "symmetry", "words"},
@@ -111,7 +112,7 @@ ALLOWED = {
     "studio": {"catalog", "errors", "formats", "geometry", "io", "knots", "linktypes", "lkspace", "model", "runtime", "scaffolds", "symmetry"},
     "blender": {"cli", "errors", "formats", "geometry", "inverse", "io", "knots", "model", "strands", "symmetry", "words"},
     "dask_worker": {"runtime"},
-    "cli": {"catalog", "design", "errors", "formats", "geometry", "inverse", "io", "knots", "linktypes", "lkspace", "model", "runtime", "scaffolds", "strands", "studio", "symmetry", "words"},
+    "cli": {"catalog", "design", "dna", "errors", "formats", "geometry", "inverse", "io", "knots", "linktypes", "lkspace", "model", "runtime", "scaffolds", "strands", "studio", "symmetry", "words"},
     "__main__": {"cli"},
 }  # fmt: skip
 """Package -> the packages it imports (at run time, anywhere in its modules): the code as it is.

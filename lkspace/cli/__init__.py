@@ -28,7 +28,7 @@ COMMANDS = {
     "trace": "core:trace_cmd",
     "enumerate": "enumerate:enumerate_cmd",
     "solve": "solve:solve_cmd",
-    "export": "export:export_cmd",
+    "export": "dna_export:export_cmd",
     "identify": "identify:identify_cmd",
     "atlas": "atlas:atlas_cmd",
     "lookup": "lookup:lookup_cmd",
