@@ -69,6 +69,7 @@ def test_antiparallel_rule_matches_brute_force(name):
             continue
         assert odd_edges_form_a_cut(s, odd), (name, odd)
         accepted += 1
+        assert (len(passes.starts) - 1) % 2 == (s.n_vertices - s.n_edges) % 2  # strands have the parity of V - E
         for e in range(s.n_edges):
             assert sorted(passes.from_a[passes.edge == e].tolist()) == [False, True]
     assert accepted == 2 ** (s.n_vertices - 1)  # one cut per 2-colouring up to swapping the colours

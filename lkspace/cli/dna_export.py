@@ -86,6 +86,10 @@ def dna_callback(**kw: Any) -> None:
     export_dna(Context(kw["as_json"]), kw, extra["seed"], extra["bp_per_turn"], extra["nm_per_unit"])
 
 
+for _param in plain_export.params:
+    if _param.name == "output" and isinstance(_param, click.Option) and _param.help:
+        _param.help = _param.help.replace(" or .svg (", ", .svg or .oxdna (DNA: NAME.top, NAME.dat, NAME.oxview; ")
+
 export_cmd = click.Command(
     name=plain_export.name,
     params=[*plain_export.params[:-1], *DNA_OPTIONS, plain_export.params[-1]],
