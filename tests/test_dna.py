@@ -226,3 +226,31 @@ def test_deterministic_and_seeded(capsys, tmp_path):
         assert text(a + ext) == text(b + ext)
     assert text(a + ".top") != text(c + ".top")
     assert text(a + ".dat") == text(c + ".dat")
+
+
+def test_given_sequence(capsys, tmp_path):
+    """--sequence sets strand 0; its partners are complementary; a wrong length or a self-pair clash is refused."""
+    given = "ACGTTGCA" * 12
+    stem, _ = export(capsys, tmp_path, "cube", "--twist", "4", "--sequence", given.lower())
+    o = read(stem)
+    assert o.sequences[0] == given
+    paired = np.flatnonzero(o.pair >= 0)
+    seq = "".join(o.sequences)
+    assert all((seq[i], seq[o.pair[i]]) in PAIRS for i in paired)
+    for args, words in [
+        (("cube", "--twist", "4", "--sequence", "ACGT"), "96"),
+        (("figure-eight", "--twist", "2,1,2,1,1", "--sequence", "A" * 130), "complementary"),
+    ]:
+        code, _out, err = run(capsys, "export", *args, "-o", tmp_path / "y.oxdna")
+        assert code == 2
+        one_line_error(err, "--sequence", words)
+    assert not any(p.name.startswith("y") for p in tmp_path.iterdir())
+
+
+def test_nothing_half_written(capsys, tmp_path):
+    """A target that cannot be written (NAME.dat is a folder) is refused before any file appears."""
+    (tmp_path / "x.dat").mkdir()
+    code, _out, err = run(capsys, "export", "cube", "--twist", "4", "-o", tmp_path / "x.oxdna")
+    assert code == 2
+    one_line_error(err, "x.dat")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["x.dat"]

@@ -25,6 +25,12 @@ DNA_KEEPS = {"mesh", "twist_spec", "null_spec", "row", "output", "as_json"}
 DNA_OPTIONS = [
     click.Option(["--seed"], type=int, default=None, help="DNA (.oxdna): seed of the random bases (default 0)."),
     click.Option(
+        ["--sequence"],
+        metavar="BASES",
+        default=None,
+        help="DNA (.oxdna): strand 0's bases 5' -> 3' (its partners get the complements; default: random from --seed).",
+    ),
+    click.Option(
         ["--bp-per-turn"],
         type=Finite(5, 20),
         default=None,
@@ -39,9 +45,13 @@ DNA_OPTIONS = [
 ]
 
 
-def export_dna(ctx: Context, kw: dict[str, Any], seed: int | None, bp_per_turn: float | None, nm: float | None) -> None:
-    """Build the DNA of the design and write ``NAME.top``, ``NAME.dat`` and ``NAME.oxview``."""
+def export_dna(ctx: Context, kw: dict[str, Any], dna: dict[str, Any]) -> None:
+    """Build the DNA of the design and write ``NAME.top``, ``NAME.dat`` and ``NAME.oxview``.
+
+    ``kw`` holds the plain export's parameters, ``dna`` the DNA options (``None`` where not given).
+    """
     from ..dna.build import build
+    from ..dna.model import BP_PER_TURN
     from ..dna.oxdna import SUFFIXES, targets, write
     from ..io.paths import output_file
 
@@ -52,7 +62,14 @@ def export_dna(ctx: Context, kw: dict[str, Any], seed: int | None, bp_per_turn: 
     scaffold, labels, nulls = resolve_design(ctx, kw["mesh"], kw["twist_spec"], kw["null_spec"], kw["row"])
     if nulls is not None and nulls.any():
         raise UsageError("--null: DNA strands are closed here; null edge-sides are not supported in .oxdna export")
-    design = build(scaffold, labels, seed=0 if seed is None else seed, bp_per_turn=bp_per_turn or 10.5, scale=nm)
+    design = build(
+        scaffold,
+        labels,
+        seed=dna["seed"] or 0,
+        bp_per_turn=dna["bp_per_turn"] or BP_PER_TURN,
+        scale=dna["nm_per_unit"],
+        sequence=dna["sequence"],
+    )
     written = write(design, output)
     data = {
         "written": [os.path.abspath(p) for p in written],
@@ -71,7 +88,7 @@ def export_dna(ctx: Context, kw: dict[str, Any], seed: int | None, bp_per_turn: 
 
 def dna_callback(**kw: Any) -> None:
     """Send ``.oxdna`` outputs to :func:`export_dna`, the rest to the plain export."""
-    extra = {name: kw.pop(name) for name in ("seed", "bp_per_turn", "nm_per_unit")}
+    extra = {name: kw.pop(name) for name in ("seed", "sequence", "bp_per_turn", "nm_per_unit")}
     if os.path.splitext(kw["output"])[1].lower() != ".oxdna":
         given = [name for name, value in extra.items() if value is not None]
         if given:
@@ -83,7 +100,7 @@ def dna_callback(**kw: Any) -> None:
     for name, value in kw.items():
         if name not in DNA_KEEPS and value not in (None, False, defaults.get(name)):
             raise UsageError(f"--{name.replace('_', '-')} is not an option of DNA export (.oxdna)")
-    export_dna(Context(kw["as_json"]), kw, extra["seed"], extra["bp_per_turn"], extra["nm_per_unit"])
+    export_dna(Context(kw["as_json"]), kw, extra)
 
 
 for _param in plain_export.params:

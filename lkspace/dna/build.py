@@ -10,7 +10,7 @@ from ..model.scaffold import Scaffold
 from ..strands.tracing import Trace, trace
 from .helix import Nucleotides, place
 from .model import BP_PER_TURN, base_pairs, check_buildable, orient
-from .sequences import bases
+from .sequences import bases, impose
 
 
 @dataclass(frozen=True)
@@ -58,11 +58,13 @@ def build(
     seed: int = 0,
     bp_per_turn: float = BP_PER_TURN,
     scale: float | None = None,
+    sequence: str | None = None,
 ) -> DnaDesign:
     """Return the DNA of ``scaffold`` under ``labels`` (``docs/dna.md``), or refuse naming an edge.
 
     ``bp_per_turn`` sets the base pairs per edge (``round(bp_per_turn * t / 2)``), ``scale``
-    the nm per mesh unit (default: the smallest that fits), ``seed`` the bases.
+    the nm per mesh unit (default: the smallest that fits), ``seed`` the bases; ``sequence``
+    gives strand 0's bases 5' -> 3' (its partners get the complements, the rest come from ``seed``).
     """
     labels = np.asarray(labels, np.int64)
     check_buildable(scaffold, labels)
@@ -70,4 +72,7 @@ def build(
     passes = orient(tr)
     bp = base_pairs(labels, bp_per_turn)
     nuc = place(scaffold, labels, bp, passes, scale)
-    return DnaDesign(tr, bp, nuc, bases(nuc.edge, nuc.index, nuc.slot, bp, seed))
+    text = bases(nuc.edge, nuc.index, nuc.slot, bp, seed)
+    if sequence is not None:
+        text = impose(text, sequence, (int(nuc.strand_starts[0]), int(nuc.strand_starts[1])), nuc.pair)
+    return DnaDesign(tr, bp, nuc, text)

@@ -10,6 +10,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..errors import UsageError
+
 COMPLEMENT = {"A": "T", "T": "A", "C": "G", "G": "C"}
 MAX_RUN = 3
 """Longest run of one base inside a duplex."""
@@ -44,4 +46,34 @@ def bases(edge: np.ndarray, index: np.ndarray, slot: np.ndarray, bp: np.ndarray,
         else:
             b = words[e][j]
             out.append(b if s == 0 else COMPLEMENT[b])
+    return "".join(out)
+
+
+def impose(sequence: str, given: str, strand: tuple[int, int], pair: np.ndarray) -> str:
+    """Return ``sequence`` with strand ``(start, stop)`` set to ``given`` (5' -> 3') and its partners complemented.
+
+    Refused (naming the position) when ``given`` has the wrong length or letters, or when it
+    pairs with itself (a single strand folding back) with two bases that are not complementary.
+    """
+    lo, hi = strand
+    given = given.upper()
+    if len(given) != hi - lo:
+        raise UsageError(
+            f"sequence: {len(given)} bases given, but strand 0 has {hi - lo} nucleotides", parameter="sequence"
+        )
+    bad = next((i for i, b in enumerate(given) if b not in COMPLEMENT), None)
+    if bad is not None:
+        raise UsageError(f"sequence: base {bad + 1} is {given[bad]!r}; use A, C, G and T", parameter="sequence")
+    out = list(sequence)
+    for i, b in enumerate(given):
+        out[lo + i] = b
+        j = int(pair[lo + i])
+        if j < 0:
+            continue
+        if lo <= j < hi and COMPLEMENT[b] != given[j - lo]:
+            raise UsageError(
+                f"sequence: bases {i + 1} ({b}) and {j - lo + 1} ({given[j - lo]}) pair but are not complementary",
+                parameter="sequence",
+            )
+        out[j] = COMPLEMENT[b]
     return "".join(out)
