@@ -254,3 +254,28 @@ def test_nothing_half_written(capsys, tmp_path):
     assert code == 2
     one_line_error(err, "x.dat")
     assert sorted(p.name for p in tmp_path.iterdir()) == ["x.dat"]
+
+
+def test_buildable_designs_at_a_scale():
+    """At the scale the export chooses for the cube at twist 4, twist 4 is the one design within half a turn;
+    on figure-eight at 6.1 nm per unit the one-strand designs include 9_35's labels, each buildable."""
+    from lkspace.dna.search import buildable_designs, natural_twist
+
+    cube = lkspace.load("cube")
+    assert np.allclose(natural_twist(cube, 5.29989898732), 4)
+    assert [d.tolist() for d in buildable_designs(cube, 5.29989898732, window=0.5)] == [[4] * 12]
+    f = lkspace.load("figure-eight")
+    found = [d.tolist() for d in buildable_designs(f, 6.1, components=1)]
+    assert [2, 3, 2, 1, 1] in found
+    for labels in found:
+        assert trace(f, labels).components == 1
+        orient(trace(f, labels))
+        odd = np.array(labels) % 2
+        assert odd_edges_form_a_cut(f, odd)
+    everything = {tuple(d) for d in buildable_designs(f, 6.1)}
+    brute = {
+        t
+        for t in itertools.product(*[range(1, 5)] * 5)
+        if odd_edges_form_a_cut(f, np.array(t) % 2) and np.all(np.abs(np.array(t) - natural_twist(f, 6.1)) <= 1)
+    }
+    assert everything == brute
