@@ -23,7 +23,9 @@ DNA_KEEPS = {"mesh", "twist_spec", "null_spec", "row", "output", "as_json"}
 """Parameters of the plain export that a DNA export reads; any other one set is refused."""
 
 DNA_OPTIONS = [
-    click.Option(["--seed"], type=int, default=None, help="DNA (.oxdna): seed of the random bases (default 0)."),
+    click.Option(
+        ["--seed"], type=click.IntRange(0), default=None, help="DNA (.oxdna): seed of the random bases (default 0)."
+    ),
     click.Option(
         ["--sequence"],
         metavar="BASES",
@@ -111,6 +113,6 @@ export_cmd = click.Command(
     name=plain_export.name,
     params=[*plain_export.params[:-1], *DNA_OPTIONS, plain_export.params[-1]],
     callback=dna_callback,
-    help=plain_export.help,
+    help=(plain_export.help or "").rstrip() + "\n      lkspace export cube --twist 4 -o dna-cube.oxdna\n",
     context_settings=plain_export.context_settings,
 )
