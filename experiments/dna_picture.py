@@ -38,7 +38,8 @@ def main(name: str, twist: str, out: str) -> None:
     ax.set_proj_type("ortho")
     ax.view_init(elev=18, azim=-62)
     ax.set_axis_off()
-    ax.set_title(f"{name}, twist {twist}: {len(n.strand_starts) - 1} strands, {len(p)} nucleotides", fontsize=10)
+    strands = len(n.strand_starts) - 1
+    ax.set_title(f"{name}, twist {twist}: {strands} strand{'s' * (strands != 1)}, {len(p)} nucleotides", fontsize=10)
     fig.savefig(out, bbox_inches="tight")
 
 
