@@ -279,3 +279,27 @@ def test_buildable_designs_at_a_scale():
         if odd_edges_form_a_cut(f, np.array(t) % 2) and np.all(np.abs(np.array(t) - natural_twist(f, 6.1)) <= 1)
     }
     assert everything == brute
+
+
+def test_studio_download(tmp_path):
+    """The studio's DNA download is a zip of the three files, read back like the command's; unbuildable is refused."""
+    import zipfile
+
+    from lkspace.errors import LkspaceError
+    from lkspace.studio.designs import EXPORTS, export_bytes
+
+    assert "oxdna" in EXPORTS
+    content, name = export_bytes(lkspace.load("cube"), np.full(12, 4), None, "oxdna")
+    assert name == "cube_t4.4.4.4.4.4.4.4.4.4.4.4.oxdna.zip"
+    (tmp_path / name).write_bytes(content)
+    with zipfile.ZipFile(tmp_path / name) as archive:
+        assert sorted(archive.namelist()) == sorted(
+            f"cube_t4.4.4.4.4.4.4.4.4.4.4.4{s}" for s in (".top", ".dat", ".oxview")
+        )
+        archive.extractall(tmp_path)
+    o = read(str(tmp_path / "cube_t4.4.4.4.4.4.4.4.4.4.4.4"))
+    check_dna(o)
+    assert len(o.sequences) == 6
+    assert export_bytes(lkspace.load("cube"), np.full(12, 4), None, "oxdna")[0] == content
+    with pytest.raises(LkspaceError, match="positive twist"):
+        export_bytes(lkspace.load("cube"), np.zeros(12, np.int64), None, "oxdna")

@@ -109,7 +109,7 @@ ALLOWED = {
     "linktypes": {"catalog", "design", "errors", "formats", "geometry", "io", "knots", "model", "runtime", "scaffolds", "strands", "symmetry", "words"},
     "api": {"io"},
     "lkspace": {"api", "errors"},
-    "studio": {"catalog", "errors", "formats", "geometry", "io", "knots", "linktypes", "lkspace", "model", "runtime", "scaffolds", "symmetry"},
+    "studio": {"catalog", "dna", "errors", "formats", "geometry", "io", "knots", "linktypes", "lkspace", "model", "runtime", "scaffolds", "symmetry"},
     "blender": {"cli", "errors", "formats", "geometry", "inverse", "io", "knots", "model", "strands", "symmetry", "words"},
     "dask_worker": {"runtime"},
     "cli": {"catalog", "design", "dna", "errors", "formats", "geometry", "inverse", "io", "knots", "linktypes", "lkspace", "model", "runtime", "scaffolds", "strands", "studio", "symmetry", "words"},
@@ -123,6 +123,8 @@ A new import between packages must be added here and to docs/architecture.md; an
 
 STUDIO_INTERNALS = {
     "lkspace.catalog.verify": "the catalog browser opens and checks catalogs (open_catalog, damaged)",
+    "lkspace.dna.build": "the DNA download builds the design's nucleotides (build)",
+    "lkspace.dna.oxdna": "the DNA download is a zip of the oxDNA and oxView files (zip_bytes)",
     "lkspace.formats.registry": "the download formats the page offers (FORMATS)",
     "lkspace.geometry.clearance": "a preview realized without measuring is measured when the page asks",
     "lkspace.geometry.realization": "an edit realizes only the strands it changed (realize_reusing)",

@@ -88,6 +88,18 @@ def oxview(design: DnaDesign) -> str:
     return json.dumps(doc, separators=(",", ":")) + "\n"
 
 
+def zip_bytes(design: DnaDesign, stem: str) -> bytes:
+    """Return a zip archive of ``STEM.top``, ``STEM.dat`` and ``STEM.oxview`` (fixed dates: the same design, the same bytes)."""
+    import io
+    import zipfile
+
+    buffer = io.BytesIO()
+    with zipfile.ZipFile(buffer, "w", zipfile.ZIP_DEFLATED) as archive:
+        for suffix, text in zip(SUFFIXES, (topology(design), configuration(design), oxview(design)), strict=True):
+            archive.writestr(zipfile.ZipInfo(stem + suffix, date_time=(1980, 1, 1, 0, 0, 0)), text)
+    return buffer.getvalue()
+
+
 def write(design: DnaDesign, output: str) -> list[str]:
     """Write the three files of ``output`` (``NAME.oxdna``); return their paths.
 
