@@ -303,3 +303,28 @@ def test_studio_download(tmp_path):
     assert export_bytes(lkspace.load("cube"), np.full(12, 4), None, "oxdna")[0] == content
     with pytest.raises(LkspaceError, match="positive twist"):
         export_bytes(lkspace.load("cube"), np.zeros(12, np.int64), None, "oxdna")
+
+
+def test_solve_restricted_to_dna(capsys):
+    """solve --dna NM: exhaustive over the window, answers buildable and re-checked here; bad combinations refused."""
+    code, out, err = run(
+        capsys, "solve", "figure-eight", "--components", "1", "--dna", "6.1", "--count", "10", "--json"
+    )
+    assert code == 0, err
+    data = json.loads(out)
+    assert data["status"] == "feasible"
+    assert sorted(tuple(s["labels"]) for s in data["solutions"]) == sorted(
+        [(2, 3, 2, 1, 1), (2, 3, 1, 1, 2), (1, 3, 2, 2, 1), (1, 3, 1, 2, 2)]
+    )
+    f = lkspace.load("figure-eight")
+    for s in data["solutions"]:
+        assert trace(f, s["labels"]).components == 1
+        orient(trace(f, s["labels"]))
+    code, out, err = run(capsys, "solve", "figure-eight", "--type", "9_35", "--dna", "6.1", "--json")
+    assert json.loads(out)["solutions"][0] == {"labels": [2, 3, 2, 1, 1], "name": "9_35", "components": 1}
+    code, out, err = run(capsys, "solve", "cube", "--components", "1", "--dna", "5.3", "--json")
+    assert code == 0 and json.loads(out)["status"] == "infeasible"  # V - E even: never one strand
+    for args, words in [(("--no-zero",), "--no-zero"), ((), "--components")]:
+        code, _out, err = run(capsys, "solve", "cube", "--dna", "5.3", *(("-n", "1") if args else ()), *args)
+        assert code == 2
+        one_line_error(err, words)

@@ -27,7 +27,7 @@ COMMANDS = {
     "info": "core:info_cmd",
     "trace": "core:trace_cmd",
     "enumerate": "enumerate:enumerate_cmd",
-    "solve": "solve:solve_cmd",
+    "solve": "dna_solve:solve_cmd",
     "export": "dna_export:export_cmd",
     "identify": "identify:identify_cmd",
     "atlas": "atlas:atlas_cmd",

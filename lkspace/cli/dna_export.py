@@ -99,9 +99,10 @@ def dna_callback(**kw: Any) -> None:
         plain_export.callback(**kw)
         return
     defaults = {p.name: p.default for p in plain_export.params}
+    flags = {p.name: p.opts[0] for p in plain_export.params}
     for name, value in kw.items():
-        if name not in DNA_KEEPS and value not in (None, False, defaults.get(name)):
-            raise UsageError(f"--{name.replace('_', '-')} is not an option of DNA export (.oxdna)")
+        if name not in DNA_KEEPS and value not in (None, False, (), defaults.get(name)):
+            raise UsageError(f"{flags[name]} is not an option of DNA export (.oxdna)")
     export_dna(Context(kw["as_json"]), kw, extra)
 
 

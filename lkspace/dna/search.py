@@ -53,7 +53,7 @@ def buildable_designs(
     options = [(list(range(a, b + 1, 1))) for a, b in zip(lo.tolist(), hi.tolist(), strict=True)]
     by_parity = [([t for t in opts if t % 2 == 0], [t for t in opts if t % 2 == 1]) for opts in options]
     ab = scaffold.edge_vertices
-    total = 2 ** (scaffold.n_vertices - 1) * int(np.prod([max(len(o), 1) for o in options], dtype=object))
+    total = 2 ** (scaffold.n_vertices - 1) * int(np.prod([max(map(len, p)) for p in by_parity], dtype=object))
     if total > max_designs:
         raise TooLargeError(
             f"max_designs: up to {total:,} label vectors at this scale (window {window:g}) > {max_designs:,}; "
