@@ -110,7 +110,7 @@ ALLOWED = {
     "api": {"io"},
     "lkspace": {"api", "errors"},
     "studio": {"catalog", "dna", "errors", "formats", "geometry", "io", "knots", "linktypes", "lkspace", "model", "runtime", "scaffolds", "symmetry"},
-    "blender": {"cli", "errors", "formats", "geometry", "inverse", "io", "knots", "model", "strands", "symmetry", "words"},
+    "blender": {"cli", "dna", "errors", "formats", "geometry", "inverse", "io", "knots", "model", "strands", "symmetry", "words"},
     "dask_worker": {"runtime"},
     "cli": {"catalog", "design", "dna", "errors", "formats", "geometry", "inverse", "io", "knots", "linktypes", "lkspace", "model", "runtime", "scaffolds", "strands", "studio", "symmetry", "words"},
     "__main__": {"cli"},
