@@ -264,6 +264,24 @@ def test_export_goes_through_the_checked_fabrication_path(blender, tmp_path):
     assert not bad.exists()
 
 
+def test_export_dna_writes_what_the_cli_writes(blender, tmp_path):
+    obj = add_object(blender, "tet", TETRAHEDRON, [(0, 1, 2), (0, 3, 1), (0, 2, 3), (1, 3, 2)])
+    pairs = {p: 4 for p in edge_pairs(obj)}
+    set_twists(obj, pairs)
+    assert bpy.ops.lkspace.export_dna(filepath=str(tmp_path / "tet.oxdna")) == {"FINISHED"}
+    _, scaffold, labels, _ = independent(obj, tmp_path, pairs)
+    from lkspace.dna.build import build
+    from lkspace.dna.oxdna import write
+
+    write(build(scaffold, labels), str(tmp_path / "ref.oxdna"))
+    for ext in (".top", ".dat", ".oxview"):
+        assert (tmp_path / f"tet{ext}").read_text() == (tmp_path / f"ref{ext}").read_text()
+    set_twists(obj, {p: 0 for p in pairs})  # zero twist: not B-DNA, refused, nothing written
+    with pytest.raises(RuntimeError, match="positive twist"):
+        bpy.ops.lkspace.export_dna(filepath=str(tmp_path / "bad.oxdna"))
+    assert not (tmp_path / "bad.top").exists()
+
+
 def test_periodic_block_and_scene_preset_render(blender, tmp_path):
     from lkspace.blender.addon.builtin import make_block
 

@@ -75,7 +75,7 @@ LAYERS = (
     ("scaffolds",),
     ("io",),
     ("strands", "symmetry"),
-    ("design", "inverse", "geometry"),
+    ("design", "inverse", "geometry", "dna"),
     ("knots",),
     ("formats",),
     ("catalog",),
@@ -102,16 +102,17 @@ ALLOWED = {
     "design": {"compiled", "errors", "model", "runtime", "strands", "symmetry", "words"},
     "inverse": {"compiled", "errors", "model", "runtime", "strands", "symmetry", "words"},
     "geometry": {"errors", "model", "runtime", "strands", "words"},
+    "dna": {"errors", "io", "model", "strands"},
     "knots": {"compiled", "errors", "geometry", "io", "model", "runtime", "strands", "words"},
     "formats": {"errors", "geometry", "io", "knots", "model", "runtime", "words"},
     "catalog": {"compiled", "design", "errors", "io", "knots", "model", "runtime", "strands", "symmetry", "words"},
     "linktypes": {"catalog", "design", "errors", "formats", "geometry", "io", "knots", "model", "runtime", "scaffolds", "strands", "symmetry", "words"},
     "api": {"io"},
     "lkspace": {"api", "errors"},
-    "studio": {"catalog", "errors", "formats", "geometry", "io", "knots", "linktypes", "lkspace", "model", "runtime", "scaffolds", "symmetry"},
-    "blender": {"cli", "errors", "formats", "geometry", "inverse", "io", "knots", "model", "strands", "symmetry", "words"},
+    "studio": {"catalog", "dna", "errors", "formats", "geometry", "io", "knots", "linktypes", "lkspace", "model", "runtime", "scaffolds", "symmetry"},
+    "blender": {"cli", "dna", "errors", "formats", "geometry", "inverse", "io", "knots", "model", "strands", "symmetry", "words"},
     "dask_worker": {"runtime"},
-    "cli": {"catalog", "design", "errors", "formats", "geometry", "inverse", "io", "knots", "linktypes", "lkspace", "model", "runtime", "scaffolds", "strands", "studio", "symmetry", "words"},
+    "cli": {"catalog", "design", "dna", "errors", "formats", "geometry", "inverse", "io", "knots", "linktypes", "lkspace", "model", "runtime", "scaffolds", "strands", "studio", "symmetry", "words"},
     "__main__": {"cli"},
 }  # fmt: skip
 """Package -> the packages it imports (at run time, anywhere in its modules): the code as it is.
@@ -122,6 +123,8 @@ A new import between packages must be added here and to docs/architecture.md; an
 
 STUDIO_INTERNALS = {
     "lkspace.catalog.verify": "the catalog browser opens and checks catalogs (open_catalog, damaged)",
+    "lkspace.dna.build": "the DNA download builds the design's nucleotides (build)",
+    "lkspace.dna.oxdna": "the DNA download is a zip of the oxDNA and oxView files (zip_bytes)",
     "lkspace.formats.registry": "the download formats the page offers (FORMATS)",
     "lkspace.geometry.clearance": "a preview realized without measuring is measured when the page asks",
     "lkspace.geometry.realization": "an edit realizes only the strands it changed (realize_reusing)",

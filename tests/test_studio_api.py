@@ -130,6 +130,8 @@ def test_exports_read_back(client):
     scene = trimesh.load(io.BytesIO(r.content), file_type="glb")
     assert len(scene.geometry) == lkspace.trace("tetrahedron", labels).components
     assert post(client, "export", {"key": "tetrahedron", "labels": labels, "format": "obj"}).content.count(b"\no ") >= 1
+    r = post(client, "export", {"key": "tetrahedron", "labels": [4] * 6, "format": "oxdna"})  # docs/dna.md
+    assert r.headers["content-type"] == "application/zip" and r.content[:2] == b"PK"
 
 
 def test_catalog_filter_sort_page_match_pandas(client, catalog):

@@ -302,7 +302,7 @@ def thumbnails(studio: Studio, request: ThumbnailsRequest) -> Thumbs:
     return studio.thumbs.answer(held.scaffold, held.key, request)
 
 
-MEDIA = {"json": "application/json", "png": "image/png", "glb": "model/gltf-binary"}
+MEDIA = {"json": "application/json", "png": "image/png", "glb": "model/gltf-binary", "oxdna": "application/zip"}
 """Content types of the downloads that have one (others: ``application/octet-stream``)."""
 
 

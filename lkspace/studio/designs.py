@@ -47,8 +47,9 @@ DEFAULT_BLOCK_FACES = 1_200
 MAX_BLOCK_FACES = 4_000
 """Most faces a periodic block may draw (copies × faces of the cell; past it the curves outgrow :data:`MAX_STUDIO_POINTS`)."""
 
-EXPORTS = ("json", *(ext[1:] for ext in FORMATS))
-"""Download formats: the scaffold file with labels, then every format of the export registry."""
+EXPORTS = ("json", *(ext[1:] for ext in FORMATS), "oxdna")
+"""Download formats: the scaffold file with labels, every format of the export registry, and DNA (a zip of
+the oxDNA and oxView files, ``docs/dna.md``)."""
 
 MAX_EXPORT_POINTS = 400_000
 """Most curve points of a downloaded file (tubes are 12 vertices a point)."""
@@ -300,6 +301,13 @@ def export_bytes(scaffold: Scaffold, labels: np.ndarray, nulls: np.ndarray | Non
     name = f"{design_stem(scaffold.name, labels, [] if nulls is None else np.flatnonzero(nulls))}.{fmt}"
     if fmt == "json":
         return format_scaffold_json(scaffold, labels, nulls).encode(), name
+    if fmt == "oxdna":
+        from ..dna.build import build
+        from ..dna.oxdna import zip_bytes
+
+        if nulls is not None and nulls.any():
+            raise UsageError("DNA export: null edge-sides are not supported (every strand is closed)")
+        return zip_bytes(build(scaffold, labels), name[: -len(".oxdna")]), name + ".zip"
     with tempfile.TemporaryDirectory(prefix="lkspace-studio-") as folder:
         path = os.path.join(folder, name)
         real = realize(scaffold, labels, nulls, options=RealizeOptions(max_points=MAX_EXPORT_POINTS))

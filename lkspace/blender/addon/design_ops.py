@@ -106,4 +106,37 @@ class LKSPACE_OT_export(DesignOperator):  # noqa: N801
         return {"FINISHED"}
 
 
-CLASSES = (LKSPACE_OT_regenerate, LKSPACE_OT_identify, LKSPACE_OT_export)
+class LKSPACE_OT_export_dna(DesignOperator):  # noqa: N801
+    """Write the design as DNA for oxDNA and oxView: NAME.top, NAME.dat and NAME.oxview (docs/dna.md)."""
+
+    bl_idname = "lkspace.export_dna"
+    bl_label = "Export DNA (oxDNA)"
+    filepath: bpy.props.StringProperty(subtype="FILE_PATH")  # type: ignore[valid-type]
+    seed: bpy.props.IntProperty(name="Seed", default=0, min=0, description="Seed of the random bases")  # type: ignore[valid-type]
+
+    def invoke(self, context: Any, event: Any) -> set[str]:
+        """Ask for the file name (``NAME.oxdna``; the three files are written beside it)."""
+        if not self.filepath:
+            self.filepath = bpy.path.ensure_ext(context.active_object.name, ".oxdna")
+        context.window_manager.fileselect_add(self)
+        return {"RUNNING_MODAL"}
+
+    def execute(self, context: Any) -> set[str]:
+        """Build the DNA with :func:`lkspace.dna.build.build` and write it (the path of ``lkspace export -o NAME.oxdna``)."""
+        from lkspace.dna.build import build
+        from lkspace.dna.oxdna import write
+
+        obj = context.active_object
+        try:
+            design, labels, nulls = meshio.read_design(obj)
+            if nulls is not None and nulls.any():
+                raise LkspaceError("DNA export: null edge-sides are not supported (every strand is closed)")
+            written = write(build(design.scaffold, labels, seed=self.seed), bpy.path.abspath(self.filepath))
+        except LkspaceError as exc:
+            self.report({"ERROR"}, str(exc))
+            return {"CANCELLED"}
+        self.report({"INFO"}, f"wrote {', '.join(written)}")
+        return {"FINISHED"}
+
+
+CLASSES = (LKSPACE_OT_regenerate, LKSPACE_OT_identify, LKSPACE_OT_export, LKSPACE_OT_export_dna)

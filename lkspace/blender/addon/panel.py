@@ -175,6 +175,7 @@ class LKSPACE_PT_design(bpy.types.Panel):  # noqa: N801
         row.label(text=result.knot or "-")
         out = layout.box()
         out.operator("lkspace.export", text="Export STL / 3MF")
+        out.operator("lkspace.export_dna", text="Export DNA (oxDNA)")
         row = out.row(align=True)
         row.prop(settings, "engine", text="")
         row.operator("lkspace.scene_preset").engine = settings.engine
