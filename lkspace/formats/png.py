@@ -37,5 +37,9 @@ def png_bytes(real: Realization, options: PictureOptions) -> bytes:
 
 
 def svg_bytes(real: Realization, options: PictureOptions) -> bytes:
-    """Return the picture as SVG."""
-    return picture_bytes(real, options, "svg")
+    """Return the picture as SVG: the diagram drawn by matplotlib, the 3D picture as line art (:mod:`.lineart`)."""
+    if options.diagram:
+        return picture_bytes(real, options, "svg")
+    from .lineart import svg_lineart
+
+    return svg_lineart(real, options)
