@@ -260,16 +260,33 @@ def render(
     (cx, cy), half = strand_frame(pts, view, radius)
     center = cx * right + cy * up + float((pts @ view).mean()) * view  # projects to the frame's centre
     reach = float(np.abs(pts - center).max()) + 2 * radius
-    ax.set_xlim(center[0] - reach, center[0] + reach)
-    ax.set_ylim(center[1] - reach, center[1] + reach)
-    ax.set_zlim(center[2] - reach, center[2] + reach)
+    limits(ax, center, reach)
     ax.set_axis_off()
     if title:
         ax.set_title(title, fontsize=12)
     fig.subplots_adjust(0, 0, 1, 1)
     ax.set_box_aspect((1, 1, 1), zoom=1.0)
-    ax.set_box_aspect((1, 1, 1), zoom=fill_zoom(ax, center, half, look))
+    zoom = fill_zoom(ax, center, half, look)
+    ax.set_box_aspect((1, 1, 1), zoom=zoom)
+    ax.apply_aspect()
+    offset = pixel_of(ax, center) - np.array(ax.bbox.bounds[:2]) - np.array(ax.bbox.bounds[2:]) / 2
+    limits(ax, center + (offset[0] * right + offset[1] * up) / pixels_per_unit(half, look.width, look.height), reach)
     return fig
+
+
+def limits(ax: Any, center: np.ndarray, reach: float) -> None:
+    """Set the 3D axes' limits to the cube of half side ``reach`` about ``center``."""
+    ax.set_xlim(center[0] - reach, center[0] + reach)
+    ax.set_ylim(center[1] - reach, center[1] + reach)
+    ax.set_zlim(center[2] - reach, center[2] + reach)
+
+
+def pixel_of(ax: Any, point: np.ndarray) -> np.ndarray:
+    """(2,) pixel position of the 3D ``point`` in the figure."""
+    from mpl_toolkits.mplot3d import proj3d
+
+    x, y, _ = proj3d.proj_transform(np.array([point[0]]), np.array([point[1]]), np.array([point[2]]), ax.get_proj())
+    return np.asarray(ax.transData.transform(np.column_stack([x, y]))[0], np.float64)
 
 
 def fill_zoom(ax: Any, center: np.ndarray, half: np.ndarray, look: Look) -> float:
@@ -278,13 +295,9 @@ def fill_zoom(ax: Any, center: np.ndarray, half: np.ndarray, look: Look) -> floa
     The pixels of one scaffold unit are measured at zoom 1 (the projection is linear), and the
     zoom scales them to :func:`~lkspace.formats.view.pixels_per_unit`.
     """
-    from mpl_toolkits.mplot3d import proj3d
-
     ax.apply_aspect()
     right, _ = screen_axes(direction(ax.azim, ax.elev))
-    ends = np.vstack([center, center + right])
-    x, y, _ = proj3d.proj_transform(ends[:, 0], ends[:, 1], ends[:, 2], ax.get_proj())
-    unit = float(np.linalg.norm(np.diff(ax.transData.transform(np.column_stack([x, y])), axis=0)))
+    unit = float(np.linalg.norm(pixel_of(ax, center + right) - pixel_of(ax, center)))
     return pixels_per_unit(half, look.width, look.height) / max(unit, 1e-12)
 
 
