@@ -114,3 +114,17 @@ def test_the_strand_farther_from_the_eye_is_cut(near):
     found = crossings([across, down], depth, np.array([False, False]), 3.0)
     far = 1 - near
     assert [(k, round(at, 6), round(sine, 6)) for k, at, sine in found] == [(far, 5.5 if far == 0 else 5.0, 1.0)]
+
+
+@pytest.mark.parametrize("mesh", ["tetrahedron", "octahedron"])
+def test_default_view_looks_down_a_rotation_axis_of_the_scaffold(mesh):
+    import lkspace
+    from lkspace.formats.render import Look
+    from lkspace.formats.view import direction, view_angles
+
+    real = lkspace.realize(mesh, 1)
+    view = direction(*view_angles(real, Look(), real.tube_radius))
+    # the tetrahedron's 3-fold and the octahedron's 4-fold axes run through their vertices
+    axes = real.scaffold.vertices - real.scaffold.vertices.mean(axis=0)
+    cosines = np.abs(axes @ view) / np.linalg.norm(axes, axis=1)
+    assert cosines.max() > 0.999

@@ -1,7 +1,8 @@
 """``.png`` and ``.svg`` pictures: a 3D render, or with ``diagram=True`` a 2D knot diagram.
 
-The render is :mod:`~lkspace.formats.render`, the diagram :mod:`~lkspace.formats.diagram`
-(extra ``[render]``, diagrams also ``[knots]``).
+The render is :mod:`~lkspace.formats.render` (as ``.svg``, the line art of
+:mod:`~lkspace.formats.lineart`), the diagram :mod:`~lkspace.formats.diagram` (extra
+``[render]``, diagrams also ``[knots]``).
 
 Both are drawn on a matplotlib ``Figure`` with its own canvas: the caller's pyplot state
 and backend are left alone.
