@@ -128,3 +128,18 @@ def test_default_view_looks_down_a_rotation_axis_of_the_scaffold(mesh):
     axes = real.scaffold.vertices - real.scaffold.vertices.mean(axis=0)
     cosines = np.abs(axes @ view) / np.linalg.norm(axes, axis=1)
     assert cosines.max() > 0.999
+
+
+def test_title_is_drawn_above_the_strands(capsys, tmp_path):
+    path = tmp_path / "t.png"
+    code, _, err = run(capsys, "export", "dihedron:3", "--twist", "1", "--no-mesh", "--title", "Trefoil", "--size", "240x200", "-o", str(path))  # fmt: skip
+    assert code == 0, err
+    rgb = plt_image.imread(path)[..., :3]
+    coloured = np.flatnonzero(((rgb.max(axis=2) - rgb.min(axis=2)) > 0.3).any(axis=1))
+    text = np.flatnonzero(((rgb.max(axis=2) < 0.5) & (rgb.max(axis=2) - rgb.min(axis=2) < 0.1)).any(axis=1))
+    assert len(text) and text.max() < coloured.min()  # grey text rows, all above the strands
+    svg = tmp_path / "t.svg"
+    code, _, err = run(capsys, "export", "dihedron:3", "--twist", "1", "--title", "a < b", "-o", str(svg))
+    assert code == 0, err
+    titles = [t for t in ET.parse(svg).getroot().iter(f"{SVG}text") if t.get("class") == "title"]
+    assert [t.text for t in titles] == ["a < b"]

@@ -4,8 +4,9 @@ The view and frame are the PNG's (:mod:`.view`: orthographic, framed on the stra
 curve is resampled every :data:`STEP` pixels of the picture and projected; wherever two
 pieces cross in the projection (:func:`crossings`), the one farther from the eye is cut
 for a short gap around the crossing point and the nearer runs on, as a knot diagram is
-drawn.  The stroke is the tube's diameter in pixels; the scaffold (a block's cells and
-frame) is drawn faintly behind.  Colours are the PNG's (:func:`.render.strand_colors`),
+drawn: the gap is where the over strand covers the under one, plus a margin of
+:data:`GAP` strokes each side, its ends cut square.  The stroke is the tube's diameter
+in pixels; the scaffold (a block's cells and frame) is drawn faintly behind.  Colours are the PNG's (:func:`.render.strand_colors`),
 or with ``gradient`` hues along each strand in :data:`BANDS` bands.
 
 Document: ``<svg>`` with a background ``<rect>`` (unless transparent), ``<g
@@ -27,18 +28,16 @@ from ..geometry.realization import Realization
 from .colors import arc_colors
 from .options import PictureOptions
 from .render import scaffold_polygons, strand_colors
-from .view import direction, frame, pixels_per_unit, screen_axes, view_angles
+from .view import TITLE_HEIGHT, direction, frame, pixels_per_unit, screen_axes, view_angles
 
 STEP = 1.5
 """Pixels between the resampled points of a curve."""
-GAP = 1.2
-"""Half the gap cut in an under strand, in stroke widths (before dividing by the crossing's sine)."""
-MIN_SINE = 0.5
-"""Smallest sine of a crossing angle used for its gap (a glancing crossing gets at most GAP / MIN_SINE)."""
+GAP = 0.3
+"""White margin each side of the over strand in a gap, in stroke widths (ends are cut square: butt caps)."""
+MIN_SINE = 0.35
+"""Smallest sine of a crossing angle used for its gap: the over strand covers 0.5 / sine stroke widths of the under one."""
 BANDS = 48
 """Colour bands along a strand with ``gradient``."""
-TITLE_HEIGHT = 36
-"""Pixels kept free above the strands for a title."""
 
 
 def hex_color(rgb: np.ndarray) -> str:
@@ -176,7 +175,7 @@ def svg_lineart(real: Realization, options: PictureOptions) -> bytes:
     depth = [c.points @ view for c in curves]
     gaps: list[list[tuple[float, float]]] = [[] for _ in curves]
     for k, at, sine in crossings(xy, depth, real.closed, 3 * stroke) if curves else []:
-        h = GAP * stroke / max(sine, MIN_SINE)
+        h = (0.5 / max(sine, MIN_SINE) + GAP) * stroke
         gaps[k].append((at - h, at + h))
     colors = strand_colors(real, look)
     for k in np.argsort([float(z.mean()) for z in depth], kind="stable"):
@@ -186,10 +185,9 @@ def svg_lineart(real: Realization, options: PictureOptions) -> bytes:
         spans = pieces(length, closed, gaps[k])
         whole = closed and spans == [(0.0, length)]
         paint = "" if look.gradient else f' stroke="{hex_color(colors[k])}"'
-        cap = "butt" if look.gradient else "round"  # bands abut; round caps would overlap
         out.append(
             f'<g class="strand" data-strand="{int(real.strand_of[k])}"{paint} stroke-width="{stroke:.2f}" '
-            f'fill="none" stroke-linecap="{cap}" stroke-linejoin="round">'
+            f'fill="none" stroke-linecap="butt" stroke-linejoin="round">'
         )
         for lo, hi in spans:
             for a, b in bands(lo, hi, length) if look.gradient else [(lo, hi)]:

@@ -25,7 +25,7 @@ from ..geometry.realization import Realization
 from .colors import arc_colors, keyed_colors
 from .colors import colors as default_colors
 from .tubes import tube_meshes
-from .view import direction, pixels_per_unit, screen_axes, view_angles
+from .view import TITLE_HEIGHT, direction, pixels_per_unit, screen_axes, view_angles
 from .view import frame as strand_frame
 
 if TYPE_CHECKING:
@@ -262,15 +262,16 @@ def render(
     reach = float(np.abs(pts - center).max()) + 2 * radius
     limits(ax, center, reach)
     ax.set_axis_off()
+    top = TITLE_HEIGHT if title else 0
     if title:
-        ax.set_title(title, fontsize=12)
+        fig.text(0.5, 1 - 0.7 * top / look.height, title, ha="center", fontsize=12)
     fig.subplots_adjust(0, 0, 1, 1)
     ax.set_box_aspect((1, 1, 1), zoom=1.0)
-    zoom = fill_zoom(ax, center, half, look)
-    ax.set_box_aspect((1, 1, 1), zoom=zoom)
+    scale = pixels_per_unit(half, look.width, look.height - top)
+    ax.set_box_aspect((1, 1, 1), zoom=fill_zoom(ax, center, scale))
     ax.apply_aspect()
-    offset = pixel_of(ax, center) - np.array(ax.bbox.bounds[:2]) - np.array(ax.bbox.bounds[2:]) / 2
-    limits(ax, center + (offset[0] * right + offset[1] * up) / pixels_per_unit(half, look.width, look.height), reach)
+    offset = pixel_of(ax, center) - np.array([look.width / 2, (look.height - top) / 2])  # pixels from the bottom
+    limits(ax, center + (offset[0] * right + offset[1] * up) / scale, reach)
     return fig
 
 
@@ -289,16 +290,15 @@ def pixel_of(ax: Any, point: np.ndarray) -> np.ndarray:
     return np.asarray(ax.transData.transform(np.column_stack([x, y]))[0], np.float64)
 
 
-def fill_zoom(ax: Any, center: np.ndarray, half: np.ndarray, look: Look) -> float:
-    """Zoom of the 3D axes (set at zoom 1) at which the strands' frame (``half`` sizes about ``center``) fills the picture.
+def fill_zoom(ax: Any, center: np.ndarray, scale: float) -> float:
+    """Zoom of the 3D axes (set at zoom 1) that draws ``scale`` pixels per scaffold unit.
 
-    The pixels of one scaffold unit are measured at zoom 1 (the projection is linear), and the
-    zoom scales them to :func:`~lkspace.formats.view.pixels_per_unit`.
+    The pixels of one unit at ``center`` are measured at zoom 1 (the projection is linear).
     """
     ax.apply_aspect()
     right, _ = screen_axes(direction(ax.azim, ax.elev))
     unit = float(np.linalg.norm(pixel_of(ax, center + right) - pixel_of(ax, center)))
-    return pixels_per_unit(half, look.width, look.height) / max(unit, 1e-12)
+    return scale / max(unit, 1e-12)
 
 
 TUBE_SIDES, THICK_SIDES = 16, 32

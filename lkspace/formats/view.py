@@ -21,6 +21,8 @@ if TYPE_CHECKING:
 
 FILL = 0.92
 """Share of the picture's width or height the strands (with their tubes) fill on their tighter axis."""
+TITLE_HEIGHT = 36
+"""Pixels kept free above the strands for a title."""
 
 
 def direction(azim: float, elev: float) -> np.ndarray:
