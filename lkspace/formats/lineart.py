@@ -136,13 +136,17 @@ def pieces(length: float, closed: bool, gaps: list[tuple[float, float]]) -> list
     return [(lo, hi) for lo, hi in out if hi > lo]
 
 
-def cut(xy: np.ndarray, closed: bool, lo: float, hi: float) -> np.ndarray:
-    """Return the polyline ``xy`` between arc positions ``lo`` and ``hi`` in pixels (a closed one wraps around)."""
+def unrolled(xy: np.ndarray, closed: bool) -> tuple[np.ndarray, np.ndarray]:
+    """``(points, arc positions)`` of a polyline, a closed one run round three times (for :func:`cut`)."""
     q = np.vstack([xy, xy, xy, xy[:1]]) if closed else xy
-    s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(q, axis=0), axis=1))])
-    inner = (s > lo) & (s < hi)
+    return q, np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(q, axis=0), axis=1))])
+
+
+def cut(q: np.ndarray, s: np.ndarray, lo: float, hi: float) -> np.ndarray:
+    """Return the polyline ``q`` (arc positions ``s``, :func:`unrolled`) between arc positions ``lo`` and ``hi``."""
+    a, b = np.searchsorted(s, lo, side="right"), np.searchsorted(s, hi, side="left")
     ends = [np.column_stack([np.interp([x], s, q[:, 0]), np.interp([x], s, q[:, 1])]) for x in (lo, hi)]
-    return np.vstack([ends[0], q[inner], ends[1]])
+    return np.vstack([ends[0], q[a:b], ends[1]])
 
 
 def svg_lineart(real: Realization, options: PictureOptions) -> bytes:
@@ -180,8 +184,8 @@ def svg_lineart(real: Realization, options: PictureOptions) -> bytes:
     colors = strand_colors(real, look)
     for k in np.argsort([float(z.mean()) for z in depth], kind="stable"):
         closed = bool(real.closed[k])
-        q = np.vstack([xy[k], xy[k][:1]]) if closed else xy[k]
-        length = float(np.linalg.norm(np.diff(q, axis=0), axis=1).sum())
+        q, s = unrolled(xy[k], closed)
+        length = float(s[len(xy[k])] if closed else s[-1])
         spans = pieces(length, closed, gaps[k])
         whole = closed and spans == [(0.0, length)]
         paint = "" if look.gradient else f' stroke="{hex_color(colors[k])}"'
@@ -191,7 +195,7 @@ def svg_lineart(real: Realization, options: PictureOptions) -> bytes:
         )
         for lo, hi in spans:
             for a, b in bands(lo, hi, length) if look.gradient else [(lo, hi)]:
-                line = xy[k] if whole else cut(xy[k], closed, a, b)
+                line = xy[k] if whole else cut(q, s, a, b)
                 hue = f' stroke="{hex_color(arc_colors(np.array([(a + b) / 2 / length]))[0])}"' if look.gradient else ""
                 out.append(f'<path{hue} d="{path_data(line, whole and not look.gradient)}"/>')
         out.append("</g>")
