@@ -187,7 +187,7 @@ def svg_lineart(real: Realization, options: PictureOptions) -> bytes:
         q, s = unrolled(xy[k], closed)
         length = float(s[len(xy[k])] if closed else s[-1])
         spans = pieces(length, closed, gaps[k])
-        whole = closed and spans == [(0.0, length)]
+        whole = closed and not look.gradient and spans == [(0.0, length)]  # one closed path
         paint = "" if look.gradient else f' stroke="{hex_color(colors[k])}"'
         out.append(
             f'<g class="strand" data-strand="{int(real.strand_of[k])}"{paint} stroke-width="{stroke:.2f}" '
@@ -197,7 +197,7 @@ def svg_lineart(real: Realization, options: PictureOptions) -> bytes:
             for a, b in bands(lo, hi, length) if look.gradient else [(lo, hi)]:
                 line = xy[k] if whole else cut(q, s, a, b)
                 hue = f' stroke="{hex_color(arc_colors(np.array([(a + b) / 2 / length]))[0])}"' if look.gradient else ""
-                out.append(f'<path{hue} d="{path_data(line, whole and not look.gradient)}"/>')
+                out.append(f'<path{hue} d="{path_data(line, whole)}"/>')
         out.append("</g>")
     if options.title:
         out.append(
