@@ -221,7 +221,7 @@ def picture_options(func: F) -> F:
         click.option("--size", metavar="WxH", help="Pictures: width x height in pixels (default 900x900)."),
         click.option("--background", metavar="COLOR", help="Pictures: 'transparent' or a colour (default white)."),
         click.option(
-            "--colors", metavar="LIST", help="Pictures: strand colours, a comma list or a matplotlib colormap name."
+            "--colors", metavar="LIST", help="Pictures: colours per strand, a comma list or colormap; or gradient."
         ),
         click.option(
             "--diagram", is_flag=True, help="Pictures: draw the simplified 2D knot/link diagram instead of 3D tubes."

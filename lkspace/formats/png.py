@@ -1,7 +1,8 @@
 """``.png`` and ``.svg`` pictures: a 3D render, or with ``diagram=True`` a 2D knot diagram.
 
-The render is :mod:`~lkspace.formats.render`, the diagram :mod:`~lkspace.formats.diagram`
-(extra ``[render]``, diagrams also ``[knots]``).
+The render is :mod:`~lkspace.formats.render` (as ``.svg``, the line art of
+:mod:`~lkspace.formats.lineart`), the diagram :mod:`~lkspace.formats.diagram` (extra
+``[render]``, diagrams also ``[knots]``).
 
 Both are drawn on a matplotlib ``Figure`` with its own canvas: the caller's pyplot state
 and backend are left alone.
@@ -37,5 +38,9 @@ def png_bytes(real: Realization, options: PictureOptions) -> bytes:
 
 
 def svg_bytes(real: Realization, options: PictureOptions) -> bytes:
-    """Return the picture as SVG."""
-    return picture_bytes(real, options, "svg")
+    """Return the picture as SVG: the diagram drawn by matplotlib, the 3D picture as line art (:mod:`.lineart`)."""
+    if options.diagram:
+        return picture_bytes(real, options, "svg")
+    from .lineart import svg_lineart
+
+    return svg_lineart(real, options)

@@ -8,7 +8,8 @@
 ``.3mf``  3MF package: one coloured mesh object per printable piece, with its ``units``
 ``.png``  a picture: shaded tubes, the scaffold drawn faintly, or with ``diagram=True``
           a 2D knot/link diagram (``[render]``; diagrams also ``[knots]``)
-``.svg``  the same picture as vector graphics
+``.svg``  the same view as line art: paths per strand, cut where a strand passes under
+          (:mod:`.lineart`); with ``diagram=True`` the diagram
 ========  =====================================================================
 
 Each format is a function ``(Realization, options) -> bytes`` (:data:`ENCODERS`, the
@@ -69,7 +70,7 @@ Format = Literal["obj", "ply", "glb", "stl", "3mf", "png", "svg"]
 PRINTABLE = (".stl", ".3mf")
 """Formats of solid, printable pieces."""
 PICTURES = (".png", ".svg")
-"""Formats drawn with matplotlib."""
+"""Picture formats (matplotlib; the 3D ``.svg`` is line art written directly)."""
 
 MAX_TUBE_VERTICES = 6_000_000
 """Most tube vertices an export writes (curve points times :data:`TUBE_SIDES`).

@@ -3,11 +3,13 @@
 The figure is a :class:`matplotlib.figure.Figure` with its own Agg canvas: pyplot and
 ``matplotlib.use`` are never touched, so the caller's backend and open figures stay as
 they were.  Tubes are shaded per triangle (Lambert plus a specular highlight) and drawn
-back to front; the scaffold (or, for a block, its cells and frame) is drawn faintly.
+back to front; the scaffold (or, for a block, its cells and frame) is drawn faintly.  The
+projection is orthographic and framed on the strands (:mod:`.view`).
 
 Picture options (:class:`Look`): ``view`` (``"AZIMUTH,ELEVATION"`` in degrees or a name of
 :data:`VIEWS`), ``size`` (``"WxH"`` pixels), ``background`` (``"transparent"`` or a
-colour) and ``colors`` (a comma list of colours, or a matplotlib colormap name).
+colour) and ``colors`` (a comma list of colours, a matplotlib colormap name, or
+``gradient``: hues along each strand instead of a colour per strand).
 """
 
 from __future__ import annotations
@@ -23,6 +25,8 @@ from ..geometry.realization import Realization
 from .colors import arc_colors, keyed_colors
 from .colors import colors as default_colors
 from .tubes import tube_meshes
+from .view import TITLE_HEIGHT, direction, pixels_per_unit, screen_axes, view_angles
+from .view import frame as strand_frame
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
@@ -38,6 +42,9 @@ VIEWS: dict[str, tuple[float, float]] = {
 }
 """Named views: ``(azimuth, elevation)`` in degrees (matplotlib's convention; z is up)."""
 
+GRADIENT = "gradient"
+"""The ``colors`` value that colours each strand by hues along its length."""
+
 MAX_SIZE = 4000
 """Largest width or height of a picture, in pixels."""
 
@@ -47,7 +54,11 @@ MAX_TITLE = 1000
 
 @dataclass(frozen=True)
 class Look:
-    """How a picture looks: view angles, pixel size, background and strand colours."""
+    """How a picture looks: view angles, pixel size, background and strand colours.
+
+    Strands take one colour each (``palette``, else the default colours), or with
+    ``gradient`` hues cycling along each strand.
+    """
 
     azim: float | None = None
     elev: float | None = None
@@ -55,6 +66,7 @@ class Look:
     height: int = 900
     background: str = "white"
     palette: tuple[tuple[float, float, float], ...] | None = None
+    gradient: bool = False
 
     def colors(self, n: int) -> np.ndarray:
         """(n, 3) colours: the palette repeated, or the default colours."""
@@ -116,8 +128,8 @@ def parse_color(text: str, parameter: str) -> tuple[float, float, float]:
 
 
 def parse_colors(text: str | None) -> tuple[tuple[float, float, float], ...] | None:
-    """Parse a comma list of colours, or a matplotlib colormap name (sampled at 8 points)."""
-    if text is None:
+    """Parse a comma list of colours, or a matplotlib colormap name (sampled at 8 points); ``gradient`` -> ``None``."""
+    if text is None or text.strip().lower() == GRADIENT:
         return None
     require("matplotlib", "render", "colours")
     import matplotlib
@@ -143,7 +155,8 @@ def look_of(view: str | None, size: str | None, background: str | None, colors: 
         parse_color(bg, "background")
     else:
         bg = "transparent"
-    return Look(azim, elev, width, height, bg, parse_colors(colors))
+    gradient = colors is not None and colors.strip().lower() == GRADIENT
+    return Look(azim, elev, width, height, bg, parse_colors(colors), gradient)
 
 
 def check_title(title: str | None) -> None:
@@ -208,7 +221,7 @@ def render(
     radius: float | None = None,
     title: str | None = None,
 ) -> Figure:
-    """Draw shaded tubes on a new Figure: a colour per strand (translates share it), per thread run in a block."""
+    """Draw shaded tubes on a new Figure, framed on the strands: a colour per strand (:func:`strand_colors`)."""
     require("mpl_toolkits.mplot3d", "render", "3D pictures")
     from mpl_toolkits.mplot3d.art3d import Line3DCollection, Poly3DCollection
 
@@ -223,16 +236,10 @@ def render(
     pts = np.vstack(real.curves) if real.curves else np.zeros((1, 3))
     polys = scaffold_polygons(real) if show_mesh else []
     frame = real.block.frame() if real.block is not None else []
-    every = np.vstack([pts, *polys, *frame]) if (polys or frame) else pts
-    extent = np.ptp(every, axis=0)
-    if look.azim is None and look.elev is None and real.block is None and real.curves:
-        azim, elev = clear_view(real.curves, radius)
-    else:
-        elev = look.elev if look.elev is not None else (55.0 if extent[2] < 0.25 * extent.max() else 24.0)
-        azim = look.azim if look.azim is not None else -58.0
+    azim, elev = view_angles(real, look, radius)
     ax.view_init(elev=elev, azim=azim)
-    e, a = np.radians(elev), np.radians(azim)
-    view = np.array([np.cos(e) * np.cos(a), np.cos(e) * np.sin(a), np.sin(e)])
+    ax.set_proj_type("ortho")
+    view = direction(azim, elev)
     light = view + np.array([0.3, -0.2, 0.6])
     light /= np.linalg.norm(light)
     if polys:
@@ -249,18 +256,49 @@ def render(
         ax.add_collection3d(
             Poly3DCollection(tris[order], facecolors=cols[order], edgecolors=cols[order], linewidths=0.25)
         )
-    lo, hi = every.min(0) - 2 * radius, every.max(0) + 2 * radius
-    center, half = (lo + hi) / 2, (hi - lo).max() / 2
-    ax.set_xlim(center[0] - half, center[0] + half)
-    ax.set_ylim(center[1] - half, center[1] + half)
-    ax.set_zlim(center[2] - half, center[2] + half)
+    right, up = screen_axes(view)
+    (cx, cy), half = strand_frame(pts, view, radius)
+    center = cx * right + cy * up + float((pts @ view).mean()) * view  # projects to the frame's centre
+    reach = float(np.abs(pts - center).max()) + 2 * radius
+    limits(ax, center, reach)
     ax.set_axis_off()
+    top = TITLE_HEIGHT if title else 0
     if title:
-        ax.set_title(title, fontsize=12)
+        fig.text(0.5, 1 - 0.7 * top / look.height, title, ha="center", fontsize=12)
     fig.subplots_adjust(0, 0, 1, 1)
     ax.set_box_aspect((1, 1, 1), zoom=1.0)
-    ax.set_box_aspect((1, 1, 1), zoom=fill_zoom(ax, every, look, radius))
+    scale = pixels_per_unit(half, look.width, look.height - top)
+    ax.set_box_aspect((1, 1, 1), zoom=fill_zoom(ax, center, scale))
+    ax.apply_aspect()
+    offset = pixel_of(ax, center) - np.array([look.width / 2, (look.height - top) / 2])  # pixels from the bottom
+    limits(ax, center + (offset[0] * right + offset[1] * up) / scale, reach)
     return fig
+
+
+def limits(ax: Any, center: np.ndarray, reach: float) -> None:
+    """Set the 3D axes' limits to the cube of half side ``reach`` about ``center``."""
+    ax.set_xlim(center[0] - reach, center[0] + reach)
+    ax.set_ylim(center[1] - reach, center[1] + reach)
+    ax.set_zlim(center[2] - reach, center[2] + reach)
+
+
+def pixel_of(ax: Any, point: np.ndarray) -> np.ndarray:
+    """(2,) pixel position of the 3D ``point`` in the figure."""
+    from mpl_toolkits.mplot3d import proj3d
+
+    x, y, _ = proj3d.proj_transform(np.array([point[0]]), np.array([point[1]]), np.array([point[2]]), ax.get_proj())
+    return np.asarray(ax.transData.transform(np.column_stack([x, y]))[0], np.float64)
+
+
+def fill_zoom(ax: Any, center: np.ndarray, scale: float) -> float:
+    """Zoom of the 3D axes (set at zoom 1) that draws ``scale`` pixels per scaffold unit.
+
+    The pixels of one unit at ``center`` are measured at zoom 1 (the projection is linear).
+    """
+    ax.apply_aspect()
+    right, _ = screen_axes(direction(ax.azim, ax.elev))
+    unit = float(np.linalg.norm(pixel_of(ax, center + right) - pixel_of(ax, center)))
+    return scale / max(unit, 1e-12)
 
 
 TUBE_SIDES, THICK_SIDES = 16, 32
@@ -275,21 +313,25 @@ def strand_keys(real: Realization) -> np.ndarray:
     return np.minimum.reduceat(faces, starts) if len(faces) else np.zeros(0, np.int64)
 
 
+def strand_colors(real: Realization, look: Look) -> np.ndarray:
+    """(n_curves, 3) RGB: one colour per strand of the trace (a component; in a block, a thread class).
+
+    The look's palette in the order of the strands, else the default colours by each
+    strand's stable key (:func:`strand_keys`); translates and the cut runs of one thread
+    class share their strand's colour.
+    """
+    if not real.curves:
+        return np.zeros((0, 3))
+    n = int(real.strand_of.max()) + 1
+    base = look.colors(n) if look.palette else keyed_colors(strand_keys(real))
+    return np.asarray(base[real.strand_of], np.float64)
+
+
 def shaded_tubes(
     real: Realization, look: Look, radius: float, view: np.ndarray, light: np.ndarray
 ) -> tuple[np.ndarray, np.ndarray]:
-    """Front-facing tube triangles ``(m, 3, 3)`` and their shaded colours ``(m, 3)``.
-
-    Colours: the look's palette if given; else one colour per strand by its stable key
-    (translates share it; every thread run of a block has its own), and a single closed
-    strand cycles through the hues along its length so that its crossings read.
-    """
-    if look.palette or real.block is not None:
-        base = look.colors(real.n_curves if real.block is not None else int(real.strand_of.max()) + 1)
-        palette = base if real.block is not None else base[real.strand_of]
-    else:
-        palette = keyed_colors(strand_keys(real))[real.strand_of]
-    gradient = not look.palette and real.block is None and real.trace.components == 1 and bool(real.closed.all())
+    """Front-facing tube triangles ``(m, 3, 3)`` and their shaded colours ``(m, 3)`` (:func:`strand_colors`)."""
+    palette = strand_colors(real, look)
     extent = float(np.ptp(np.vstack(real.curves), axis=0).max())
     sides, spacing = (THICK_SIDES, 0.3 * radius) if radius > 0.02 * extent else (TUBE_SIDES, 0.6 * radius)
     all_tris, all_cols = [], []
@@ -298,66 +340,9 @@ def shaded_tubes(
         fn /= np.maximum(np.linalg.norm(fn, axis=1, keepdims=True), 1e-12)
         lam = np.clip(fn @ light, 0, 1)
         spec = np.clip(fn @ ((light + view) / np.linalg.norm(light + view)), 0, 1) ** 24
-        base_rgb = arc_colors(f[:, 0] // sides / max(len(v) // sides, 1)) if gradient else rgb[None]
+        base_rgb = arc_colors(f[:, 0] // sides / max(len(v) // sides, 1)) if look.gradient else rgb[None]
         shade = np.clip(base_rgb * (0.3 + 0.7 * lam[:, None]) + 0.3 * spec[:, None], 0, 1)
         facing = fn @ view > -0.2
         all_tris.append(v[f[facing]])
         all_cols.append(shade[facing])
     return np.concatenate(all_tris), np.concatenate(all_cols)
-
-
-def _screen_axes(view: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Two unit vectors spanning the picture plane of view direction ``view`` (z stays up)."""
-    right = np.cross([0.0, 0.0, 1.0], view)
-    right = right / np.linalg.norm(right) if np.linalg.norm(right) > 1e-9 else np.array([1.0, 0.0, 0.0])
-    return right, np.cross(view, right)
-
-
-def fill_zoom(ax: Any, points: np.ndarray, look: Look, radius: float = 0.0) -> float:
-    """Zoom of the 3D axes (set at zoom 1) that makes ``points`` (tubes of ``radius``) fill 92% of the picture."""
-    from mpl_toolkits.mplot3d import proj3d
-
-    ax.apply_aspect()
-    x, y, _ = proj3d.proj_transform(points[:, 0], points[:, 1], points[:, 2], ax.get_proj())
-    pixels = ax.transData.transform(np.column_stack([x, y]))
-    ox, _, _ = proj3d.proj_transform(np.array([0.0, radius]), np.zeros(2), np.zeros(2), ax.get_proj())
-    tube = abs(float(np.diff(ax.transData.transform(np.column_stack([ox, np.zeros(2)]))[:, 0])[0]))
-    reach = np.abs(pixels - np.array([look.width, look.height]) / 2).max(axis=0) + tube
-    factor = 0.92 * min(look.width / 2 / max(reach[0], 1e-9), look.height / 2 / max(reach[1], 1e-9))
-    return float(np.clip(factor, 0.5, 6.0))
-
-
-def clear_view(curves: list[np.ndarray], radius: float) -> tuple[float, float]:
-    """``(azimuth, elevation)`` in degrees among 48 directions where the strands overlap least in projection.
-
-    A view scores the share of point pairs of distinct pieces (other curve, or far along
-    one) that project within two tube diameters of each other: the fewer, the cleaner the
-    crossings read.  Ties go to the wider picture.
-    """
-    from scipy.spatial import cKDTree
-
-    from ..geometry.clearance import samples
-
-    closed = np.ones(len(curves), bool)
-    total = sum(float(np.linalg.norm(np.diff(c, axis=0), axis=1).sum()) for c in curves)
-    pts, arc, owner, lengths = samples(curves, closed, max(total / 600, 1e-12))
-    best, choice = (np.inf, 0.0), (-58.0, 24.0)
-    for elev in (20.0, 40.0, 60.0, 80.0):
-        for azim in np.arange(-180.0, 180.0, 30.0):
-            e, a = np.radians(elev), np.radians(azim)
-            view = np.array([np.cos(e) * np.cos(a), np.cos(e) * np.sin(a), np.sin(e)])
-            right, up = _screen_axes(view)
-            flat = np.column_stack([pts @ right, pts @ up])
-            pairs = cKDTree(flat).query_pairs(4 * radius, output_type="ndarray")
-            along = np.abs(arc[pairs[:, 0]] - arc[pairs[:, 1]]) if len(pairs) else np.zeros(0)
-            if len(pairs):
-                o = owner[pairs[:, 0]]
-                along = np.minimum(along, lengths[o] - along)
-                far = (o != owner[pairs[:, 1]]) | (along > 8 * radius)
-                overlap = float(far.sum())
-            else:
-                overlap = 0.0
-            score = (overlap, -float(np.ptp(flat[:, 0]) * np.ptp(flat[:, 1])))
-            if score < best:
-                best, choice = score, (float(azim), elev)
-    return choice
