@@ -14,6 +14,7 @@ lies in the block whole.  :func:`block_faces` lists the faces (cells) to draw.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -325,6 +326,7 @@ def realize_block(
     sizes: ArrayLike,
     *,
     max_points: int = MAX_POINTS,
+    relax: Callable[[Realization], Realization] | None = None,
 ) -> Realization:
     """Realize an ``sizes`` block of a periodic scaffold, cut to the block.
 
@@ -334,7 +336,10 @@ def realize_block(
     tube radii, so that threads running in the block's surface stay whole; runs shorter
     than :data:`STUB` shortest edges are left out.  ``copy_of`` and ``strand_of`` of a
     piece are those of its first period.  ``max_points`` bounds each realization
-    (:class:`~lkspace.geometry.params.RealizeOptions`).
+    (:class:`~lkspace.geometry.params.RealizeOptions`).  The thread classes are smoothed
+    in the periodic cell, and relaxed there by ``relax`` when given (e.g.
+    :func:`~lkspace.geometry.relax.relax`), before the copies are joined and cut: every
+    copy of a class has the same shape.
 
     Examples
     --------
@@ -353,6 +358,8 @@ def realize_block(
     covering = covering_translations(scaffold, block_of(scaffold, sizes, margin), np.vstack(one.curves))
     options = RealizeOptions(translations=covering, trace=one.trace, max_points=max_points)
     real = realize(scaffold, labels, nulls, params, options=options)
+    if relax is not None:
+        real = relax(real)
     block = block_of(scaffold, sizes, margin, STUB * real.scale)
     joined, joined_closed, members = join_curves(real.curves, real.closed, JOIN * real.scale)
     pieces, closed, source = clip_curves(joined, joined_closed, block)
