@@ -20,7 +20,7 @@ import numpy as np
 
 from ..errors import UsageError, require
 from ..geometry.realization import Realization
-from .colors import arc_colors, keyed_colors
+from .colors import arc_colors, curve_colors, keyed_colors, strand_keys
 from .colors import colors as default_colors
 from .tubes import tube_meshes
 
@@ -267,26 +267,20 @@ TUBE_SIDES, THICK_SIDES = 16, 32
 """Facets around a pictured tube; around a thick one (radius over 2% of the drawing, a relaxed rope)."""
 
 
-def strand_keys(real: Realization) -> np.ndarray:
-    """(n_strands,) int64: the smallest face each strand visits (its stable colour key)."""
-    tr = real.trace
-    faces = real.scaffold.corner_face[tr.steps // 2]
-    starts = tr.strand_starts[:-1]
-    return np.minimum.reduceat(faces, starts) if len(faces) else np.zeros(0, np.int64)
-
-
 def shaded_tubes(
     real: Realization, look: Look, radius: float, view: np.ndarray, light: np.ndarray
 ) -> tuple[np.ndarray, np.ndarray]:
     """Front-facing tube triangles ``(m, 3, 3)`` and their shaded colours ``(m, 3)``.
 
-    Colours: the look's palette if given; else one colour per strand by its stable key
-    (translates share it; every thread run of a block has its own), and a single closed
-    strand cycles through the hues along its length so that its crossings read.
+    Colours: the look's palette if given (one colour per strand, or per thread class in a
+    block); else one colour per strand by its stable key (translates, and every copy and
+    cut run of a block's thread class, share it), and a single closed strand cycles
+    through the hues along its length so that its crossings read.
     """
-    if look.palette or real.block is not None:
-        base = look.colors(real.n_curves if real.block is not None else int(real.strand_of.max()) + 1)
-        palette = base if real.block is not None else base[real.strand_of]
+    if real.block is not None and not look.palette:
+        palette = curve_colors(real)
+    elif look.palette:
+        palette = look.colors(int(real.strand_of.max()) + 1)[real.strand_of]
     else:
         palette = keyed_colors(strand_keys(real))[real.strand_of]
     gradient = not look.palette and real.block is None and real.trace.components == 1 and bool(real.closed.all())
