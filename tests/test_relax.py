@@ -170,7 +170,7 @@ def test_neighbour_list_holds_every_close_pair_after_capped_steps():
     circle = np.column_stack([np.cos(t), np.sin(t), 0 * t])
     gap = reach + 0.5 * h * (flow.RESAMPLE_EVERY - 1) - 0.01 * h
     points = np.vstack([circle, circle + [0, 0, gap]])
-    ring = flow._Ring.of([circle, circle])
+    ring = flow.Ring.of([circle, circle])
     listed = flow._neighbour_list(points, ring, reach, flow.RESAMPLE_EVERY, h, 0.0)
     closer = points + np.where(np.arange(len(points)) < len(circle), 1, -1)[:, None] * [
         0,
