@@ -56,9 +56,11 @@ def image_pairs(points: np.ndarray, basis: np.ndarray, radius: float) -> tuple[n
     unit cell and compared with the cell's neighbours as far as ``radius`` reaches.
     """
     inv = np.linalg.pinv(basis)  # (3, dim)
-    k = np.floor(points @ inv)
-    wrapped = points - k @ basis
-    reach = (np.floor(radius * np.linalg.norm(inv, axis=0)) + 1).astype(np.int64)
+    f = points @ inv
+    k = np.floor(f)
+    frac, wrapped = f - k, points - k @ basis
+    rho = radius * np.linalg.norm(inv, axis=0)  # (dim,) radius in cells along each lattice vector
+    reach = (np.floor(rho) + 1).astype(np.int64)
     tree = cKDTree(wrapped)
     found_i, found_j, found_t = [], [], []
     for t in product(*[range(-r, r + 1) for r in reach.tolist()]):
@@ -68,9 +70,16 @@ def image_pairs(points: np.ndarray, basis: np.ndarray, radius: float) -> tuple[n
         if not nonzero:
             pairs = tree.query_pairs(radius, output_type="ndarray").reshape(-1, 2)
             a, b = pairs[:, 0], pairs[:, 1]
-        else:
-            near = tree.sparse_distance_matrix(cKDTree(wrapped + np.asarray(t) @ basis), radius, output_type="ndarray")
-            a, b = near["i"].astype(np.int64), near["j"].astype(np.int64)
+        else:  # only points near the faces t crosses can meet: |frac_i - frac_j - t| <= rho
+            tt = np.asarray(t, np.float64)
+            ii = np.flatnonzero(np.all((frac >= tt - rho) & (frac <= 1 + tt + rho), axis=1))
+            jj = np.flatnonzero(np.all((frac >= -tt - rho) & (frac <= 1 - tt + rho), axis=1))
+            if not len(ii) or not len(jj):
+                continue
+            near = cKDTree(wrapped[ii]).sparse_distance_matrix(
+                cKDTree(wrapped[jj] + tt @ basis), radius, output_type="ndarray"
+            )
+            a, b = ii[near["i"].astype(np.int64)], jj[near["j"].astype(np.int64)]
         found_i.append(a)
         found_j.append(b)
         found_t.append(np.broadcast_to(np.asarray(t, np.int64), (len(a), len(t))))

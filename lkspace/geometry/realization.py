@@ -231,7 +231,8 @@ def realize_reusing(
     their edges' labels and the strand's period (its **key**), so a curve kept under its key
     is the curve realize would build.  The caller keeps the curves between calls (an edit
     changes the strands through one edge; the others keep theirs).  A finite scaffold whose
-    strands all close is smoothed as a whole (every curve moves): it is realized in full.
+    strands all close is smoothed as a whole (every curve moves), and so are a periodic
+    one's thread classes in the periodic cell: it is realized in full.
 
     Returns
     -------
@@ -240,7 +241,7 @@ def realize_reusing(
     how = replace(options or RealizeOptions(), trace=tr, embedding="later")
     how.check()
     shape = Resolved.of(scaffold, GeometryParams())
-    if shape.smooth and not scaffold.dim and tr.closed.all():
+    if shape.smooth and tr.closed.all():
         real = realize(scaffold, options=how)
         return real, {}
     fr, ports, counts, translations = _prepared(scaffold, tr, shape, how)
