@@ -122,6 +122,15 @@ def run() -> list[dict]:
     return rows
 
 
+PICTURES = """Relaxed, one colour per thread class (`lkspace export ... --relax --size 480x480`, kept by hand):
+
+| square chainmail 3x3 | hexagonal chainmail 3x3 | triaxial weave 3x3 | Laves 1x1x1 |
+|---|---|---|---|
+| ![](periodic-relax/square-chainmail-relaxed.png) | ![](periodic-relax/hexagonal-chainmail-relaxed.png) \
+| ![](periodic-relax/triaxial-weave-relaxed.png) | ![](periodic-relax/laves-relaxed.png) |"""
+"""The pictures section of the page (``results/periodic-relax/*.png``)."""
+
+
 def markdown(rows: list[dict], info: dict) -> str:
     out = [
         "# Periodic designs smoothed and relaxed in the periodic cell",
@@ -148,6 +157,7 @@ def markdown(rows: list[dict], info: dict) -> str:
                 f"{'x'.join(map(str, r['block']))} | {stage}{extra} | {m['ropelength_per_cell']:.1f} | "
                 f"{m['distance']:.3f} | {m['curvature_radius']:.3f} | {m['tube_radius']:.3f} | {m['seconds']:.1f} |"
             )
+    out += ["", PICTURES]
     return "\n".join(out) + "\n"
 
 
