@@ -180,7 +180,7 @@ def test_periodic_block(studio, browser):
     page.close()
 
 
-def test_relaxed_toggle_redraws_and_shows_the_refusal(studio, browser):
+def test_relaxed_toggle_redraws_finite_and_periodic_designs(studio, browser):
     url, _, _ = studio
     labels = [0, 0, -1, -1]  # the Hopf link
     plain = lkspace.realize("dihedron:4", labels)
