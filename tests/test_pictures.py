@@ -150,8 +150,7 @@ def _lab(rgb: np.ndarray) -> np.ndarray:
 
 
 def test_default_palette_keeps_24_strands_apart_and_follows_the_strand_keys():
-    from lkspace.formats.colors import PALETTE, keyed_colors
-    from lkspace.formats.render import strand_keys
+    from lkspace.formats.colors import PALETTE, keyed_colors, strand_keys
 
     lab = _lab(PALETTE)
     gaps = np.linalg.norm(lab[:, None] - lab[None], axis=2) + np.eye(len(lab)) * 1e9

@@ -27,8 +27,8 @@ def edits(scaffold, seed, cut, n=6):
 @pytest.mark.parametrize(
     "name, block, cut",
     [
-        ("honeycomb:cP@3x3x3", [[0, 0, 0], [1, 0, 0], [0, 1, 1]], 0),  # threads, three lattice copies
-        ("tiling:square@6x6", None, 0),
+        ("honeycomb:cP", [[0, 0, 0], [1, 0, 0], [0, 1, 1]], 0),  # threads smoothed in the cell: realized in full
+        ("tiling:square@3x3", None, 0),
         ("cube", None, 0),  # closed loops are smoothed as a whole: realized in full
         ("octahedron", None, 2),  # open strands
     ],
@@ -55,7 +55,7 @@ def test_reused_curves_equal_realize_bit_for_bit(name, block, cut):
         assert real.tube_radius == expected.tube_radius and real.scale == expected.scale
         reused += len(set(entries) & set(known))
         known = entries
-    if sc.dim or cut:  # threads and open strands are built strand by strand
+    if cut:  # open strands are built strand by strand
         assert reused > 0
 
 
@@ -73,18 +73,26 @@ def client():
         yield c
 
 
+def nulls_of(sc, corners):
+    """(n_corners,) bool with ``corners`` set."""
+    out = np.zeros(sc.n_corners, bool)
+    out[corners] = True
+    return out
+
+
 def test_curves_the_page_holds_travel_as_keys_alone(client):
-    name, block = "honeycomb:cP@3x3x3", [1, 1, 1]
+    # open strands are built strand by strand (closed ones, and periodic thread classes, are smoothed together)
+    name, nulls = "octahedron", [2]
     sc = lkspace.load(name)
     labels = [1] * sc.n_edges
-    first = client.post("/api/design", json={"key": name, "labels": labels, "block": block}).json()["curves"]
-    real = lkspace.realize(sc, labels, options=RealizeOptions(embedding="later"))
+    first = client.post("/api/design", json={"key": name, "labels": labels, "nulls": nulls}).json()["curves"]
+    real = lkspace.realize(sc, labels, nulls_of(sc, nulls), options=RealizeOptions(embedding="later"))
     assert first["keys"] == [curve_key(c, cl) for c, cl in zip(real.curves, real.closed, strict=True)]
     assert all(first["sent"]) and len(set(first["keys"])) == len(first["keys"])
     labels[4] = 2
-    body = {"key": name, "labels": labels, "block": block, "have": first["keys"]}
+    body = {"key": name, "labels": labels, "nulls": nulls, "have": first["keys"]}
     second = client.post("/api/design", json=body).json()["curves"]
-    real = lkspace.realize(sc, labels, options=RealizeOptions(embedding="later"))
+    real = lkspace.realize(sc, labels, nulls_of(sc, nulls), options=RealizeOptions(embedding="later"))
     keys = [curve_key(c, cl) for c, cl in zip(real.curves, real.closed, strict=True)]
     assert second["keys"] == keys and second["counts"] == [len(c) for c in real.curves]
     new = [k not in first["keys"] for k in keys]
@@ -93,7 +101,7 @@ def test_curves_the_page_holds_travel_as_keys_alone(client):
     expected = np.vstack([c for c, sent in zip(real.curves, new, strict=True) if sent])
     np.testing.assert_array_equal(points, expected.astype("<f4"))
     ports = [s["port"] for s in client.post("/api/design", json=body).json()["strands"]]
-    tr = lkspace.trace(sc, labels)
+    tr = lkspace.trace(sc, labels, nulls_of(sc, nulls))
     assert ports == [int(tr.steps[a:b].min()) for a, b in zip(tr.strand_starts[:-1], tr.strand_starts[1:], strict=True)]
 
 

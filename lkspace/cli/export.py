@@ -374,10 +374,9 @@ def export_cmd(
     if sizes is not None:
         from ..geometry.block import realize_block
 
-        if relax:
-            raise UsageError("--relax works on finite scaffolds, not on a --block of a periodic one")
+        then = (lambda r: relaxed(r, relax_steps, relax_time)) if relax else None
         with point_budget(output, tubes) as max_points:
-            real = realize_block(scaffold, labels, nulls, params, sizes, max_points=max_points)
+            real = realize_block(scaffold, labels, nulls, params, sizes, max_points=max_points, relax=then)
     else:
         with point_budget(output, tubes) as max_points:
             real = realize(scaffold, labels, nulls, params, options=RealizeOptions(max_points=max_points))

@@ -1,6 +1,6 @@
 """Strand colours: 24 well-separated colours, given to strands by a stable key.
 
-A strand's key is the smallest face it visits (``lkspace.formats.render.strand_keys``):
+A strand's key is the smallest face it visits (:func:`strand_keys`):
 strands take the palette's colours in the order of their keys, so the colours do not
 depend on how the tracer numbered the strands, and an edit that leaves the strands'
 order of keys alone leaves their colours alone.  Past 24 strands, golden-ratio hues.
@@ -9,8 +9,12 @@ order of keys alone leaves their colours alone.  Past 24 strands, golden-ratio h
 from __future__ import annotations
 
 import colorsys
+from typing import TYPE_CHECKING
 
 import numpy as np
+
+if TYPE_CHECKING:
+    from ..geometry.realization import Realization
 
 PALETTE = np.array(
     [
@@ -65,3 +69,23 @@ def arc_colors(fractions: np.ndarray) -> np.ndarray:
     """(n, 3) colours cycling through the hues along a strand (``fractions`` of its length in ``[0, 1)``)."""
     hues = np.asarray(fractions, np.float64) % 1.0
     return np.array([colorsys.hsv_to_rgb(h, 0.8, 0.85) for h in hues]).reshape(-1, 3)
+
+
+def strand_keys(real: Realization) -> np.ndarray:
+    """(n_strands,) int64: the smallest face each strand visits (its stable colour key)."""
+    tr = real.trace
+    faces = real.scaffold.corner_face[tr.steps // 2]
+    starts = tr.strand_starts[:-1]
+    return np.minimum.reduceat(faces, starts) if len(faces) else np.zeros(0, np.int64)
+
+
+def curve_colors(real: Realization) -> np.ndarray:
+    """(max(n_curves, 1), 3) one colour per curve; in a block, per thread class.
+
+    Every copy and cut run of a block's thread class (a strand of the quotient) takes
+    its class's colour (by its stable key), so that one thread reads as one colour
+    across the cells.
+    """
+    if real.block is None or not real.n_curves:
+        return colors(max(real.n_curves, 1))
+    return keyed_colors(strand_keys(real))[real.strand_of]

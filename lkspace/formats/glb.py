@@ -11,7 +11,7 @@ import struct
 import numpy as np
 
 from ..geometry.realization import Realization
-from .colors import colors
+from .colors import curve_colors
 from .options import GlbOptions
 from .tubes import tube_meshes
 
@@ -30,7 +30,7 @@ def glb_bytes(real: Realization, options: GlbOptions) -> bytes:
         return len(views) - 1
 
     for k, ((v, nrm, f), rgb) in enumerate(
-        zip(tube_meshes(real, options.tube_radius, options.sides), colors(real.n_curves), strict=False)
+        zip(tube_meshes(real, options.tube_radius, options.sides), curve_colors(real), strict=False)
     ):
         v32 = v.astype(np.float32)
         pos = add_view(v32.tobytes(), 34962)

@@ -30,20 +30,28 @@ def face_lines(f: np.ndarray) -> str:
 
 
 def obj_bytes(real: Realization, options: MeshOptions) -> bytes:
-    """Return polylines (``l``) or tube meshes, one ``o strand_k`` object per curve, as OBJ text."""
+    """Return polylines (``l``) or tube meshes, one ``o strand_k`` object per curve, as OBJ text.
+
+    In a block, curve ``k`` of thread class ``s`` (a strand of the quotient) is ``o thread_s_k``.
+    """
     out = [f"# lkspace strands of {real.scaffold.name}: {plural(real.n_curves, 'curve')}\n"]
     if options.units:
         out.append(f"# units {options.units}\n")
     base = 1
+    names = (
+        [f"strand_{k}" for k in range(real.n_curves)]
+        if real.block is None
+        else [f"thread_{s}_{k}" for k, s in enumerate(real.strand_of.tolist())]
+    )
     if options.tubes:
         for k, (v, _, f) in enumerate(tube_meshes(real, options.tube_radius, options.sides)):
-            out += [f"o strand_{k}\n", vertex_lines(v), face_lines(f + base)]
+            out += [f"o {names[k]}\n", vertex_lines(v), face_lines(f + base)]
             base += len(v)
     else:
         for k, (curve, closed) in enumerate(zip(real.curves, real.closed, strict=False)):
             idx = np.arange(base, base + len(curve))
             if closed:
                 idx = np.append(idx, base)
-            out += [f"o strand_{k}\n", vertex_lines(curve), "l " + " ".join(idx.astype(str).tolist()) + "\n"]
+            out += [f"o {names[k]}\n", vertex_lines(curve), "l " + " ".join(idx.astype(str).tolist()) + "\n"]
             base += len(curve)
     return "".join(out).encode("utf-8")

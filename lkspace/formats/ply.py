@@ -12,7 +12,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..geometry.realization import Realization
-from .colors import colors
+from .colors import curve_colors
 from .options import MeshOptions
 from .tubes import merged, tube_meshes
 
@@ -24,7 +24,7 @@ EDGE = np.dtype([("vertex1", "<i4"), ("vertex2", "<i4")])
 def ply_bytes(real: Realization, options: MeshOptions) -> bytes:
     """Return the binary PLY of the strands (``tubes``: triangle faces, else polyline edges)."""
     tubes, units = options.tubes, options.units
-    cols = (colors(max(real.n_curves, 1)) * 255).round().astype(np.uint8)
+    cols = (curve_colors(real) * 255).round().astype(np.uint8)
     if tubes:
         meshes = tube_meshes(real, options.tube_radius, options.sides)
         verts, elems, _ = merged(meshes)

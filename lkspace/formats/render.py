@@ -22,7 +22,7 @@ import numpy as np
 
 from ..errors import UsageError, require
 from ..geometry.realization import Realization
-from .colors import arc_colors, keyed_colors
+from .colors import arc_colors, keyed_colors, strand_keys
 from .colors import colors as default_colors
 from .tubes import tube_meshes
 from .view import TITLE_HEIGHT, direction, pixels_per_unit, screen_axes, view_angles
@@ -303,14 +303,6 @@ def fill_zoom(ax: Any, center: np.ndarray, scale: float) -> float:
 
 TUBE_SIDES, THICK_SIDES = 16, 32
 """Facets around a pictured tube; around a thick one (radius over 2% of the drawing, a relaxed rope)."""
-
-
-def strand_keys(real: Realization) -> np.ndarray:
-    """(n_strands,) int64: the smallest face each strand visits (its stable colour key)."""
-    tr = real.trace
-    faces = real.scaffold.corner_face[tr.steps // 2]
-    starts = tr.strand_starts[:-1]
-    return np.minimum.reduceat(faces, starts) if len(faces) else np.zeros(0, np.int64)
 
 
 def strand_colors(real: Realization, look: Look) -> np.ndarray:

@@ -14,6 +14,7 @@ lies in the block whole.  :func:`block_faces` lists the faces (cells) to draw.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -218,9 +219,11 @@ def clip_curves(
     """Cut polylines where they leave ``block`` (widened by its margin).
 
     Closed loops are kept whole when their centre lies in the block and dropped
-    otherwise; open polylines are split into the runs inside, each ended exactly on the
-    widened block's surface; a run that never enters the block itself (a stub in the
-    margin) is dropped.  Returns ``(pieces, closed flags, source curve per piece)``.
+    otherwise; an open polyline (a thread) is kept from where it first enters to where
+    it last leaves, ended exactly on the widened block's surface: one run per thread,
+    whole even where it strays out of the block and back in between; a run that never
+    enters the block itself (a stub in the margin) is dropped.  Returns ``(pieces,
+    closed flags, source curve per piece)``.
     """
     pieces: list[np.ndarray] = []
     flags: list[bool] = []
@@ -237,18 +240,18 @@ def clip_curves(
         ins = np.all(np.abs(f) <= half, axis=1)
         if not ins.any():
             continue
-        edges = np.diff(np.concatenate([[0], ins.astype(np.int8), [0]]))
-        for lo, hi in zip(np.flatnonzero(edges == 1), np.flatnonzero(edges == -1), strict=True):
-            run = [c[lo:hi]]
-            if lo > 0:  # the way in: from the last point outside to the surface
-                run.insert(0, cut_point(c[lo - 1], c[lo], f[lo - 1], f[lo], half)[None])
-            if hi < len(c):
-                run.append(cut_point(c[hi], c[hi - 1], f[hi], f[hi - 1], half)[None])
-            pts = np.vstack(run)
-            if len(pts) >= 3 and arc_length(pts) >= block.shortest:  # not a stub
-                pieces.append(pts)
-                flags.append(False)
-                source.append(k)
+        inside = np.flatnonzero(ins)
+        lo, hi = int(inside[0]), int(inside[-1]) + 1
+        run = [c[lo:hi]]
+        if lo > 0:  # the way in: from the last point outside to the surface
+            run.insert(0, cut_point(c[lo - 1], c[lo], f[lo - 1], f[lo], half)[None])
+        if hi < len(c):
+            run.append(cut_point(c[hi], c[hi - 1], f[hi], f[hi - 1], half)[None])
+        pts = np.vstack(run)
+        if len(pts) >= 3 and arc_length(pts) >= block.shortest:  # not a stub
+            pieces.append(pts)
+            flags.append(False)
+            source.append(k)
     return pieces, np.array(flags, bool), np.array(source, np.int64)
 
 
@@ -325,6 +328,7 @@ def realize_block(
     sizes: ArrayLike,
     *,
     max_points: int = MAX_POINTS,
+    relax: Callable[[Realization], Realization] | None = None,
 ) -> Realization:
     """Realize an ``sizes`` block of a periodic scaffold, cut to the block.
 
@@ -334,13 +338,16 @@ def realize_block(
     tube radii, so that threads running in the block's surface stay whole; runs shorter
     than :data:`STUB` shortest edges are left out.  ``copy_of`` and ``strand_of`` of a
     piece are those of its first period.  ``max_points`` bounds each realization
-    (:class:`~lkspace.geometry.params.RealizeOptions`).
+    (:class:`~lkspace.geometry.params.RealizeOptions`).  The thread classes are smoothed
+    in the periodic cell, and relaxed there by ``relax`` when given (e.g.
+    :func:`~lkspace.geometry.relax.relax`), before the copies are joined and cut: every
+    copy of a class has the same shape.
 
     Examples
     --------
     >>> from lkspace import load
     >>> r = realize_block(load("honeycomb:cP"), [2, 1, 1], None, None, (2, 2, 2))
-    >>> bool(r.block is not None and all(r.block.inside(c).all() for c in r.curves))
+    >>> bool(r.block is not None and all(r.block.inside(c[[0, -1]]).all() for c in r.curves))
     True
     """
     if not scaffold.periodic:
@@ -353,6 +360,8 @@ def realize_block(
     covering = covering_translations(scaffold, block_of(scaffold, sizes, margin), np.vstack(one.curves))
     options = RealizeOptions(translations=covering, trace=one.trace, max_points=max_points)
     real = realize(scaffold, labels, nulls, params, options=options)
+    if relax is not None:
+        real = relax(real)
     block = block_of(scaffold, sizes, margin, STUB * real.scale)
     joined, joined_closed, members = join_curves(real.curves, real.closed, JOIN * real.scale)
     pieces, closed, source = clip_curves(joined, joined_closed, block)

@@ -20,6 +20,11 @@ iterations.  With ``grow`` > 0 the diameter grows by that factor whenever the ro
 (no overlap, no tight bend): the curves tighten toward a **relaxed** shape of low
 ropelength (length / thickness) in the manner of Pierański's SONO algorithm; with
 ``grow`` = 0 the flow only **smooths** (rounds corners and separates strands to ``D``).
+
+Given a :class:`~lkspace.geometry.cell.Cell` (a fixed lattice and every curve's period),
+the curves are the thread classes of a periodic design: a curve's point after its last is
+its first moved by its period, and distances are taken to every lattice image (periodic
+boundary conditions); without one, the curves are closed polylines in space.
 """
 
 from __future__ import annotations
@@ -32,6 +37,7 @@ import numpy as np
 from scipy.spatial import cKDTree
 
 from ..runtime.progress import task
+from .cell import Cell, image_candidates
 
 FOLD = 1.5
 """Points on one curve are distinct pieces when farther apart along it than ``FOLD`` times their distance."""
@@ -104,23 +110,26 @@ class FlowResult:
     stopped: Stop = "steps"
 
 
-def resample_closed(curve: np.ndarray, spacing: float, least: int = 12) -> np.ndarray:
-    """``(m, 3)`` points about ``spacing`` apart, evenly by arc length, along the closed polyline ``curve``."""
-    length = float(_lengths([curve])[0])
-    return resample_count(curve, max(least, int(round(length / spacing))))
+def resample_closed(curve: np.ndarray, spacing: float, least: int = 12, offset: np.ndarray | None = None) -> np.ndarray:
+    """``(m, 3)`` points about ``spacing`` apart, evenly by arc length, along the closed polyline ``curve``.
+
+    ``offset`` ``(3,)``: the curve closes on its first point moved by it (a thread's period).
+    """
+    length = float(closed_lengths([curve], None if offset is None else offset[None])[0])
+    return resample_count(curve, max(least, int(round(length / spacing))), offset)
 
 
-def resample_count(curve: np.ndarray, n: int) -> np.ndarray:
-    """``(n, 3)`` points evenly spaced by arc length along the closed polyline ``curve``."""
-    pts = np.vstack([curve, curve[:1]])
+def resample_count(curve: np.ndarray, n: int, offset: np.ndarray | None = None) -> np.ndarray:
+    """``(n, 3)`` points evenly spaced by arc length along the closed polyline ``curve`` (``offset``: as above)."""
+    pts = np.vstack([curve, curve[:1] if offset is None else curve[:1] + offset])
     cum = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(pts, axis=0), axis=1))])
     s = np.linspace(0.0, cum[-1], max(n, 3), endpoint=False)
     return np.column_stack([np.interp(s, cum, pts[:, i]) for i in range(3)])
 
 
 @dataclass(frozen=True)
-class _Ring:
-    """Concatenated closed curves: neighbours, owner and arc position of every point."""
+class Ring:
+    """Concatenated closed curves: neighbours, owner and arc position of every point (``cell``: thread classes)."""
 
     prev: np.ndarray
     next: np.ndarray
@@ -128,21 +137,39 @@ class _Ring:
     index: np.ndarray
     sizes: np.ndarray
     starts: np.ndarray
+    cell: Cell | None = None
+    before: np.ndarray | None = None
+    """(n, 3): added to a point's previous neighbour (minus the period at a thread's first point)"""
+    after: np.ndarray | None = None
+    """(n, 3): added to a point's next neighbour (the period at a thread's last point)"""
 
     @staticmethod
-    def of(curves: list[np.ndarray]) -> _Ring:
+    def of(curves: list[np.ndarray], cell: Cell | None = None) -> Ring:
+        """Ring of the closed ``curves`` (``cell``: thread classes in it)."""
         sizes = np.array([len(c) for c in curves], np.int64)
         starts = np.concatenate([[0], np.cumsum(sizes)[:-1]])
         owner = np.repeat(np.arange(len(curves)), sizes)
         index = np.arange(int(sizes.sum())) - starts[owner]
         prev = starts[owner] + (index - 1) % sizes[owner]
         nxt = starts[owner] + (index + 1) % sizes[owner]
-        return _Ring(prev, nxt, owner, index, sizes, starts)
+        if cell is None:
+            return Ring(prev, nxt, owner, index, sizes, starts)
+        before, after = np.zeros((len(owner), 3)), np.zeros((len(owner), 3))
+        offsets = cell.offsets()
+        before[starts] = -offsets
+        after[starts + sizes - 1] = offsets
+        return Ring(prev, nxt, owner, index, sizes, starts, cell, before, after)
+
+    def neighbours(self, points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Previous and next neighbour of every point, ``(n, 3)`` each (across a thread's period)."""
+        if self.before is None or self.after is None:
+            return points[self.prev], points[self.next]
+        return points[self.prev] + self.before, points[self.next] + self.after
 
 
-def circumradii(points: np.ndarray, ring: _Ring) -> np.ndarray:
+def circumradii(points: np.ndarray, ring: Ring) -> np.ndarray:
     """Radius of the circle through every point and its two neighbours, ``(n,)`` (``inf`` if straight)."""
-    a, b, c = points[ring.prev], points, points[ring.next]
+    (a, c), b = ring.neighbours(points), points
     ab, bc, ca = (np.linalg.norm(x, axis=1) for x in (b - a, c - b, a - c))
     area2 = np.linalg.norm(np.cross(b - a, c - a), axis=1)
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -158,6 +185,8 @@ class Pairs(NamedTuple):
     """(n_pairs,) int64: the second point"""
     d: np.ndarray
     """(n_pairs,) float64: their distance"""
+    shift: np.ndarray | None = None
+    """(n_pairs, 3) float64: the lattice translation of ``j``'s image (``None`` without a cell)"""
 
 
 class _Near(NamedTuple):
@@ -169,9 +198,11 @@ class _Near(NamedTuple):
     """(m,) int64: the curve of ``i``"""
     share: np.ndarray
     """(m,) float64: the points' separation along their curve as a share of its length (``inf``: two curves)"""
+    shift: np.ndarray | None = None
+    """(m, 3) float64: the lattice translation of ``j``'s image (``None`` without a cell)"""
 
     @staticmethod
-    def of(pairs: np.ndarray, ring: _Ring) -> _Near:
+    def of(pairs: np.ndarray, ring: Ring) -> _Near:
         """Candidates of the ``(m, 2)`` index ``pairs`` on ``ring``."""
         i, j = pairs[:, 0], pairs[:, 1]
         oi = ring.owner[i]
@@ -183,30 +214,42 @@ class _Near(NamedTuple):
     def within(self, points: np.ndarray, lengths: np.ndarray, radius: float) -> Pairs:
         """Return the candidates on distinct pieces within ``radius`` (:class:`Pairs`); ``lengths``: of the curves."""
         diff = points[self.i] - points[self.j]
+        if self.shift is not None:
+            diff -= self.shift
         d2 = np.einsum("ij,ij->i", diff, diff)
         m = d2 <= radius * radius
         d = np.sqrt(d2[m])
         keep = self.share[m] * lengths[self.owner[m]] > FOLD * d
-        return Pairs(self.i[m][keep], self.j[m][keep], d[keep])
+        shift = None if self.shift is None else self.shift[m][keep]
+        return Pairs(self.i[m][keep], self.j[m][keep], d[keep], shift)
 
 
-def distinct_pairs(points: np.ndarray, ring: _Ring, lengths: np.ndarray, radius: float) -> Pairs:
+def _candidates(points: np.ndarray, ring: Ring, radius: float, tree: cKDTree | None = None) -> _Near:
+    """Pairs of ``points`` within ``radius`` (of each other's lattice images, with a cell) as :class:`_Near`."""
+    if ring.cell is not None:
+        return _Near(*image_candidates(points, ring.cell, ring.owner, ring.index, ring.sizes, radius))
+    tree = cKDTree(points) if tree is None else tree
+    return _Near.of(tree.query_pairs(radius, output_type="ndarray").reshape(-1, 2), ring)
+
+
+def distinct_pairs(points: np.ndarray, ring: Ring, lengths: np.ndarray, radius: float) -> Pairs:
     """Return the pairs of points on distinct pieces within ``radius`` (:class:`Pairs`)."""
-    pairs = cKDTree(points).query_pairs(radius, output_type="ndarray")
-    return _Near.of(pairs.reshape(-1, 2), ring).within(points, lengths, radius)
+    return _candidates(points, ring, radius).within(points, lengths, radius)
 
 
-def _lengths(curves: list[np.ndarray]) -> np.ndarray:
-    return np.array([np.linalg.norm(np.diff(np.vstack([c, c[:1]]), axis=0), axis=1).sum() for c in curves])
+def closed_lengths(curves: list[np.ndarray], offsets: np.ndarray | None = None) -> np.ndarray:
+    """Length of every closed curve ``(n,)``; ``offsets`` ``(n, 3)``: each closes on its first point moved by it."""
+    ends = [c[:1] if offsets is None else c[:1] + offsets[k] for k, c in enumerate(curves)]
+    return np.array([np.linalg.norm(np.diff(np.vstack([c, e]), axis=0), axis=1).sum() for c, e in zip(curves, ends)])
 
 
-def _ring_lengths(points: np.ndarray, ring: _Ring) -> np.ndarray:
+def _ring_lengths(points: np.ndarray, ring: Ring) -> np.ndarray:
     """Length of every closed curve of the concatenated ``points`` ``(n_curves,)``."""
-    seg = points[ring.next] - points
+    seg = ring.neighbours(points)[1] - points
     return np.bincount(ring.owner, np.sqrt(np.einsum("ij,ij->i", seg, seg)), minlength=len(ring.sizes))
 
 
-def _neighbour_list(points: np.ndarray, ring: _Ring, reach: float, steps: int, h: float, grow: float) -> _Near:
+def _neighbour_list(points: np.ndarray, ring: Ring, reach: float, steps: int, h: float, grow: float) -> _Near:
     """Return the pairs of ``points`` that may come within ``reach`` in the next ``steps`` steps.
 
     A step moves a point at most ``h / 4`` (the cap of :func:`_step`), so two points close
@@ -214,16 +257,20 @@ def _neighbour_list(points: np.ndarray, ring: _Ring, reach: float, steps: int, h
     most ``(1 + grow)`` per step.
     """
     radius = reach * (1 + grow) ** steps + 0.5 * h * steps
-    tree = cKDTree(points, compact_nodes=False, balanced_tree=False)
-    return _Near.of(tree.query_pairs(radius, output_type="ndarray").reshape(-1, 2), ring)
+    tree = None if ring.cell is not None else cKDTree(points, compact_nodes=False, balanced_tree=False)
+    return _candidates(points, ring, radius, tree)
 
 
 def rope_flow(
-    curves: list[np.ndarray], options: FlowOptions, label: Literal["relaxing", "smoothing"] = "relaxing"
+    curves: list[np.ndarray],
+    options: FlowOptions,
+    label: Literal["relaxing", "smoothing"] = "relaxing",
+    cell: Cell | None = None,
 ) -> FlowResult:
     """Run the rope flow (module docstring) on closed ``curves``; return the best rope found.
 
-    ``label`` names the task in the progress lines.
+    ``label`` names the task in the progress lines; ``cell``: the curves are thread
+    classes in it (module docstring; the lattice stays fixed).
 
     With ``grow`` > 0 the result is the iterate of lowest ropelength among those where
     the rope fitted, and the flow stops when it has **converged**: its best ropelength
@@ -234,8 +281,9 @@ def rope_flow(
     """
     diameter = float(options.diameter)
     h = diameter / options.points_per_diameter
-    pts_list = [resample_closed(np.asarray(c, np.float64), h) for c in curves]
-    ring, points = _Ring.of(pts_list), np.vstack(pts_list)
+    offsets: list[np.ndarray | None] = [None] * len(curves) if cell is None else list(cell.offsets())
+    pts_list = [resample_closed(np.asarray(c, np.float64), h, offset=o) for c, o in zip(curves, offsets)]
+    ring, points = Ring.of(pts_list, cell), np.vstack(pts_list)
     best: FlowResult | None = None
     anchor, anchored = np.inf, 0  # the best ropelength when it last dropped by TOLERANCE, and the iteration
     stopped: Stop = "steps"
@@ -248,8 +296,8 @@ def rope_flow(
                 break
             if it % RESAMPLE_EVERY == 0:
                 h = diameter / options.points_per_diameter
-                pts_list = [resample_closed(c, h) for c in np.split(points, ring.starts[1:])]
-                ring = _Ring.of(pts_list)
+                pts_list = [resample_closed(c, h, offset=o) for c, o in zip(np.split(points, ring.starts[1:]), offsets)]
+                ring = Ring.of(pts_list, cell)
                 points = np.vstack(pts_list)
                 lengths = _ring_lengths(points, ring)
                 candidates = _neighbour_list(points, ring, max(diameter, 4 * h), RESAMPLE_EVERY, h, options.grow)
@@ -282,7 +330,7 @@ def rope_flow(
 
 def _step(
     points: np.ndarray,
-    ring: _Ring,
+    ring: Ring,
     radius: np.ndarray,
     pairs: Pairs,
     diameter: float,
@@ -290,8 +338,9 @@ def _step(
     pull: float,
 ) -> np.ndarray:
     """One capped step ``(n, 3)``: curve shortening, curvature relief and overlap pushes (``pairs``: the close ones)."""
-    i, j, d = pairs
-    mid = 0.5 * (points[ring.prev] + points[ring.next]) - points
+    i, j, d = pairs.i, pairs.j, pairs.d
+    before, after = ring.neighbours(points)
+    mid = 0.5 * (before + after) - points
     weight = np.where(radius < 0.5 * diameter, 0.5, pull)
     move = weight[:, None] * mid
     n = len(points)
@@ -303,7 +352,8 @@ def _step(
         over = d < diameter
         if over.any():
             oi, oj, od = i[over], j[over], d[over]
-            push = (0.5 * (diameter - od) / np.maximum(od, 1e-300))[:, None] * (points[oi] - points[oj])
+            apart = points[oi] - points[oj] if pairs.shift is None else points[oi] - points[oj] - pairs.shift[over]
+            push = (0.5 * (diameter - od) / np.maximum(od, 1e-300))[:, None] * apart
             both = np.concatenate([oi, oj])
             count = np.bincount(both, minlength=n).astype(np.float64)
             signed = np.concatenate([push, -push])
@@ -323,7 +373,7 @@ SMOOTH_MAX_POINTS = 50_000
 """Curves that would need more flow points than this are left as constructed (the flow would take seconds)."""
 
 
-def smooth_curves(curves: list[np.ndarray], diameter: float) -> list[np.ndarray]:
+def smooth_curves(curves: list[np.ndarray], diameter: float, cell: Cell | None = None) -> list[np.ndarray]:
     """Round the corners of closed ``curves`` and spread their distinct pieces to ``diameter``.
 
     A short :func:`rope_flow` without growth: an isotopy (the link type is kept), and
@@ -331,24 +381,27 @@ def smooth_curves(curves: list[np.ndarray], diameter: float) -> list[np.ndarray]
     from the construction, so each strand still follows its face.  The curves come back
     evenly spaced at ``diameter / 8`` (the construction's sampling is not kept: finer
     points on the flow's polyline would show its vertices as kinks); curves needing more
-    than :data:`SMOOTH_MAX_POINTS` flow points in all are returned unchanged.
+    than :data:`SMOOTH_MAX_POINTS` flow points in all are returned unchanged.  ``cell``:
+    the curves are thread classes in it (module docstring).
     """
     options = FlowOptions(diameter=diameter, pull=SMOOTH_PULL, iterations=SMOOTH_ITERATIONS)
-    if float(_lengths(curves).sum()) * options.points_per_diameter / diameter > SMOOTH_MAX_POINTS:
+    offsets = None if cell is None else cell.offsets()
+    if float(closed_lengths(curves, offsets).sum()) * options.points_per_diameter / diameter > SMOOTH_MAX_POINTS:
         return curves
-    return rope_flow(curves, options, "smoothing").curves
+    return rope_flow(curves, options, "smoothing", cell).curves
 
 
-def rope_thickness(curves: list[np.ndarray], points: int = 100) -> float:
+def rope_thickness(curves: list[np.ndarray], points: int = 100, cell: Cell | None = None) -> float:
     """Rope radius closed ``curves`` carry: the smaller of their least bend and half-gap.
 
     The curves are resampled at ``points`` per curve on average; the gap is between
-    distinct pieces (module docstring).
+    distinct pieces (module docstring; ``cell``: the curves are thread classes in it).
     """
-    h = float(_lengths(curves).sum()) / (points * max(len(curves), 1))
-    pts_list = [resample_closed(c, h) for c in curves]
-    ring = _Ring.of(pts_list)
+    offsets = None if cell is None else cell.offsets()
+    h = float(closed_lengths(curves, offsets).sum()) / (points * max(len(curves), 1))
+    pts_list = [resample_closed(c, h, offset=None if offsets is None else offsets[k]) for k, c in enumerate(curves)]
+    ring = Ring.of(pts_list, cell)
     points_all = np.vstack(pts_list)
     radius = float(circumradii(points_all, ring).min())
-    d = distinct_pairs(points_all, ring, _lengths(pts_list), 2 * radius).d
+    d = distinct_pairs(points_all, ring, closed_lengths(pts_list, offsets), 2 * radius).d
     return min(radius, 0.5 * float(d.min())) if len(d) else radius

@@ -212,7 +212,7 @@ def realize(
     how.check()
     tr = how.trace if how.trace is not None else trace(scaffold, labels, nulls)
     built = _built(scaffold, tr, shape, how)
-    built = replace(built, curves=_smoothed(scaffold, built, shape, how.embedding))
+    built = replace(built, curves=_smoothed(scaffold, tr, built, shape, how.embedding))
     real = _measured(scaffold, tr, built, shape, how)
     if relax:
         from .relax import relax as relax_curves
@@ -231,7 +231,8 @@ def realize_reusing(
     their edges' labels and the strand's period (its **key**), so a curve kept under its key
     is the curve realize would build.  The caller keeps the curves between calls (an edit
     changes the strands through one edge; the others keep theirs).  A finite scaffold whose
-    strands all close is smoothed as a whole (every curve moves): it is realized in full.
+    strands all close is smoothed as a whole (every curve moves), and so are a periodic
+    one's thread classes in the periodic cell: it is realized in full.
 
     Returns
     -------
@@ -240,7 +241,7 @@ def realize_reusing(
     how = replace(options or RealizeOptions(), trace=tr, embedding="later")
     how.check()
     shape = Resolved.of(scaffold, GeometryParams())
-    if shape.smooth and not scaffold.dim and tr.closed.all():
+    if shape.smooth and tr.closed.all():
         real = realize(scaffold, options=how)
         return real, {}
     fr, ports, counts, translations = _prepared(scaffold, tr, shape, how)
@@ -324,12 +325,19 @@ def _translations(scaffold: Scaffold, translations: ArrayLike | None) -> np.ndar
     return np.asarray(translations, np.int64).reshape(-1, dim)
 
 
-def _smoothed(scaffold: Scaffold, built: Curves, shape: Resolved, embedding: EmbeddingCheck) -> list[np.ndarray]:
+def _smoothed(
+    scaffold: Scaffold, tr: Trace, built: Curves, shape: Resolved, embedding: EmbeddingCheck
+) -> list[np.ndarray]:
     """Return the closed curves of a finite scaffold smoothed (``shape.smooth``), else ``curves`` as built.
 
     The flow keeps the link type of an embedding: unless the check is off
-    (``"measure"``), the construction is proved one first.
+    (``"measure"``), the construction is proved one first.  A periodic scaffold's
+    thread classes are smoothed in the periodic cell (:func:`smoothed_classes`).
     """
+    if shape.smooth and scaffold.dim and tr.closed.all():
+        from .threads import smoothed_classes
+
+        return smoothed_classes(scaffold, tr, built, SMOOTH_DIAMETER * shape.radius, embedding != "measure")
     if not shape.smooth or scaffold.dim or not built.closed.all():
         return built.curves
     if embedding != "measure":

@@ -9,8 +9,9 @@ than 0.1% over 400 steps), or stops early at a step or time limit, which
 the same bytes at any load.  The result is scaled back to the realization's size and
 centre; its tube radius is the rope's (the tube fills the space the relaxation found).
 
-Periodic scaffolds are refused: a thread's period is fixed by the lattice, which the flow
-does not keep.
+A periodic scaffold's thread classes (:mod:`~lkspace.geometry.cell`) are relaxed in the
+periodic cell with the lattice fixed: every copy of a class takes its relaxed shape, the
+rope grows as far as the fixed cell lets it, and nothing is rescaled.
 """
 
 from __future__ import annotations
@@ -101,7 +102,7 @@ def relax(realization: Realization, steps: int = RELAX_STEPS, time_limit: float 
     Raises
     ------
     GeometryError
-        For a periodic scaffold, open strands or limits out of range (a usage error).
+        For open strands or limits out of range (a usage error).
 
     Examples
     --------
@@ -112,12 +113,12 @@ def relax(realization: Realization, steps: int = RELAX_STEPS, time_limit: float 
     """
     _check_limits(steps, time_limit)
     name = realization.scaffold.name
-    if realization.scaffold.dim:
-        raise GeometryError(
-            f"{name}: relax works on finite scaffolds only (a periodic thread keeps its lattice period)", usage=True
-        )
-    if not realization.closed.all():
+    if not realization.trace.closed.all():
         raise GeometryError(f"{name}: relax needs closed strands (null edge-sides leave open ones)", usage=True)
+    if realization.scaffold.dim:
+        return _relax_periodic(
+            realization, FlowOptions(diameter=1.0, grow=GROW, iterations=steps, time_limit=time_limit)
+        )
     curves = realization.curves
     centre = np.vstack(curves).mean(axis=0)
     size = _spread(curves, centre)
@@ -134,6 +135,32 @@ def relax(realization: Realization, steps: int = RELAX_STEPS, time_limit: float 
     return replace(
         realization,
         curves=relaxed,
+        tube_radius=float(TUBE_FILL * rope),
+        min_distance=float(min_dist),
+        closest=closest,
+        relaxation=Relaxation(flowed.iterations, flowed.stopped, flowed.ropelength),
+    )
+
+
+def _relax_periodic(realization: Realization, options: FlowOptions) -> Realization:
+    """Relax the thread classes in the fixed periodic cell (module docstring) and place them at every copy."""
+    from .cell import cell_of, classes_of, placed
+    from .tracks import lattice_shift
+
+    real = realization
+    assert real.translations is not None  # realize sets them
+    shifts = lattice_shift(real.scaffold, real.translations)
+    classes, thread = classes_of(real.curves, real.closed, real.strand_of, real.copy_of, shifts)
+    cell = cell_of(real.scaffold, real.trace)
+    start = 2 * rope_thickness(classes, cell=cell)
+    flowed = rope_flow(classes, replace(options, diameter=start), cell=cell)
+    curves = placed(flowed.curves, thread, cell, real.strand_of, real.copy_of, shifts)
+    rope = 0.5 * flowed.diameter
+    reach = max(real.scale, 10 * rope)
+    min_dist, closest = check_embedding(curves, real.closed, real.min_separation, reach)
+    return replace(
+        real,
+        curves=curves,
         tube_radius=float(TUBE_FILL * rope),
         min_distance=float(min_dist),
         closest=closest,
