@@ -98,10 +98,10 @@ def download(page, selector, timeout=30000):
 
 
 def wait_for_camera(page, position, tol=1e-6):
-    """Wait (30 s at most) until the page's camera stands at ``position``."""
+    """Wait (120 s at most: the page redraws the design first, slow on a loaded machine) until its camera stands at ``position``."""
     page.wait_for_function(
         f"window.studio.view.camera.position.toArray().every((x, i) => Math.abs(x - {json.dumps(list(position))}[i]) <= {tol})",
-        timeout=30000,
+        timeout=120000,
     )
 
 

@@ -77,6 +77,7 @@ async function loadScaffold(key, labels, nulls, block, keepHistory = false) {
     $('scaffold-info').textContent = `${sc.name}: ${sc.n_vertices} vertices, ${sc.n_edges} edges, ${sc.n_faces} faces${sc.dim ? ` (periodic, ${sc.dim}D)` : ''} — ${sc.origin}`;
     view.setScaffold(sc, S.block);
     await update(performance.now());
+    if (mine !== S.loadSeq) return true; // a newer switch (an opened design) came meanwhile: its camera stays
     view.fit(); panelEdge();
     return true;
   } catch (err) { message(err.message); if (S.key) $('builtin').value = S.key; return false; } // the menu keeps naming what is shown
