@@ -125,9 +125,11 @@ def test_ctrl_c_stops_the_studio_with_its_jobs_after_long_use(rounds):
             for path, body in pending:
                 threading.Thread(target=ask, args=(path, body), daemon=True).start()
             time.sleep(1)
-            assert [client.get(f"/api/job/{j}").json()["state"] for j in (identify, solving)] == ["running"] * 2
+            states = [client.get(f"/api/job/{j}").json()["state"] for j in (identify, solving)]
+            assert states[1] == "running", states
+            assert states[0] in ("running", "done"), states  # a name may come from the cache at once
             family = psutil.Process(proc.pid).children(recursive=True)
-            assert len(family) >= 3  # the fork server and two workers at least
+            assert len(family) >= 2  # the fork server and the solve's worker at least
             started = time.monotonic()
             proc.send_signal(signal.SIGINT)
             _, err = proc.communicate(timeout=60)
