@@ -28,6 +28,20 @@ class DesignOperator(bpy.types.Operator):
         return obj is not None and obj.type == "MESH"
 
 
+class FileOperator(DesignOperator):
+    """Base of the operators writing the design to a file named in a file browser (``extension``: its default)."""
+
+    filepath: bpy.props.StringProperty(subtype="FILE_PATH")  # type: ignore[valid-type]
+    extension = ".stl"
+
+    def invoke(self, context: Any, event: Any) -> set[str]:
+        """Ask for the file name (by default the object's, with ``extension``)."""
+        if not self.filepath:
+            self.filepath = bpy.path.ensure_ext(context.active_object.name, self.extension)
+        context.window_manager.fileselect_add(self)
+        return {"RUNNING_MODAL"}
+
+
 class LKSPACE_OT_regenerate(DesignOperator):  # noqa: N801
     """Build the active mesh's strands: one curve object per component, in a collection named after the mesh."""
 
@@ -66,22 +80,14 @@ class LKSPACE_OT_identify(DesignOperator):  # noqa: N801
         return {"FINISHED"}
 
 
-class LKSPACE_OT_export(DesignOperator):  # noqa: N801
+class LKSPACE_OT_export(FileOperator):  # noqa: N801
     """Write printable pieces (.stl or .3mf) through lkspace's checked fabrication path."""
 
     bl_idname = "lkspace.export"
     bl_label = "Export Printable"
-    filepath: bpy.props.StringProperty(subtype="FILE_PATH")  # type: ignore[valid-type]
     thickness: bpy.props.FloatProperty(name="Thickness", default=2.0, min=0.0)  # type: ignore[valid-type]
     clearance: bpy.props.FloatProperty(name="Clearance", default=0.4, min=0.0)  # type: ignore[valid-type]
     scale: bpy.props.FloatProperty(name="Scale", default=10.0, min=0.0, description="Millimetres per mesh unit")  # type: ignore[valid-type]
-
-    def invoke(self, context: Any, event: Any) -> set[str]:
-        """Ask for the file name."""
-        if not self.filepath:
-            self.filepath = bpy.path.ensure_ext(context.active_object.name, ".stl")
-        context.window_manager.fileselect_add(self)
-        return {"RUNNING_MODAL"}
 
     def execute(self, context: Any) -> set[str]:
         """Export with ``lkspace.export`` (the path of ``lkspace export -o X --thickness --clearance``)."""
@@ -106,20 +112,14 @@ class LKSPACE_OT_export(DesignOperator):  # noqa: N801
         return {"FINISHED"}
 
 
-class LKSPACE_OT_export_dna(DesignOperator):  # noqa: N801
+class LKSPACE_OT_export_dna(FileOperator):  # noqa: N801
     """Write the design as DNA for oxDNA and oxView: NAME.top, NAME.dat and NAME.oxview (docs/dna.md)."""
 
     bl_idname = "lkspace.export_dna"
     bl_label = "Export DNA (oxDNA)"
-    filepath: bpy.props.StringProperty(subtype="FILE_PATH")  # type: ignore[valid-type]
     seed: bpy.props.IntProperty(name="Seed", default=0, min=0, description="Seed of the random bases")  # type: ignore[valid-type]
 
-    def invoke(self, context: Any, event: Any) -> set[str]:
-        """Ask for the file name (``NAME.oxdna``; the three files are written beside it)."""
-        if not self.filepath:
-            self.filepath = bpy.path.ensure_ext(context.active_object.name, ".oxdna")
-        context.window_manager.fileselect_add(self)
-        return {"RUNNING_MODAL"}
+    extension = ".oxdna"  # NAME.oxdna: the three files are written beside it
 
     def execute(self, context: Any) -> set[str]:
         """Build the DNA with :func:`lkspace.dna.build.build` and write it (the path of ``lkspace export -o NAME.oxdna``)."""
