@@ -43,41 +43,34 @@ def dna_search(ctx: Context, kw: dict[str, Any], scale: float, window: float) ->
     """Search the buildable designs and print them as solve does."""
     import numpy as np
 
-    from ..dna.search import buildable_designs, natural_twist
+    from ..dna.search import DnaSearchResult, DnaSolution, buildable_designs, natural_twist
+    from ..strands.tracing import trace
 
     if kw["components"] is None and kw["type_name"] is None:
         raise UsageError("--dna: give --components N or --type NAME")
     scaffold = load_mesh(ctx, kw["mesh"])
     wanted = None if kw["type_name"] is None else kw["type_name"].lstrip("m")
-    solutions: list[dict[str, Any]] = []
+    solutions: list[DnaSolution] = []
     for labels in buildable_designs(scaffold, scale, components=kw["components"], window=window):
-        entry: dict[str, Any] = {"labels": labels.tolist()}
+        name = None
         if wanted is not None:
             import lkspace
 
             name = lkspace.identify(scaffold, labels).name
             if name is None or name.lstrip("m") != wanted:
                 continue
-            entry["name"] = name
-        from ..strands.tracing import trace
-
-        entry["components"] = trace(scaffold, labels).components
-        solutions.append(entry)
+        solutions.append(DnaSolution(tuple(int(x) for x in labels), trace(scaffold, labels).components, name))
         if len(solutions) >= kw["count"]:
             break
     if wanted is None:
         status = "feasible" if solutions else "infeasible"
     else:
         status = "found" if solutions else "exhausted"
-    natural = np.round(natural_twist(scaffold, scale), 3).tolist()
-    data = {
-        "status": status,
-        "solutions": solutions,
-        "dna": {"nm_per_unit": scale, "window": window, "natural_twist": natural},
-    }
+    natural = tuple(float(x) for x in np.round(natural_twist(scaffold, scale), 3))
+    result = DnaSearchResult(status, tuple(solutions), scale, window, natural)
     lines = [f"{scaffold.name} at {scale:g} nm per unit (DNA, window {window:g}): {status}"]
-    lines += [f"  {','.join(map(str, s['labels']))}" + (f"  {s['name']}" if "name" in s else "") for s in solutions]
-    emit(ctx, data, lambda: click.echo("\n".join(lines)))
+    lines += [f"  {','.join(map(str, s.labels))}" + (f"  {s.name}" if s.name else "") for s in solutions]
+    emit(ctx, result.to_json(), lambda: click.echo("\n".join(lines)))
 
 
 def dna_callback(**kw: Any) -> None:

@@ -14,6 +14,8 @@ from __future__ import annotations
 
 import itertools
 from collections.abc import Iterator
+from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -22,6 +24,43 @@ from ..model.scaffold import Scaffold
 from ..strands.tracing import trace
 from .helix import RISE_NM, edge_frames, vertex_gaps
 from .model import BP_PER_TURN, check_buildable, orient
+
+
+@dataclass(frozen=True)
+class DnaSolution:
+    """One buildable design of a DNA search: its labels, strand count and (for a type search) name."""
+
+    labels: tuple[int, ...]
+    components: int
+    name: str | None = None
+
+    def to_json(self) -> dict[str, Any]:
+        """Return the design as one entry of the search's ``solutions`` (``name`` only when searched by type)."""
+        out: dict[str, Any] = {"labels": list(self.labels)}
+        if self.name is not None:
+            out["name"] = self.name
+        return {**out, "components": self.components}
+
+
+@dataclass(frozen=True)
+class DnaSearchResult:
+    """The answer of a DNA search: status, designs, and the scale they were searched at."""
+
+    status: str
+    """``feasible``/``infeasible`` (by strand count) or ``found``/``exhausted`` (by type)."""
+    solutions: tuple[DnaSolution, ...]
+    nm_per_unit: float
+    window: float
+    natural_twist: tuple[float, ...]
+    """Per edge, the half turns its length holds at this scale (rounded to 3 decimals)."""
+
+    def to_json(self) -> dict[str, Any]:
+        """Return the answer as the command line prints it in JSON."""
+        return {
+            "status": self.status,
+            "solutions": [s.to_json() for s in self.solutions],
+            "dna": {"nm_per_unit": self.nm_per_unit, "window": self.window, "natural_twist": list(self.natural_twist)},
+        }
 
 
 def natural_twist(scaffold: Scaffold, nm_per_unit: float, bp_per_turn: float = BP_PER_TURN) -> np.ndarray:
