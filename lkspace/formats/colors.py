@@ -72,6 +72,11 @@ def colors(n: int) -> np.ndarray:
     return np.vstack([PALETTE, np.array(extra)])
 
 
+def hex_colors(rgb: np.ndarray) -> list[str]:
+    """``#rrggbb`` of each colour of ``rgb (n, 3)`` in ``[0, 1]``."""
+    return ["#{:02x}{:02x}{:02x}".format(*c) for c in (np.asarray(rgb) * 255).round().astype(int).tolist()]
+
+
 def keyed_colors(keys: np.ndarray) -> np.ndarray:
     """(n, 3) colours for strands with integer ``keys`` (module docstring): stable across edits."""
     keys = np.asarray(keys, np.int64)
