@@ -7,6 +7,7 @@ Everything is measured from the written files (PLY polylines, GLB meshes, PNG pi
 from __future__ import annotations
 
 import colorsys
+import xml.etree.ElementTree as ET
 
 import numpy as np
 import pytest
@@ -106,3 +107,13 @@ def test_png_of_a_chainmail_shows_its_ring_tones_and_a_weave_its_thread_colours(
     assert (hue_shares(mail, hues) > 0.1).all()  # four tones, each on a quarter of the rings
     shares = hue_shares(weave, hues)
     assert (shares[:2] > 0.3).all() and shares[2:].sum() < 0.05  # two thread classes: two colours only
+
+
+def test_two_colours_draw_a_chainmail_as_a_checkerboard_in_the_svg(tmp_path):
+    path, _ = export(tmp_path, "mail.svg", "tiling:square", "--twist", "2", "--block", "4x4", "--colors", "red,navy")
+    root = ET.parse(path).getroot()
+    groups = [g for g in root.iter("{http://www.w3.org/2000/svg}g") if g.get("class") == "strand"]
+    stroke = {tuple(int(x) for x in g.get("data-cell").split(",")): g.get("stroke") for g in groups}
+    assert len(stroke) == 16 and set(stroke.values()) == {"#ff0000", "#000080"}
+    for (i, j), colour in stroke.items():  # the rings a side apart (the linked ones) in the other colour
+        assert all(stroke[n] != colour for n in [(i + 1, j), (i, j + 1)] if n in stroke)
