@@ -77,14 +77,6 @@ def hex_colors(rgb: np.ndarray) -> list[str]:
     return ["#{:02x}{:02x}{:02x}".format(*c) for c in (np.asarray(rgb) * 255).round().astype(int).tolist()]
 
 
-def keyed_colors(keys: np.ndarray) -> np.ndarray:
-    """(n, 3) colours for strands with integer ``keys`` (module docstring): stable across edits."""
-    keys = np.asarray(keys, np.int64)
-    rank = np.empty(len(keys), np.int64)
-    rank[np.argsort(keys, kind="stable")] = np.arange(len(keys))
-    return colors(len(keys))[rank]
-
-
 def arc_colors(fractions: np.ndarray) -> np.ndarray:
     """(n, 3) colours cycling through the hues along a strand (``fractions`` of its length in ``[0, 1)``)."""
     hues = np.asarray(fractions, np.float64) % 1.0
