@@ -256,6 +256,13 @@ def main() -> None:
         "- *torus-2-8*: the paper draws T(2,8) from a two-sided hexagon; with twist 1 on every edge the",
         "  two-sided N-gon gives T(2,N), so the octagon is used here.",
         "- Knot names are KnotInfo/LinkInfo names; `m` marks the mirror image of the table's diagram.",
+        "- Colours in a block ([the rule](../../docs/geometry.md#colours-in-a-block)): a thread keeps its thread",
+        "  class's colour in every cell (*square-weave*: 2 colours, *hexagonal-weave*: 3, *cP-2-1-1*: 1,",
+        "  *cP-1-3-1*: 2); a ring, each lattice copy its own component, takes a colour by its cell.  In",
+        "  *square-chainmail* and *hexagonal-chainmail* the one ring class comes in 4 tones repeating every",
+        "  second cell: every ring's linked neighbours (4 on squares, 6 on hexagons) and the next rings out",
+        "  (diagonal squares; hexagons 1.73 spacings away) have other colours, the nearest ring of the same",
+        "  colour is 2 spacings away.",
         "",
         f"Total time: {time.perf_counter() - t_all:.0f} s.",
     ]

@@ -286,7 +286,10 @@ def test_periodic_block_and_scene_preset_render(blender, tmp_path):
     from lkspace.blender.addon.builtin import make_block
 
     block = make_block(blender.scene, "tiling:square", "2", "2x2")
-    assert len(strand_curves(block)) > 0 and block.lkspace.components == 1
+    rings = strand_curves(block)
+    assert len(rings) == 4 and block.lkspace.components == 1  # one ring class, a ring a cell
+    # as lkspace export colours them: the four rings of the 2x2 block in four tones, four materials
+    assert len({c.data.materials[0].name for c in rings}) == 4
     scene.preset(blender.scene, "CYCLES", (48, 48), samples=2)
     out = tmp_path / "block.png"
     scene.render(blender.scene, str(out))

@@ -69,14 +69,26 @@ def test_trefoil_passes_under_itself_at_gaps_beside_the_over_strand(capsys, tmp_
     assert every.min() > 0 and every[:, 0].max() < width and every[:, 1].max() < height
 
 
-def test_chainmail_block_is_small_line_art_one_colour_per_thread_class(capsys, tmp_path):
+def test_chainmail_block_is_small_line_art_neighbouring_rings_apart(capsys, tmp_path):
     root, groups, size = export_svg(capsys, tmp_path, "tiling:square", "--twist", "2", "--block", "3x3")
-    assert size < MAX_SVG_BYTES and len(groups) == 9
-    colour = {}
-    for g in groups:
-        assert colour.setdefault(g.get("data-strand"), g.get("stroke")) == g.get("stroke")
+    assert size < MAX_SVG_BYTES and len(groups) == 9 and len({g.get("data-strand") for g in groups}) == 1
+    cells = [np.array(g.get("data-cell").split(","), int) for g in groups]
+    assert len({tuple(c) for c in cells}) == 9  # one ring a cell, each its own component
+    for a in range(9):
+        for b in range(a):  # rings in neighbouring cells (a side or a corner apart) differ
+            if np.abs(cells[a] - cells[b]).max() == 1:
+                assert groups[a].get("stroke") != groups[b].get("stroke")
+    assert len({g.get("stroke") for g in groups}) == 4  # four tones of the one ring class, repeating
     scaffold = [g for g in root.iter(f"{SVG}g") if g.get("class") == "scaffold"]
     assert len(scaffold) == 1 and float(scaffold[0].get("fill-opacity")) < 0.2  # drawn faintly
+
+
+def test_weave_block_is_line_art_one_colour_per_thread_class(capsys, tmp_path):
+    _, groups, _ = export_svg(capsys, tmp_path, "tiling:square", "--twist", "1", "--block", "3x3")
+    colour: dict[str | None, str | None] = {}
+    for g in groups:  # every run of a thread, in whichever cell, has its class's colour
+        assert colour.setdefault(g.get("data-strand"), g.get("stroke")) == g.get("stroke")
+    assert len(groups) > len(colour) == len(set(colour.values())) == 2  # two thread classes, two colours
 
 
 def test_gradient_is_an_option(capsys, tmp_path):

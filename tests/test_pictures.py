@@ -150,14 +150,12 @@ def _lab(rgb: np.ndarray) -> np.ndarray:
 
 
 def test_default_palette_keeps_24_strands_apart_and_follows_the_strand_keys():
-    from lkspace.formats.colors import PALETTE, keyed_colors, strand_keys
+    from lkspace.formats.colors import PALETTE, curve_colors, strand_keys
 
     lab = _lab(PALETTE)
     gaps = np.linalg.norm(lab[:, None] - lab[None], axis=2) + np.eye(len(lab)) * 1e9
     assert len(PALETTE) >= 24 and gaps.min() > 30  # clearly different colours, pairwise
     assert np.all((lab[:, 0] > 20) & (lab[:, 0] < 85))  # none vanishes on white or black
-    # colours go by the keys' order, whatever the strands' numbering
-    np.testing.assert_array_equal(keyed_colors(np.array([9, 2, 5])), PALETTE[[2, 0, 1]])
     real = realize("cube", 2)  # six face loops: each strand's key is the face it runs in
     keys = strand_keys(real)
     faces = lkspace.load("cube").corner_face
@@ -166,3 +164,5 @@ def test_default_palette_keeps_24_strands_apart_and_follows_the_strand_keys():
         steps = tr.steps[tr.strand_starts[k] : tr.strand_starts[k + 1]]
         assert keys[k] == min(int(faces[p // 2]) for p in steps)
     assert sorted(keys.tolist()) == list(range(6))
+    # colours go by the keys' order, whatever the strands' numbering
+    np.testing.assert_array_equal(curve_colors(real), PALETTE[keys[real.strand_of]])

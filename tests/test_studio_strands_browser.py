@@ -1,5 +1,6 @@
 """The strand tubes in the browser: after every edit the page draws exactly the server's curves, rebuilds only
-the new ones, and each strand keeps its colour (in the view and in the Read panel's strand table).
+the new ones, and each strand keeps its colour (in the view and in the Read panel's strand table); the copies
+of a ring take a colour per tone of their cells.
 
 The studio is started by the installed CLI; the keys are pressed in headless Chromium; the curves are
 checked against :func:`lkspace.realize`.
@@ -9,6 +10,7 @@ import numpy as np
 import pytest
 
 import lkspace
+from lkspace.formats.colors import curve_tones
 from lkspace.geometry.params import RealizeOptions
 
 pytest.importorskip("starlette")
@@ -69,7 +71,12 @@ def test_edits_redraw_the_new_strands_only_and_keep_colours(url, browser, keys):
         # exactly the server's curves are drawn, one mesh each, in the colour of their strand
         assert sorted(d["key"] for d in seen["drawn"]) == sorted(keys) == sorted(seen["curves"]["keys"])
         color_of = {d["key"]: d["color"] for d in seen["drawn"]}
-        assert [color_of[k] for k in keys] == [seen["colors"][s] for s in real.strand_of]
+        assert seen["curves"]["tone"] == curve_tones(real).tolist()  # the tone of a ring's cell, 0 for the rest
+        units = {(s, t): color_of[k] for k, s, t in zip(keys, real.strand_of.tolist(), curve_tones(real).tolist())}
+        assert [color_of[k] for k in keys] == [units[s, t] for s, t in zip(real.strand_of, curve_tones(real))]
+        assert all(units[s, 0] == seen["colors"][s] for s, _ in units)  # a strand's colour is its copy's in cell 0
+        for s in set(real.strand_of.tolist()):  # the copies of a ring in cells of different tones differ
+            assert len({c for (r, _), c in units.items() if r == s}) == len({t for r, t in units if r == s})
         assert seen["swatches"] == [rgb(c) for c in seen["colors"]]  # the Read panel uses the same colours
         # a curve drawn before keeps its mesh; the others are new
         old = [d for d in seen["drawn"] if d["mark"] is not None]

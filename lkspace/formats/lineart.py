@@ -182,6 +182,7 @@ def svg_lineart(real: Realization, options: PictureOptions) -> bytes:
         h = (0.5 / max(sine, MIN_SINE) + GAP) * stroke
         gaps[k].append((at - h, at + h))
     colors = strand_colors(real, look)
+    copies = real.translations if real.translations is not None and len(real.translations) > 1 else None
     for k in np.argsort([float(z.mean()) for z in depth], kind="stable"):
         closed = bool(real.closed[k])
         q, s = unrolled(xy[k], closed)
@@ -189,6 +190,8 @@ def svg_lineart(real: Realization, options: PictureOptions) -> bytes:
         spans = pieces(length, closed, gaps[k])
         whole = closed and not look.gradient and spans == [(0.0, length)]  # one closed path
         paint = "" if look.gradient else f' stroke="{hex_color(colors[k])}"'
+        if copies is not None:
+            paint += f' data-cell="{",".join(map(str, copies[real.copy_of[k]].tolist()))}"'
         out.append(
             f'<g class="strand" data-strand="{int(real.strand_of[k])}"{paint} stroke-width="{stroke:.2f}" '
             f'fill="none" stroke-linecap="butt" stroke-linejoin="round">'

@@ -22,7 +22,7 @@ import numpy as np
 
 from ..errors import UsageError, require
 from ..geometry.realization import Realization
-from .colors import arc_colors, keyed_colors, strand_keys
+from .colors import arc_colors, curve_colors
 from .colors import colors as default_colors
 from .tubes import tube_meshes
 from .view import TITLE_HEIGHT, direction, pixels_per_unit, screen_axes, view_angles
@@ -306,17 +306,16 @@ TUBE_SIDES, THICK_SIDES = 16, 32
 
 
 def strand_colors(real: Realization, look: Look) -> np.ndarray:
-    """(n_curves, 3) RGB: one colour per strand of the trace (a component; in a block, a thread class).
+    """(n_curves, 3) RGB: one colour per curve, by its strand and, for a ring copied over cells, its cell.
 
-    The look's palette in the order of the strands, else the default colours by each
-    strand's stable key (:func:`strand_keys`); translates and the cut runs of one thread
-    class share their strand's colour.
+    The colour slots of :func:`~lkspace.formats.colors.colour_slots` (a strand's stable
+    key, then a ring copy's tone) take the look's palette, repeated, else the default
+    colours: translates and cut runs of one thread class share its colour, and
+    neighbouring copies of a ring differ.
     """
     if not real.curves:
         return np.zeros((0, 3))
-    n = int(real.strand_of.max()) + 1
-    base = look.colors(n) if look.palette else keyed_colors(strand_keys(real))
-    return np.asarray(base[real.strand_of], np.float64)
+    return curve_colors(real, np.array(look.palette, np.float64) if look.palette else None)
 
 
 def shaded_tubes(

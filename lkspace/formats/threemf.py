@@ -2,7 +2,7 @@
 
 Written directly: ``[Content_Types].xml``, ``_rels/.rels`` and ``3D/3dmodel.model`` with
 ``<model unit="millimeter">`` (or the ``units`` given), one ``<basematerials>`` colour
-per strand, one ``<object type="model">`` per printable piece and a ``<build>`` item for
+per colour drawn (the pictures' colours: :func:`.colors.curve_colors`), one ``<object type="model">`` per printable piece and a ``<build>`` item for
 each.  Coordinates are written with 7 significant digits.
 """
 
@@ -16,7 +16,7 @@ import numpy as np
 
 from ..geometry.fabrication import UNITS, Printable
 from ..geometry.realization import Realization
-from .colors import colors
+from .colors import curve_colors
 from .options import PrintOptions
 from .stl import pieces_of, print_meshes
 
@@ -36,10 +36,10 @@ RELS = (
 )
 
 
-def model_xml(pieces: Printable, name: str, sides: int) -> str:
-    """Return the ``3D/3dmodel.model`` document."""
-    n_strands = int(pieces.strand_of.max()) + 1 if len(pieces.strand_of) else 1
-    rgb = (colors(n_strands) * 255).round().astype(int)
+def model_xml(pieces: Printable, name: str, sides: int, colours: np.ndarray) -> str:
+    """Return the ``3D/3dmodel.model`` document: ``colours (n_pieces, 3)`` in ``[0, 1]``, one base material each distinct."""
+    rgb, index = np.unique((np.asarray(colours).reshape(-1, 3) * 255).round().astype(int), axis=0, return_inverse=True)
+    index = index.reshape(-1)
     parts = [
         '<?xml version="1.0" encoding="UTF-8"?>\n',
         f'<model unit="{UNITS[pieces.units][0]}" xml:lang="en-US" '
@@ -49,10 +49,10 @@ def model_xml(pieces: Printable, name: str, sides: int) -> str:
         "<resources>",
         '<basematerials id="1">',
     ]
-    parts += [f'<base name="strand {k}" displaycolor="#{r:02X}{g:02X}{b:02X}"/>' for k, (r, g, b) in enumerate(rgb)]
+    parts += [f'<base name="colour {k}" displaycolor="#{r:02X}{g:02X}{b:02X}"/>' for k, (r, g, b) in enumerate(rgb)]
     parts.append("</basematerials>")
     for k, (v, _, f) in enumerate(print_meshes(pieces, sides)):
-        parts.append(f'<object id="{k + 2}" type="model" name="piece {k}" pid="1" pindex="{int(pieces.strand_of[k])}">')
+        parts.append(f'<object id="{k + 2}" type="model" name="piece {k}" pid="1" pindex="{int(index[k])}">')
         parts.append("<mesh><vertices>")
         parts.append(vertex_text(v))
         parts.append("</vertices><triangles>")
@@ -76,14 +76,15 @@ def triangle_text(f: np.ndarray) -> str:
 
 def threemf_bytes(real: Realization, options: PrintOptions) -> bytes:
     """Return the 3MF package (zip) of the printable pieces, titled with the scaffold's name."""
-    return pieces_3mf(pieces_of(real, options), real.scaffold.name, options.sides)
+    pieces = pieces_of(real, options)
+    return pieces_3mf(pieces, real.scaffold.name, options.sides, curve_colors(real)[pieces.first])
 
 
-def pieces_3mf(pieces: Printable, name: str, sides: int) -> bytes:
-    """Return the 3MF package (zip) of ``pieces``."""
+def pieces_3mf(pieces: Printable, name: str, sides: int, colours: np.ndarray) -> bytes:
+    """Return the 3MF package (zip) of ``pieces``, coloured ``colours (n_pieces, 3)``."""
     buf = io.BytesIO()
     with zipfile.ZipFile(buf, "w", zipfile.ZIP_DEFLATED, compresslevel=1) as zf:
         zf.writestr("[Content_Types].xml", CONTENT_TYPES)
         zf.writestr("_rels/.rels", RELS)
-        zf.writestr("3D/3dmodel.model", model_xml(pieces, name, sides))
+        zf.writestr("3D/3dmodel.model", model_xml(pieces, name, sides, colours))
     return buf.getvalue()

@@ -72,7 +72,10 @@ class Printable:
         Centrelines, scaled; ``closed[k]`` joins the ends, an open piece gets flat caps.
     closed : (n_pieces,) bool
     strand_of : (n_pieces,) int64
-        The strand of the trace each piece realizes (colours).
+        The strand of the trace each piece realizes.
+    first : (n_pieces,) int64
+        The realization's curve each piece begins with (its colour:
+        :func:`lkspace.formats.colors.curve_colors`).
     radius : float
         Tube radius (half the thickness), output units.
     clearance : float
@@ -89,6 +92,7 @@ class Printable:
     curves: list[np.ndarray]
     closed: np.ndarray
     strand_of: np.ndarray
+    first: np.ndarray
     radius: float
     clearance: float
     min_gap: float | None
@@ -155,7 +159,8 @@ def printable(
     clearance = 0.0 if clearance is None else float(clearance)
     check_options(thickness, clearance, units, scale)
     curves, closed, members = join_curves(real.curves, real.closed, JOIN * real.scale)
-    strand_of = real.strand_of[[m[0] for m in members]] if members else np.zeros(0, np.int64)
+    first = np.array([m[0] for m in members], np.int64)
+    strand_of = real.strand_of[first] if members else np.zeros(0, np.int64)
     scaled = [np.asarray(c, np.float64) * scale for c in curves]
     bend, piece, point = tightest_bend(scaled, closed)
     if thickness is None:  # the picture's tube, thinned where the curves bend tighter
@@ -171,7 +176,7 @@ def printable(
             parameter="thickness",
         )
     min_gap = check_gaps(real, scaled, closed, radius, clearance, scale)
-    return Printable(scaled, closed, np.asarray(strand_of, np.int64), radius, clearance, min_gap, units, scale)
+    return Printable(scaled, closed, np.asarray(strand_of, np.int64), first, radius, clearance, min_gap, units, scale)
 
 
 def check_gaps(

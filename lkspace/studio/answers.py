@@ -281,6 +281,7 @@ class Info:
     catalog: CatalogInfo | None
     max_upload: int
     design: OpenedDesign | None
+    palette: tuple[str, ...]
 
     def to_json(self) -> JsonAnswer:
         """Return the JSON form."""
@@ -292,6 +293,7 @@ class Info:
             "catalog": self.catalog,
             "max_upload": self.max_upload,
             "design": None if self.design is None else self.design.to_json(),
+            "palette": list(self.palette),
         }
 
 
@@ -349,6 +351,7 @@ class CurvesView(TypedDict):
     closed: list[bool]
     strand: list[int]
     copy: list[int]
+    tone: list[int]
     radius: float
     scale: float
 

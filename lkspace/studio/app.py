@@ -24,6 +24,7 @@ from starlette.types import ASGIApp
 
 from .. import __version__
 from ..errors import GeometryError, LkspaceError, ScaffoldError, UsageError
+from ..formats.colors import PALETTE, hex_colors
 from ..io.json_values import JsonObject
 from ..scaffolds import DEFAULT
 from .answers import (
@@ -163,7 +164,7 @@ def no_body(data: JsonObject) -> None:
 
 
 def info(studio: Studio, _: None) -> Info:
-    """Return what the page needs first: built-in names, the scaffold to open, exports, the catalog."""
+    """Return what the page needs first: built-in names, the scaffold to open, exports, the catalog, the strand colours."""
     return Info(
         version=__version__,
         builtins=tuple(builtin_choices()),
@@ -172,6 +173,7 @@ def info(studio: Studio, _: None) -> Info:
         catalog=studio.browser.info() if studio.browser else None,
         max_upload=MAX_UPLOAD,
         design=studio.design,
+        palette=tuple(hex_colors(PALETTE)),
     )
 
 

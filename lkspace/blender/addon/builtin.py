@@ -105,6 +105,7 @@ class LKSPACE_OT_periodic_block(bpy.types.Operator):  # noqa: N801
 
 def make_block(scene: Any, name: str, twist: str, block: str) -> Any:
     """Add a mesh object of the block's faces named ``name [block]`` with the block's strands; return it."""
+    from lkspace.formats.colors import colour_slots
     from lkspace.geometry.block import block_faces, realize_block
     from lkspace.io.sources import load
     from lkspace.io.twists import parse_twist
@@ -123,7 +124,7 @@ def make_block(scene: Any, name: str, twist: str, block: str) -> Any:
     mesh.update()
     obj = bpy.data.objects.new(mesh.name, mesh)
     scene.collection.objects.link(obj)
-    strands.build(obj, real, scene, np.arange(real.trace.components))
+    strands.build(obj, real, scene, colour_slots(real))
     obj.lkspace.components = real.trace.components
     obj.lkspace.holds_together = real.trace.holds_together
     obj.display_type = "WIRE"

@@ -9,7 +9,9 @@ Each curve is a poly spline through the realized points (``lkspace.realize``) wi
 round bevel (the tube) and the material of its colour slot: slot ``k`` is the ``k``-th
 strand in :func:`lkspace.blender.editing.component_order`, coloured by lkspace's palette
 (:func:`lkspace.formats.colors.colors`), and the materials ``lkspace strand 00``, ... are
-shared by every design, so a strand keeps its colour across edits.
+shared by every design, so a strand keeps its colour across edits.  A periodic block takes
+the slots of ``lkspace export`` (:func:`lkspace.formats.colors.colour_slots`): a thread's
+class colour in every cell, and a ring's copies coloured by their cells' tones.
 """
 
 from __future__ import annotations
@@ -89,25 +91,24 @@ def curve_object(name: str, points: np.ndarray, closed: bool, radius: float, slo
 
 
 def build(
-    obj: Any, real: Realization, scene: Any, colour_slots: np.ndarray | None = None, resolution: int = 3
+    obj: Any, real: Realization, scene: Any, curve_slots: np.ndarray | None = None, resolution: int = 3
 ) -> list[Any]:
     """Replace the strand curves of mesh object ``obj`` with those of ``real``; return them.
 
-    Curves are children of the mesh object (they follow its moves); ``colour_slots[s]`` is the
-    colour slot of strand ``s`` (default: :func:`component_order`).  Each curve carries the
+    Curves are children of the mesh object (they follow its moves); ``curve_slots[k]`` is the
+    colour slot of curve ``k`` (default: its strand's place in :func:`component_order`).  Each curve carries the
     custom properties ``lk_strand`` (its strand in lkspace's trace) and ``lk_faces`` (the
     polygon of each corner it turns around, in order: ``faces`` of ``lkspace trace --json``).
     """
     coll = strand_collection(obj, scene)
     clear(coll)
-    if colour_slots is None:
-        slots = np.empty(real.trace.components, np.int64)
-        slots[component_order(real.trace)] = np.arange(real.trace.components)
-    else:
-        slots = colour_slots
+    if curve_slots is None:
+        order = np.empty(real.trace.components, np.int64)
+        order[component_order(real.trace)] = np.arange(real.trace.components)
+        curve_slots = order[real.strand_of]
     made = []
     for k, points in enumerate(real.curves):
-        slot = int(slots[real.strand_of[k]])
+        slot = int(curve_slots[k])
         name = f"{obj.name}.strand.{k:02d}"
         points = np.asarray(points, np.float64)
         curve = curve_object(name, points, bool(real.closed[k]), real.tube_radius, slot, resolution)

@@ -392,6 +392,7 @@ const ctx = { S, view, api, message, loadScaffold, norm };
 installFiles(ctx); installAnimate(ctx); installLayout();
 (async () => {
   const info = await api('info');
+  view.strands.setPalette(info.palette);
   $('builtin').innerHTML = info.builtins.map((n) => `<option>${esc(n)}</option>`).join('');
   $('exports').innerHTML = info.exports.map((f) => `<button data-format="${f}">${f.toUpperCase()}</button>`).join('');
   $('exports').onclick = (ev) => { const f = ev.target.dataset.format; if (f) download(f); };

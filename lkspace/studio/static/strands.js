@@ -1,20 +1,20 @@
 // The strand tubes: one mesh per curve, kept by the curve's content key (lkspace/studio/curves.py),
 // so an edit rebuilds the tubes of the new curves only, in a worker (tube-worker.js); the others
-// stay on the GPU as they are.  Colours follow strands across edits: a strand is named by the
-// smallest port it passes, and keeps the colour that port had in the design drawn before.
+// stay on the GPU as they are.  Colours are lkspace's palette (sent by /api/info) and follow strands
+// across edits: a strand is named by the smallest port it passes, and keeps the colour that port had
+// in the design drawn before.  A ring copied over the block's cells takes a colour per tone of its
+// cell (the curves' `tone`, lkspace/formats/colors.py: neighbouring copies differ), kept the same way.
 import * as THREE from 'three';
 import { tubeArrays, decodeCurves } from '/static/tubes.js';
 
-export const PALETTE = ['#1f77b4', '#d62728', '#2ca02c', '#ff7f0e', '#9467bd', '#8c564b', '#e377c2',
-  '#17becf', '#bcbd22', '#393b79', '#637939', '#843c39', '#7b4173', '#3182bd', '#e6550d', '#31a354'];
 const KEEP = 3; // a mesh is kept this many designs after it was last drawn (an answer in flight may name it)
 const MAX_HAVE = 50000; // lkspace/studio/curves.py MAX_HAVE
 
 export class Strands {
   constructor(group) {
     this.group = group; this.meshes = new Map(); this.generation = 0; this.radius = null; this.sides = null;
-    this.materials = PALETTE.map((color) => new THREE.MeshStandardMaterial({ color, roughness: 0.45, metalness: 0.05 }));
-    this.colorOfPort = new Map(); this.strandColors = []; this.colors = [];
+    this.palette = ['#808080']; this.materials = [];
+    this.colorOfUnit = new Map(); this.strandColors = []; this.colors = [];
     this.worker = null; this.pending = new Map(); this.nextId = 0; this.queue = Promise.resolve();
   }
   have() { // the curve keys an answer may send without points (those drawn now, if the server would take too many)
@@ -22,8 +22,12 @@ export class Strands {
     return all.length <= MAX_HAVE ? all : this.group.children.slice(0, MAX_HAVE).map((m) => m.userData.key);
   }
   pointsOf(key) { return this.meshes.get(key)?.points; } // a held curve's centre line, Float32Array xyz
-  colorOf(k) { return PALETTE[this.strandColors[k] ?? k % PALETTE.length]; }
-  reset() { this.dropMeshes(); this.colorOfPort = new Map(); this.strandColors = []; this.colors = []; } // a new scaffold
+  setPalette(palette) { // the colours (hex), lkspace's (lkspace/formats/colors.py PALETTE)
+    this.palette = palette;
+    this.materials = palette.map((color) => new THREE.MeshStandardMaterial({ color, roughness: 0.45, metalness: 0.05 }));
+  }
+  colorOf(k) { return this.palette[this.strandColors[k] ?? k % this.palette.length]; }
+  reset() { this.dropMeshes(); this.colorOfUnit = new Map(); this.strandColors = []; this.colors = []; } // a new scaffold
   dropMeshes() {
     for (const { mesh } of this.meshes.values()) { mesh.removeFromParent(); mesh.geometry.dispose(); }
     this.meshes.clear(); this.radius = null;
@@ -47,28 +51,40 @@ export class Strands {
       const tubes = todo.length ? await this.build(curves.points, todo, curves.radius, sides) : [];
       tubes.forEach((t, i) => { if (!this.meshes.has(t.key)) this.meshes.set(t.key, { mesh: this.mesh(t), used: gen, points: lines[i] }); });
     }
-    this.assignColors(strands);
+    const units = this.assignColors(strands, curves);
     const shown = new Set();
     (curves ? curves.keys : []).forEach((key, i) => {
-      const held = this.meshes.get(key); held.used = gen; held.mesh.material = this.materials[this.strandColors[curves.strand[i]]];
+      const held = this.meshes.get(key); held.used = gen; held.mesh.material = this.materials[units[i]];
       shown.add(held.mesh);
     });
     for (const m of [...this.group.children]) if (!shown.has(m)) this.group.remove(m);
     for (const m of shown) if (m.parent !== this.group) this.group.add(m);
     for (const [key, held] of this.meshes) if (held.used <= gen - KEEP) { held.mesh.removeFromParent(); held.mesh.geometry.dispose(); this.meshes.delete(key); }
-    this.colors = curves ? [...new Set(curves.strand.map((k) => this.strandColors[k]))].map((c) => PALETTE[c]) : [];
+    this.colors = [...new Set(units)].map((c) => this.palette[c]);
     return true;
   }
-  // A strand whose smallest port was drawn before keeps its colour; a new one takes the colour used least.
-  assignColors(strands) {
-    const out = strands.map((s) => this.colorOfPort.get(s.port)), used = new Array(PALETTE.length).fill(0);
+  // Colour the units, each strand and each further tone of a ring's cells: a unit drawn before (named by its
+  // strand's smallest port) keeps its colour, a new one takes the colour used least among those its strand's
+  // other tones leave (so a ring's tones differ while the palette lasts).  Returns each curve's colour.
+  assignColors(strands, curves) {
+    const unit = (k, tone) => `${strands[k].port}/${tone}`;
+    const names = strands.map((_, k) => unit(k, 0)), ofCurve = [];
+    (curves ? curves.strand : []).forEach((k, i) => { ofCurve.push(unit(k, curves.tone[i])); });
+    const listed = new Set(names);
+    for (const name of ofCurve) if (!listed.has(name)) { listed.add(name); names.push(name); }
+    const out = names.map((name) => this.colorOfUnit.get(name)), used = new Array(this.palette.length).fill(0);
+    const port = (name) => name.slice(0, name.indexOf('/')), taken = new Map(); // port -> colours of its tones
+    names.forEach((name, k) => { if (!taken.has(port(name))) taken.set(port(name), new Set()); if (out[k] !== undefined) taken.get(port(name)).add(out[k]); });
     for (const c of out) if (c !== undefined) used[c]++;
     for (let k = 0; k < out.length; k++) {
       if (out[k] !== undefined) continue;
-      let best = 0; for (let c = 1; c < used.length; c++) if (used[c] < used[best]) best = c;
-      out[k] = best; used[best]++;
+      const mine = taken.get(port(names[k])), free = mine.size < used.length;
+      let best = -1;
+      for (let c = 0; c < used.length; c++) if (!(free && mine.has(c)) && (best < 0 || used[c] < used[best])) best = c;
+      out[k] = best; used[best]++; mine.add(best);
     }
-    this.colorOfPort = new Map(strands.map((s, k) => [s.port, out[k]])); this.strandColors = out;
+    this.colorOfUnit = new Map(names.map((name, k) => [name, out[k]])); this.strandColors = out.slice(0, strands.length);
+    return ofCurve.map((name) => this.colorOfUnit.get(name));
   }
   mesh(t) {
     const g = new THREE.BufferGeometry();
