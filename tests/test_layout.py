@@ -126,6 +126,7 @@ STUDIO_INTERNALS = {
     "lkspace.dna.build": "the DNA download builds the design's nucleotides (build)",
     "lkspace.dna.oxdna": "the DNA download is a zip of the oxDNA and oxView files (zip_bytes)",
     "lkspace.formats.colors": "the page colours strands as lkspace export does (PALETTE, a ring copy's tone: curve_tones)",
+    "lkspace.formats.diagram": "the simplified diagram drawn as export --diagram draws it (planar_diagram)",
     "lkspace.formats.registry": "the download formats the page offers (FORMATS)",
     "lkspace.geometry.clearance": "a preview realized without measuring is measured when the page asks",
     "lkspace.geometry.realization": "an edit realizes only the strands it changed (realize_reusing)",

@@ -168,3 +168,37 @@ def test_runs_leave_gaps_around_cuts(cuts, closed, expected):
     got = np.array(runs(np.array([0.0, 10.0]), closed, cuts, 1.0), float)
     assert got.shape == (len(expected), 2)
     np.testing.assert_allclose(got, expected)
+
+
+@pytest.mark.parametrize(
+    ("key", "labels", "name", "crossings", "components"),
+    [
+        ("dihedron:3", [1, 1, 1], "3_1", 3, 1),
+        ("figure-eight", [-2, -1, 0, 0, -1], "4_1", 4, 1),
+        ("tetrahedron", [1] * 6, "L6a4", 6, 3),
+    ],
+)
+def test_simplified_diagram_has_the_least_crossings_whatever_the_view(client, key, labels, name, crossings, components):
+    pytest.importorskip("spherogram")
+    assert lkspace.identify(key, labels).name == name  # crossings: the table's crossing number of the type
+    answers = [
+        post(client, "diagram", {"key": key, "labels": labels, "view": v, "simplified": True}).json()
+        for v in (None, VIEW)
+    ]
+    for d in answers:
+        assert (d["view"], d["components"]) == ("simplified", components)
+        # the fewest crossings found: the crossing number for these (the Borromean rings may stop at 8)
+        assert crossings <= d["crossings"] <= (8 if name == "L6a4" else crossings), d["crossings"]
+        drawn = list(ET.fromstring(d["svg"]).iter(f"{SVG}path"))
+        assert sorted(int(p.get("data-component")) for p in drawn) == list(range(components))
+        runs_drawn = sum(len(re.findall("M", p.get("d"))) for p in drawn)
+        assert runs_drawn == d["crossings"] + components  # each crossing cuts its under strand once
+    raw = post(client, "diagram", {"key": key, "labels": labels, "view": VIEW}).json()
+    assert raw["crossings"] >= crossings and raw["view"] == "page"  # a projection: never below the crossing number
+
+
+def test_simplified_diagram_of_open_strands_and_bad_flags(client):
+    d = post(client, "diagram", {"key": "cube", "labels": [1] * 12, "nulls": [0, 5], "simplified": True}).json()
+    assert d["svg"] is None and "closed strands" in d["message"], d
+    r = post(client, "diagram", {"key": "cube", "simplified": "yes"})
+    assert r.status_code == 400 and "simplified: true or false" in r.json()["error"]["message"]

@@ -107,6 +107,29 @@ def test_diagram_panel_follows_edits_and_the_view(page):
     assert page.is_hidden("#diagram-big")
 
 
+def test_simplified_diagram_is_drawn_as_the_tables_draw_it_and_stays_when_the_view_turns(page):
+    diagram_strands(page)
+    page.check("#diagram-simple")
+    page.wait_for_function("window.studio.diagram.answer && window.studio.diagram.answer.view === 'simplified'")
+    answer = page.evaluate("window.studio.diagram.answer")
+    assert answer["components"] == 3 and 6 <= answer["crossings"] <= 8  # L6a4: 6 crossings, the fewest found
+    assert int(page.inner_text("#diagram-crossings")) == answer["crossings"]
+    assert "in the simplified diagram" in page.inner_text("#diagram-info")
+    assert page.locator("#diagram svg.simplified path[data-component]").count() == 3
+    svg = page.inner_html("#diagram")
+    box = page.locator("#canvas").bounding_box()
+    x, y = box["x"] + 12, box["y"] + box["height"] - 12
+    page.mouse.move(x, y)
+    page.mouse.down()
+    page.mouse.move(x + 150, y - 40, steps=8)
+    page.mouse.up()
+    page.wait_for_timeout(800)  # a redraw for the new view would have been asked and answered by now
+    assert page.inner_html("#diagram") == svg  # the simplified diagram does not depend on the view
+    page.uncheck("#diagram-simple")
+    page.wait_for_function("window.studio.diagram.answer.view === 'page'")
+    assert page.locator("#diagram path[data-strand]").count() == 3
+
+
 def test_common_name_of_the_borromean_rings(page):
     page.wait_for_selector("#knot-name", timeout=30000)
     assert page.inner_text("#knot-name") == "L6a4"

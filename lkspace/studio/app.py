@@ -293,9 +293,9 @@ def type_lookup(studio: Studio, request: LookupRequest) -> JsonAnswer:
 
 
 def knot_diagram(studio: Studio, request: DiagramRequest) -> DiagramView:
-    """Return the 2D knot diagram of a design seen along ``view`` (:mod:`~lkspace.studio.diagrams`)."""
+    """Return the 2D knot diagram of a design seen along ``view``, or simplified (:mod:`~lkspace.studio.diagrams`)."""
     d = HeldDesign.of(studio, request.design)
-    return diagram(d.held.scaffold, d.held.key, d.labels, d.nulls, studio.cache, request.view)
+    return diagram(d.held.scaffold, d.held.key, d.labels, d.nulls, studio.cache, request.view, request.simplified)
 
 
 def thumbnails(studio: Studio, request: ThumbnailsRequest) -> Thumbs:

@@ -10,9 +10,11 @@ index); the page colours it as the 3D view colours that strand.  For closed stra
 :data:`MAX_PD_CROSSINGS`) the PD code of the same projection
 (:func:`lkspace.knots.diagram.project`) and its linking matrix come along.
 
-This is the raw projection, with as many crossings as the curves show from that side,
-not the simplified diagram ``lkspace export --diagram`` lays out (spherogram, matplotlib:
-a second or more): it is cheap enough (milliseconds) to follow every edit.  Thumbnails
+This is the raw projection, with as many crossings as the curves show from that side:
+it is cheap enough (milliseconds) to follow every edit.  Asked ``simplified``, the
+diagram is the one ``lkspace export --diagram`` draws instead (:func:`simplified_of`:
+the link simplified by spherogram and laid out on its grid, as the tables draw a knot,
+one ink for every component), whatever the view.  Thumbnails
 draw the same projection, small and without gaps, of the construction polylines (no
 smoothing: about a millisecond a design), cached per scaffold and labels.
 """
@@ -212,8 +214,55 @@ def diagram_of(real: Realization, view: View | None = None) -> DiagramView:
     return out
 
 
+def simplified_of(real: Realization) -> DiagramView:
+    """Return the simplified diagram of ``real`` (:func:`lkspace.formats.diagram.planar_diagram`): SVG and crossings.
+
+    Paths carry ``data-component`` (no strand: simplification renumbers the components).
+    """
+    from ..formats.diagram import planar_diagram
+
+    t0 = time.perf_counter()
+    if not real.curves:
+        return {"svg": None, "message": "no strands to draw"}
+    n_points = sum(len(c) for c in real.curves)
+    if n_points > MAX_DIAGRAM_POINTS:
+        raise TooLargeError(f"diagram: {n_points:,} curve points > {MAX_DIAGRAM_POINTS:,}; use smaller twists")
+    if not all(real.closed):
+        return {"svg": None, "message": "simplified diagram: only closed strands make a knot or link"}
+    if len(project(real.curves, seed=0).pd) > MAX_PD_CROSSINGS:
+        raise TooLargeError(f"simplified diagram: over {MAX_PD_CROSSINGS:,} crossings to simplify; use smaller twists")
+    drawn = planar_diagram(real)
+    finite = np.vstack([p[np.isfinite(p[:, 0])] for p in drawn.paths])
+    lo, hi = finite.min(0), finite.max(0)
+    margin, scale = 12.0, (SIZE - 24.0) / max(float((hi - lo).max()), 1e-12)
+    body = []
+    for i, path in enumerate(drawn.paths):
+        screen = np.column_stack([margin + (path[:, 0] - lo[0]) * scale, margin + (hi[1] - path[:, 1]) * scale])
+        pieces = [p[np.isfinite(p[:, 0])] for p in np.split(screen, np.flatnonzero(~np.isfinite(screen[:, 0])))]
+        d = "".join("M" + " ".join(f"{x:.1f},{y:.1f}" for x, y in p) for p in pieces if len(p) > 1)  # NaN: a gap
+        body.append(f'<path data-component="{i}" d="{d}"/>')
+    width, height = (hi - lo) * scale + 2 * margin
+    return {
+        "svg": (
+            f'<svg xmlns="http://www.w3.org/2000/svg" class="knot-diagram simplified" viewBox="0 0 {width:.1f} {height:.1f}">'
+            f'<g fill="none" stroke="#222" stroke-width="2.4" stroke-linecap="round" stroke-linejoin="round">'
+            f"{''.join(body)}</g></svg>"
+        ),
+        "crossings": drawn.n_crossings,
+        "components": drawn.n_components,
+        "view": "simplified",
+        "seconds": round(time.perf_counter() - t0, 4),
+    }
+
+
 def diagram(
-    scaffold: Scaffold, key: str, labels: np.ndarray, nulls: np.ndarray | None, cache: Cache, view: View | None
+    scaffold: Scaffold,
+    key: str,
+    labels: np.ndarray,
+    nulls: np.ndarray | None,
+    cache: Cache,
+    view: View | None,
+    simplified: bool = False,
 ) -> DiagramView:
     """Return the diagram of a design, from the realization its redraw kept (realized now if it was not)."""
     if scaffold.periodic:
@@ -226,7 +275,7 @@ def diagram(
         real = cache.get(Cache.key(key, labels, nulls, None))
         if real is None:
             return {"svg": None, "message": "no diagram: the design has no geometry"}
-    return diagram_of(real, view)
+    return simplified_of(real) if simplified else diagram_of(real, view)
 
 
 def thumbnail(scaffold: Scaffold, labels: np.ndarray) -> str:

@@ -183,9 +183,7 @@ class RedrawRequest:
     def from_json(cls, data: JsonObject) -> RedrawRequest:
         """Read the request body."""
         have = data.get("have")
-        if have is not None and (
-            not isinstance(have, list) or not all(isinstance(v, str) and len(v) <= 32 for v in have)
-        ):
+        if have is not None and not (isinstance(have, list) and all(isinstance(v, str) and len(v) <= 32 for v in have)):
             raise UsageError("have: expected a list of curve keys (strings from an earlier answer)")
         if have is not None and len(have) > MAX_HAVE:
             raise UsageError(f"have: {len(have):,} curve keys > {MAX_HAVE:,}; send the keys of the curves drawn")
@@ -195,15 +193,16 @@ class RedrawRequest:
 
 @dataclass(frozen=True)
 class DiagramRequest:
-    """``/api/diagram``: a design and the page's ``view`` (``None``: the generic rotation)."""
+    """``/api/diagram``: a design, the page's ``view`` (``None``: the generic rotation), or ``simplified``."""
 
     design: DesignRequest
     view: View | None = None
+    simplified: bool = False
 
     @classmethod
     def from_json(cls, data: JsonObject) -> DiagramRequest:
         """Read the request body."""
-        return cls(DesignRequest.from_json(data), view_axes(data.get("view")))
+        return cls(DesignRequest.from_json(data), view_axes(data.get("view")), flag(data, "simplified"))
 
 
 @dataclass(frozen=True)

@@ -2,6 +2,8 @@
 // The server projects the realized strands and cuts the under strand at every crossing
 // (POST /api/diagram); this module asks after each redraw and each turn of the view,
 // colours the paths as the 3D view colours the strands and drops answers for older designs.
+// With "simplified diagram" ticked it asks for the simplified diagram instead (few crossings,
+// laid out as the tables draw a knot, one ink), which turning the view does not change.
 const $ = (id) => document.getElementById(id);
 const studio = window.studio;
 const D = { seq: 0, body: null, timer: null, svg: '', answer: null, pending: false };
@@ -21,7 +23,8 @@ async function ask(body) {
   const seq = ++D.seq;
   $('diagram-info').textContent = 'diagram: drawing…';
   try {
-    const res = await fetch('/api/diagram', { method: 'POST', headers: { 'Content-Type': 'application/json' }, body: JSON.stringify({ ...body, view: cameraAxes() }) });
+    const simplified = $('diagram-simple').checked;
+    const res = await fetch('/api/diagram', { method: 'POST', headers: { 'Content-Type': 'application/json' }, body: JSON.stringify({ ...body, view: cameraAxes(), simplified }) });
     const d = await res.json();
     if (seq !== D.seq) return; // a newer design or view asked meanwhile: this answer is stale
     D.pending = false;
@@ -29,8 +32,9 @@ async function ask(body) {
     D.answer = d; D.svg = d.svg || '';
     $('diagram').innerHTML = D.svg; colourStrands($('diagram'));
     $('diagram').dataset.crossings = d.svg ? d.crossings : '';
+    const seenFrom = d.view === 'simplified' ? 'in the simplified diagram' : 'seen from the view';
     $('diagram-info').innerHTML = d.svg
-      ? `diagram: <b id="diagram-crossings">${d.crossings}</b> crossing${d.crossings === 1 ? '' : 's'} seen from the view <span class="dim">(click to enlarge)</span>`
+      ? `diagram: <b id="diagram-crossings">${d.crossings}</b> crossing${d.crossings === 1 ? '' : 's'} ${seenFrom} <span class="dim">(click to enlarge)</span>`
       : d.message;
   } catch (err) { if (seq === D.seq) { D.pending = false; $('diagram').innerHTML = ''; D.svg = ''; $('diagram-info').textContent = 'diagram: ' + err.message; } }
 }
@@ -47,7 +51,8 @@ document.addEventListener('studio:design', (ev) => {
   D.body = { key: body.key, labels: body.labels, nulls: body.nulls };
   schedule(120);
 });
-studio.view.controls.addEventListener('end', () => schedule(60)); // the view turned: see the knot from there
+studio.view.controls.addEventListener('end', () => { if (!$('diagram-simple').checked) schedule(60); }); // the view turned: see the knot from there
+$('diagram-simple').onchange = () => schedule(0);
 
 $('diagram').onclick = () => { if (!D.svg) return; $('diagram-big').innerHTML = D.svg; colourStrands($('diagram-big')); $('diagram-big').hidden = false; };
 $('diagram-big').onclick = () => { $('diagram-big').hidden = true; };
