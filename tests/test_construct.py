@@ -82,7 +82,9 @@ def _named(scaffold):
     return identify(scaffold, scaffold.labels).to_json()
 
 
-@pytest.mark.parametrize("name", ["3_1", "m3_1", "5_2", "8_17", "10_1", "L6a4", "mL7a1", "L10a91", "L11a159", "mL11a159"])
+@pytest.mark.parametrize(
+    "name", ["3_1", "m3_1", "5_2", "8_17", "10_1", "L6a4", "mL7a1", "L10a91", "L11a159", "mL11a159"]
+)
 def test_builtin_table_designs_are_their_type(name):
     pytest.importorskip("snappy")
     kind = "link" if name.lstrip("m").startswith("L") else "knot"
