@@ -101,7 +101,9 @@ def main() -> None:
         print("\n".join(old) or "every shipped kernel is current")
         sys.exit(1 if old else 0)
     files, entries, size = collect(args.cache)
-    print(f"shipped {entries} compiled kernels in {files} index files, {size / 1e6:.1f} MB: {SHIPPED.relative_to(ROOT)}")
+    print(
+        f"shipped {entries} compiled kernels in {files} index files, {size / 1e6:.1f} MB: {SHIPPED.relative_to(ROOT)}"
+    )
 
 
 if __name__ == "__main__":
