@@ -63,7 +63,7 @@ def cache_class() -> type:
     """
     from numba.core.caching import FunctionCache, IndexDataCacheFile
 
-    class ShippedCache(FunctionCache):  # type: ignore[misc]
+    class ShippedCache(FunctionCache):
         def __init__(self, py_func: Any, digest: str) -> None:
             super().__init__(py_func)
             self._digest = digest
