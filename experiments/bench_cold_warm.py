@@ -1,15 +1,16 @@
 """A first ``--identify`` run on a fresh machine against later ones: cold and warm, in fresh processes.
 
-Cold: ``$LKSPACE_CACHE`` an empty folder (no names by key, no tables index: what a new
-install meets; lkspace's shipped files, ``lkspace/data/*.xz``, are what make it cheap).
-Warm: the folder the cold run left.  Runs alternate cold, warm, cold, warm... so that
+Cold: ``$LKSPACE_CACHE`` and ``$NUMBA_CACHE_DIR`` empty folders (no names by key, no
+tables index, no compiled kernels: what a new install meets; lkspace's shipped files,
+``lkspace/data/*.xz`` and ``lkspace/compiled/shipped/``, are what make it cheap).
+Warm: the folders the cold run left.  Runs alternate cold, warm, cold, warm... so that
 load drifts hit both alike; the ratio cold/warm is of medians.  Each tree (``--tree``,
 default this one; ``--before /work/main`` adds the tree before the change) runs with
 ``PYTHONPATH`` set to it.
 
 Usage: ``python experiments/bench_cold_warm.py [--runs 3] [--space cube:-1..1 ...] [--before TREE
 --before-runs 1 --before-space cube:-1..1]``;
-writes ``results/bench_cold_warm.{json,md}``.
+writes ``results/bench_cold_warm.{json,md}`` (``--out NAME``: ``results/NAME.*``).
 """
 
 from __future__ import annotations
@@ -33,7 +34,8 @@ def run(tree: Path, space: str, runs: int) -> dict:
     cold, warm = [], []
     for _ in range(runs):
         folder = tempfile.mkdtemp(prefix="lkspace-cold-")
-        env = {**os.environ, "PYTHONPATH": str(tree), "LKSPACE_CACHE": os.path.join(folder, "cache")}
+        cache, numba = os.path.join(folder, "cache"), os.path.join(folder, "numba")
+        env = {**os.environ, "PYTHONPATH": str(tree), "LKSPACE_CACHE": cache, "NUMBA_CACHE_DIR": numba}
         out = os.path.join(folder, "x.parquet")
         cmd = [sys.executable, "-m", "lkspace", "enumerate", name, "--labels", labels, "--identify", "-o", out]
         cold.append({**timed(cmd, env), "load": load_average()[0]})
@@ -54,6 +56,7 @@ def main() -> None:
     parser.add_argument("--before-runs", type=int, default=1, help="runs of the tree before (its cold runs are long)")
     parser.add_argument("--before-space", nargs="*", default=SPACES[:1], help="spaces timed before the change")
     parser.add_argument("--space", nargs="*", default=SPACES, help="scaffold:labels")
+    parser.add_argument("--out", default="bench_cold_warm", help="results/OUT.json and results/OUT.md")
     args = parser.parse_args()
     trees = {"after": ROOT} if args.before is None else {"before": args.before, "after": ROOT}
     report: dict = {"provenance": provenance(), "load_start": load_average(), "spaces": {}}
@@ -63,7 +66,7 @@ def main() -> None:
         for space in spaces:
             report["spaces"].setdefault(space, {})[label] = run(tree, space, runs)
     report["load_end"] = load_average()
-    (RESULTS / "bench_cold_warm.json").write_text(json.dumps(report, indent=1) + "\n")
+    (RESULTS / f"{args.out}.json").write_text(json.dumps(report, indent=1) + "\n")
     lines = [
         "# First run against later ones: `enumerate SPACE --identify`, cold (empty cache) and warm",
         "",
@@ -80,7 +83,7 @@ def main() -> None:
                 f"| {space} | {label} ({report[f'{label}_commit']}) | {r['cold']['median_s']} | "
                 f"{r['warm']['median_s']} | {r['ratio']} | {r['cold']['load_1min']} |"
             )
-    (RESULTS / "bench_cold_warm.md").write_text("\n".join(lines) + "\n")
+    (RESULTS / f"{args.out}.md").write_text("\n".join(lines) + "\n")
     print("\n".join(lines))
 
 

@@ -5,7 +5,7 @@ Run: ``python experiments/build_key_names.py [--knots 12] [--links 11] [--harves
 0. ``lkspace/data/knot-tables.pickle.xz``: the tables' index by Jones value
    (:func:`lkspace.knots.tables.tables`, 15-20 s to build), for the installed
    ``database_knotinfo`` version.
-1. ``lkspace/data/names-by-key.jsonl.xz``: every KnotInfo knot up to ``--knots`` crossings and LinkInfo link up to ``--links``,
+1. ``lkspace/data/names-by-key.jsonl.gz``: every KnotInfo knot up to ``--knots`` crossings and LinkInfo link up to ``--links``,
    both mirror images (:func:`lkspace.knots.table_keys.table_keys`, about two minutes).
 2. Each ``--harvest`` space (``scaffold:labels``) is identified by ``python -m lkspace
    enumerate ... --identify`` with an empty cache (beside the file of step 1), and the
@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import argparse
 import glob
+import gzip
 import json
 import lzma
 import os
@@ -33,7 +34,7 @@ from importlib.metadata import version
 from pathlib import Path
 
 from lkspace.knots.keyed import KEY_VERSION
-from lkspace.knots.shipped_keys import SHIPPED, shipped_lines
+from lkspace.knots.shipped_keys import SHIPPED, shipped_keys
 from lkspace.knots.table_keys import line, table_keys
 from lkspace.knots.tables import SHIPPED_TABLES, build_tables, knot_modules
 
@@ -43,7 +44,7 @@ HARVEST = ["tetrahedron:-2..2", "cube:-1..1", "octahedron:-1..1"]
 def write(header: dict[str, object], lines: dict[tuple[int | str, ...], str]) -> tuple[int, int]:
     """Write the shipped file; return its sizes (text, compressed)."""
     text = "\n".join([json.dumps(header), *(lines[k] for k in sorted(lines, key=str))]) + "\n"
-    data = lzma.compress(text.encode(), preset=9 | lzma.PRESET_EXTREME)
+    data = gzip.compress(text.encode(), compresslevel=9, mtime=0)
     Path(SHIPPED).write_bytes(data)
     return len(text), len(data)
 
@@ -74,9 +75,9 @@ def main() -> None:
     args = parser.parse_args()
     start = time.perf_counter()
     if args.harvest_only:
-        with lzma.open(SHIPPED, "rt", encoding="utf-8") as fh:
+        with gzip.open(SHIPPED, "rt", encoding="utf-8") as fh:
             header = json.loads(fh.readline())
-        add_harvest(header, dict(shipped_lines()), args.harvest)
+        add_harvest(header, dict(shipped_keys().lines()), args.harvest)
         return
     dki = knot_modules()[2]
     index = (str(dki.version()), build_tables(dki))

@@ -1,8 +1,18 @@
+import os
+import sys
+
 import numpy as np
 import pytest
 from hypothesis import settings
 
 import lkspace
+
+# The suite starts over a thousand fresh lkspace processes.  Where PYTHONDONTWRITEBYTECODE is
+# set (as on the machine these tests were timed on) each of them compiled lkspace's modules from source
+# again (0.1 s of CPU for `identify`, more for the studio); the bytecode goes to the
+# checkout's __pycache__ folders, which git ignores.
+os.environ.pop("PYTHONDONTWRITEBYTECODE", None)
+sys.dont_write_bytecode = False
 
 # no per-example deadline: on a loaded machine an example may take seconds (tests set their own sizes)
 settings.register_profile("lkspace", deadline=None)

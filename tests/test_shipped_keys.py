@@ -14,28 +14,41 @@ import numpy as np
 import pytest
 
 from lkspace import load
-from lkspace.knots import shipped_keys
+from lkspace.knots import shipped_keys as shipped_module
 from lkspace.knots.batch import identify_batch
 from lkspace.knots.key_names import KeyCache, disk_cache
 from lkspace.knots.keyed import KEY_VERSION, keys_of
 from lkspace.knots.recognition import identify
-from lkspace.knots.shipped_keys import SHIPPED, shipped_lines
+from lkspace.knots.shipped_keys import SEARCHED, SHIPPED, ShippedKeys, shipped_keys
 
 pytest.importorskip("snappy")
 
 
 def shipped_cache() -> KeyCache:
-    return KeyCache(shipped=shipped_lines())
+    return KeyCache(shipped=shipped_keys())
 
 
 def test_the_shipped_file_is_of_this_key_version():
-    import lzma
+    import gzip
 
-    with lzma.open(SHIPPED, "rt", encoding="utf-8") as fh:
+    with gzip.open(SHIPPED, "rt", encoding="utf-8") as fh:
         header = json.loads(fh.readline())
     assert header["key_version"] == KEY_VERSION, "rebuild it: python experiments/build_key_names.py"
     assert header["knots"] >= 12 and header["links"] >= 11
-    assert len(shipped_lines()) > 5000
+    assert len(shipped_keys().lines()) == header["keys"] > 5000
+
+
+def test_a_key_searched_in_the_text_is_the_line_the_index_reads():
+    every = shipped_keys().lines()
+    keys = sorted(every, key=str)[:: len(every) // (SEARCHED - 4)][: SEARCHED - 4]
+    searched = ShippedKeys(shipped_keys().text)  # a fresh one: its first lookups search the text
+    for key in keys:
+        assert searched.get(key) == every[key]
+    assert searched.get((1, 2)) is None and searched.get(("diagram", "0" * 32)) is None
+    assert searched._lines is None  # no line was indexed for these lookups
+    for key in keys:  # past SEARCHED lookups: the same answers from the index
+        assert searched.get(key) == every[key]
+    assert searched._lines is not None and searched.get((1, 2)) is None
 
 
 def test_keys_of_pd_codes_equal_the_compiled_keys():
@@ -74,7 +87,7 @@ def test_shipped_names_of_small_pd_codes_equal_name_pd_both_mirror_images(pd, na
     from lkspace.knots.recognition import status_of
     from lkspace.knots.table_keys import pd_key
 
-    lines = shipped_lines()
+    lines = shipped_keys().lines()
     for code in (pd, one_based(spherogram.Link(pd).mirror().PD_code())):
         n_components = len(spherogram.Link(code).link_components)
         live = name_pd(code, n_components, floer=False)
@@ -110,14 +123,14 @@ def test_the_shipped_file_keeps_a_prime_link_and_a_sum_of_one_key_apart():
 def test_the_user_cache_is_read_beside_the_shipped_file(tmp_path, monkeypatch):
     monkeypatch.setenv("LKSPACE_CACHE", str(tmp_path))
     cache = disk_cache()
-    assert cache.shipped is shipped_lines()
-    monkeypatch.setattr(shipped_keys, "SHIPPED", str(tmp_path / "missing.xz"))
-    shipped_lines.cache_clear()
+    assert cache.shipped is shipped_keys()
+    monkeypatch.setattr(shipped_module, "SHIPPED", str(tmp_path / "missing.gz"))
+    shipped_keys.cache_clear()
     try:
-        assert disk_cache().shipped == {}
+        assert disk_cache().shipped.lines() == {}
     finally:
         monkeypatch.undo()
-        shipped_lines.cache_clear()
+        shipped_keys.cache_clear()
 
 
 def test_shipped_names_of_a_sample_of_table_entries_equal_name_pd():
@@ -135,7 +148,7 @@ def test_shipped_names_of_a_sample_of_table_entries_equal_name_pd():
     knots = [e for _, e in entries if e.components == 1 and 9 <= e.crossings <= 12]
     links = [e for _, e in entries if e.components > 1 and 7 <= e.crossings <= 11]
     sample = random.Random(7).sample(knots, 5) + random.Random(7).sample(links, 5)
-    lines = shipped_lines()
+    lines = shipped_keys().lines()
     compared = 0
     for entry in sample:
         pd = entry.pd_code()

@@ -236,8 +236,19 @@ def test_groups_and_port_models_are_kept_beside_the_scaffold_not_in_it():
     space = make_space(sc, "-1..1")
     copy = pickle.loads(pickle.dumps(space))  # a worker process gets the space with its group
     assert copy.group.order == 48 and copy.group_order == 24
-    assert symmetry_group(lkspace.load("cube")) is not group  # another scaffold, its own search
+    assert symmetry_group(lkspace.load("cube")) is group  # another object of the same mesh: found by content
     gone = weakref.ref(sc)
     del sc, space, group
     gc.collect()
     assert gone() is None  # the caches do not keep a scaffold alive
+
+
+def test_the_same_mesh_loaded_again_shares_its_group_and_another_does_not():
+    from lkspace.symmetry.group import symmetry_group
+
+    first, again = lkspace.load("cube"), lkspace.load("cube")
+    assert first is not again
+    assert symmetry_group(again) is symmetry_group(first)
+    moved = Scaffold.from_faces(first.vertices * [1.0, 1.0, 2.0], first.faces())  # a box: fewer symmetries
+    assert symmetry_group(moved).order == 16 and symmetry_group(first).order == 48
+    assert symmetry_group(first, 0.5) is not symmetry_group(first)  # by tolerance too

@@ -17,12 +17,12 @@ kernel must name a helper imported into its module (``from .loops import join``)
 ``module.join``.  Numba's cache keys a kernel by its own file only; here the key also
 holds the text of the files of every helper the kernel reaches, so editing a helper (or a
 constant beside it) in another file recompiles the kernels that use it instead of
-loading stale code.
+loading stale code.  The compiled code of every kernel also ships with lkspace
+(:mod:`~lkspace.compiled.shipped`), so a fresh machine loads it instead of compiling.
 """
 
 from __future__ import annotations
 
-import functools
 import types
 from collections.abc import Callable
 from typing import Any, Literal, TypeVar
@@ -74,32 +74,17 @@ def _source(func: Callable[..., Any]) -> bytes:
         return func.__code__.co_code
 
 
-@functools.cache
-def _keyed_cache_class() -> type:
-    """Return a numba function cache class whose index key also holds a digest of the helpers' sources."""
-    from numba.core.caching import FunctionCache
-
-    class HelperKeyedCache(FunctionCache):
-        def __init__(self, py_func: Callable[..., Any], digest: str) -> None:
-            super().__init__(py_func)
-            self._digest = digest
-
-        def _index_key(self, sig: Any, codegen: Any) -> tuple[Any, ...]:
-            return (*super()._index_key(sig, codegen), self._digest)
-
-    return HelperKeyedCache
-
-
 def _compile(py_func: Callable[..., Any]) -> Any:
-    """Return the numba dispatcher of ``py_func`` (``cache=True``), its helpers compiled in."""
+    """Return the numba dispatcher of ``py_func`` (cached, :mod:`~lkspace.compiled.shipped`), its helpers compiled in."""
     import hashlib
 
+    from .shipped import cache_class, portable_codegen
+
+    portable_codegen()
     import numba
 
     named = _helpers_named(py_func)
     inline: Literal["always", "never"] = "always" if py_func in _helpers else "never"  # no calls in inner loops
-    if not named:
-        return numba.njit(cache=True, inline=inline)(py_func)
     namespace = dict(py_func.__globals__)
     for name, h in named.items():
         if _helpers[h] is None:
@@ -111,7 +96,7 @@ def _compile(py_func: Callable[..., Any]) -> Any:
     dispatcher = numba.njit(cache=True, inline=inline)(func)
     files = {h.__code__.co_filename: h for h in _reached(py_func)}
     digest = hashlib.sha256(b"\0".join(_source(files[f]) for f in sorted(files))).hexdigest()
-    dispatcher._cache = _keyed_cache_class()(func, digest)  # type: ignore[attr-defined]
+    dispatcher._cache = cache_class()(func, digest)  # type: ignore[attr-defined]
     return dispatcher
 
 

@@ -19,6 +19,7 @@ import numpy as np
 from .identification import NameFields
 from .keyed import KEY_VERSION, DesignKeys
 from .naming import name_key
+from .shipped_keys import ShippedKeys
 from .tables import HOMFLY_MAX_CROSSINGS
 
 Key = tuple[int | str, ...]
@@ -42,17 +43,16 @@ class KeyCache:
     path : str or None
         File the trusted keys are appended to and read from (:func:`disk_cache`); keys
         depend on invariants only, so they hold for every scaffold.
-    shipped : dict
-        Key -> its line in the file shipped with lkspace
-        (:func:`~lkspace.knots.shipped_keys.shipped_lines`), read when the key is met
-        and not in :attr:`named` or :attr:`own`.
+    shipped : ShippedKeys
+        The file shipped with lkspace (:func:`~lkspace.knots.shipped_keys.shipped_keys`):
+        a key's line is read when the key is met and not in :attr:`named` or :attr:`own`.
     """
 
     named: dict[Key, NameFields] = field(default_factory=dict)
     own: set[Key] = field(default_factory=set)
     full: int = 0
     path: str | None = None
-    shipped: dict[Key, str] = field(default_factory=dict)
+    shipped: ShippedKeys = field(default_factory=lambda: ShippedKeys(""))
 
     def known(self, key: Key) -> bool:
         """Whether ``key`` was judged (by this run, an earlier one, or the shipped file); moves shipped keys in."""
@@ -106,11 +106,11 @@ def disk_cache(first: tuple[int, int] | None = None) -> KeyCache:
         tables_version = str(version())
     except ImportError:
         tables_version = "none"
-    from .shipped_keys import shipped_lines
+    from .shipped_keys import shipped_keys
 
     root = os.environ.get("LKSPACE_CACHE") or os.path.join(os.path.expanduser("~"), ".cache", "lkspace")
     path = os.path.join(root, f"names-by-key-{KEY_VERSION}-tables-{tables_version}.jsonl")
-    cache = KeyCache(path=path, shipped=shipped_lines())
+    cache = KeyCache(path=path, shipped=shipped_keys())
     try:
         os.makedirs(root, exist_ok=True)
         with open(path, encoding="utf-8") as fh:

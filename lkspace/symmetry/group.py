@@ -32,6 +32,7 @@ the geometry (the symmetry check is geometric).
 from __future__ import annotations
 
 import weakref
+from collections import OrderedDict
 from dataclasses import dataclass
 from functools import cached_property
 from typing import Literal, TypeAlias, get_args
@@ -143,6 +144,13 @@ def check_label_set(labels: np.ndarray, mode: SymmetryMode) -> None:
 _GROUPS: weakref.WeakKeyDictionary[Scaffold, dict[float, SymmetryGroup]] = weakref.WeakKeyDictionary()
 """Each live scaffold's symmetry groups by tolerance (a scaffold is compared by identity; its entry goes with it)."""
 
+KEPT_BY_CONTENT = 8
+"""Groups kept by the content of their scaffold (:meth:`Scaffold.content_hash`), the latest used last."""
+
+_BY_CONTENT: OrderedDict[tuple[str, float], SymmetryGroup] = OrderedDict()
+"""The last groups found, by ``(content hash, tolerance)``: another object of the same mesh (loaded again,
+relabelled) shares its group instead of searching again."""
+
 
 def symmetry_group(scaffold: Scaffold, tolerance: float | None = None) -> SymmetryGroup:
     """Return the rigid symmetry group of ``scaffold`` (found once per scaffold and tolerance).
@@ -163,7 +171,11 @@ def symmetry_group(scaffold: Scaffold, tolerance: float | None = None) -> Symmet
     tol = resolve_tolerance(scaffold, tolerance)
     found = _GROUPS.setdefault(scaffold, {})
     if tol not in found:
-        found[tol] = compute_group(scaffold, tol)
+        key = (scaffold.content_hash(), tol)
+        group = _BY_CONTENT.pop(key, None)
+        _BY_CONTENT[key] = found[tol] = compute_group(scaffold, tol) if group is None else group
+        while len(_BY_CONTENT) > KEPT_BY_CONTENT:
+            _BY_CONTENT.popitem(last=False)
     return found[tol]
 
 
