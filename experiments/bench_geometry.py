@@ -62,7 +62,11 @@ TIMED = [
 
 
 def timing(repeats: int = 9) -> dict:
-    """Warm in-process ``realize`` times (median and best, wall and CPU ms) and the default curves' ropelength."""
+    """Warm in-process ``realize`` times (median and best, wall and CPU ms) and the default curves' ropelength.
+
+    ``lkspace`` must come first on ``sys.path`` (the caller puts the tree measured there:
+    this module puts the repository's root on it for ``tests.ropelength``).
+    """
     import statistics
 
     import lkspace
@@ -124,6 +128,17 @@ def timing_tables(trees: dict[str, dict], meta: dict) -> str:
         lines.append(f"| {row['design']} | {row['points']} | " + " | ".join(cells) + " |")
     lines += [
         "",
+        "`python -m lkspace export cube --twist 1 -o c.obj` in a fresh process (imports, numba's on-disk cache",
+        "warm), median of 5 (best), wall and CPU seconds: "
+        + "; ".join(
+            f"{t} {trees[t]['cold_export']['median_s']} s ({trees[t]['cold_export']['best_s']}), "
+            f"CPU {trees[t]['cold_export']['cpu_median_s']} s"
+            for t in names
+        )
+        + ".",
+    ]
+    lines += [
+        "",
         "Ropelength of the default curves (length / tube radius, `tests/ropelength.py`) against the least known:",
         "",
         "| design | least | " + " | ".join(f"{t} default (ratio)" for t in names) + " |",
@@ -140,13 +155,25 @@ def timing_main(before: str | None, repeats: int) -> None:
     import tarfile
 
     sys.path.insert(0, HERE)
-    from benchkit import git, load_average, provenance
+    from benchkit import git, load_average, provenance, summary, timed
 
     def run(tree: str) -> dict:
         env = {**os.environ, "PYTHONPATH": tree}
-        code = f"import sys, json; sys.path.insert(0, {HERE!r}); import bench_geometry as b; print(json.dumps(b.timing({repeats})))"
+        code = (
+            f"import sys, json; sys.path.insert(0, {HERE!r}); import bench_geometry as b; sys.path.insert(0, {tree!r}); "
+            f"import lkspace; assert lkspace.__file__.startswith({tree!r}), lkspace.__file__; "
+            f"print(json.dumps(b.timing({repeats})))"
+        )
         out = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, check=True)
         return json.loads(out.stdout.strip().splitlines()[-1])
+
+    def cold(tree: str) -> dict:
+        """``python -m lkspace export cube --twist 1`` in fresh processes (caches warm: one untimed run first)."""
+        env = {**os.environ, "PYTHONPATH": tree}
+        with tempfile.TemporaryDirectory() as out:
+            cmd = [sys.executable, "-m", "lkspace", "export", "cube", "--twist", "1", "-o", os.path.join(out, "c.obj")]
+            timed(cmd, env)
+            return summary([timed(cmd, env) for _ in range(5)])
 
     load_start = load_average()
     trees = {}
@@ -156,8 +183,9 @@ def timing_main(before: str | None, repeats: int) -> None:
             subprocess.run(["git", "-C", ROOT, "archive", "-o", archive, before], check=True)
             with tarfile.open(archive) as tar:
                 tar.extractall(folder, filter="data")
-            trees["before"] = run(folder)
-    trees["after"] = run(ROOT)
+            trees["before"] = {**run(folder), "cold_export": cold(folder)}
+    after = os.path.abspath(ROOT)
+    trees["after"] = {**run(after), "cold_export": cold(after)}
     meta = {
         **provenance(),
         "before": git(ROOT, "rev-parse", "--short", before) if before else None,
