@@ -55,6 +55,7 @@ TIMED = [
     ("dodecahedron", 1),
     ("dihedron:3", 1),
     ("figure-eight", [0, -1, -1, -1, -1]),
+    ("truncated-octahedron", 1),
     ("honeycomb:cP", 1),
     ("honeycomb:cP@2x2x2", 1),
 ]

@@ -141,8 +141,8 @@ def flow_iteration(
 
 
 @helper
-def close_point_pairs(points: np.ndarray, radius: float) -> tuple[np.ndarray, np.ndarray]:
-    """Return the pairs ``i < j`` of ``points`` ``(n, 3)`` at most ``radius`` apart: ``(i, j)`` int64 each.
+def close_point_pairs(points: np.ndarray, radius: float, n_first: int) -> tuple[np.ndarray, np.ndarray]:
+    """Return the pairs ``i < j`` of ``points`` ``(n, 3)`` at most ``radius`` apart, ``i < n_first``: ``(i, j)`` int64 each.
 
     The points are sorted into cubic cells of side ``radius`` (at least a 2**-20th of
     the extent, so cell numbers fit in int64); each cell is compared with itself and
@@ -191,7 +191,7 @@ def close_point_pairs(points: np.ndarray, radius: float) -> tuple[np.ndarray, np
                     e0 = ordered[s, 0] - ordered[t, 0]
                     e1 = ordered[s, 1] - ordered[t, 1]
                     e2 = ordered[s, 2] - ordered[t, 2]
-                    if e0 * e0 + e1 * e1 + e2 * e2 <= limit:
+                    if e0 * e0 + e1 * e1 + e2 * e2 <= limit and min(order[s], order[t]) < n_first:
                         if n_found == found_i.shape[0]:
                             found_i = np.concatenate((found_i, np.empty(n_found, np.int64)))
                             found_j = np.concatenate((found_j, np.empty(n_found, np.int64)))
@@ -211,7 +211,7 @@ def flow_candidates(
     per curve.  ``share`` is the pair's separation along their curve (the shorter way
     round) as a share of its points, ``inf`` on two curves.
     """
-    i, j = close_point_pairs(points, radius)
+    i, j = close_point_pairs(points, radius, points.shape[0])
     m = i.shape[0]
     owner_i = np.empty(m, np.int64)
     share = np.empty(m)
@@ -226,6 +226,56 @@ def flow_candidates(
     return i, j, owner_i, share
 
 
+@kernel
+def point_pairs(points: np.ndarray, radius: float, n_first: int) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`close_point_pairs` as a kernel of its own (the periodic cell's image search calls it)."""
+    return close_point_pairs(points, radius, n_first)
+
+
+@kernel
+def image_shares(
+    i: np.ndarray,
+    j: np.ndarray,
+    m: np.ndarray,
+    owner: np.ndarray,
+    index: np.ndarray,
+    sizes: np.ndarray,
+    periods: np.ndarray,
+    basis: np.ndarray,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Return ``(owner of i, share, shift)`` of the image pairs ``(i, j, m)`` of thread classes.
+
+    As :func:`~lkspace.geometry.cell.image_candidates` states: the image ``p_j + m @ basis``
+    is on ``p_i``'s own thread when ``m`` is a whole number ``q`` of its period, ``q``
+    periods further along it (for a loop, ``m = 0``, the shorter way round); ``share`` is
+    the separation along the thread as a share of its points (``inf`` off it), ``shift``
+    ``(k, 3)`` the translation ``m @ basis``.
+    """
+    k, dim = m.shape
+    owner_i = np.empty(k, np.int64)
+    share = np.empty(k)
+    shift = np.zeros((k, 3))
+    for q in range(k):
+        a = owner[i[q]]
+        owner_i[q] = a
+        pp, mp = 0, 0
+        for d in range(dim):
+            pp += periods[a, d] * periods[a, d]
+            mp += m[q, d] * periods[a, d]
+            for c in range(3):
+                shift[q, c] += m[q, d] * basis[d, c]
+        turns = mp // pp if pp > 0 else 0
+        along = a == owner[j[q]]
+        for d in range(dim):
+            along = along and m[q, d] == turns * periods[a, d]
+        size = sizes[a]
+        steps = abs(index[j[q]] + turns * size - index[i[q]])
+        if pp == 0:
+            steps = min(steps, size - steps)
+        share[q] = steps / size if along else np.inf
+    return owner_i, share, shift
+
+
 def load_kernels() -> None:
     """Compile the kernels (or load them from numba's cache) on a three-point curve, with the flow's argument types.
 
@@ -236,6 +286,10 @@ def load_kernels() -> None:
     at = np.arange(3, dtype=np.int64)
     owner = np.zeros(3, np.int64)
     i, j, owner_i, share = flow_candidates(points, 2.0, owner, at, np.array([3], np.int64))
+    point_pairs(points, 2.0, 3)
+    image_shares(
+        i, j, np.zeros((len(i), 3), np.int64), owner, at, np.array([3], np.int64), np.zeros((1, 3), np.int64), np.eye(3)
+    )
     zeros = np.zeros((3, 3))
     nxt = (at + 1) % 3
     flow_iteration(
