@@ -9,7 +9,7 @@ from hypothesis import strategies as st
 
 from lkspace.geometry import flow
 from lkspace.geometry.cell import Cell
-from lkspace.geometry.flow_steps import flow_candidates, flow_iteration
+from lkspace.geometry.flow_steps import flow_candidates, flow_iteration, resample_ring
 
 from .brute_flow import flow_iteration_numpy
 
@@ -79,3 +79,18 @@ def test_flow_iteration_matches_the_numpy_iteration(case, grow):
             assert np.allclose(got[0], want[0], rtol=0, atol=1e-12) and np.allclose(got[1], want[1], rtol=1e-12)
             assert got[2:] == pytest.approx(want[2:], rel=1e-12)
         assert not np.allclose(want[0], points)  # the step moved the points
+
+
+@pytest.mark.parametrize("spacing", [0.01, 0.07, 2.0])
+def test_resample_ring_is_resample_closed_per_curve(spacing):
+    linked, kinked = _rings()
+    threads, cell = _threads()
+    for curves, offsets in ((linked + kinked, np.zeros((3, 3))), (threads, cell.offsets())):
+        curves = [c.copy() for c in curves]
+        curves[0][5] = curves[0][4]  # a segment of length zero
+        ring = flow.Ring.of(curves)
+        offsets = np.ascontiguousarray(offsets)
+        points, sizes = resample_ring(np.vstack(curves), ring.starts, ring.sizes, offsets, spacing, flow.RESAMPLE_LEAST)
+        want = [flow.resample_closed(c, spacing, offset=o) for c, o in zip(curves, offsets, strict=True)]
+        assert sizes.tolist() == [len(w) for w in want]
+        assert np.allclose(points, np.vstack(want), rtol=0, atol=1e-14)

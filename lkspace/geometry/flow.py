@@ -37,13 +37,16 @@ import numpy as np
 
 from ..runtime.progress import task
 from .cell import Cell, image_candidates
-from .flow_steps import flow_candidates, flow_iteration, load_kernels
+from .flow_steps import flow_candidates, flow_iteration, load_kernels, resample_ring
 
 FOLD = 1.5
 """Points on one curve are distinct pieces when farther apart along it than ``FOLD`` times their distance."""
 
 RESAMPLE_EVERY = 5
 """Iterations between uniform resamplings."""
+
+RESAMPLE_LEAST = 12
+"""Fewest points a curve is resampled to."""
 
 WINDOW = 400
 """A growing flow has converged when its best ropelength dropped by less than :data:`TOLERANCE` over this many iterations."""
@@ -110,7 +113,9 @@ class FlowResult:
     stopped: Stop = "steps"
 
 
-def resample_closed(curve: np.ndarray, spacing: float, least: int = 12, offset: np.ndarray | None = None) -> np.ndarray:
+def resample_closed(
+    curve: np.ndarray, spacing: float, least: int = RESAMPLE_LEAST, offset: np.ndarray | None = None
+) -> np.ndarray:
     """``(m, 3)`` points about ``spacing`` apart, evenly by arc length, along the closed polyline ``curve``.
 
     ``offset`` ``(3,)``: the curve closes on its first point moved by it (a thread's period).
@@ -146,9 +151,13 @@ class Ring:
     @staticmethod
     def of(curves: list[np.ndarray], cell: Cell | None = None) -> Ring:
         """Ring of the closed ``curves`` (``cell``: thread classes in it)."""
-        sizes = np.array([len(c) for c in curves], np.int64)
+        return Ring.of_sizes(np.array([len(c) for c in curves], np.int64), cell)
+
+    @staticmethod
+    def of_sizes(sizes: np.ndarray, cell: Cell | None = None) -> Ring:
+        """Ring of closed curves of ``sizes`` points, concatenated (``cell``: thread classes in it)."""
         starts = np.concatenate([[0], np.cumsum(sizes)[:-1]])
-        owner = np.repeat(np.arange(len(curves)), sizes)
+        owner = np.repeat(np.arange(len(sizes)), sizes)
         index = np.arange(int(sizes.sum())) - starts[owner]
         prev = starts[owner] + (index - 1) % sizes[owner]
         nxt = starts[owner] + (index + 1) % sizes[owner]
@@ -280,9 +289,12 @@ def rope_flow(
     """
     diameter = float(options.diameter)
     h = diameter / options.points_per_diameter
-    offsets: list[np.ndarray | None] = [None] * len(curves) if cell is None else list(cell.offsets())
-    pts_list = [resample_closed(np.asarray(c, np.float64), h, offset=o) for c, o in zip(curves, offsets)]
-    ring, points = Ring.of(pts_list, cell), np.vstack(pts_list)
+    offsets = np.zeros((len(curves), 3)) if cell is None else np.ascontiguousarray(cell.offsets(), np.float64)
+    given = Ring.of(curves, cell)
+    points, sizes = resample_ring(
+        np.vstack(curves).astype(np.float64), given.starts, given.sizes, offsets, h, RESAMPLE_LEAST
+    )
+    ring = Ring.of_sizes(sizes, cell)
     best: FlowResult | None = None
     anchor, anchored = np.inf, 0  # the best ropelength when it last dropped by TOLERANCE, and the iteration
     stopped: Stop = "steps"
@@ -296,9 +308,8 @@ def rope_flow(
                 break
             if it % RESAMPLE_EVERY == 0:
                 h = diameter / options.points_per_diameter
-                pts_list = [resample_closed(c, h, offset=o) for c, o in zip(np.split(points, ring.starts[1:]), offsets)]
-                ring = Ring.of(pts_list, cell)
-                points = np.vstack(pts_list)
+                points, sizes = resample_ring(points, ring.starts, ring.sizes, offsets, h, RESAMPLE_LEAST)
+                ring = Ring.of_sizes(sizes, cell)
                 lengths = _ring_lengths(points, ring)
                 candidates = _neighbour_list(
                     points, ring, max(diameter, 4 * h), RESAMPLE_EVERY, h, options.grow

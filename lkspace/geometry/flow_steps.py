@@ -276,6 +276,56 @@ def image_shares(
     return owner_i, share, shift
 
 
+@kernel
+def resample_ring(
+    points: np.ndarray, starts: np.ndarray, sizes: np.ndarray, offsets: np.ndarray, spacing: float, least: int
+) -> tuple[np.ndarray, np.ndarray]:
+    """Resample every closed curve of the concatenated ``points`` evenly by arc length: ``(points, sizes)``.
+
+    Curve ``c`` is ``points[starts[c]:starts[c] + sizes[c]]``, closing on its first point
+    moved by ``offsets[c]`` (a thread's period, else zero); it gets ``max(least,
+    round(length / spacing))`` points (at least 3) about ``spacing`` apart, interpolated on
+    its polyline as :func:`~lkspace.geometry.flow.resample_count` does.
+    """
+    n_curves = sizes.shape[0]
+    counts = np.empty(n_curves, np.int64)
+    for c in range(n_curves):
+        length = 0.0
+        for p in range(starts[c], starts[c] + sizes[c]):
+            last = p == starts[c] + sizes[c] - 1
+            q = starts[c] if last else p + 1
+            e0 = points[q, 0] + (offsets[c, 0] if last else 0.0) - points[p, 0]
+            e1 = points[q, 1] + (offsets[c, 1] if last else 0.0) - points[p, 1]
+            e2 = points[q, 2] + (offsets[c, 2] if last else 0.0) - points[p, 2]
+            length += np.sqrt(e0 * e0 + e1 * e1 + e2 * e2)
+        counts[c] = max(3, max(least, int(round(length / spacing))))
+    out = np.empty((counts.sum(), 3))
+    at = 0
+    for c in range(n_curves):
+        size = sizes[c]
+        ends = np.empty((size + 1, 3))
+        ends[:size] = points[starts[c] : starts[c] + size]
+        ends[size] = points[starts[c]] + offsets[c]
+        cum = np.zeros(size + 1)
+        for p in range(size):
+            e0, e1, e2 = ends[p + 1, 0] - ends[p, 0], ends[p + 1, 1] - ends[p, 1], ends[p + 1, 2] - ends[p, 2]
+            cum[p + 1] = cum[p] + np.sqrt(e0 * e0 + e1 * e1 + e2 * e2)
+        step = cum[size] / counts[c]
+        j = 0
+        for k in range(counts[c]):
+            x = k * step
+            while j < size - 1 and cum[j + 1] <= x:
+                j += 1
+            width = cum[j + 1] - cum[j]
+            for d in range(3):
+                if width > 0:
+                    out[at + k, d] = (ends[j + 1, d] - ends[j, d]) / width * (x - cum[j]) + ends[j, d]
+                else:
+                    out[at + k, d] = ends[j, d]
+        at += counts[c]
+    return out, counts
+
+
 def load_kernels() -> None:
     """Compile the kernels (or load them from numba's cache) on a three-point curve, with the flow's argument types.
 
@@ -287,6 +337,7 @@ def load_kernels() -> None:
     owner = np.zeros(3, np.int64)
     i, j, owner_i, share = flow_candidates(points, 2.0, owner, at, np.array([3], np.int64))
     point_pairs(points, 2.0, 3)
+    resample_ring(points, np.zeros(1, np.int64), np.array([3], np.int64), np.zeros((1, 3)), 0.5, 12)
     image_shares(
         i, j, np.zeros((len(i), 3), np.int64), owner, at, np.array([3], np.int64), np.zeros((1, 3), np.int64), np.eye(3)
     )
