@@ -311,8 +311,9 @@ def rope_flow(
                 points, sizes = resample_ring(points, ring.starts, ring.sizes, offsets, h, RESAMPLE_LEAST)
                 ring = Ring.of_sizes(sizes, cell)
                 lengths = _ring_lengths(points, ring)
+                # the list serves this iteration and the next RESAMPLE_EVERY - 1: as many steps
                 candidates = _neighbour_list(
-                    points, ring, max(diameter, 4 * h), RESAMPLE_EVERY, h, options.grow
+                    points, ring, max(diameter, 4 * h), RESAMPLE_EVERY - 1, h, options.grow
                 ).arrays()
                 frame = ring.frame()
             moved, moved_lengths, gap, thick, grown = flow_iteration(
