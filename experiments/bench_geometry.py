@@ -12,6 +12,14 @@ noisy).  Writes ``results/bench_geometry.json`` and ``results/bench_geometry.md`
 commit, version and load average.
 
 Run: ``python experiments/bench_geometry.py``.
+
+``--timing [--before REV]`` measures instead how long ``lkspace.realize`` takes in a warm
+process (issue 34: a cube design in 30 ms), the default and with ``embedding="later"``
+(the studio's redraw), on designs of the cube, tetrahedron, dodecahedron, dihedra and
+cP honeycomb, together with the default curves' ropelength (``tests/ropelength.py``) on
+the small knots above; each tree (this one, and the tree at git revision ``REV`` from
+``git archive``) in a fresh process, one after the other, so both columns share a
+machine load.  Writes ``results/bench_realize.json`` and ``results/bench_realize.md``.
 """
 
 from __future__ import annotations
@@ -38,6 +46,161 @@ DESIGNS = [
     ("Borromean", "tetrahedron", "1", 58.01),
 ]
 """(name, mesh, twist, least known ropelength) of the five designs of issue 21 (ropelength literature)."""
+
+
+TIMED = [
+    ("cube", [1, 0, -1, 1, 1, 0, 2, 1, 0, 1, 1, 1]),
+    ("cube", 1),
+    ("tetrahedron", 1),
+    ("dodecahedron", 1),
+    ("dihedron:3", 1),
+    ("figure-eight", [0, -1, -1, -1, -1]),
+    ("truncated-octahedron", 1),
+    ("honeycomb:cP", 1),
+    ("honeycomb:cP@2x2x2", 1),
+]
+"""(mesh, labels) of the designs :func:`timing` realizes."""
+
+
+def timing(repeats: int = 9) -> dict:
+    """Warm in-process ``realize`` times (median and best, wall and CPU ms) and the default curves' ropelength.
+
+    ``lkspace`` must come first on ``sys.path`` (the caller puts the tree measured there:
+    this module puts the repository's root on it for ``tests.ropelength``).
+    """
+    import statistics
+
+    import lkspace
+
+    rows = []
+    for mesh, labels in TIMED:
+        scaffold = lkspace.load(mesh)
+        row: dict = {"design": f"{mesh} {labels}"}
+        for mode in ("refuse", "later"):
+            options = lkspace.RealizeOptions(embedding=mode)
+            real = lkspace.realize(scaffold, labels, options=options)  # warm: compiled, cached
+            walls, cpus = [], []
+            for _ in range(repeats):
+                w0, c0 = time.perf_counter(), time.process_time()
+                lkspace.realize(scaffold, labels, options=options)
+                walls.append(1e3 * (time.perf_counter() - w0))
+                cpus.append(1e3 * (time.process_time() - c0))
+            row[mode] = {
+                "wall_median_ms": round(statistics.median(walls), 1),
+                "wall_best_ms": round(min(walls), 1),
+                "cpu_median_ms": round(statistics.median(cpus), 1),
+            }
+        row["points"] = int(sum(len(c) for c in real.curves))
+        rows.append(row)
+        print(row, flush=True)
+    ropes = []
+    for name, mesh, twist, least in DESIGNS:
+        labels = [int(x) for x in twist.split(",")]
+        real = lkspace.realize(mesh, labels[0] if len(labels) == 1 else labels)
+        rope = ropelength([(c, True) for c in real.curves])["ropelength"]
+        ropes.append({"design": name, "least": least, "default": round(rope, 2), "ratio": round(rope / least, 2)})
+    return {"rows": rows, "ropelength": ropes}
+
+
+def timing_tables(trees: dict[str, dict], meta: dict) -> str:
+    """Markdown of :func:`timing` for each tree, side by side."""
+    names = list(trees)
+    lines = [
+        "# `lkspace.realize` in a warm process (issue 34: a cube design in 30 ms)",
+        "",
+        "Made by `python experiments/bench_geometry.py --timing --before REV`; each tree in a fresh",
+        "process, the design realized once before timing (numba kernels compiled and loaded), then",
+        f"{meta['repeats']} timed runs: median wall ms (best; median CPU ms).  `refuse`: the default",
+        "(embedding checked before the smoothing and measured after); `later`: `RealizeOptions(embedding=",
+        '"later")`, the studio\'s redraw (the check before the smoothing only).',
+        f"Commit {meta['commit']} (dirty: {meta['dirty']}), before = {meta['before']}; {meta['date']}; "
+        f"{meta['machine']['cpu_count']} CPUs ({meta['machine']['cpu']}), shared; load {meta['load_start']} -> "
+        f"{meta['load_end']}.",
+        "",
+        "| design | points | " + " | ".join(f"{t} refuse | {t} later" for t in names) + " |",
+        "|---|---:|" + "---:|---:|" * len(names),
+    ]
+
+    def cell(m: dict) -> str:
+        return f"{m['wall_median_ms']} ({m['wall_best_ms']}; {m['cpu_median_ms']})"
+
+    for k, row in enumerate(trees[names[0]]["rows"]):
+        cells = [f"{cell(trees[t]['rows'][k]['refuse'])} | {cell(trees[t]['rows'][k]['later'])}" for t in names]
+        lines.append(f"| {row['design']} | {row['points']} | " + " | ".join(cells) + " |")
+    lines += [
+        "",
+        "`python -m lkspace export cube --twist 1 -o c.obj` in a fresh process (imports, numba's on-disk cache",
+        "warm), median of 5 (best), wall and CPU seconds: "
+        + "; ".join(
+            f"{t} {trees[t]['cold_export']['median_s']} s ({trees[t]['cold_export']['best_s']}), "
+            f"CPU {trees[t]['cold_export']['cpu_median_s']} s"
+            for t in names
+        )
+        + ".",
+    ]
+    lines += [
+        "",
+        "Ropelength of the default curves (length / tube radius, `tests/ropelength.py`) against the least known:",
+        "",
+        "| design | least | " + " | ".join(f"{t} default (ratio)" for t in names) + " |",
+        "|---|---:|" + "---:|" * len(names),
+    ]
+    for k, rope in enumerate(trees[names[0]]["ropelength"]):
+        cells = [f"{trees[t]['ropelength'][k]['default']} ({trees[t]['ropelength'][k]['ratio']}x)" for t in names]
+        lines.append(f"| {rope['design']} | {rope['least']} | " + " | ".join(cells) + " |")
+    return "\n".join(lines) + "\n"
+
+
+def timing_main(before: str | None, repeats: int) -> None:
+    """Run :func:`timing` in a fresh process per tree; write ``results/bench_realize.{json,md}``."""
+    import tarfile
+
+    sys.path.insert(0, HERE)
+    from benchkit import git, load_average, provenance, summary, timed
+
+    def run(tree: str) -> dict:
+        env = {**os.environ, "PYTHONPATH": tree}
+        code = (
+            f"import sys, json; sys.path.insert(0, {HERE!r}); import bench_geometry as b; sys.path.insert(0, {tree!r}); "
+            f"import lkspace; assert lkspace.__file__.startswith({tree!r}), lkspace.__file__; "
+            f"print(json.dumps(b.timing({repeats})))"
+        )
+        out = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, check=True)
+        return json.loads(out.stdout.strip().splitlines()[-1])
+
+    def cold(tree: str) -> dict:
+        """``python -m lkspace export cube --twist 1`` in fresh processes (caches warm: one untimed run first)."""
+        env = {**os.environ, "PYTHONPATH": tree}
+        with tempfile.TemporaryDirectory() as out:
+            cmd = [sys.executable, "-m", "lkspace", "export", "cube", "--twist", "1", "-o", os.path.join(out, "c.obj")]
+            timed(cmd, env)
+            return summary([timed(cmd, env) for _ in range(5)])
+
+    load_start = load_average()
+    trees = {}
+    if before:
+        with tempfile.TemporaryDirectory() as folder:
+            archive = os.path.join(folder, "tree.tar")
+            subprocess.run(["git", "-C", ROOT, "archive", "-o", archive, before], check=True)
+            with tarfile.open(archive) as tar:
+                tar.extractall(folder, filter="data")
+            trees["before"] = {**run(folder), "cold_export": cold(folder)}
+    after = os.path.abspath(ROOT)
+    trees["after"] = {**run(after), "cold_export": cold(after)}
+    meta = {
+        **provenance(),
+        "before": git(ROOT, "rev-parse", "--short", before) if before else None,
+        "repeats": repeats,
+        "load_start": load_start,
+        "load_end": load_average(),
+    }
+    results = os.path.join(ROOT, "results")
+    with open(os.path.join(results, "bench_realize.json"), "w") as handle:
+        json.dump({"meta": meta, "trees": trees}, handle, indent=1)
+    text = timing_tables(trees, meta)
+    with open(os.path.join(results, "bench_realize.md"), "w") as handle:
+        handle.write(text)
+    print(text)
 
 
 def export(mesh: str, twist: str | None, path: str, *extra: str) -> float:
@@ -107,4 +270,14 @@ def main() -> None:
 
 
 if __name__ == "__main__":
-    main()
+    import argparse
+
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--timing", action="store_true", help="time lkspace.realize in a warm process")
+    parser.add_argument("--before", help="git revision to compare with (with --timing)")
+    parser.add_argument("--repeats", type=int, default=9)
+    args = parser.parse_args()
+    if args.timing:
+        timing_main(args.before, args.repeats)
+    else:
+        main()

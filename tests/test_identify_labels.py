@@ -211,23 +211,14 @@ def test_one_design_key_equals_the_compiled_key():
 
 
 def test_projection_without_scipy_matches_scipy():
-    from scipy.spatial import cKDTree
     from scipy.spatial.transform import Rotation
 
-    from lkspace.knots.diagram import DRAWS, close_pairs, random_rotation
+    from lkspace.knots.diagram import DRAWS, random_rotation
 
     for seed in range(6):
         assert np.allclose(random_rotation(seed), Rotation.random(random_state=seed).as_matrix(), atol=1e-14)
     for seed, draw in DRAWS.items():
         assert draw == tuple(np.random.RandomState(seed).normal(size=4).tolist())
-    rng = np.random.default_rng(0)
-    for n, radius in ((2, 0.5), (300, 0.05), (2000, 0.01)):
-        points = rng.random((n, 2))
-        points[:3] = points[0]  # coincident points
-        i, j = close_pairs(points, radius)
-        assert set(zip(i.tolist(), j.tolist(), strict=True)) == {
-            tuple(p) for p in cKDTree(points).query_pairs(radius, output_type="ndarray").tolist()
-        }
 
 
 def test_a_known_key_is_named_without_the_heavy_libraries():

@@ -243,3 +243,15 @@ def test_a_long_call_in_a_thread_lets_ctrl_c_through_at_once():
     )
     proc = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=HANG)
     assert proc.stdout.split("\n") == ["interrupted while the call runs", "42", "raised here", ""], proc.stderr
+
+
+def test_a_small_call_runs_in_place():
+    import threading
+
+    from lkspace.runtime.workers import QUICK_SIZE, interruptible
+
+    def here() -> bool:
+        return threading.current_thread() is threading.main_thread()
+
+    assert interruptible(here, QUICK_SIZE - 1)
+    assert not interruptible(here, QUICK_SIZE) and not interruptible(here)

@@ -101,7 +101,7 @@ ALLOWED = {
     "symmetry": {"compiled", "errors", "model", "runtime", "words"},
     "design": {"compiled", "errors", "model", "runtime", "strands", "symmetry", "words"},
     "inverse": {"compiled", "errors", "model", "runtime", "strands", "symmetry", "words"},
-    "geometry": {"errors", "model", "runtime", "strands", "words"},
+    "geometry": {"compiled", "errors", "model", "runtime", "strands", "words"},
     "dna": {"errors", "io", "model", "strands"},
     "knots": {"compiled", "errors", "geometry", "io", "model", "runtime", "strands", "words"},
     "formats": {"errors", "geometry", "io", "knots", "model", "runtime", "words"},

@@ -17,7 +17,8 @@ from itertools import product
 from typing import TYPE_CHECKING
 
 import numpy as np
-from scipy.spatial import cKDTree
+
+from .flow_steps import image_shares, point_pairs
 
 if TYPE_CHECKING:
     from ..model.scaffold import Scaffold
@@ -61,30 +62,22 @@ def image_pairs(points: np.ndarray, basis: np.ndarray, radius: float) -> tuple[n
     frac, wrapped = f - k, points - k @ basis
     rho = radius * np.linalg.norm(inv, axis=0)  # (dim,) radius in cells along each lattice vector
     reach = (np.floor(rho) + 1).astype(np.int64)
-    tree = cKDTree(wrapped)
-    found_i, found_j, found_t = [], [], []
+    n, dim = len(points), len(reach)
+    # the points and their translates by every t whose first non-zero entry is positive ((i, j, -t) is (j, i, t)),
+    # each translate only near the faces t crosses (|frac_i - frac_j - t| <= rho for a pair that meets)
+    placed, source, moved = [wrapped], [np.arange(n)], [np.zeros((n, dim), np.int64)]
     for t in product(*[range(-r, r + 1) for r in reach.tolist()]):
         nonzero = [x for x in t if x]
-        if nonzero and nonzero[0] < 0:  # (i, j, -t) is (j, i, t)
+        if not nonzero or nonzero[0] < 0:
             continue
-        if not nonzero:
-            pairs = tree.query_pairs(radius, output_type="ndarray").reshape(-1, 2)
-            a, b = pairs[:, 0], pairs[:, 1]
-        else:  # only points near the faces t crosses can meet: |frac_i - frac_j - t| <= rho
-            tt = np.asarray(t, np.float64)
-            ii = np.flatnonzero(np.all((frac >= tt - rho) & (frac <= 1 + tt + rho), axis=1))
-            jj = np.flatnonzero(np.all((frac >= -tt - rho) & (frac <= 1 - tt + rho), axis=1))
-            if not len(ii) or not len(jj):
-                continue
-            near = cKDTree(wrapped[ii]).sparse_distance_matrix(
-                cKDTree(wrapped[jj] + tt @ basis), radius, output_type="ndarray"
-            )
-            a, b = ii[near["i"].astype(np.int64)], jj[near["j"].astype(np.int64)]
-        found_i.append(a)
-        found_j.append(b)
-        found_t.append(np.broadcast_to(np.asarray(t, np.int64), (len(a), len(t))))
-    i, j = np.concatenate(found_i), np.concatenate(found_j)
-    m = (k[i] - k[j]).astype(np.int64) + np.concatenate(found_t)
+        tt = np.asarray(t, np.float64)
+        jj = np.flatnonzero(np.all((frac >= -tt - rho) & (frac <= 1 - tt + rho), axis=1))
+        placed.append(wrapped[jj] + tt @ basis)
+        source.append(jj)
+        moved.append(np.broadcast_to(np.asarray(t, np.int64), (len(jj), dim)))
+    i, b = point_pairs(np.vstack(placed), float(radius), n)  # a point with a point or a translate, not two translates
+    j = np.concatenate(source)[b]
+    m = (k[i] - k[j]).astype(np.int64) + np.vstack(moved)[b]
     return i, j, m
 
 
@@ -101,16 +94,8 @@ def image_candidates(
     its period: ``q`` periods further along it (for a loop, ``m = 0``).
     """
     i, j, m = image_pairs(points, cell.basis, radius)
-    oi = owner[i]
-    per = cell.periods[oi]
-    pp, mp = (per * per).sum(axis=1), (m * per).sum(axis=1)
-    q = np.where(pp > 0, mp // np.maximum(pp, 1), 0)
-    along = (oi == owner[j]) & np.all(m == q[:, None] * per, axis=1)
-    size = sizes[oi]
-    steps = np.abs(index[j] + q * size - index[i])
-    steps = np.where(pp > 0, steps, np.minimum(steps, size - steps))
-    share = np.where(along, steps / size, np.inf)
-    return i, j, oi, share, m.astype(np.float64) @ cell.basis
+    periods = np.ascontiguousarray(cell.periods, np.int64)
+    return (i, j, *image_shares(i, j, m, owner, index, sizes, periods, np.ascontiguousarray(cell.basis, np.float64)))
 
 
 def classes_of(

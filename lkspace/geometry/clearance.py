@@ -79,7 +79,7 @@ def sample_tree(points: np.ndarray) -> cKDTree:
     pathologically slow on samples along straight or planar runs: 59 s instead of 3 s
     for 3 million samples of the cube's strands.
     """
-    return interruptible(lambda: cKDTree(points, compact_nodes=False))
+    return interruptible(lambda: cKDTree(points, compact_nodes=False), len(points))
 
 
 class Resampled(NamedTuple):
@@ -200,7 +200,7 @@ def check_embedding(
 
     pts, arc, owner, lengths = samples(curves, closed, min_separation / 2.0)
     fine = sample_tree(pts)
-    pairs = interruptible(lambda: fine.query_pairs(min_separation, output_type="ndarray"))
+    pairs = interruptible(lambda: fine.query_pairs(min_separation, output_type="ndarray"), len(pts))
     if len(pairs):
         keep = pieces_apart(owner, arc, lengths, closed, pairs[:, 0], pairs[:, 1], 4 * min_separation, joins)
         consider(pts, owner, pairs[keep, 0], pairs[keep, 1])
@@ -210,7 +210,7 @@ def check_embedding(
     tree = sample_tree(pts)
     for lo in range(0, len(pts), CHUNK):  # in chunks: k neighbours per sample take ~3 kB each
         hi = min(lo + CHUNK, len(pts))
-        _, nb = interruptible(partial(tree.query, pts[lo:hi], k=k, distance_upper_bound=0.3 * scale))
+        _, nb = interruptible(partial(tree.query, pts[lo:hi], k=k, distance_upper_bound=0.3 * scale), hi - lo)
         i = np.repeat(np.arange(lo, hi), k)
         j = nb.reshape(-1)
         found = j < len(pts)

@@ -10,7 +10,7 @@ back, never a gentle bend) should be at least ``D`` apart, and the curvature rad
 2. pushes the points of distinct pieces closer than ``D`` apart along their join;
 3. **caps** every point's step to ``min(h / 4, d_i / 3)``, where ``h`` is the point
    spacing and ``d_i`` the distance from the point to the nearest distinct piece
-   (found with ``scipy.spatial.cKDTree`` within ``max(D, 4 h)``).  Two points of distinct
+   (found on a grid within ``max(D, 4 h)``).  Two points of distinct
    pieces ``d`` apart then move less than ``2 d / 3`` toward each other, and points of one
    piece stay more than ``h / 2`` apart, so along the straight path from old to new
    positions no two segments meet: the flow is an isotopy and cannot change the link type.
@@ -34,16 +34,19 @@ from dataclasses import dataclass, replace
 from typing import Literal, NamedTuple
 
 import numpy as np
-from scipy.spatial import cKDTree
 
 from ..runtime.progress import task
 from .cell import Cell, image_candidates
+from .flow_steps import flow_candidates, flow_iteration, load_kernels, resample_ring
 
 FOLD = 1.5
 """Points on one curve are distinct pieces when farther apart along it than ``FOLD`` times their distance."""
 
 RESAMPLE_EVERY = 5
 """Iterations between uniform resamplings."""
+
+RESAMPLE_LEAST = 12
+"""Fewest points a curve is resampled to."""
 
 WINDOW = 400
 """A growing flow has converged when its best ropelength dropped by less than :data:`TOLERANCE` over this many iterations."""
@@ -110,7 +113,9 @@ class FlowResult:
     stopped: Stop = "steps"
 
 
-def resample_closed(curve: np.ndarray, spacing: float, least: int = 12, offset: np.ndarray | None = None) -> np.ndarray:
+def resample_closed(
+    curve: np.ndarray, spacing: float, least: int = RESAMPLE_LEAST, offset: np.ndarray | None = None
+) -> np.ndarray:
     """``(m, 3)`` points about ``spacing`` apart, evenly by arc length, along the closed polyline ``curve``.
 
     ``offset`` ``(3,)``: the curve closes on its first point moved by it (a thread's period).
@@ -146,9 +151,13 @@ class Ring:
     @staticmethod
     def of(curves: list[np.ndarray], cell: Cell | None = None) -> Ring:
         """Ring of the closed ``curves`` (``cell``: thread classes in it)."""
-        sizes = np.array([len(c) for c in curves], np.int64)
+        return Ring.of_sizes(np.array([len(c) for c in curves], np.int64), cell)
+
+    @staticmethod
+    def of_sizes(sizes: np.ndarray, cell: Cell | None = None) -> Ring:
+        """Ring of closed curves of ``sizes`` points, concatenated (``cell``: thread classes in it)."""
         starts = np.concatenate([[0], np.cumsum(sizes)[:-1]])
-        owner = np.repeat(np.arange(len(curves)), sizes)
+        owner = np.repeat(np.arange(len(sizes)), sizes)
         index = np.arange(int(sizes.sum())) - starts[owner]
         prev = starts[owner] + (index - 1) % sizes[owner]
         nxt = starts[owner] + (index + 1) % sizes[owner]
@@ -159,6 +168,13 @@ class Ring:
         before[starts] = -offsets
         after[starts + sizes - 1] = offsets
         return Ring(prev, nxt, owner, index, sizes, starts, cell, before, after)
+
+    def frame(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """``(prev, next, before, after, owner)`` for :func:`~lkspace.geometry.flow_steps.flow_iteration` (zero periods without a cell)."""
+        zeros = np.zeros((len(self.prev), 3))
+        before = zeros if self.before is None else self.before
+        after = zeros if self.after is None else self.after
+        return self.prev, self.next, before, after, self.owner
 
     def neighbours(self, points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Previous and next neighbour of every point, ``(n, 3)`` each (across a thread's period)."""
@@ -201,15 +217,10 @@ class _Near(NamedTuple):
     shift: np.ndarray | None = None
     """(m, 3) float64: the lattice translation of ``j``'s image (``None`` without a cell)"""
 
-    @staticmethod
-    def of(pairs: np.ndarray, ring: Ring) -> _Near:
-        """Candidates of the ``(m, 2)`` index ``pairs`` on ``ring``."""
-        i, j = pairs[:, 0], pairs[:, 1]
-        oi = ring.owner[i]
-        steps = np.abs(ring.index[i] - ring.index[j])
-        steps = np.minimum(steps, ring.sizes[oi] - steps)
-        share = np.where(oi == ring.owner[j], steps / ring.sizes[oi], np.inf)
-        return _Near(i, j, oi, share)
+    def arrays(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """``(i, j, owner, share, shift)`` for :func:`~lkspace.geometry.flow_steps.flow_iteration` (``shift`` ``(0, 3)`` if none)."""
+        shift = np.zeros((0, 3)) if self.shift is None else self.shift
+        return self.i, self.j, self.owner, self.share, shift
 
     def within(self, points: np.ndarray, lengths: np.ndarray, radius: float) -> Pairs:
         """Return the candidates on distinct pieces within ``radius`` (:class:`Pairs`); ``lengths``: of the curves."""
@@ -224,12 +235,11 @@ class _Near(NamedTuple):
         return Pairs(self.i[m][keep], self.j[m][keep], d[keep], shift)
 
 
-def _candidates(points: np.ndarray, ring: Ring, radius: float, tree: cKDTree | None = None) -> _Near:
+def _candidates(points: np.ndarray, ring: Ring, radius: float) -> _Near:
     """Pairs of ``points`` within ``radius`` (of each other's lattice images, with a cell) as :class:`_Near`."""
     if ring.cell is not None:
         return _Near(*image_candidates(points, ring.cell, ring.owner, ring.index, ring.sizes, radius))
-    tree = cKDTree(points) if tree is None else tree
-    return _Near.of(tree.query_pairs(radius, output_type="ndarray").reshape(-1, 2), ring)
+    return _Near(*flow_candidates(points, radius, ring.owner, ring.index, ring.sizes))
 
 
 def distinct_pairs(points: np.ndarray, ring: Ring, lengths: np.ndarray, radius: float) -> Pairs:
@@ -252,13 +262,11 @@ def _ring_lengths(points: np.ndarray, ring: Ring) -> np.ndarray:
 def _neighbour_list(points: np.ndarray, ring: Ring, reach: float, steps: int, h: float, grow: float) -> _Near:
     """Return the pairs of ``points`` that may come within ``reach`` in the next ``steps`` steps.
 
-    A step moves a point at most ``h / 4`` (the cap of :func:`_step`), so two points close
+    A step moves a point at most ``h / 4`` (the cap of :func:`~lkspace.geometry.flow_steps.flow_iteration`), so two points close
     in by at most ``h / 2`` per step; the reach itself grows with the diameter, by at
     most ``(1 + grow)`` per step.
     """
-    radius = reach * (1 + grow) ** steps + 0.5 * h * steps
-    tree = None if ring.cell is not None else cKDTree(points, compact_nodes=False, balanced_tree=False)
-    return _candidates(points, ring, radius, tree)
+    return _candidates(points, ring, reach * (1 + grow) ** steps + 0.5 * h * steps)
 
 
 def rope_flow(
@@ -281,14 +289,18 @@ def rope_flow(
     """
     diameter = float(options.diameter)
     h = diameter / options.points_per_diameter
-    offsets: list[np.ndarray | None] = [None] * len(curves) if cell is None else list(cell.offsets())
-    pts_list = [resample_closed(np.asarray(c, np.float64), h, offset=o) for c, o in zip(curves, offsets)]
-    ring, points = Ring.of(pts_list, cell), np.vstack(pts_list)
+    offsets = np.zeros((len(curves), 3)) if cell is None else np.ascontiguousarray(cell.offsets(), np.float64)
+    given = Ring.of(curves, cell)
+    points, sizes = resample_ring(
+        np.vstack(curves).astype(np.float64), given.starts, given.sizes, offsets, h, RESAMPLE_LEAST
+    )
+    ring = Ring.of_sizes(sizes, cell)
     best: FlowResult | None = None
     anchor, anchored = np.inf, 0  # the best ropelength when it last dropped by TOLERANCE, and the iteration
     stopped: Stop = "steps"
     deadline = None if options.time_limit is None else time.monotonic() + options.time_limit
     it = 0
+    load_kernels()
     with task(label, total=options.iterations) as step:
         while it < options.iterations:
             if it and deadline is not None and time.monotonic() > deadline:  # a step at least
@@ -296,15 +308,26 @@ def rope_flow(
                 break
             if it % RESAMPLE_EVERY == 0:
                 h = diameter / options.points_per_diameter
-                pts_list = [resample_closed(c, h, offset=o) for c, o in zip(np.split(points, ring.starts[1:]), offsets)]
-                ring = Ring.of(pts_list, cell)
-                points = np.vstack(pts_list)
+                points, sizes = resample_ring(points, ring.starts, ring.sizes, offsets, h, RESAMPLE_LEAST)
+                ring = Ring.of_sizes(sizes, cell)
                 lengths = _ring_lengths(points, ring)
-                candidates = _neighbour_list(points, ring, max(diameter, 4 * h), RESAMPLE_EVERY, h, options.grow)
-            radius = circumradii(points, ring)
-            near = candidates.within(points, lengths, max(diameter, 4 * h))
-            gap = float(near.d.min()) if len(near.d) else max(diameter, 4 * h)
-            thick = min(0.5 * gap, float(radius.min()))
+                # the list serves this iteration and the next RESAMPLE_EVERY - 1: as many steps
+                candidates = _neighbour_list(
+                    points, ring, max(diameter, 4 * h), RESAMPLE_EVERY - 1, h, options.grow
+                ).arrays()
+                frame = ring.frame()
+            moved, moved_lengths, gap, thick, grown = flow_iteration(
+                points,
+                *frame,
+                lengths,
+                *candidates,
+                max(diameter, 4 * h),
+                diameter,
+                h,
+                options.pull,
+                options.grow,
+                FOLD,
+            )
             if options.grow > 0:
                 rope = float(lengths.sum()) / thick
                 if best is None or rope < best.ropelength:
@@ -314,10 +337,7 @@ def rope_flow(
                 if it - anchored >= WINDOW:
                     stopped = "converged"
                     break
-                if gap >= 0.98 * diameter and thick >= 0.49 * diameter:
-                    diameter *= 1 + options.grow
-            points = points + _step(points, ring, radius, near, diameter, h, options.pull)
-            lengths = _ring_lengths(points, ring)
+            points, lengths, diameter = moved, moved_lengths, grown
             it += 1
             step.advance()
             if it % 50 == 0:
@@ -326,43 +346,6 @@ def rope_flow(
         return replace(best, iterations=it, stopped=stopped)
     curves_out = np.split(points, ring.starts[1:])
     return FlowResult(curves_out, diameter, float(lengths.sum()) / (0.5 * diameter), it, stopped)
-
-
-def _step(
-    points: np.ndarray,
-    ring: Ring,
-    radius: np.ndarray,
-    pairs: Pairs,
-    diameter: float,
-    h: float,
-    pull: float,
-) -> np.ndarray:
-    """One capped step ``(n, 3)``: curve shortening, curvature relief and overlap pushes (``pairs``: the close ones)."""
-    i, j, d = pairs.i, pairs.j, pairs.d
-    before, after = ring.neighbours(points)
-    mid = 0.5 * (before + after) - points
-    weight = np.where(radius < 0.5 * diameter, 0.5, pull)
-    move = weight[:, None] * mid
-    n = len(points)
-    near = np.full(n, max(diameter, 4 * h))
-    if len(d):
-        close = d < 0.75 * h  # only these lower the cap below h / 4
-        np.minimum.at(near, i[close], d[close])
-        np.minimum.at(near, j[close], d[close])
-        over = d < diameter
-        if over.any():
-            oi, oj, od = i[over], j[over], d[over]
-            apart = points[oi] - points[oj] if pairs.shift is None else points[oi] - points[oj] - pairs.shift[over]
-            push = (0.5 * (diameter - od) / np.maximum(od, 1e-300))[:, None] * apart
-            both = np.concatenate([oi, oj])
-            count = np.bincount(both, minlength=n).astype(np.float64)
-            signed = np.concatenate([push, -push])
-            total = np.column_stack([np.bincount(both, signed[:, k], minlength=n) for k in range(3)])
-            move += total / np.maximum(count, 1.0)[:, None]
-    cap = np.minimum(0.25 * h, near / 3.0)
-    size = np.sqrt(np.einsum("ij,ij->i", move, move))
-    scale = np.where(size > cap, cap / np.maximum(size, 1e-300), 1.0)
-    return move * scale[:, None]
 
 
 SMOOTH_ITERATIONS, SMOOTH_PULL = 60, 0.1

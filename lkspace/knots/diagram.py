@@ -163,56 +163,69 @@ def random_rotation(seed: int) -> np.ndarray:
 def near_pairs(p0: np.ndarray, p1: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Pairs ``i < j`` of segments ``p0 -> p1`` (``(n, 3)``) whose projections to ``xy`` may meet, sorted.
 
-    The test is on the circles around each projected segment: no crossing is missed.
+    The test is on the circles around each projected segment: no crossing is missed.  The
+    candidates are the pairs whose boxes around the circles overlap (:func:`box_pairs`,
+    the boxes widened by a rounding margin so that no touching circles are lost).
     """
     a2, b2 = p0[:, :2], p1[:, :2]
     mid = 0.5 * (a2 + b2)
     half = 0.5 * np.linalg.norm(b2 - a2, axis=1)
     if len(mid) < 2:
         return np.zeros(0, np.int64), np.zeros(0, np.int64)
-    i, j = close_pairs(mid, 2 * half.max() + 1e-12)
+    reach = half + 1e-12 * (1.0 + np.abs(mid).max() + half.max())
+    i, j = box_pairs(mid - reach[:, None], mid + reach[:, None])
     near = np.linalg.norm(mid[i] - mid[j], axis=1) <= half[i] + half[j]
     return i[near], j[near]
 
 
-_NEIGHBOURS = ((0, 0), (0, 1), (1, -1), (1, 0), (1, 1))
-"""Cell offsets compared on a grid: each cell with itself and half of its eight neighbours."""
+def _box_cells(low: np.ndarray, high: np.ndarray, origin: np.ndarray, side: float) -> tuple[np.ndarray, np.ndarray]:
+    """Return the first and last grid cell ``(n, 2) int64`` each box ``low..high`` covers."""
+    return np.floor((low - origin) / side).astype(np.int64), np.floor((high - origin) / side).astype(np.int64)
 
 
-def close_pairs(points: np.ndarray, radius: float) -> tuple[np.ndarray, np.ndarray]:
-    """Pairs ``i < j`` of 2D ``points`` (``(n, 2)``) at most ``radius`` apart, sorted (``int64`` arrays).
+def box_pairs(low: np.ndarray, high: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Pairs ``i < j`` of closed 2D boxes ``low[k]..high[k]`` (``(n, 2)``) that overlap, sorted (``int64`` arrays).
 
-    A grid of square cells of side ``radius`` (at least a 2**-20th of the extent): only
-    points in the same or neighbouring cells are compared (numpy only, what ``cKDTree.query_pairs`` finds).
+    Each box is put in every cell of a square grid it covers, and boxes sharing a cell
+    are compared; a pair is taken in one cell only, the one holding the corner
+    ``max(low[i], low[j])`` of the overlap.  The grid's side is the median box size,
+    doubled while the boxes would fill more than eight cells each on average (a few
+    long boxes cover many small cells), and at least a 2**-20th of the extent, so one
+    long box neither coarsens the grid for all (the search stays near linear) nor
+    makes it quadratic.
     """
-    low = points.min(axis=0)
-    side = max(radius, float((points.max(axis=0) - low).max()) / 2**20)  # keys fit in int64 for any radius
-    cell = np.floor((points - low) / side).astype(np.int64)
-    rows = int(cell[:, 1].max()) + 2  # an offset of -1 or +1 in y never reaches another column
-    key = cell[:, 0] * rows + cell[:, 1]
-    order = np.argsort(key, kind="stable")
-    keys, starts, counts = np.unique(key[order], return_index=True, return_counts=True)
-    found_i, found_j = [], []
-    for dx, dy in _NEIGHBOURS:
-        wanted = keys + dx * rows + dy
-        at = np.minimum(np.searchsorted(keys, wanted), len(keys) - 1)
-        a = np.flatnonzero(keys[at] == wanted)
-        b = at[a]
-        sizes = counts[a] * counts[b]
-        pair = np.repeat(np.arange(len(a)), sizes)
-        rank = np.arange(int(sizes.sum())) - np.repeat(np.cumsum(sizes) - sizes, sizes)
-        width = counts[b][pair]
-        first = order[starts[a][pair] + rank // width]
-        second = order[starts[b][pair] + rank % width]
-        if (dx, dy) == (0, 0):
-            keep = starts[a][pair] + rank // width < starts[b][pair] + rank % width
-            first, second = first[keep], second[keep]
-        found_i.append(first)
-        found_j.append(second)
-    i, j = np.concatenate(found_i), np.concatenate(found_j)
+    n = len(low)
+    origin = low.min(axis=0)
+    extent = float((high.max(axis=0) - origin).max())
+    side = max(float(np.median((high - low).max(axis=1))), extent / 2**20, np.finfo(np.float64).tiny)
+    first, last = _box_cells(low, high, origin, side)
+    while side < extent and int(np.prod(last - first + 1, axis=1).sum()) > 8 * n:
+        side *= 2
+        first, last = _box_cells(low, high, origin, side)
+    # every (box, cell) it covers, cells numbered column by column
+    wide = last - first + 1
+    covered = wide[:, 0] * wide[:, 1]
+    box = np.repeat(np.arange(n), covered)
+    rank = np.arange(len(box)) - np.repeat(np.cumsum(covered) - covered, covered)
+    x = first[box, 0] + rank // wide[box, 1]
+    y = first[box, 1] + rank % wide[box, 1]
+    rows = int(last[:, 1].max()) + 1
+    order = np.argsort(x * rows + y, kind="stable")
+    box, x, y = box[order], x[order], y[order]
+    # each entry with the entries after it in its cell
+    key = x * rows + y
+    cell_end = np.searchsorted(key, key, side="right")
+    later = cell_end - np.arange(len(key)) - 1
+    at = np.repeat(np.arange(len(key)), later)
+    other = at + 1 + np.arange(len(at)) - np.repeat(np.cumsum(later) - later, later)
+    i, j = box[at], box[other]
+    fx, fy = first[:, 0].copy(), first[:, 1].copy()
+    here = (np.maximum(fx[i], fx[j]) == x[at]) & (np.maximum(fy[i], fy[j]) == y[at])
+    i, j = i[here], j[here]
+    lx, ly, hx, hy = (np.ascontiguousarray(a) for a in (low[:, 0], low[:, 1], high[:, 0], high[:, 1]))
+    overlap = (lx[i] <= hx[j]) & (lx[j] <= hx[i]) & (ly[i] <= hy[j]) & (ly[j] <= hy[i])
+    i, j = i[overlap], j[overlap]
     lo, hi = np.minimum(i, j), np.maximum(i, j)
-    close = np.linalg.norm(points[lo] - points[hi], axis=1) <= radius
-    lo, hi = lo[close], hi[close]
     sort = np.lexsort((hi, lo))
     return lo[sort].astype(np.int64), hi[sort].astype(np.int64)
 

@@ -101,15 +101,21 @@ def in_main_thread() -> bool:
     return threading.current_thread() is threading.main_thread()
 
 
-def interruptible(call: Callable[[], T]) -> T:
+QUICK_SIZE = 50_000
+"""Jobs of fewer elements than this (points, samples) end in milliseconds: :func:`interruptible` runs them in place."""
+
+
+def interruptible(call: Callable[[], T], size: int | None = None) -> T:
     """Return ``call()``, run in a thread while this one waits in short joins (main thread only).
 
     Python runs its signal handlers in the main thread between bytecodes, never inside one
     long C call: a KD-tree of millions of points would hold Ctrl-C back for seconds.  Here
     the interrupt goes on up at once; the call itself (it must release the GIL, as scipy's
-    KD-trees do) finishes in its thread and its result is dropped.
+    KD-trees do) finishes in its thread and its result is dropped.  A job whose ``size``
+    is below :data:`QUICK_SIZE` runs in place: starting and joining a thread would cost
+    more than it (milliseconds on a loaded machine) and Ctrl-C waits for it no longer.
     """
-    if not in_main_thread():
+    if not in_main_thread() or (size is not None and size < QUICK_SIZE):
         return call()
     done: list[T] = []
     failed: list[BaseException] = []
