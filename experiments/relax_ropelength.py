@@ -193,9 +193,9 @@ def table(rows: list[dict], missing: list[str], data: dict) -> str:
             "",
             f"Refined (`--fine`): the {len(refined)} knots still above {TARGET}x relaxed again with "
             "`lkspace export --relax-fine`, their kept design first, then the lookup's designs in order until one "
-            f"is within (up to {data['most_designs']}); the least kept (`--relax-fine` in the design column where "
-            "it is the refined shape).  Kept design refined: "
-            + ", ".join(f"{r['type']} {r['fine_ratio']:.3f}" for r in refined)
+            "is within (as many as `--designs` allowed in that run); the least kept (`--relax-fine` in the design "
+            "column where it is the refined shape).  Kept design refined, and designs refined in all: "
+            + ", ".join(f"{r['type']} {r['fine_ratio']:.3f} ({r.get('fine_designs', 1)})" for r in refined)
             + ".",
         ]
     return "\n".join(lines) + "\n"
@@ -230,6 +230,7 @@ def refined(name: str, ideal: float, row: dict, most: int, extra: list[str]) -> 
     out["designs_tried"] = row.get("designs_tried", 1) + len(tried)
     out["seconds_all"] = row.get("seconds_all", 0.0) + extra_seconds
     out["fine_ratio"] = tried[0].get("ratio")
+    out["fine_designs"] = len(tried)
     return out
 
 
@@ -305,7 +306,6 @@ def main() -> None:
         "date": time.strftime("%Y-%m-%d"),
         "max_crossings": args.max_crossings,
         "relax_flags": extra,
-        "fine": args.fine,
         "load_average_1min": load,
         "target_ratio": TARGET,
         "most_designs": args.designs,
