@@ -5,11 +5,11 @@ diameter (Pierański's SONO: shrink on no overlaps): the curves shorten while th
 pieces are kept a rope's width apart, and every step is capped so that no strand passes
 through another.  The flow runs until it **converges** (its best ropelength drops by less
 than 0.1% over 400 steps), or stops early at a step or time limit, which
-:class:`Relaxation` records.  A **fine** relaxation then runs the flow once more from the
+:class:`Relaxation` records.  A **fine** relaxation then runs the flow on from the
 converged shape at twice the resolution until it converges again, twice (the second time
 with gentler curve shortening): the first flow's minimum is partly an artefact of its
-sampling, and the refined one is tighter (by 0.5-3% for knots of 8-10 crossings).  Without a time limit the result depends on the design only:
-the same bytes at any load.  The result is scaled back to the realization's size and
+sampling, and the refined one is tighter (by 0.3-3%).  Without a time limit the result
+depends on the design only: the same bytes at any load.  The result is scaled back to the realization's size and
 centre; its tube radius is the rope's (the tube fills the space the relaxation found).
 
 A periodic scaffold's thread classes (:mod:`~lkspace.geometry.cell`) are relaxed in the
