@@ -141,6 +141,34 @@ def test_export_relax_limits_through_the_cli(capsys, tmp_path):
     assert not (tmp_path / "u.obj").exists()
 
 
+def test_relax_fine_through_the_cli_keeps_the_type_draws_tighter_and_repeats(capsys, tmp_path):
+    pytest.importorskip("snappy")
+    from lkspace.knots.recognition import identify_curves
+
+    plain = ropelength(exported(capsys, tmp_path, "dihedron:3", "1", "--relax"), n_points=1500)
+    outs = []
+    for name in ("fine.obj", "again.obj"):
+        code, out, err = run(
+            capsys, "export", "dihedron:3", "--twist", "1", "--relax-fine", "-o", tmp_path / name, "--json"
+        )
+        assert code == 0, err
+        outs.append(json.loads(out)["relaxation"])
+    assert outs[0] == outs[1] and outs[0]["converged"] and outs[0]["stopped"] == "converged"
+    assert (tmp_path / "fine.obj").read_bytes() == (tmp_path / "again.obj").read_bytes()
+    fine = read_obj_polylines(tmp_path / "fine.obj")
+    assert identify_curves([c for c, _ in fine]).name == "3_1"
+    assert ropelength(fine, n_points=1500)["ropelength"] < plain["ropelength"]
+
+
+def test_relax_fine_keeps_to_the_limits():
+    # the limits bound every pass together: a step limit that stops the first pass skips the others
+    real = lkspace.realize("dihedron:3", 1)
+    few = lkspace.relax(real, steps=40, fine=True).relaxation
+    assert few is not None and (few.steps, few.stopped) == (40, "steps")
+    timed = lkspace.relax(real, time_limit=1e-9, fine=True).relaxation
+    assert timed is not None and timed.stopped == "time"
+
+
 def test_flow_never_passes_strands_through_each_other():
     # two rings linked once, squeezed by a rope far thicker than their gap: the pushes are
     # capped, so they stay linked (Gauss integral) however hard the flow pushes

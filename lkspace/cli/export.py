@@ -16,10 +16,11 @@ from ..model.scaffold import Scaffold
 from ..words import plural
 from .common import Context, emit, json_option, labels_of, load_mesh, nulls_of, weld_option
 from .numbers import Finite
+from .relaxing import relax_options, relaxed
 
 if TYPE_CHECKING:
     from ..formats.options import FormatOptions, PictureOptions
-    from ..geometry.realization import GeometryParams, Realization
+    from ..geometry.realization import GeometryParams
 
 F = TypeVar("F", bound=Callable[..., Any])
 
@@ -198,18 +199,6 @@ def format_options(
 FORMAT_HELP = "Output file: .obj, .ply, .glb, .stl, .3mf, .png or .svg (the format follows the extension)."
 
 
-def relaxed(real: Realization, steps: int | None, time_limit: float | None) -> Realization:
-    """Return ``real`` relaxed (:func:`lkspace.geometry.relax.relax`); say on stderr when a limit stopped it first."""
-    from ..geometry.relax import RELAX_STEPS, relax
-
-    out = relax(real, RELAX_STEPS if steps is None else steps, time_limit)
-    note = None if out.relaxation is None else out.relaxation.note()
-    if note is not None:
-        flag = "--relax-steps" if out.relaxation is not None and out.relaxation.stopped == "steps" else "--relax-time"
-        click.echo(f"lkspace: note: {note}; raise {flag} to draw it tighter", err=True)
-    return out
-
-
 def picture_options(func: F) -> F:
     """Add the picture options --view, --size, --background, --colors, --diagram, --title."""
     options = [
@@ -285,23 +274,7 @@ def fabrication_options(func: F) -> F:
     type=Finite(0, low_open=True),
     help="Axial length of one full helix turn, > 0 (default: the twist spreads over the whole edge).",
 )
-@click.option(
-    "--relax",
-    is_flag=True,
-    help="Relax the strands toward a tight shape without changing the link type (finite scaffolds; until it converges).",
-)
-@click.option(
-    "--relax-steps",
-    type=click.IntRange(1),
-    metavar="N",
-    help="Relax (implies --relax) for at most N steps (default 50,000; designs converge in hundreds to thousands).",
-)
-@click.option(
-    "--relax-time",
-    type=Finite(0, low_open=True),
-    metavar="SECONDS",
-    help="Relax (implies --relax) for at most SECONDS, > 0 (default: no limit; a run it stops depends on the load).",
-)
+@relax_options
 @fabrication_options
 @picture_options
 @json_option
@@ -322,6 +295,7 @@ def export_cmd(
     relax: bool,
     relax_steps: int | None,
     relax_time: float | None,
+    relax_fine: bool,
     thickness: float | None,
     clearance: float | None,
     units: str | None,
@@ -367,21 +341,21 @@ def export_cmd(
         )
     if thickness is not None and tube_radius is not None:
         raise UsageError("--thickness (a diameter in output units) and --tube-radius are exclusive")
-    relax = relax or relax_steps is not None or relax_time is not None
+    relax = relax or relax_fine or relax_steps is not None or relax_time is not None
     scaffold, labels, nulls = resolve_design(ctx, mesh, twist_spec, null_spec, row)
     params = params_of(radius, normal_offset, tube_radius, helix_radius, pitch)
     sizes = block_sizes(scaffold, block)
     if sizes is not None:
         from ..geometry.block import realize_block
 
-        then = (lambda r: relaxed(r, relax_steps, relax_time)) if relax else None
+        then = (lambda r: relaxed(r, relax_steps, relax_time, relax_fine)) if relax else None
         with point_budget(output, tubes) as max_points:
             real = realize_block(scaffold, labels, nulls, params, sizes, max_points=max_points, relax=then)
     else:
         with point_budget(output, tubes) as max_points:
             real = realize(scaffold, labels, nulls, params, options=RealizeOptions(max_points=max_points))
             if relax:
-                real = relaxed(real, relax_steps, relax_time)
+                real = relaxed(real, relax_steps, relax_time, relax_fine)
     options = format_options(ext, tubes, thickness, clearance, units, scale, picture)
     pieces = None
     if isinstance(options, PrintOptions):
