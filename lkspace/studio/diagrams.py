@@ -176,14 +176,19 @@ def svg(paths: list[str], strands: Sequence[int], width: float, height: float, s
     )
 
 
+def check_points(real: Realization) -> None:
+    """Refuse a design whose curves have more than :data:`MAX_DIAGRAM_POINTS` points to project."""
+    n_points = sum(len(c) for c in real.curves)
+    if n_points > MAX_DIAGRAM_POINTS:
+        raise TooLargeError(f"diagram: {n_points:,} curve points > {MAX_DIAGRAM_POINTS:,}; use smaller twists")
+
+
 def diagram_of(real: Realization, view: View | None = None) -> DiagramView:
     """Return the diagram of ``real`` (a finite scaffold's) seen along ``view`` (or the generic rotation): SVG, crossings, PD code."""
     t0 = time.perf_counter()
     if not real.curves:
         return {"svg": None, "message": "no strands to draw"}
-    n_points = sum(len(c) for c in real.curves)
-    if n_points > MAX_DIAGRAM_POINTS:
-        raise TooLargeError(f"diagram: {n_points:,} curve points > {MAX_DIAGRAM_POINTS:,}; use smaller twists")
+    check_points(real)
     closed = [bool(c) for c in real.closed]
     rot = Rotation.random(random_state=0).as_matrix() if view is None else rotation_of(view)
     turned, (over, under, t_over, t_under, own, at) = seen(real.curves, closed, rot)
@@ -224,9 +229,7 @@ def simplified_of(real: Realization) -> DiagramView:
     t0 = time.perf_counter()
     if not real.curves:
         return {"svg": None, "message": "no strands to draw"}
-    n_points = sum(len(c) for c in real.curves)
-    if n_points > MAX_DIAGRAM_POINTS:
-        raise TooLargeError(f"diagram: {n_points:,} curve points > {MAX_DIAGRAM_POINTS:,}; use smaller twists")
+    check_points(real)
     if not all(real.closed):
         return {"svg": None, "message": "simplified diagram: only closed strands make a knot or link"}
     if len(project(real.curves, seed=0).pd) > MAX_PD_CROSSINGS:
