@@ -163,7 +163,7 @@ def samples(
 
 
 def check_embedding(
-    curves: Sequence[np.ndarray], closed: ArrayLike, min_separation: float, scale: float
+    curves: Sequence[np.ndarray], closed: ArrayLike, min_separation: float, scale: float, measure: bool = True
 ) -> tuple[float, Closest | None]:
     """Smallest distance between distinct pieces of the polylines (sampled).
 
@@ -172,7 +172,9 @@ def check_embedding(
     scale`` (coarse pass).  The fine pass samples every ``min_separation / 2`` and finds
     every pair closer than ``min_separation`` (so a true crossing is always found); the
     coarse pass samples every ``0.02 * scale`` and finds the nearest distinct piece of
-    every sample among its 48 nearest neighbours, up to ``0.3 * scale``.
+    every sample among its 48 nearest neighbours, up to ``0.3 * scale``.  ``measure=False``
+    skips the coarse pass: enough to tell whether two pieces come closer than
+    ``min_separation`` (the distance is ``inf`` when none do).
 
     Returns
     -------
@@ -204,6 +206,8 @@ def check_embedding(
     if len(pairs):
         keep = pieces_apart(owner, arc, lengths, closed, pairs[:, 0], pairs[:, 1], 4 * min_separation, joins)
         consider(pts, owner, pairs[keep, 0], pairs[keep, 1])
+    if not measure:
+        return best, where
     spacing = max(min_separation / 2.0, 0.02 * scale)
     pts, arc, owner, lengths = samples(curves, closed, spacing)
     k = min(48, len(pts))

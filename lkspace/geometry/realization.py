@@ -341,7 +341,7 @@ def _smoothed(
     if not shape.smooth or scaffold.dim or not built.closed.all():
         return built.curves
     if embedding != "measure":
-        _clearance(scaffold, built.curves, built.closed, shape, "refuse")
+        _clearance(scaffold, built.curves, built.closed, shape, "refuse", measure=False)
     return smooth_curves(built.curves, SMOOTH_DIAMETER * shape.radius)
 
 
@@ -383,11 +383,19 @@ def _tube_radius(shape: Resolved, min_dist: float, bend: float) -> float:
 
 
 def _clearance(
-    scaffold: Scaffold, curves: list[np.ndarray], closed: np.ndarray, shape: Resolved, embedding: EmbeddingCheck
+    scaffold: Scaffold,
+    curves: list[np.ndarray],
+    closed: np.ndarray,
+    shape: Resolved,
+    embedding: EmbeddingCheck,
+    measure: bool = True,
 ) -> tuple[float, Closest | None]:
-    """Smallest distance between distinct pieces and where; refuse a self-intersection when ``embedding == "refuse"``."""
+    """Smallest distance between distinct pieces and where; refuse a self-intersection when ``embedding == "refuse"``.
+
+    ``measure=False``: only pieces closer than ``min_separation`` are looked for (the refusal).
+    """
     min_sep = shape.min_separation
-    min_dist, closest = check_embedding(curves, closed, min_sep, shape.scale)
+    min_dist, closest = check_embedding(curves, closed, min_sep, shape.scale, measure)
     if closest is not None:
         closest = closest.named(place_name(scaffold, closest.point))
     if embedding == "refuse" and min_dist < min_sep:
