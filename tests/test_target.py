@@ -340,4 +340,6 @@ def test_the_screen_from_labels_never_contradicts_the_geometric_screen(name):
     for labels, verdict in zip(rows, fast, strict=True):
         slow = screen(cube, labels, goal, seed=3)
         assert {verdict.verdict, slow.verdict} != {"match", "other"}, labels.tolist()
-        assert verdict.linking_matrix == slow.linking_matrix
+        if verdict.reason != "determinant":  # decided before the diagram's linking numbers are read
+            assert verdict.linking_matrix == slow.linking_matrix
+    assert any(v.reason == "determinant" for v in fast)

@@ -21,6 +21,7 @@ ruled out by a chirality request.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from fractions import Fraction
 from functools import lru_cache
@@ -29,6 +30,7 @@ from typing import Any, Literal, TypeAlias
 import numpy as np
 
 from ..errors import UsageError
+from ..knots.determinant import determinant
 from ..knots.hoste import HT_NAME, ht_crossings, ht_manifold
 from ..knots.naming import name_key, one_based
 from ..knots.tables import JONES_POINT, TableEntry, knot_modules, laurent_value, tables
@@ -61,6 +63,8 @@ class LinkType:
         The type equals its mirror image (``None``: not known here).
     factors : tuple of str
         Chiral names of the prime factors of a sum (``("3_1", "m3_1")``), else ``()``.
+    determinant : int or None
+        ``|V(-1)|`` of the type (:func:`lkspace.knots.determinant.determinant`; ``None``: not known).
     """
 
     name: str
@@ -72,6 +76,7 @@ class LinkType:
     linking: np.ndarray | None = None
     amphichiral: bool | None = None
     factors: tuple[str, ...] = field(default=())
+    determinant: int | None = None
 
     @property
     def label(self) -> str:
@@ -142,7 +147,7 @@ def _amphichiral_knots() -> frozenset[str]:
 def _prime(name: str, chirality: Chirality, typed: str) -> LinkType:
     """Return the target of one prime (or trivial) name."""
     if name == "0_1":
-        return LinkType("0_1", "any", 1, 0, "knotinfo", frozenset({Fraction(1)}), None, True)
+        return LinkType("0_1", "any", 1, 0, "knotinfo", frozenset({Fraction(1)}), None, True, determinant=1)
     entries = table_entries().get(name)
     if entries:
         fps: set[Fraction] = set()
@@ -153,7 +158,10 @@ def _prime(name: str, chirality: Chirality, typed: str) -> LinkType:
         linking = _abs_linking(first.pd_code()) if n > 1 else None
         amphi = name in _amphichiral_knots() if n == 1 and chirality != "any" else None
         table = "knotinfo" if n == 1 else "linkinfo"
-        return LinkType(name, chirality, n, int(first.crossings), table, frozenset(fps), linking, amphi)
+        det = determinant(first.pd_code())
+        return LinkType(
+            name, chirality, n, int(first.crossings), table, frozenset(fps), linking, amphi, determinant=det
+        )
     small = (ht_crossings(name) or 99) <= (10 if name.startswith("K") else 11)
     manifold = ht_manifold(name) if HT_NAME.fullmatch(name) and not small else None
     if manifold is None:
@@ -172,7 +180,10 @@ def _prime(name: str, chirality: Chirality, typed: str) -> LinkType:
         amphi = -1 in meridian_isometries(manifold, manifold)
     crossings = ht_crossings(name) or 0
     linking = _abs_linking(pd) if n > 1 else None
-    return LinkType(name, chirality, n, crossings, "HTLinkExteriors", frozenset(_jones_values(pd)), linking, amphi)
+    jones = frozenset(_jones_values(pd))
+    return LinkType(
+        name, chirality, n, crossings, "HTLinkExteriors", jones, linking, amphi, determinant=determinant(pd)
+    )
 
 
 def parse_type(type_name: str, chirality: str = "any") -> LinkType:
@@ -242,7 +253,9 @@ def _sum(text: str, chirality: Chirality, typed: str) -> LinkType:
     name = "#".join(sorted((p.name for p in primes), key=name_key))
     table = "+".join(sorted({p.table for p in primes}))
     factors = tuple(sorted(chiral, key=name_key)) if asked else ()
-    return LinkType(name, "table" if asked else "any", 1, 3, table, frozenset(fps), None, None, factors)
+    dets = [p.determinant for p in primes if p.determinant is not None]
+    det = math.prod(dets) if len(dets) == len(primes) else None
+    return LinkType(name, "table" if asked else "any", 1, 3, table, frozenset(fps), None, None, factors, det)
 
 
 def judge(target: LinkType, ident: dict[str, Any]) -> Verdict:

@@ -175,38 +175,44 @@ def screen_batch(
 ) -> list[Screening]:
     """Judge a batch of designs (``(n, n_edges)``, closed strands) against ``goal`` from their labels alone.
 
-    The filters of :func:`screen` on each design's diagram from labels
-    (:mod:`lkspace.knots.keyed`; the Jones polynomial compared modulo a prime, so a
-    difference is a proof), then the survivors identified by key
+    First the determinant (:mod:`lkspace.knots.determinant`, modulo a prime: a
+    difference is a proof, at a tenth of the Jones polynomial's cost), then the filters
+    of :func:`screen` on each design's diagram from labels (:mod:`lkspace.knots.keyed`;
+    the Jones polynomial compared modulo a prime, so a difference is a proof), then the survivors identified by key
     (:func:`lkspace.knots.batch.identify_chunk`) and judged.  Returns one verdict per row,
     as :func:`screen`.
     """
     from ..knots.batch import identify_chunk
     from ..knots.keyed import jones_residue, keys_of
 
-    found = keys_of(scaffold, labels, seed, label_set)
     target = goal.target
+    verdicts = [Screening("other", "determinant") for _ in range(len(labels))]
+    kept = np.arange(len(labels))
+    if target is not None and target.determinant is not None:
+        from ..knots.determinant import determinants_of, same_determinant
+
+        kept = np.flatnonzero(same_determinant(determinants_of(scaffold, labels, seed, label_set), target.determinant))
+    found = keys_of(scaffold, labels[kept], seed, label_set)
     residues = {jones_residue(v) for v in target.fingerprints} if target is not None else set()
-    verdicts: list[Screening] = []
     survivors: list[int] = []
-    for d in range(len(labels)):
-        lm = np.asarray(found.linking_matrix(d), np.int64)
+    for k, d in enumerate(kept.tolist()):
+        lm = np.asarray(found.linking_matrix(k), np.int64)
         matrix = lm.tolist()
         if goal.linking is not None and not matches(lm, goal.linking, goal.signed):
-            verdicts.append(Screening("other", "linking matrix", matrix))
+            verdicts[d] = Screening("other", "linking matrix", matrix)
         elif target is None:
-            verdicts.append(Screening("match", "linking matrix", matrix))
+            verdicts[d] = Screening("match", "linking matrix", matrix)
         elif target.linking is not None and not matches(lm, target.linking):
-            verdicts.append(Screening("other", "linking numbers", matrix))
-        elif found.free[d] and goal.components > 1:
-            verdicts.append(Screening("other", "split", matrix))
-        elif found.crossings[d] < target.crossings:
-            verdicts.append(Screening("other", "crossings", matrix))
-        elif found.keyed[d] and int(found.jones_at[d]) not in residues:
-            verdicts.append(Screening("other", "Jones polynomial", matrix))
+            verdicts[d] = Screening("other", "linking numbers", matrix)
+        elif found.free[k] and goal.components > 1:
+            verdicts[d] = Screening("other", "split", matrix)
+        elif found.crossings[k] < target.crossings:
+            verdicts[d] = Screening("other", "crossings", matrix)
+        elif found.keyed[k] and int(found.jones_at[k]) not in residues:
+            verdicts[d] = Screening("other", "Jones polynomial", matrix)
         else:
             survivors.append(d)
-            verdicts.append(Screening("undetermined", "", matrix))
+            verdicts[d] = Screening("undetermined", "", matrix)
     if survivors and target is not None:
         rows = identify_chunk(scaffold, labels[survivors], seed, cache, namer, label_set)
         for d, row in zip(survivors, rows, strict=True):
