@@ -32,6 +32,9 @@ WHY = {
     "symmetry": "it lists every buildable assignment (symmetry none: each edge's window depends on its length)",
     "no_zero": "its labels are all positive",
     "invariant": "it lists every buildable assignment, with no symmetry",
+    "mode": "its rows are designs, one per buildable assignment",
+    "sample": "its rows are designs, one per buildable assignment",
+    "seed": "its rows are designs, one per buildable assignment",
 }
 """Why an option is refused with ``--dna`` (default: a DNA catalog is one file, written in this process)."""
 
