@@ -284,6 +284,8 @@ def test_filters_and_counts(capsys, tmp_path):
         (("cube", "--dna", "5.3", "--mode", "residues"), 2, ["--mode"]),
         (("cube", "--dna", "5.3", "--no-zero"), 2, ["--no-zero", "positive"]),
         (("cube", "--dna", "5.3", "--invariant", "C3"), 2, ["--invariant"]),
+        (("cube", "--dna", "5.3", "--tolerance", "0.01"), 2, ["--tolerance", "no symmetry"]),
+        (("cube", "--dna", "5.3", "--resume"), 2, ["--resume", "one file"]),
         (("cube", "--dna-window", "2"), 2, ["--dna-window needs --dna"]),
         (("book:3", "--dna", "5"), 1, ["edge 0 (0-1) has 3 faces"]),
         (("cube", "--dna", "1"), 1, ["edge 0 (0-1) has no label", "--dna-window"]),
@@ -303,3 +305,23 @@ def test_symmetry_none_is_accepted(capsys, tmp_path):
     """--symmetry none says what a DNA catalog does anyway."""
     path, data = enumerate_dna(capsys, tmp_path, "tetrahedron", 6.0, "--symmetry", "none")
     assert data["designs"] == len(brute_force(lkspace.load("tetrahedron"), 6.0, 1.0))
+
+
+def test_output_checked_before_work(capsys, tmp_path):
+    """-o onto a file lkspace did not write, or onto a URL, is refused and the file stays as it was."""
+    foreign = tmp_path / "notes.parquet"
+    foreign.write_bytes(b"not a catalog")
+    code, _out, err = run(capsys, "enumerate", "cube", "--dna", "5.3", "-o", foreign)
+    assert code == 2 and foreign.read_bytes() == b"not a catalog"
+    one_line_error(err, "notes.parquet")
+    code, _out, err = run(capsys, "enumerate", "cube", "--dna", "5.3", "-o", "memory://cat.parquet")
+    assert code == 2
+    one_line_error(err, "one local .parquet file")
+
+
+def test_rows_export_and_identify(capsys, tmp_path):
+    """A row of a DNA catalog is a design like any other: export and identify read it."""
+    path, _ = enumerate_dna(capsys, tmp_path, "figure-eight", 6.1, "--components", "1")
+    code, out, err = run(capsys, "identify", path, "--row", "0", "--json")
+    assert code == 0, err
+    assert json.loads(out)["components"] == 1

@@ -24,7 +24,7 @@ from .common import Context, emit, load_mesh, print_rows
 from .dna_options import DNA_OPTIONS
 from .enumerate import enumerate_cmd as plain_enumerate
 
-DNA_KEEPS = {"mesh", "output", "components", "max_designs", "count_only", "identify", "as_json"}
+DNA_KEEPS = {"mesh", "weld", "output", "components", "max_designs", "count_only", "identify", "as_json"}
 """Parameters of the plain enumerate that a DNA catalog reads; any other one given is refused."""
 
 WHY = {
@@ -32,6 +32,7 @@ WHY = {
     "symmetry": "it lists every buildable assignment (symmetry none: each edge's window depends on its length)",
     "no_zero": "its labels are all positive",
     "invariant": "it lists every buildable assignment, with no symmetry",
+    "tolerance": "it lists every buildable assignment, with no symmetry",
     "mode": "its rows are designs, one per buildable assignment",
     "sample": "its rows are designs, one per buildable assignment",
     "seed": "its rows are designs, one per buildable assignment",
