@@ -87,20 +87,24 @@ def antiparallel(found):
     for s, passes in enumerate(found):
         for u, w in passes:
             on_edge[(min(u, w), max(u, w))].append((s, 1 if u < w else -1))
-    sign = {0: 1}
-    todo = [0]
-    for s in range(len(found)):  # every connected group of strands gets a start
-        if s not in sign:
-            sign[s] = 1
-            todo.append(s)
+    links = defaultdict(list)  # strand -> (other strand, the sign of the other relative to it)
+    for (s1, d1), (s2, d2) in on_edge.values():  # sign1 * d1 == -sign2 * d2
+        links[s1].append((s2, -d1 * d2))
+        links[s2].append((s1, -d1 * d2))
+    sign = {}
+    for start in range(len(found)):
+        if start in sign:
+            continue
+        sign[start], todo = 1, [start]
         while todo:
-            todo.pop()
-            for (s1, d1), (s2, d2) in on_edge.values():
-                for here, there, dh, dt in ((s1, s2, d1, d2), (s2, s1, d2, d1)):
-                    if here in sign and there not in sign:
-                        sign[there] = -sign[here] * dh * dt
-                        todo.append(there)
-    return all(sign[s1] * d1 == -sign[s2] * d2 for (s1, d1), (s2, d2) in on_edge.values())
+            s = todo.pop()
+            for other, relative in links[s]:
+                if other not in sign:
+                    sign[other] = sign[s] * relative
+                    todo.append(other)
+                elif sign[other] != sign[s] * relative:
+                    return False
+    return True
 
 
 def windows(scaffold, scale, window):
@@ -161,6 +165,8 @@ CASES = [
     ("cube", 5.3, 1.0),
     ("tetrahedron", 6.0, 1.0),
     ("figure-eight", 6.1, 1.0),
+    ("figure-eight", 6.1, 2.0),  # several labels of one parity on an edge
+    ("tetrahedron", 6.0, 1.6),
     ("octahedron", 6.0, 1.0),
     ("flipped", 5.3, 1.0),
     ("rp2", 6.25, 0.75),
@@ -325,3 +331,28 @@ def test_rows_export_and_identify(capsys, tmp_path):
     code, out, err = run(capsys, "identify", path, "--row", "0", "--json")
     assert code == 0, err
     assert json.loads(out)["components"] == 1
+
+
+def bowtie(tmp_path):
+    """Two tetrahedra sharing one vertex (its faces make two separate fans there)."""
+    vertices = [[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1], [-1, 0, 0], [0, -1, 0], [0, 0, -1]]
+    faces = [[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3], [0, 4, 5], [0, 6, 4], [0, 5, 6], [4, 6, 5]]
+    return write_obj(tmp_path / "bowtie.obj", vertices, faces)
+
+
+@pytest.mark.parametrize("make", [flipped_cube, hemi_icosahedron, bowtie, lambda _: "prism:3"])
+def test_parity_patterns_are_the_antiparallel_ones(tmp_path, make):
+    """Every parity pattern of the mesh: listed by lkspace.dna.parity exactly when the strands run antiparallel."""
+    from lkspace.dna.parity import parity_patterns, parity_system
+
+    scaffold = lkspace.load(make(tmp_path))
+    faces, n = faces_of(scaffold), scaffold.n_edges
+    pairs = [tuple(int(v) for v in ab) for ab in scaffold.edge_vertices]
+    truth = set()
+    for odd in itertools.product((0, 1), repeat=n):
+        if antiparallel(strands(faces, dict(zip(pairs, (2 - x for x in odd), strict=True)))):
+            truth.add(int("".join(map(str, odd)), 2))
+    listed = parity_patterns(parity_system(scaffold), {})
+    assert list(listed) == sorted(truth) and listed.count == len(truth) > 0
+    fixed = parity_patterns(parity_system(scaffold), {0: 1})  # edge 0 odd: the most significant bit
+    assert list(fixed) == sorted(p for p in truth if p >> (n - 1))

@@ -14,24 +14,25 @@ itself is written by :mod:`lkspace.catalog.dna_catalog`.
 from __future__ import annotations
 
 import math
-from collections.abc import Iterator
+from collections.abc import Iterator, Sequence
 from dataclasses import dataclass, replace
 from functools import cached_property
 from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ..design.batch import holds_batch, trace_batch
+from ..design.batch import BATCH_PORTS, holds_batch, trace_batch
 from ..design.space import DesignSpace
 from ..design.walk import DesignBlock
 from ..dna.model import BP_PER_TURN, check_buildable, orient
-from ..dna.parity import parity_patterns, parity_system, pattern_vector
+from ..dna.parity import parity_patterns, parity_system
 from ..dna.search import natural_twist, window_labels
 from ..errors import CatalogError, LabelError, LkspaceError, TooLargeError
 from ..io.scaffold_json import scaffold_from_dict
 from ..model.scaffold import Scaffold
 from ..strands.tracing import trace
 from .batches import gather_blocks
+from .columns import INT64_MAX
 from .metadata import DnaSetting, Filters
 from .schema import ROW_GROUP, expected_schema
 
@@ -42,6 +43,9 @@ if TYPE_CHECKING:
 
 MAX_DNA_ROWS = 1_000_000
 """Most assignments a DNA catalog lists (the buildable ones of every parity pattern), and most patterns."""
+
+CHUNK = 1 << 16
+"""Patterns per numpy call when they are counted."""
 
 _smaller = "a DNA catalog lists; use a smaller `window` or a smaller mesh"
 
@@ -75,22 +79,53 @@ class DnaSpace:
         """Per edge, per parity (0, 1): its window labels of that parity."""
         return [[[t for t in range(lo, hi + 1) if t % 2 == r] for r in (0, 1)] for lo, hi in self.setting.labels]
 
+    @cached_property
+    def counts(self) -> np.ndarray:
+        """(n_edges, 2) int64: how many window labels of each parity every edge has."""
+        return np.array([[len(o) for o in per_edge] for per_edge in self.options], np.int64).reshape(-1, 2)
+
+    @cached_property
+    def table(self) -> np.ndarray:
+        """(n_edges, 2, max_labels) int8: per edge and parity its window labels (zero-padded)."""
+        out = np.zeros((*self.counts.shape, max(1, int(self.counts.max()))), np.int8)
+        for e, per_edge in enumerate(self.options):
+            for r, labels in enumerate(per_edge):
+                out[e, r, : len(labels)] = labels
+        return out
+
     @property
     def assignments(self) -> int:
         """Assignments of the windows (buildable or not)."""
         return math.prod(hi - lo + 1 for lo, hi in self.setting.labels)
 
-    def class_labels(self, pattern: int) -> np.ndarray:
-        """(m, n_edges) int8: the window assignments of parity ``pattern``, lexicographic in edge order."""
-        parities = pattern_vector(pattern, self.scaffold.n_edges).tolist()
-        axes = [np.asarray(self.options[e][r], np.int8) for e, r in enumerate(parities)]
-        grid = np.meshgrid(*axes, indexing="ij")
-        return np.stack([g.reshape(-1) for g in grid], axis=1)
+    def parities(self, patterns: Sequence[int]) -> np.ndarray:
+        """(len(patterns), n_edges) int64: the parity vectors of ``patterns``."""
+        n_e = self.scaffold.n_edges
+        text = "".join(format(p, f"0{n_e}b") for p in patterns).encode()
+        return (np.frombuffer(text, np.uint8).reshape(len(patterns), n_e) - ord("0")).astype(np.int64)
 
-    def class_size(self, pattern: int) -> int:
-        """Window assignments of parity ``pattern``."""
-        parities = pattern_vector(pattern, self.scaffold.n_edges).tolist()
-        return math.prod(len(self.options[e][r]) for e, r in enumerate(parities))
+    def expand(self, parities: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Return ``(labels (m, n_edges) int8, row_class (m,) int64)``: every window assignment of each parity vector.
+
+        Each class's rows are lexicographic in edge order (edge 0 slowest).
+        """
+        n_c, n_e = parities.shape
+        e = np.arange(n_e)
+        radix = self.counts[e, parities]  # (n_c, n_edges)
+        sizes = radix.prod(axis=1)
+        row_class = np.repeat(np.arange(n_c), sizes)
+        local = np.arange(len(row_class)) - np.repeat(np.cumsum(sizes) - sizes, sizes)
+        labels = np.empty((len(row_class), n_e), np.int8)
+        for edge in range(n_e - 1, -1, -1):
+            n = radix[row_class, edge]
+            labels[:, edge] = self.table[edge, parities[row_class, edge], local % n]
+            local //= n
+        return labels, row_class
+
+    def sizes(self, patterns: Sequence[int]) -> np.ndarray:
+        """(len(patterns),) int64: the window assignments of each parity pattern."""
+        parities = self.parities(patterns)
+        return self.counts[np.arange(parities.shape[1]), parities].prod(axis=1)
 
 
 def dna_space(
@@ -113,14 +148,24 @@ def dna_space(
     setting = DnaSetting(float(nm_per_unit), float(window), float(bp_per_turn), tuple((w[0], w[-1]) for w in windows))
     union = sorted({t for w in windows for t in w})
     space = DesignSpace(scaffold, np.asarray(union, np.int64), "none")
+    if space.n_classes > INT64_MAX:
+        raise TooLargeError(
+            f"{scaffold.name}: {space.n_classes:,} residue classes, past the int64 codes of a catalog's "
+            "residue_class; use a smaller `window` or a smaller mesh"
+        )
     fixed = {e: w[0] % 2 for e, w in enumerate(windows) if len(w) == 1}
-    n_patterns, listed = parity_patterns(parity_system(scaffold), fixed)
+    listed = parity_patterns(parity_system(scaffold), fixed)
     at = f"{scaffold.name} at {nm_per_unit:g} nm per unit (window {window:g})"
-    if n_patterns > max_designs:
-        raise TooLargeError(f"{at}: {n_patterns:,} parity patterns, more than the {max_designs:,} {_smaller}")
+    if listed.count > max_designs:
+        raise TooLargeError(f"{at}: {listed.count:,} parity patterns, more than the {max_designs:,} {_smaller}")
     found = DnaSpace(space, setting, ())
-    patterns = [p for p in listed if _antiparallel(found, p)]
-    total = sum(found.class_size(p) for p in patterns)
+    # orient() judges: its buildable patterns form an affine space too, so when it accepts the
+    # generators (every pattern is an odd sum of them) it accepts every pattern listed
+    if all(_antiparallel(found, p) for p in listed.generators()):
+        patterns = list(listed)
+    else:  # not expected (tests/test_dna_catalog.py); trust orient() pattern by pattern
+        patterns = [p for p in listed if _antiparallel(found, p)]
+    total = sum(int(found.sizes(patterns[i : i + CHUNK]).sum()) for i in range(0, len(patterns), CHUNK))
     if total > max_designs:
         raise TooLargeError(f"{at}: {total:,} buildable assignments, more than the {max_designs:,} {_smaller}")
     return replace(found, patterns=tuple(patterns))
@@ -128,8 +173,8 @@ def dna_space(
 
 def _antiparallel(space: DnaSpace, pattern: int) -> bool:
     """Whether the strands of ``pattern`` orient antiparallel (:func:`~lkspace.dna.model.orient`, the judge)."""
-    parities = pattern_vector(pattern, space.scaffold.n_edges).tolist()
-    labels = np.array([space.options[e][r][0] for e, r in enumerate(parities)], np.int64)
+    parities = space.parities([pattern])[0]
+    labels = space.table[np.arange(len(parities)), parities, 0].astype(np.int64)
     try:
         orient(trace(space.scaffold, labels))
     except LabelError:
@@ -137,23 +182,25 @@ def _antiparallel(space: DnaSpace, pattern: int) -> bool:
     return True
 
 
-def dna_blocks(space: DnaSpace, components: int | None = None, batch: int = 256) -> Iterator[DesignBlock]:
-    """Yield the buildable designs of ``space`` (with ``components`` strands), a run of patterns at a time."""
+def dna_blocks(space: DnaSpace, components: int | None = None) -> Iterator[DesignBlock]:
+    """Yield the buildable designs of ``space`` (with ``components`` strands), a run of patterns at a time.
+
+    A run holds at most :data:`~lkspace.design.batch.BATCH_PORTS` ports x patterns of trace
+    arrays, as the design walk's batches do.
+    """
     ds, n_e = space.space, space.scaffold.n_edges
-    lookup = ds.residue_table.lookup
+    batch = max(1, BATCH_PORTS // (2 * space.scaffold.n_corners))
+    index = ds.residue_table.lookup[np.arange(n_e)[None, :], space.parities([0, (1 << n_e) - 1])]
+    weights = np.array([math.prod(ds.residue_table.n_res[e + 1 :].tolist()) for e in range(n_e)], np.int64)
     for start in range(0, len(space.patterns), batch):
-        run = space.patterns[start : start + batch]
-        residues = np.array([pattern_vector(p, n_e) for p in run], np.int64).reshape(len(run), n_e)
+        residues = space.parities(space.patterns[start : start + batch])
         traces = trace_batch(ds, residues)
-        keep = np.ones(len(run), bool) if components is None else traces.components == components
+        keep = np.ones(len(residues), bool) if components is None else traces.components == components
         if not keep.any():
             continue
-        kept = np.flatnonzero(keep)
-        traces = traces.select(keep)
-        rows = [space.class_labels(run[i]) for i in kept]
-        labels = np.concatenate(rows)
-        row_class = np.repeat(np.arange(len(kept)), [len(r) for r in rows])
-        codes = np.array([ds.class_code(lookup[np.arange(n_e), residues[i]]) for i in kept], np.int64)
+        residues, traces = residues[keep], traces.select(keep)
+        labels, row_class = space.expand(residues)
+        codes = index[0, :] * (1 - residues) @ weights + index[1, :] * residues @ weights
         holds = holds_batch(ds, traces, labels, row_class)
         yield DesignBlock(codes, traces.slim(), row_class, labels, np.ones(len(labels), np.int64), holds)
 

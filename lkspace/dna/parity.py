@@ -27,8 +27,6 @@ from __future__ import annotations
 from collections.abc import Iterator
 from dataclasses import dataclass
 
-import numpy as np
-
 from ..model.scaffold import Scaffold
 
 
@@ -49,11 +47,6 @@ class ParitySystem:
 def edge_bit(e: int, n_edges: int) -> int:
     """Return the bit of edge ``e`` in a pattern (edge 0 most significant)."""
     return 1 << (n_edges - 1 - e)
-
-
-def pattern_vector(pattern: int, n_edges: int) -> np.ndarray:
-    """(n_edges,) int64: the parity of every edge in ``pattern``."""
-    return np.array([(pattern >> (n_edges - 1 - e)) & 1 for e in range(n_edges)], np.int64)
 
 
 def parity_system(scaffold: Scaffold) -> ParitySystem:
@@ -119,11 +112,44 @@ def reduce(rows: list[int], rhs: list[int]) -> tuple[dict[int, tuple[int, int]],
     return pivots, True
 
 
-def parity_patterns(system: ParitySystem, fixed: dict[int, int]) -> tuple[int, Iterator[int]]:
-    """Return how many buildable patterns have parity ``fixed[e]`` on the edges named, and them in increasing order.
+@dataclass(frozen=True)
+class Patterns:
+    """The buildable patterns that meet given per-edge parities: ``base`` plus any sum of ``directions``.
 
-    The count comes first (``2 ** free bits``, 0 when none), so a caller can refuse a large
-    space before listing it.
+    Attributes
+    ----------
+    base : int or None
+        One pattern (``None``: there is none).
+    directions : tuple of int
+        Independent patterns whose sums, added to ``base``, give every other one.
+    """
+
+    base: int | None
+    directions: tuple[int, ...]
+
+    @property
+    def count(self) -> int:
+        """How many patterns there are (``2 ** len(directions)``, or 0)."""
+        return 0 if self.base is None else 1 << len(self.directions)
+
+    def generators(self) -> list[int]:
+        """Return ``base`` and ``base + d`` for each direction: every pattern is a sum of an odd number of these."""
+        return [] if self.base is None else [self.base, *(self.base ^ d for d in self.directions)]
+
+    def __iter__(self) -> Iterator[int]:
+        """Every pattern, in increasing order."""
+        if self.base is None:
+            return iter(())
+        found = [self.base]
+        for d in self.directions:
+            found += [p ^ d for p in found]
+        return iter(sorted(found))
+
+
+def parity_patterns(system: ParitySystem, fixed: dict[int, int]) -> Patterns:
+    """Return the buildable patterns with parity ``fixed[e]`` on the edges named (:class:`Patterns`).
+
+    Their number is known before they are listed, so a caller can refuse a large space first.
     """
     n_e = system.n_edges
     rows, rhs = list(system.rows), list(system.rhs)
@@ -132,17 +158,9 @@ def parity_patterns(system: ParitySystem, fixed: dict[int, int]) -> tuple[int, I
         rhs.append(parity)
     pivots, consistent = reduce(rows, rhs) if system.consistent else ({}, False)
     if not consistent:
-        return 0, iter(())
+        return Patterns(None, ())
     free = [1 << i for i in range(n_e) if (1 << i) not in pivots]
-
-    def listed() -> Iterator[int]:
-        found = []
-        for choice in range(1 << len(free)):
-            p = sum(bit for i, bit in enumerate(free) if choice >> i & 1)
-            for bit, (row, b) in pivots.items():  # row = bit + free bits: the pivot's value follows
-                if (bin(row & p).count("1") + b) % 2:
-                    p |= bit
-            found.append(p)
-        yield from sorted(found)
-
-    return 1 << len(free), listed()
+    # a free bit set alone, and every pivot it appears in: fully reduced rows read pivot = rhs + free bits
+    base = sum(bit for bit, (_row, b) in pivots.items() if b)
+    directions = tuple(f | sum(bit for bit, (row, _b) in pivots.items() if row & f) for f in free)
+    return Patterns(base, directions)
