@@ -356,3 +356,16 @@ def test_parity_patterns_are_the_antiparallel_ones(tmp_path, make):
     assert list(listed) == sorted(truth) and listed.count == len(truth) > 0
     fixed = parity_patterns(parity_system(scaffold), {0: 1})  # edge 0 odd: the most significant bit
     assert list(fixed) == sorted(p for p in truth if p >> (n - 1))
+
+
+def test_orient_judges_patterns_it_does_not_accept(monkeypatch):
+    """Were the linear algebra to list every parity pattern, orient() would still keep only the buildable ones."""
+    from lkspace.catalog import dna_rows
+    from lkspace.dna.parity import Patterns
+
+    cube = lkspace.load("cube")
+    every = Patterns(0, tuple(1 << i for i in range(cube.n_edges)))
+    monkeypatch.setattr(dna_rows, "parity_patterns", lambda system, fixed: every)
+    space = dna_rows.dna_space(cube, 5.3)
+    labels = np.concatenate([block.labels for block in dna_rows.dna_blocks(space)])
+    assert [tuple(row) for row in labels.tolist()] == [r[0] for r in brute_force(cube, 5.3, 1.0)]
