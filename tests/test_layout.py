@@ -105,7 +105,7 @@ ALLOWED = {
     "dna": {"errors", "io", "model", "strands"},
     "knots": {"compiled", "errors", "geometry", "io", "model", "runtime", "strands", "words"},
     "formats": {"errors", "geometry", "io", "knots", "model", "runtime", "words"},
-    "catalog": {"compiled", "design", "errors", "io", "knots", "model", "runtime", "strands", "symmetry", "words"},
+    "catalog": {"compiled", "design", "dna", "errors", "io", "knots", "model", "runtime", "strands", "symmetry", "words"},
     "linktypes": {"catalog", "design", "errors", "formats", "geometry", "io", "knots", "model", "runtime", "scaffolds", "strands", "symmetry", "words"},
     "api": {"io"},
     "lkspace": {"api", "errors"},

@@ -231,6 +231,53 @@ class Filters:
 
 
 @dataclass(frozen=True)
+class DnaSetting:
+    """The ``dna`` entry: the catalog holds the DNA-buildable designs of the mesh at one scale (``docs/dna.md``).
+
+    Attributes
+    ----------
+    nm_per_unit, window, bp_per_turn : float
+        The scale, the window in half turns about each edge's natural twist, B-DNA's base
+        pairs per turn.
+    labels : tuple of (int, int)
+        Per edge, the first and last label of its window (``first > last``: none).
+    """
+
+    nm_per_unit: float
+    window: float
+    bp_per_turn: float
+    labels: tuple[tuple[int, int], ...]
+
+    def to_json(self) -> JsonObject:
+        """JSON form."""
+        windows: list[Json] = [[lo, hi] for lo, hi in self.labels]
+        return {
+            "nm_per_unit": self.nm_per_unit,
+            "window": self.window,
+            "bp_per_turn": self.bp_per_turn,
+            "labels": windows,
+        }
+
+    @classmethod
+    def from_json(cls, data: Json, where: str) -> DnaSetting:
+        """Read the ``dna`` entry of ``where``'s metadata."""
+        what = f"{where}: the dna setting in its 'lkspace' metadata:"
+        dna = json_object(data, what[:-1])
+        numbers = [_number(dna, k, what) for k in ("nm_per_unit", "window", "bp_per_turn")]
+        windows = dna.get("labels")
+        pairs = windows if isinstance(windows, list) else [None]
+        if not all(
+            isinstance(p, list) and len(p) == 2 and all(isinstance(t, int) and not isinstance(t, bool) for t in p)
+            for p in pairs
+        ):
+            raise CatalogError(f"{what} labels {shown(windows)} is not a list of [first, last] pairs (damaged)")
+        labels = tuple(
+            (p[0], p[1]) for p in pairs if isinstance(p, list) and isinstance(p[0], int) and isinstance(p[1], int)
+        )
+        return cls(numbers[0], numbers[1], numbers[2], labels)
+
+
+@dataclass(frozen=True)
 class CatalogMetadata:
     """The settings every file of a catalog shares, in the order they are written.
 
@@ -254,6 +301,8 @@ class CatalogMetadata:
         How each row's representative was chosen.
     invariant : dict or None
         A symmetric catalog's subgroup facts (:mod:`lkspace.catalog.symmetric`).
+    dna : DnaSetting or None
+        A DNA catalog's scale and windows (:mod:`lkspace.catalog.dna_catalog`).
     """
 
     format_version: int
@@ -270,9 +319,10 @@ class CatalogMetadata:
     seed: int | None | Unrecorded
     canonical_rule: str | Unrecorded
     invariant: JsonObject | None = None
+    dna: DnaSetting | None = None
 
     def to_json(self) -> JsonObject:
-        """JSON form (settings not recorded, and ``invariant`` when absent, left out)."""
+        """JSON form (settings not recorded, and ``invariant`` and ``dna`` when absent, left out)."""
         out: JsonObject = {"format_version": self.format_version, "scaffold": self.scaffold.to_json()}
         put(out, label_set=list(self.label_set), symmetry=self.symmetry, symmetry_tolerance=self.symmetry_tolerance)
         put(out, group_order=self.group_order, acting_order=self.acting_order, assignments=self.assignments)
@@ -281,6 +331,8 @@ class CatalogMetadata:
         put(out, canonical_rule=self.canonical_rule)
         if self.invariant is not None:
             out["invariant"] = self.invariant
+        if self.dna is not None:
+            out["dna"] = self.dna.to_json()
         return out
 
     @classmethod
@@ -293,7 +345,7 @@ class CatalogMetadata:
         mode = meta.get("mode")
         if mode not in WALK_MODES:
             raise CatalogError(f"{where}: the 'lkspace' metadata has no usable scaffold edges or mode (damaged)")
-        invariant = meta.get("invariant")
+        invariant, dna = meta.get("invariant"), meta.get("dna")
         return cls(
             count_field(meta, "format_version", where),
             ScaffoldInfo.from_json(meta["scaffold"], where),
@@ -309,6 +361,7 @@ class CatalogMetadata:
             recorded(meta, "seed", optional_count, where),
             recorded(meta, "canonical_rule", text_field, where),
             None if invariant is None else json_object(invariant, f"{where}: invariant"),
+            None if dna is None else DnaSetting.from_json(dna, where),
         )
 
 
@@ -324,3 +377,10 @@ def _tolerance(meta: JsonObject, key: str, where: str) -> float | None:
     if value is not None and (isinstance(value, bool) or not isinstance(value, int | float)):
         raise CatalogError(f"{where}: symmetry_tolerance {shown(value)} is not a number (damaged)")
     return value
+
+
+def _number(data: JsonObject, key: str, what: str) -> float:
+    value = data.get(key)
+    if isinstance(value, bool) or not isinstance(value, int | float):
+        raise CatalogError(f"{what} {key} {shown(value)} is not a number (damaged)")
+    return float(value)

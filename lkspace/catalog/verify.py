@@ -209,7 +209,7 @@ def _same_catalog(part: CatalogMetadata, manifest: CatalogMetadata) -> bool:
     Not the settings recorded since (:data:`~lkspace.catalog.records.LATER_KEYS`): a
     resumed build keeps the parts of an earlier version beside new ones.
     """
-    keys = ("format_version", "scaffold", "label_set", "symmetry", "mode", "filters", "sample", "seed")
+    keys = ("format_version", "scaffold", "label_set", "symmetry", "mode", "filters", "sample", "seed", "dna")
     return all(getattr(part, k) == getattr(manifest, k) for k in keys)
 
 
@@ -269,8 +269,12 @@ def part_footer(file: str, i: int, manifest: Manifest) -> PartFooter:
     return footer
 
 
-Checks = Literal["manifest, part footers, SHA-256 of every part", "footer, CRC-32 of every data page"]
-"""What :func:`verify_catalog` checked: a folder's part checksums, or a file's page checksums."""
+Checks = Literal[
+    "manifest, part footers, SHA-256 of every part",
+    "footer, CRC-32 of every data page",
+    "footer, CRC-32 of every data page, every row recomputed (DNA designs)",
+]
+"""What :func:`verify_catalog` checked: a folder's part checksums, or a file's page checksums (and a DNA catalog's rows)."""
 
 
 @dataclass(frozen=True)
@@ -317,7 +321,9 @@ def verify_catalog(path: str | os.PathLike[str]) -> CatalogCheck:
     """Check a catalog completely before reading it with pandas, pyarrow or Dask.
 
     The structure as :func:`open_catalog` checks it, then every part's SHA-256 (a folder)
-    or every data page's CRC-32 (a file written with page checksums).  Returns a
+    or every data page's CRC-32 (a file written with page checksums); a DNA catalog's rows
+    are recomputed from its settings and must be exactly its buildable designs
+    (:func:`~lkspace.catalog.dna_rows.check_dna_rows`).  Returns a
     :class:`CatalogCheck`; raises :class:`~lkspace.errors.CatalogError` (one line) otherwise.
 
     Examples
@@ -339,6 +345,11 @@ def verify_catalog(path: str | os.PathLike[str]) -> CatalogCheck:
         read_pages(parts.files[0])
         checks = "footer, CRC-32 of every data page"
     settings = parts.footer.settings
+    if settings.dna is not None:  # its rows follow from its settings: recomputed
+        from .dna_rows import check_dna_rows
+
+        check_dna_rows(parts)
+        checks = "footer, CRC-32 of every data page, every row recomputed (DNA designs)"
     return CatalogCheck(
         path=parts.path,
         rows=parts.n_rows,

@@ -26,7 +26,7 @@ COMMANDS = {
     "scaffold": "core:scaffold_cmd",
     "info": "core:info_cmd",
     "trace": "core:trace_cmd",
-    "enumerate": "enumerate:enumerate_cmd",
+    "enumerate": "dna_enumerate:enumerate_cmd",
     "solve": "dna_solve:solve_cmd",
     "export": "dna_export:export_cmd",
     "identify": "identify:identify_cmd",

@@ -15,28 +15,11 @@ import click
 
 from ..errors import UsageError
 from .common import Context, emit, load_mesh
-from .numbers import Finite
+from .dna_options import DNA_OPTIONS
 from .solve import solve_cmd as plain_solve
 
 DNA_KEEPS = {"mesh", "components", "type_name", "count", "as_json"}
 """Parameters of the plain solve that a DNA search reads; any other one set is refused."""
-
-DNA_OPTIONS = [
-    click.Option(
-        ["--dna", "dna_scale"],
-        type=Finite(0, low_open=True),
-        default=None,
-        metavar="NM",
-        help="Only designs buildable as B-DNA with the mesh at NM nm per unit (docs/dna.md).",
-    ),
-    click.Option(
-        ["--dna-window"],
-        type=Finite(0),
-        default=None,
-        metavar="W",
-        help="With --dna: labels within W half turns of each edge's natural twist (default 1).",
-    ),
-]
 
 
 def dna_search(ctx: Context, kw: dict[str, Any], scale: float, window: float) -> None:

@@ -25,6 +25,7 @@ FLAGS = {
     "parities": "--parity",
     "subgroup": "--invariant",
     "type_name": "--type",
+    "window": "--dna-window",
     "max_points": "MAX_POINTS",
     "name": "NAME",
 }

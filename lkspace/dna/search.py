@@ -72,6 +72,16 @@ def natural_twist(scaffold: Scaffold, nm_per_unit: float, bp_per_turn: float = B
     return np.asarray(2 * n / bp_per_turn)
 
 
+def window_labels(
+    scaffold: Scaffold, nm_per_unit: float, window: float = 1.0, bp_per_turn: float = BP_PER_TURN
+) -> list[list[int]]:
+    """Per edge, the labels within ``window`` half turns of its natural twist at ``nm_per_unit`` (at least 1), ascending."""
+    natural = natural_twist(scaffold, nm_per_unit, bp_per_turn)
+    lo = np.maximum(np.ceil(natural - window), 1).astype(np.int64)
+    hi = np.floor(natural + window).astype(np.int64)
+    return [list(range(a, b + 1)) for a, b in zip(lo.tolist(), hi.tolist(), strict=True)]
+
+
 def buildable_designs(
     scaffold: Scaffold,
     nm_per_unit: float,
@@ -86,10 +96,8 @@ def buildable_designs(
     Raises ``TooLargeError`` before any work when more than ``max_designs`` label vectors
     would be traced.
     """
-    natural = natural_twist(scaffold, nm_per_unit, bp_per_turn)
-    lo = np.maximum(np.ceil(natural - window), 1).astype(np.int64)
-    hi = np.floor(natural + window).astype(np.int64)
-    options = [(list(range(a, b + 1, 1))) for a, b in zip(lo.tolist(), hi.tolist(), strict=True)]
+    options = window_labels(scaffold, nm_per_unit, window, bp_per_turn)
+    lo = np.array([opts[0] if opts else 1 for opts in options], np.int64)
     by_parity = [([t for t in opts if t % 2 == 0], [t for t in opts if t % 2 == 1]) for opts in options]
     ab = scaffold.edge_vertices
     total = 2 ** (scaffold.n_vertices - 1) * int(np.prod([max(map(len, p)) for p in by_parity], dtype=object))

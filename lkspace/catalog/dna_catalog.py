@@ -1,0 +1,77 @@
+"""DNA catalogs (``lkspace enumerate MESH --dna NM``): every buildable design of a mesh at one scale.
+
+The rows are :mod:`lkspace.catalog.dna_rows`'s, one per buildable label assignment of the
+windows.  **No symmetry reduction**: each edge's window depends on its length, so only the
+symmetries keeping every window could merge rows; listing every buildable assignment
+(symmetry ``none``, ``orbit_size`` 1) keeps the catalog a plain list that ``lkspace
+verify`` recomputes.  The rows have the designs schema (:mod:`lkspace.catalog.schema`);
+the ``lkspace`` metadata records ``label_set`` (the labels of all windows),
+``assignments`` (the product of the window sizes: every assignment of the windows,
+buildable or not) and ``dna`` (:class:`~lkspace.catalog.metadata.DnaSetting`).
+"""
+
+from __future__ import annotations
+
+import os
+from dataclasses import replace
+from typing import Any
+
+import numpy as np
+
+from ..errors import CatalogError
+from .dna_rows import DNA_RULE, DnaSpace, dna_batches, dna_blocks
+from .lock import catalog_lock
+from .metadata import CatalogMetadata
+from .options import Selection
+from .records import PartFooter
+from .schema import expected_schema
+from .shards import catalog_metadata
+from .transaction import catalog_target
+from .writer import write_batches
+
+
+def dna_metadata(space: DnaSpace, components: int | None, max_designs: int | None) -> CatalogMetadata:
+    """Return the ``lkspace`` metadata of a DNA catalog: the usual keys and ``dna``."""
+    meta = catalog_metadata(space.space, Selection(components=components, max_designs=max_designs))
+    return replace(meta, assignments=space.assignments, canonical_rule=DNA_RULE, dna=space.setting)
+
+
+def count_dna(space: DnaSpace, components: int | None = None, max_designs: int | None = None) -> dict[str, Any]:
+    """Totals of a DNA catalog without writing it: ``designs``, ``assignments``, ``by_components``."""
+    rows, by = 0, dict[str, int]()
+    for block in dna_blocks(space, components):
+        comps = block.traces.components[block.row_class]
+        if max_designs is not None:
+            comps = comps[: max(0, max_designs - rows)]
+        rows += len(comps)
+        for c, n in zip(*np.unique(comps, return_counts=True), strict=True):
+            by[str(int(c))] = by.get(str(int(c)), 0) + int(n)
+    return {"designs": rows, "assignments": space.assignments, "by_components": dict(sorted(by.items()))}
+
+
+def write_dna_catalog(
+    space: DnaSpace, path: str | os.PathLike[str], components: int | None = None, max_designs: int | None = None
+) -> dict[str, Any]:
+    """Write the buildable designs of ``space`` to one Parquet file at ``path`` (atomically, under the lock).
+
+    Returns the totals: ``designs``, ``assignments``, ``by_components``, ``output``,
+    ``group_order``, ``symmetry``, ``label_set``, ``dna``.
+    """
+    target = catalog_target(path)
+    if os.path.isdir(target.path):
+        raise CatalogError(f"{target.shown}: is a folder; a DNA catalog is one .parquet file", usage=True)
+    meta = dna_metadata(space, components, max_designs)
+    with catalog_lock(target.lock, target.shown):
+        batches = dna_batches(space, components, max_designs)
+        summary = write_batches(target.path, expected_schema(meta), PartFooter(meta), batches)
+    by_components, _covered = summary.counts()
+    return {
+        "designs": summary.rows,
+        "assignments": space.assignments,
+        "by_components": dict(sorted(by_components.items(), key=lambda kv: int(kv[0]))),
+        "output": os.fspath(path),
+        "group_order": 1,
+        "symmetry": "none",
+        "label_set": space.space.label_set.tolist(),
+        "dna": space.setting.to_json(),
+    }
