@@ -109,6 +109,14 @@ def poll_jobs() -> float | None:
 
 
 def stop_all() -> None:
-    """Stop every identification (when the add-on is unregistered)."""
+    """Stop every identification and the timer polling them (when the add-on is unregistered).
+
+    The timer must go too: a Python timer still registered when the ``bpy`` module shuts
+    down is freed after the interpreter, which crashes the process (exit status 139)
+    whether or not a job was running.  Blender itself unregisters add-ons before it frees
+    its timers; the add-on makes the ``bpy`` module do the same at exit.
+    """
     for name in list(JOBS):
         stop(name)
+    if bpy.app.timers.is_registered(poll_jobs):
+        bpy.app.timers.unregister(poll_jobs)
