@@ -99,8 +99,10 @@ class LKSPACE_OT_scene_preset(bpy.types.Operator):  # noqa: N801
     engine: bpy.props.EnumProperty(name="Engine", items=ENGINES)  # type: ignore[valid-type]
 
     def execute(self, context: Any) -> set[str]:
-        """Set the scene up for a picture."""
-        preset(context.scene, self.engine)
+        """Set the scene up for a picture (EEVEE without a GPU: Cycles, reported as a warning)."""
+        note = preset(context.scene, self.engine)
+        if note:
+            self.report({"WARNING"}, note)
         return {"FINISHED"}
 
 

@@ -1,6 +1,7 @@
 """A scene preset for pictures of a design: camera fitted to the strands, lights, world, engine.
 
-:func:`preset` works for Cycles (CPU), EEVEE and Workbench; :func:`render` writes a PNG.
+:func:`preset` works for Cycles (CPU), EEVEE (with a GPU; Cycles without) and Workbench;
+:func:`render` writes a PNG.
 Both are used by the ``lkspace.scene_preset`` operator and by ``python -m lkspace.blender
 render`` (headless, for ``experiments/gallery.py --renderer blender``).
 """
@@ -13,11 +14,13 @@ import bpy
 import numpy as np
 from mathutils import Vector
 
+from lkspace.blender.engines import engine_to_use
+
 from .strands import SOURCE
 
 ENGINES = (
     ("CYCLES", "Cycles", "Path tracing (CPU), the best pictures"),
-    ("BLENDER_EEVEE_NEXT", "EEVEE", "Fast, needs a GPU"),
+    ("BLENDER_EEVEE_NEXT", "EEVEE", "Fast, needs a GPU (without one: Cycles on the CPU)"),
     ("BLENDER_WORKBENCH", "Workbench", "Flat colours, instant, works anywhere"),
 )
 VIEW = np.array([1.0, -1.4, 0.9])
@@ -101,13 +104,16 @@ def add_lights(scene: Any) -> None:
         scene.collection.objects.link(obj)
 
 
-def preset(scene: Any, engine: str = "CYCLES", size: tuple[int, int] | None = None, samples: int = 32) -> None:
+def preset(scene: Any, engine: str = "CYCLES", size: tuple[int, int] | None = None, samples: int = 32) -> str:
     """Set up ``scene`` for a picture of its strands: camera, lights, a light grey world, ``engine``.
 
     ``size`` is the picture's ``(width, height)`` in pixels (default: the scene's).  The
     meshes the strands were made from are hidden from the render (not the viewport).
-    Cycles denoises with OpenImageDenoise.
+    Cycles denoises with OpenImageDenoise.  EEVEE on a machine without a GPU becomes Cycles
+    on the CPU (:func:`lkspace.blender.engines.engine_to_use`): the one-line note saying so
+    is returned (``""`` when the engine is the one asked for).
     """
+    engine, note = engine_to_use(engine)
     points = strand_points(scene)
     for obj in scene.objects:  # the meshes the strands come from stay in the viewport, out of the picture
         if obj.type == "MESH" and bpy.data.collections.get(obj.name) is not None:
@@ -140,6 +146,7 @@ def preset(scene: Any, engine: str = "CYCLES", size: tuple[int, int] | None = No
         scene.display.shading.show_cavity = False
     else:
         scene.eevee.taa_render_samples = samples
+    return note
 
 
 def render(scene: Any, path: str) -> None:
