@@ -9,7 +9,8 @@ or scaling the object rebuilds nothing (the curves are its children and follow i
 scene's ``lkspace.relax`` on, the curves are relaxed (:func:`lkspace.relax`).  The shape
 controls of the panel (inset, normal offset, tube radius) go to :class:`GeometryParams`, and
 lkspace's advice is reworded to name those controls (:func:`panel_advice`).  The mesh read is
-the mesh as edited: modifiers are not applied (``docs/blender.md``).
+the evaluated one, modifiers applied (:func:`.meshio.evaluated_mesh`): changing a
+modifier rebuilds the strands like an edit of the mesh, a move does not.
 """
 
 from __future__ import annotations
@@ -77,7 +78,12 @@ def state_key(
 
 
 def regenerate(
-    obj: Any, scene: Any, force: bool = True, measure: bool | None = None, relax: bool | None = None
+    obj: Any,
+    scene: Any,
+    force: bool = True,
+    measure: bool | None = None,
+    relax: bool | None = None,
+    depsgraph: Any = None,
 ) -> bool:
     """Rebuild the strand curves of mesh object ``obj``; return whether it worked.
 
@@ -87,7 +93,8 @@ def regenerate(
     checks the clearance between strands (``lkspace.realize``'s check; it also thins the
     tubes to fit); by default only meshes of at most :data:`MEASURE_FACES` faces are
     measured.  ``relax`` builds the curves of :func:`lkspace.relax` (default: the scene's
-    ``lkspace.relax``).
+    ``lkspace.relax``).  ``depsgraph``: the evaluated dependency graph the mesh is read
+    from (default: the context's).
     """
     result = obj.lkspace
     settings = getattr(scene, "lkspace", None)
@@ -95,7 +102,7 @@ def regenerate(
         relax = bool(settings.relax) if settings is not None else False
     BUSY.add(obj.name)
     try:
-        design, labels, nulls = meshio.read_design(obj)
+        design, labels, nulls = meshio.read_design(obj, depsgraph=depsgraph)
         params = shape(settings)
         key = state_key(design, labels, nulls, relax, params)
         if measure is None:
@@ -125,7 +132,7 @@ def regenerate(
 
 @bpy.app.handlers.persistent
 def on_depsgraph_update(scene: Any, depsgraph: Any) -> None:
-    """Regenerate the active mesh after an edit of its mesh data (not a move), when ``scene.lkspace.live`` is on."""
+    """Regenerate the active mesh after an edit of its mesh data or modifiers (not a move), when ``scene.lkspace.live`` is on."""
     settings = getattr(scene, "lkspace", None)
     obj = bpy.context.view_layer.objects.active if bpy.context.view_layer else None
     if settings is None or not settings.live or obj is None or obj.type != "MESH" or obj.name in BUSY:
@@ -135,7 +142,7 @@ def on_depsgraph_update(scene: Any, depsgraph: Any) -> None:
     for update in depsgraph.updates:
         original = getattr(update.id, "original", None)
         if original is obj.data or (original is obj and update.is_updated_geometry):
-            regenerate(obj, scene, force=False)
+            regenerate(obj, scene, force=False, depsgraph=depsgraph)
             return
 
 

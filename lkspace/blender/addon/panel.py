@@ -156,7 +156,7 @@ class LKSPACE_PT_design(bpy.types.Panel):  # noqa: N801
         row.prop(settings, "tube_radius")
         row.prop(settings, "resolution")
         if any(m.show_viewport for m in obj.modifiers):
-            read.label(text="Modifiers not applied: strands follow the mesh as edited", icon="INFO")
+            read.label(text="Strands follow the mesh with its modifiers", icon="INFO")
         result = obj.lkspace
         if result.message:
             for line in wrap(result.message):
