@@ -84,7 +84,7 @@ class LkspaceResult(bpy.types.PropertyGroup):
     open_strands: bpy.props.IntProperty(name="Open strands")  # type: ignore[valid-type]
     knot: bpy.props.StringProperty(name="Knot or link")  # type: ignore[valid-type]
     message: bpy.props.StringProperty(name="Message")  # type: ignore[valid-type]
-    measured: bpy.props.BoolProperty(name="Clearance measured")  # type: ignore[valid-type]
+    measured: bpy.props.BoolProperty(name="Clearance measured, strands smoothed")  # type: ignore[valid-type]
     relaxed: bpy.props.BoolProperty(name="Relaxed")  # type: ignore[valid-type]
     key: bpy.props.StringProperty(name="State")  # type: ignore[valid-type]
     strands: bpy.props.StringProperty(name="Strand collection")  # type: ignore[valid-type]
@@ -171,7 +171,7 @@ class LKSPACE_PT_design(bpy.types.Panel):  # noqa: N801
             if result.open_strands:
                 read.label(text=plural(result.open_strands, "open strand"))
             if not result.measured:
-                read.label(text="Clearance not measured (large mesh): Regenerate checks it")
+                read.label(text="Preview (large mesh): not smoothed or measured; Regenerate does both")
         row = read.row(align=True)
         row.operator("lkspace.identify")
         row.label(text=result.knot or "-")
