@@ -7,7 +7,7 @@ Blender's own primitives, every edge twisted once; the median of three of each:
   and Blender evaluating the new curves (their tubes) for the viewport;
 * *preview* and *measured* rebuilds (``lkspace.blender.addon.live.regenerate``: read the
   evaluated mesh, trace, realize, replace the curve objects): a preview draws the
-  construction unsmoothed and unmeasured (live rebuilds above
+  construction unsmoothed, coarser and unmeasured (live rebuilds above
   ``live.MEASURE_FACES`` faces), *Regenerate* measures the clearance and smooths.
 
 Needs the ``bpy`` module (``pip install -e '.[blender]'``, Python 3.11).  Writes
@@ -103,9 +103,10 @@ def main() -> None:
         f"{platform.machine()}, {os.cpu_count()} cores, shared; load average {min(loads):.1f} to {max(loads):.1f}",
         "while it ran): the median of three, on a Blender primitive with every edge twisted once.",
         "*Live edit*: every twist flipped with *Live* on, until Blender has evaluated the new curves",
-        f"(above {live.MEASURE_FACES} faces a live rebuild is a preview: the construction unsmoothed, its",
-        "clearance not measured); *preview* and *measured*: `live.regenerate` alone, *Regenerate*",
-        "measuring the clearance and smoothing.",
+        f"(above {live.MEASURE_FACES} faces a live rebuild is a preview: the construction unsmoothed, sampled",
+        f"{live.PREVIEW_COARSER} times more coarsely, tubes of bevel resolution {live.PREVIEW_RESOLUTION}, its clearance",
+        "not measured); *preview* and *measured*: `live.regenerate` alone, as *Regenerate* builds with",
+        "`measure=False` and with the clearance measured and the strands smoothed.",
         "",
         "| mesh | faces | components | live edit (s) | rebuild, preview (s) | rebuild, measured and smoothed (s) |",
         "|---|---|---|---|---|---|",

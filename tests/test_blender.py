@@ -367,6 +367,7 @@ def test_live_rebuilds_of_large_meshes_skip_the_clearance_measurement(blender, t
     drawn = [curve_points(c) for c in sorted(strand_curves(obj), key=lambda c: c.name)]  # NAME.strand.k: curve k
     assert [len(p) for p in drawn] == [len(c) for c in preview.curves]
     assert all(np.allclose(p, c, atol=1e-6) for p, c in zip(drawn, preview.curves))  # Blender keeps float32
+    assert {c.data.bevel_resolution for c in strand_curves(obj)} == {1}  # lighter tubes (the scene's: 3)
 
 
 def test_edit_mode_set_twist_cut_and_live_move(blender):

@@ -34,6 +34,8 @@ MEASURE_FACES = 150
 """Live rebuilds of meshes with more faces are previews: not smoothed, clearance not measured (seconds at 500 faces)."""
 PREVIEW_COARSER = 2
 """A preview samples its curves this many times more coarsely (points per helix turn, edge, corner)."""
+PREVIEW_RESOLUTION = 1
+"""A preview's tubes have at most this bevel resolution (the panel's *Resolution*, 3 by default, otherwise)."""
 BUSY: set[str] = set()
 """Objects being regenerated now (their own updates must not start another round)."""
 
@@ -69,8 +71,9 @@ def shape(settings: Any) -> GeometryParams:
 def preview(params: GeometryParams) -> GeometryParams:
     """Return the shape of a preview of ``params``: unsmoothed (nothing to prove first), :data:`PREVIEW_COARSER` times coarser.
 
-    Half the points halve what Blender then spends evaluating the tubes: a live edit of a
-    512-face sphere takes about 0.25 s instead of 0.5 s (``results/bench_blender.md``).
+    Half the points, and tubes of bevel resolution :data:`PREVIEW_RESOLUTION`, cut what
+    Blender then spends evaluating the tubes: a live edit of a 512-face sphere takes about
+    0.2 s instead of 0.5 s (``results/bench_blender.md``).
     """
     return replace(
         params,
@@ -133,7 +136,8 @@ def regenerate(
         options = RealizeOptions(embedding="refuse" if measure else "later", trace=traced)
         drawn = params if measure else preview(params)
         real = realize(design.scaffold, labels, nulls, drawn, relax=relax, options=options)
-        strands.build(obj, real, scene, resolution=settings.resolution if settings is not None else 3)
+        resolution = settings.resolution if settings is not None else 3
+        strands.build(obj, real, scene, resolution=resolution if measure else min(resolution, PREVIEW_RESOLUTION))
         result.relaxed = relax
         result.components = traced.components
         result.holds_together = traced.holds_together
