@@ -18,10 +18,10 @@ linux_only = pytest.mark.skipif(sys.platform in ("darwin", "win32"), reason="mac
 def test_no_gpu_looks_for_device_files_and_mesa_software(tmp_path, monkeypatch):
     monkeypatch.delenv("LIBGL_ALWAYS_SOFTWARE", raising=False)
     devices = (str(tmp_path / "renderD*"),)
-    assert no_gpu(devices) == "no /dev/dri or /dev/nvidia device"
+    assert no_gpu(devices) == "no /dev/dri, /dev/nvidia or /dev/dxg device"
     assert engine_to_use(EEVEE, no_gpu(devices)) == (
         "CYCLES",
-        "EEVEE needs a GPU and this machine has none (no /dev/dri or /dev/nvidia device): "
+        "EEVEE needs a GPU and this machine has none (no /dev/dri, /dev/nvidia or /dev/dxg device): "
         "rendering with Cycles on the CPU instead",
     )
     (tmp_path / "renderD128").touch()

@@ -13,8 +13,8 @@ Examples
 --------
 >>> engine_to_use("CYCLES")
 ('CYCLES', '')
->>> engine_to_use("BLENDER_EEVEE_NEXT", "no /dev/dri or /dev/nvidia device")[1]
-'EEVEE needs a GPU and this machine has none (no /dev/dri or /dev/nvidia device): rendering with Cycles on the CPU instead'
+>>> engine_to_use("BLENDER_EEVEE_NEXT", "no /dev/dri, /dev/nvidia or /dev/dxg device")[1]
+'EEVEE needs a GPU and this machine has none (no /dev/dri, /dev/nvidia or /dev/dxg device): rendering with Cycles on the CPU instead'
 """
 
 from __future__ import annotations
@@ -26,8 +26,8 @@ import sys
 ENGINES = {"cycles": "CYCLES", "eevee": "BLENDER_EEVEE_NEXT", "workbench": "BLENDER_WORKBENCH"}
 """``--engine`` of ``python -m lkspace.blender render`` -> Blender's render engine."""
 EEVEE = ENGINES["eevee"]
-GPU_DEVICES = ("/dev/dri/renderD*", "/dev/dri/card*", "/dev/nvidia[0-9]*")
-"""Device files of a GPU on Linux: Mesa's drivers (Intel, AMD, virtio, ...) and NVIDIA's."""
+GPU_DEVICES = ("/dev/dri/renderD*", "/dev/dri/card*", "/dev/nvidia[0-9]*", "/dev/dxg")
+"""Device files of a GPU on Linux: Mesa's drivers (Intel, AMD, virtio, ...), NVIDIA's, WSL2's (Direct3D 12)."""
 
 
 def no_gpu(devices: tuple[str, ...] = GPU_DEVICES) -> str:
@@ -42,7 +42,7 @@ def no_gpu(devices: tuple[str, ...] = GPU_DEVICES) -> str:
     if os.environ.get("LIBGL_ALWAYS_SOFTWARE", "0").strip().lower() not in ("", "0", "false"):
         return "LIBGL_ALWAYS_SOFTWARE asks for software rendering"
     if not any(glob.glob(pattern) for pattern in devices):
-        return "no /dev/dri or /dev/nvidia device"
+        return "no /dev/dri, /dev/nvidia or /dev/dxg device"
     return ""
 
 
