@@ -73,8 +73,8 @@ def start(name: str, key: str, scaffold: Scaffold, labels: np.ndarray, nulls: np
         env={**os.environ, "LKSPACE_PROGRESS": "0"},
     )
     JOBS[name] = Job(key, process, folder)
-    if not bpy.app.timers.is_registered(poll_jobs):
-        bpy.app.timers.register(poll_jobs, first_interval=0.5)
+    if not bpy.app.timers.is_registered(poll_jobs):  # persistent: a file loaded meanwhile still reaps the job
+        bpy.app.timers.register(poll_jobs, first_interval=0.5, persistent=True)
 
 
 def stop(name: str) -> None:
