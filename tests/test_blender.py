@@ -359,8 +359,15 @@ def test_live_rebuilds_of_large_meshes_skip_the_clearance_measurement(blender, t
     set_twists(obj, pairs)
     blender.view_layer.update()
     assert not obj.lkspace.measured
-    _, _, _, result = independent(obj, tmp_path, pairs)
+    _, scaffold, labels, result = independent(obj, tmp_path, pairs)
     assert_same_strands(obj, result)
+    # a live preview draws the construction, sampled half as finely: no smoothing, which needs the clearance proved
+    coarse = lkspace.GeometryParams(smooth=False, samples_per_turn=16, edge_samples=12, corner_samples=6)
+    preview = lkspace.realize(scaffold, labels, params=coarse, options=lkspace.RealizeOptions(embedding="later"))
+    drawn = [curve_points(c) for c in sorted(strand_curves(obj), key=lambda c: c.name)]  # NAME.strand.k: curve k
+    assert [len(p) for p in drawn] == [len(c) for c in preview.curves]
+    assert all(np.allclose(p, c, atol=1e-6) for p, c in zip(drawn, preview.curves))  # Blender keeps float32
+    assert {c.data.bevel_resolution for c in strand_curves(obj)} == {1}  # lighter tubes (the scene's: 3)
 
 
 def test_edit_mode_set_twist_cut_and_live_move(blender):

@@ -3,11 +3,10 @@
 from __future__ import annotations
 
 import os
+import sys
 
 from ..errors import LkspaceError, MissingDependencyError
-
-ENGINES = {"cycles": "CYCLES", "eevee": "BLENDER_EEVEE_NEXT", "workbench": "BLENDER_WORKBENCH"}
-"""``--engine`` -> Blender's render engine."""
+from .engines import ENGINES
 
 
 def render_design(
@@ -42,5 +41,7 @@ def render_design(
         obj = builtin.add_scaffold(context, mesh, twist)
         if obj.lkspace.message:
             raise LkspaceError(obj.lkspace.message)
-    scene.preset(context.scene, ENGINES[engine], (width, height), samples)
+    note = scene.preset(context.scene, ENGINES[engine], (width, height), samples)
+    if note:
+        print(note, file=sys.stderr)
     scene.render(context.scene, os.path.abspath(target))

@@ -90,7 +90,7 @@ def register() -> None:
         bpy.types.Scene.lkspace = bpy.props.PointerProperty(type=panel.LkspaceSettings)
         bpy.types.Object.lkspace = bpy.props.PointerProperty(type=panel.LkspaceResult)
         live.install_handler()
-    if not bpy.app.binary_path and not EXIT_HOOK:  # the bpy module crashes on exit with the add-on registered
+    if not bpy.app.binary_path and not EXIT_HOOK:  # the bpy module crashes on exit with a handler or timer left
         atexit.register(unregister)
         EXIT_HOOK.append(unregister)
 

@@ -82,7 +82,7 @@ class LKSPACE_OT_fill_orbit(MeshOperator):  # noqa: N801
 
     def apply(self, obj: Any, context: Any) -> None:
         """Fill the orbit of the first selected face edge."""
-        design, labels, _ = meshio.read_design(obj)
+        design, labels, _ = meshio.read_design(obj, evaluated=False)
         chosen = [int(design.edge_of[b]) for b in meshio.selected_edges(obj.data) if design.edge_of[b] >= 0]
         if not chosen:
             raise LkspaceError("select an edge whose twist to copy first")
@@ -99,7 +99,7 @@ class LKSPACE_OT_randomize(MeshOperator):  # noqa: N801
     def apply(self, obj: Any, context: Any) -> None:
         """Draw labels from the scene's label set."""
         settings = context.scene.lkspace
-        design, _, _ = meshio.read_design(obj)
+        design, _, _ = meshio.read_design(obj, evaluated=False)
         labels = random_labels(design.scaffold, settings.label_set, self.seed, settings.no_zero)
         meshio.write_labels(obj, design, labels)
 
@@ -116,7 +116,7 @@ class LKSPACE_OT_solve(MeshOperator):  # noqa: N801
         from lkspace.inverse.pipeline import SolveOptions, solve
 
         settings = context.scene.lkspace
-        design, _, _ = meshio.read_design(obj)
+        design, _, _ = meshio.read_design(obj, evaluated=False)
         result = solve(
             design.scaffold,
             self.components,

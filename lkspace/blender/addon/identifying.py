@@ -73,8 +73,8 @@ def start(name: str, key: str, scaffold: Scaffold, labels: np.ndarray, nulls: np
         env={**os.environ, "LKSPACE_PROGRESS": "0"},
     )
     JOBS[name] = Job(key, process, folder)
-    if not bpy.app.timers.is_registered(poll_jobs):
-        bpy.app.timers.register(poll_jobs, first_interval=0.5)
+    if not bpy.app.timers.is_registered(poll_jobs):  # persistent: a file loaded meanwhile still reaps the job
+        bpy.app.timers.register(poll_jobs, first_interval=0.5, persistent=True)
 
 
 def stop(name: str) -> None:
@@ -109,6 +109,14 @@ def poll_jobs() -> float | None:
 
 
 def stop_all() -> None:
-    """Stop every identification (when the add-on is unregistered)."""
+    """Stop every identification and the timer polling them (when the add-on is unregistered).
+
+    The timer must go too: a Python timer still registered when the ``bpy`` module shuts
+    down is freed after the interpreter, which crashes the process (exit status 139)
+    whether or not a job was running.  Blender itself unregisters add-ons before it frees
+    its timers; the add-on makes the ``bpy`` module do the same at exit.
+    """
     for name in list(JOBS):
         stop(name)
+    if bpy.app.timers.is_registered(poll_jobs):
+        bpy.app.timers.unregister(poll_jobs)

@@ -1,8 +1,18 @@
 """Reading a Blender mesh into lkspace and writing labels back to its attributes.
 
-Attributes are read and written on the mesh data, so an object in Edit Mode is flushed
-first (:func:`readable_mesh`); operators that write go through :func:`edit_attributes`,
-which leaves Edit Mode for the write and comes back.
+The strands are made from the *evaluated* mesh, the one Blender shows: the object's
+modifiers applied (those showing in the viewport, and in Edit Mode those showing there)
+and its Edit Mode changes included (:func:`evaluated_mesh`).  Modifiers carry
+``lk_twist`` and ``lk_null`` along as they carry any attribute: Subdivision, Array,
+Mirror, Solidify, Bevel, Triangulate, Edge Split, Weld and the deforming ones keep an
+edge's twist on the edges it becomes (edges they add inside a face get 0); Remesh and
+Skin drop the attributes and Wireframe and Screw zero them, which :func:`read_design`
+refuses in one line rather than draw every strand with twist 0.
+
+The labels are written on the base mesh (``obj.data``), whose edges the user selects, so
+the edit operators read that one (``read_design(obj, evaluated=False)``); in Edit Mode it
+is flushed first (:func:`readable_mesh`), and operators that write go through
+:func:`edit_attributes`, which leaves Edit Mode for the write and comes back.
 """
 
 from __future__ import annotations
@@ -15,6 +25,7 @@ import bpy
 import numpy as np
 
 from lkspace.blender.meshdata import NULL, TWIST, MeshArrays, MeshDesign, check_attribute, mesh_design, whole_twists
+from lkspace.errors import LabelError
 
 
 @contextmanager
@@ -33,6 +44,21 @@ def readable_mesh(obj: Any) -> Iterator[Any]:
         yield copy
     finally:
         bpy.data.meshes.remove(copy)
+
+
+@contextmanager
+def evaluated_mesh(obj: Any, depsgraph: Any = None) -> Iterator[Any]:
+    """Yield the mesh of ``obj`` as Blender evaluates it (modifiers applied), a temporary copy freed afterwards.
+
+    ``depsgraph`` is the evaluated dependency graph to read it from (default: the context's,
+    brought up to date).
+    """
+    evaluated = obj.evaluated_get(depsgraph or bpy.context.evaluated_depsgraph_get())
+    mesh = evaluated.to_mesh()
+    try:
+        yield mesh
+    finally:
+        evaluated.to_mesh_clear()
 
 
 def mesh_arrays(mesh: Any) -> MeshArrays:
@@ -84,11 +110,34 @@ def loop_nulls(mesh: Any) -> np.ndarray:
     return out
 
 
-def read_design(obj: Any) -> tuple[MeshDesign, np.ndarray, np.ndarray]:
-    """Return the scaffold of mesh object ``obj`` with its labels and null sides in lkspace's order."""
-    with readable_mesh(obj) as mesh:
+def read_design(obj: Any, evaluated: bool = True, depsgraph: Any = None) -> tuple[MeshDesign, np.ndarray, np.ndarray]:
+    """Return the scaffold of mesh object ``obj`` with its labels and null sides in lkspace's order.
+
+    ``evaluated``: the mesh with its modifiers applied (:func:`evaluated_mesh`, from
+    ``depsgraph``), else the base mesh whose edges carry the labels.  Modifiers that leave
+    no twist where the base mesh has some are refused (:class:`~lkspace.errors.LabelError`).
+    """
+    with evaluated_mesh(obj, depsgraph) if evaluated else readable_mesh(obj) as mesh:
         design = mesh_design(mesh_arrays(mesh), obj.name)
-        return design, design.labels(twists(mesh)), design.nulls(loop_nulls(mesh))
+        edge_twists = twists(mesh)
+        if evaluated and not edge_twists.any():
+            check_modifiers_keep_twists(obj)
+        return design, design.labels(edge_twists), design.nulls(loop_nulls(mesh))
+
+
+def check_modifiers_keep_twists(obj: Any) -> None:
+    """Refuse modifiers of ``obj`` that turn a base mesh with twists into one without (Remesh, Skin, Wireframe, Screw)."""
+    shown = [m.name for m in obj.modifiers if (m.show_in_editmode if obj.mode == "EDIT" else m.show_viewport)]
+    if not shown:
+        return
+    with readable_mesh(obj) as base:
+        if not twists(base).any():
+            return
+    raise LabelError(
+        f"{obj.name}: its modifiers ({', '.join(shown)}) leave no lk_twist on the mesh they make, so every "
+        "strand would have twist 0; hide the modifier that drops it (Remesh, Skin, Wireframe, Screw do), "
+        "or apply the modifiers and label the result"
+    )
 
 
 def write_attribute(mesh: Any, name: str, domain: str, kind: str, values: np.ndarray) -> None:

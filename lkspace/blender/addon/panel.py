@@ -7,12 +7,13 @@ holding together, the knot name, the last error), so scripts read them too.
 
 from __future__ import annotations
 
+import os
 from typing import Any
 
 import bpy
 
 from . import live
-from .scene import ENGINES, preset
+from .scene import ENGINES, preset, render, strand_curves
 
 
 def live_toggled(settings: Any, context: Any) -> None:
@@ -84,7 +85,7 @@ class LkspaceResult(bpy.types.PropertyGroup):
     open_strands: bpy.props.IntProperty(name="Open strands")  # type: ignore[valid-type]
     knot: bpy.props.StringProperty(name="Knot or link")  # type: ignore[valid-type]
     message: bpy.props.StringProperty(name="Message")  # type: ignore[valid-type]
-    measured: bpy.props.BoolProperty(name="Clearance measured")  # type: ignore[valid-type]
+    measured: bpy.props.BoolProperty(name="Clearance measured, strands smoothed")  # type: ignore[valid-type]
     relaxed: bpy.props.BoolProperty(name="Relaxed")  # type: ignore[valid-type]
     key: bpy.props.StringProperty(name="State")  # type: ignore[valid-type]
     strands: bpy.props.StringProperty(name="Strand collection")  # type: ignore[valid-type]
@@ -99,8 +100,53 @@ class LKSPACE_OT_scene_preset(bpy.types.Operator):  # noqa: N801
     engine: bpy.props.EnumProperty(name="Engine", items=ENGINES)  # type: ignore[valid-type]
 
     def execute(self, context: Any) -> set[str]:
-        """Set the scene up for a picture."""
-        preset(context.scene, self.engine)
+        """Set the scene up for a picture (EEVEE without a GPU: Cycles, reported as a warning)."""
+        note = preset(context.scene, self.engine)
+        if note:
+            self.report({"WARNING"}, note)
+        return {"FINISHED"}
+
+
+class LKSPACE_OT_render_preset(bpy.types.Operator):  # noqa: N801
+    """Set the scene up for a picture of the strands (as Scene Preset does) and render it to a PNG file."""
+
+    bl_idname = "lkspace.render_preset"
+    bl_label = "Render Picture"
+    filepath: bpy.props.StringProperty(subtype="FILE_PATH")  # type: ignore[valid-type]
+    engine: bpy.props.EnumProperty(name="Engine", items=ENGINES)  # type: ignore[valid-type]
+    width: bpy.props.IntProperty(name="Width", default=800, min=16, max=8192)  # type: ignore[valid-type]
+    height: bpy.props.IntProperty(name="Height", default=800, min=16, max=8192)  # type: ignore[valid-type]
+    samples: bpy.props.IntProperty(name="Samples", default=32, min=1, max=4096, description="Cycles and EEVEE")  # type: ignore[valid-type]
+
+    def invoke(self, context: Any, event: Any) -> set[str]:
+        """Ask for the file name (by default the active object's, ``.png``)."""
+        if not self.filepath:
+            obj = context.active_object
+            self.filepath = bpy.path.ensure_ext(obj.name if obj is not None else "lkspace", ".png")
+        context.window_manager.fileselect_add(self)
+        return {"RUNNING_MODAL"}
+
+    def execute(self, context: Any) -> set[str]:
+        """Apply the preset and render; refuse in one line when there is nothing to draw or nowhere to write."""
+        path = bpy.path.abspath(bpy.path.ensure_ext(self.filepath, ".png")) if self.filepath else ""
+        folder = os.path.dirname(os.path.abspath(path)) if path else ""
+        problem = (
+            "give the PNG file to write (filepath)"
+            if not path
+            else f"folder {folder} does not exist"
+            if not os.path.isdir(folder)
+            else "no strands to draw: Regenerate a mesh, or Add Scaffold, first"
+            if not strand_curves(context.scene)
+            else ""
+        )
+        if problem:
+            self.report({"ERROR"}, problem)
+            return {"CANCELLED"}
+        note = preset(context.scene, self.engine, (self.width, self.height), self.samples)
+        if note:
+            self.report({"WARNING"}, note)
+        render(context.scene, path)
+        self.report({"INFO"}, f"wrote {path}")
         return {"FINISHED"}
 
 
@@ -154,7 +200,7 @@ class LKSPACE_PT_design(bpy.types.Panel):  # noqa: N801
         row.prop(settings, "tube_radius")
         row.prop(settings, "resolution")
         if any(m.show_viewport for m in obj.modifiers):
-            read.label(text="Modifiers not applied: strands follow the mesh as edited", icon="INFO")
+            read.label(text="Strands follow the mesh with its modifiers", icon="INFO")
         result = obj.lkspace
         if result.message:
             for line in wrap(result.message):
@@ -169,7 +215,7 @@ class LKSPACE_PT_design(bpy.types.Panel):  # noqa: N801
             if result.open_strands:
                 read.label(text=plural(result.open_strands, "open strand"))
             if not result.measured:
-                read.label(text="Clearance not measured (large mesh): Regenerate checks it")
+                read.label(text="Preview (large mesh): not smoothed or measured; Regenerate does both")
         row = read.row(align=True)
         row.operator("lkspace.identify")
         row.label(text=result.knot or "-")
@@ -179,6 +225,7 @@ class LKSPACE_PT_design(bpy.types.Panel):  # noqa: N801
         row = out.row(align=True)
         row.prop(settings, "engine", text="")
         row.operator("lkspace.scene_preset").engine = settings.engine
+        row.operator("lkspace.render_preset").engine = settings.engine
         row = out.row(align=True)
         row.operator("lkspace.add_scaffold")
         row.operator("lkspace.periodic_block")
@@ -195,4 +242,4 @@ def wrap(text: str, width: int = 48) -> list[str]:
     return lines + [line] if line else lines
 
 
-CLASSES = (LkspaceSettings, LkspaceResult, LKSPACE_OT_scene_preset, LKSPACE_PT_design)
+CLASSES = (LkspaceSettings, LkspaceResult, LKSPACE_OT_scene_preset, LKSPACE_OT_render_preset, LKSPACE_PT_design)
