@@ -1,4 +1,4 @@
-"""The relaxation options of ``lkspace export`` (``--relax``, ``--relax-steps``, ``--relax-time``, ``--relax-fine``)."""
+"""The relaxation options of ``lkspace export``: ``--relax`` and the options that refine or bound it."""
 
 from __future__ import annotations
 
@@ -16,7 +16,7 @@ F = TypeVar("F", bound=Callable[..., Any])
 
 
 def relax_options(func: F) -> F:
-    """Add the options --relax, --relax-steps, --relax-time and --relax-fine."""
+    """Add the options --relax, --relax-steps, --relax-time, --relax-fine, --relax-points and --relax-escape."""
     options = [
         click.option(
             "--relax",
@@ -40,17 +40,41 @@ def relax_options(func: F) -> F:
             is_flag=True,
             help="Relax (implies --relax), then refine the converged shape at twice the resolution: tighter, slower.",
         ),
+        click.option(
+            "--relax-points",
+            type=click.IntRange(16, 64),
+            metavar="N",
+            help="Refine (implies --relax-fine) with N flow points per rope diameter in the last pass, 16 to 64 (default 16): tighter, slower.",
+        ),
+        click.option(
+            "--relax-escape",
+            type=click.IntRange(1),
+            metavar="N",
+            help="Relax (implies --relax), then N escape rounds: shake the tightest shape smoothly (seeded), relax it again, keep it if tighter.",
+        ),
     ]
     for option in reversed(options):
         func = option(func)
     return func
 
 
-def relaxed(real: Realization, steps: int | None, time_limit: float | None, fine: bool) -> Realization:
-    """Return ``real`` relaxed (:func:`lkspace.geometry.relax.relax`); say on stderr when a limit stopped it first."""
+def relaxed(
+    real: Realization,
+    steps: int | None,
+    time_limit: float | None,
+    fine: bool,
+    points: int | None = None,
+    escape: int | None = None,
+) -> Realization:
+    """Return ``real`` relaxed (:func:`lkspace.geometry.relax.relax`); say on stderr when a limit stopped it first.
+
+    ``points`` implies ``fine``.
+    """
     from ..geometry.relax import RELAX_STEPS, relax
 
-    out = relax(real, RELAX_STEPS if steps is None else steps, time_limit, fine)
+    out = relax(
+        real, RELAX_STEPS if steps is None else steps, time_limit, fine or points is not None, points, escape or 0
+    )
     note = None if out.relaxation is None else out.relaxation.note()
     if note is not None:
         flag = "--relax-steps" if out.relaxation is not None and out.relaxation.stopped == "steps" else "--relax-time"
