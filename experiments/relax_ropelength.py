@@ -58,9 +58,9 @@ LIMITS = ("--relax-steps", "--relax-time")
 """Flags that bound a relaxation (the others choose its shape and go into ``relax_flags``)."""
 
 
-def ideal_knots(max_crossings: int) -> dict[str, float]:
+def ideal_knots(max_crossings: int, path: Path = IDEAL) -> dict[str, float]:
     """``{name: ideal ropelength}`` of the prime knots of up to ``max_crossings`` crossings."""
-    with open(IDEAL) as f:
+    with open(path) as f:
         rows = list(csv.DictReader(f))
     out = {}
     for row in rows:
@@ -286,6 +286,7 @@ def with_constructed(name: str, ideal: float, row: dict, extra: list[str]) -> di
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--max-crossings", type=int, default=10)
+    parser.add_argument("--ideal", default=str(IDEAL), help="KnotInfo's ropelength table (default ../shared/).")
     parser.add_argument("--only", help="Comma list of knots (default: every one up to --max-crossings).")
     parser.add_argument("--relax-steps", type=int)
     parser.add_argument("--relax-time", type=float)
@@ -307,7 +308,7 @@ def main() -> None:
         help="Relax the knots still above the target after --fine again with " + " ".join(ESCAPE_FLAGS) + ".",
     )
     args = parser.parse_args()
-    knots = ideal_knots(args.max_crossings)
+    knots = ideal_knots(args.max_crossings, Path(args.ideal))
     if args.only:
         knots = {k: knots[k] for k in args.only.split(",")}
     extra = [*(["--relax-steps", str(args.relax_steps)] if args.relax_steps else [])]
