@@ -224,6 +224,8 @@ def test_escape_rounds_keep_the_type_never_loosen_and_repeat():
     assert once.relaxation.ropelength <= plain.ropelength and once.relaxation.steps > plain.steps
     assert once.relaxation == again.relaxation and all(np.array_equal(a, b) for a, b in zip(once.curves, again.curves))
     assert identify_curves(once.curves).name == "3_1"
+    other = lkspace.relax(real, escape=2, seed=1).relaxation  # another seed, other shakes
+    assert other is not None and other.steps != once.relaxation.steps
 
 
 def test_shaken_curves_move_by_the_amplitude_at_most_and_slowly():
@@ -255,12 +257,20 @@ def test_relax_points_and_escape_through_the_cli_are_tighter_and_repeat(capsys, 
 
 
 @pytest.mark.parametrize(
-    "bad", [("--relax-points", 8), ("--relax-points", 65), ("--relax-points", "x"), ("--relax-escape", 0)]
+    "bad",
+    [
+        ("--relax-points", 8),
+        ("--relax-points", 65),
+        ("--relax-points", "x"),
+        ("--relax-escape", 0),
+        ("--relax-escape", 1, "--relax-seed", -1),
+        ("--relax-seed", 3),  # seeds nothing without --relax-escape
+    ],
 )
 def test_relax_points_and_escape_refuse_bad_values_in_one_line(capsys, tmp_path, bad):
     code, _, err = run(capsys, "export", "dihedron:3", "--twist", "1", *bad, "-o", tmp_path / "x.obj")
     assert code != 0
-    one_line_error(err, bad[0])
+    one_line_error(err, bad[-2])
     assert not (tmp_path / "x.obj").exists()
 
 

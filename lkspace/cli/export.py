@@ -16,7 +16,7 @@ from ..model.scaffold import Scaffold
 from ..words import plural
 from .common import Context, emit, json_option, labels_of, load_mesh, nulls_of, weld_option
 from .numbers import Finite
-from .relaxing import relax_options, relaxed
+from .relaxing import check_seed, relax_options, relaxed
 
 if TYPE_CHECKING:
     from ..formats.options import FormatOptions, PictureOptions
@@ -298,6 +298,7 @@ def export_cmd(
     relax_fine: bool,
     relax_points: int | None,
     relax_escape: int | None,
+    relax_seed: int | None,
     thickness: float | None,
     clearance: float | None,
     units: str | None,
@@ -343,6 +344,7 @@ def export_cmd(
         )
     if thickness is not None and tube_radius is not None:
         raise UsageError("--thickness (a diameter in output units) and --tube-radius are exclusive")
+    check_seed(relax_seed, relax_escape)
     more = (
         relax_fine,
         relax_points is not None,
@@ -358,7 +360,9 @@ def export_cmd(
         from ..geometry.block import realize_block
 
         then = (
-            (lambda r: relaxed(r, relax_steps, relax_time, relax_fine, relax_points, relax_escape)) if relax else None
+            (lambda r: relaxed(r, relax_steps, relax_time, relax_fine, relax_points, relax_escape, relax_seed))
+            if relax
+            else None
         )
         with point_budget(output, tubes) as max_points:
             real = realize_block(scaffold, labels, nulls, params, sizes, max_points=max_points, relax=then)
@@ -366,7 +370,7 @@ def export_cmd(
         with point_budget(output, tubes) as max_points:
             real = realize(scaffold, labels, nulls, params, options=RealizeOptions(max_points=max_points))
             if relax:
-                real = relaxed(real, relax_steps, relax_time, relax_fine, relax_points, relax_escape)
+                real = relaxed(real, relax_steps, relax_time, relax_fine, relax_points, relax_escape, relax_seed)
     options = format_options(ext, tubes, thickness, clearance, units, scale, picture)
     pieces = None
     if isinstance(options, PrintOptions):
