@@ -12,7 +12,7 @@ sampling, and the refined one is tighter (by 0.3-3%); ``points`` samples the las
 pass more finely still.  **Escape rounds** (:mod:`~lkspace.geometry.escape`) then shake the
 tightest shape found smoothly, relax it again the same way and keep it if it came out
 tighter: the flow's minimum depends on where it starts.  Without a time limit the result
-depends on the design only: the same bytes at any load.  The result is scaled back to the realization's size and
+depends on the design (and the escape rounds' seed) only: the same bytes at any load.  The result is scaled back to the realization's size and
 centre; its tube radius is the rope's (the tube fills the space the relaxation found).
 
 A periodic scaffold's thread classes (:mod:`~lkspace.geometry.cell`) are relaxed in the
