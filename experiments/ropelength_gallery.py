@@ -4,7 +4,7 @@ Each knot's row (``results/ropelength/NAME.json``, written by
 ``experiments/relax_ropelength.py``) names the design it kept; the picture is that design
 relaxed and drawn by the real command, ``python -m lkspace export MESH --twist ... --relax
 --no-mesh --size 160x160 -o NAME.png`` with the row's ``relax_flags`` (``--relax-fine``, when
-the row is a refined relaxation; the relaxation is deterministic: the curve whose
+the row is a refined relaxation, and ``--relax-points``, ``--relax-escape`` where it escaped; the relaxation is deterministic: the curve whose
 ropelength the row records), then reduced to a 64-colour palette so 249 pictures stay near
 1 MB.  Pictures already made are kept (``--fresh`` redoes them).  Writes
 ``results/ropelength/gallery/NAME.png`` and ``results/ropelength/gallery.md`` (knots in
@@ -45,7 +45,9 @@ def picture(row: dict, out: Path) -> str | None:
     with tempfile.TemporaryDirectory() as tmp:
         raw = os.path.join(tmp, "knot.png")
         cmd = [sys.executable, "-m", "lkspace", "export", row["scaffold"], f"--twist={twist}", "--relax", "--no-mesh"]
-        cmd += row.get("relax_flags", [])  # --relax-fine where the row's curve is the refined one
+        cmd += row.get(
+            "relax_flags", []
+        )  # --relax-fine (--relax-points, --relax-escape) where the row's curve is the refined one
         cmd += ["--size", f"{SIZE}x{SIZE}", "-o", raw]
         proc = subprocess.run(cmd, capture_output=True, text=True, env={**os.environ, "PYTHONPATH": str(ROOT)})
         if proc.returncode:

@@ -210,3 +210,74 @@ def test_neighbour_list_holds_every_close_pair_after_capped_steps():
     want = flow.distinct_pairs(closer, ring, lengths, reach)
     assert len(want.i) >= len(circle)
     assert sorted(zip(got.i.tolist(), got.j.tolist())) == sorted(zip(want.i.tolist(), want.j.tolist()))
+
+
+def test_escape_rounds_keep_the_type_never_loosen_and_repeat():
+    pytest.importorskip("snappy")
+    from lkspace.knots.recognition import identify_curves
+
+    real = lkspace.realize("dihedron:3", 1)
+    plain = lkspace.relax(real).relaxation
+    once = lkspace.relax(real, escape=2)
+    again = lkspace.relax(real, escape=2)
+    assert plain is not None and once.relaxation is not None and once.relaxation.converged
+    assert once.relaxation.ropelength <= plain.ropelength and once.relaxation.steps > plain.steps
+    assert once.relaxation == again.relaxation and all(np.array_equal(a, b) for a, b in zip(once.curves, again.curves))
+    assert identify_curves(once.curves).name == "3_1"
+    other = lkspace.relax(real, escape=2, seed=1).relaxation  # another seed, other shakes
+    assert other is not None and other.steps != once.relaxation.steps
+
+
+def test_shaken_curves_move_by_the_amplitude_at_most_and_slowly():
+    from lkspace.geometry.escape import AMPLITUDE, RATE, shaken
+
+    t = np.linspace(0, 2 * np.pi, 300, endpoint=False)
+    curve = np.column_stack([np.cos(t), np.sin(t), np.sin(3 * t) / 4])
+    for seed in range(5):
+        (moved,) = shaken([curve], 0.2, np.random.default_rng(seed))
+        d = moved - curve
+        assert np.linalg.norm(d, axis=1).max() <= AMPLITUDE * 0.2 * (1 + 1e-12)
+        seg = np.linalg.norm(np.roll(curve, -1, axis=0) - curve, axis=1)
+        assert (np.linalg.norm(np.roll(d, -1, axis=0) - d, axis=1) <= RATE * seg * (1 + 1e-12)).all()
+    (tiny,) = shaken([curve / 100], 0.2, np.random.default_rng(0))  # a short curve: the rate limits the displacement
+    assert np.linalg.norm(tiny - curve / 100, axis=1).max() < AMPLITUDE * 0.2
+
+
+def test_relax_points_and_escape_through_the_cli_are_tighter_and_repeat(capsys, tmp_path):
+    fine = ropelength(exported(capsys, tmp_path, "dihedron:3", "1", "--relax-fine"), n_points=1500)["ropelength"]
+    outs = []
+    for name in ("a.obj", "b.obj"):
+        args = ("--relax-points", 24, "--relax-escape", 1, "-o", tmp_path / name, "--json")
+        code, out, err = run(capsys, "export", "dihedron:3", "--twist", "1", *args)
+        assert code == 0, err
+        outs.append(json.loads(out)["relaxation"])
+    assert outs[0] == outs[1] and outs[0]["converged"]
+    assert (tmp_path / "a.obj").read_bytes() == (tmp_path / "b.obj").read_bytes()
+    assert ropelength(read_obj_polylines(tmp_path / "a.obj"), n_points=1500)["ropelength"] < fine
+
+
+@pytest.mark.parametrize(
+    "bad",
+    [
+        ("--relax-points", 8),
+        ("--relax-points", 65),
+        ("--relax-points", "x"),
+        ("--relax-escape", 0),
+        ("--relax-escape", 1, "--relax-seed", -1),
+        ("--relax-seed", 3),  # seeds nothing without --relax-escape
+    ],
+)
+def test_relax_points_and_escape_refuse_bad_values_in_one_line(capsys, tmp_path, bad):
+    code, _, err = run(capsys, "export", "dihedron:3", "--twist", "1", *bad, "-o", tmp_path / "x.obj")
+    assert code != 0
+    one_line_error(err, bad[-2])
+    assert not (tmp_path / "x.obj").exists()
+
+
+@pytest.mark.parametrize(
+    "bad", [{"points": 20}, {"points": 65, "fine": True}, {"points": 16.0, "fine": True}, {"escape": -1}, {"seed": -2}]
+)
+def test_relax_refuses_bad_points_escape_and_seed(bad):
+    real = lkspace.realize("dihedron:3", 1)
+    with pytest.raises(GeometryError, match=next(iter(bad))):
+        lkspace.relax(real, **bad)

@@ -16,7 +16,7 @@ from ..model.scaffold import Scaffold
 from ..words import plural
 from .common import Context, emit, json_option, labels_of, load_mesh, nulls_of, weld_option
 from .numbers import Finite
-from .relaxing import relax_options, relaxed
+from .relaxing import check_seed, relax_options, relaxed
 
 if TYPE_CHECKING:
     from ..formats.options import FormatOptions, PictureOptions
@@ -296,6 +296,9 @@ def export_cmd(
     relax_steps: int | None,
     relax_time: float | None,
     relax_fine: bool,
+    relax_points: int | None,
+    relax_escape: int | None,
+    relax_seed: int | None,
     thickness: float | None,
     clearance: float | None,
     units: str | None,
@@ -341,21 +344,33 @@ def export_cmd(
         )
     if thickness is not None and tube_radius is not None:
         raise UsageError("--thickness (a diameter in output units) and --tube-radius are exclusive")
-    relax = relax or relax_fine or relax_steps is not None or relax_time is not None
+    check_seed(relax_seed, relax_escape)
+    more = (
+        relax_fine,
+        relax_points is not None,
+        relax_escape is not None,
+        relax_steps is not None,
+        relax_time is not None,
+    )
+    relax = relax or any(more)
     scaffold, labels, nulls = resolve_design(ctx, mesh, twist_spec, null_spec, row)
     params = params_of(radius, normal_offset, tube_radius, helix_radius, pitch)
     sizes = block_sizes(scaffold, block)
     if sizes is not None:
         from ..geometry.block import realize_block
 
-        then = (lambda r: relaxed(r, relax_steps, relax_time, relax_fine)) if relax else None
+        then = (
+            (lambda r: relaxed(r, relax_steps, relax_time, relax_fine, relax_points, relax_escape, relax_seed))
+            if relax
+            else None
+        )
         with point_budget(output, tubes) as max_points:
             real = realize_block(scaffold, labels, nulls, params, sizes, max_points=max_points, relax=then)
     else:
         with point_budget(output, tubes) as max_points:
             real = realize(scaffold, labels, nulls, params, options=RealizeOptions(max_points=max_points))
             if relax:
-                real = relaxed(real, relax_steps, relax_time, relax_fine)
+                real = relaxed(real, relax_steps, relax_time, relax_fine, relax_points, relax_escape, relax_seed)
     options = format_options(ext, tubes, thickness, clearance, units, scale, picture)
     pieces = None
     if isinstance(options, PrintOptions):

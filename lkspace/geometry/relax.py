@@ -8,8 +8,11 @@ than 0.1% over 400 steps), or stops early at a step or time limit, which
 :class:`Relaxation` records.  A **fine** relaxation then runs the flow on from the
 converged shape at twice the resolution until it converges again, twice (the second time
 with gentler curve shortening): the first flow's minimum is partly an artefact of its
-sampling, and the refined one is tighter (by 0.3-3%).  Without a time limit the result
-depends on the design only: the same bytes at any load.  The result is scaled back to the realization's size and
+sampling, and the refined one is tighter (by 0.3-3%); ``points`` samples the last fine
+pass more finely still.  **Escape rounds** (:mod:`~lkspace.geometry.escape`) then shake the
+tightest shape found smoothly, relax it again the same way and keep it if it came out
+tighter: the flow's minimum depends on where it starts.  Without a time limit the result
+depends on the design (and the escape rounds' seed) only: the same bytes at any load.  The result is scaled back to the realization's size and
 centre; its tube radius is the rope's (the tube fills the space the relaxation found).
 
 A periodic scaffold's thread classes (:mod:`~lkspace.geometry.cell`) are relaxed in the
@@ -21,7 +24,7 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass, replace
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
 
@@ -48,6 +51,9 @@ weight (the first pass: 0.25) of each."""
 
 FINE_START = 0.95
 """A fine pass starts at this share of the rope diameter the pass before it reached."""
+
+FINE_POINTS = (16, 64)
+"""Least and most flow points per rope diameter of the last fine pass (``points``; the least is the default)."""
 
 
 @dataclass(frozen=True)
@@ -94,7 +100,13 @@ class Relaxation:
 
 
 def relax(
-    realization: Realization, steps: int = RELAX_STEPS, time_limit: float | None = None, fine: bool = False
+    realization: Realization,
+    steps: int = RELAX_STEPS,
+    time_limit: float | None = None,
+    fine: bool = False,
+    points: int | None = None,
+    escape: int = 0,
+    seed: int = 0,
 ) -> Realization:
     """Return ``realization`` with its curves relaxed toward a tight shape (module docstring).
 
@@ -110,6 +122,15 @@ def relax(
     fine : bool
         Refine the converged shape at twice the resolution (module docstring): tighter,
         more work.  ``steps`` and ``time_limit`` bound all the passes together.
+    points : int or None
+        Flow points per rope diameter of the last fine pass, from 16 (``None``, the
+        default) to 64 (:data:`FINE_POINTS`): finer sampling, tighter (needs ``fine``).
+    escape : int
+        Escape rounds after the relaxation (module docstring), at least 0 (the default):
+        each relaxes a shaken copy of the tightest shape as the first relaxation ran and
+        keeps it if tighter; ``steps`` and ``time_limit`` bound them too.
+    seed : int
+        Seed of the escape rounds' displacements (default 0).
 
     Returns
     -------
@@ -129,15 +150,17 @@ def relax(
     (1, True, 'steps')
     """
     _check_limits(steps, time_limit)
+    passes = _fine_passes(fine, points)
+    _check_escape(escape, seed)
     name = realization.scaffold.name
     if not realization.trace.closed.all():
         raise GeometryError(f"{name}: relax needs closed strands (null edge-sides leave open ones)", usage=True)
     if realization.scaffold.dim:
-        return _relax_periodic(realization, steps, time_limit, fine)
+        return _relax_periodic(realization, steps, time_limit, Plan(passes, escape, seed))
     curves = realization.curves
     centre = np.vstack(curves).mean(axis=0)
     size = _spread(curves, centre)
-    flowed = _passes(curves, steps, time_limit, fine)
+    flowed = _escaped(curves, steps, time_limit, Plan(passes, escape, seed))
     new_centre = np.vstack(flowed.curves).mean(axis=0)
     factor = size / _spread(flowed.curves, new_centre)
     relaxed = [(c - new_centre) * factor + centre for c in flowed.curves]
@@ -156,10 +179,69 @@ def relax(
     )
 
 
-def _passes(
-    curves: list[np.ndarray], steps: int, time_limit: float | None, fine: bool, cell: Cell | None = None
+class Plan(NamedTuple):
+    """What a relaxation runs after its first pass (:func:`relax`'s ``fine``, ``points``, ``escape``, ``seed``)."""
+
+    passes: tuple[tuple[float, float], ...]
+    """(points per rope diameter, curve-shortening weight) of every fine pass"""
+    escape: int
+    """escape rounds"""
+    seed: int
+    """seed of the escape rounds' displacements"""
+
+
+def _fine_passes(fine: bool, points: int | None) -> tuple[tuple[float, float], ...]:
+    """Return the fine passes :func:`relax` runs (none without ``fine``); refuse ``points`` out of range or without ``fine``."""
+    if points is None:
+        return FINE_PASSES if fine else ()
+    low, high = FINE_POINTS
+    if isinstance(points, bool) or not isinstance(points, (int, np.integer)) or not low <= points <= high:
+        raise GeometryError(
+            f"points: must be a whole number from {low} to {high}, got {points!r}", usage=True, parameter="points"
+        )
+    if not fine:
+        raise GeometryError("points: samples the last fine pass, so it needs fine=True", usage=True, parameter="points")
+    return (*FINE_PASSES[:-1], (float(points), FINE_PASSES[-1][1]))
+
+
+def _escaped(
+    curves: list[np.ndarray], steps: int, time_limit: float | None, plan: Plan, cell: Cell | None = None
 ) -> FlowResult:
-    """Run the growing rope flow on ``curves`` to convergence, and with ``fine`` the fine pass after it (module docstring).
+    """Relax ``curves`` by :func:`_passes`, then run the escape rounds of ``plan`` (module docstring).
+
+    ``steps`` and ``time_limit`` bound the passes of every round together; the result is
+    the tightest rope found, its ``iterations`` count every round's, its ``stopped`` is
+    the last round's (``"converged"`` when every round converged).
+    """
+    from .escape import shaken
+
+    start = time.monotonic()
+    best = _passes(curves, steps, time_limit, plan.passes, cell)
+    used, stopped = best.iterations, best.stopped
+    rng = np.random.default_rng(plan.seed)
+    offsets = None if cell is None else cell.offsets()
+    for _ in range(plan.escape if stopped == "converged" else 0):
+        left = None if time_limit is None else time_limit - (time.monotonic() - start)
+        if used >= steps or (left is not None and left <= 0):
+            stopped = "steps" if used >= steps else "time"  # the next round did not run
+            break
+        trial = _passes(shaken(best.curves, 0.5 * best.diameter, rng, offsets), steps - used, left, plan.passes, cell)
+        used, stopped = used + trial.iterations, trial.stopped
+        if trial.ropelength < best.ropelength:
+            best = trial
+        if stopped != "converged":
+            break
+    return replace(best, iterations=used, stopped=stopped)
+
+
+def _passes(
+    curves: list[np.ndarray],
+    steps: int,
+    time_limit: float | None,
+    passes: tuple[tuple[float, float], ...],
+    cell: Cell | None = None,
+) -> FlowResult:
+    """Run the growing rope flow on ``curves`` to convergence, then the fine ``passes`` (module docstring).
 
     ``steps`` and ``time_limit`` bound the passes together; the result's ``iterations``
     count them all, its ``stopped`` is the last pass's.
@@ -169,7 +251,7 @@ def _passes(
         diameter=2 * rope_thickness(curves, cell=cell), grow=GROW, iterations=steps, time_limit=time_limit
     )
     flowed = rope_flow(curves, first, cell=cell)
-    for points, pull in FINE_PASSES if fine else ():
+    for points, pull in passes:
         if flowed.stopped != "converged":
             break
         left = None if time_limit is None else time_limit - (time.monotonic() - start)
@@ -188,7 +270,7 @@ def _passes(
     return flowed
 
 
-def _relax_periodic(realization: Realization, steps: int, time_limit: float | None, fine: bool) -> Realization:
+def _relax_periodic(realization: Realization, steps: int, time_limit: float | None, plan: Plan) -> Realization:
     """Relax the thread classes in the fixed periodic cell (module docstring) and place them at every copy."""
     from .cell import cell_of, classes_of, placed
     from .tracks import lattice_shift
@@ -198,7 +280,7 @@ def _relax_periodic(realization: Realization, steps: int, time_limit: float | No
     shifts = lattice_shift(real.scaffold, real.translations)
     classes, thread = classes_of(real.curves, real.closed, real.strand_of, real.copy_of, shifts)
     cell = cell_of(real.scaffold, real.trace)
-    flowed = _passes(classes, steps, time_limit, fine, cell)
+    flowed = _escaped(classes, steps, time_limit, plan, cell)
     curves = placed(flowed.curves, thread, cell, real.strand_of, real.copy_of, shifts)
     rope = 0.5 * flowed.diameter
     reach = max(real.scale, 10 * rope)
@@ -223,6 +305,13 @@ def _check_limits(steps: int, time_limit: float | None) -> None:
             usage=True,
             parameter="time_limit",
         )
+
+
+def _check_escape(escape: int, seed: int) -> None:
+    """Refuse a negative or non-integer number of escape rounds, or a seed that is not a non-negative integer."""
+    for name, value in (("escape", escape), ("seed", seed)):
+        if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < 0:
+            raise GeometryError(f"{name}: must be a whole number at least 0, got {value!r}", usage=True, parameter=name)
 
 
 def _spread(curves: list[np.ndarray], centre: np.ndarray) -> float:
