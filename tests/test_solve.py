@@ -426,3 +426,17 @@ def test_api_rejects_out_of_range_edges():
     for kw in ({"fixes": {12: 1}}, {"parities": {-1: 0}}, {"parities": {0: 2}}):
         with pytest.raises(LabelError):
             solve(cube, 1, **kw)
+
+
+def test_an_objective_with_ties_gives_the_same_design_at_any_load():
+    # the dodecahedron has many designs of least sum |t| (its rotations and others): a parallel
+    # search returned whichever worker met one first, so the answer changed from run to run
+    # (2 of 4 runs differed); interleaved, the same number of workers gives the same design
+    import subprocess
+    import sys
+
+    cmd = [sys.executable, "-m", "lkspace", "solve", "dodecahedron", "-n", "2", "--labels", "-1,1,2", "--fix", "0=2",
+           "--objective", "min-abs", "--workers", "2", "--json"]  # fmt: skip
+    runs = [subprocess.Popen(cmd, stdout=subprocess.PIPE, text=True) for _ in range(4)]  # at once: loaded
+    answers = {tuple(json.loads(run.communicate()[0])["solutions"][0]["labels"]) for run in runs}
+    assert len(answers) == 1, answers

@@ -85,12 +85,27 @@ def torus_obj(path, around=8, across=4):
 def test_on_a_mesh_too_big_to_walk_the_diagram_answers_or_the_refusal_names_the_labels_it_needs(tmp_path):
     """Tori of 36 and 64 edges (3^36, 3^64 designs: too many to walk).  On the first, the trefoil's diagram fits
     with labels -1..1 and its design comes back, said to be perhaps not the simplest; on the second (no
-    triangle of faces) the refusal names the label set that the diagram needs."""
+    triangle of faces) the diagram needs labels -3..3: without ``--labels`` the search takes them and says so,
+    with ``--labels -1..1`` the refusal names them."""
     topoly = pytest.importorskip("topoly")
     from lkspace import load, realize
 
-    refused = solve(torus_obj(tmp_path / "torus8x4.obj", 8, 4), "--type", "m3_1")
+    wide = torus_obj(tmp_path / "torus8x4.obj", 8, 4)
+    refused = solve(wide, "--type", "m3_1", "--labels", "-1..1")
     assert refused.returncode == 2 and "with labels in -3..3" in refused.stderr, refused.stderr
+    widened = solve(wide, "--type", "m3_1")
+    assert widened.returncode == 0, widened.stderr
+    answer = json.loads(widened.stdout)
+    assert answer["status"] == "found" and answer["label_set"] == [-3, -2, -1, 0, 1, 2, 3]
+    labels = answer["solutions"][0]["labels"]
+    assert max(map(abs, labels)) == 3  # the diagram needs them: none fits in -2..2
+    curves = realize(load(wide), np.array(labels)).curves
+    assert len(curves) == 1
+    assert topoly.homfly(np.asarray(curves[0]).tolist(), closure=0, max_cross=200, chiral=True) == "-3_1"
+    human = subprocess.run(
+        [sys.executable, "-m", "lkspace", "solve", wide, "--type", "m3_1"], capture_output=True, text=True
+    )
+    assert "labels -3..3: the diagram of m3_1 needs them on this mesh" in human.stdout, human.stdout
     mesh = torus_obj(tmp_path / "torus6x3.obj", 6, 3)
     done = solve(mesh, "--type", "m3_1")
     assert done.returncode == 0, done.stderr

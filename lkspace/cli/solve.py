@@ -6,6 +6,7 @@ import os
 import sys
 
 import click
+from click.core import ParameterSource
 
 from .. import io
 from ..errors import UsageError
@@ -212,7 +213,8 @@ def solve_cmd(
             )
         from .solve_target import target_cmd
 
-        target_cmd(ctx, mesh, type_name, chirality, linking_text, signed, no_zero, labels_spec, fix_items,
+        given = click.get_current_context().get_parameter_source("labels_spec") != ParameterSource.DEFAULT
+        target_cmd(ctx, mesh, type_name, chirality, linking_text, signed, no_zero, labels_spec, given, fix_items,
                    count, time_limit, processes, seed, output)  # fmt: skip
         return
     if components is None:

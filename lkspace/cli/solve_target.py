@@ -25,6 +25,7 @@ def target_cmd(
     signed: bool,
     no_zero: bool,
     labels_spec: str,
+    labels_given: bool,
     fix_items: tuple[str, ...],
     count: int,
     time_limit: float,
@@ -67,6 +68,7 @@ def target_cmd(
         processes=processes,
         seed=seed,
         tolerance=symmetry_tolerance(),
+        widen=not labels_given,
     )
     result = solve_target(scaffold, goal, label_set=labels, options=options)
     written = None
@@ -74,10 +76,14 @@ def target_cmd(
         io.write(scaffold, target_path, list(result.solutions[0].labels))
         written = os.path.abspath(output)
     data = {"label_set": labels.tolist(), "no_zero": no_zero, **result.to_dict(), "written": written}
+    widened = list(result.label_set) != labels.tolist()
 
     def human() -> None:
         line = f"{scaffold.name}: {result.status} — {plural(len(result.solutions), 'design')} of {goal.label}"
         click.echo(f"{line} [{result.stats.get('designs', 0):,} designs screened, {result.wall_time:.1f} s]")
+        if widened:
+            bound = result.label_set[-1]
+            click.echo(f"  labels -{bound}..{bound}: the diagram of {goal.label} needs them on this mesh")
         for k, sol in enumerate(result.solutions):
             name = sol.chiral_name or sol.name or ""
             matrix = None if sol.linking_matrix is None else [list(r) for r in sol.linking_matrix]

@@ -337,6 +337,7 @@ def solve_cp_sat(
     solver.parameters.catch_sigint_signal = False
     solver.parameters.num_workers = int(opts.workers)
     solver.parameters.random_seed = int(opts.seed)
+    solver.parameters.interleave_search = True  # ties broken alike at any load (for a number of workers)
     degrees = scaffold.edge_degrees
     solutions: list[Solution] = []
     status: SolveStatus = "unknown"

@@ -24,7 +24,7 @@ from __future__ import annotations
 import time
 from collections import Counter
 from collections.abc import Iterator
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any, Literal, TypeAlias
 
 import numpy as np
@@ -56,6 +56,7 @@ class TargetResult:
     complete: bool
     stats: JsonObject = field(default_factory=dict)
     reason: str = ""
+    label_set: tuple[int, ...] = ()
 
     def __repr__(self) -> str:
         return f"TargetResult({self.status}, {plural(len(self.solutions), 'solution')} for {self.goal.label})"
@@ -71,6 +72,8 @@ class TargetResult:
             "wall_time": round(self.wall_time, 3),
             "stats": self.stats,
         }
+        if self.label_set:
+            out["label_set"] = list(self.label_set)
         if self.goal.target is not None:
             out["target"] = self.goal.target.to_dict()
         if self.goal.linking is not None:
@@ -115,6 +118,10 @@ class SearchOptions:
         Projection seed.
     tolerance : float or None
         The symmetry search's, in mesh units (default: 1/100 of the shortest edge).
+    widen : bool
+        When the space is too big to walk and the target's diagram fits the mesh only with
+        labels past the label set, search ``-k..k`` with the least ``k`` that fits instead
+        of refusing (``label_set`` of the result says which).
     """
 
     no_zero: bool = False
@@ -125,6 +132,7 @@ class SearchOptions:
     processes: int = 1
     seed: int = 0
     tolerance: float | None = None
+    widen: bool = False
 
     def __post_init__(self) -> None:
         for name in ("count", "processes"):
@@ -161,7 +169,7 @@ def solve_target(
         task(f"searching {scaffold.name} for {goal.label}") as step,
         _screener(scaffold, goal, o, label_set) as run,
     ):
-        built, hint = _from_diagram(scaffold, goal, o, label_set, run, tally)
+        built, wider = _from_diagram(scaffold, goal, o, label_set, run, tally)
         simplest = [b for b in built if goal.target is not None and b.sum_abs == goal.target.crossings]
         if _genus(scaffold) == 0 and len(simplest) >= o.count:
             solutions = simplest[: o.count]
@@ -192,9 +200,18 @@ def solve_target(
                 if len(solutions) >= o.count or timed_out:
                     break
         except TooLargeError as exc:
-            if not built:
+            if not built and wider is not None and o.widen:
+                walked = False
+            elif not built:
+                hint = (
+                    "" if wider is None else f"; the diagram of {goal.label} fits here with labels in -{wider}..{wider}"
+                )
                 raise TooLargeError(f"{exc}{hint}") from None
-            walked = False
+            else:
+                walked = False
+    if not walked and not built and wider is not None:  # widen: the diagram's labels
+        wide = solve_target(scaffold, goal, label_set=np.arange(-wider, wider + 1), options=replace(o, widen=False))
+        return replace(wide, wall_time=time.monotonic() - t0)
     complete = walk.complete and not timed_out and len(solutions) < o.count
     more = [b for b in built if all(b.labels != s.labels for s in solutions)] if not walk.complete else []
     from_diagram = len(solutions) < o.count and bool(more)
@@ -213,7 +230,8 @@ def solve_target(
         status, reason = "unknown", "time ran out before the space was searched"
     stats: JsonObject = dict(sorted(tally.items()))
     stats["undetermined_examples"] = undetermined[:5]
-    return TargetResult(status, tuple(solutions), goal, time.monotonic() - t0, complete, stats, reason)
+    labels = tuple(int(v) for v in label_set)
+    return TargetResult(status, tuple(solutions), goal, time.monotonic() - t0, complete, stats, reason, labels)
 
 
 FIRST_PIECE = 64
@@ -286,10 +304,10 @@ class _screener:
 
 def _from_diagram(
     scaffold: Scaffold, goal: Goal, o: SearchOptions, label_set: np.ndarray, run: Any, tally: Counter[str]
-) -> tuple[list[TargetSolution], str]:
+) -> tuple[list[TargetSolution], int | None]:
     """Return the designs built from the target's diagram that name right twice, simplest first (``run``: the screener).
 
-    And a hint for a refusal: ``"; ... --labels -3..3"`` when every design built needs labels past ``label_set``.
+    And ``wider``: the least largest ``|t|`` of the designs ``label_set`` left out (``None``: none left out).
     """
     rows, orbits, wider = _diagram_candidates(scaffold, goal, o, label_set)
     matches = []
@@ -305,8 +323,7 @@ def _from_diagram(
             built.append(_solution(labels, orbit, goal, again))
         if len(built) >= o.count:
             break
-    hint = "" if wider is None else f"; the diagram of {goal.label} fits here with labels in -{wider}..{wider}"
-    return built, hint
+    return built, wider
 
 
 def _genus(s: Scaffold) -> int | None:
