@@ -176,7 +176,7 @@ def test_lookup_json_fields():
     assert LookupAnswer.from_json(out).to_json() == out  # the JSON is the record's, field for field
     assert set(out) == {
         "query", "name", "chirality", "common_name", "atlas", "searched", "found_in", "designs_total", "simplest_kept",
-        "designs",
+        "designs", "ideal_shape",
     }  # fmt: skip
     assert set(out["designs"][0]) == {
         "type", "common_name", "scaffold", "labels", "label_set", "sum_abs", "nonzero", "crossings", "mirror",
@@ -372,3 +372,44 @@ def test_sums_and_split_types_are_looked_up_as_the_atlas_spells_them():
     assert unlink["name"] == "split: 0_1 + 0_1" and unlink["designs"][0]["sum_abs"] == 0
     amphichiral = lookup("m4_1", check=False)  # identify does not tell the figure-eight knot's mirror apart
     assert amphichiral.returncode == 1 and "none identified as this chirality: ask for 4_1" in amphichiral.stderr
+
+
+def test_every_knot_to_ten_crossings_has_an_ideal_shape_within_five_percent():
+    import csv
+
+    from lkspace.linktypes.ideal_shapes import shipped_shapes
+
+    with open(ROOT.parent / "shared" / "ideal-ropelength.csv") as f:  # KnotInfo's column
+        ideal = {row["type"]: float(row["ropelength"]) for row in csv.DictReader(f)}
+    shapes = shipped_shapes()
+    assert len(shapes) == 249
+    assert set(shapes) == {name for name in ideal if name.split("_")[0].isdigit() and int(name.split("_")[0]) <= 10}
+    for name, shape in shapes.items():
+        assert shape.chiral_name.removeprefix("m") == name and shape.ideal == ideal[name]
+        assert shape.ropelength <= 1.05 * ideal[name], name
+    assert lookup_json("5_2")["ideal_shape"]["chiral_name"].removeprefix("m") == "5_2"
+    assert lookup_json("L6a4")["ideal_shape"] is None  # links: no table of ideal ropelengths here
+    assert "ideal shape" in lookup("7_4").stdout
+
+
+def test_the_ideal_shape_lookup_gives_is_drawn_within_five_percent(tmp_path):
+    """lookup --json -> its command -> the OBJ, measured by the independent tests/ropelength.py; the
+    curve is the knot lookup names (topoly), in the chirality it says."""
+    import shlex
+
+    import numpy as np
+
+    from tests.ropelength import read_obj_polylines, ropelength
+
+    shape = lookup_json("m3_1")["ideal_shape"]
+    cmd = shlex.split(shape["command"])
+    assert cmd[:2] == ["lkspace", "export"] and cmd[-2] == "-o"
+    out = tmp_path / "trefoil.obj"
+    done = subprocess.run([LKSPACE, *cmd[1:-1], str(out)], capture_output=True, text=True, env=ENV, timeout=600)
+    assert done.returncode == 0, done.stderr
+    curves = read_obj_polylines(str(out))
+    measured = ropelength(curves)["ropelength"]
+    assert measured <= 1.05 * 32.74 and abs(measured - shape["ropelength"]) < 0.01 * measured
+    topoly = pytest.importorskip("topoly")
+    points = np.asarray(curves[0][0]).tolist()
+    assert topoly.homfly(points, closure=0, chiral=True) == "-3_1"  # topoly's m3_1: the chirality lookup says

@@ -69,5 +69,12 @@ def lookup_cmd(name: str, limit: int, scaffold: str | None, atlas_file: str | No
         widths = [max(len(r[i]) for r in rows) for i in range(len(rows[0]) - 1)]
         for r in rows:
             click.echo("  " + "  ".join(c.ljust(w) for c, w in zip(r, widths, strict=False)) + "  " + r[-1])
+        shape = answer.ideal_shape
+        if shape is not None:
+            click.echo(
+                f"ideal shape ({shape.chiral_name}: ropelength {shape.ropelength:.1f}, "
+                f"{shape.ratio:.3f} x KnotInfo's {shape.ideal:.1f}):"
+            )
+            click.echo(f"  {shape.command()}")
 
     emit(ctx, answer.to_json(), human)

@@ -26,6 +26,7 @@ from .fields import (
     read_str,
     read_strs,
 )
+from .ideal_shapes import IdealShape
 from .spelling import Chirality
 
 
@@ -100,6 +101,7 @@ class LookupAnswer:
     designs_total: int
     simplest_kept: int
     designs: tuple[LookupDesign, ...]
+    ideal_shape: IdealShape | None = None
 
     @property
     def asked(self) -> str:
@@ -125,6 +127,7 @@ class LookupAnswer:
                 LookupDesign.from_json(x, f"{where}, designs[{i}]")
                 for i, x in enumerate(read_list(d, "designs", where))
             ),
+            None if d.get("ideal_shape") is None else IdealShape.from_json(d["ideal_shape"], f"{where}, ideal_shape"),
         )
 
     def to_json(self) -> JsonObject:
@@ -140,6 +143,7 @@ class LookupAnswer:
             "designs_total": self.designs_total,
             "simplest_kept": self.simplest_kept,
             "designs": [d.to_json() for d in self.designs],
+            "ideal_shape": None if self.ideal_shape is None else self.ideal_shape.to_json(),
         }
 
 

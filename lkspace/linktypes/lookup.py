@@ -39,6 +39,7 @@ from ..scaffolds.constructed import table, table_design
 from .answers import LookupAnswer, LookupDesign
 from .common_names import common_name, resolve_type
 from .fields import JsonObject
+from .ideal_shapes import ideal_shape
 from .records import INDEX_COLUMNS, AtlasResult, Example, IndexRow
 from .spelling import Chirality
 
@@ -132,12 +133,14 @@ def lookup(name: str, atlas: str | None = None, *, limit: int = LIMIT, scaffold:
 
     Returns a :class:`~lkspace.linktypes.records.LookupAnswer` (``to_json()``: ``{query,
     name, chirality, common_name, atlas, searched, found_in, designs_total, simplest_kept,
-    designs}``): ``designs_total`` counts the designs of the type (of the chirality asked)
+    designs, ideal_shape}``): ``designs_total`` counts the designs of the type (of the chirality asked)
     summed over the spaces searched, ``simplest_kept`` the simplest of them the atlas keeps
     (:mod:`~lkspace.linktypes.examples`), from which ``designs`` is drawn; ``designs`` (at
     most ``limit``, simplest first: sum |t|, non-zero labels, crossings, then scaffold and
     labels) holds :class:`~lkspace.linktypes.records.LookupDesign` ``{type, scaffold, labels,
-    label_set, sum_abs, nonzero, crossings, mirror, chiral_name, designs_of_type, command}``.
+    label_set, sum_abs, nonzero, crossings, mirror, chiral_name, designs_of_type, command}``;
+    ``ideal_shape`` (a knot up to 10 crossings, else ``None``) is the design and relaxation
+    that come closest to the ideal ropelength (:mod:`~lkspace.linktypes.ideal_shapes`).
     Raises :class:`TypeNotFound` (exit 1) when the atlas holds no such design.
     """
     wanted, chirality = resolve_type(name)
@@ -172,6 +175,7 @@ def lookup(name: str, atlas: str | None = None, *, limit: int = LIMIT, scaffold:
         designs_total=sum(r.count(chirality) for r in hits),
         simplest_kept=len(designs),
         designs=tuple(designs[:limit]),
+        ideal_shape=ideal_shape(wanted),
     )
 
 
