@@ -272,10 +272,14 @@ def _greedy_designs(
     if any(a is None and b is None for a, b in zip(stay, merge, strict=True)):
         return []
     rng = np.random.default_rng(seed)
-    designs, seen = [], set()
-    for _ in range(GREEDY_ATTEMPTS * count):  # a greedy order can get stuck: try others
+    designs: list[np.ndarray] = []
+    seen: set[bytes] = set()
+    closest = scaffold.n_faces + 1
+    for attempt in range(GREEDY_ATTEMPTS * count):  # a greedy order can get stuck: try others
         if deadline is not None and time.perf_counter() > deadline:
             break
+        if step is not None and attempt % 64 == 0 and attempt:  # shown every few seconds on a long run
+            step.note(f"greedy merging: {attempt:,} orders tried, {len(designs):,} designs, closest {closest}")
         must_merge = np.array([a is None for a in stay])
         order = np.lexsort((rng.random(scaffold.n_edges), -degrees, ~must_merge))
         pieces = UnionFind(scaffold.n_faces)
@@ -298,6 +302,7 @@ def _greedy_designs(
                 stuck = True
                 labels[e] = merge[e][1]  # keeps the partial design within the allowed labels
         if stuck or n_strands != query.components:
+            closest = min(closest, n_strands)
             if partial is not None and (not partial or n_strands < partial[0][0]):
                 partial[:] = [(n_strands, labels)]
                 if step is not None:
