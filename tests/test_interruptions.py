@@ -141,6 +141,23 @@ def test_any_command_stops_on_a_signal(signum, code, word):
     assert errors == [f"lkspace: error: {word}"] and "Traceback" not in err, err
 
 
+@pytest.mark.parametrize(
+    "signum, code, word", [(signal.SIGINT, 130, "interrupted"), (signal.SIGTERM, 143, "terminated")]
+)
+def test_solve_type_on_a_users_mesh_stops_on_a_signal(tmp_path, signum, code, word):
+    """``solve MESH --type NAME`` on a user's OBJ (issue 35: SIGTERM ignored for 14 min): stops once it searches."""
+    from tests.test_solve_user_mesh import prism_obj
+
+    mesh = prism_obj(tmp_path / "prism6.obj", 6)
+    proc = launch(["solve", mesh, "--type", "13a_1", "--labels", "-2..2", "--time-limit", "600"], progress=True)
+    wait_for_line(proc, "designs screened")
+    send(proc, signum, group=signum == signal.SIGINT)
+    _, err = proc.communicate(timeout=HANG)
+    assert proc.returncode == code, err  # the signal ended it: the time limit is ten minutes away
+    errors = [line for line in err.splitlines() if line.startswith("lkspace: error:")]
+    assert errors == [f"lkspace: error: {word}"] and "Traceback" not in err, err
+
+
 @pytest.mark.slow  # the first progress line comes after the first shard: seconds, a minute under load
 @pytest.mark.parametrize("jobs", ["1", "2"])
 def test_census_stops_between_shards_and_within_one(jobs):
