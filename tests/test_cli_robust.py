@@ -235,3 +235,31 @@ def test_surfaces_refuses_a_graph_too_big_to_list_before_memory_grows(tmp_path, 
     assert proc.returncode == 2, proc.stderr
     progress = [line for line in proc.stderr.splitlines(keepends=True) if line.startswith("lkspace: reading")]
     one_line(proc.stderr.replace("".join(progress), ""), *words)  # a progress line of the slow read may come first
+
+
+def time_options():
+    """``(command, option)`` of every option of every command that limits time (its name says so)."""
+    import click
+
+    from lkspace.cli import COMMANDS, cli
+
+    ctx = click.Context(cli)
+    found = []
+    for name in COMMANDS:
+        command = cli.get_command(ctx, name)
+        groups = command.commands.values() if isinstance(command, click.Group) else [command]
+        for cmd in groups:
+            for param in cmd.params:
+                if isinstance(param, click.Option) and any(w in param.name for w in ("time", "stop_after", "deadline")):
+                    found.append((f"{name} {cmd.name}" if cmd.name != name else name, param))
+    return found
+
+
+def test_every_time_limit_says_whether_it_counts_cpu_or_wall_clock_time():
+    """Issue 35: identify's limit was wall-clock time (a busy machine answered 'unknown' after 9 s of work);
+    each limit now counts CPU time or says it is wall-clock time, in its help."""
+    options = time_options()
+    assert {"identify", "solve", "atlas"} <= {command for command, _ in options}
+    for command, option in options:
+        words = option.help or ""
+        assert ("CPU" in words) != ("wall-clock" in words), f"{command} {option.opts[0]}: {words}"
