@@ -36,7 +36,7 @@ import pyarrow as pa
 import pyarrow.parquet as pq
 
 from ..errors import CatalogError, LkspaceWarning
-from .metadata import CatalogMetadata, JsonObject, decode
+from .metadata import LATER_KEYS, CatalogMetadata, JsonObject, decode
 from .records import Manifest, PartFooter
 from .schema import IDENTIFY_COLUMNS, METADATA_KEY, expected_schema
 from .transaction import MANIFEST, check_regular, file_sha256
@@ -204,13 +204,19 @@ def _manifest(folder: str) -> Manifest:
 
 
 def _same_catalog(part: CatalogMetadata, manifest: CatalogMetadata) -> bool:
-    """Whether a part and its manifest record the same catalog: scaffold, label set and settings.
+    """Whether a part and its manifest record the same catalog: every setting, the counts among them too.
 
-    Not the settings recorded since (:data:`~lkspace.catalog.records.LATER_KEYS`): a
-    resumed build keeps the parts of an earlier version beside new ones.
+    ``assignments``, ``group_order``, ``acting_order`` and ``canonical_rule`` included (an
+    edited manifest count read as intact, issue 35).  A setting recorded since
+    (:data:`~lkspace.catalog.metadata.LATER_KEYS`) is compared only where both record it:
+    a resumed build keeps the parts of an earlier version beside new ones.
     """
-    keys = ("format_version", "scaffold", "label_set", "symmetry", "mode", "filters", "sample", "seed", "dna")
-    return all(getattr(part, k) == getattr(manifest, k) for k in keys)
+    ours, theirs = part.to_json(), manifest.to_json()
+    for key in LATER_KEYS:
+        if key not in ours or key not in theirs:
+            ours.pop(key, None)
+            theirs.pop(key, None)
+    return ours == theirs
 
 
 def _open_folder(folder: str) -> CatalogParts:
