@@ -263,3 +263,22 @@ def test_every_time_limit_says_whether_it_counts_cpu_or_wall_clock_time():
     for command, option in options:
         words = option.help or ""
         assert ("CPU" in words) != ("wall-clock" in words), f"{command} {option.opts[0]}: {words}"
+
+
+@pytest.mark.parametrize("extra", [[], ["--dna", "8"]], ids=["plain", "dna"])
+def test_a_held_lock_stops_a_writer_before_it_reads_its_mesh(tmp_path, extra):
+    """Issue 35: the lock before any work; a --dna run took it only to write, after reading the mesh and its rows."""
+    import json
+    import socket
+
+    (tmp_path / "broken.obj").write_text("v 0 0 0\nf 1 2 3\n")  # read, it is refused; locked, it is never read
+    holder = subprocess.Popen([sys.executable, "-c", "import time; time.sleep(120)"])
+    try:
+        lock = tmp_path / ".same.parquet.lkspace-lock"
+        lock.write_text(json.dumps({"pid": holder.pid, "host": socket.gethostname(), "started": "now"}))
+        code, _, err = lk("enumerate", "broken.obj", *extra, "-o", "same.parquet", cwd=tmp_path)
+        assert code == 1
+        one_line(err, "another lkspace run is writing this catalog", f"pid {holder.pid}")
+    finally:
+        holder.kill()
+        holder.wait()
