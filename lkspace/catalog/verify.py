@@ -62,6 +62,9 @@ class CatalogParts:
         The run id of a folder's parts; ``None`` for a one-file catalog.
     unsealed : str, optional
         The first file whose metadata has no ``digest`` (:attr:`PartFooter.sealed`); ``None``: none.
+    unidentified : str, optional
+        The first part without knot/link columns when the manifest says its run identified them all
+        (an edited manifest, or a folder still being identified); ``None``: none.
     """
 
     path: str
@@ -71,6 +74,7 @@ class CatalogParts:
     checksums: tuple[str, ...] | None
     run: str | None = None
     unsealed: str | None = None
+    unidentified: str | None = None
 
     @property
     def n_rows(self) -> int:
@@ -238,7 +242,9 @@ def _open_folder(folder: str) -> CatalogParts:
     files = tuple(os.path.join(folder, name) for name in listed)
     rows = tuple(e.rows for e in entries)
     loose = next((f for f, footer in zip(files, footers, strict=True) if not footer.sealed), None)
-    return CatalogParts(folder, files, rows, footers[0], tuple(str(e.sha256) for e in entries), run, loose)
+    plain = next((f for f, footer in zip(files, footers, strict=True) if not footer.identified), None)
+    plain = plain if manifest.signature.identify else None
+    return CatalogParts(folder, files, rows, footers[0], tuple(str(e.sha256) for e in entries), run, loose, plain)
 
 
 def part_footer(file: str, i: int, manifest: Manifest) -> PartFooter:
@@ -343,6 +349,8 @@ def verify_catalog(path: str | os.PathLike[str]) -> CatalogCheck:
     parts = _structure(os.fspath(path))
     if parts.unsealed is not None:
         raise CatalogError(unsealed(parts.unsealed) + ": not verified (write the catalog again)")
+    if parts.unidentified is not None:
+        raise CatalogError(f"{parts.unidentified}: not identified, but the manifest says its run identified every part")
     checks: Checks
     if parts.checksums is not None:
         parts.verify_all()
