@@ -179,3 +179,11 @@ def test_too_many_points_is_advised_in_the_panels_terms():
         advice
         == "the curves of Grid would have about 7,290,000 points > 4,000,000; use smaller twists (or a mesh with fewer faces)"
     )
+
+
+def test_every_time_setting_says_whether_it_counts_cpu_or_wall_clock_time(blender):
+    """Issue 35: limits count CPU time or say they are wall-clock time (the panel's Solve limit said 'Seconds')."""
+    props = [p for p in blender.scene.lkspace.bl_rna.properties if "time" in p.identifier]
+    assert [p.identifier for p in props] == ["time_limit"]
+    for prop in props:
+        assert ("CPU" in prop.description) != ("wall-clock" in prop.description.lower()), prop.description

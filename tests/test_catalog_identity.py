@@ -172,3 +172,35 @@ def test_a_foreign_part_is_not_resumed_even_with_its_checksum_in_the_manifest(wr
         written_again = resumed(tmp_path / "sh.parquet")
         assert written_again.designs == TOTAL and written_again.shards_resumed == 2
     assert lkspace.verify_catalog(tmp_path / "sh.parquet").rows == TOTAL
+
+
+def manifest_edits():
+    """One edit of each setting a manifest records beside its parts (every key but the parts' list)."""
+    return [
+        ("assignments", lambda m: m.update(assignments=m["assignments"] + 1)),  # a summary count
+        ("group_order", lambda m: m.update(group_order=2 * m["group_order"])),
+        ("acting_order", lambda m: m.update(acting_order=m["acting_order"] // 2)),
+        ("symmetry_tolerance", lambda m: m.update(symmetry_tolerance=0.5)),
+        ("canonical_rule", lambda m: m.update(canonical_rule="smallest first")),
+        ("label_set", lambda m: m.update(label_set=[-2, 0, 2])),
+        ("symmetry", lambda m: m.update(symmetry="none")),
+        ("filters", lambda m: m["filters"].update(no_zero=True)),
+        ("sample", lambda m: m.update(sample=5)),
+        ("plan", lambda m: m.update(plan="0" * 16)),
+        ("scaffold", lambda m: m["scaffold"].update(name="cube")),
+        ("identify", lambda m: m.update(identify=True)),
+    ]
+
+
+@pytest.mark.parametrize(("key", "edit"), manifest_edits(), ids=[k for k, _ in manifest_edits()])
+def test_every_edited_manifest_setting_fails_verify(written, tmp_path, key, edit):
+    """Issue 35: a manifest's ``assignments`` (a summary count), group orders or canonical rule edited: 'intact'."""
+    sharded = tmp_path / "sh.parquet"
+    shutil.copytree(written / "sh.parquet", sharded)
+    edit_manifest(sharded, edit)
+    words = "not identified" if key == "identify" else "another catalog"
+    with pytest.raises(CatalogError, match=words):
+        lkspace.verify_catalog(sharded)
+    if key != "identify":  # read_catalog reads a folder being identified: verify is the judge of that setting
+        with pytest.raises(CatalogError, match=words):
+            lkspace.read_catalog(sharded)

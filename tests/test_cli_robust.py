@@ -235,3 +235,50 @@ def test_surfaces_refuses_a_graph_too_big_to_list_before_memory_grows(tmp_path, 
     assert proc.returncode == 2, proc.stderr
     progress = [line for line in proc.stderr.splitlines(keepends=True) if line.startswith("lkspace: reading")]
     one_line(proc.stderr.replace("".join(progress), ""), *words)  # a progress line of the slow read may come first
+
+
+def time_options():
+    """``(command, option)`` of every option of every command that limits time (its name says so)."""
+    import click
+
+    from lkspace.cli import COMMANDS, cli
+
+    ctx = click.Context(cli)
+    found = []
+    for name in COMMANDS:
+        command = cli.get_command(ctx, name)
+        groups = command.commands.values() if isinstance(command, click.Group) else [command]
+        for cmd in groups:
+            for param in cmd.params:
+                if isinstance(param, click.Option) and any(w in param.name for w in ("time", "stop_after", "deadline")):
+                    found.append((f"{name} {cmd.name}" if cmd.name != name else name, param))
+    return found
+
+
+def test_every_time_limit_says_whether_it_counts_cpu_or_wall_clock_time():
+    """Issue 35: identify's limit was wall-clock time (a busy machine answered 'unknown' after 9 s of work);
+    each limit now counts CPU time or says it is wall-clock time, in its help."""
+    options = time_options()
+    assert {"identify", "solve", "atlas"} <= {command for command, _ in options}
+    for command, option in options:
+        words = option.help or ""
+        assert ("CPU" in words) != ("wall-clock" in words), f"{command} {option.opts[0]}: {words}"
+
+
+@pytest.mark.parametrize("extra", [[], ["--dna", "8"]], ids=["plain", "dna"])
+def test_a_held_lock_stops_a_writer_before_it_reads_its_mesh(tmp_path, extra):
+    """Issue 35: the lock before any work; a --dna run took it only to write, after reading the mesh and its rows."""
+    import json
+    import socket
+
+    (tmp_path / "broken.obj").write_text("v 0 0 0\nf 1 2 3\n")  # read, it is refused; locked, it is never read
+    holder = subprocess.Popen([sys.executable, "-c", "import time; time.sleep(120)"])
+    try:
+        lock = tmp_path / ".same.parquet.lkspace-lock"
+        lock.write_text(json.dumps({"pid": holder.pid, "host": socket.gethostname(), "started": "now"}))
+        code, _, err = lk("enumerate", "broken.obj", *extra, "-o", "same.parquet", cwd=tmp_path)
+        assert code == 1
+        one_line(err, "another lkspace run is writing this catalog", f"pid {holder.pid}")
+    finally:
+        holder.kill()
+        holder.wait()

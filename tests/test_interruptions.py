@@ -141,6 +141,50 @@ def test_any_command_stops_on_a_signal(signum, code, word):
     assert errors == [f"lkspace: error: {word}"] and "Traceback" not in err, err
 
 
+@pytest.mark.parametrize(
+    "signum, code, word", [(signal.SIGINT, 130, "interrupted"), (signal.SIGTERM, 143, "terminated")]
+)
+def test_solve_type_on_a_users_mesh_stops_on_a_signal(tmp_path, signum, code, word):
+    """``solve MESH --type NAME`` on a user's OBJ (issue 35: SIGTERM ignored for 14 min): stops once it searches."""
+    from tests.test_solve_user_mesh import prism_obj
+
+    mesh = prism_obj(tmp_path / "prism6.obj", 6)
+    proc = launch(["solve", mesh, "--type", "13a_1", "--labels", "-2..2", "--time-limit", "600"], progress=True)
+    wait_for_line(proc, "designs screened")
+    send(proc, signum, group=signum == signal.SIGINT)
+    _, err = proc.communicate(timeout=HANG)
+    assert proc.returncode == code, err  # the signal ended it: the time limit is ten minutes away
+    errors = [line for line in err.splitlines() if line.startswith("lkspace: error:")]
+    assert errors == [f"lkspace: error: {word}"] and "Traceback" not in err, err
+
+
+NAMEDTUPLE_KERNEL = """
+import os, signal, threading
+import numpy as np
+import lkspace
+from lkspace.knots.keyed import keys_of
+
+scaffold = lkspace.load("cube")
+labels = np.random.default_rng(0).integers(-2, 3, size=(5_000, scaffold.n_edges))
+keys_of(scaffold, labels[:10])  # loaded: the signals below come while the kernel computes
+for delay in (0.02, 0.05, 0.1):
+    threading.Timer(delay, os.kill, (os.getpid(), signal.SIGINT)).start()
+    try:
+        keys_of(scaffold, labels)
+    except KeyboardInterrupt:
+        print("interrupted")
+"""
+
+
+@pytest.mark.xfail(strict=True, reason="open (issue 35): numba calls NULL boxing a NamedTuple when a signal is pending")
+def test_a_signal_during_a_kernel_returning_a_named_tuple_is_an_interrupt_not_a_crash():
+    """Issue 35: Ctrl-C or SIGTERM during ``design_keys`` (atlas, solve --type) was a segmentation fault, exit 139:
+    numba, boxing the KeyArrays it returns, calls Python to find the class, which raised, and then called NULL."""
+    done = subprocess.run([sys.executable, "-c", NAMEDTUPLE_KERNEL], capture_output=True, text=True, timeout=HANG)
+    assert done.returncode == 0, (done.returncode, done.stderr[-2000:])
+    assert done.stdout.split() == ["interrupted"] * 3  # each raised once the kernel returned
+
+
 @pytest.mark.slow  # the first progress line comes after the first shard: seconds, a minute under load
 @pytest.mark.parametrize("jobs", ["1", "2"])
 def test_census_stops_between_shards_and_within_one(jobs):

@@ -210,3 +210,12 @@ def test_every_field_of_every_endpoint_with_every_json_value_kind(url, path):
             for token in NON_FINITE:
                 r = c.post(f"/api/{path}", content=with_field(base, field, f"[{token}]").encode(), headers=JSON)
                 assert r.status_code == 400 and "finite numbers" in r.json()["error"]["message"], (field, token)
+
+
+def test_the_solve_time_limit_says_it_is_wall_clock_time(url):
+    """Issue 35: the page's solve limit, and its refusal, say what the seconds count."""
+    with httpx.Client(base_url=url, timeout=60) as c:
+        field = next(line for line in c.get("/").text.splitlines() if 'id="sv-limit"' in line)
+        assert "wall-clock" in field, field
+        done = c.post("/api/solve", json={"key": "cube", "components": 1, "time_limit": 0})
+    assert done.status_code == 400 and "wall-clock" in done.json()["error"]["message"], done.text

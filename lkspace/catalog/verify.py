@@ -36,7 +36,7 @@ import pyarrow as pa
 import pyarrow.parquet as pq
 
 from ..errors import CatalogError, LkspaceWarning
-from .metadata import CatalogMetadata, JsonObject, decode
+from .metadata import LATER_KEYS, CatalogMetadata, JsonObject, decode
 from .records import Manifest, PartFooter
 from .schema import IDENTIFY_COLUMNS, METADATA_KEY, expected_schema
 from .transaction import MANIFEST, check_regular, file_sha256
@@ -62,6 +62,9 @@ class CatalogParts:
         The run id of a folder's parts; ``None`` for a one-file catalog.
     unsealed : str, optional
         The first file whose metadata has no ``digest`` (:attr:`PartFooter.sealed`); ``None``: none.
+    unidentified : str, optional
+        The first part without knot/link columns when the manifest says its run identified them all
+        (an edited manifest, or a folder still being identified); ``None``: none.
     """
 
     path: str
@@ -71,6 +74,7 @@ class CatalogParts:
     checksums: tuple[str, ...] | None
     run: str | None = None
     unsealed: str | None = None
+    unidentified: str | None = None
 
     @property
     def n_rows(self) -> int:
@@ -204,13 +208,19 @@ def _manifest(folder: str) -> Manifest:
 
 
 def _same_catalog(part: CatalogMetadata, manifest: CatalogMetadata) -> bool:
-    """Whether a part and its manifest record the same catalog: scaffold, label set and settings.
+    """Whether a part and its manifest record the same catalog: every setting, the counts among them too.
 
-    Not the settings recorded since (:data:`~lkspace.catalog.records.LATER_KEYS`): a
-    resumed build keeps the parts of an earlier version beside new ones.
+    ``assignments``, ``group_order``, ``acting_order`` and ``canonical_rule`` included (an
+    edited manifest count read as intact, issue 35).  A setting recorded since
+    (:data:`~lkspace.catalog.metadata.LATER_KEYS`) is compared only where both record it:
+    a resumed build keeps the parts of an earlier version beside new ones.
     """
-    keys = ("format_version", "scaffold", "label_set", "symmetry", "mode", "filters", "sample", "seed", "dna")
-    return all(getattr(part, k) == getattr(manifest, k) for k in keys)
+    ours, theirs = part.to_json(), manifest.to_json()
+    for key in LATER_KEYS:
+        if key not in ours or key not in theirs:
+            ours.pop(key, None)
+            theirs.pop(key, None)
+    return ours == theirs
 
 
 def _open_folder(folder: str) -> CatalogParts:
@@ -232,7 +242,9 @@ def _open_folder(folder: str) -> CatalogParts:
     files = tuple(os.path.join(folder, name) for name in listed)
     rows = tuple(e.rows for e in entries)
     loose = next((f for f, footer in zip(files, footers, strict=True) if not footer.sealed), None)
-    return CatalogParts(folder, files, rows, footers[0], tuple(str(e.sha256) for e in entries), run, loose)
+    plain = next((f for f, footer in zip(files, footers, strict=True) if not footer.identified), None)
+    plain = plain if manifest.signature.identify else None
+    return CatalogParts(folder, files, rows, footers[0], tuple(str(e.sha256) for e in entries), run, loose, plain)
 
 
 def part_footer(file: str, i: int, manifest: Manifest) -> PartFooter:
@@ -337,6 +349,8 @@ def verify_catalog(path: str | os.PathLike[str]) -> CatalogCheck:
     parts = _structure(os.fspath(path))
     if parts.unsealed is not None:
         raise CatalogError(unsealed(parts.unsealed) + ": not verified (write the catalog again)")
+    if parts.unidentified is not None:
+        raise CatalogError(f"{parts.unidentified}: not identified, but the manifest says its run identified every part")
     checks: Checks
     if parts.checksums is not None:
         parts.verify_all()

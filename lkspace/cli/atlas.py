@@ -50,14 +50,14 @@ from .numbers import Finite
     default=TIME_LIMIT,
     show_default=True,
     metavar="S",
-    help="Seconds per design for identification (past it: an unknown type); 0: no limit.",
+    help="CPU seconds per design for identification (past it: an unknown type); 0: no limit.",
 )
 @click.option(
     "--stop-after",
     type=Finite(0),
     default=0,
     metavar="S",
-    help="Identify for at most S seconds, then write the atlas of the designs done (complete: false); 0: no limit.",
+    help="Identify for at most S seconds of wall-clock time, then write the atlas of the designs done (complete: false); 0: no limit.",
 )
 @click.option("--seed", type=click.IntRange(0, 2**31 - 1), default=0, show_default=True, help="Projection seed.")
 @json_option

@@ -11,6 +11,7 @@ choose labels, symmetry or how a large walk runs are refused.
 
 from __future__ import annotations
 
+import contextlib
 import time
 from dataclasses import asdict
 from typing import Any
@@ -41,21 +42,29 @@ WHY = {
 
 
 def dna_enumerate(ctx: Context, kw: dict[str, Any], scale: float, window: float) -> None:
-    """Write or count the DNA catalog and report it as enumerate does."""
+    """Write or count the DNA catalog and report it as enumerate does (``-o``: under the catalog's lock)."""
+    output = None if kw["count_only"] else kw["output"]
+    with contextlib.ExitStack() as held:
+        if output is not None:  # a bad -o fails, and a second run on it stops, before any work
+            from ..catalog.lock import catalog_lock
+            from ..catalog.remote import remote_url
+            from ..catalog.transaction import catalog_target
+
+            if remote_url(output) is not None:
+                raise UsageError(f"-o {output}: a --dna catalog is one local .parquet file")
+            target = catalog_target(output, (kw["mesh"],), "-o")
+            held.enter_context(catalog_lock(target.lock, target.shown))  # held again by the writer: a no-op
+        _dna_run(ctx, kw, scale, window, output)
+
+
+def _dna_run(ctx: Context, kw: dict[str, Any], scale: float, window: float, output: str | None) -> None:
+    """Load the mesh, then write (``output``) or count the DNA catalog and report it."""
     import numpy as np
 
     from ..catalog.dna_catalog import count_dna, write_dna_catalog
     from ..catalog.dna_rows import dna_space
     from ..dna.search import natural_twist
 
-    output = None if kw["count_only"] else kw["output"]
-    if output is not None:  # a bad -o fails before any work
-        from ..catalog.remote import remote_url
-        from ..catalog.transaction import catalog_target
-
-        if remote_url(output) is not None:
-            raise UsageError(f"-o {output}: a --dna catalog is one local .parquet file")
-        catalog_target(output, (kw["mesh"],), "-o")
     if kw["identify"] and output is None:
         raise UsageError("--identify names the rows of a written catalog: give -o CATALOG.parquet")
     scaffold = load_mesh(ctx, kw["mesh"])

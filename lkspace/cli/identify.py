@@ -29,7 +29,7 @@ TIME_LIMIT = 60.0
     default=TIME_LIMIT,
     show_default=True,
     metavar="S",
-    help="Stop after S seconds with the status 'unknown: time limit ...'; 0: no limit.",
+    help="Stop after S seconds of the naming's CPU time with the status 'unknown: time limit ...'; 0: no limit.",
 )
 @click.option(
     "--geometric",

@@ -34,7 +34,7 @@ def relax_options(func: F) -> F:
             "--relax-time",
             type=Finite(0, low_open=True),
             metavar="SECONDS",
-            help="Relax (implies --relax) for at most SECONDS, > 0 (default: no limit; a run it stops depends on the load).",
+            help="Relax (implies --relax) for at most SECONDS of wall-clock time, > 0 (default: no limit; a run it stops depends on the load).",
         ),
         click.option(
             "--relax-fine",

@@ -124,7 +124,7 @@ MAX_COUNT = 10_000
     default=DEFAULT_TIME_LIMIT,
     show_default=True,
     metavar="S",
-    help="Give up after S seconds (status 'unknown' if nothing is proved); 0: no limit.",
+    help="Give up after S seconds of wall-clock time (status 'unknown' if nothing is proved); 0: no limit.",
 )
 @click.option(
     "--workers",

@@ -266,7 +266,7 @@ class SolveRequest:
             or isinstance(limit, bool)
             or not (math.isfinite(limit) and 0 < limit <= 600)
         ):
-            raise BadRequest("time_limit: seconds in (0, 600]")
+            raise BadRequest("time_limit: seconds of wall-clock time in (0, 600]")
         label_set = data.get("label_set", "-2..2")
         if not isinstance(label_set, str) or len(label_set) > 200:
             raise BadRequest("label_set: text like -2..2 or -1,1")

@@ -30,6 +30,10 @@ def shape_changed(settings: Any, context: Any) -> None:
         live.regenerate(obj, context.scene)
 
 
+SOLVE_LIMIT = "Seconds of wall-clock time for Solve"
+"""What the panel's Time limit counts (issue 35: every limit says whether it is CPU or wall-clock time)."""
+
+
 class LkspaceSettings(bpy.types.PropertyGroup):
     """Scene settings of the lkspace panel."""
 
@@ -42,7 +46,7 @@ class LkspaceSettings(bpy.types.PropertyGroup):
     no_zero: bpy.props.BoolProperty(name="No zero", default=True, description="Never use twist 0")  # type: ignore[valid-type]
     seed: bpy.props.IntProperty(name="Seed", default=0, min=0)  # type: ignore[valid-type]
     components: bpy.props.IntProperty(name="Components", default=1, min=1)  # type: ignore[valid-type]
-    time_limit: bpy.props.FloatProperty(name="Time limit", default=20.0, min=0.5, description="Seconds for Solve")  # type: ignore[valid-type]
+    time_limit: bpy.props.FloatProperty(name="Time limit", default=20.0, min=0.5, description=SOLVE_LIMIT)  # type: ignore[valid-type]
     live: bpy.props.BoolProperty(name="Live", default=True, update=live_toggled, description="Regenerate on edits")  # type: ignore[valid-type]
     relax: bpy.props.BoolProperty(name="Relax", description="Strands drawn tight (lkspace.relax, until it converges)")  # type: ignore[valid-type]
     engine: bpy.props.EnumProperty(name="Engine", items=ENGINES)  # type: ignore[valid-type]
