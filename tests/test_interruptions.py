@@ -176,10 +176,6 @@ for delay in (0.02, 0.05, 0.1):
 """
 
 
-@pytest.mark.xfail(
-    strict=False,
-    reason="open (issue 35): numba calls NULL boxing a NamedTuple when a signal is pending; not strict: a signal that misses the kernel passes",
-)
 def test_a_signal_during_a_kernel_returning_a_named_tuple_is_an_interrupt_not_a_crash():
     """Issue 35: Ctrl-C or SIGTERM during ``design_keys`` (atlas, solve --type) was a segmentation fault, exit 139:
     numba, boxing the KeyArrays it returns, calls Python to find the class, which raised, and then called NULL."""

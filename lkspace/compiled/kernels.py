@@ -117,14 +117,28 @@ class Kernel:
         return self._compiled
 
     def __call__(self, *args: Any) -> Any:
-        """Run the compiled kernel on ``args`` (compiling it first if needed)."""
-        return self.compiled(*args)
+        """Run the compiled kernel on ``args`` (compiling it first if needed).
+
+        A signal that came during the call is raised once the call returns, where numba
+        boxes the result (it unpickles the result's types in Python); numba then reports a
+        ``SystemError`` caused (through more of them) by the ``KeyboardInterrupt`` (or
+        SIGTERM's ``Terminated``), which goes on up as itself.
+        """
+        try:
+            return self.compiled(*args)
+        except SystemError as exc:
+            cause: BaseException | None = exc
+            while isinstance(cause, SystemError):  # numba's, one per value it boxed
+                cause = cause.__cause__
+            if isinstance(cause, KeyboardInterrupt):
+                raise cause from None
+            raise
 
     def run(self, work: int, *args: Any) -> Any:
         """Run on ``args``: as plain Python when ``work < SMALL_WORK``, else compiled."""
         if work < SMALL_WORK and self._compiled is None:
             return self.py_func(*args)
-        return self.compiled(*args)
+        return self(*args)
 
     def __repr__(self) -> str:
         state = "compiled" if self._compiled is not None else "not compiled yet"

@@ -160,7 +160,7 @@ def design_keys(
     work: Scratch,
     max_crossings: int,
     point: int,
-) -> KeyArrays:
+) -> tuple[np.ndarray, ...]:
     """Keys of many designs of a template (``tmpl``: :meth:`DiagramTemplate.arrays`).
 
     ``vidx_2d`` ``(n_designs, n_edges)``: indices into the template's ``label_values``.
@@ -168,7 +168,9 @@ def design_keys(
     ``point`` is ``x = sqrt(t)`` modulo :data:`PRIME` at which the Jones polynomial is
     also evaluated (for filters comparing it with a target's, :func:`jones_residue`).
 
-    Returns the :class:`KeyArrays` of the designs, in the order of ``vidx_2d``'s rows.
+    Returns the fields of the designs' :class:`KeyArrays`, in its order, as a plain tuple:
+    numba boxing a NamedTuple looks its class up in Python, and a signal raised there made
+    it call NULL (a segmentation fault on Ctrl-C); :func:`keys_of` makes the record.
     """
     n_designs = vidx_2d.shape[0]
     size = len(tmpl.crossing_sign)
@@ -206,16 +208,7 @@ def design_keys(
         keys[d, 1] = h2
         keyed[d] = True
         jones_at[d] = _residue_at(poly, lowest, length, point, inverse)
-    return KeyArrays(
-        keys=keys,
-        crossings=crossings,
-        components=components,
-        keyed=keyed,
-        link_offsets=link_offsets,
-        link_values=link_values[: link_offsets[n_designs]],
-        free=free,
-        jones_at=jones_at,
-    )
+    return (keys, crossings, components, keyed, link_offsets, link_values[: link_offsets[n_designs]], free, jones_at)
 
 
 PRIME = 2_147_483_647
@@ -283,7 +276,9 @@ def keys_of(scaffold: Scaffold, labels_2d: np.ndarray, seed: int = 0, label_valu
     values = np.unique(labels_2d) if label_values is None else np.union1d(label_values, np.unique(labels_2d))
     tmpl = template(scaffold, values, seed)
     vidx = tmpl.value_index(labels_2d)
-    out = design_keys(tmpl.arrays(), np.ascontiguousarray(vidx), work_array(tmpl), MAX_CROSSINGS, jones_point())
+    out = KeyArrays(
+        *design_keys(tmpl.arrays(), np.ascontiguousarray(vidx), work_array(tmpl), MAX_CROSSINGS, jones_point())
+    )
     return DesignKeys(
         template=tmpl,
         vidx=vidx,
