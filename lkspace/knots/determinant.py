@@ -23,7 +23,7 @@ import numpy as np
 from ..compiled.kernels import helper, kernel
 from ..model.scaffold import Scaffold
 from .assembly import Scratch, assemble_into, work_array
-from .keyed import PRIME
+from .keyed import PRIME, power_mod
 from .labels_diagram import TemplateArrays, template
 
 MAX_DET_CROSSINGS = 400
@@ -97,20 +97,6 @@ def _bareiss(m: list[list[int]]) -> int:
 
 
 @helper
-def _inverse(a: int) -> int:
-    """Return ``a ** -1`` modulo :data:`PRIME` (``a`` not divisible by it)."""
-    out = 1
-    b = a % PRIME
-    e = PRIME - 2
-    while e > 0:
-        if e & 1:
-            out = out * b % PRIME
-        b = b * b % PRIME
-        e >>= 1
-    return out
-
-
-@helper
 def _root(parent: np.ndarray, e: int) -> int:
     """Return the representative of edge ``e``'s arc in the union-find ``parent``."""
     while parent[e] != e:
@@ -169,7 +155,7 @@ def determinant_residue(pd: np.ndarray, m: int, n_free: int, scratch: np.ndarray
         for j in range(k, n):  # a row swap changes the sign only
             matrix[k, j], matrix[pivot, j] = matrix[pivot, j], matrix[k, j]
         det = det * matrix[k, k] % PRIME
-        inv = _inverse(matrix[k, k])
+        inv = power_mod(matrix[k, k], PRIME - 2)
         for r in range(k + 1, n):
             f = matrix[r, k] * inv % PRIME
             if f == 0:

@@ -122,7 +122,7 @@ def key_hashes(lk: np.ndarray, n_comp: int, lowest: int, poly: np.ndarray) -> tu
 def _residue_at(poly: np.ndarray, lowest: int, length: int, point: int, inverse: int) -> int:
     """Return the Laurent polynomial ``poly[:length]`` (from ``x^lowest``) at ``x = point`` modulo :data:`PRIME`."""
     value = 0
-    step = _power(point if lowest >= 0 else inverse, abs(lowest))
+    step = power_mod(point if lowest >= 0 else inverse, abs(lowest))
     for i in range(length):
         value = (value + (poly[i] % PRIME) * step) % PRIME
         step = step * point % PRIME
@@ -186,7 +186,7 @@ def design_keys(
     link_values = np.zeros(16 * n_designs, np.int64)
     free = np.zeros(n_designs, np.int64)
     jones_at = np.zeros(n_designs, np.int64)
-    inverse = _power(point, PRIME - 2)
+    inverse = power_mod(point, PRIME - 2)
     for d in range(n_designs):
         m, n_comp, n_free = assemble_into(tmpl, vidx_2d[d], pd, signs, comps, work)
         crossings[d] = m
@@ -216,7 +216,7 @@ PRIME = 2_147_483_647
 
 
 @helper
-def _power(base: int, exponent: int) -> int:
+def power_mod(base: int, exponent: int) -> int:
     """Return ``base ** exponent`` modulo :data:`PRIME` (``exponent >= 0``)."""
     out = 1
     b = base % PRIME
