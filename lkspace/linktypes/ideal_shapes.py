@@ -46,10 +46,9 @@ class IdealShape:
     def command(self, output: str | None = None) -> str:
         """Return the ``lkspace export`` command that draws this shape (into ``output``, default ``NAME.obj``)."""
         twist = ",".join(map(str, self.labels))
-        out = output or f"{self.chiral_name}.obj"
-        return shlex.join(
-            ["lkspace", "export", self.scaffold, "--twist", twist, "--relax", *self.relax_flags, "-o", out]
-        )
+        out = shlex.quote(output or f"{self.chiral_name}.obj")
+        flags = "".join(f" {shlex.quote(f)}" for f in self.relax_flags)
+        return f"lkspace export {shlex.quote(self.scaffold)} --twist {twist} --relax{flags} -o {out}"
 
     @classmethod
     def from_json(cls, data: object, where: str = "ideal shape") -> IdealShape:
