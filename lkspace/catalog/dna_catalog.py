@@ -13,12 +13,12 @@ buildable or not) and ``dna`` (:class:`~lkspace.catalog.metadata.DnaSetting`).
 from __future__ import annotations
 
 import os
-from dataclasses import replace
-from typing import Any
+from dataclasses import dataclass, replace
 
 import numpy as np
 
 from ..errors import CatalogError
+from ..io.json_values import JsonObject
 from .dna_rows import DNA_RULE, DnaSpace, dna_batches, dna_blocks
 from .lock import catalog_lock
 from .metadata import CatalogMetadata
@@ -36,8 +36,36 @@ def dna_metadata(space: DnaSpace, components: int | None, max_designs: int | Non
     return replace(meta, assignments=space.assignments, canonical_rule=DNA_RULE, dna=space.setting)
 
 
-def count_dna(space: DnaSpace, components: int | None = None, max_designs: int | None = None) -> dict[str, Any]:
-    """Totals of a DNA catalog without writing it: ``designs``, ``assignments``, ``by_components``."""
+@dataclass(frozen=True)
+class DnaTotals:
+    """What a DNA catalog holds (counted, or ``written`` to that path): the head of ``enumerate --dna --json``."""
+
+    designs: int
+    assignments: int
+    by_components: dict[str, int]
+    label_set: tuple[int, ...]
+    written: str | None = None
+
+    def to_json(self) -> JsonObject:
+        """Return ``{designs, assignments, by_components, group_order, written, symmetry, label_set}``."""
+        return {
+            "designs": self.designs,
+            "assignments": self.assignments,
+            "by_components": dict(self.by_components),
+            "group_order": 1,
+            "written": self.written,
+            "symmetry": "none",
+            "label_set": list(self.label_set),
+        }
+
+
+def _by_components(counts: dict[str, int]) -> dict[str, int]:
+    """Return ``counts`` in order of the number of components."""
+    return dict(sorted(counts.items(), key=lambda kv: int(kv[0])))
+
+
+def count_dna(space: DnaSpace, components: int | None = None, max_designs: int | None = None) -> DnaTotals:
+    """Return the totals of a DNA catalog without writing it."""
     rows, by = 0, dict[str, int]()
     for block in dna_blocks(space, components):
         comps = block.traces.components[block.row_class]
@@ -46,17 +74,13 @@ def count_dna(space: DnaSpace, components: int | None = None, max_designs: int |
         rows += len(comps)
         for c, n in zip(*np.unique(comps, return_counts=True), strict=True):
             by[str(int(c))] = by.get(str(int(c)), 0) + int(n)
-    return {"designs": rows, "assignments": space.assignments, "by_components": dict(sorted(by.items()))}
+    return DnaTotals(rows, space.assignments, _by_components(by), tuple(space.space.label_set.tolist()))
 
 
 def write_dna_catalog(
     space: DnaSpace, path: str | os.PathLike[str], components: int | None = None, max_designs: int | None = None
-) -> dict[str, Any]:
-    """Write the buildable designs of ``space`` to one Parquet file at ``path`` (atomically, under the lock).
-
-    Returns the totals: ``designs``, ``assignments``, ``by_components``, ``output``,
-    ``group_order``, ``symmetry``, ``label_set``, ``dna``.
-    """
+) -> DnaTotals:
+    """Write the buildable designs of ``space`` to one Parquet file at ``path`` (atomically, under the lock); return its totals."""
     target = catalog_target(path)
     if os.path.isdir(target.path):
         raise CatalogError(f"{target.shown}: is a folder; a DNA catalog is one .parquet file", usage=True)
@@ -65,13 +89,5 @@ def write_dna_catalog(
         batches = dna_batches(space, components, max_designs)
         summary = write_batches(target.path, expected_schema(meta), PartFooter(meta), batches)
     by_components, _covered = summary.counts()
-    return {
-        "designs": summary.rows,
-        "assignments": space.assignments,
-        "by_components": dict(sorted(by_components.items(), key=lambda kv: int(kv[0]))),
-        "output": os.fspath(path),
-        "group_order": 1,
-        "symmetry": "none",
-        "label_set": space.space.label_set.tolist(),
-        "dna": space.setting.to_json(),
-    }
+    label_set = tuple(space.space.label_set.tolist())
+    return DnaTotals(summary.rows, space.assignments, _by_components(by_components), label_set, os.fspath(path))

@@ -72,17 +72,16 @@ def _dna_run(ctx: Context, kw: dict[str, Any], scale: float, window: float, outp
     space = dna_space(scaffold, scale, window)
     components, max_designs = kw["components"], kw["max_designs"]
     if output is None:
-        payload = count_dna(space, components, max_designs)
-        payload.update(group_order=1, written=None, symmetry="none", label_set=space.space.label_set.tolist())
+        totals = count_dna(space, components, max_designs)
         if not kw["count_only"]:
             ctx.notes["note"] = "no -o given: counted, nothing written"
     else:
-        payload = write_dna_catalog(space, output, components, max_designs)
-        payload["written"] = payload.pop("output")
-        if kw["identify"]:
-            from ..catalog.identified import identify_catalog
+        totals = write_dna_catalog(space, output, components, max_designs)
+    payload: dict[str, Any] = {**totals.to_json()}
+    if output is not None and kw["identify"]:
+        from ..catalog.identified import identify_catalog
 
-            payload["identified"] = asdict(identify_catalog(output, scaffold))
+        payload["identified"] = asdict(identify_catalog(output, scaffold))
     natural = np.round(natural_twist(scaffold, scale, space.setting.bp_per_turn), 3).tolist()
     payload["dna"] = {**space.setting.to_json(), "natural_twist": natural, "patterns": len(space.patterns)}
     payload["mode"] = "designs"
