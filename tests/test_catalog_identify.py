@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import json
+import subprocess
+import sys
 
 import pandas as pd
 import pyarrow.parquet as pq
@@ -77,3 +79,33 @@ def test_identify_status_says_why_a_row_is_unnamed(tmp_path):
     assert split.any() and (~named & ~split).any()
     assert (df.loc[named | split, "identify_status"] == "identified").all()
     assert df.loc[~named & ~split, "identify_status"].str.startswith("unknown: not in the tables").all()
+
+
+def test_identify_columns_are_built_as_pyarrow_builds_them():
+    import pyarrow as pa
+
+    from lkspace.catalog.columns import value_column
+
+    cases = [
+        (["3_1", None, "L2a1#L2a1", "", "é"], pa.string()),
+        ([None, None], pa.string()),
+        ([True, None, False], pa.bool_()),
+        ([3, None, -7, 0], pa.int32()),
+        ([], pa.int32()),
+    ]
+    for values, type_ in cases:
+        assert value_column(values, type_).equals(pa.array(values, type=type_))
+
+
+def test_enumerate_identify_imports_neither_pandas_nor_scipys_spatial_tools(tmp_path):
+    out = tmp_path / "c.parquet"
+    code = (
+        "import sys; from lkspace.cli import main;"
+        f"sys.argv = ['lkspace', 'enumerate', 'dihedron:4', '--labels', '-1..1', '--identify', '-o', {str(out)!r}];"
+        "import atexit; atexit.register(lambda: print('LOADED', sorted(m for m in ('pandas', 'scipy.spatial', 'scipy.sparse')"
+        " if m in sys.modules), file=sys.stderr)); main()"
+    )
+    run = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    assert run.returncode == 0, run.stderr
+    assert "LOADED []" in run.stderr
+    assert pq.read_table(out).column("knot_name").null_count < pq.read_table(out).num_rows

@@ -28,6 +28,28 @@ def numpy_column(values: np.ndarray) -> pa.Array:
     return pa.Array.from_buffers(pa.from_numpy_dtype(values.dtype), len(values), [None, pa.py_buffer(values)])
 
 
+def value_column(values: Sequence[Any], type_: pa.DataType) -> pa.Array:
+    """Return Python ``values`` (``None``: null) as an Arrow array of ``type_``: string, bool or a signed integer.
+
+    Built from buffers, as :func:`numpy_column` (no pandas).
+    """
+    n = len(values)
+    valid = np.fromiter((v is not None for v in values), bool, n)
+    validity = None if valid.all() else pa.py_buffer(np.packbits(valid, bitorder="little"))
+    if type_ == pa.string():
+        data = [b"" if v is None else str(v).encode() for v in values]
+        offsets = np.zeros(n + 1, np.int32)
+        np.cumsum(np.fromiter(map(len, data), np.int64, n), out=offsets[1:])
+        return pa.Array.from_buffers(type_, n, [validity, pa.py_buffer(offsets), pa.py_buffer(b"".join(data))])
+    if type_ == pa.bool_():
+        bits = np.packbits(np.fromiter((bool(v) for v in values), bool, n), bitorder="little")
+        return pa.Array.from_buffers(type_, n, [validity, pa.py_buffer(bits)])
+    if not pa.types.is_signed_integer(type_):
+        raise TypeError(f"value_column: no buffer layout for {type_}")  # a bug in lkspace
+    ints = np.fromiter((0 if v is None else int(v) for v in values), np.dtype(f"int{type_.bit_width}"), n)
+    return pa.Array.from_buffers(type_, n, [validity, pa.py_buffer(ints)])
+
+
 def list_column(values: np.ndarray, counts: np.ndarray, type_: pa.ListType) -> pa.Array:
     """Return a list column of Arrow type ``type_``: row ``i`` holds the next ``counts[i]`` of ``values``.
 

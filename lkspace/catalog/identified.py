@@ -19,9 +19,8 @@ from __future__ import annotations
 
 import multiprocessing
 import os
-from collections.abc import Iterable
 from dataclasses import dataclass, field, replace
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 import numpy as np
 import pyarrow as pa
@@ -31,12 +30,12 @@ from ..errors import CatalogError, UsageError
 from ..io.atomic import atomic_path
 from ..model.scaffold import Scaffold
 from ..runtime.progress import Step, task
+from .columns import numpy_column, value_column
 from .schema import IDENTIFY_COLUMNS, METADATA_KEY
 from .verify import file_metadata, open_catalog
 
 if TYPE_CHECKING:
-    import pandas as pd
-
+    from ..knots.batch import ChunkNames
     from ..knots.key_names import KeyCache
 
 IDENTIFY_CHUNK = 20_000
@@ -67,17 +66,6 @@ class Identified:
         for name, n in other.names.items():
             names[name] = names.get(name, 0) + n
         return Identified(self.rows + other.rows, self.named + other.named, names)
-
-
-def _column(values: Iterable[Any], type_: pa.DataType) -> pa.Array:
-    cleaned = [None if v is None or (isinstance(v, float) and np.isnan(v)) else v for v in values]
-    if type_ == pa.int32():
-        cleaned = [None if v is None else int(v) for v in cleaned]
-    if type_ == pa.bool_():
-        cleaned = [None if v is None else bool(v) for v in cleaned]
-    if type_ == pa.string():
-        cleaned = [None if v is None else str(v) for v in cleaned]
-    return pa.array(cleaned, type=type_)
 
 
 def identify_catalog(
@@ -135,45 +123,74 @@ def identify_part(shared: tuple[Scaffold, int], file: str) -> Identified:
         return _summary(_identify_file(file, scaffold, 1, seed, step, isolate=True, cache=disk_cache()))
 
 
-def _summary(found: pd.DataFrame | None) -> Identified:
+def _summary(found: list[ChunkNames] | None) -> Identified:
     if found is None:
         return Identified()
-    known = found["knot_name"].dropna()
-    return Identified(len(found), len(known), {str(k): int(n) for k, n in known.value_counts().items()})
+    names: dict[str, int] = {}
+    for chunk in found:
+        counts = np.bincount(chunk.which, minlength=len(chunk.fields)).tolist()
+        for f, n in zip(chunk.fields, counts, strict=True):
+            if f.knot_name is not None and n:
+                names[f.knot_name] = names.get(f.knot_name, 0) + n
+    return Identified(sum(len(c) for c in found), sum(names.values()), names)
+
+
+SOURCES = {"identify_error": "error", "identify_status": "status"}
+"""Catalog columns named otherwise in :class:`~lkspace.knots.identification.NameFields`."""
+
+
+def identify_column(chunks: list[ChunkNames], name: str, type_: pa.DataType) -> pa.Array:
+    """One identify column (:data:`~lkspace.catalog.schema.IDENTIFY_COLUMNS`) of every design of ``chunks``, in order."""
+    key = SOURCES.get(name, name)
+    pieces = []
+    for chunk in chunks:
+        if key in ("components", "linking_matrix"):
+            pieces.append(value_column(chunk.column(key), type_))
+        else:  # one value per distinct fields, taken per design
+            pieces.append(value_column(chunk.values(key), type_).take(numpy_column(chunk.which)))
+    return pa.concat_arrays(pieces) if pieces else value_column([], type_)
+
+
+def label_matrix(column: pa.ChunkedArray, n_edges: int) -> np.ndarray:
+    """``(rows, n_edges) int64``: a catalog's ``labels`` column (lists of signed ints, no nulls) as a matrix.
+
+    Read from the Arrow buffer: ``to_numpy`` would import pandas (half a second) in a fresh process.
+    """
+    flat = column.combine_chunks().flatten()
+    if not pa.types.is_signed_integer(flat.type) or flat.null_count:
+        raise CatalogError(f"labels: expected lists of signed integers without nulls, got {column.type}")
+    width = flat.type.bit_width // 8
+    values = np.frombuffer(flat.buffers()[1], np.dtype(f"int{8 * width}"), count=len(flat), offset=flat.offset * width)
+    return values.astype(np.int64).reshape(-1, n_edges)
 
 
 def _identify_file(
     file: str, scaffold: Scaffold, processes: int, seed: int, step: Step, *, cache: KeyCache, isolate: bool = False
-) -> pd.DataFrame | None:
+) -> list[ChunkNames] | None:
     """Identify the rows of one catalog file and rewrite it with the columns; ``None`` if it already has them.
 
     ``cache``: the names by invariant key of this run (:func:`lkspace.knots.key_names.disk_cache`).
     """
-    from ..knots.batch import NamerOptions, identify_batch
+    from ..knots.batch import NamerOptions, name_batch
 
     options = NamerOptions(processes, isolate=isolate)
 
-    table = pq.read_table(file)
+    table = pq.ParquetFile(file).read()  # not read_table: its dataset module imports pandas
     if "labels" not in table.column_names:
         raise CatalogError(f"{file}: no 'labels' column to identify")
     footer = file_metadata(file)[0]
     if footer.identified:
         step.advance(table.num_rows)
         return None
-    flat = table.column("labels").combine_chunks().flatten().to_numpy(zero_copy_only=False)
-    labels = np.asarray(flat, np.int64).reshape(table.num_rows, scaffold.n_edges)
+    labels = label_matrix(table.column("labels"), scaffold.n_edges)
     values = np.unique(labels)
-    pieces = []
+    found: list[ChunkNames] = []
     for start in range(0, len(labels), IDENTIFY_CHUNK):
         piece = labels[start : start + IDENTIFY_CHUNK]
-        pieces.append(identify_batch(scaffold, piece, options, seed, False, cache=cache, label_values=values))
+        found.extend(name_batch(scaffold, piece, options, seed, False, cache=cache, label_values=values))
         step.advance(len(piece))
-    import pandas as pd
-
-    found = pd.concat(pieces, ignore_index=True) if pieces else identify_batch(scaffold, labels, progress=False)
-    found = found.rename(columns={"error": "identify_error", "status": "identify_status"})
     for name, type_ in IDENTIFY_COLUMNS.items():
-        column = _column(found[name].tolist() if name in found else [None] * table.num_rows, type_)
+        column = identify_column(found, name, type_)
         if name in table.column_names:
             table = table.drop_columns([name])
         table = table.append_column(pa.field(name, type_), column)

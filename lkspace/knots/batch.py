@@ -10,10 +10,9 @@ from __future__ import annotations
 
 import json
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
-import pandas as pd
 from numpy.typing import ArrayLike
 
 from ..model.scaffold import Scaffold
@@ -22,10 +21,13 @@ from ..runtime.workers import context, ignore_interrupts
 from .budget import MAX_CROSSINGS, TIME_LIMIT, TimeLimitReached
 from .identification import Json, NameFields
 from .key_names import KeyCache, share_names
-from .keyed import keys_of
+from .keyed import DesignKeys, keys_of
 from .naming import name_in_time, presimplified, status_of
 from .recognition import check_identifiable
 from .tables import knot_modules, tables
+
+if TYPE_CHECKING:
+    import pandas as pd
 
 _WORKER: dict[str, float | None] = {}
 """The worker's time limit per design (``time_limit``), set by :func:`_init_worker`."""
@@ -130,10 +132,27 @@ def identify_batch(
     >>> identify_batch(load("dihedron:3"), [[1, 1, 1], [1, 0, 0]])["knot_name"].tolist()
     ['3_1', '0_1']
     """
+    import pandas as pd
+
+    chunks = name_batch(scaffold, labels_2d, options, seed, progress, cache=cache, label_values=label_values)
+    return pd.DataFrame({c: [v for chunk in chunks for v in chunk.column(c)] for c in COLUMNS}, columns=COLUMNS)
+
+
+def name_batch(
+    scaffold: Scaffold,
+    labels_2d: ArrayLike,
+    options: NamerOptions | None = None,
+    seed: int = 0,
+    progress: bool | None = None,
+    *,
+    cache: KeyCache | None = None,
+    label_values: ArrayLike | None = None,
+) -> list[ChunkNames]:
+    """:func:`identify_batch`'s names as they are found: one :class:`ChunkNames` per :data:`BATCH` designs."""
     check_identifiable(scaffold)
     labels_2d = np.asarray(labels_2d, np.int64).reshape(-1, scaffold.n_edges)
     cache = cache if cache is not None else KeyCache()
-    rows: list[dict[str, Json]] = []
+    chunks: list[ChunkNames] = []
     opts = options or NamerOptions()
     with (
         Namer(opts.processes, opts.isolate, opts.time_limit) as namer,
@@ -141,10 +160,56 @@ def identify_batch(
     ):
         for start in range(0, len(labels_2d), BATCH):
             chunk = labels_2d[start : start + BATCH]
-            rows.extend(identify_chunk(scaffold, chunk, seed, cache, namer, label_values))
+            chunks.append(identify_chunk(scaffold, chunk, seed, cache, namer, label_values))
             if progress is not False:
                 step.advance(len(chunk))
-    return pd.DataFrame(rows, columns=COLUMNS)
+    return chunks
+
+
+@dataclass(frozen=True)
+class ChunkNames:
+    """Names of a chunk of designs, shared: design ``d`` takes the fields ``fields[which[d]]``.
+
+    Attributes
+    ----------
+    fields : list of NameFields
+        The distinct row fields of the chunk (designs of one trusted key share one).
+    which : (n,) int64
+        Each design's entry of ``fields``.
+    components : (n,) int64
+        Each design's number of components; ``-1`` where it was refused before keying.
+    linking : (n,) object
+        Each design's linking matrix as JSON text; ``None`` where refused.
+    """
+
+    fields: list[NameFields]
+    which: np.ndarray
+    components: np.ndarray
+    linking: np.ndarray
+
+    def __len__(self) -> int:
+        return len(self.which)
+
+    def values(self, key: str) -> list[Json]:
+        """Return the values of one :class:`NameFields` key, one per entry of :attr:`fields` (tuples as lists)."""
+        return [f.to_json()[key] for f in self.fields]
+
+    def column(self, key: str) -> list[Json]:
+        """One value per design: a :class:`NameFields` key, ``components`` or ``linking_matrix``."""
+        if key == "components":
+            return [None if c < 0 else c for c in self.components.tolist()]
+        if key == "linking_matrix":
+            return self.linking.tolist()
+        values = self.values(key)
+        return [values[i] for i in self.which.tolist()]
+
+    def rows(self) -> list[dict[str, Json]]:
+        """One dict per design: :data:`COLUMNS` and the naming's ``pieces``, ``table``, ``chiral_name``, ``candidates``."""
+        shared = [f.to_json() for f in self.fields]
+        return [
+            {**shared[i], "components": None if c < 0 else c, "linking_matrix": lm}
+            for i, c, lm in zip(self.which.tolist(), self.components.tolist(), self.linking.tolist(), strict=True)
+        ]
 
 
 def identify_chunk(
@@ -154,35 +219,55 @@ def identify_chunk(
     cache: KeyCache,
     namer: Namer,
     label_values: ArrayLike | None,
-) -> list[dict[str, Json]]:
-    """Return the rows of one chunk: refused designs first set apart, the rest keyed and named.
-
-    A row holds :data:`COLUMNS` and, where the design was named, ``pieces``, ``table``,
-    ``chiral_name`` and ``candidates`` (as :func:`~lkspace.knots.naming.name_pd` gives them).
-    """
-    rows: list[dict[str, Json]] = [dict.fromkeys(COLUMNS) for _ in range(len(labels_2d))]
+) -> ChunkNames:
+    """Return the names of one chunk: refused designs first set apart, the rest keyed and named by key."""
+    n = len(labels_2d)
+    fields: list[NameFields] = []
+    which = np.zeros(n, np.int64)
+    components = np.full(n, -1, np.int64)
+    linking = np.full(n, None, dtype=object)
     refusal = _refusal(scaffold)
     estimate = (np.abs(labels_2d) * np.maximum(scaffold.edge_degrees - 1, 0)).sum(axis=1)
-    fits = estimate <= MAX_CROSSINGS if refusal is None else np.zeros(len(labels_2d), bool)
+    fits = estimate <= MAX_CROSSINGS if refusal is None else np.zeros(n, bool)
     for d in np.flatnonzero(~fits).tolist():
         reason = refusal or (
             f"{scaffold.name}: the twists make about {int(estimate[d]):,} crossings (sum of |t|(K-1) over the edges) "
             f"> {MAX_CROSSINGS:,} (MAX_CROSSINGS): too large to identify; use smaller twists"
         )
-        rows[d].update(status=f"unknown: {reason}", error=reason)
+        which[d] = len(fields)
+        fields.append(NameFields(status=f"unknown: {reason}", error=reason))
     todo = np.flatnonzero(fits)
-    if not len(todo):
-        return rows
-    found = keys_of(scaffold, labels_2d[todo], seed, label_values)
+    if len(todo):
+        found = keys_of(scaffold, labels_2d[todo], seed, label_values)
 
-    def name_designs(indices: list[int]) -> list[NameFields]:
-        return namer.name([found.diagram(d)[:2] for d in indices])
+        def name_designs(indices: list[int]) -> list[NameFields]:
+            return namer.name([found.diagram(d)[:2] for d in indices])
 
-    for i, (d, fields) in enumerate(zip(todo.tolist(), share_names(found, cache, name_designs), strict=True)):
-        assert fields is not None
-        rows[d].update(fields.to_json())
-        rows[d].update(components=int(found.components[i]), linking_matrix=json.dumps(found.linking_matrix(i)))
-    return rows
+        shared = share_names(found, cache, name_designs)
+        index: dict[int, int] = {}
+        for f in shared:
+            assert f is not None
+            if id(f) not in index:
+                index[id(f)] = len(fields)
+                fields.append(f)
+        which[todo] = [index[id(f)] for f in shared]
+        components[todo] = found.components
+        linking[todo] = linking_texts(found)
+    return ChunkNames(fields, which, components, linking)
+
+
+def linking_texts(found: DesignKeys) -> np.ndarray:
+    """``(n,) object``: each design's linking matrix as JSON text (``[[0, 1], [1, 0]]``), one ``json.dumps`` per distinct matrix."""
+    out = np.empty(len(found.components), dtype=object)
+    sizes = found.components.astype(np.int64)
+    for c in np.unique(sizes).tolist():
+        rows = np.flatnonzero(sizes == c)
+        starts = found.link_offsets[rows]
+        matrices = found.link_values[starts[:, None] + np.arange(c * c)[None, :]]
+        distinct, inverse = np.unique(matrices.reshape(len(rows), c * c), axis=0, return_inverse=True)
+        texts = np.array([json.dumps(m.reshape(c, c).tolist()) for m in distinct], dtype=object)
+        out[rows] = texts[inverse.reshape(-1)]
+    return out
 
 
 def _refusal(scaffold: Scaffold) -> str | None:

@@ -29,7 +29,7 @@ import time
 from collections import Counter
 from collections.abc import Iterator
 from dataclasses import dataclass, field
-from typing import Any, Literal, TextIO, TypeAlias
+from typing import TYPE_CHECKING, Any, Literal, TextIO, TypeAlias
 
 import numpy as np
 
@@ -41,6 +41,9 @@ from .examples import Examples
 from .fields import JsonObject
 from .records import AtlasResult, AtlasRun, AtlasType, ChiralityCounts, DesignRecord
 from .screen import type_labels
+
+if TYPE_CHECKING:
+    from ..knots.batch import ChunkNames
 
 CACHE = "cache.jsonl"
 
@@ -76,6 +79,18 @@ def record_of(row: dict[str, Any]) -> DesignRecord:
         crossings=None if crossings is None else int(crossings),
         status=row.get("status"),
     )
+
+
+def records_of(chunk: ChunkNames) -> list[DesignRecord]:
+    """:func:`record_of` each design of ``chunk``, made once per distinct fields and number of components."""
+    shared = [f.to_json() for f in chunk.fields]
+    made: dict[tuple[int, int], DesignRecord] = {}
+    out = []
+    for i, c in zip(chunk.which.tolist(), chunk.components.tolist(), strict=True):
+        if (i, c) not in made:
+            made[i, c] = record_of({**shared[i], "components": None if c < 0 else c})
+        out.append(made[i, c])
+    return out
 
 
 @dataclass
@@ -318,7 +333,7 @@ def _records(
                 if deadline is not None and time.monotonic() > deadline:
                     break
                 chunk = identify_chunk(scaffold, rows[start : start + step], options.seed, cache, namer, label_set)
-                fresh.extend(record_of(row) for row in chunk)
+                fresh.extend(records_of(chunk))
             made = iter(fresh)
             for i, (k, z) in enumerate(zip(keys, zkeys, strict=True)):
                 source: Source

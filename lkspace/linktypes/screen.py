@@ -214,7 +214,7 @@ def screen_batch(
             survivors.append(d)
             verdicts[d] = Screening("undetermined", "", matrix)
     if survivors and target is not None:
-        rows = identify_chunk(scaffold, labels[survivors], seed, cache, namer, label_set)
+        rows = identify_chunk(scaffold, labels[survivors], seed, cache, namer, label_set).rows()
         for d, row in zip(survivors, rows, strict=True):
             verdicts[d] = verdicts[d].judged(target, {**row, "name": row.get("knot_name")})
     return verdicts

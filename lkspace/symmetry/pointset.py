@@ -12,9 +12,9 @@ vertex copies, and caller-given invariants such as degrees) that any symmetry ke
 Candidates: an isometry fixing the centroid is fixed by the images of two sites ``a``,
 ``b`` that are not collinear with the centroid (and the sign of the third axis), so ``a``
 is taken from the smallest class and ``b`` from a small class, and the images ``a'``,
-``b'`` run over their classes with ``|a' - b'| = |a - b|`` (a KD-tree finds them).  Each
+``b'`` run over their classes with ``|a' - b'| = |a - b|`` (found by nearest-point queries).  Each
 candidate is probed on a few sites, then every site is matched with the KD-tree
-(:class:`scipy.spatial.cKDTree`, within :data:`SLACK` tolerances, since a frame fixed by
+(:mod:`lkspace.symmetry.nearest`: numpy for a few sites, scipy's KD-tree for many; within :data:`SLACK` tolerances, since a frame fixed by
 two rounded sites is a little off far from them): the candidate is kept when it maps the
 sites one-to-one onto sites of their own class and, refit on all sites (3 x 3
 Procrustes), moves none by more than the tolerance.
@@ -32,6 +32,7 @@ import numpy as np
 from ..errors import TooLargeError
 from ..model.scaffold import unique_rows
 from ..runtime.progress import task
+from .nearest import NearestPoints, components
 
 WELD = 1e-6
 """Distance (in units of the RMS radius about the centroid) below which two positions are one site."""
@@ -121,18 +122,7 @@ def find_sites(x: np.ndarray, invariants: list[np.ndarray], tolerance: float = W
     """
     x_all = x
     x, copy_of = np.unique(x_all, axis=0, return_inverse=True)  # exact copies first: pairs stay linear
-    from scipy.sparse import coo_matrix
-    from scipy.sparse.csgraph import connected_components
-    from scipy.spatial import cKDTree
-
-    pairs = cKDTree(x).query_pairs(WELD, output_type="ndarray")
-    n = len(x)
-    if len(pairs):
-        graph = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(n, n))
-        _, of_vertex = connected_components(graph, directed=False)
-        of_vertex = of_vertex.astype(np.int64)
-    else:
-        of_vertex = np.arange(n, dtype=np.int64)
+    of_vertex = components(len(x), NearestPoints(x).pairs(WELD))
     of_vertex = first_seen_order(of_vertex[copy_of.reshape(-1)])  # sites of the copies, numbered in vertex order
     x = x_all
     n_sites = int(of_vertex.max()) + 1
@@ -195,15 +185,13 @@ class Matcher:
     """Match images of the sites back onto the sites (KD-tree, class-preserving, one-to-one)."""
 
     def __init__(self, sites: Sites) -> None:
-        from scipy.spatial import cKDTree
-
         self.sites = sites
-        self.tree = cKDTree(sites.points)
+        self.tree = NearestPoints(sites.points)
 
     def match(self, q: np.ndarray) -> np.ndarray | None:
         """Return ``(n_sites,) int64``, the site each site goes to under ``q``, or ``None``."""
         pts, classes = self.sites.points, self.sites.classes
-        dist, idx = self.tree.query(rotate(pts, q), distance_upper_bound=SLACK * self.sites.tolerance)
+        dist, idx = self.tree.nearest(rotate(pts, q), SLACK * self.sites.tolerance)
         if not np.all(np.isfinite(dist)):
             return None
         if not np.array_equal(classes[idx], classes):
@@ -218,7 +206,7 @@ class Matcher:
             return np.zeros(0, dtype=bool)
         pts, classes = self.sites.points, self.sites.classes
         images = np.einsum("mij,pj->mpi", qs, pts[probes])
-        dist, idx = self.tree.query(images.reshape(-1, 3), distance_upper_bound=SLACK * self.sites.tolerance)
+        dist, idx = self.tree.nearest(images.reshape(-1, 3), SLACK * self.sites.tolerance)
         ok = np.isfinite(dist).reshape(len(qs), -1)
         idx = np.minimum(idx, len(pts) - 1).reshape(len(qs), -1)
         ok &= classes[idx] == classes[probes][None, :]
@@ -287,17 +275,15 @@ class SiteSearch:
 
     def frame_candidates(self) -> Iterator[tuple[np.ndarray | None, np.ndarray]]:
         """Candidates sending ``a, b`` to sites ``a', b'`` of their classes at the same distance."""
-        from scipy.spatial import cKDTree
-
         a, b = self.a, self.b
         assert b is not None, "frames need two anchors"
         pts, classes, n = self.sites.points, self.sites.classes, self.sites.n_sites
         images_a = np.flatnonzero(classes == classes[a])
         images_b = np.flatnonzero(classes == classes[b])
         d = float(np.linalg.norm(pts[a] - pts[b]))
-        tree_b = cKDTree(pts[images_b])
+        tree_b = NearestPoints(pts[images_b])
         slack = SLACK * self.sites.tolerance
-        counts = tree_b.query_ball_point(pts[images_a], d + slack, return_length=True)
+        counts = np.array([len(m) for m in tree_b.balls(pts[images_a], d + slack)], np.int64)
         total = 2 * int(np.sum(counts))
         if total > MAX_FRAME_CANDIDATES:
             raise TooLargeError(
@@ -310,7 +296,7 @@ class SiteSearch:
         with task("symmetry search (candidate motions)", total=total) as step:
             for start in range(0, len(images_a), per_block):
                 block = images_a[start : start + per_block]
-                near = tree_b.query_ball_point(pts[block], d + slack)
+                near = tree_b.balls(pts[block], d + slack)
                 pa = np.repeat(block, [len(m) for m in near])
                 step.advance(2 * len(pa))
                 if not len(pa):
