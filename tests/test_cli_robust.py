@@ -47,6 +47,18 @@ def test_a_clearance_past_any_gap_is_one_line_with_a_fix(tmp_path):
         assert 0.05 < gap < 0.3  # the cube's strands, 0.12 thick, are ~0.23 apart: measured, not -3e306
 
 
+@pytest.mark.parametrize("ext", ["obj", "ply"])
+def test_a_clearance_on_curves_is_refused_not_dropped(tmp_path, ext):
+    """``--clearance`` on a curves file was accepted and never checked; with ``--tubes`` it is checked."""
+    out = tmp_path / f"x.{ext}"
+    code, _, err = lk("export", "cube", "--twist", "2", "--clearance", "0.1", "-o", out)
+    assert code == 2
+    one_line(err, "--clearance", "add --tubes")
+    assert not out.exists()
+    code, _, err = lk("export", "cube", "--twist", "2", "--clearance", "5", "--tubes", "-o", out)
+    assert code == 1 and "clearance 5" in err and not out.exists()
+
+
 @pytest.mark.parametrize(
     ("args", "words"),
     [

@@ -176,9 +176,9 @@ def format_options(
 ) -> FormatOptions:
     """Return the options record of format ``ext`` from the fabrication flags and ``--tubes``.
 
-    A flag the format does not take is left out, as the command has always done: ``--units``
-    is a comment of ``.obj`` and ``.ply`` only, ``--clearance`` is checked on tubes only
-    (``--tubes``, ``.glb``, printable formats), ``--thickness`` and ``--scale`` set every tube.
+    ``--units`` is a comment of ``.obj`` and ``.ply`` only (left out of other formats),
+    ``--clearance`` is checked on tubes only (``--tubes``, ``.glb``, pictures, printable formats;
+    refused for curves), ``--thickness`` and ``--scale`` set every tube.
     ``picture`` holds the picture flags of a ``.png`` or ``.svg`` (refused for other formats).
     """
     from ..formats.options import GlbOptions, MeshOptions, PictureOptions, PrintOptions
@@ -187,8 +187,11 @@ def format_options(
 
     if ext in PRINTABLE:
         return PrintOptions(thickness, clearance, cast(Units, units or "mm"), scale)
-    if not tubes and ext != ".glb":
-        clearance = None
+    if not tubes and ext not in (".glb", *PICTURES) and clearance is not None:
+        raise UsageError(
+            f"--clearance is checked on tubes, and a {ext} file holds the strands as curves: "
+            "add --tubes, or leave --clearance out"
+        )
     if ext == ".glb":
         return GlbOptions(thickness=thickness, scale=scale, clearance=clearance)
     if ext in PICTURES:
