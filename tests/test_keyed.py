@@ -118,3 +118,20 @@ def test_a_key_shared_by_a_prime_link_and_a_sum_keeps_them_apart():
     assert len({tuple(k) for k in found.keys.tolist()}) == 1
     names = identify_batch(tetra, labels, cache=KeyCache(), progress=False)["knot_name"].tolist()
     assert names == [identify(tetra, lab).name for lab in labels] == ["L11n420"] * 2 + ["L2a1#L4a1"] * 4
+
+
+def test_keys_in_threads_equal_keys_in_one(monkeypatch):
+    """design_keys releases Python's lock and keys_of splits a batch over threads: the parts must join exactly."""
+    import lkspace.knots.keyed as keyed
+
+    cube = load("cube")
+    labels = np.random.default_rng(3).integers(-2, 3, size=(701, cube.n_edges))
+    monkeypatch.setattr(keyed, "THREAD_DESIGNS", 100)
+    monkeypatch.setattr(keyed, "key_threads", lambda: 1)
+    one = keys_of(cube, labels)
+    monkeypatch.setattr(keyed, "key_threads", lambda: 3)
+    three = keys_of(cube, labels)
+    for name in ("keys", "crossings", "components", "keyed", "link_offsets", "link_values", "free", "jones_at"):
+        assert np.array_equal(getattr(one, name), getattr(three, name)), name
+    assert [three.linking_matrix(d) for d in range(len(labels))] == [one.linking_matrix(d) for d in range(len(labels))]
+    assert keyed.design_keys.compiled.targetoptions["nogil"]

@@ -74,8 +74,11 @@ def _source(func: Callable[..., Any]) -> bytes:
         return func.__code__.co_code
 
 
-def _compile(py_func: Callable[..., Any]) -> Any:
-    """Return the numba dispatcher of ``py_func`` (cached, :mod:`~lkspace.compiled.shipped`), its helpers compiled in."""
+def _compile(py_func: Callable[..., Any], nogil: bool = False) -> Any:
+    """Return the numba dispatcher of ``py_func`` (cached, :mod:`~lkspace.compiled.shipped`), its helpers compiled in.
+
+    ``nogil``: the compiled code runs without Python's lock (threads run it in parallel).
+    """
     import hashlib
 
     from .shipped import cache_class, portable_codegen
@@ -93,9 +96,10 @@ def _compile(py_func: Callable[..., Any]) -> Any:
     func = types.FunctionType(py_func.__code__, namespace, py_func.__name__, py_func.__defaults__, py_func.__closure__)
     func.__qualname__ = py_func.__qualname__
     func.__doc__ = py_func.__doc__
-    dispatcher = numba.njit(cache=True, inline=inline)(func)
+    dispatcher = numba.njit(cache=True, inline=inline, nogil=nogil)(func)
     files = {h.__code__.co_filename: h for h in _reached(py_func)}
-    digest = hashlib.sha256(b"\0".join(_source(files[f]) for f in sorted(files))).hexdigest()
+    flags = [b"nogil"] if nogil else []  # numba's cache key omits it: the flag is part of the key here
+    digest = hashlib.sha256(b"\0".join([*(_source(files[f]) for f in sorted(files)), *flags])).hexdigest()
     dispatcher._cache = cache_class()(func, digest)  # type: ignore[attr-defined]
     return dispatcher
 
@@ -103,8 +107,9 @@ def _compile(py_func: Callable[..., Any]) -> Any:
 class Kernel:
     """A numba kernel compiled on first use; see the module docstring."""
 
-    def __init__(self, py_func: Callable[..., Any]) -> None:
+    def __init__(self, py_func: Callable[..., Any], nogil: bool = False) -> None:
         self.py_func = py_func
+        self.nogil = nogil
         self.__doc__ = py_func.__doc__
         self.__name__ = py_func.__name__
         self._compiled: Callable[..., Any] | None = None
@@ -113,7 +118,7 @@ class Kernel:
     def compiled(self) -> Callable[..., Any]:
         """The numba dispatcher (``cache=True``: compiled once per machine)."""
         if self._compiled is None:
-            self._compiled = _compile(self.py_func)
+            self._compiled = _compile(self.py_func, self.nogil)
         return self._compiled
 
     def __call__(self, *args: Any) -> Any:
@@ -148,3 +153,12 @@ class Kernel:
 def kernel(py_func: Callable[..., Any]) -> Kernel:
     """Wrap ``py_func`` in a :class:`Kernel` (use as a decorator)."""
     return Kernel(py_func)
+
+
+def threaded_kernel(py_func: Callable[..., Any]) -> Kernel:
+    """Wrap ``py_func`` in a :class:`Kernel` whose compiled code releases Python's lock (use as a decorator).
+
+    For kernels that threads run on parts of one job at once; such a kernel must not
+    share writable arrays between the calls.
+    """
+    return Kernel(py_func, nogil=True)

@@ -36,7 +36,7 @@ from typing import Any, NamedTuple
 
 import numpy as np
 
-from ..compiled.kernels import helper, kernel
+from ..compiled.kernels import helper, kernel, threaded_kernel
 from ..model.scaffold import Scaffold
 from .assembly import Scratch, assemble_into, assemble_one, work_array
 from .budget import MAX_CROSSINGS
@@ -153,7 +153,7 @@ class KeyArrays(NamedTuple):
     jones_at: np.ndarray
 
 
-@kernel
+@threaded_kernel
 def design_keys(
     tmpl: TemplateArrays,
     vidx_2d: np.ndarray,
@@ -275,10 +275,8 @@ def keys_of(scaffold: Scaffold, labels_2d: np.ndarray, seed: int = 0, label_valu
     """Keys of ``labels_2d`` (``(n_designs, n_edges)``, twists within ``label_values``, default their own)."""
     values = np.unique(labels_2d) if label_values is None else np.union1d(label_values, np.unique(labels_2d))
     tmpl = template(scaffold, values, seed)
-    vidx = tmpl.value_index(labels_2d)
-    out = KeyArrays(
-        *design_keys(tmpl.arrays(), np.ascontiguousarray(vidx), work_array(tmpl), MAX_CROSSINGS, jones_point())
-    )
+    vidx = np.ascontiguousarray(tmpl.value_index(labels_2d))
+    out = KeyArrays(*_keys_in_threads(tmpl, vidx))
     return DesignKeys(
         template=tmpl,
         vidx=vidx,
@@ -291,3 +289,42 @@ def keys_of(scaffold: Scaffold, labels_2d: np.ndarray, seed: int = 0, label_valu
         free=out.free,
         jones_at=out.jones_at,
     )
+
+
+THREAD_DESIGNS = 2_000
+"""Fewest designs worth a thread of their own in :func:`keys_of` (a few tens of milliseconds)."""
+
+
+def key_threads() -> int:
+    """Threads :func:`keys_of` keys with: the cores this process may use, one in a worker process (its siblings share them)."""
+    import multiprocessing
+    import os
+
+    if multiprocessing.parent_process() is not None:
+        return 1
+    return len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count() or 1
+
+
+def _keys_in_threads(tmpl: DiagramTemplate, vidx: np.ndarray) -> tuple[np.ndarray, ...]:
+    """:func:`design_keys` of ``vidx``, in consecutive parts on :func:`key_threads` threads (the kernel releases the lock)."""
+    arrays, point = tmpl.arrays(), jones_point()
+    parts = max(1, min(key_threads(), len(vidx) // THREAD_DESIGNS))
+    if parts == 1:
+        return tuple(design_keys(arrays, vidx, work_array(tmpl), MAX_CROSSINGS, point))
+    from concurrent.futures import ThreadPoolExecutor
+
+    _ = design_keys.compiled  # compiled (or loaded) once, here, not by racing threads
+    bounds = np.linspace(0, len(vidx), parts + 1).astype(np.int64)
+    with ThreadPoolExecutor(parts) as pool:
+        found = list(
+            pool.map(
+                lambda i: design_keys(arrays, vidx[bounds[i] : bounds[i + 1]], work_array(tmpl), MAX_CROSSINGS, point),
+                range(parts),
+            )
+        )
+    offsets = [found[0][4]]
+    for part in found[1:]:
+        offsets.append(part[4][1:] + offsets[-1][-1])
+    fields = [np.concatenate([part[f] for part in found]) for f in range(len(found[0]))]
+    fields[4] = np.concatenate(offsets)
+    return tuple(fields)
