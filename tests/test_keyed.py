@@ -126,7 +126,7 @@ def test_keys_in_threads_equal_keys_in_one(monkeypatch):
 
     cube = load("cube")
     labels = np.random.default_rng(3).integers(-2, 3, size=(701, cube.n_edges))
-    monkeypatch.setattr(keyed, "THREAD_DESIGNS", 100)
+    monkeypatch.setattr(keyed, "FIRST_STEP", 50)  # then steps sized by time: any split must join exactly
     monkeypatch.setattr(keyed, "key_threads", lambda: 1)
     one = keys_of(cube, labels)
     monkeypatch.setattr(keyed, "key_threads", lambda: 3)

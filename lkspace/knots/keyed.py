@@ -30,6 +30,7 @@ octahedron (-1..1) were compared row by row with the geometric path and agree
 from __future__ import annotations
 
 import functools
+import time
 from dataclasses import dataclass
 from fractions import Fraction
 from typing import Any, NamedTuple
@@ -291,8 +292,11 @@ def keys_of(scaffold: Scaffold, labels_2d: np.ndarray, seed: int = 0, label_valu
     )
 
 
-THREAD_DESIGNS = 2_000
-"""Fewest designs worth a thread of their own in :func:`keys_of` (a few tens of milliseconds)."""
+STEP_SECONDS = 0.1
+"""Seconds of one :func:`design_keys` call in :func:`keys_of`: between calls, Ctrl-C and time limits are seen."""
+
+FIRST_STEP = 256
+"""Designs per thread in the first call of :func:`keys_of` (the next calls are sized by its rate)."""
 
 
 def key_threads() -> int:
@@ -306,22 +310,33 @@ def key_threads() -> int:
 
 
 def _keys_in_threads(tmpl: DiagramTemplate, vidx: np.ndarray) -> tuple[np.ndarray, ...]:
-    """:func:`design_keys` of ``vidx``, in consecutive parts on :func:`key_threads` threads (the kernel releases the lock)."""
-    arrays, point = tmpl.arrays(), jones_point()
-    parts = max(1, min(key_threads(), len(vidx) // THREAD_DESIGNS))
-    if parts == 1:
-        return tuple(design_keys(arrays, vidx, work_array(tmpl), MAX_CROSSINGS, point))
+    """:func:`design_keys` of ``vidx``: calls of about :data:`STEP_SECONDS`, each split over :func:`key_threads` threads.
+
+    The kernel releases Python's lock, so the threads run at once; the designs go in
+    consecutive parts, so the result does not depend on how they were split.
+    """
     from concurrent.futures import ThreadPoolExecutor
 
+    arrays, point = tmpl.arrays(), jones_point()
+    threads = max(1, key_threads())
     _ = design_keys.compiled  # compiled (or loaded) once, here, not by racing threads
-    bounds = np.linspace(0, len(vidx), parts + 1).astype(np.int64)
-    with ThreadPoolExecutor(parts) as pool:
-        found = list(
-            pool.map(
-                lambda i: design_keys(arrays, vidx[bounds[i] : bounds[i + 1]], work_array(tmpl), MAX_CROSSINGS, point),
-                range(parts),
-            )
-        )
+
+    def run(part: np.ndarray) -> tuple[np.ndarray, ...]:
+        return tuple(design_keys(arrays, part, work_array(tmpl), MAX_CROSSINGS, point))
+
+    if not len(vidx):
+        return run(vidx)
+    found: list[tuple[np.ndarray, ...]] = []
+    with ThreadPoolExecutor(threads) as pool:
+        start, step = 0, FIRST_STEP
+        while start < len(vidx):
+            stop = min(len(vidx), start + step * threads)
+            bounds = np.linspace(start, stop, threads + 1).astype(np.int64)
+            parts = [vidx[a:b] for a, b in zip(bounds[:-1], bounds[1:], strict=True) if b > a]
+            began = time.perf_counter()
+            found.extend(pool.map(run, parts) if len(parts) > 1 else [run(parts[0])])
+            rate = (stop - start) / len(parts) / max(time.perf_counter() - began, 1e-4)
+            start, step = stop, int(min(max(rate * STEP_SECONDS, 16), 1 << 16))
     offsets = [found[0][4]]
     for part in found[1:]:
         offsets.append(part[4][1:] + offsets[-1][-1])
