@@ -23,6 +23,7 @@ import sys
 import tempfile
 from pathlib import Path
 
+import pyarrow.parquet as pq
 from benchkit import RESULTS, ROOT, load_average, provenance, summary, timed
 
 SPACES = ["cube:-1..1", "whitehead:-1..1"]
@@ -41,12 +42,20 @@ def run(tree: Path, space: str, runs: int) -> dict:
         cold.append({**timed(cmd, env), "load": load_average()[0]})
         os.remove(out)
         warm.append({**timed(cmd, env), "load": load_average()[0]})
+        designs = pq.read_metadata(out).num_rows
         shutil.rmtree(folder)
         print(f"{tree} {space}: cold {cold[-1]['wall']:.2f} s, warm {warm[-1]['wall']:.2f} s", flush=True)
     c, w = summary(cold), summary(warm)
     c["load_1min"] = [s["load"] for s in cold]
     w["load_1min"] = [s["load"] for s in warm]
-    return {"cold": c, "warm": w, "ratio": round(c["median_s"] / w["median_s"], 2)}
+    rate = round(designs / w["median_s"])
+    return {
+        "cold": c,
+        "warm": w,
+        "ratio": round(c["median_s"] / w["median_s"], 2),
+        "designs": designs,
+        "warm_rate": rate,
+    }
 
 
 def main() -> None:
@@ -74,14 +83,16 @@ def main() -> None:
         f"{report['provenance']['machine']['cpu_count']} CPUs, {report['provenance']['date']}; "
         f"load average {report['load_start']} at the start, {report['load_end']} at the end.",
         "",
-        "| space | tree | cold median (s) | warm median (s) | cold / warm | load (1 min) during cold runs |",
-        "|---|---|---|---|---|---|",
+        "| space | tree | cold median (s) | warm median (s) | warm CPU (s) | warm designs/s | cold / warm "
+        "| load (1 min) during cold runs |",
+        "|---|---|---|---|---|---|---|---|",
     ]
     for space, by_tree in report["spaces"].items():
         for label, r in by_tree.items():
             lines.append(
                 f"| {space} | {label} ({report[f'{label}_commit']}) | {r['cold']['median_s']} | "
-                f"{r['warm']['median_s']} | {r['ratio']} | {r['cold']['load_1min']} |"
+                f"{r['warm']['median_s']} | {r['warm']['cpu_median_s']} | {r['warm_rate']:,} | {r['ratio']} "
+                f"| {r['cold']['load_1min']} |"
             )
     (RESULTS / f"{args.out}.md").write_text("\n".join(lines) + "\n")
     print("\n".join(lines))
