@@ -141,14 +141,19 @@ ORPHAN_POLL = 0.5
 
 
 def alive(pid: int) -> bool:
-    """Whether process ``pid`` still runs (a zombie counts as running)."""
+    """Whether process ``pid`` still runs: a zombie (ended, its parent yet to reap it) has ended (Linux's ``/proc``)."""
     try:
         os.kill(pid, 0)
     except ProcessLookupError:
         return False
     except PermissionError:  # another user's process now holds the number
         return True
-    return True
+    try:
+        with open(f"/proc/{pid}/stat", "rb") as fh:
+            state = fh.read().rsplit(b")", 1)[1].split()[0]  # after the command name, which may hold spaces
+    except (OSError, IndexError):  # no /proc (macOS): a zombie counts as running
+        return True
+    return state not in (b"Z", b"X")
 
 
 def exit_with(owner: int) -> None:
