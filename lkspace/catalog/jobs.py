@@ -3,20 +3,18 @@
 Workers are started with the ``forkserver`` method where there is one (Linux, macOS)
 and ``spawn`` elsewhere (Windows), never by forking a running program: each worker
 imports lkspace afresh, receives the run's job once (:class:`PartsJob`) (:func:`init_worker`) and writes
-whole parts (:func:`write_part`).  Workers ignore SIGINT and leave the decisions to the
-main process, which on Ctrl-C or SIGTERM terminates them at once (queued parts never
-start) and removes their temporary files; a worker whose main process has died exits
-within :data:`ORPHAN_POLL` seconds.
+whole parts (:func:`write_part`) in a :func:`~lkspace.runtime.pools.worker_pool`.  Workers
+ignore SIGINT and leave the decisions to the main process, which on Ctrl-C or SIGTERM kills
+them at once (queued parts never start) and removes their temporary files; a worker that
+dies ends the run with one line (never a wait for its part); a worker whose main process
+has died exits within :data:`~lkspace.runtime.workers.ORPHAN_POLL` seconds.
 """
 
 from __future__ import annotations
 
-import multiprocessing as mp
 import os
 import pickle
 import tempfile
-import threading
-import time
 from collections.abc import Callable, Generator, Iterator
 from dataclasses import dataclass, replace
 
@@ -24,10 +22,9 @@ import pyarrow as pa
 
 from ..design.space import DesignSpace
 from ..errors import require
-from ..runtime.schedulers import is_dask, run_tasks, worker_pool
-from ..runtime.workers import ignore_interrupts
+from ..runtime.pools import worker_pool
+from ..runtime.schedulers import is_dask, run_tasks
 from .batches import space_batches
-from .lock import pid_alive
 from .metadata import CatalogMetadata
 from .options import Selection
 from .plan import Plan
@@ -35,9 +32,6 @@ from .records import PartFooter, PartSummary, Shard
 from .schema import expected_schema
 from .transaction import file_sha256
 from .writer import write_batches
-
-ORPHAN_POLL = 0.5
-"""Seconds between a worker's checks that the main process still runs."""
 
 
 @dataclass(frozen=True)
@@ -99,21 +93,13 @@ _JOB: list[PartsJob] = []
 """In a pool worker: the run's job (set once by :func:`init_worker`)."""
 
 
-def init_worker(job: bytes, main_pid: int) -> None:
-    """Worker start: ignore SIGINT, take the run's job, exit when the main process is gone.
+def init_worker(job: bytes) -> None:
+    """Worker start: take the run's job (:func:`~lkspace.runtime.pools.worker_pool` ignores SIGINT and watches the main process).
 
-    The arguments are plain bytes and an int, so a worker started just before its main
-    process stopped still starts cleanly (and then exits).
+    The argument is plain bytes, so a worker started just before its main process
+    stopped still starts cleanly (and then exits).
     """
-    ignore_interrupts()
-    threading.Thread(target=_exit_with, args=(main_pid,), daemon=True).start()
     _JOB[:] = [pickle.loads(job)]
-
-
-def _exit_with(main_pid: int) -> None:
-    while pid_alive(main_pid) and os.getppid() != 1:
-        time.sleep(ORPHAN_POLL)
-    os._exit(1)  # an orphan: nobody will use what it writes
 
 
 def write_part(i: int) -> tuple[int, PartSummary]:
@@ -177,16 +163,9 @@ def run_parts(
         for i in todo:
             yield write_part_with(job, i, on_rows)
         return
-    rows_done = 0
-    with worker_pool(min(jobs, len(todo)), init_worker, (pickle.dumps(job), os.getpid())) as pool:
-        results = pool.imap_unordered(write_part, todo)
-        for _ in todo:
-            while True:
-                try:
-                    done = results.next(timeout=0.25)
-                    break
-                except mp.TimeoutError:
-                    tick(rows_done)
-            rows_done += done[1].rows
+    finished = [0]  # rows of the parts finished so far
+    with worker_pool(min(jobs, len(todo)), init_worker, (pickle.dumps(job),)) as pool:
+        for done in pool.unordered(write_part, todo, lambda: tick(finished[0])):
+            finished[0] += done[1].rows
             yield done
-            tick(rows_done)
+            tick(finished[0])

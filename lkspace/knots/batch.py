@@ -8,6 +8,7 @@ in full, in worker processes under the time limit, only what the keys leave
 
 from __future__ import annotations
 
+import contextlib
 import json
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
@@ -16,8 +17,8 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ..model.scaffold import Scaffold
+from ..runtime.pools import WorkerPool, worker_pool
 from ..runtime.progress import task
-from ..runtime.workers import context, ignore_interrupts
 from .budget import MAX_CROSSINGS, TIME_LIMIT, TimeLimitReached
 from .identification import Json, NameFields
 from .key_names import KeyCache, share_names
@@ -33,10 +34,13 @@ _WORKER: dict[str, float | None] = {}
 """The worker's time limit per design (``time_limit``), set by :func:`_init_worker`."""
 
 
-def _init_worker(time_limit: float | None = TIME_LIMIT, worker: bool = False) -> None:
-    if worker:
-        ignore_interrupts()
+def _init_worker(time_limit: float | None = TIME_LIMIT) -> None:
     _WORKER.update(time_limit=time_limit)
+
+
+def _name_chunk(items: list[tuple[list[list[int]], int]]) -> list[NameFields]:
+    """In a worker: :func:`_name_fields` of each item."""
+    return [_name_fields(item) for item in items]
 
 
 def _name_fields(item: tuple[list[list[int]], int]) -> NameFields:
@@ -282,11 +286,16 @@ POOL_MIN = 16
 
 
 class Namer:
-    """Names designs in full: in this process, or in worker processes started on first need."""
+    """Names designs in full: in this process, or in worker processes started on first need.
+
+    The workers are a :class:`~lkspace.runtime.pools.WorkerPool`: one that dies is
+    reported (:class:`~lkspace.runtime.pools.WorkerLost`), never waited for.
+    """
 
     def __init__(self, processes: int, isolate: bool, time_limit: float | None) -> None:
         self.processes, self.isolate, self.time_limit = processes, isolate, time_limit
-        self.pool: Any = None
+        self.workers: contextlib.ExitStack | None = None
+        self.pool: WorkerPool | None = None
 
     def __enter__(self) -> Namer:
         _init_worker(self.time_limit)
@@ -303,17 +312,21 @@ class Namer:
         knot_modules()
         tables()  # loaded here (workers load their own)
         if self.isolate or (self.processes > 1 and len(items) >= POOL_MIN):
-            if self.pool is None:
-                self.pool = context().Pool(
-                    max(self.processes, 1), initializer=_init_worker, initargs=(self.time_limit, True)
-                )
-            chunk = max(1, min(16, len(items) // (4 * max(self.processes, 1)) or 1))
-            return list(self.pool.imap(_name_fields, items, chunksize=chunk))
+            size = max(1, min(16, len(items) // (4 * max(self.processes, 1)) or 1))
+            chunks = [items[i : i + size] for i in range(0, len(items), size)]
+            return [fields for chunk in self._pool().ordered(_name_chunk, chunks) for fields in chunk]
         return [_name_fields(item) for item in items]
 
-    def __exit__(self, kind: object, *exc: object) -> None:
-        if self.pool is not None:
-            if kind is not None:  # Ctrl-C or an error: stop the workers now, not after their queue
-                self.pool.terminate()
-            self.pool.close()
-            self.pool.join()
+    def _pool(self) -> WorkerPool:
+        """Return the workers, started on first need."""
+        if self.pool is None:
+            self.workers = contextlib.ExitStack()
+            self.pool = self.workers.enter_context(
+                worker_pool(max(self.processes, 1), _init_worker, (self.time_limit,))
+            )
+        return self.pool
+
+    def __exit__(self, *exc: Any) -> None:
+        """Shut the workers down; on Ctrl-C or an error, kill them now (not after their queue)."""
+        if self.workers is not None:
+            self.workers.__exit__(*exc)

@@ -11,6 +11,8 @@ The limit counts the child's **CPU time** (user + system, read from ``/proc`` ev
 machine answers what an idle one answers, only later.  A child that gets no CPU at all
 for :data:`WALL_FACTOR` times the limit of wall time is stopped too (a backstop, never
 reached by work that runs).
+A child whose parent is killed (a pool worker stopped at once) exits within
+:data:`~lkspace.runtime.workers.ORPHAN_POLL` seconds.
 Sizes are bounded before any work: :func:`twist_crossings` estimates the crossings the
 twists alone make, and :data:`MAX_CROSSINGS` bounds the projected diagram.
 """
@@ -21,6 +23,7 @@ import contextlib
 import multiprocessing
 import os
 import signal
+import threading
 import time
 from collections.abc import Callable
 from typing import Any, TypeVar
@@ -29,6 +32,7 @@ import numpy as np
 
 from ..errors import LkspaceError
 from ..runtime.progress import Step, install
+from ..runtime.workers import exit_with
 
 TIME_LIMIT = 60.0
 """Default seconds for identifying one design (``identify --time-limit``; 0 or ``None``: no limit)."""
@@ -115,10 +119,12 @@ def run_in_time(func: Callable[[Callable[[str], None]], T], time_limit: float | 
     if not time_limit or not hasattr(os, "fork"):
         return func(note)
     recv, send = multiprocessing.Pipe(duplex=False)
+    parent = os.getpid()
     pid = os.fork()
     if pid == 0:  # pragma: no cover - the child: its coverage is not collected
         recv.close()
         install(None)
+        threading.Thread(target=exit_with, args=(parent,), daemon=True).start()  # a parent killed never kills it
         if cpu_seconds(os.getpid()) is None:
             _limit_cpu(time_limit)
         try:

@@ -21,6 +21,7 @@ from typing import Any
 
 from ..errors import MissingDependencyError, require
 from ..io.atomic import write_bytes
+from ..runtime.workers import kept_interrupt_handler
 
 PURPOSE = "knot identification"
 HOMFLY_MAX_CROSSINGS = 40  # HOMFLY-PT (regina) of larger simplified diagrams is skipped
@@ -57,11 +58,14 @@ def knot_modules() -> tuple[ModuleType, ModuleType, ModuleType]:
     """Return the modules spherogram, regina and database_knotinfo (after checking snappy too).
 
     Raises :class:`~lkspace.errors.MissingDependencyError` naming the extra ``[knots]`` when one is missing.
+    Ctrl-C keeps the handler it had before SnapPy was imported
+    (:func:`~lkspace.runtime.workers.kept_interrupt_handler`).
     """
-    spherogram = require("spherogram", "knots", PURPOSE)
-    regina = require("regina", "knots", PURPOSE)
-    require("snappy", "knots", PURPOSE)
-    dki = require("database_knotinfo", "knots", PURPOSE)
+    with kept_interrupt_handler():
+        spherogram = require("spherogram", "knots", PURPOSE)
+        regina = require("regina", "knots", PURPOSE)
+        require("snappy", "knots", PURPOSE)
+        dki = require("database_knotinfo", "knots", PURPOSE)
     return spherogram, regina, dki
 
 

@@ -28,11 +28,10 @@ import logging
 import os
 import sys
 from collections.abc import Callable, Iterator, Sequence
-from multiprocessing.pool import Pool
 from typing import Any
 
 from ..errors import MissingDependencyError, UsageError, require
-from .workers import context, deferred_signals, ignore_interrupts
+from .pools import worker_pool
 
 SCHEDULERS = ("local", "dask")
 """Named schedulers; anything else must be a ``tcp://HOST:PORT`` (or ``tls://``) address."""
@@ -174,26 +173,6 @@ def dask_client(scheduler: str, jobs: int) -> Iterator[Any]:
                 yield client
 
 
-@contextlib.contextmanager
-def worker_pool(processes: int, initializer: Callable[..., object], initargs: tuple[object, ...]) -> Iterator[Pool]:
-    """Yield a pool of ``processes`` worker processes (:func:`lkspace.runtime.workers.context`), shut down when the body ends.
-
-    Made whole before a signal is handled (a pool half made cannot be stopped); closed and
-    joined when the body finishes, terminated at once (running tasks stopped, queued ones
-    never started) when it raises, Ctrl-C and a caller stopping early included.
-    """
-    with deferred_signals():
-        pool = context().Pool(processes, initializer=initializer, initargs=initargs)
-    try:
-        yield pool
-        pool.close()
-    except BaseException:
-        pool.terminate()
-        raise
-    finally:
-        pool.join()
-
-
 def _knock(host_port: str) -> None:
     """Open and close a TCP connection to ``HOST[:PORT]`` (Dask's port 8786 by default); ``OSError`` if refused."""
     import socket
@@ -230,7 +209,7 @@ def run_tasks(
                 yield i, fn(shared, item)
             return
         with worker_pool(min(jobs, len(items)), _init_local, (fn, shared)) as pool:
-            yield from pool.imap_unordered(_run_local, list(enumerate(items)))
+            yield from pool.unordered(_run_local, list(enumerate(items)))
         return
     distributed = import_distributed(f"scheduler {scheduler}", "scheduler")
     with dask_client(scheduler, jobs) as client:
@@ -291,7 +270,6 @@ _LOCAL: list[tuple[Callable[..., Any], Any]] = []
 
 
 def _init_local(fn: Callable[..., Any], shared: Any) -> None:
-    ignore_interrupts()
     _LOCAL[:] = [(fn, shared)]
 
 

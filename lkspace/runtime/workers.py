@@ -23,6 +23,7 @@ import os
 import signal
 import sys
 import threading
+import time
 from collections.abc import Callable, Iterator, Sequence
 from typing import TYPE_CHECKING, TypeVar
 
@@ -135,6 +136,33 @@ def interruptible(call: Callable[[], T], size: int | None = None) -> T:
     return done[0]
 
 
+ORPHAN_POLL = 0.5
+"""Seconds between a worker's (or a naming child's) checks that the process it works for still runs."""
+
+
+def alive(pid: int) -> bool:
+    """Whether process ``pid`` still runs: a zombie (ended, its parent yet to reap it) has ended (Linux's ``/proc``)."""
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:  # another user's process now holds the number
+        return True
+    try:
+        with open(f"/proc/{pid}/stat", "rb") as fh:
+            state = fh.read().rsplit(b")", 1)[1].split()[0]  # after the command name, which may hold spaces
+    except (OSError, IndexError):  # no /proc (macOS): a zombie counts as running
+        return True
+    return state not in (b"Z", b"X")
+
+
+def exit_with(owner: int) -> None:
+    """Exit this process (status 1) once process ``owner`` is gone: an orphan's results reach nobody (run in a thread)."""
+    while alive(owner) and os.getppid() != 1:
+        time.sleep(ORPHAN_POLL)
+    os._exit(1)
+
+
 def _forked_child_defaults() -> None:
     """In a child forked within :func:`interrupt_signals`: default SIGTERM, SIGINT ignored.
 
@@ -206,6 +234,28 @@ def deferred_signals() -> Iterator[None]:
             signal.signal(s, handler)
         if caught:
             raise Terminated() if caught[0] == signal.SIGTERM else KeyboardInterrupt()
+
+
+@contextlib.contextmanager
+def kept_interrupt_handler() -> Iterator[None]:
+    """Within the body (an import of SnapPy), SIGINT keeps its handler: put back if the body replaced it (main thread only).
+
+    SnapPy's PARI (cypari's copy of cysignals) installs a C-level SIGINT handler and a
+    Python-level one that raises only what that C handler recorded.  Once
+    :func:`ignored_signals` or :func:`deferred_signals` put the Python-level one back,
+    Python's C handler is in place again, that handler finds nothing recorded, and every
+    later Ctrl-C is lost.  PARI runs in lkspace's own process for milliseconds only (longer
+    naming runs in children that ignore Ctrl-C), so Python's handling is kept instead.
+    """
+    if not in_main_thread():
+        yield
+        return
+    old = signal.getsignal(signal.SIGINT)
+    try:
+        yield
+    finally:
+        if old is not None and signal.getsignal(signal.SIGINT) is not old:
+            signal.signal(signal.SIGINT, old)
 
 
 INTERRUPTED = (128 + signal.SIGINT, 128 + signal.SIGTERM)
