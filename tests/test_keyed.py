@@ -135,3 +135,30 @@ def test_keys_in_threads_equal_keys_in_one(monkeypatch):
         assert np.array_equal(getattr(one, name), getattr(three, name)), name
     assert [three.linking_matrix(d) for d in range(len(labels))] == [one.linking_matrix(d) for d in range(len(labels))]
     assert keyed.design_keys.compiled.targetoptions["nogil"]
+
+
+def test_names_made_before_an_interrupt_are_kept(tmp_path, monkeypatch):
+    """Names in full stream: each key is written to the cache file as its name comes, not after the whole batch."""
+    import lkspace.knots.batch as batch
+    from lkspace.knots.key_names import share_names
+
+    tetra = load("tetrahedron")
+    labels = np.random.default_rng(5).integers(-2, 3, size=(60, tetra.n_edges))
+    found = keys_of(tetra, labels)
+    path = tmp_path / "names.jsonl"
+    cache = KeyCache(path=str(path))
+    calls = []
+    real = batch._name_fields
+
+    def interrupted_on_the_fourth(item):
+        calls.append(1)
+        if len(calls) == 4:
+            raise KeyboardInterrupt
+        return real(item)
+
+    monkeypatch.setattr(batch, "_name_fields", interrupted_on_the_fourth)
+    with batch.Namer(1, False, 60.0) as namer, pytest.raises(KeyboardInterrupt):
+        share_names(found, cache, lambda indices: namer.name([found.diagram(d)[:2] for d in indices]))
+    lines = [json.loads(line) for line in path.read_text().splitlines()]
+    assert len(lines) == 3
+    assert all(tuple(item["key"]) in cache.named or tuple(item["key"]) in cache.own for item in lines)

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import contextlib
 import json
+from collections.abc import Iterator
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
@@ -244,7 +245,7 @@ def identify_chunk(
     if len(todo):
         found = keys_of(scaffold, labels_2d[todo], seed, label_values)
 
-        def name_designs(indices: list[int]) -> list[NameFields]:
+        def name_designs(indices: list[int]) -> Iterator[NameFields]:
             return namer.name([found.diagram(d)[:2] for d in indices])
 
         shared = share_names(found, cache, name_designs)
@@ -305,17 +306,23 @@ class Namer:
         """Name with at most ``seconds`` (> 0) per design from now on, in this process (workers keep their limit)."""
         _init_worker(seconds if self.time_limit is None else min(self.time_limit, seconds))
 
-    def name(self, items: list[tuple[list[list[int]], int]]) -> list[NameFields]:
-        """Row fields of each ``(pd, n_components)``, in order (the knot libraries load on first need)."""
+    def name(self, items: list[tuple[list[list[int]], int]]) -> Iterator[NameFields]:
+        """Yield the row fields of each ``(pd, n_components)``, in order, as each is named (knot libraries load on first need)."""
         if not items:
-            return []
+            return
         knot_modules()
         tables()  # loaded here (workers load their own)
-        if self.isolate or (self.processes > 1 and len(items) >= POOL_MIN):
-            size = max(1, min(16, len(items) // (4 * max(self.processes, 1)) or 1))
-            chunks = [items[i : i + size] for i in range(0, len(items), size)]
-            return [fields for chunk in self._pool().ordered(_name_chunk, chunks) for fields in chunk]
-        return [_name_fields(item) for item in items]
+        with task("naming new keys in full", total=len(items)) as step:
+            if self.isolate or (self.processes > 1 and len(items) >= POOL_MIN):
+                size = max(1, min(16, len(items) // (4 * max(self.processes, 1)) or 1))
+                chunks = [items[i : i + size] for i in range(0, len(items), size)]
+                for named in self._pool().ordered(_name_chunk, chunks):
+                    yield from named
+                    step.advance(len(named))
+            else:
+                for item in items:
+                    yield _name_fields(item)
+                    step.advance()
 
     def _pool(self) -> WorkerPool:
         """Return the workers, started on first need."""

@@ -10,7 +10,7 @@ import hashlib
 import json
 import os
 import re
-from collections.abc import Callable
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
 from fractions import Fraction
 from typing import Any
@@ -221,7 +221,7 @@ def homfly_of(pd: list[list[int]]) -> tuple[str, int] | None:
 def share_names(
     found: DesignKeys,
     cache: KeyCache,
-    name_designs: Callable[[list[int]], list[NameFields]],
+    name_designs: Callable[[list[int]], Iterable[NameFields]],
 ) -> list[NameFields | None]:
     """Row fields of every design of ``found``, shared by key where the key is trusted.
 
@@ -231,7 +231,8 @@ def share_names(
     more crossings than the design's simplified diagram is not the design's type).  ``name_designs(indices)`` names designs in
     full (in worker processes, under the time limit): once per new key, then each design
     of a key trusted at neither level, whose name is kept by its own diagram (the PD code
-    the template gives it, the same in every run: :func:`_diagram_key`).
+    the template gives it, the same in every run: :func:`_diagram_key`).  Each name is
+    kept (:meth:`KeyCache.remember`) as it comes: an interrupted run keeps what it named.
     """
     first: list[Key | None] = [
         (int(a), int(b)) if ok else None for (a, b), ok in zip(found.keys.tolist(), found.keyed, strict=True)
@@ -274,7 +275,7 @@ def _share(
     found: DesignKeys,
     keys: list[Key | None],
     cache: KeyCache,
-    name_designs: Callable[[list[int]], list[NameFields]],
+    name_designs: Callable[[list[int]], Iterable[NameFields]],
     second: bool,
 ) -> list[NameFields | None]:
     """One level of :func:`share_names`: name each new key's first design, share the trusted keys' names."""
