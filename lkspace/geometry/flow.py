@@ -348,12 +348,15 @@ def rope_flow(
     return FlowResult(curves_out, diameter, float(lengths.sum()) / (0.5 * diameter), it, stopped)
 
 
-SMOOTH_ITERATIONS, SMOOTH_PULL = 60, 0.1
-"""Iterations and curve-shortening weight of the default smoothing (a light touch: the strands keep to their faces)."""
+SMOOTH_ITERATIONS, SMOOTH_PULL = 90, 0.5
+"""Iterations and curve-shortening weight of the default smoothing: enough to round the construction's
+corners and curls at the rope's diameter (:func:`~lkspace.geometry.params.smooth_diameter`), too few to
+draw the strands off their faces."""
 
 
-SMOOTH_MAX_POINTS = 50_000
-"""Curves that would need more flow points than this are left as constructed (the flow would take seconds)."""
+SMOOTH_MAX_POINTS = 30_000
+"""Curves that would need more flow points than this are left as constructed (the flow would take seconds;
+the work of 50,000 points at 60 iterations)."""
 
 
 def smooth_curves(curves: list[np.ndarray], diameter: float, cell: Cell | None = None) -> list[np.ndarray]:

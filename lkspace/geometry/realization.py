@@ -62,7 +62,6 @@ from .construction import Curves, Ports, build_curves, edge_counts
 from .flow import smooth_curves
 from .limits import check_points, check_samples, check_winding
 from .params import (
-    SMOOTH_DIAMETER,
     TUBE,
     TUBE_BEND_SHARE,
     TUBE_GAP_SHARE,
@@ -70,6 +69,7 @@ from .params import (
     GeometryParams,
     RealizeOptions,
     Resolved,
+    smooth_diameter,
 )
 from .tracks import Tracks, lattice_shift, place_name, side_tracks
 
@@ -337,12 +337,12 @@ def _smoothed(
     if shape.smooth and scaffold.dim and tr.closed.all():
         from .threads import smoothed_classes
 
-        return smoothed_classes(scaffold, tr, built, SMOOTH_DIAMETER * shape.radius, embedding != "measure")
+        return smoothed_classes(scaffold, tr, built, smooth_diameter(scaffold, shape.radius), embedding != "measure")
     if not shape.smooth or scaffold.dim or not built.closed.all():
         return built.curves
     if embedding != "measure":
         _clearance(scaffold, built.curves, built.closed, shape, "refuse", measure=False)
-    return smooth_curves(built.curves, SMOOTH_DIAMETER * shape.radius)
+    return smooth_curves(built.curves, smooth_diameter(scaffold, shape.radius))
 
 
 def _measured(
