@@ -4,6 +4,7 @@ independent helper (tests/ropelength.py), link types checked before and after.""
 from __future__ import annotations
 
 import json
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -11,6 +12,7 @@ import pytest
 import lkspace
 from lkspace.errors import GeometryError
 from lkspace.geometry import flow
+from lkspace.geometry import relax as relax_module
 from lkspace.geometry.flow import FlowOptions, rope_flow
 
 from .cli_calls import one_line_error, run
@@ -132,6 +134,19 @@ def test_relax_does_not_depend_on_the_clock(monkeypatch):
     hurried = lkspace.relax(real, steps=300)
     assert hurried.relaxation == calm.relaxation
     assert all(np.array_equal(a, b) for a, b in zip(calm.curves, hurried.curves, strict=True))
+
+
+def test_relax_starts_from_the_light_smoothing_of_the_construction():
+    # the shipped ideal shapes were found from it: the default curves (rounder since issue 34) are not the start
+    real = lkspace.realize("dihedron:3", 1)
+    assert real.construction is not None
+    start = flow.smooth_curves(real.construction, relax_module.START_DIAMETER * real.radius, how=relax_module.START)
+    light = replace(real, curves=start, construction=None)
+    a, b = lkspace.relax(real, steps=200), lkspace.relax(light, steps=200)
+    assert a.construction is None and all(np.array_equal(x, y) for x, y in zip(a.curves, b.curves, strict=True))
+    again = lkspace.relax(a, steps=1)  # a relaxed realization relaxes on from its own curves, not the start
+    assert again.relaxation is not None and a.relaxation is not None
+    assert again.relaxation.ropelength < 1.05 * a.relaxation.ropelength
 
 
 def test_relax_limits_stop_early_and_say_so():

@@ -105,6 +105,9 @@ class Realization:
         curves were cut to (threads end on its faces; closed loops are whole).
     relaxation : Relaxation or None
         Set by :func:`lkspace.geometry.relax.relax`: steps run and whether it converged.
+    construction : list of (n_k, 3) float64, or None
+        The curves as constructed, when ``curves`` are them smoothed (or were too many
+        points to smooth): :func:`~lkspace.geometry.relax.relax` starts from them.
     """
 
     scaffold: Scaffold
@@ -124,6 +127,7 @@ class Realization:
     translations: np.ndarray | None = None
     block: CellBlock | None = None
     relaxation: Relaxation | None = None
+    construction: list[np.ndarray] | None = None
 
     def __repr__(self) -> str:
         points = sum(len(c) for c in self.curves)
@@ -212,8 +216,10 @@ def realize(
     how.check()
     tr = how.trace if how.trace is not None else trace(scaffold, labels, nulls)
     built = _built(scaffold, tr, shape, how)
-    built = replace(built, curves=_smoothed(scaffold, tr, built, shape, how.embedding))
-    real = _measured(scaffold, tr, built, shape, how)
+    smoothed = replace(built, curves=_smoothed(scaffold, tr, built, shape, how.embedding))
+    real = _measured(scaffold, tr, smoothed, shape, how)
+    if shape.smooth and tr.closed.all():
+        real = replace(real, construction=built.curves)
     if relax:
         from .relax import relax as relax_curves
 
