@@ -356,7 +356,7 @@ class Smoothing(NamedTuple):
     max_points: int
 
 
-SMOOTHING = Smoothing(90, 0.5, 30_000)
+SMOOTHING = Smoothing(90, 0.5, 33_000)
 """The default smoothing: enough iterations at the full curve-shortening weight to round the
 construction's corners and curls at the rope's diameter
 (:func:`~lkspace.geometry.params.smooth_diameter`), too few to draw the strands off their
