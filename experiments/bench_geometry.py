@@ -25,6 +25,7 @@ machine load.  Writes ``results/bench_realize.json`` and ``results/bench_realize
 from __future__ import annotations
 
 import json
+import math
 import os
 import platform
 import subprocess
@@ -36,16 +37,19 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.join(HERE, "..")
 sys.path.insert(0, ROOT)
 
-from tests.ropelength import read_obj_polylines, ropelength  # noqa: E402
+from tests.ropelength import most_turning, read_obj_polylines, ropelength  # noqa: E402
 
 DESIGNS = [
     ("trefoil", "dihedron:3", "1", 32.74),
     ("figure-eight", "figure-eight", "0,-1,-1,-1,-1", 42.09),
     ("5_1", "dihedron:5", "1", 47.20),
+    ("5_2", "figure-eight", "-2,-1,-1,-1,0", 49.47),
     ("Hopf", "dihedron:4", "0,0,-1,-1", 25.13),
+    ("Hopf (lookup)", "dihedron:3", "-2,0,0", 25.13),
     ("Borromean", "tetrahedron", "1", 58.01),
 ]
-"""(name, mesh, twist, least known ropelength) of the five designs of issue 21 (ropelength literature)."""
+"""(name, mesh, twist, least known ropelength): the five designs of issue 21 (ropelength literature),
+5_2 and the Hopf link as ``lkspace lookup`` finds them."""
 
 
 TIMED = [
@@ -93,13 +97,35 @@ def timing(repeats: int = 9) -> dict:
         row["points"] = int(sum(len(c) for c in real.curves))
         rows.append(row)
         print(row, flush=True)
-    ropes = []
-    for name, mesh, twist, least in DESIGNS:
-        labels = [int(x) for x in twist.split(",")]
-        real = lkspace.realize(mesh, labels[0] if len(labels) == 1 else labels)
-        rope = ropelength([(c, True) for c in real.curves])["ropelength"]
-        ropes.append({"design": name, "least": least, "default": round(rope, 2), "ratio": round(rope / least, 2)})
+    ropes = [default_shape(lkspace, *design) for design in DESIGNS]
     return {"rows": rows, "ropelength": ropes}
+
+
+def default_shape(lkspace, name: str, mesh: str, twist: str, least: float) -> dict:
+    """The default curves of a design against its construction, measured by ``tests/ropelength.py``.
+
+    Ropelength and its ratio to the least known; the least curvature radius over the tube
+    radius; the most any stretch of 2 pi insets turns (pi); the farthest a point lies from
+    its strand's construction (insets: how far the smoothing drew it off its face).
+    """
+    from scipy.spatial import cKDTree
+
+    labels = [int(x) for x in twist.split(",")]
+    labels = labels[0] if len(labels) == 1 else labels
+    real = lkspace.realize(mesh, labels)
+    raw = lkspace.realize(mesh, labels, params=lkspace.GeometryParams(smooth=False))
+    measured = ropelength([(c, True) for c in real.curves])
+    inset = real.radius
+    drift = max(float(cKDTree(b).query(a)[0].max()) for a, b in zip(real.curves, raw.curves, strict=True))
+    return {
+        "design": name,
+        "least": least,
+        "default": round(measured["ropelength"], 2),
+        "ratio": round(measured["ropelength"] / least, 2),
+        "bend_over_tube": round(measured["curvature_radius"] / real.tube_radius, 2),
+        "turning_pi": round(max(most_turning(c, True, 2 * math.pi * inset) for c in real.curves) / math.pi, 2),
+        "drift_insets": round(drift / inset, 2),
+    }
 
 
 def timing_tables(trees: dict[str, dict], meta: dict) -> str:
@@ -140,13 +166,22 @@ def timing_tables(trees: dict[str, dict], meta: dict) -> str:
     ]
     lines += [
         "",
-        "Ropelength of the default curves (length / tube radius, `tests/ropelength.py`) against the least known:",
+        "The default curves, measured by `tests/ropelength.py`: ropelength (length / rope radius) and its ratio",
+        "to the least known; least curvature radius / tube radius; the most any stretch of 2π insets turns",
+        "(× π: a curl of the inset's radius turns 2π); the farthest point from its strand's construction (insets):",
         "",
-        "| design | least | " + " | ".join(f"{t} default (ratio)" for t in names) + " |",
-        "|---|---:|" + "---:|" * len(names),
+        "| design | least | "
+        + " | ".join(f"{t} ropelength (ratio) | {t} bend / tube | {t} turning | {t} drift" for t in names)
+        + " |",
+        "|---|---:|" + "---:|---:|---:|---:|" * len(names),
     ]
     for k, rope in enumerate(trees[names[0]]["ropelength"]):
-        cells = [f"{trees[t]['ropelength'][k]['default']} ({trees[t]['ropelength'][k]['ratio']}x)" for t in names]
+        cells = []
+        for t in names:
+            m = trees[t]["ropelength"][k]
+            cells.append(
+                f"{m['default']} ({m['ratio']}x) | {m['bend_over_tube']} | {m['turning_pi']} | {m['drift_insets']}"
+            )
         lines.append(f"| {rope['design']} | {rope['least']} | " + " | ".join(cells) + " |")
     return "\n".join(lines) + "\n"
 

@@ -116,3 +116,25 @@ def ropelength(curves: list[tuple[np.ndarray, bool]], n_points: int = 6000) -> d
         "thickness": thickness,
         "ropelength": total / thickness,
     }
+
+
+def most_turning(points: np.ndarray, closed: bool, arc: float) -> float:
+    """The most a polyline turns (sum of its exterior angles, radians) along any stretch of length ``arc``.
+
+    A stretch ``arc`` long turns ``arc / r`` along a circle of radius ``r``: a full loop
+    (``2 pi``) within ``2 pi r`` of arc is a curl of radius ``r`` or less.
+    """
+    p = np.vstack([points, points[:1]]) if closed else points
+    seg = np.diff(p, axis=0)
+    length = np.linalg.norm(seg, axis=1)
+    tangent = seg / length[:, None]
+    after = np.roll(tangent, -1, axis=0) if closed else tangent[1:]
+    angle = np.arccos(np.clip(np.sum(tangent[: len(after)] * after, axis=1), -1.0, 1.0))
+    if closed:  # go round twice so that every stretch starts in the first round
+        angle, length = np.tile(angle, 2), np.tile(length, 2)
+    at = np.concatenate([[0.0], np.cumsum(length)])  # angle[k] is at the end of segment k
+    turned = np.concatenate([[0.0], np.cumsum(angle)])
+    starts = at[: len(angle)]
+    ends = np.minimum(np.searchsorted(at[1:], starts + arc, side="right"), len(angle))  # angles up to start + arc
+    first = np.arange(len(angle))
+    return float((turned[ends] - turned[first]).max())

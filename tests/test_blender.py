@@ -419,10 +419,12 @@ def test_relax_checkbox_builds_relaxed_strands(blender, tmp_path):
     tight = {c["lk_strand"]: curve_points(c) for c in strand_curves(obj)}
     want = lkspace.relax(lkspace.realize(scaffold, labels))
     assert sorted(len(p) for p in tight.values()) == sorted(len(c) for c in want.curves)
-    for k, after in tight.items():  # every strand moved: some relaxed point is far from the default curve
+    # every strand moved: some relaxed point is off the default curve (by 2% of its size: the default
+    # smoothing is within a few percent of tight on the small knots since issue 34, the trefoil's 3.9%)
+    for k, after in tight.items():
         before = plain[k]
         gaps = np.linalg.norm(after[:, None] - before[None], axis=2).min(axis=1)
-        assert gaps.max() > 0.05 * np.linalg.norm(before - before.mean(axis=0), axis=1).max()
+        assert gaps.max() > 0.02 * np.linalg.norm(before - before.mean(axis=0), axis=1).max()
     assert all(c.data.splines[0].use_cyclic_u for c in strand_curves(obj))
     cut = np.zeros(12, bool)  # a null side: open strands, which relax refuses in one line; the curves stay
     cut[0] = True

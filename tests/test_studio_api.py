@@ -304,9 +304,11 @@ def test_relaxed_design_differs_keeps_components_and_is_cached(client, name, lab
     assert (
         tight["curves"]["strand"] == plain["curves"]["strand"] and len(tight["curves"]["counts"]) == plain["components"]
     )
-    for before, after in zip(curves_of(plain), curves_of(tight), strict=True):  # every strand moved
+    # every strand moved, by 2% of its size at least: the default smoothing is within a few percent of
+    # tight on the small knots since issue 34 (the trefoil moves 3.6%)
+    for before, after in zip(curves_of(plain), curves_of(tight), strict=True):
         gaps = np.linalg.norm(after[:, None] - before[None], axis=2).min(axis=1)  # relaxed point to default curve
-        assert gaps.max() > 0.05 * np.linalg.norm(before - before.mean(axis=0), axis=1).max()
+        assert gaps.max() > 0.02 * np.linalg.norm(before - before.mean(axis=0), axis=1).max()
     worker = client.studio.jobs.latest["", "relax"]
     assert worker is not previous and worker.state == "done"  # relaxed by a worker
     again = post(client, "design", {"key": name, "labels": labels, "relax": True}).json()

@@ -348,28 +348,38 @@ def rope_flow(
     return FlowResult(curves_out, diameter, float(lengths.sum()) / (0.5 * diameter), it, stopped)
 
 
-SMOOTH_ITERATIONS, SMOOTH_PULL = 60, 0.1
-"""Iterations and curve-shortening weight of the default smoothing (a light touch: the strands keep to their faces)."""
+class Smoothing(NamedTuple):
+    """How :func:`smooth_curves` smooths: its flow's iterations and curve-shortening weight, and the most flow points."""
+
+    iterations: int
+    pull: float
+    max_points: int
 
 
-SMOOTH_MAX_POINTS = 50_000
-"""Curves that would need more flow points than this are left as constructed (the flow would take seconds)."""
+SMOOTHING = Smoothing(90, 0.5, 33_000)
+"""The default smoothing: enough iterations at the full curve-shortening weight to round the
+construction's corners and curls at the rope's diameter
+(:func:`~lkspace.geometry.params.smooth_diameter`), too few to draw the strands off their
+faces.  Curves that would need more flow points are left as constructed (the flow would take
+seconds; the work of 50,000 points at 60 iterations)."""
 
 
-def smooth_curves(curves: list[np.ndarray], diameter: float, cell: Cell | None = None) -> list[np.ndarray]:
+def smooth_curves(
+    curves: list[np.ndarray], diameter: float, cell: Cell | None = None, how: Smoothing = SMOOTHING
+) -> list[np.ndarray]:
     """Round the corners of closed ``curves`` and spread their distinct pieces to ``diameter``.
 
-    A short :func:`rope_flow` without growth: an isotopy (the link type is kept), and
-    the curves move less than ``SMOOTH_ITERATIONS * diameter / 32`` (mostly far less)
-    from the construction, so each strand still follows its face.  The curves come back
-    evenly spaced at ``diameter / 8`` (the construction's sampling is not kept: finer
+    A short :func:`rope_flow` without growth (``how``): an isotopy (the link type is
+    kept), and the curves move less than ``how.iterations * diameter / 32`` (mostly far
+    less) from the construction, so each strand still follows its face.  The curves come
+    back evenly spaced at ``diameter / 8`` (the construction's sampling is not kept: finer
     points on the flow's polyline would show its vertices as kinks); curves needing more
-    than :data:`SMOOTH_MAX_POINTS` flow points in all are returned unchanged.  ``cell``:
-    the curves are thread classes in it (module docstring).
+    than ``how.max_points`` flow points in all are returned unchanged.  ``cell``: the
+    curves are thread classes in it (module docstring).
     """
-    options = FlowOptions(diameter=diameter, pull=SMOOTH_PULL, iterations=SMOOTH_ITERATIONS)
+    options = FlowOptions(diameter=diameter, pull=how.pull, iterations=how.iterations)
     offsets = None if cell is None else cell.offsets()
-    if float(closed_lengths(curves, offsets).sum()) * options.points_per_diameter / diameter > SMOOTH_MAX_POINTS:
+    if float(closed_lengths(curves, offsets).sum()) * options.points_per_diameter / diameter > how.max_points:
         return curves
     return rope_flow(curves, options, "smoothing", cell).curves
 

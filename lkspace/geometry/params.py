@@ -32,8 +32,8 @@ RADIUS, MARGIN, MIN_SEPARATION, TUBE = 0.12, 0.28, 0.01, 0.03
 NORMAL_OFFSET = 0.35
 """Default normal offset where faces nearly coincide, in units of the inset."""
 
-SMOOTH_DIAMETER = 1.5
-"""Rope diameter of the default smoothing (:func:`~lkspace.geometry.flow.smooth_curves`), in insets."""
+SMOOTH_DIAMETER = 2.0, 1.5
+"""Most and least rope diameter of the default smoothing (:func:`smooth_diameter`), in insets."""
 
 TUBE_GAP_SHARE = 0.45
 """The default tube radius is at most this share of the smallest distance between distinct pieces."""
@@ -96,6 +96,19 @@ class RealizeOptions:
             )
 
 
+def smooth_diameter(scaffold: Scaffold, radius: float) -> float:
+    """Rope diameter of the default smoothing (:func:`~lkspace.geometry.flow.smooth_curves`) for inset ``radius``.
+
+    The spacing the helices of the scaffold's busiest edge already have, ``2 radius
+    sin(pi / K)`` (two strands on opposite sides of an edge: ``2 radius``), kept within
+    :data:`SMOOTH_DIAMETER`: a rope that thick needs no strand to leave its edge's helix
+    radius, so each still follows its face.
+    """
+    most, least = SMOOTH_DIAMETER
+    busiest = max(2, int(scaffold.edge_degrees.max(initial=2)))
+    return float(radius * np.clip(2 * np.sin(np.pi / busiest), least, most))
+
+
 @dataclass(frozen=True)
 class GeometryParams:
     """Realization parameters; ``None`` entries are scaled from the mesh.
@@ -130,8 +143,9 @@ class GeometryParams:
     corner_samples : int
         Points on each corner turn.
     smooth : bool
-        Smooth the closed strands of a finite scaffold (default): corners rounded, strands
-        spread to 1.5 insets apart, by a flow that cannot change the link type
+        Smooth the closed strands (default): corners rounded, strands spread to the
+        spacing of the busiest edge's helices (:func:`smooth_diameter`: 2 insets where
+        edges join two faces), by a flow that cannot change the link type
         (:func:`~lkspace.geometry.flow.smooth_curves`).  ``False`` keeps the construction
         polylines (faster; what :func:`lkspace.identify` projects).
     """

@@ -62,7 +62,6 @@ from .construction import Curves, Ports, build_curves, edge_counts
 from .flow import smooth_curves
 from .limits import check_points, check_samples, check_winding
 from .params import (
-    SMOOTH_DIAMETER,
     TUBE,
     TUBE_BEND_SHARE,
     TUBE_GAP_SHARE,
@@ -70,6 +69,7 @@ from .params import (
     GeometryParams,
     RealizeOptions,
     Resolved,
+    smooth_diameter,
 )
 from .tracks import Tracks, lattice_shift, place_name, side_tracks
 
@@ -105,6 +105,9 @@ class Realization:
         curves were cut to (threads end on its faces; closed loops are whole).
     relaxation : Relaxation or None
         Set by :func:`lkspace.geometry.relax.relax`: steps run and whether it converged.
+    construction : list of (n_k, 3) float64, or None
+        The curves as constructed, when ``curves`` are them smoothed (or were too many
+        points to smooth): :func:`~lkspace.geometry.relax.relax` starts from them.
     """
 
     scaffold: Scaffold
@@ -124,6 +127,7 @@ class Realization:
     translations: np.ndarray | None = None
     block: CellBlock | None = None
     relaxation: Relaxation | None = None
+    construction: list[np.ndarray] | None = None
 
     def __repr__(self) -> str:
         points = sum(len(c) for c in self.curves)
@@ -212,8 +216,10 @@ def realize(
     how.check()
     tr = how.trace if how.trace is not None else trace(scaffold, labels, nulls)
     built = _built(scaffold, tr, shape, how)
-    built = replace(built, curves=_smoothed(scaffold, tr, built, shape, how.embedding))
-    real = _measured(scaffold, tr, built, shape, how)
+    smoothed = replace(built, curves=_smoothed(scaffold, tr, built, shape, how.embedding))
+    real = _measured(scaffold, tr, smoothed, shape, how)
+    if shape.smooth and tr.closed.all():
+        real = replace(real, construction=built.curves)
     if relax:
         from .relax import relax as relax_curves
 
@@ -337,12 +343,12 @@ def _smoothed(
     if shape.smooth and scaffold.dim and tr.closed.all():
         from .threads import smoothed_classes
 
-        return smoothed_classes(scaffold, tr, built, SMOOTH_DIAMETER * shape.radius, embedding != "measure")
+        return smoothed_classes(scaffold, tr, built, smooth_diameter(scaffold, shape.radius), embedding != "measure")
     if not shape.smooth or scaffold.dim or not built.closed.all():
         return built.curves
     if embedding != "measure":
         _clearance(scaffold, built.curves, built.closed, shape, "refuse", measure=False)
-    return smooth_curves(built.curves, SMOOTH_DIAMETER * shape.radius)
+    return smooth_curves(built.curves, smooth_diameter(scaffold, shape.radius))
 
 
 def _measured(

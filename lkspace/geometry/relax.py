@@ -30,11 +30,18 @@ import numpy as np
 
 from ..errors import GeometryError
 from .clearance import check_embedding
-from .flow import FlowOptions, FlowResult, Stop, rope_flow, rope_thickness
+from .flow import FlowOptions, FlowResult, Smoothing, Stop, rope_flow, rope_thickness, smooth_curves
 
 if TYPE_CHECKING:
     from .cell import Cell
     from .realization import Realization
+
+START, START_DIAMETER = Smoothing(60, 0.1, 50_000), 1.5
+"""A relaxation starts from the construction smoothed lightly: a rope of 1.5 insets, 60 steps at
+curve-shortening weight 0.1 (the default smoothing before issue 34).  The flow's minimum depends
+on its start, and the shipped ideal shapes (:mod:`~lkspace.linktypes.ideal_shapes`) were found
+from this one; the default smoothing's rounder curves relax to other minima (10_3: 1.12 x its
+ideal ropelength instead of 1.04 x)."""
 
 RELAX_STEPS = 50_000
 """Default most steps: far beyond what the designs of the atlas need to converge (hundreds to a few thousand)."""
@@ -155,6 +162,7 @@ def relax(
     name = realization.scaffold.name
     if not realization.trace.closed.all():
         raise GeometryError(f"{name}: relax needs closed strands (null edge-sides leave open ones)", usage=True)
+    realization = replace(realization, curves=_start(realization), construction=None)
     if realization.scaffold.dim:
         return _relax_periodic(realization, steps, time_limit, Plan(passes, escape, seed))
     curves = realization.curves
@@ -177,6 +185,21 @@ def relax(
         closest=closest,
         relaxation=Relaxation(flowed.iterations, flowed.stopped, flowed.ropelength),
     )
+
+
+def _start(real: Realization) -> list[np.ndarray]:
+    """Return the curves a relaxation starts from: the construction smoothed as :data:`START` says, else the curves given."""
+    if real.construction is None:
+        return real.curves
+    diameter = START_DIAMETER * real.radius
+    if not real.scaffold.dim:
+        return smooth_curves(real.construction, diameter, how=START)
+    from .construction import Curves
+    from .threads import smoothed_classes
+
+    assert real.translations is not None  # realize sets them
+    built = Curves(real.construction, real.closed, real.strand_of, real.copy_of, real.translations)
+    return smoothed_classes(real.scaffold, real.trace, built, diameter, True, START)
 
 
 class Plan(NamedTuple):

@@ -7,7 +7,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from .cell import Cell, cell_of, classes_of, placed
-from .flow import Ring, closed_lengths, distinct_pairs, resample_closed, smooth_curves
+from .flow import SMOOTHING, Ring, Smoothing, closed_lengths, distinct_pairs, resample_closed, smooth_curves
 from .tracks import lattice_shift
 
 if TYPE_CHECKING:
@@ -29,10 +29,12 @@ def least_gap(classes: list[np.ndarray], cell: Cell, spacing: float, radius: flo
     return float(d.min()) if len(d) else float("inf")
 
 
-def smoothed_classes(scaffold: Scaffold, tr: Trace, built: Curves, diameter: float, check: bool) -> list[np.ndarray]:
+def smoothed_classes(
+    scaffold: Scaffold, tr: Trace, built: Curves, diameter: float, check: bool, how: Smoothing = SMOOTHING
+) -> list[np.ndarray]:
     """Return the curves of every copy in ``built`` with their thread classes smoothed in the periodic cell.
 
-    :func:`~lkspace.geometry.flow.smooth_curves` with the lattice fixed.  With ``check``,
+    :func:`~lkspace.geometry.flow.smooth_curves` (``how``) with the lattice fixed.  With ``check``,
     classes closer than ``diameter / 8`` to themselves or to an image (no embedding to
     start the isotopy from) are left as constructed.
     """
@@ -41,5 +43,5 @@ def smoothed_classes(scaffold: Scaffold, tr: Trace, built: Curves, diameter: flo
     cell = cell_of(scaffold, tr)
     if check and least_gap(classes, cell, diameter / 8, diameter) < diameter / 8:
         return built.curves
-    smooth = smooth_curves(classes, diameter, cell)
+    smooth = smooth_curves(classes, diameter, cell, how)
     return placed(smooth, thread, cell, built.strand_of, built.copy_of, shifts)
