@@ -22,6 +22,7 @@ from lkspace.errors import LkspaceError  # noqa: E402
 from lkspace.knots.batch import NamerOptions, identify_batch  # noqa: E402
 from lkspace.knots.diagram import project  # noqa: E402
 from lkspace.knots.recognition import identify_curves  # noqa: E402
+from tests.test_geometry import gauss_linking  # noqa: E402  (at import: @given may not run inside a test)
 
 
 def name_of(mesh, twists):
@@ -42,8 +43,6 @@ def torus(p: int, q: int, n: int = 400, sign: int = 1) -> list[np.ndarray]:
 
 
 def test_projection_linking_number_matches_the_gauss_integral():
-    from tests.test_geometry import gauss_linking
-
     a, b = torus(2, 4)
     d = project([a, b], seed=3)
     assert d.linking_matrix()[0, 1] == round(gauss_linking(a, b)) == 2
@@ -191,7 +190,6 @@ def test_any_dihedron_labelling_is_the_torus_link_of_its_sum(labels):
 @given(st.lists(st.integers(-2, 2), min_size=6, max_size=6), st.integers(0, 10))
 def test_diagram_linking_numbers_match_the_gauss_integral(labels, seed):
     from lkspace import realize
-    from tests.test_geometry import gauss_linking
 
     real = realize(lkspace.load("tetrahedron"), np.array(labels))
     lk = project(real.curves, seed=seed).linking_matrix()
