@@ -94,6 +94,10 @@ def test_the_disk_cache_keeps_the_names_of_earlier_runs(tmp_path, monkeypatch):
         fh.write('{"key": [1, 2], "fie')  # a run interrupted mid-line
     again = disk_cache()
     again.shipped = {}
+    lines = path.read_text().splitlines()
+    assert set(again.stored) == {tuple(json.loads(line)["key"]) for line in lines[:-1]} | {(1, 2)}
+    assert not again.named and not again.own  # read when met, not at start
+    assert not again.known((1, 2))  # the torn line is refused when its key is met
     b = identify_batch(tetra, labels, cache=again, progress=False)
     assert again.full < first.full  # only designs of keys trusted at no level are named again
     assert set(first.named) <= set(again.named)

@@ -47,6 +47,9 @@ class KeyCache:
     shipped : ShippedKeys
         The file shipped with lkspace (:func:`~lkspace.knots.shipped_keys.shipped_keys`):
         a key's line is read when the key is met and not in :attr:`named` or :attr:`own`.
+    stored : dict
+        Key -> its line in :attr:`path` from earlier runs, read when the key is met (before
+        the shipped file): a run parses only the lines of the keys it meets.
     """
 
     named: dict[Key, NameFields] = field(default_factory=dict)
@@ -54,12 +57,13 @@ class KeyCache:
     full: int = 0
     path: str | None = None
     shipped: ShippedKeys = field(default_factory=lambda: ShippedKeys(""))
+    stored: dict[Key, str] = field(default_factory=dict)
 
     def known(self, key: Key) -> bool:
-        """Whether ``key`` was judged (by this run, an earlier one, or the shipped file); moves shipped keys in."""
+        """Whether ``key`` was judged (by this run, an earlier one, or the shipped file); moves stored and shipped keys in."""
         if key in self.named or key in self.own:
             return True
-        text = self.shipped.get(key)
+        text = self.stored.pop(key, None) or self.shipped.get(key)
         if text is None:
             return False
         try:
@@ -119,18 +123,21 @@ def disk_cache(first: tuple[int, int] | None = None) -> KeyCache:
             for line in fh:
                 if mark is not None and mark not in line:
                     continue
-                try:
-                    item = json.loads(line)
-                    key = _key(item["key"])
-                    if item["fields"] is None:
-                        cache.own.add(key)
-                    else:
-                        cache.named[key] = NameFields.from_json(item["fields"])
-                except (json.JSONDecodeError, KeyError, TypeError, ValueError):
-                    continue
+                key = _line_key(line)
+                if key is not None:
+                    cache.stored[key] = line  # a later line of a key wins
     except OSError:
         pass
     return cache
+
+
+def _line_key(line: str) -> Key | None:
+    """Return the key of a cache line (``{"key": [...], "fields": ...}``) without reading its fields; ``None`` if torn."""
+    start, end = line.find("["), line.find('"fields"')
+    try:
+        return _key(json.loads(line[start : line.rfind("]", 0, end) + 1]))
+    except (json.JSONDecodeError, ValueError):
+        return None
 
 
 def _key(value: object) -> Key:
