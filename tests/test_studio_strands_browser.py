@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 import lkspace
-from lkspace.formats.colors import curve_tones
+from lkspace.formats.colors import PALETTE, colour_slots, curve_colors, curve_tones, hex_colors
 from lkspace.geometry.params import RealizeOptions
 
 pytest.importorskip("starlette")
@@ -92,6 +92,37 @@ def test_edits_redraw_the_new_strands_only_and_keep_colours(url, browser, keys):
     assert rebuilt > 0 and kept > rebuilt  # every edit changed some strands, most stayed as they were
     assert len(set(seen["colors"])) > 1 and not errors, errors
     page.close()
+
+
+@pytest.mark.parametrize(
+    ("name", "fragment", "block"),
+    [
+        ("tiling:square", "&t=2,2&b=2x2", [[0, 0], [1, 0], [0, 1], [1, 1]]),  # chainmail: one ring, four tones
+        (NAME, "&b=2x1x1", BLOCK),
+        ("cube", "&t=0,1,0,0,0,0,0,0,0,0,0,-1", None),
+    ],
+)
+def test_a_page_drawn_afresh_is_coloured_as_export_colours_it(browser, name, fragment, block):
+    """Fresh strands take their export colour slot (a ring's tones took the colours in the order its curves came)."""
+    with running_studio(name) as url:
+        page = browser.new_page(viewport={"width": 1000, "height": 700})
+        page.goto(f"{url}#s={name}{fragment}")
+        page.wait_for_function(
+            "window.studio && window.studio.state.ready && window.studio.state.design", timeout=60000
+        )
+        seen = page.evaluate(SEEN)
+        page.close()
+    sc = lkspace.load(name)
+    translations = None if block is None else np.array(block)
+    real = lkspace.realize(sc, seen["labels"], options=RealizeOptions(embedding="later", translations=translations))
+    keys = [curve_key(c, cl) for c, cl in zip(real.curves, real.closed, strict=True)]
+    assert seen["curves"]["slot"] == [
+        dict(zip(keys, colour_slots(real).tolist(), strict=True))[k] for k in seen["curves"]["keys"]
+    ]
+    color_of = {d["key"]: d["color"] for d in seen["drawn"]}
+    exported = hex_colors(curve_colors(real, PALETTE))
+    assert [color_of[k] for k in keys] == [c.lower() for c in exported]
+    assert len(set(exported)) > 2
 
 
 SEAM = """async () => {

@@ -352,6 +352,7 @@ class CurvesView(TypedDict):
     strand: list[int]
     copy: list[int]
     tone: list[int]
+    slot: list[int]
     radius: float
     scale: float
 

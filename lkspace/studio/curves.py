@@ -2,9 +2,9 @@
 
 Every curve gets a **key**, a hash of its ``float32`` points and closed flag (16 hex
 digits), so two curves with one key draw alike.  The page says which keys it holds
-(``have``); the answer lists every curve (key, point count, strand, copy, and the tone of a
+(``have``); the answer lists every curve (key, point count, strand, copy, the tone of a
 ring's cell, :func:`lkspace.formats.colors.curve_tones`: the page colours a ring's copies
-by it) but packs the
+by it, and the colour slot ``export`` gives it, :func:`~lkspace.formats.colors.colour_slots`) but packs the
 points of the others only, as base64 little-endian ``float32``.  An edit changes the
 strands through one edge, so after an edit most curves travel as a key alone, and the
 page rebuilds the tubes of the new ones only.
@@ -18,7 +18,7 @@ import hashlib
 import numpy as np
 
 from .. import Realization
-from ..formats.colors import curve_tones
+from ..formats.colors import colour_slots, curve_tones
 from .answers import CurvesView
 
 
@@ -43,6 +43,7 @@ def curves_view(real: Realization, have: frozenset[str] = frozenset()) -> Curves
         "strand": real.strand_of.tolist(),
         "copy": real.copy_of.tolist(),
         "tone": curve_tones(real).tolist(),
+        "slot": colour_slots(real).tolist(),
         "radius": real.tube_radius,
         "scale": real.scale,
     }

@@ -2,7 +2,7 @@
 // so an edit rebuilds the tubes of the new curves only, in a worker (tube-worker.js); the others
 // stay on the GPU as they are.  Colours are lkspace's palette (sent by /api/info) and follow strands
 // across edits: a strand is named by the smallest port it passes, and keeps the colour that port had
-// in the design drawn before.  A ring copied over the block's cells takes a colour per tone of its
+// in the design drawn before; a new strand takes its export colour where it is free.  A ring copied over the block's cells takes a colour per tone of its
 // cell (the curves' `tone`, lkspace/formats/colors.py: neighbouring copies differ), kept the same way.
 import * as THREE from 'three';
 import { tubeArrays, decodeCurves } from '/static/tubes.js';
@@ -64,12 +64,17 @@ export class Strands {
     return true;
   }
   // Colour the units, each strand and each further tone of a ring's cells: a unit drawn before (named by its
-  // strand's smallest port) keeps its colour, a new one takes the colour used least among those its strand's
-  // other tones leave (so a ring's tones differ while the palette lasts).  Returns each curve's colour.
+  // strand's smallest port) keeps its colour; a new one takes the colour `export` gives it (its curves' `slot`)
+  // while no unit holds that colour, else the colour used least among those its strand's other tones leave
+  // (so a ring's tones differ while the palette lasts).  A page drawn afresh is coloured as `export` colours
+  // the design.  Returns each curve's colour.
   assignColors(strands, curves) {
     const unit = (k, tone) => `${strands[k].port}/${tone}`;
-    const names = strands.map((_, k) => unit(k, 0)), ofCurve = [];
-    (curves ? curves.strand : []).forEach((k, i) => { ofCurve.push(unit(k, curves.tone[i])); });
+    const names = strands.map((_, k) => unit(k, 0)), ofCurve = [], slotOf = new Map();
+    (curves ? curves.strand : []).forEach((k, i) => {
+      ofCurve.push(unit(k, curves.tone[i]));
+      if (curves.slot) slotOf.set(ofCurve[i], curves.slot[i] % this.palette.length);
+    });
     const listed = new Set(names);
     for (const name of ofCurve) if (!listed.has(name)) { listed.add(name); names.push(name); }
     const out = names.map((name) => this.colorOfUnit.get(name)), used = new Array(this.palette.length).fill(0);
@@ -78,9 +83,9 @@ export class Strands {
     for (const c of out) if (c !== undefined) used[c]++;
     for (let k = 0; k < out.length; k++) {
       if (out[k] !== undefined) continue;
-      const mine = taken.get(port(names[k])), free = mine.size < used.length;
-      let best = -1;
-      for (let c = 0; c < used.length; c++) if (!(free && mine.has(c)) && (best < 0 || used[c] < used[best])) best = c;
+      const mine = taken.get(port(names[k])), free = mine.size < used.length, own = slotOf.get(names[k]);
+      let best = own !== undefined && !used[own] ? own : -1; // export's colour while no unit holds it
+      if (best < 0) for (let c = 0; c < used.length; c++) if (!(free && mine.has(c)) && (best < 0 || used[c] < used[best])) best = c;
       out[k] = best; used[best]++; mine.add(best);
     }
     this.colorOfUnit = new Map(names.map((name, k) => [name, out[k]])); this.strandColors = out.slice(0, strands.length);
