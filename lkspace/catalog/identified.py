@@ -154,7 +154,7 @@ def identify_column(chunks: list[ChunkNames], name: str, type_: pa.DataType) -> 
 def label_matrix(column: pa.ChunkedArray, n_edges: int) -> np.ndarray:
     """``(rows, n_edges) int64``: a catalog's ``labels`` column (lists of signed ints, no nulls) as a matrix.
 
-    Read from the Arrow buffer: ``to_numpy`` would import pandas (half a second) in a fresh process.
+    Read from the Arrow buffer: ``to_numpy`` would import pandas (0.2 s) in a fresh process.
     """
     flat = column.combine_chunks().flatten()
     if not pa.types.is_signed_integer(flat.type) or flat.null_count:
