@@ -20,6 +20,7 @@ import numpy as np
 from ..errors import CatalogError
 from ..io.json_values import JsonObject
 from .dna_rows import DNA_RULE, DnaSpace, dna_batches, dna_blocks
+from .identified import Identified
 from .lock import catalog_lock
 from .metadata import CatalogMetadata
 from .options import Selection
@@ -57,6 +58,32 @@ class DnaTotals:
             "symmetry": "none",
             "label_set": list(self.label_set),
         }
+
+
+@dataclass(frozen=True)
+class DnaReport:
+    """What ``enumerate --dna`` reports: the totals, the DNA setting, and the names when identified.
+
+    ``natural_twist``: each edge's natural twist at the scale (half turns, 3 decimals);
+    ``patterns``: the buildable parity patterns; ``identified``: ``--identify``'s summary.
+    """
+
+    totals: DnaTotals
+    setting: JsonObject
+    natural_twist: tuple[float, ...]
+    patterns: int
+    seconds: float
+    identified: Identified | None = None
+
+    def to_json(self) -> JsonObject:
+        """Return the totals' keys, ``identified`` (when named), ``dna``, ``mode`` and ``seconds``."""
+        out: JsonObject = self.totals.to_json()
+        if self.identified is not None:
+            out["identified"] = self.identified.to_json()
+        out["dna"] = {**self.setting, "natural_twist": list(self.natural_twist), "patterns": self.patterns}
+        out["mode"] = "designs"
+        out["seconds"] = self.seconds
+        return out
 
 
 def _by_components(counts: dict[str, int]) -> dict[str, int]:

@@ -28,6 +28,7 @@ import pyarrow.parquet as pq
 
 from ..errors import CatalogError, UsageError
 from ..io.atomic import atomic_path
+from ..io.json_values import JsonObject
 from ..model.scaffold import Scaffold
 from ..runtime.progress import Step, task
 from .columns import numpy_column, value_column
@@ -59,6 +60,11 @@ class Identified:
     rows: int = 0
     named: int = 0
     names: dict[str, int] = field(default_factory=dict)
+
+    def to_json(self) -> JsonObject:
+        """Return ``{rows, named, names}`` (the ``identified`` field of ``enumerate --json``)."""
+        names: JsonObject = dict(self.names)
+        return {"rows": self.rows, "named": self.named, "names": names}
 
     def __add__(self, other: Identified) -> Identified:
         """Both passes' totals (names in the order first seen)."""

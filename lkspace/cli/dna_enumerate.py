@@ -13,7 +13,6 @@ from __future__ import annotations
 
 import contextlib
 import time
-from dataclasses import asdict
 from typing import Any
 
 import click
@@ -61,7 +60,7 @@ def _dna_run(ctx: Context, kw: dict[str, Any], scale: float, window: float, outp
     """Load the mesh, then write (``output``) or count the DNA catalog and report it."""
     import numpy as np
 
-    from ..catalog.dna_catalog import count_dna, write_dna_catalog
+    from ..catalog.dna_catalog import DnaReport, count_dna, write_dna_catalog
     from ..catalog.dna_rows import dna_space
     from ..dna.search import natural_twist
 
@@ -77,33 +76,37 @@ def _dna_run(ctx: Context, kw: dict[str, Any], scale: float, window: float, outp
             ctx.notes["note"] = "no -o given: counted, nothing written"
     else:
         totals = write_dna_catalog(space, output, components, max_designs)
-    payload: dict[str, Any] = {**totals.to_json()}
+    identified = None
     if output is not None and kw["identify"]:
         from ..catalog.identified import identify_catalog
 
-        payload["identified"] = asdict(identify_catalog(output, scaffold))
-    natural = np.round(natural_twist(scaffold, scale, space.setting.bp_per_turn), 3).tolist()
-    payload["dna"] = {**space.setting.to_json(), "natural_twist": natural, "patterns": len(space.patterns)}
-    payload["mode"] = "designs"
-    payload["seconds"] = round(time.perf_counter() - started, 3)
+        identified = identify_catalog(output, scaffold)
+    natural = np.round(natural_twist(scaffold, scale, space.setting.bp_per_turn), 3)
+    report = DnaReport(
+        totals,
+        space.setting.to_json(),
+        tuple(natural.tolist()),
+        len(space.patterns),
+        round(time.perf_counter() - started, 3),
+        identified,
+    )
 
     def human() -> None:
         windows = sorted({(lo, hi) for lo, hi in space.setting.labels})
         shown = ", ".join(f"{lo}..{hi}" if lo < hi else str(lo) for lo, hi in windows)
         click.echo(f"{scaffold.name} at {scale:g} nm per unit (DNA, window {window:g}): labels {shown}, symmetry none")
         rows = [
-            ("designs", f"{payload['designs']:,}"),
-            ("assignments", f"{payload['assignments']:,}"),
-            *[(f"  {plural(int(k), 'component')}", f"{v:,}") for k, v in payload["by_components"].items()],
-            ("written", str(payload.get("written") or "- (count only; give -o FILE to write)")),
+            ("designs", f"{totals.designs:,}"),
+            ("assignments", f"{totals.assignments:,}"),
+            *[(f"  {plural(int(k), 'component')}", f"{v:,}") for k, v in totals.by_components.items()],
+            ("written", str(totals.written or "- (count only; give -o FILE to write)")),
         ]
-        if "identified" in payload:
-            found = payload["identified"]
-            top = ", ".join(f"{k} ({v})" for k, v in list(found["names"].items())[:6])
-            rows.append(("identified", f"{found['named']:,} of {found['rows']:,} named: {top}"))
-        print_rows([*rows, ("seconds", str(payload["seconds"]))])
+        if identified is not None:
+            top = ", ".join(f"{k} ({v})" for k, v in list(identified.names.items())[:6])
+            rows.append(("identified", f"{identified.named:,} of {identified.rows:,} named: {top}"))
+        print_rows([*rows, ("seconds", str(report.seconds))])
 
-    emit(ctx, payload, human)
+    emit(ctx, report.to_json(), human)
 
 
 def dna_callback(**kw: Any) -> None:
