@@ -8,6 +8,9 @@ load drifts hit both alike; the ratio cold/warm is of medians.  Each tree (``--t
 default this one; ``--before /work/main`` adds the tree before the change) runs with
 ``PYTHONPATH`` set to it.
 
+Beside them, the kernel rate: designs keyed per second in a warm process (``keys_of`` on the catalog's
+designs, one thread and one per core where the tree threads).
+
 Usage: ``python experiments/bench_cold_warm.py [--runs 3] [--space cube:-1..1 ...] [--before TREE
 --before-runs 1 --before-space cube:-1..1]``;
 writes ``results/bench_cold_warm.{json,md}`` (``--out NAME``: ``results/NAME.*``).
@@ -39,10 +42,14 @@ def run(tree: Path, space: str, runs: int) -> dict:
         env = {**os.environ, "PYTHONPATH": str(tree), "LKSPACE_CACHE": cache, "NUMBA_CACHE_DIR": numba}
         out = os.path.join(folder, "x.parquet")
         cmd = [sys.executable, "-m", "lkspace", "enumerate", name, "--labels", labels, "--identify", "-o", out]
-        cold.append({**timed(cmd, env), "load": load_average()[0]})
+        # run in the temporary folder: `python -m` puts the working directory first on sys.path, and
+        # started in a checkout it would import that checkout instead of `tree`
+        cold.append({**timed(cmd, env, cwd=folder), "load": load_average()[0]})
         os.remove(out)
-        warm.append({**timed(cmd, env), "load": load_average()[0]})
+        warm.append({**timed(cmd, env, cwd=folder), "load": load_average()[0]})
         designs = pq.read_metadata(out).num_rows
+        if not cold[1:]:
+            kernel = key_rate(name, out, env, folder)
         shutil.rmtree(folder)
         print(f"{tree} {space}: cold {cold[-1]['wall']:.2f} s, warm {warm[-1]['wall']:.2f} s", flush=True)
     c, w = summary(cold), summary(warm)
@@ -55,7 +62,37 @@ def run(tree: Path, space: str, runs: int) -> dict:
         "ratio": round(c["median_s"] / w["median_s"], 2),
         "designs": designs,
         "warm_rate": rate,
+        "key_rate": kernel,
     }
+
+
+KEY_RATE = """
+import json, sys, time, numpy as np, pyarrow.parquet as pq, lkspace
+import lkspace.knots.keyed as keyed
+scaffold = lkspace.load(sys.argv[1])
+flat = pq.read_table(sys.argv[2], columns=["labels"]).column("labels").combine_chunks().flatten()
+labels = np.asarray(flat).astype(np.int64).reshape(-1, scaffold.n_edges)
+keyed.keys_of(scaffold, labels[:100])
+out = {}
+for threads in ([1, keyed.key_threads()] if hasattr(keyed, "key_threads") else [1]):
+    if hasattr(keyed, "key_threads"):
+        keyed.key_threads = lambda n=threads: n
+    start = time.perf_counter()
+    keyed.keys_of(scaffold, labels)
+    out[threads] = round(len(labels) / (time.perf_counter() - start))
+print(json.dumps(out))
+"""
+"""Keys per second of :func:`lkspace.knots.keyed.keys_of` in a warm process, by thread count (the kernel rate)."""
+
+
+def key_rate(scaffold: str, catalog: str, env: dict[str, str], cwd: str) -> dict[str, int]:
+    """Designs keyed per second on the designs of ``catalog``, with one thread and with every core (where the tree threads)."""
+    import subprocess
+
+    found = subprocess.run(
+        [sys.executable, "-c", KEY_RATE, scaffold, catalog], env=env, cwd=cwd, capture_output=True, text=True
+    )
+    return json.loads(found.stdout) if found.returncode == 0 else {}
 
 
 def main() -> None:
@@ -83,15 +120,16 @@ def main() -> None:
         f"{report['provenance']['machine']['cpu_count']} CPUs, {report['provenance']['date']}; "
         f"load average {report['load_start']} at the start, {report['load_end']} at the end.",
         "",
-        "| space | tree | cold median (s) | warm median (s) | warm CPU (s) | warm designs/s | cold / warm "
-        "| load (1 min) during cold runs |",
-        "|---|---|---|---|---|---|---|---|",
+        "| space | tree | cold median (s) | warm median (s) | warm CPU (s) | warm designs/s | keys/s in-process "
+        "(by threads) | cold / warm | load (1 min) during cold runs |",
+        "|---|---|---|---|---|---|---|---|---|",
     ]
     for space, by_tree in report["spaces"].items():
         for label, r in by_tree.items():
             lines.append(
                 f"| {space} | {label} ({report[f'{label}_commit']}) | {r['cold']['median_s']} | "
-                f"{r['warm']['median_s']} | {r['warm']['cpu_median_s']} | {r['warm_rate']:,} | {r['ratio']} "
+                f"{r['warm']['median_s']} | {r['warm']['cpu_median_s']} | {r['warm_rate']:,} | "
+                f"{', '.join(f'{n}: {v:,}' for n, v in r['key_rate'].items())} | {r['ratio']} "
                 f"| {r['cold']['load_1min']} |"
             )
     (RESULTS / f"{args.out}.md").write_text("\n".join(lines) + "\n")

@@ -66,10 +66,15 @@ def load_average() -> list[float]:
 
 
 def timed(cmd: list[str], env: dict[str, str] | None = None, cwd: str | None = None) -> dict:
-    """Run ``cmd`` in a fresh process: wall and CPU seconds, peak RSS (MB); raises if it fails."""
+    """Run ``cmd`` in a fresh process: wall and CPU seconds, peak RSS (MB); raises if it fails.
+
+    ``cwd`` defaults to the temporary folder, not this one: ``python -m`` puts the working
+    directory first on ``sys.path``, so a run started in a checkout would import that checkout
+    whatever ``PYTHONPATH`` names (a "before" tree timed as the working tree).
+    """
     with tempfile.TemporaryFile() as err:
         start = time.perf_counter()
-        proc = subprocess.Popen(cmd, env=env, cwd=cwd, stdout=subprocess.DEVNULL, stderr=err)
+        proc = subprocess.Popen(cmd, env=env, cwd=cwd or tempfile.gettempdir(), stdout=subprocess.DEVNULL, stderr=err)
         _, status, usage = os.wait4(proc.pid, 0)
         wall = time.perf_counter() - start
         if os.waitstatus_to_exitcode(status) != 0:
