@@ -17,6 +17,7 @@ import os
 import sys
 from collections import defaultdict
 
+from lkspace.linktypes.atlas import is_named
 from lkspace.linktypes.lookup import SHIPPED, read_index
 from lkspace.linktypes.records import IndexRow
 
@@ -27,7 +28,7 @@ BANDS = [(0, 0), (2, 2), (3, 3), (4, 4), (5, 5), (6, 6), (7, 7), (8, 8), (9, 10_
 
 
 def named(row: IndexRow) -> bool:
-    return not row.type.startswith(("split", "unknown"))
+    return is_named(row.type)
 
 
 def type_order(row: IndexRow) -> tuple:

@@ -18,6 +18,12 @@ runs) but within ``--max-designs`` is walked whole under a time budget too long 
 Run: ``nice python experiments/build_atlas.py --processes 2`` (every space; hours with
 per-design geometric identification), ``--quick`` (a few small spaces, about two minutes),
 ``--spaces dihedron:3=-1..1,book:2=-1..1`` (exactly these).
+
+A space too big to walk one design at a time is added from a catalog that ``lkspace
+enumerate --identify`` (or ``--identify-by-key``) wrote: ``--add-catalog PATH --seconds S``
+sums it (:func:`~lkspace.linktypes.atlas_catalog.atlas_of_catalog`) into the index, in place of
+that scaffold and label set's rows, keeping every other space (``S``: the wall seconds the
+catalog took, recorded as the space's build time).
 """
 
 from __future__ import annotations
@@ -35,7 +41,8 @@ import lkspace
 from lkspace.errors import TooLargeError
 from lkspace.io.atomic import write_text
 from lkspace.linktypes.atlas import MAX_DESIGNS, AtlasOptions, atlas
-from lkspace.linktypes.lookup import SHIPPED, index_rows, write_index
+from lkspace.linktypes.atlas_catalog import atlas_of_catalog
+from lkspace.linktypes.lookup import SHIPPED, index_rows, read_index, write_index
 from lkspace.linktypes.records import AtlasResult
 from lkspace.model.specs import parse_label_set
 
@@ -169,6 +176,39 @@ def merge(results: list[AtlasResult], output: str, left_out: list[dict] | None =
     print(f"wrote {output}: {len(rows)} rows, {len(spaces)} spaces, {os.path.getsize(output):,} bytes", flush=True)
 
 
+def labels_text(values: tuple[int, ...] | list[int]) -> str:
+    """A label set as typed: ``-2..2`` for a run of integers, else ``-1,1``."""
+    values = sorted(values)
+    if len(values) > 2 and values == list(range(values[0], values[-1] + 1)):
+        return f"{values[0]}..{values[-1]}"
+    return ",".join(str(v) for v in values)
+
+
+def add_catalog(path: str, seconds: float | None, output: str) -> None:
+    """Sum the identified catalog at ``path`` into the index ``output``, in place of its space's rows."""
+    data = atlas_of_catalog(path)
+    labels = labels_text(list(data.label_set or ()))
+    rows, meta = read_index(output)
+    rows = [r for r in rows if (r.scaffold, r.labels) != (data.scaffold, labels)] + index_rows(data, labels)
+    space = {
+        "scaffold": data.scaffold,
+        "labels": labels,
+        "designs": data.designs,
+        "assignments": data.assignments,
+        "types": len(data.types),
+        "complete": True,
+        "identified": data.designs,
+        "wall_time": seconds,
+        "from_catalog": os.path.basename(path),
+    }
+    spaces = [s for s in meta.get("spaces", []) if (s["scaffold"], s["labels"]) != (data.scaffold, labels)]
+    meta = {k: v for k, v in meta.items() if k != "format"}
+    meta.update(spaces=[*spaces, space], commit=commit(), lkspace_version=lkspace.__version__)
+    meta["date"] = datetime.datetime.now(datetime.UTC).isoformat(timespec="seconds")
+    write_index(output, rows, meta)
+    print(f"{data.scaffold} {labels}: {data.designs:,} designs, {len(data.types)} types added to {output}", flush=True)
+
+
 def parse_spaces(text: str) -> list[tuple[str, str, float | None]]:
     """``"dihedron:3=-1..1,book:2=-2..2"`` -> the spaces."""
     out = []
@@ -192,7 +232,12 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("-o", "--output", default=SHIPPED, help="the index written (default: the shipped one)")
     parser.add_argument("--merge-only", action="store_true", help="merge the finished spaces of the plan, build none")
     parser.add_argument("--plan", action="store_true", help="print the spaces the budget affords, build nothing")
+    parser.add_argument("--add-catalog", metavar="PATH", help="add the space of this identified catalog, build none")
+    parser.add_argument("--seconds", type=float, help="with --add-catalog: the wall seconds the catalog took")
     args = parser.parse_args(argv)
+    if args.add_catalog:
+        add_catalog(args.add_catalog, args.seconds, args.output)
+        return 0
     if args.spaces:
         spaces = parse_spaces(args.spaces)
     elif args.quick:

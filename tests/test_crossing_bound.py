@@ -13,7 +13,8 @@ import numpy as np
 import pytest
 
 from lkspace import load
-from lkspace.knots.key_names import _simplified, crossing_bound, jones_terms, linked_groups
+from lkspace.knots.crossing_bound import crossing_bound, jones_terms, linked_groups
+from lkspace.knots.key_names import _simplified
 from lkspace.knots.keyed import keys_of
 from lkspace.knots.naming import name_key
 from lkspace.knots.shipped_keys import shipped_keys

@@ -75,13 +75,21 @@ class Identified:
 
 
 def identify_catalog(
-    path: str | os.PathLike[str], scaffold: Scaffold, processes: int = 1, seed: int = 0, scheduler: str = "local"
+    path: str | os.PathLike[str],
+    scaffold: Scaffold,
+    processes: int = 1,
+    seed: int = 0,
+    scheduler: str = "local",
+    by_key: bool = False,
 ) -> Identified:
     """Add knot/link columns to every row of the catalog at ``path``; returns a summary.
 
+    ``by_key``: name by key only (:attr:`~lkspace.knots.batch.NamerOptions.by_key`), marked in each file's footer.
+
     Progress (rows identified) is reported through :func:`lkspace.runtime.progress.task`.  With a
     Dask ``scheduler`` (:mod:`lkspace.runtime.schedulers`) each file (part) is one Dask task on one
-    worker; otherwise files go one after the other, each over ``processes`` processes.
+    worker, and so it is over ``processes`` local processes when naming by key only; otherwise
+    files go one after the other, each over ``processes`` processes.
     """
     from ..runtime.schedulers import is_dask, run_tasks
 
@@ -90,9 +98,9 @@ def identify_catalog(
     files = list(open_catalog(path).files)
     total = sum(pq.read_metadata(f).num_rows for f in files)
     with task("identifying designs", total) as step:
-        if is_dask(scheduler):
+        if is_dask(scheduler) or (by_key and processes > 1 and len(files) > 1):
             found = run_tasks(
-                identify_part, (scaffold, seed), files, scheduler, processes, "lkspace-identify", load_knots
+                identify_part, (scaffold, seed, by_key), files, scheduler, processes, "lkspace-identify", load_knots
             )
             for i, summary in found:
                 totals += summary
@@ -102,7 +110,7 @@ def identify_catalog(
 
             cache = disk_cache()  # read once for every file of the catalog
             for file in files:
-                totals += _summary(_identify_file(file, scaffold, processes, seed, step, cache=cache))
+                totals += _summary(_identify_file(file, scaffold, processes, seed, step, cache=cache, by_key=by_key))
     return replace(totals, names=dict(sorted(totals.names.items(), key=lambda kv: -kv[1])))
 
 
@@ -111,22 +119,24 @@ def load_knots() -> None:
     import snappy  # noqa: F401
 
 
-def identify_part(shared: tuple[Scaffold, int], file: str) -> Identified:
-    """Dask task: identify the rows of one catalog file in one child process; return its summary.
+def identify_part(shared: tuple[Scaffold, int, bool], file: str) -> Identified:
+    """Task: identify the rows of one catalog file; return its summary.
 
-    The child runs the identification in its main thread (a Dask task runs in a worker
-    thread, where SnapPy's PARI cannot decide between table entries).
+    Names in full run in one child process, in its main thread (a Dask task runs in a
+    worker thread, where SnapPy's PARI cannot decide between table entries); naming by
+    key only (``shared[2]``) names nothing in full and runs where it is called.
     """
-    if multiprocessing.current_process().daemon:
+    scaffold, seed, by_key = shared
+    if multiprocessing.current_process().daemon and not by_key:
         raise UsageError(
             "identifying on Dask needs workers that may start processes: start them with"
             " 'python -m lkspace.dask_worker' (or set distributed.worker.daemon: false)"
         )
     from ..knots.key_names import disk_cache
 
-    scaffold, seed = shared
     with task("identifying designs", None) as step:
-        return _summary(_identify_file(file, scaffold, 1, seed, step, isolate=True, cache=disk_cache()))
+        found = _identify_file(file, scaffold, 1, seed, step, isolate=not by_key, cache=disk_cache(), by_key=by_key)
+        return _summary(found)
 
 
 def _summary(found: list[ChunkNames] | None) -> Identified:
@@ -171,21 +181,29 @@ def label_matrix(column: pa.ChunkedArray, n_edges: int) -> np.ndarray:
 
 
 def _identify_file(
-    file: str, scaffold: Scaffold, processes: int, seed: int, step: Step, *, cache: KeyCache, isolate: bool = False
+    file: str,
+    scaffold: Scaffold,
+    processes: int,
+    seed: int,
+    step: Step,
+    *,
+    cache: KeyCache,
+    isolate: bool = False,
+    by_key: bool = False,
 ) -> list[ChunkNames] | None:
-    """Identify the rows of one catalog file and rewrite it with the columns; ``None`` if it already has them.
+    """Identify the rows of one catalog file and rewrite it with the columns; ``None`` if it has them, named alike.
 
     ``cache``: the names by invariant key of this run (:func:`lkspace.knots.key_names.disk_cache`).
     """
     from ..knots.batch import NamerOptions, name_batch
 
-    options = NamerOptions(processes, isolate=isolate)
+    options = NamerOptions(processes, isolate=isolate, by_key=by_key)
 
     table = pq.ParquetFile(file).read()  # not read_table: its dataset module imports pandas
     if "labels" not in table.column_names:
         raise CatalogError(f"{file}: no 'labels' column to identify")
     footer = file_metadata(file)[0]
-    if footer.identified:
+    if footer.identified and footer.by_key == by_key:
         step.advance(table.num_rows)
         return None
     labels = label_matrix(table.column("labels"), scaffold.n_edges)
@@ -200,7 +218,7 @@ def _identify_file(
         if name in table.column_names:
             table = table.drop_columns([name])
         table = table.append_column(pa.field(name, type_), column)
-    footer = replace(footer, identified=True)  # its digest written anew
+    footer = replace(footer, identified=True, by_key=by_key)  # its digest written anew
     table = table.replace_schema_metadata({**(table.schema.metadata or {}), METADATA_KEY: footer.encode()})
     with atomic_path(file, suffix=".parquet.tmp") as tmp:
         pq.write_table(table, tmp, compression="zstd", write_page_checksum=True)

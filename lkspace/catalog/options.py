@@ -37,6 +37,9 @@ class Selection:
         Random seed of ``sample``.
     identify : bool
         Add knot/link columns to the rows (a written catalog only: :func:`~lkspace.write_catalog`).
+    by_key : bool
+        With ``identify``: name by key only, never in full
+        (:attr:`~lkspace.knots.batch.NamerOptions.by_key`), for spaces too big to name.
     """
 
     mode: WalkMode = "designs"
@@ -45,6 +48,7 @@ class Selection:
     sample: int | None = None
     seed: int = 0
     identify: bool = False
+    by_key: bool = False
 
 
 @dataclass(frozen=True)

@@ -155,6 +155,8 @@ class PartFooter:
         ``None`` in the schema's copy, written before the rows.
     identified : bool
         Whether the knot/link columns are there (:mod:`lkspace.catalog.identified`).
+    by_key : bool
+        Whether they were named by key only (``"named_by": "key"``; :class:`~lkspace.catalog.options.Selection`).
     sealed : bool
         Whether the metadata read carried its ``digest`` (lkspace writes one with the totals;
         without it an edit cannot be told: removed, or an older lkspace wrote the file).
@@ -164,6 +166,7 @@ class PartFooter:
     shard: Shard | None = None
     totals: PartSummary | None = None
     identified: bool = False
+    by_key: bool = False
     sealed: bool = field(default=True, compare=False)
 
     def to_json(self) -> JsonObject:
@@ -171,6 +174,8 @@ class PartFooter:
         out = self.settings.to_json()
         if self.shard is not None:
             out["shard"] = self.shard.to_json()
+        if self.by_key:
+            out["named_by"] = "key"
         if self.totals is not None:
             out.update(self.totals.to_json())
             out["digest"] = metadata_digest({**out, **({"identified": True} if self.identified else {})})
@@ -201,6 +206,7 @@ class PartFooter:
             None if shard is None else Shard.from_json(shard, where),
             PartSummary.from_json(meta, where) if "rows" in meta else None,
             meta.get("identified") is True,
+            meta.get("named_by") == "key",
             digest is not None,
         )
 
@@ -218,26 +224,31 @@ class Signature:
         The plan's fingerprint (:attr:`~lkspace.catalog.plan.Plan.fingerprint`; ``None``: a URL catalog).
     identify : bool or None
         Whether the run adds knot/link columns (``None``: a URL catalog).
+    by_key : bool
+        Whether it names them by key only (``"named_by": "key"``).
     """
 
     settings: CatalogMetadata
     shards: int
     plan: str | None = None
     identify: bool | None = None
+    by_key: bool = False
 
     def to_json(self) -> JsonObject:
-        """JSON form: the settings' keys, then ``shards``, ``plan`` and ``identify``."""
+        """JSON form: the settings' keys, then ``shards``, ``plan``, ``identify`` and ``named_by`` (by key only)."""
         out = self.settings.to_json()
         out["shards"] = self.shards
         if self.plan is not None:
             out["plan"] = self.plan
         if self.identify is not None:
             out["identify"] = self.identify
+        if self.by_key:
+            out["named_by"] = "key"
         return out
 
     def resumes(self, old: Signature) -> bool:
-        """Whether a build of the signature ``old`` can be finished by a run of this one."""
-        return same_settings(old.to_json(), self.to_json())
+        """Whether a build of the signature ``old`` can be finished by a run of this one (named alike)."""
+        return same_settings(old.to_json(), self.to_json()) and old.by_key == self.by_key
 
 
 @dataclass(frozen=True)
@@ -288,7 +299,8 @@ class Manifest:
         if not isinstance(run, str) or not isinstance(plan, str | None) or not isinstance(identify, bool | None):
             raise CatalogError(f"{where}: no run id, plan or identify setting (damaged manifest)")
         parts = {int(index): _entry(entry, index, where) for index, entry in entries.items()}
-        return cls(Signature(settings, count, plan, identify), run, parts, meta.get("complete") is True)
+        signature = Signature(settings, count, plan, identify, meta.get("named_by") == "key")
+        return cls(signature, run, parts, meta.get("complete") is True)
 
 
 def _entry(data: Json, index: str, where: str) -> PartSummary:

@@ -243,7 +243,8 @@ class _Run:
     def __init__(self, job: PartsJob, target: Destination, execution: Execution) -> None:
         self.job, self.target, self.execution = job, target, execution
         self.identify = job.selection.identify
-        self.signature = Signature(job.settings, job.plan.parts, job.plan.fingerprint, self.identify)
+        self.by_key = job.selection.by_key
+        self.signature = Signature(job.settings, job.plan.parts, job.plan.fingerprint, self.identify, self.by_key)
         self.parts: dict[int, PartSummary] = {}
         self.identified: Identified | None = None
 
@@ -275,7 +276,7 @@ class _Run:
             footer = _matching(candidate, header)
             if footer is not None and footer.totals is not None and footer.totals.counted:
                 tick(footer.totals.rows)
-                if self.identify and not footer.identified:
+                if self.identify and (not footer.identified or footer.by_key != self.by_key):
                     self._identify(candidate)
                 if candidate == build:
                     with ignored_signals():
@@ -347,7 +348,7 @@ class _Run:
         from .identified import identify_catalog
 
         scaffold, processes, scheduler = self.job.space.scaffold, self.execution.jobs, str(self.execution.scheduler)
-        self.identified = identify_catalog(path, scaffold, processes=processes, scheduler=scheduler)
+        self.identified = identify_catalog(path, scaffold, processes, scheduler=scheduler, by_key=self.by_key)
 
     def interrupted(self, exit_code: int) -> CatalogInterrupted:
         """Return the interrupt that says what the run left (and whether it can be resumed)."""

@@ -63,8 +63,9 @@ class CatalogParts:
     unsealed : str, optional
         The first file whose metadata has no ``digest`` (:attr:`PartFooter.sealed`); ``None``: none.
     unidentified : str, optional
-        The first part without knot/link columns when the manifest says its run identified them all
-        (an edited manifest, or a folder still being identified); ``None``: none.
+        The first part without knot/link columns when the manifest says its run identified them all,
+        or named otherwise (by key only, or in full) than the manifest says (an edited manifest, or a
+        folder still being identified); ``None``: none.
     """
 
     path: str
@@ -242,8 +243,11 @@ def _open_folder(folder: str) -> CatalogParts:
     files = tuple(os.path.join(folder, name) for name in listed)
     rows = tuple(e.rows for e in entries)
     loose = next((f for f, footer in zip(files, footers, strict=True) if not footer.sealed), None)
-    plain = next((f for f, footer in zip(files, footers, strict=True) if not footer.identified), None)
-    plain = plain if manifest.signature.identify else None
+    sign = manifest.signature
+    plain = next(
+        (f for f, ft in zip(files, footers, strict=True) if not ft.identified or ft.by_key != sign.by_key), None
+    )
+    plain = plain if sign.identify else None
     return CatalogParts(folder, files, rows, footers[0], tuple(str(e.sha256) for e in entries), run, loose, plain)
 
 
@@ -350,7 +354,10 @@ def verify_catalog(path: str | os.PathLike[str]) -> CatalogCheck:
     if parts.unsealed is not None:
         raise CatalogError(unsealed(parts.unsealed) + ": not verified (write the catalog again)")
     if parts.unidentified is not None:
-        raise CatalogError(f"{parts.unidentified}: not identified, but the manifest says its run identified every part")
+        raise CatalogError(
+            f"{parts.unidentified}: not identified as the manifest says its run identified every part"
+            " (not at all, or by key where it says in full, or the other way)"
+        )
     checks: Checks
     if parts.checksums is not None:
         parts.verify_all()

@@ -89,7 +89,8 @@ def atlas_cmd(
       lkspace atlas designs.parquet --json
     """
     from ..knots.recognition import check_identifiable
-    from ..linktypes.atlas import AtlasOptions, atlas, atlas_of_catalog
+    from ..linktypes.atlas import AtlasOptions, atlas
+    from ..linktypes.atlas_catalog import atlas_of_catalog
     from ..linktypes.gallery import atlas_folder, write_gallery
 
     ctx = Context(as_json)

@@ -139,6 +139,13 @@ def _where_it_ran(
 @click.option("--yes", is_flag=True, help="Go ahead with a catalog estimated past 10^8 rows or 2 GB.")
 @click.option("--identify", is_flag=True, help="Add knot/link names and invariants to every row (extra [knots]; slow).")
 @click.option(
+    "--identify-by-key",
+    "by_key",
+    is_flag=True,
+    help="--identify naming by invariant keys only, never in full: designs no table type matches are filed "
+    "'not in the tables'; for spaces too big to name (see docs/identify.md).",
+)
+@click.option(
     "--invariant",
     metavar="SUBGROUP",
     help="Only designs fixed by this subgroup of the symmetries (rotations, C3, C4:face=0, stabilizer:vertex=0, "
@@ -163,6 +170,7 @@ def enumerate_cmd(
     resume: bool,
     yes: bool,
     identify: bool,
+    by_key: bool,
     invariant: str | None,
     as_json: bool,
 ) -> None:
@@ -187,7 +195,8 @@ def enumerate_cmd(
     ctx = Context(as_json)
     engine = resolve_scheduler(scheduler)
     check_scheduler(engine)
-    selection = Selection(mode, components, max_designs, sample, seed, identify)
+    identify = identify or by_key
+    selection = Selection(mode, components, max_designs, sample, seed, identify, by_key)
     execution = Execution(jobs, shards, engine, resume, allow_large=yes)
     writes = output is not None and not count_only
     target = _check_before_work(mesh, output if writes else None, selection, execution)

@@ -81,11 +81,16 @@ class NamerOptions:
         Name in worker processes even when ``processes`` is 1.  For callers that run
         in a thread other than the main one (a Dask task): SnapPy's PARI works only in a
         process's main thread, and a thread would leave exteriors undecided.
+    by_key : bool
+        Name by key only, never in full (:func:`~lkspace.knots.key_names.share_names`):
+        a design whose invariants match no table type is filed ``unknown: not in the
+        tables ...``, one that table types share lists them; for spaces too big to name.
     """
 
     processes: int = 1
     time_limit: float | None = TIME_LIMIT
     isolate: bool = False
+    by_key: bool = False
 
 
 def identify_batch(
@@ -165,7 +170,7 @@ def name_batch(
     ):
         for start in range(0, len(labels_2d), BATCH):
             chunk = labels_2d[start : start + BATCH]
-            chunks.append(identify_chunk(scaffold, chunk, seed, cache, namer, label_values))
+            chunks.append(identify_chunk(scaffold, chunk, seed, cache, namer, label_values, opts.by_key))
             if progress is not False:
                 step.advance(len(chunk))
     return chunks
@@ -224,8 +229,9 @@ def identify_chunk(
     cache: KeyCache,
     namer: Namer,
     label_values: ArrayLike | None,
+    by_key: bool = False,
 ) -> ChunkNames:
-    """Return the names of one chunk: refused designs first set apart, the rest keyed and named by key."""
+    """Return the names of one chunk: refused designs set apart, the rest keyed and named by key (only, with ``by_key``)."""
     n = len(labels_2d)
     fields: list[NameFields] = []
     which = np.zeros(n, np.int64)
@@ -248,7 +254,7 @@ def identify_chunk(
         def name_designs(indices: list[int]) -> Iterator[NameFields]:
             return namer.name([found.diagram(d)[:2] for d in indices])
 
-        shared = share_names(found, cache, name_designs)
+        shared = share_names(found, cache, name_designs, by_key)
         index: dict[int, int] = {}
         for f in shared:
             assert f is not None

@@ -9,7 +9,6 @@ import functools
 import hashlib
 import json
 import os
-import re
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
 from fractions import Fraction
@@ -17,6 +16,7 @@ from typing import Any
 
 import numpy as np
 
+from .crossing_bound import crossing_bound
 from .identification import NameFields
 from .keyed import KEY_VERSION, DesignKeys
 from .naming import name_key
@@ -225,10 +225,26 @@ def homfly_of(pd: list[list[int]]) -> tuple[str, int] | None:
     return str(link.homfly()), int(link.size())
 
 
+NOT_IN_TABLES = NameFields(
+    status="unknown: not in the tables: no KnotInfo knot or LinkInfo link has its invariants (named by key only)"
+)
+"""What a design takes when naming by key only and its key is new: the shipped file holds the key of every
+table type (KnotInfo knots up to 12 crossings, LinkInfo links up to 11, both mirror images), so a new key
+proves the design none of them; sums and larger tables are not tried."""
+
+
+UNDECIDED = NameFields(status="unknown: its invariants do not tell table types apart (named by key only)")
+"""What a design takes when naming by key only and neither level of keys decides its type."""
+
+UNKEYED = "unknown: no key: the diagram's {crossings:,} crossings are too many for the compiled Jones polynomial (named by key only)"
+"""The status of a design without a key when naming by key only (it is not named in full)."""
+
+
 def share_names(
     found: DesignKeys,
     cache: KeyCache,
     name_designs: Callable[[list[int]], Iterable[NameFields]],
+    by_key: bool = False,
 ) -> list[NameFields | None]:
     """Row fields of every design of ``found``, shared by key where the key is trusted.
 
@@ -240,11 +256,17 @@ def share_names(
     of a key trusted at neither level, whose name is kept by its own diagram (the PD code
     the template gives it, the same in every run: :func:`_diagram_key`).  Each name is
     kept (:meth:`KeyCache.remember`) as it comes: an interrupted run keeps what it named.
+
+    ``by_key``: name by key only, never in full (names kept in memory, not on disk).  A
+    new first-level key, or a new second-level one whose HOMFLY-PT polynomial no table
+    entry with its Jones polynomial shares, is no table type: :data:`NOT_IN_TABLES`.  A
+    new second-level key that table entries share lists them (``candidates``); designs
+    the keys leave undecided take :data:`UNDECIDED` (:data:`UNKEYED` without a key).
     """
     first: list[Key | None] = [
         (int(a), int(b)) if ok else None for (a, b), ok in zip(found.keys.tolist(), found.keyed, strict=True)
     ]
-    rows = _share(found, first, cache, name_designs, second=False)
+    rows = _share(found, first, cache, name_designs, second=False, by_key=by_key)
     left = [d for d, row in enumerate(rows) if row is None]
     diagrams = {d: found.diagram(d) for d in left}
     second: list[Key | None] = [None] * len(rows)
@@ -253,12 +275,15 @@ def share_names(
         invariants = homfly_of(diagrams[d][0]) if key is not None else None
         if key is not None and invariants is not None:
             second[d] = (*key, *invariants)
-    for d, row in enumerate(_share(found, second, cache, name_designs, second=True)):
+    for d, row in enumerate(_share(found, second, cache, name_designs, second=True, by_key=by_key)):
         if rows[d] is None:
             rows[d] = row
     own: dict[int, Key] = {}
     for d in left:
-        if rows[d] is None:
+        if rows[d] is None and by_key:
+            unkeyed = first[d] is None
+            rows[d] = NameFields.refused(UNKEYED.format(crossings=int(found.crossings[d]))) if unkeyed else UNDECIDED
+        elif rows[d] is None:
             mine = _diagram_key(diagrams[d][0], diagrams[d][1])
             if cache.known(mine) and mine in cache.named:
                 rows[d] = cache.named[mine]
@@ -284,13 +309,17 @@ def _share(
     cache: KeyCache,
     name_designs: Callable[[list[int]], Iterable[NameFields]],
     second: bool,
+    by_key: bool = False,
 ) -> list[NameFields | None]:
     """One level of :func:`share_names`: name each new key's first design, share the trusted keys' names."""
     rows: list[NameFields | None] = [None] * len(keys)
     firsts: dict[Key, int] = {}
     for d, k in enumerate(keys):
         if k is not None and k not in firsts and not cache.known(k):
-            firsts[k] = d
+            if by_key:
+                cache.named[k] = _undecided(_table_candidates(found, d, k)) if second else NOT_IN_TABLES
+            else:
+                firsts[k] = d
     for (k, d), named in zip(firsts.items(), name_designs(list(firsts.values())), strict=True):
         cache.full += 1
         rows[d] = named
@@ -309,6 +338,27 @@ def _share(
             if second or _reaches_crossing_number(found, d, named):
                 rows[d] = named
     return rows
+
+
+def _undecided(found: set[tuple[str, bool]]) -> NameFields:
+    """Fields of a second-level key named by key only: not in the tables (no candidate), else the candidates."""
+    if not found:
+        return NOT_IN_TABLES
+    names = tuple(sorted(name + (" (mirror)" if mirror else "") for name, mirror in found))
+    return NameFields(
+        status=f"unknown: its invariants match {', '.join(names[:4])} (named by key only)", candidates=names
+    )
+
+
+def _table_candidates(found: DesignKeys, d: int, key: Key) -> set[tuple[str, bool]]:
+    """Return the table entries that design ``d`` may be by its second-level ``key`` (Jones, HOMFLY-PT, crossings left)."""
+    pd, n_comp, signs = found.diagram(d)
+    jones = jones_of(pd, signs, n_comp)
+    return (
+        {("a type the compiled Jones polynomial cannot tell", False)}
+        if jones is None
+        else candidates(jones, n_comp, str(key[2]), int(key[3]))
+    )
 
 
 def _reaches_crossing_number(found: DesignKeys, d: int, named: NameFields) -> bool:
@@ -338,61 +388,6 @@ def _reaches_crossing_number(found: DesignKeys, d: int, named: NameFields) -> bo
     if bound is not None and bound >= need:
         return True
     return int(_simplified(found.diagram(d)[0]).size()) >= need
-
-
-def crossing_bound(jones: str, matrix: list[list[int]]) -> int | None:
-    """Return a lower bound on the crossing number of every link with this Jones polynomial and linking matrix.
-
-    ``jones`` in ``x = sqrt(t)`` (``"-x^4 + 3 x^2 - 4"``); ``None`` when it cannot be read.
-    Kauffman, Murasugi, Thistlethwaite (1987): a diagram with ``n`` crossings in ``p``
-    disjoint pieces has ``span V <= n + p - 1``.  A least diagram has one piece when the
-    link is not split, which ``V(-1) != 0`` proves (a split link's ``V`` has the factor
-    ``-t^(1/2) - t^(-1/2)``); else at most :func:`linked_groups` pieces.
-    """
-    terms = jones_terms(jones)
-    if terms is None:
-        return None
-    exponents = [e for e, _ in terms]
-    at_minus_one = sum(c * 1j**e for e, c in terms)  # x = i: t = -1
-    pieces = 1 if abs(at_minus_one) > 0.5 else linked_groups(matrix)
-    return (max(exponents) - min(exponents)) // 2 - (pieces - 1)
-
-
-@functools.lru_cache(maxsize=4096)
-def jones_terms(text: str) -> tuple[tuple[int, int], ...] | None:
-    """Return ``(exponent of x, coefficient)`` of each term of a Jones polynomial's text, or ``None`` if it is not one."""
-    terms = []
-    for term in re.split(r"(?<!\^)(?=[+-])", text.replace(" ", "")):
-        if not term:
-            continue
-        match = re.fullmatch(r"([+-]?)(\d*)(x(?:\^(-?\d+))?)?", term)
-        if match is None or term in ("+", "-"):
-            return None
-        sign, digits, power, exponent = match.groups()
-        coefficient = (-1 if sign == "-" else 1) * int(digits or 1)
-        terms.append((0 if power is None else int(exponent or 1), coefficient))
-    if not terms or any(e % 2 != terms[0][0] % 2 for e, _ in terms):
-        return None
-    return tuple(terms)
-
-
-def linked_groups(matrix: list[list[int]]) -> int:
-    """Return the groups of components joined by non-zero linking numbers: at least as many as any split link's pieces.
-
-    A split link's pieces are unions of groups: its least diagram has at most as many pieces.
-    """
-    group = list(range(len(matrix)))
-
-    def root(i: int) -> int:
-        while group[i] != i:
-            i = group[i]
-        return i
-
-    for i, row in enumerate(matrix):
-        for j, lk in enumerate(row[:i]):
-            if lk:
-                group[root(i)] = root(j)
-    return len({root(i) for i in range(len(matrix))})
 
 
 def jones_of(pd: list[list[int]], signs: np.ndarray, n_components: int) -> tuple[int, list[int]] | None:

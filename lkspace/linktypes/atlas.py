@@ -17,7 +17,8 @@ type without a second identification (:func:`~lkspace.linktypes.screen.type_labe
 Resumable: each identified design is appended to ``cache.jsonl`` in the output folder
 (one JSON line, flushed at once; a torn last line is ignored), headed by a line naming
 the space; a rerun reads it and identifies only the rest.  A catalog written by
-``enumerate --identify`` is summed from its ``knot_name`` column without identifying.
+``enumerate --identify`` is summed from its ``knot_name`` column without identifying
+(:mod:`~lkspace.linktypes.atlas_catalog`).
 """
 
 from __future__ import annotations
@@ -140,11 +141,19 @@ class TypeEntry:
         )
 
 
+UNNAMED = ("unknown", "split", "not in the tables")
+"""How the atlas types without a name begin (``unknown (2 components)``, ``split: 0_1 + 3_1``, ...)."""
+
+
+def is_named(type_name: str) -> bool:
+    """Whether an atlas type is a name (``3_1``, ``L2a1#L4a1``), not a group of unnamed designs (:data:`UNNAMED`)."""
+    return not type_name.startswith(UNNAMED)
+
+
 def sort_types(types: dict[str, TypeEntry]) -> list[TypeEntry]:
-    """Return the types by components, then named before split and unknown, then crossing number and name."""
+    """Return the types by components, then named before the rest, then crossing number and name."""
     return sorted(
-        types.values(),
-        key=lambda t: (t.components or 0, t.name.startswith(("unknown", "split")), crossing_number(t.name), t.name),
+        types.values(), key=lambda t: (t.components or 0, not is_named(t.name), crossing_number(t.name), t.name)
     )
 
 
@@ -350,68 +359,3 @@ def _records(
                 yield batch.labels[i].astype(np.int64), int(batch.orbit_sizes[i]), source, rec
     if not walk.complete:
         yield np.zeros(0, np.int64), 0, "unwalked", None
-
-
-def atlas_of_catalog(path: str) -> AtlasResult:
-    """Sum a catalog identified by ``enumerate --identify`` (its ``knot_name`` column) into atlas types.
-
-    Rows without a name are grouped as ``split (N components)`` or ``unknown (N
-    components)``; the work is columnar (pandas ``groupby``), so big catalogs sum quickly.
-    """
-    import pandas as pd
-
-    from ..catalog.reader import read_catalog
-
-    cat = read_catalog(path)
-    frame = cat.frame
-    if "knot_name" not in frame.columns:
-        raise CatalogError(
-            f"{path}: no knot_name column: its designs are not named; write it with `identify=True`, or give a mesh"
-        )
-    comps = frame["components"].to_numpy(np.int64)
-    names = frame["knot_name"].astype(object).where(frame["knot_name"].notna(), None).to_numpy()
-    split = frame["split"].fillna(False).to_numpy(bool) if "split" in frame.columns else np.zeros(len(frame), bool)
-    fallback = np.where(split, "split", "unknown")
-    keys = [n if n is not None else f"{f} ({c} components)" for n, f, c in zip(names, fallback, comps, strict=True)]
-    mirror = frame["mirror"] if "mirror" in frame.columns else pd.Series([None] * len(frame))
-    chir = np.where(
-        mirror.isna().to_numpy(), "undetermined", np.where(mirror.fillna(False).to_numpy(bool), "mirror", "table")
-    )
-    a = np.abs(cat.labels.astype(np.int64))
-    rows = pd.DataFrame(
-        {
-            "key": keys,
-            "components": comps,
-            "orbit": frame["orbit_size"].to_numpy(np.int64),
-            "sum_abs": a.sum(axis=1),
-            "nonzero": (a != 0).sum(axis=1),
-            "max_abs": a.max(axis=1) if a.shape[1] else 0,
-            "chirality": chir,
-        }
-    )
-    simplest = rows.sort_values(["sum_abs", "nonzero", "max_abs"], kind="stable").groupby("key").head(1)
-    types: dict[str, TypeEntry] = {}
-    sums = rows.groupby("key").agg(
-        designs=("orbit", "size"), assignments=("orbit", "sum"), components=("components", "first")
-    )
-    counts = rows.groupby(["key", "chirality"]).size()
-    for key, row in sums.iterrows():
-        entry = TypeEntry(
-            str(key), int(row["components"]), designs=int(row["designs"]), assignments=int(row["assignments"])
-        )
-        for side in entry.chirality:
-            entry.chirality[side] = int(counts.get((key, side), 0))
-        types[str(key)] = entry
-    for i, row in simplest.iterrows():
-        entry = types[str(row["key"])]
-        entry.simplest = [int(x) for x in cat.labels[int(i)]]
-        entry.cost = (int(row["sum_abs"]), int(row["nonzero"]), int(row["max_abs"]))
-    listed = tuple(t.record() for t in sort_types(types))
-    return AtlasResult(
-        cat.scaffold.name,
-        cat.footer.settings.label_set,
-        len(frame),
-        sum(t.assignments for t in listed),
-        listed,
-        from_catalog=os.path.abspath(path),
-    )

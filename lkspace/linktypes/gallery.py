@@ -16,6 +16,7 @@ from dataclasses import replace
 from ..errors import ExportError
 from ..io.atomic import atomic_path, write_text
 from ..model.scaffold import Scaffold
+from .atlas import is_named
 from .records import AtlasResult
 
 PICTURE_SIZE = 480
@@ -105,7 +106,7 @@ def _pictures(folder: str, data: AtlasResult, scaffold: Scaffold, limit: int) ->
     for i, entry in enumerate(types):
         if drawn >= limit:
             break
-        if entry.name.startswith(("unknown", "split")):
+        if not is_named(entry.name):
             continue
         name = picture_name(entry.name)
         simplest = list(entry.simplest)

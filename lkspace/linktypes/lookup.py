@@ -54,11 +54,11 @@ LIMIT = 10
 
 def index_rows(data: AtlasResult, labels: str) -> list[IndexRow]:
     """Return the index rows of one :func:`~lkspace.linktypes.atlas.atlas` result (``labels``: its label set as typed)."""
-    from .atlas import crossing_number
+    from .atlas import crossing_number, is_named
 
     rows = []
     for t in data.types:
-        named = not t.name.startswith(("split", "unknown"))
+        named = is_named(t.name)
         rows.append(
             IndexRow(
                 type=t.name,
