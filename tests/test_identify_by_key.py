@@ -167,7 +167,7 @@ def test_a_folder_named_by_key_is_not_resumed_in_full_and_its_manifest_must_agre
     monkeypatch.setenv("LKSPACE_CACHE", str(tmp_path / "cache"))
     out = tmp_path / "tet.parquet"
     args = ["enumerate", "tetrahedron", "--labels", "-1..1", "-o", out, "--shards", "2"]
-    assert run(capsys, *args, "--identify-by-key")[0] == 0
+    assert run(capsys, *args, "--identify-by-key", "--jobs", "2")[0] == 0  # the parts in two processes
     manifest = out / "_lkspace.json"
     meta = json.loads(manifest.read_text())
     assert meta["named_by"] == "key"
@@ -180,3 +180,18 @@ def test_a_folder_named_by_key_is_not_resumed_in_full_and_its_manifest_must_agre
         footer = json.loads(pq.read_metadata(part).metadata[b"lkspace"])
         assert footer["identified"] is True and "named_by" not in footer
     assert run(capsys, "verify", out)[0] == 0
+
+
+def test_atlas_of_a_catalog_named_by_key_groups_what_is_not_in_the_tables(tmp_path, capsys, monkeypatch):
+    monkeypatch.setenv("LKSPACE_CACHE", str(tmp_path / "cache"))
+    out = tmp_path / "cube.parquet"
+    args = ["enumerate", "cube", "--labels", "-2..2", "--max-designs", "300", "--identify-by-key", "-o", out]
+    assert run(capsys, *args)[0] == 0
+    statuses = pd.read_parquet(out)["identify_status"]
+    beyond = int((statuses == NOT_IN_TABLES.status).sum())
+    assert beyond > 0
+    code, text, _ = run(capsys, "atlas", out, "--json")
+    assert code == 0
+    types = {t["name"]: t["designs"] for t in json.loads(text)["types"]}
+    grouped = {name: n for name, n in types.items() if name.startswith("not in the tables (")}
+    assert sum(grouped.values()) == beyond and sum(types.values()) == 300
