@@ -317,7 +317,7 @@ def _share(
     for d, k in enumerate(keys):
         if k is not None and k not in firsts and not cache.known(k):
             if by_key:
-                cache.named[k] = _undecided(_table_candidates(found, d, k)) if second else NOT_IN_TABLES
+                cache.named[k] = _by_key(found, d, k, second)
             else:
                 firsts[k] = d
     for (k, d), named in zip(firsts.items(), name_designs(list(firsts.values())), strict=True):
@@ -340,24 +340,20 @@ def _share(
     return rows
 
 
-def _undecided(found: set[tuple[str, bool]]) -> NameFields:
-    """Fields of a second-level key named by key only: not in the tables (no candidate), else the candidates."""
-    if not found:
+def _by_key(found: DesignKeys, d: int, key: Key, second: bool) -> NameFields:
+    """Fields of a new key named by key only (``d``: its first design): no table type, or the table entries it matches."""
+    if not second:
         return NOT_IN_TABLES
-    names = tuple(sorted(name + (" (mirror)" if mirror else "") for name, mirror in found))
-    return NameFields(
-        status=f"unknown: its invariants match {', '.join(names[:4])} (named by key only)", candidates=names
-    )
-
-
-def _table_candidates(found: DesignKeys, d: int, key: Key) -> set[tuple[str, bool]]:
-    """Return the table entries that design ``d`` may be by its second-level ``key`` (Jones, HOMFLY-PT, crossings left)."""
     pd, n_comp, signs = found.diagram(d)
     jones = jones_of(pd, signs, n_comp)
-    return (
-        {("a type the compiled Jones polynomial cannot tell", False)}
-        if jones is None
-        else candidates(jones, n_comp, str(key[2]), int(key[3]))
+    if jones is None:
+        return UNDECIDED
+    found_entries = candidates(jones, n_comp, str(key[2]), int(key[3]))
+    if not found_entries:
+        return NOT_IN_TABLES
+    names = tuple(sorted(name + (" (mirror)" if mirror else "") for name, mirror in found_entries))
+    return NameFields(
+        status=f"unknown: its invariants match {', '.join(names[:4])} (named by key only)", candidates=names
     )
 
 
