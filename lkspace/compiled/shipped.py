@@ -19,6 +19,13 @@ What makes the files good on another machine:
   sources (:mod:`~lkspace.compiled.kernels`).  A shipped file whose source, helpers or
   numba version changed is simply not used.
 
+* **No registries to load code.** Numba refreshes its compiler's typing and lowering
+  registries before loading cached code (0.3 s: it imports ``numba.np.arraymath``, which
+  imports ``scipy.linalg``).  Loading needs only the runtime's symbols (NRT); compiling
+  refreshes the registries itself.  So a kernel's code is loaded after the runtime alone
+  when every external symbol it names is known then (:func:`links_now`), after numba's
+  refresh otherwise.
+
 A hit is copied into numba's writable cache, so the next process loads it from there.
 ``experiments/ship_kernels.py`` refreshes the folder (every kernel and signature a run of
 the test suite compiled).
@@ -62,6 +69,7 @@ def cache_class() -> type:
     shipped entry of the same key, if any, and copies it into numba's own cache.
     """
     from numba.core.caching import FunctionCache, IndexDataCacheFile
+    from numba.core.runtime import rtsys
 
     class ShippedCache(FunctionCache):
         def __init__(self, py_func: Any, digest: str) -> None:
@@ -75,19 +83,44 @@ def cache_class() -> type:
         def _index_key(self, sig: Any, codegen: Any) -> tuple[Any, ...]:
             return (*super()._index_key(sig, codegen), self._digest)
 
+        def load_overload(self, sig: Any, target_context: Any) -> Any:
+            rtsys.initialize(target_context)  # what numba's refresh does first; the rest only if needed
+            with self._guard_against_spurious_io_errors():
+                return self._load_overload(sig, target_context)
+
         def _load_overload(self, sig: Any, target_context: Any) -> Any:
-            hit = super()._load_overload(sig, target_context)
-            if hit is not None or self._shipped is None or not self._enabled:
-                return hit
+            if not self._enabled:
+                return None
             key = self._index_key(sig, target_context.codegen())
-            data = self._shipped.load(key)
+            data = self._cache_file.load(key)
+            if data is None and self._shipped is not None:
+                data = self._shipped.load(key)
+                if data is not None:
+                    try:
+                        self._impl.locator.ensure_cache_path()
+                        self._cache_file.save(key, data)
+                    except OSError:  # a read-only cache: the shipped file is read again next time
+                        pass
             if data is None:
                 return None
-            try:
-                self._impl.locator.ensure_cache_path()
-                self._cache_file.save(key, data)
-            except OSError:  # a read-only cache: the shipped file is read again next time
-                pass
+            if not links_now(data):
+                target_context.refresh()
             return self._impl.rebuild(target_context, data)
 
     return ShippedCache
+
+
+def links_now(data: Any) -> bool:
+    """Whether the cached code ``data`` (a reduced ``CompileResult``) names only symbols known now.
+
+    Its bitcode declares the functions and globals it calls (LLVM's intrinsics, named
+    ``llvm.*``, are not symbols); each must be registered with LLVM or found in the process.
+    """
+    import llvmlite.binding as ll
+
+    _, kind, code = data[0]  # numba's library state: (name, "object", (object code, bitcode))
+    if kind != "object":
+        return False
+    module = ll.parse_bitcode(code[1])
+    declared = [g.name for g in [*module.functions, *module.global_variables] if g.is_declaration]
+    return all(name.startswith("llvm.") or ll.address_of_symbol(name) for name in declared)

@@ -370,7 +370,9 @@ def rows_hold_together_finite(
     """
     m, n_e = labels.shape
     out = np.ones(m, np.bool_)
-    n_max = max(1, int(components.max()) if len(components) else 1)
+    n_max = 1  # a loop, not components.max(): that code's loading imports numba's array math and scipy.linalg (0.2 s)
+    for c in range(len(components)):
+        n_max = max(n_max, components[c])
     parent = np.empty(n_max, np.int64)
     for i in range(m):
         c = row_class[i]
