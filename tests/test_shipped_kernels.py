@@ -125,3 +125,4 @@ def test_links_now_only_for_code_whose_symbols_are_known():
     assert links_now(code("PyErr_Clear", "NRT_MemInfo_alloc_aligned", "llvm.trap"))
     assert not links_now(code("PyErr_Clear", "lkspace_no_such_symbol"))
     assert not links_now((("name", "bitcode", b""),))
+    assert not links_now(())

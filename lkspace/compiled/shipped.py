@@ -66,7 +66,9 @@ def cache_class() -> type:
     """Return the numba function cache class of lkspace's kernels (see the module docstring).
 
     Its index key also holds ``digest`` (the helpers' sources); on a miss it loads the
-    shipped entry of the same key, if any, and copies it into numba's own cache.
+    shipped entry of the same key, if any, and copies it into numba's own cache.  Loading
+    starts numba's runtime and refreshes the registries only for code that needs them
+    (:func:`links_now`; numba's own ``load_overload`` always refreshes first).
     """
     from numba.core.caching import FunctionCache, IndexDataCacheFile
     from numba.core.runtime import rtsys
@@ -115,12 +117,13 @@ def links_now(data: Any) -> bool:
 
     Its bitcode declares the functions and globals it calls (LLVM's intrinsics, named
     ``llvm.*``, are not symbols); each must be registered with LLVM or found in the process.
+    Code in another layout (another numba's) is not checked: False.
     """
     import llvmlite.binding as ll
 
-    _, kind, code = data[0]  # numba's library state: (name, "object", (object code, bitcode))
-    if kind != "object":
+    library = data[0] if isinstance(data, tuple) and data else None  # (name, "object", (object code, bitcode))
+    if not (isinstance(library, tuple) and len(library) == 3 and library[1] == "object"):
         return False
-    module = ll.parse_bitcode(code[1])
+    module = ll.parse_bitcode(library[2][1])
     declared = [g.name for g in [*module.functions, *module.global_variables] if g.is_declaration]
     return all(name.startswith("llvm.") or ll.address_of_symbol(name) for name in declared)
