@@ -10,8 +10,9 @@ the same rounds and every figure is also given as a ratio to it.
 
 Cases: ``identify`` of a trefoil, a 13-crossing knot and a 14-crossing link on the cube, a
 split link and the 6-component unlink on the cube, and a dodecahedron design (default
-path; the trefoil also ``--geometric``); ``--help`` (case ``help``); ``trace tetrahedron``; ``enumerate
-honeycomb:oF --labels -1..1 -o`` and ``enumerate cube --labels -2..2 --jobs 2 -o``.
+path; the trefoil also ``--geometric``); ``--help`` (case ``help``); ``trace tetrahedron`` (also
+``--json``); ``enumerate honeycomb:oF --labels -1..1 -o``, ``enumerate cube --labels -1..1 --identify -o``
+and ``enumerate cube --labels -2..2 --jobs 2 -o``.
 
 Run (a few minutes)::
 
@@ -47,7 +48,9 @@ CASES: dict[str, list[str]] = {
     "identify dodecahedron": ["identify", "dodecahedron", "--twist", ",".join(["1"] * 5 + ["0"] * 25)],
     "help": ["--help"],
     "trace tetrahedron": ["trace", "tetrahedron", "--twist", "1"],
+    "trace tetrahedron --json": ["trace", "tetrahedron", "--twist", "1", "--json"],
     "enumerate oF -1..1 -o": ["enumerate", "honeycomb:oF", "--labels", "-1..1", "-o", "{out}"],
+    "enumerate cube -1..1 --identify -o": ["enumerate", "cube", "--labels", "-1..1", "--identify", "-o", "{out}"],
     "enumerate cube -2..2 --jobs 2 -o": ["enumerate", "cube", "--labels", "-2..2", "--jobs", "2", "-o", "{out}"],
 }
 """Case name -> arguments of ``python -m lkspace`` (``{out}``: a new output path per run)."""

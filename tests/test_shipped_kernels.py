@@ -84,3 +84,45 @@ def test_a_fresh_cache_loads_kernels_instead_of_compiling(tmp_path):
     assert not compiled, f"compiled on a fresh cache (hits, misses): {compiled}; refresh: {REFRESH}"
     # what was loaded is now in numba's own cache: the next process reads it from there
     assert list((tmp_path / "empty").glob("knots_*/keyed.design_keys-*.nbc"))
+
+
+ENUMERATE = """
+import json, sys
+from lkspace.cli import main
+code = main(["enumerate", *sys.argv[1:]])
+registries = "numba.np.arraymath" in sys.modules  # imported by numba's refresh (with scipy.linalg)
+import numba, numpy as np
+sort_sum = int(numba.njit(lambda a: np.sort(a).sum())(np.arange(5)))  # compiling after loading: still works
+print(json.dumps({"code": code, "registries": registries, "sort_sum": sort_sum}))
+"""
+
+
+@pytest.mark.skipif(not SHIPPED.is_dir(), reason="no shipped kernels in this checkout")
+@pytest.mark.parametrize("mesh", ["honeycomb:oF", "cube"])
+def test_enumerate_loads_its_kernels_without_numba_registries(tmp_path, mesh):
+    # the code of every kernel enumerate runs needs only numba's runtime; numba's refresh costs 0.3 s
+    env = {**os.environ, "NUMBA_CACHE_DIR": str(tmp_path / "empty")}
+    env.pop("NUMBA_CPU_NAME", None)
+    args = [mesh, "--labels", "-1..1", "-o", str(tmp_path / "c.parquet")]
+    out = subprocess.run([sys.executable, "-c", ENUMERATE, *args], env=env, capture_output=True, text=True, timeout=600)
+    assert out.returncode == 0, out.stderr
+    assert json.loads(out.stdout.strip().splitlines()[-1]) == {"code": 0, "registries": False, "sort_sum": 10}
+
+
+def test_links_now_only_for_code_whose_symbols_are_known():
+    import llvmlite.binding as ll
+    from numba.core.registry import cpu_target
+    from numba.core.runtime import rtsys
+
+    from lkspace.compiled.shipped import links_now
+
+    rtsys.initialize(cpu_target.target_context)  # as before loading a kernel
+
+    def code(*declarations: str) -> tuple:
+        bitcode = ll.parse_assembly("\n".join(f"declare void @{d}()" for d in declarations)).as_bitcode()
+        return (("name", "object", (b"", bitcode)),)
+
+    assert links_now(code("PyErr_Clear", "NRT_MemInfo_alloc_aligned", "llvm.trap"))
+    assert not links_now(code("PyErr_Clear", "lkspace_no_such_symbol"))
+    assert not links_now((("name", "bitcode", b""),))
+    assert not links_now(())

@@ -19,6 +19,13 @@ What makes the files good on another machine:
   sources (:mod:`~lkspace.compiled.kernels`).  A shipped file whose source, helpers or
   numba version changed is simply not used.
 
+* **No registries to load code.** Numba refreshes its compiler's typing and lowering
+  registries before loading cached code (0.3 s: it imports ``numba.np.arraymath``, which
+  imports ``scipy.linalg``).  Loading needs only the runtime's symbols (NRT); compiling
+  refreshes the registries itself.  So a kernel's code is loaded after the runtime alone
+  when every external symbol it names is known then (:func:`links_now`), after numba's
+  refresh otherwise.
+
 A hit is copied into numba's writable cache, so the next process loads it from there.
 ``experiments/ship_kernels.py`` refreshes the folder (every kernel and signature a run of
 the test suite compiled).
@@ -59,9 +66,12 @@ def cache_class() -> type:
     """Return the numba function cache class of lkspace's kernels (see the module docstring).
 
     Its index key also holds ``digest`` (the helpers' sources); on a miss it loads the
-    shipped entry of the same key, if any, and copies it into numba's own cache.
+    shipped entry of the same key, if any, and copies it into numba's own cache.  Loading
+    starts numba's runtime and refreshes the registries only for code that needs them
+    (:func:`links_now`; numba's own ``load_overload`` always refreshes first).
     """
     from numba.core.caching import FunctionCache, IndexDataCacheFile
+    from numba.core.runtime import rtsys
 
     class ShippedCache(FunctionCache):
         def __init__(self, py_func: Any, digest: str) -> None:
@@ -75,19 +85,45 @@ def cache_class() -> type:
         def _index_key(self, sig: Any, codegen: Any) -> tuple[Any, ...]:
             return (*super()._index_key(sig, codegen), self._digest)
 
+        def load_overload(self, sig: Any, target_context: Any) -> Any:
+            rtsys.initialize(target_context)  # what numba's refresh does first; the rest only if needed
+            with self._guard_against_spurious_io_errors():
+                return self._load_overload(sig, target_context)
+
         def _load_overload(self, sig: Any, target_context: Any) -> Any:
-            hit = super()._load_overload(sig, target_context)
-            if hit is not None or self._shipped is None or not self._enabled:
-                return hit
+            if not self._enabled:
+                return None
             key = self._index_key(sig, target_context.codegen())
-            data = self._shipped.load(key)
+            data = self._cache_file.load(key)
+            if data is None and self._shipped is not None:
+                data = self._shipped.load(key)
+                if data is not None:
+                    try:
+                        self._impl.locator.ensure_cache_path()
+                        self._cache_file.save(key, data)
+                    except OSError:  # a read-only cache: the shipped file is read again next time
+                        pass
             if data is None:
                 return None
-            try:
-                self._impl.locator.ensure_cache_path()
-                self._cache_file.save(key, data)
-            except OSError:  # a read-only cache: the shipped file is read again next time
-                pass
+            if not links_now(data):
+                target_context.refresh()
             return self._impl.rebuild(target_context, data)
 
     return ShippedCache
+
+
+def links_now(data: Any) -> bool:
+    """Whether the cached code ``data`` (a reduced ``CompileResult``) names only symbols known now.
+
+    Its bitcode declares the functions and globals it calls (LLVM's intrinsics, named
+    ``llvm.*``, are not symbols); each must be registered with LLVM or found in the process.
+    Code in another layout (another numba's) is not checked: False.
+    """
+    import llvmlite.binding as ll
+
+    library = data[0] if isinstance(data, tuple) and data else None  # (name, "object", (object code, bitcode))
+    if not (isinstance(library, tuple) and len(library) == 3 and library[1] == "object"):
+        return False
+    module = ll.parse_bitcode(library[2][1])
+    declared = [g.name for g in [*module.functions, *module.global_variables] if g.is_declaration]
+    return all(name.startswith("llvm.") or ll.address_of_symbol(name) for name in declared)

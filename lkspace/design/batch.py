@@ -70,9 +70,8 @@ class ClassTraces:
         return ClassTraces(*(a[keep] for a in self._arrays()))
 
     def slim(self) -> ClassTraces:
-        """Return the same traces without the per-port arrays (what catalog rows need)."""
-        c, lengths, periods, walk_periods = self._arrays()[:4]
-        return ClassTraces(c, lengths, periods, walk_periods, np.zeros((0, 0), np.int64), np.zeros((0, 0, 0), np.int64))
+        """Return the traces catalog rows need: without the arrays only holding together reads (left empty)."""
+        return ClassTraces(self.components, self.lengths, self.periods, *_no_walk_arrays())
 
     def _arrays(self) -> tuple[np.ndarray, ...]:
         return self.components, self.lengths, self.periods, self.walk_periods, self.port_strand, self.port_shift
@@ -279,23 +278,25 @@ def class_components(space: DesignSpace, class_ids: np.ndarray | None = None) ->
 def concat_traces(parts: list[ClassTraces]) -> ClassTraces:
     """One :class:`ClassTraces` of several batches, for their rows' columns.
 
-    Strand arrays are padded to the widest; the per-port arrays (only holding together
-    needs them) are left empty.
+    Strand arrays are padded to the widest (each part copied once, into place); the arrays
+    only holding together reads are left empty (:meth:`ClassTraces.slim`).
     """
     n_s = max(p.lengths.shape[1] for p in parts)
+    components = np.concatenate([p.components for p in parts])
+    lengths = np.full((len(components), n_s), -1, np.int64)
+    periods = np.zeros((len(components), n_s, parts[0].periods.shape[2]), np.int64)
+    start = 0
+    for p in parts:
+        stop, width = start + len(p.components), p.lengths.shape[1]
+        lengths[start:stop, :width] = p.lengths
+        periods[start:stop, :width] = p.periods
+        start = stop
+    return ClassTraces(components, lengths, periods, *_no_walk_arrays())
 
-    def pad(a: np.ndarray, fill: int) -> np.ndarray:
-        widths = [(0, 0), (0, n_s - a.shape[1])] + [(0, 0)] * (a.ndim - 2)
-        return np.pad(a, widths, constant_values=fill)
 
-    return ClassTraces(
-        np.concatenate([p.components for p in parts]),
-        np.concatenate([pad(p.lengths, -1) for p in parts]),
-        np.concatenate([pad(p.periods, 0) for p in parts]),
-        np.concatenate([pad(p.walk_periods, 0) for p in parts]),
-        np.zeros((0, 0), np.int64),
-        np.zeros((0, 0, 0), np.int64),
-    )
+def _no_walk_arrays() -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Empty ``walk_periods``, ``port_strand`` and ``port_shift`` (traces that no longer hold together rows)."""
+    return np.zeros((0, 0, 0), np.int64), np.zeros((0, 0), np.int64), np.zeros((0, 0, 0), np.int64)
 
 
 def representative_table(space: DesignSpace) -> np.ndarray:
