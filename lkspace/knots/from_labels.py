@@ -25,11 +25,13 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
 from ..model.scaffold import Scaffold
 from ..runtime.progress import Step
+from ..runtime.workers import interruptible
 from .assembly import assemble_one, work_array
 from .bracket import read_ends, smoothing_order
 from .budget import MAX_CROSSINGS, TimeLimitReached
@@ -116,12 +118,18 @@ def _regina_key(pd: np.ndarray, lk: np.ndarray, n_comp: int, keys: np.ndarray) -
 
     The key holds invariants only, so any diagram of the link gives it: the one compiled
     code would give if it could (``enumerate`` names such designs one by one instead).
+    regina computes it in one C++ call of seconds (it releases the GIL), run by
+    :func:`~lkspace.runtime.workers.interruptible` so that Ctrl-C goes through at once.
     """
     from .tables import regina_module
 
     link = regina_module().Link.fromPD(pd.tolist())
-    link.simplify()
-    jones = link.jones()
+
+    def simplified_jones() -> Any:
+        link.simplify()
+        return link.jones()
+
+    jones = interruptible(simplified_jones)
     if jones.isZero():
         return False
     low, high = int(jones.minExp()), int(jones.maxExp())
