@@ -415,3 +415,22 @@ def test_any_field_of_a_manifest_changed_or_removed_is_refused(written, tmp_path
         code, _, err = run(capsys, "export", cat, "--row", ROW_IN_PART_1, "-o", tmp_path / "x.obj")
         assert code == 1, (path, value)
         assert not (tmp_path / "x.obj").exists()
+
+
+@pytest.mark.parametrize(
+    "put, words",
+    [
+        (lambda p: p.mkdir(), ["not a regular file (a folder)"]),  # was called "a FIFO, socket or device"
+        (lambda p: os.mkfifo(p), ["not a regular file (a FIFO)"]),
+        (lambda p: p.symlink_to(p.parent / "nowhere.bin"), ["a symbolic link to", "does not exist"]),  # said only
+        (lambda p: p.symlink_to(p), ["cannot read", "symbolic links"]),  # "No such file or directory"
+        (lambda p: p.write_bytes(b""), ["damaged or not Parquet"]),
+    ],
+    ids=["folder", "fifo", "dangling-link", "link-loop", "empty"],
+)
+def test_something_else_in_place_of_a_part(cat, capsys, tmp_path, put, words):
+    """A part replaced by a folder, a FIFO, a link to nothing, a loop of links or an empty file: one line saying which."""
+    victim = cat / parts(cat)[1]
+    victim.unlink()
+    put(victim)
+    refused_everywhere(capsys, tmp_path, cat, victim.name, *words)
