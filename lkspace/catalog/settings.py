@@ -19,7 +19,16 @@ from ..io.scaffold_json import scaffold_from_dict, scaffold_to_dict
 from ..io.sources import load
 from ..model.scaffold import Scaffold
 from ..symmetry.tolerance import resolve_tolerance
-from .metadata import FORMAT_VERSION, LATER_KEYS, CatalogMetadata, Filters, JsonObject, ScaffoldInfo, Unrecorded
+from .metadata import (
+    FORMAT_VERSION,
+    LATER_KEYS,
+    UNRECORDED,
+    CatalogMetadata,
+    Filters,
+    JsonObject,
+    ScaffoldInfo,
+    Unrecorded,
+)
 from .options import Selection
 from .records import PartFooter, PartSummary
 from .writer import tally
@@ -100,14 +109,15 @@ def _filtered(settings: CatalogMetadata, filters: Filters, totals: tuple[PartSum
 def catalog_scaffold(footer: PartFooter, path: str) -> Scaffold:
     """Return the scaffold of a catalog: stored in its ``footer``, else loaded by name.
 
-    Its content hash, name and counts must be the ones the metadata records.
+    Its content hash, name (of a stored scaffold) and counts must be the ones the metadata records.
     """
     info = footer.settings.scaffold
     try:
         scaffold = scaffold_from_dict(info.data, info.name) if info.data else load(info.name)
     except LkspaceError as exc:
         raise CatalogError(f"{path}: the scaffold in its 'lkspace' metadata: {exc}") from None
-    recorded = (info.content_hash, info.name, info.edges, info.faces, info.periodic)
+    name = info.name if info.data else UNRECORDED  # loaded by it: a path names the file, not the scaffold
+    recorded = (info.content_hash, name, info.edges, info.faces, info.periodic)
     actual = (scaffold.content_hash(), scaffold.name, scaffold.n_edges, scaffold.n_faces, scaffold.periodic)
     if any(r != a for r, a in zip(recorded, actual, strict=True) if not isinstance(r, Unrecorded)):
         raise CatalogError(f"{path}: the scaffold {scaffold.name!r} differs from the one the catalog was written for")
