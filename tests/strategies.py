@@ -310,3 +310,12 @@ def voronoi_tilings(draw):
     cells = draw(st.lists(quarters, min_size=1, max_size=3, unique=True))
     basis = np.array(PLANE_LATTICES[name])
     return name, np.array(cells, dtype=np.float64) / 4 @ basis
+
+
+def malformed_lists(n: int) -> st.SearchStrategy[str]:
+    """Comma lists of ``n`` small integers with one item empty or spelled with non-ASCII digits (read as 3 or 1 once)."""
+    items = st.lists(st.integers(-2, 2).map(str), min_size=n, max_size=n)
+    bad = st.sampled_from(["", " ", "\u0663", "\uff11", "-\u0661", "\u0967", "1\u0662"])
+    return st.tuples(items, st.integers(0, n - 1), bad).map(
+        lambda t: ",".join([*t[0][: t[1]], t[2], *t[0][t[1] + 1 :]])
+    )

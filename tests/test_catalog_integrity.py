@@ -311,3 +311,126 @@ def test_edited_metadata_of_a_one_file_catalog(written, tmp_path, capsys, edit, 
     code, _, err = run(capsys, "export", one, "--row", 3, "-o", tmp_path / "x.obj")
     assert code == 1
     one_line_error(err, one.name, *words)
+
+
+JSON_VALUES = st.one_of(
+    st.none(),
+    st.booleans(),
+    st.integers(-(2**70), 2**70),
+    st.floats(allow_nan=False),
+    st.text(max_size=8),
+    st.lists(st.integers(-3, 3), max_size=3),
+    st.dictionaries(st.sampled_from(["a", "1", "name"]), st.integers(0, 3), max_size=2),
+)
+"""A JSON value of every kind, put in place of a field of the ``lkspace`` metadata or a manifest."""
+
+REMOVED = object()
+"""Stands for a field removed instead of changed."""
+
+
+def fields(data, path=()):
+    """Every field of the JSON object ``data`` as a key path (a list's first two items too; a scaffold's geometry: its keys)."""
+    out = []
+    for key, value in data.items():
+        here = (*path, key)
+        out.append(here)
+        if isinstance(value, dict):
+            out += fields(value, here)
+        elif isinstance(value, list) and path[-1:] != ("data",):
+            out += [(*here, i) for i in range(min(2, len(value)))]
+    return out
+
+
+def edited(data, path, value):
+    """A copy of the JSON ``data`` with the field at ``path`` set to ``value`` (or removed: :data:`REMOVED`)."""
+    data = json.loads(json.dumps(data))
+    inner = data
+    for key in path[:-1]:
+        inner = inner[key]
+    if value is REMOVED:
+        del inner[path[-1]]
+    else:
+        inner[path[-1]] = value
+    return data
+
+
+ONE_FILE_META = ("format_version", "scaffold", "label_set", "symmetry", "group_order", "acting_order", "assignments",
+                 "mode", "filters", "sample", "seed", "canonical_rule", "by_components", "assignments_covered", "rows")  # fmt: skip
+"""The fields of a one-file catalog's metadata that verify checks against its scaffold and rows.
+
+Not among them: the shard's plan (a fingerprint of the walk), ``symmetry_tolerance``
+removed (an older lkspace did not record it), a ``max_designs`` the rows stay under.
+"""
+
+
+@settings(max_examples=150, deadline=None, derandomize=True, database=None,
+          suppress_health_check=[HealthCheck.function_scoped_fixture])  # fmt: skip
+@given(data=st.data())
+def test_any_field_of_a_one_file_catalog_changed_and_sealed_again_is_refused_by_verify(written, tmp_path, capsys, data):
+    """Property: a setting, count or the scaffold changed (the digest computed again) never verifies as intact."""
+    from lkspace.catalog.metadata import metadata_digest
+
+    meta = json.loads(pq.read_metadata(written / "one.parquet").metadata[b"lkspace"])
+    path = data.draw(st.sampled_from([p for p in fields(meta) if p[0] in ONE_FILE_META]), label="field")
+    value = data.draw(st.one_of(st.just(REMOVED), JSON_VALUES), label="value")
+    changed = edited(meta, path, value)
+    if path[0] == "filters" and path[-1] == "max_designs" and isinstance(value, int) and value >= 87:
+        return  # a limit the walk did not reach: the same catalog
+    if changed == meta:
+        return
+    changed["digest"] = metadata_digest(changed)
+    one = tmp_path / "one.parquet"
+    pq.write_table(
+        pq.read_table(written / "one.parquet").replace_schema_metadata({b"lkspace": json.dumps(changed)}), one
+    )
+    code, _, err = run(capsys, "verify", one)
+    assert code == 1, (path, value)
+    one_line_error(err, one.name)
+
+
+@settings(max_examples=150, deadline=None, derandomize=True, database=None,
+          suppress_health_check=[HealthCheck.function_scoped_fixture])  # fmt: skip
+@given(data=st.data())
+def test_any_field_of_a_manifest_changed_or_removed_is_refused(written, tmp_path, capsys, data):
+    """Property: a manifest with any field changed to any JSON value, or removed, never verifies or reads.
+
+    (A malformed SHA-256 of part 0 was read as intact by ``export --row`` of a row in part 1.)
+    """
+    manifest = json.loads((written / "a.parquet" / "_lkspace.json").read_text())
+    path = data.draw(st.sampled_from(fields(manifest)), label="field")
+    value = data.draw(st.one_of(st.just(REMOVED), JSON_VALUES), label="value")
+    changed = edited(manifest, path, value)
+    if changed == manifest:
+        return
+    cat = tmp_path / "cat.parquet"
+    shutil.rmtree(cat, ignore_errors=True)
+    shutil.copytree(written / "a.parquet", cat)
+    (cat / "_lkspace.json").write_text(json.dumps(changed))
+    code, _, err = run(capsys, "verify", cat)
+    assert code == 1, (path, value)
+    one_line_error(err, "cat.parquet")
+    if path != ("identify",):  # a manifest saying every part is identified is verify's to check
+        with pytest.raises(CatalogError):
+            lkspace.read_catalog(cat)
+        code, _, err = run(capsys, "export", cat, "--row", ROW_IN_PART_1, "-o", tmp_path / "x.obj")
+        assert code == 1, (path, value)
+        assert not (tmp_path / "x.obj").exists()
+
+
+@pytest.mark.parametrize(
+    "put, words",
+    [
+        (lambda p: p.mkdir(), ["not a regular file (a folder)"]),  # was called "a FIFO, socket or device"
+        (lambda p: os.mkfifo(p), ["not a regular file (a FIFO)"]),
+        (lambda p: p.symlink_to(p.parent / "nowhere.bin"), ["a symbolic link to", "does not exist"]),  # said only
+        (lambda p: p.symlink_to(p), ["cannot read", "symbolic links"]),  # "No such file or directory"
+        (lambda p: p.write_bytes(b""), ["damaged or not Parquet"]),
+    ],
+    ids=["folder", "fifo", "dangling-link", "link-loop", "empty"],
+)
+def test_something_else_in_place_of_a_part(cat, capsys, tmp_path, put, words):
+    """A part replaced by a folder, a FIFO, a link to nothing, a loop of links or an empty file: one line saying which."""
+    victim = cat / parts(cat)[1]
+    victim.unlink()
+    put(victim)
+    refused_everywhere(capsys, tmp_path, cat, victim.name, *words)

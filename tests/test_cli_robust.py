@@ -294,3 +294,30 @@ def test_a_held_lock_stops_a_writer_before_it_reads_its_mesh(tmp_path, extra):
     finally:
         holder.kill()
         holder.wait()
+
+
+@pytest.mark.parametrize(
+    "args",
+    [
+        ["solve", "icosahedron", "--type", "10_123", "--labels", "-1..1"],  # named enumerate's --mode
+        ["export", "cube", "--twist", "4", "--nm-per-unit", "5.2", "-o", "x.oxdna"],  # named the geometry's --scale
+        ["export", "cube", "--twist", "4", "--nm-per-unit", "1e9", "-o", "x.oxdna"],
+        ["enumerate", "icosahedron", "--labels", "-1..1", "-o", "x.parquet"],
+        ["atlas", "icosahedron", "--labels", "-1..1"],
+    ],
+)
+def test_a_refusal_names_only_flags_its_command_has(tmp_path, args):
+    """The advice of a refusal is something the user can type: every ``--flag`` it names is one of the command's."""
+    import re
+
+    import click
+
+    from lkspace.cli import cli
+
+    code, _, err = lk(*args, cwd=tmp_path)
+    assert code == 2
+    one_line(err)
+    command = cli.get_command(click.Context(cli), args[0])
+    own = {opt for param in command.params for opt in param.opts}
+    assert set(re.findall(r"--[a-z][a-z-]*", err)) <= own, err
+    assert list(tmp_path.iterdir()) == []

@@ -328,3 +328,14 @@ def test_solve_restricted_to_dna(capsys):
         code, _out, err = run(capsys, "solve", "cube", "--dna", "5.3", *(("-n", "1") if args else ()), *args)
         assert code == 2
         one_line_error(err, words)
+
+
+@pytest.mark.parametrize("scale", ["1e308", "99999999999999999999", "1e7", "5.2"])
+def test_a_scale_too_large_or_too_small_is_one_line_naming_its_flag(capsys, tmp_path, scale):
+    """--nm-per-unit 1e308 was an internal error (NaN linkers) and 1e20 a hang (a linker of 10^20 nucleotides);
+    the scale's messages named --scale, the geometry's flag."""
+    code, _out, err = run(capsys, "export", "cube", "--twist", "4", "--nm-per-unit", scale, "-o", tmp_path / "x.oxdna")
+    assert code == 2
+    one_line_error(err, "--nm-per-unit", "use a scale of at")
+    assert "--scale" not in err
+    assert os.listdir(tmp_path) == []

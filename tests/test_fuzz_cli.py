@@ -33,6 +33,7 @@ from .strategies import (
     bad_obj_files,
     bad_scaffold_json,
     bad_twist_files,
+    malformed_lists,
 )
 
 CASE_SECONDS = 20
@@ -259,3 +260,17 @@ def test_labels_at_the_bound_elsewhere(capsys, argv, codes):
     """Labels within (or just past) the bound that other commands must refuse cleanly, as usage."""
     with tempfile.TemporaryDirectory() as folder:
         check(capsys, folder, [a.format(folder=folder) for a in argv], codes=codes)
+
+
+@pytest.mark.parametrize("option", ["--labels", "--twist"])
+@fuzz(30)
+@given(data=st.data())
+def test_a_list_with_an_empty_item_or_non_ascii_digits_is_refused(capsys, option, data):
+    """``--labels 1,,2`` was the label set [1, 2] and ``--twist`` of Arabic-Indic or full-width digits read as
+    integers; a malformed item is now refused, naming it."""
+    spec = data.draw(malformed_lists(12 if option == "--twist" else 3), label="spec")
+    with tempfile.TemporaryDirectory() as folder:
+        argv = (
+            ["trace", "cube", f"--twist={spec}"] if option == "--twist" else ["enumerate", "cube", f"--labels={spec}"]
+        )
+        check(capsys, folder, [*argv, "--count-only"] if option == "--labels" else argv, codes=(2,))

@@ -204,7 +204,7 @@ def test_one_design_key_equals_the_compiled_key():
             assert one.linking_matrix(0) == compiled.linking_matrix(d)
             if len(one.pd):  # the key of a diagram too wide for the state sum comes from regina's Jones
                 keys = np.zeros((1, 2), np.uint64)
-                assert from_labels._regina_key(one.pd, one.link_values, int(one.components[0]), keys)
+                assert from_labels._regina_key(one.pd, one.link_values, int(one.components[0]), keys, None)
                 assert keys[0].tolist() == compiled.keys[d].tolist()
     wide = lkspace.load("dodecahedron")
     assert not keys_of(wide, [[1] * 30]).keyed[0] and from_labels.design_keys_of(wide, np.ones(30, np.int64)).keyed[0]

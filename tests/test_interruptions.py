@@ -298,3 +298,47 @@ def test_a_small_call_runs_in_place():
 
     assert interruptible(here, QUICK_SIZE - 1)
     assert not interruptible(here, QUICK_SIZE) and not interruptible(here)
+
+
+REGINA_KEY = """
+import os, signal, threading
+import numpy as np
+import lkspace
+from lkspace.knots import from_labels, tables
+
+real = tables.regina_module()
+calls = []  # per Jones polynomial: whether it ran off the main thread, and when it returned
+
+class Link:  # regina's link, sending Ctrl-C once its long C++ call (seconds) has begun
+    @staticmethod
+    def fromPD(pd):
+        link = Link()
+        link.real = real.Link.fromPD(pd)
+        return link
+
+    def simplify(self):
+        self.real.simplify()
+
+    def jones(self):
+        calls.append(threading.current_thread() is not threading.main_thread())
+        threading.Timer(0.05, os.kill, (os.getpid(), signal.SIGINT)).start()
+        out = self.real.jones()
+        calls.append("returned")
+        return out
+
+class Regina:
+    Link = Link
+
+tables.regina_module = lambda: Regina
+try:
+    from_labels.design_keys_of(lkspace.load("dodecahedron"), np.full(30, 3))
+except KeyboardInterrupt:
+    print("interrupted during the call" if calls == [True] else f"interrupted, calls {calls}")
+"""
+
+
+def test_ctrl_c_during_regina_s_jones_polynomial_goes_through_at_once():
+    """``identify dodecahedron --twist 3`` held Ctrl-C back for up to 3 s: the key of a diagram too wide for
+    the state sum (112 crossings) is regina's Jones polynomial, one C++ call; it now runs in a thread."""
+    proc = subprocess.run([sys.executable, "-c", REGINA_KEY], capture_output=True, text=True, timeout=HANG)
+    assert proc.stdout == "interrupted during the call\n", proc.stderr

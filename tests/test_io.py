@@ -93,6 +93,8 @@ f -4 -2 -1   # negative indices: 1 3 4
         ("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2\n", "line 4: face 0 has 2 vertices"),
         ("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 2\n", "line 4: face 0 repeats a vertex"),
         ("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 a\n", "line 4: face vertex 'a'"),
+        ("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1/1/1 2//2 3/a\n", "line 4: face vertex '3/a'"),  # was read as 3
+        ("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3/1/1/1\n", "line 4: face vertex '3/1/1/1'"),
         ("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 0\n", "index 0 out of range"),
         ("v 0 0 0\nv 0 0 0\nv 0 1 0\nf 1 2 3\n", "zero-length edge between vertices 0 and 1"),
         ("v 0 0 0\nv 1 0 0\nv 0 1 0\nfoo 1 2 3\n", "line 4: unknown OBJ statement 'foo'"),

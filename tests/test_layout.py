@@ -218,9 +218,11 @@ BOUNDARY = (
     "lkspace.studio.",
     "lkspace.blender.",
     "lkspace.catalog.reader",
+    "lkspace.catalog.settings",
 )
 """The modules that may turn a path or a built-in name into a scaffold (``lkspace.io.sources``): the
-public API, io itself, the programs, and the catalog reader (a catalog stores its scaffold's name)."""
+public API, io itself, the programs, and the catalog reader and the checks of what a catalog
+records (a catalog stores its scaffold's name)."""
 
 
 def test_only_the_boundary_loads_scaffolds():

@@ -26,7 +26,7 @@ from .metadata import CatalogMetadata
 from .options import Selection
 from .records import PartFooter
 from .schema import expected_schema
-from .shards import catalog_metadata
+from .settings import catalog_metadata
 from .transaction import catalog_target
 from .writer import write_batches
 

@@ -44,7 +44,7 @@ class PartsJob:
     selection : Selection
         Which rows the catalog holds.
     settings : CatalogMetadata
-        The ``lkspace`` metadata common to every part (:func:`~lkspace.catalog.shards.catalog_metadata`).
+        The ``lkspace`` metadata common to every part (:func:`~lkspace.catalog.settings.catalog_metadata`).
     plan : Plan
         The parts: each one's representative classes, and the plan's fingerprint.
     files : tuple of str, or None

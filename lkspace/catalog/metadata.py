@@ -28,6 +28,9 @@ from ..symmetry.group import MODES, SymmetryMode
 FORMAT_VERSION = 1
 """The catalog format version lkspace writes."""
 
+MAX_EDGES = 2**31 - 1
+"""The most edges a catalog's ``key`` column (one byte per edge, an Arrow fixed-size binary) can hold."""
+
 FORMAT_VERSIONS = (1,)
 """Catalog format versions this lkspace reads."""
 
@@ -192,7 +195,7 @@ class ScaffoldInfo:
         """Read the ``scaffold`` entry of ``where``'s metadata."""
         info = json_object(data, f"{where}: the scaffold in its 'lkspace' metadata")
         edges = info.get("edges")
-        if isinstance(edges, bool) or not isinstance(edges, int) or edges < 1:
+        if isinstance(edges, bool) or not isinstance(edges, int) or not 1 <= edges <= MAX_EDGES:
             raise CatalogError(f"{where}: the 'lkspace' metadata has no usable scaffold edges or mode (damaged)")
         what = f"{where}: the scaffold in its 'lkspace' metadata:"
         geometry = info.get("data")
@@ -223,6 +226,8 @@ class Filters:
         """Read the ``filters`` entry of ``where``'s metadata."""
         what = f"{where}: the filters in its 'lkspace' metadata:"
         filters = json_object(data, what[:-1])
+        if sorted(filters) != ["components", "max_designs", "no_zero"]:
+            raise CatalogError(f"{what} keys {sorted(filters)} are not components, no_zero, max_designs (damaged)")
         return cls(
             optional_count(filters, "components", what),
             flag_field(filters, "no_zero", what),
@@ -340,8 +345,10 @@ class CatalogMetadata:
         """Read the settings of ``where``'s ``lkspace`` metadata (or manifest)."""
         meta = checked_header(data, where)
         labels = meta["label_set"]
-        if not isinstance(labels, list) or not all(isinstance(t, int) and not isinstance(t, bool) for t in labels):
-            raise CatalogError(f"{where}: label_set {shown(labels)} is not a list of integers (damaged)")
+        if not isinstance(labels, list) or not all(
+            isinstance(t, int) and not isinstance(t, bool) and -128 <= t <= 127 for t in labels
+        ):
+            raise CatalogError(f"{where}: label_set {shown(labels)} is not a list of integers -128..127 (damaged)")
         mode = meta.get("mode")
         if mode not in WALK_MODES:
             raise CatalogError(f"{where}: the 'lkspace' metadata has no usable scaffold edges or mode (damaged)")

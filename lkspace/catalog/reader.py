@@ -20,14 +20,13 @@ import pyarrow as pa
 import pyarrow.parquet as pq
 from numpy.typing import ArrayLike
 
-from ..errors import CatalogError, LkspaceError
-from ..io.scaffold_json import scaffold_from_dict
-from ..io.sources import load
+from ..errors import CatalogError
 from ..model.scaffold import Scaffold
 from ..strands.tracing import Trace, trace
 from ..words import noun
-from .metadata import JsonObject, ScaffoldInfo
+from .metadata import JsonObject
 from .records import PartFooter
+from .settings import catalog_scaffold
 from .transaction import load_manifest
 from .verify import damaged, open_catalog
 
@@ -50,18 +49,6 @@ def read_metadata(path: str | os.PathLike[str]) -> JsonObject:
     :func:`~lkspace.catalog.verify.open_catalog`'s.
     """
     return open_catalog(path).footer.to_json()
-
-
-def catalog_scaffold(footer: PartFooter, path: str) -> Scaffold:
-    """Return the scaffold of a catalog: stored in its ``footer``, else loaded by name; hash checked."""
-    info: ScaffoldInfo = footer.settings.scaffold
-    try:
-        scaffold = scaffold_from_dict(info.data, info.name) if info.data else load(info.name)
-    except LkspaceError as exc:
-        raise CatalogError(f"{path}: the scaffold in its 'lkspace' metadata: {exc}") from None
-    if info.content_hash != scaffold.content_hash():
-        raise CatalogError(f"{path}: the scaffold {scaffold.name!r} differs from the one the catalog was written for")
-    return scaffold
 
 
 @dataclass(frozen=True, eq=False, repr=False)

@@ -298,6 +298,8 @@ class Manifest:
         run, plan, identify = meta.get("run"), meta.get("plan"), meta.get("identify")
         if not isinstance(run, str) or not isinstance(plan, str | None) or not isinstance(identify, bool | None):
             raise CatalogError(f"{where}: no run id, plan or identify setting (damaged manifest)")
+        if (plan is None) != (identify is None):  # both absent only for a catalog written to a URL
+            raise CatalogError(f"{where}: no run id, plan or identify setting (damaged manifest)")
         parts = {int(index): _entry(entry, index, where) for index, entry in entries.items()}
         signature = Signature(settings, count, plan, identify, meta.get("named_by") == "key")
         return cls(signature, run, parts, meta.get("complete") is True)
@@ -310,7 +312,9 @@ def _entry(data: Json, index: str, where: str) -> PartSummary:
         part = PartSummary.from_json(data, where)
     except CatalogError:
         raise CatalogError(malformed) from None
-    name = part.file
+    name, sha = part.file, part.sha256
     if name is None or name != os.path.basename(name) or not name.endswith(".parquet"):
+        raise CatalogError(malformed)
+    if sha is None or len(sha) != 64 or not all(c in "0123456789abcdef" for c in sha):
         raise CatalogError(malformed)
     return part

@@ -20,7 +20,7 @@ import contextlib
 import os
 from collections.abc import Callable
 from dataclasses import asdict, dataclass, replace
-from typing import TYPE_CHECKING, TypeAlias, cast
+from typing import TYPE_CHECKING, TypeAlias
 
 import pyarrow as pa
 import pyarrow.parquet as pq
@@ -28,22 +28,21 @@ import pyarrow.parquet as pq
 from ..design.space import DesignSpace, WalkMode, make_space
 from ..errors import CatalogError
 from ..io.atomic import remove_path, replace_path
-from ..io.scaffold_json import scaffold_to_dict
 from ..model.scaffold import Scaffold
 from ..model.specs import LabelSetSpec
 from ..runtime.progress import task
 from ..runtime.schedulers import check_scheduler, resolve_scheduler
 from ..runtime.workers import context, ignored_signals
 from ..symmetry.group import SymmetryMode
-from ..symmetry.tolerance import resolve_tolerance
 from ..words import plural
 from .jobs import PartsJob, run_parts
 from .lock import catalog_lock
-from .metadata import FORMAT_VERSION, CatalogMetadata, Filters, JsonObject, ScaffoldInfo
+from .metadata import FORMAT_VERSION, JsonObject
 from .options import Execution, Selection
 from .plan import check_jobs, make_plan
 from .records import Manifest, PartFooter, PartSummary, Signature
 from .remote import check_remote, remote_url, write_remote
+from .settings import catalog_metadata
 from .transaction import (
     CatalogInterrupted,
     Destination,
@@ -64,9 +63,6 @@ from .writer import write_batches
 if TYPE_CHECKING:
     from .identified import Identified
 
-CANONICAL_RULE = (
-    "orbit member smallest in (t mod K per edge, then t per edge), lexicographic in edge order; see docs/catalog.md"
-)
 Progress: TypeAlias = Callable[[int | None], Callable[[int], object] | None]
 """``progress(total)`` -> ``None`` or ``advance(rows written so far)``; ``total`` is ``None`` when unknown."""
 
@@ -214,27 +210,6 @@ def _planned(space: DesignSpace, selection: Selection, execution: Execution, sho
         code = 128 + getattr(exc, "signum", 2)
         raise CatalogInterrupted(f"interrupted; nothing was written to {shown}", code) from None
     return PartsJob(space, selection, catalog_metadata(space, selection), plan)
-
-
-def catalog_metadata(space: DesignSpace, selection: Selection) -> CatalogMetadata:
-    """Return the ``lkspace`` metadata common to every part of a catalog (its signature for resuming)."""
-    sc = space.scaffold
-    geometry = cast(JsonObject, {k: v for k, v in scaffold_to_dict(sc).items() if k not in ("labels", "nulls")})
-    return CatalogMetadata(
-        format_version=FORMAT_VERSION,
-        scaffold=ScaffoldInfo(sc.name, sc.content_hash(), sc.n_edges, sc.n_faces, sc.periodic, geometry),
-        label_set=tuple(space.label_set.tolist()),
-        symmetry=space.mode,
-        symmetry_tolerance=None if space.mode == "none" else resolve_tolerance(sc, space.tolerance),
-        group_order=space.group_order,
-        acting_order=space.n_actions,
-        assignments=space.assignments,
-        mode=selection.mode,
-        filters=Filters(selection.components, space.no_zero, selection.max_designs),
-        sample=selection.sample,
-        seed=selection.seed if selection.sample is not None else None,
-        canonical_rule=CANONICAL_RULE,
-    )
 
 
 class _Run:

@@ -30,7 +30,7 @@ from .metadata import CatalogMetadata, json_object
 from .options import Selection
 from .records import PartFooter
 from .schema import ROW_GROUP, expected_schema
-from .shards import CANONICAL_RULE, catalog_metadata
+from .settings import CANONICAL_RULE, catalog_metadata
 from .transaction import catalog_target
 from .writer import write_batches
 

@@ -176,11 +176,20 @@ def remove_temporaries(target: Destination, keep_build: bool) -> None:
 def check_regular(path: str, what: str = "part") -> None:
     """Raise a one-line :class:`CatalogError` unless ``path`` is a regular file (a FIFO would block a read for ever).
 
-    ``FileNotFoundError`` propagates (a catalog replaced while read).
+    ``FileNotFoundError`` propagates (a catalog replaced while read), except for a link to nothing.
     """
-    if not stat.S_ISREG(os.stat(path).st_mode):
+    try:
+        mode = os.stat(path).st_mode
+    except FileNotFoundError:
+        if os.path.islink(path):  # for good, not a catalog replaced while read
+            raise CatalogError(f"{path}: a symbolic link to {os.readlink(path)!r}, which does not exist") from None
+        raise
+    except OSError as exc:  # a loop of links, say
+        raise CatalogError(f"{path}: cannot read: {exc.strerror}") from None
+    if not stat.S_ISREG(mode):
+        kind = "a folder" if stat.S_ISDIR(mode) else "a FIFO" if stat.S_ISFIFO(mode) else "a socket or device"
         raise CatalogError(
-            f"{path}: not a regular file (a FIFO, socket or device) where the catalog's {what} belongs; "
+            f"{path}: not a regular file ({kind}) where the catalog's {what} belongs; "
             "replace it with the file it stands for"
         )
 

@@ -36,9 +36,10 @@ import pyarrow as pa
 import pyarrow.parquet as pq
 
 from ..errors import CatalogError, LkspaceWarning
-from .metadata import LATER_KEYS, CatalogMetadata, JsonObject, decode
-from .records import Manifest, PartFooter
+from .metadata import LATER_KEYS, CatalogMetadata, Filters, JsonObject, decode
+from .records import Manifest, PartFooter, PartSummary
 from .schema import IDENTIFY_COLUMNS, METADATA_KEY, expected_schema
+from .settings import catalog_scaffold, check_settings, check_totals
 from .transaction import MANIFEST, check_regular, file_sha256
 
 
@@ -60,6 +61,9 @@ class CatalogParts:
         The manifest's SHA-256 of each part; ``None`` for a one-file catalog.
     run : str, optional
         The run id of a folder's parts; ``None`` for a one-file catalog.
+    totals : tuple of PartSummary
+        What each file says it holds: rows, rows by components, assignments covered (a
+        folder's manifest and the part footers agree).
     unsealed : str, optional
         The first file whose metadata has no ``digest`` (:attr:`PartFooter.sealed`); ``None``: none.
     unidentified : str, optional
@@ -73,6 +77,7 @@ class CatalogParts:
     rows: tuple[int, ...]
     footer: PartFooter
     checksums: tuple[str, ...] | None
+    totals: tuple[PartSummary, ...]
     run: str | None = None
     unsealed: str | None = None
     unidentified: str | None = None
@@ -184,7 +189,10 @@ def _structure(path: str) -> CatalogParts:
             f"{path}: part {shard.index} of a catalog of {shard.count} parts, not a whole catalog; "
             "open the folder it belongs to"
         )
-    return CatalogParts(path, (path,), (rows,), footer, None, None, None if footer.sealed else path)
+    if shard is not None and shard.index != 0:
+        raise CatalogError(f"{path}: damaged: its metadata calls it part {shard.index} of a one-part catalog")
+    totals = (footer.totals,) if footer.totals is not None else ()
+    return CatalogParts(path, (path,), (rows,), footer, None, totals, None, None if footer.sealed else path)
 
 
 def _manifest(folder: str) -> Manifest:
@@ -218,8 +226,7 @@ def _same_catalog(part: CatalogMetadata, manifest: CatalogMetadata) -> bool:
     """
     ours, theirs = part.to_json(), manifest.to_json()
     for key in LATER_KEYS:
-        if key not in ours or key not in theirs:
-            ours.pop(key, None)
+        if key not in ours:
             theirs.pop(key, None)
     return ours == theirs
 
@@ -248,7 +255,8 @@ def _open_folder(folder: str) -> CatalogParts:
         (f for f, ft in zip(files, footers, strict=True) if not ft.identified or ft.by_key != sign.by_key), None
     )
     plain = plain if sign.identify else None
-    return CatalogParts(folder, files, rows, footers[0], tuple(str(e.sha256) for e in entries), run, loose, plain)
+    checksums = tuple(str(e.sha256) for e in entries)
+    return CatalogParts(folder, files, rows, footers[0], checksums, tuple(entries), run, loose, plain)
 
 
 def part_footer(file: str, i: int, manifest: Manifest) -> PartFooter:
@@ -366,11 +374,18 @@ def verify_catalog(path: str | os.PathLike[str]) -> CatalogCheck:
         read_pages(parts.files[0])
         checks = "footer, CRC-32 of every data page"
     settings = parts.footer.settings
+    scaffold = catalog_scaffold(parts.footer, parts.path)
     if settings.dna is not None:  # its rows follow from its settings: recomputed
         from .dna_rows import check_dna_rows
 
         check_dna_rows(parts)
         checks = "footer, CRC-32 of every data page, every row recomputed (DNA designs)"
+    elif settings.invariant is None:  # a symmetric catalog's counts are its subgroup's (lkspace.catalog.symmetric)
+        check_settings(parts.files[0], settings, scaffold, parts.totals)
+    no_zero = isinstance(settings.filters, Filters) and settings.filters.no_zero
+    kept_labels = tuple(t for t in settings.label_set if t or not no_zero)
+    for file, totals in zip(parts.files, parts.totals, strict=True):
+        check_totals(file, totals, kept_labels)
     return CatalogCheck(
         path=parts.path,
         rows=parts.n_rows,

@@ -84,11 +84,7 @@ def write_batches(
     try:
         for batch in batches:
             writer.write(batch)
-            comps = _values(batch.column("components"), np.int16)
-            for c, n in zip(*np.unique(comps, return_counts=True), strict=True):
-                by[str(int(c))] = by.get(str(int(c)), 0) + int(n)
-            sizes = _values(batch.column("orbit_size"), np.int64)
-            covered = -1 if covered < 0 or (sizes < 0).any() else covered + int(sizes.sum())  # -1: past 64 bits
+            covered = tally(batch, by, covered)
             if on_rows is not None:
                 on_rows(batch.num_rows)
     except BaseException as exc:
@@ -97,6 +93,18 @@ def write_batches(
     totals = PartSummary(by, covered, writer.rows)
     writer.close(totals)
     return totals
+
+
+def tally(batch: pa.RecordBatch, by: dict[str, int], covered: int) -> int:
+    """Count the rows of ``batch`` into ``by`` (rows by components); return ``covered`` plus their orbit sizes.
+
+    The totals a catalog file records; -1 stands for a sum past 64 bits.
+    """
+    comps = _values(batch.column("components"), np.int16)
+    for c, n in zip(*np.unique(comps, return_counts=True), strict=True):
+        by[str(int(c))] = by.get(str(int(c)), 0) + int(n)
+    sizes = _values(batch.column("orbit_size"), np.int64)
+    return -1 if covered < 0 or (sizes < 0).any() else covered + int(sizes.sum())  # -1: past 64 bits
 
 
 def _values(column: pa.Array, dtype: type[np.integer]) -> np.ndarray:

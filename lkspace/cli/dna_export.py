@@ -69,7 +69,7 @@ def export_dna(ctx: Context, kw: dict[str, Any], dna: dict[str, Any]) -> None:
         labels,
         seed=dna["seed"] or 0,
         bp_per_turn=dna["bp_per_turn"] or BP_PER_TURN,
-        scale=dna["nm_per_unit"],
+        nm_per_unit=dna["nm_per_unit"],
         sequence=dna["sequence"],
     )
     written = write(design, output)

@@ -49,7 +49,7 @@ def catalog_row(path: str, row: int) -> tuple[Scaffold, np.ndarray]:
     import pyarrow as pa
     import pyarrow.parquet as pq
 
-    from ..catalog.reader import catalog_scaffold
+    from ..catalog.settings import catalog_scaffold
     from ..catalog.verify import damaged, open_catalog
 
     parts = open_catalog(path)

@@ -39,7 +39,7 @@ def studio_cmd(mesh: str | None, port: int, host: str, no_browser: bool) -> None
         import uvicorn  # noqa: F401
     except ImportError as exc:
         raise MissingDependencyError(exc.name or "starlette", "studio", "the studio's web server") from None
-    from ..catalog.reader import catalog_scaffold
+    from ..catalog.settings import catalog_scaffold
     from ..studio.app import Studio
     from ..studio.browse import Browser
     from ..studio.design_files import is_design_file, open_path

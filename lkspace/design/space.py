@@ -27,6 +27,8 @@ from ..symmetry.group import SymmetryGroup, SymmetryMode, check_label_set, check
 from .orbit_kernels import MinimaOut, ResidueCodes, SignedPerms, orbit_minima, stabilizer_ids
 
 MAX_CLASSES = 1 << 21
+WALK_ADVICE = "; use `mode='spanning-trees'` or a smaller label set"
+"""The end of :func:`class_orbits`' refusal: what a catalog can do instead (a caller without modes says its own)."""
 MAX_COUNT_DIGITS = 4000
 """Most decimal digits of ``|SET| ** n_edges``: every count of a space (designs, assignments,
 orbit sizes) is written exactly, and Python writes integers of at most 4,300 digits."""
@@ -325,7 +327,7 @@ def class_orbits(space: DesignSpace) -> ClassOrbits:
     if n_cls > MAX_CLASSES:
         raise TooLargeError(
             f"{space.scaffold.name}: {count_text(n_cls)} residue classes (label set {space.label_set.tolist()}) are too many to walk "
-            f"(limit {MAX_CLASSES}); use `mode='spanning-trees'` or a smaller label set",
+            f"(limit {MAX_CLASSES}){WALK_ADVICE}",
         )
     dims = tuple(n_res.tolist())
     k = space.moduli

@@ -57,12 +57,12 @@ def build(
     *,
     seed: int = 0,
     bp_per_turn: float = BP_PER_TURN,
-    scale: float | None = None,
+    nm_per_unit: float | None = None,
     sequence: str | None = None,
 ) -> DnaDesign:
     """Return the DNA of ``scaffold`` under ``labels`` (``docs/dna.md``), or refuse naming an edge.
 
-    ``bp_per_turn`` sets the base pairs per edge (``round(bp_per_turn * t / 2)``), ``scale``
+    ``bp_per_turn`` sets the base pairs per edge (``round(bp_per_turn * t / 2)``), ``nm_per_unit``
     the nm per mesh unit (default: the smallest that fits), ``seed`` the bases; ``sequence``
     gives strand 0's bases 5' -> 3' (its partners get the complements, the rest come from ``seed``).
     """
@@ -71,7 +71,7 @@ def build(
     tr = trace(scaffold, labels)
     passes = orient(tr)
     bp = base_pairs(labels, bp_per_turn)
-    nuc = place(scaffold, labels, bp, passes, scale)
+    nuc = place(scaffold, labels, bp, passes, nm_per_unit)
     text = bases(nuc.edge, nuc.index, nuc.slot, bp, seed)
     if sequence is not None:
         text = impose(text, sequence, (int(nuc.strand_starts[0]), int(nuc.strand_starts[1])), nuc.pair)

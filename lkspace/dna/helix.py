@@ -26,7 +26,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import GeometryError
+from ..errors import GeometryError, TooLargeError
 from ..model.scaffold import Scaffold
 from .model import SIGN, Passes
 
@@ -46,6 +46,9 @@ NORMAL_SHARE = 0.35
 """There, each strand's side is moved toward its face's front by this share of the unit direction."""
 LINK_STEP_NM = 0.6
 """Largest step between consecutive unpaired nucleotides of a corner linker, nm."""
+MAX_NUCLEOTIDES = 1_000_000
+"""Most nucleotides :func:`place` builds (about 0.5 kB each while placed): a scale far past the
+smallest that fits would stretch the linkers between helices without bound."""
 
 
 @dataclass(frozen=True)
@@ -123,31 +126,44 @@ def vertex_gaps(scaffold: Scaffold, d: np.ndarray) -> np.ndarray:
     return gaps
 
 
-def fit_scale(scaffold: Scaffold, bp: np.ndarray, gaps: np.ndarray, length: np.ndarray, scale: float | None) -> float:
-    """Return the nm per mesh unit: the smallest that fits every helix and its gaps, or ``scale`` checked."""
+def fit_scale(
+    scaffold: Scaffold, bp: np.ndarray, gaps: np.ndarray, length: np.ndarray, nm_per_unit: float | None
+) -> float:
+    """Return the nm per mesh unit: the smallest that fits every helix and its gaps, or ``nm_per_unit`` checked."""
     ab = scaffold.edge_vertices
     need = (bp - 1) * RISE_NM + gaps[ab[:, 0]] + gaps[ab[:, 1]]
-    if scale is None:
+    if nm_per_unit is None:
         return float(np.max(need / length))
+    scale = nm_per_unit
+    per_nm = scaffold.n_corners * float(np.max(length)) / LINK_STEP_NM  # linker nucleotides per nm of scale, at most
+    most = (MAX_NUCLEOTIDES - 2 * int(bp.sum())) / per_nm
+    if scale > most:
+        raise TooLargeError(
+            f"{scaffold.name}: at `nm_per_unit` {scale:g} nm the linkers between its helices could need more than "
+            f"the {MAX_NUCLEOTIDES:,} nucleotides lkspace builds; use a scale of at most {max(most, 0):.4g}",
+            parameter="nm_per_unit",
+        )
     short = np.flatnonzero(need > scale * length * (1 + 1e-9))
     if len(short):
         e = int(short[np.argmax(need[short] / length[short])])
         raise GeometryError(
-            f"{scaffold.name}: at `scale` {scale:g} nm, edge {e} ({scaffold.edge_name(e)}) is {scale * length[e]:.3g} nm, "
+            f"{scaffold.name}: at `nm_per_unit` {scale:g} nm, edge {e} ({scaffold.edge_name(e)}) is {scale * length[e]:.3g} nm, "
             f"but its {int(bp[e])} base pairs and the vertex gaps need {need[e]:.3g} nm; "
             f"use a scale of at least {float(np.max(need / length)):.4g}",
             usage=True,
-            parameter="scale",
+            parameter="nm_per_unit",
         )
     return scale
 
 
-def place(scaffold: Scaffold, labels: np.ndarray, bp: np.ndarray, passes: Passes, scale: float | None) -> Nucleotides:
+def place(
+    scaffold: Scaffold, labels: np.ndarray, bp: np.ndarray, passes: Passes, nm_per_unit: float | None
+) -> Nucleotides:
     """Place every nucleotide of the oriented ``passes`` (see the module docstring)."""
     d, e1, e2, length = edge_frames(scaffold)
     theta_a = start_angles(scaffold, d, e1, e2)
     gaps = vertex_gaps(scaffold, d)
-    s = fit_scale(scaffold, bp, gaps, length, scale)
+    s = fit_scale(scaffold, bp, gaps, length, nm_per_unit)
     ab = scaffold.edge_vertices
     pts = scaffold.vertices * s
     t = SIGN * np.asarray(labels, np.float64)

@@ -81,8 +81,8 @@ def _parse_line(raw: str, where: str, vertices: list[list[float]], faces: list[l
         n = len(vertices)
         face = []
         for part in parts:
-            token = part.split("/", 1)[0]
-            if not _INDEX.match(token):
+            token, *refs = part.split("/")  # v, v/vt, v//vn or v/vt/vn: the texture and normal indices unused
+            if not _INDEX.match(token) or len(refs) > 2 or not all(_INDEX.match(r) for r in refs if r):
                 raise ScaffoldError(f"{where}: face vertex {part[:30]!r} is not an integer index in range")
             index = int(token)
             if 0 < index <= n:

@@ -25,14 +25,16 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
 from ..model.scaffold import Scaffold
 from ..runtime.progress import Step
+from ..runtime.workers import interruptible
 from .assembly import assemble_one, work_array
 from .bracket import read_ends, smoothing_order
-from .budget import MAX_CROSSINGS, TimeLimitReached
+from .budget import MAX_CROSSINGS, TimeLimitReached, run_in_time
 from .identification import Identification, Json, NameFields, Naming
 from .jones import jones_buffer_size, jones_into, jones_kernel
 from .key_names import KeyCache, disk_cache, share_names
@@ -62,10 +64,12 @@ class OneDesign(DesignKeys):
         return self.pd.tolist(), int(self.components[d]), self.signs
 
 
-def design_keys_of(scaffold: Scaffold, labels: np.ndarray, seed: int = 0) -> OneDesign:
+def design_keys_of(scaffold: Scaffold, labels: np.ndarray, seed: int = 0, time_limit: float | None = None) -> OneDesign:
     """Return the diagram and key of one design (``labels (n_edges,) int``), computed as :func:`~lkspace.knots.keyed.design_keys` does.
 
     Raises :class:`~lkspace.errors.DiagramError` when no generic template direction was found.
+    A diagram too wide for the state sum is keyed by regina within ``time_limit`` seconds of
+    CPU (``None``: no limit), else left without a key.
     """
     tmpl = template(scaffold, labels, seed)
     vidx = tmpl.value_index(labels)
@@ -80,7 +84,7 @@ def design_keys_of(scaffold: Scaffold, labels: np.ndarray, seed: int = 0) -> One
     keys = np.zeros((1, 2), np.uint64)
     keyed = m <= MAX_CROSSINGS and _jones_key(pd, signs, int(n_free), lk_flat, n_comp, keys)
     if not keyed and 0 < m <= MAX_CROSSINGS:
-        keyed = _regina_key(pd, lk_flat, n_comp, keys)
+        keyed = _regina_key(pd, lk_flat, n_comp, keys, time_limit)
     return OneDesign(
         template=tmpl,
         vidx=vidx[None],
@@ -111,22 +115,44 @@ def _jones_key(pd: np.ndarray, signs: np.ndarray, n_free: int, lk: np.ndarray, n
     return True
 
 
-def _regina_key(pd: np.ndarray, lk: np.ndarray, n_comp: int, keys: np.ndarray) -> bool:
+def _regina_key(pd: np.ndarray, lk: np.ndarray, n_comp: int, keys: np.ndarray, time_limit: float | None) -> bool:
     """Write the key of a diagram too wide for the state sum, its Jones polynomial regina's (of the link simplified).
 
     The key holds invariants only, so any diagram of the link gives it: the one compiled
     code would give if it could (``enumerate`` names such designs one by one instead).
+    regina computes it in one C++ call of seconds: within ``time_limit`` seconds of CPU
+    (:func:`~lkspace.knots.budget.run_in_time`; past it, no key), and so that Ctrl-C goes
+    through at once (:func:`_regina_jones`).
+    """
+    try:
+        jones = run_in_time(lambda _stage: _regina_jones(pd), time_limit)
+    except TimeLimitReached:
+        return False
+    if jones is None:
+        return False
+    low, coefficients = jones
+    keys[0] = key_hashes(lk, n_comp, low, coefficients)
+    return True
+
+
+def _regina_jones(pd: np.ndarray) -> tuple[int, list[int]] | None:
+    """Return the lowest exponent and the coefficients of regina's Jones polynomial of ``pd`` (``None``: zero).
+
+    The C++ call releases the GIL: it runs in :func:`~lkspace.runtime.workers.interruptible`'s thread.
     """
     from .tables import regina_module
 
     link = regina_module().Link.fromPD(pd.tolist())
-    link.simplify()
-    jones = link.jones()
+
+    def simplified_jones() -> Any:
+        link.simplify()
+        return link.jones()
+
+    jones = interruptible(simplified_jones)
     if jones.isZero():
-        return False
+        return None
     low, high = int(jones.minExp()), int(jones.maxExp())
-    keys[0] = key_hashes(lk, n_comp, low, [int(str(jones[e])) for e in range(low, high + 1)])
-    return True
+    return low, [int(str(jones[e])) for e in range(low, high + 1)]
 
 
 _MASK = (1 << 64) - 1
@@ -161,7 +187,7 @@ def identify_labels(
     """
     t0 = time.monotonic()
     check_knot_modules()  # the extra is needed whether or not this design's key is known
-    found = design_keys_of(scaffold, labels, seed)
+    found = design_keys_of(scaffold, labels, seed, time_limit)
     keyed = bool(found.keyed[0])
     cache = disk_cache((int(found.keys[0, 0]), int(found.keys[0, 1]))) if keyed else KeyCache()
     full: dict[int, tuple[Naming, str]] = {}

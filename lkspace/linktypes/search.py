@@ -29,6 +29,7 @@ from typing import Any, Literal, TypeAlias
 
 import numpy as np
 
+from ..design.space import WALK_ADVICE
 from ..errors import SolveVerificationError, TooLargeError, UsageError
 from ..model.scaffold import Scaffold
 from ..runtime.progress import task
@@ -206,7 +207,8 @@ def solve_target(
                 hint = (
                     "" if wider is None else f"; the diagram of {goal.label} fits here with labels in -{wider}..{wider}"
                 )
-                raise TooLargeError(f"{exc}{hint}") from None
+                refusal = str(exc).removesuffix(WALK_ADVICE)  # this search has no mode to switch to
+                raise TooLargeError(f"{refusal}; use a smaller `label_set`{hint}") from None
             else:
                 walked = False
     if not walked and not built and wider is not None:  # widen: the diagram's labels

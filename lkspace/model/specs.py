@@ -24,7 +24,7 @@ from .validation import MAX_LABEL_SET_SIZE, check_label
 LabelSetSpec: TypeAlias = str | Sequence[int] | np.ndarray
 """A label set as users give it: text (``"-2..2"``, ``"-2,-1,1,2"``) or integers."""
 
-_INT = re.compile(r"^[+-]?\d+$")
+_INT = re.compile(r"^[+-]?[0-9]+$")
 _EDGE = re.compile(r"^(\d+)\s*[-\s]\s*(\d+)(?:\s*\[([-+\d,\s]*)\])?$")
 
 
@@ -67,10 +67,10 @@ def parse_label_set(spec: str) -> np.ndarray:
         if hi_i - lo_i + 1 > MAX_LABEL_SET_SIZE:
             raise LabelError(f"{where}: {hi_i - lo_i + 1} labels; a label set holds at most {MAX_LABEL_SET_SIZE}")
         return np.arange(lo_i, hi_i + 1, dtype=np.int64)
-    items = [v for v in spec.split(",") if v.strip()]
+    items = spec.split(",") if spec else []
     if len(items) > MAX_LABEL_SET_SIZE:
         raise LabelError(f"{where}: {len(items)} labels; a label set holds at most {MAX_LABEL_SET_SIZE}")
-    values = [_to_label(v, where) for v in items]
+    values = [_to_label(v, f"{where}: item {i}") for i, v in enumerate(items)]
     if not values:
         raise LabelError("label set is empty")
     return np.unique(np.array(values, dtype=np.int64))
