@@ -129,7 +129,7 @@ def test_not_in_the_tables_is_no_knotinfo_knot_and_names_are_knotinfos(cube_samp
                 row.knot_name,
             )
             checked["named"] += 1
-    assert checked["not in the tables"] >= 30 and checked["named"] >= 100 and checked["named in full"] >= 1, checked
+    assert checked["not in the tables"] >= 30 and checked["named"] >= 60 and checked["named in full"] >= 1, checked
 
 
 def test_statuses_of_a_sample_say_what_they_prove(cube_sample):

@@ -16,7 +16,6 @@ from typing import Any
 
 import numpy as np
 
-from .crossing_bound import crossing_bound
 from .identification import NameFields
 from .keyed import KEY_VERSION, DesignKeys
 from .naming import name_key
@@ -236,7 +235,7 @@ proves the design none of them; sums and larger tables are not tried."""
 UNDECIDED = NameFields(status="unknown: its invariants do not tell table types apart (named by key only)")
 """What a design takes when naming by key only and neither level of keys decides its type."""
 
-UNKEYED = "unknown: no key: the diagram's {crossings:,} crossings are too many for the compiled Jones polynomial (named by key only)"
+UNKEYED = "unknown: no key: its diagram of {crossings:,} crossings is too wide for the compiled Jones polynomial (named by key only)"
 """The status of a design without a key when naming by key only (it is not named in full)."""
 
 
@@ -358,32 +357,52 @@ def _by_key(found: DesignKeys, d: int, key: Key, second: bool) -> NameFields:
 
 
 def _reaches_crossing_number(found: DesignKeys, d: int, named: NameFields) -> bool:
-    """Whether design ``d`` keeps at least the crossing number of ``named``'s table name.
+    """Whether design ``d`` has a diagram of exactly the crossing number of ``named``'s table name.
 
-    Proved by the Jones polynomial where it suffices (:func:`crossing_bound`: every
-    alternating knot and non-split alternating link), else by regina's simplification of
-    the design's diagram.
-
-    A diagram with fewer crossings proves the design another link with the same key
-    (the composite L2a1#L4a1 beside the prime L11n420: same components, linking numbers,
-    Jones and HOMFLY-PT polynomials); it goes on to the second level.  Not checked:
-    sums, names past KnotInfo/LinkInfo, and names no other link can undercut: a knot of
-    at most 5 crossings (a sum of knots has at least 6) or a link of at most 3 (a sum or
-    split link of that many components has at least as many crossings; the tables hold
-    every prime one).
+    Its own diagram, or regina's simplification of it.  Such a diagram proves the
+    design's crossing number at most the name's (11 or fewer for a LinkInfo link, 13
+    for a KnotInfo knot), and the tables hold every prime link that small, so the key
+    leaves the name alone (the key is shared by no table type but the name's).  A link
+    past the tables with the key (L12n1741 beside L11n383, a satellite, a link whose
+    volume is not the name's) never has so few crossings, and a diagram with fewer
+    proves another link (the composite L2a1#L4a1 beside the prime L11n420): both go on
+    to the second level.  Not checked: sums, names past KnotInfo/LinkInfo, and names no
+    other link can undercut: a knot of at most 5 crossings (a sum of knots has at least
+    6) or a link of at most 3 (a sum or split link of that many components has at least
+    as many crossings; the tables hold every prime one).  A split name holds only for a
+    diagram in pieces (:func:`_visibly_split`).
     """
     name = named.knot_name
+    if named.split:
+        return _visibly_split(found, d)
     if not name or "#" in name or named.table not in ("knotinfo", "linkinfo"):
         return True
     need = name_key(name)[0]
-    if need <= (5 if found.components[d] == 1 else 3):
+    if need <= (5 if found.components[d] == 1 else 3) or found.crossings[d] == need:
         return True
     if found.crossings[d] < need:
         return False
-    bound = crossing_bound(named.jones, found.linking_matrix(d)) if named.jones else None
-    if bound is not None and bound >= need:
+    return int(_simplified(found.diagram(d)[0]).size()) == need
+
+
+def _visibly_split(found: DesignKeys, d: int) -> bool:
+    """Whether design ``d``'s diagram, or regina's simplification of it, falls into pieces no crossing joins."""
+    if found.free[d] > 0:  # a component crossing nothing
         return True
-    return int(_simplified(found.diagram(d)[0]).size()) >= need
+    pd = found.diagram(d)[0]
+    parent: dict[int, int] = {}
+
+    def root(edge: int) -> int:
+        parent.setdefault(edge, edge)
+        while parent[edge] != edge:
+            parent[edge] = parent[parent[edge]]
+            edge = parent[edge]
+        return edge
+
+    for a, b, c, e in pd:  # a crossing joins its four edges: the pieces its two strands lie in
+        for other in (b, c, e):
+            parent[root(other)] = root(a)
+    return len({root(edge) for edge in parent}) > 1 or not _simplified(pd).isConnected()
 
 
 def jones_of(pd: list[list[int]], signs: np.ndarray, n_components: int) -> tuple[int, list[int]] | None:

@@ -16,7 +16,8 @@ def atlas_of_catalog(path: str) -> AtlasResult:
 
     Rows without a name are grouped as ``split (N components)``, ``not in the tables (N
     components)`` (named by key only: no table type has their invariants) or ``unknown (N
-    components)``; the work is columnar (pandas ``groupby``), so big catalogs sum quickly.
+    components)``; a type's ``crossings`` is the fewest its designs' simplified diagrams
+    keep.  The work is columnar (pandas ``groupby``), so big catalogs sum quickly.
     """
     import pandas as pd
 
@@ -50,17 +51,25 @@ def atlas_of_catalog(path: str) -> AtlasResult:
             "nonzero": (a != 0).sum(axis=1),
             "max_abs": a.max(axis=1) if a.shape[1] else 0,
             "chirality": chir,
+            "crossings": frame["crossings"].astype("Int64") if "crossings" in frame.columns else pd.NA,
         }
     )
     simplest = rows.sort_values(["sum_abs", "nonzero", "max_abs"], kind="stable").groupby("key").head(1)
     types: dict[str, TypeEntry] = {}
     sums = rows.groupby("key").agg(
-        designs=("orbit", "size"), assignments=("orbit", "sum"), components=("components", "first")
+        designs=("orbit", "size"),
+        assignments=("orbit", "sum"),
+        components=("components", "first"),
+        crossings=("crossings", "min"),
     )
     counts = rows.groupby(["key", "chirality"]).size()
     for key, row in sums.iterrows():
         entry = TypeEntry(
-            str(key), int(row["components"]), designs=int(row["designs"]), assignments=int(row["assignments"])
+            str(key),
+            int(row["components"]),
+            crossings=None if pd.isna(row["crossings"]) else int(row["crossings"]),
+            designs=int(row["designs"]),
+            assignments=int(row["assignments"]),
         )
         for side in entry.chirality:
             entry.chirality[side] = int(counts.get((key, side), 0))
