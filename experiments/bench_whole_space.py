@@ -80,11 +80,14 @@ def report(r: dict) -> str:
         f"{p['machine']['cpu_count']} cores, {p['machine']['cpu']}), {p['date']}; an empty name cache "
         "(the shipped key file alone); each command in a fresh process.",
         "",
-        "| command | wall (min) | CPU (min) | peak RSS (GB) |",
+        "| command | wall (min) | CPU of the command's own process (min) | its peak RSS (GB) |",
         "|---|---|---|---|",
         f"| `enumerate {r['space']} --identify-by-key --jobs {r['jobs']} --scheduler {r['scheduler']} -o` "
         f"| {e['wall'] / 60:.1f} | {e['cpu'] / 60:.1f} | {e['rss_mb'] / 1024:.2f} |",
         f"| `atlas CATALOG -o` | {a['wall'] / 60:.1f} | {a['cpu'] / 60:.1f} | {a['rss_mb'] / 1024:.2f} |",
+        "",
+        "The worker processes that name the parts are started by a fork server, not by the command, so "
+        "their CPU time and memory are not in the command's figures.",
         "",
         f"Load average (1, 5, 15 min): {r['load_before']} before, {r['load_after_enumerate']} after the "
         f"enumeration, {r['load_after']} at the end.",

@@ -163,7 +163,7 @@ def test_lookup_plain_name_shows_both_chiralities_simplest_first():
     assert both["simplest_kept"] == len(both["designs"])
     assert both["designs_total"] == sum(
         json.loads(lookup("3_1", "--scaffold", s.split()[0], "--json").stdout)["designs_total"]
-        for s in both["found_in"]
+        for s in {space.split()[0] for space in both["found_in"]}  # a scaffold may have several spaces (cube)
     )
     assert len({(d["scaffold"], tuple(d["labels"])) for d in both["designs"]}) == len(both["designs"])
     one = lookup_json("3_1", "--scaffold", "dihedron:3")

@@ -357,28 +357,31 @@ def _by_key(found: DesignKeys, d: int, key: Key, second: bool) -> NameFields:
 
 
 def _reaches_crossing_number(found: DesignKeys, d: int, named: NameFields) -> bool:
-    """Whether design ``d`` has a diagram of exactly the crossing number of ``named``'s table name.
+    """Whether design ``d`` has a diagram of exactly the crossing number of ``named``'s name.
 
-    Its own diagram, or regina's simplification of it.  Such a diagram proves the
-    design's crossing number at most the name's (11 or fewer for a LinkInfo link, 13
-    for a KnotInfo knot), and the tables hold every prime link that small, so the key
-    leaves the name alone (the key is shared by no table type but the name's).  A link
-    past the tables with the key (L12n1741 beside L11n383, a satellite, a link whose
-    volume is not the name's) never has so few crossings, and a diagram with fewer
-    proves another link (the composite L2a1#L4a1 beside the prime L11n420): both go on
-    to the second level.  Not checked: sums, names past KnotInfo/LinkInfo, and names no
-    other link can undercut: a knot of at most 5 crossings (a sum of knots has at least
-    6) or a link of at most 3 (a sum or split link of that many components has at least
-    as many crossings; the tables hold every prime one).  A split name holds only for a
-    diagram in pieces (:func:`_visibly_split`).
+    Its own diagram, or regina's simplification of it; for a sum (``L2a1#4_1``) the
+    factors' crossing numbers added.  Such a diagram bounds the design's crossing number
+    by the name's (11 or fewer for a LinkInfo link, 13 for a KnotInfo knot), and the
+    tables hold every prime link that small, so the key leaves the name alone (the key is
+    shared by no table type but the name's).  A link past the tables with the key
+    (L12n1741 beside L11n383, L2a1#11n_19 beside L2a1#4_1, a satellite, a link whose
+    volume is not the name's) never has so few crossings, and a diagram with fewer proves
+    another link (the composite L2a1#L4a1 beside the prime L11n420): both go on to the
+    second level.  Names no other link can undercut are not checked: a knot of at most 5
+    crossings (a sum of knots has at least 6) or a link of at most 3 (a sum or split link
+    of that many components has at least as many crossings; the tables hold every prime
+    one).  A split name holds only for a diagram in pieces (:func:`_visibly_split`).
     """
     name = named.knot_name
     if named.split:
         return _visibly_split(found, d)
-    if not name or "#" in name or named.table not in ("knotinfo", "linkinfo"):
+    if not name:
         return True
-    need = name_key(name)[0]
-    if need <= (5 if found.components[d] == 1 else 3) or found.crossings[d] == need:
+    need = sum(name_key(part)[0] for part in name.split("#"))
+    small = (
+        "#" not in name and named.table in ("knotinfo", "linkinfo") and need <= (5 if found.components[d] == 1 else 3)
+    )
+    if small or found.crossings[d] == need:
         return True
     if found.crossings[d] < need:
         return False
