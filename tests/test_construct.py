@@ -180,11 +180,9 @@ def test_export_a_builtin_table_design_as_users_type_it(tmp_path):
 def test_lookup_answers_a_type_the_atlas_lacks_with_its_construction(capsys, tmp_path):
     from lkspace.linktypes.lookup import read_index, write_index
 
-    rows, meta = read_index()  # the shipped atlas without the search's rows: 10_1 only constructed
+    rows, meta = read_index()  # the shipped atlas without 10_1's rows: 10_1 only constructed
     walked = tmp_path / "walked.parquet"
-    write_index(
-        str(walked), [r for r in rows if r.labels != "search"], {k: v for k, v in meta.items() if k != "format"}
-    )
+    write_index(str(walked), [r for r in rows if r.type != "10_1"], {k: v for k, v in meta.items() if k != "format"})
     code, text, err = run(capsys, "lookup", "10_1", "--json", "--atlas", walked)
     assert code == 0, err
     designs = json.loads(text)["designs"]

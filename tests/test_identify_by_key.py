@@ -192,6 +192,8 @@ def test_atlas_of_a_catalog_named_by_key_groups_what_is_not_in_the_tables(tmp_pa
     assert beyond > 0
     code, text, _ = run(capsys, "atlas", out, "--json")
     assert code == 0
-    types = {t["name"]: t["designs"] for t in json.loads(text)["types"]}
+    listed = json.loads(text)["types"]
+    assert all(t["examples"] and t["examples"][0]["labels"] == t["simplest"] for t in listed)  # what lookup shows
+    types = {t["name"]: t["designs"] for t in listed}
     grouped = {name: n for name, n in types.items() if name.startswith("not in the tables (")}
     assert sum(grouped.values()) == beyond and sum(types.values()) == 300

@@ -8,7 +8,8 @@ import numpy as np
 
 from ..errors import CatalogError
 from .atlas import TypeEntry, sort_types
-from .records import AtlasResult
+from .examples import EXAMPLES
+from .records import AtlasResult, DesignRecord
 
 
 def atlas_of_catalog(path: str) -> AtlasResult:
@@ -17,7 +18,7 @@ def atlas_of_catalog(path: str) -> AtlasResult:
     Rows without a name are grouped as ``split (N components)``, ``not in the tables (N
     components)`` (named by key only: no table type has their invariants) or ``unknown (N
     components)``; a type's ``crossings`` is the fewest its designs' simplified diagrams
-    keep.  The work is columnar (pandas ``groupby``), so big catalogs sum quickly.
+    keep; its examples are the few simplest designs of each chirality.  The work is columnar (pandas ``groupby``), so big catalogs sum quickly.
     """
     import pandas as pd
 
@@ -54,7 +55,9 @@ def atlas_of_catalog(path: str) -> AtlasResult:
             "crossings": frame["crossings"].astype("Int64") if "crossings" in frame.columns else pd.NA,
         }
     )
-    simplest = rows.sort_values(["sum_abs", "nonzero", "max_abs"], kind="stable").groupby("key").head(1)
+    ordered = rows.sort_values(["sum_abs", "nonzero", "max_abs"], kind="stable")
+    simplest = ordered.groupby("key").head(1)
+    examples = ordered.groupby(["key", "chirality"]).head(EXAMPLES)
     types: dict[str, TypeEntry] = {}
     sums = rows.groupby("key").agg(
         designs=("orbit", "size"),
@@ -78,6 +81,13 @@ def atlas_of_catalog(path: str) -> AtlasResult:
         entry = types[str(row["key"])]
         entry.simplest = [int(x) for x in cat.labels[int(i)]]
         entry.cost = (int(row["sum_abs"]), int(row["nonzero"]), int(row["max_abs"]))
+    sides = {"table": False, "mirror": True, "undetermined": None}
+    for i, row in examples.iterrows():  # the few simplest of each chirality, as lookup shows them
+        entry = types[str(row["key"])]
+        crossings = None if pd.isna(row["crossings"]) else int(row["crossings"])
+        record = DesignRecord(entry.name, entry.components, None, sides[row["chirality"]], crossings, None)
+        cost = (int(row["sum_abs"]), int(row["nonzero"]), int(row["max_abs"]))
+        entry.examples.add(cat.labels[int(i)], cost, record)
     listed = tuple(t.record() for t in sort_types(types))
     return AtlasResult(
         cat.scaffold.name,
