@@ -22,8 +22,9 @@ per-design geometric identification), ``--quick`` (a few small spaces, about two
 A space too big to walk one design at a time is added from a catalog that ``lkspace
 enumerate --identify`` (or ``--identify-by-key``) wrote: ``--add-catalog PATH --seconds S``
 sums it (:func:`~lkspace.linktypes.atlas_catalog.atlas_of_catalog`) into the index, in place of
-that scaffold and label set's rows, keeping every other space (``S``: the wall seconds the
-catalog took, recorded as the space's build time).
+that scaffold and label set's rows, keeping every other space but the search's rows of the
+types it reaches on that scaffold (``S``: the wall seconds the catalog took, recorded as
+the space's build time).
 """
 
 from __future__ import annotations
@@ -189,7 +190,10 @@ def add_catalog(path: str, seconds: float | None, output: str) -> None:
     data = atlas_of_catalog(path)
     labels = labels_text(list(data.label_set or ()))
     rows, meta = read_index(output)
-    rows = [r for r in rows if (r.scaffold, r.labels) != (data.scaffold, labels)] + index_rows(data, labels)
+    added = index_rows(data, labels)
+    walked = {(r.type, r.scaffold) for r in added}  # the search keeps only pairs no walked space reaches
+    rows = [r for r in rows if (r.scaffold, r.labels) != (data.scaffold, labels)]
+    rows = [r for r in rows if r.labels != "search" or (r.type, r.scaffold) not in walked] + added
     space = {
         "scaffold": data.scaffold,
         "labels": labels,
@@ -201,7 +205,13 @@ def add_catalog(path: str, seconds: float | None, output: str) -> None:
         "wall_time": seconds,
         "from_catalog": os.path.basename(path),
     }
-    spaces = [s for s in meta.get("spaces", []) if (s["scaffold"], s["labels"]) != (data.scaffold, labels)]
+    searched = {r.scaffold for r in rows if r.labels == "search"}
+    spaces = [
+        s
+        for s in meta.get("spaces", [])
+        if (s["scaffold"], s["labels"]) != (data.scaffold, labels)
+        and (s["labels"] != "search" or s["scaffold"] in searched)
+    ]
     meta = {k: v for k, v in meta.items() if k != "format"}
     meta.update(spaces=[*spaces, space], commit=commit(), lkspace_version=lkspace.__version__)
     meta["date"] = datetime.datetime.now(datetime.UTC).isoformat(timespec="seconds")
