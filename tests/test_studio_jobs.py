@@ -133,6 +133,9 @@ def test_exports_wait_in_their_own_lane_and_a_redraw_does_not_wait_behind_them()
         busy = next(a for a in answers if a.status_code == 429).json()["error"]["message"]
         assert busy == "the studio is busy: 3 exports running or in line; wait for them to finish"
         assert all(a.content.startswith(b"<?xml") for a in answers if a.status_code == 200)
+        end = time.monotonic() + 30  # the lane is freed just after the last answer is sent
+        while studio.exports.pending and time.monotonic() < end:
+            time.sleep(0.01)
         assert studio.exports.pending == 0
     finally:
         client.close()
