@@ -12,15 +12,13 @@ import os
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
 from fractions import Fraction
-from typing import Any
 
 import numpy as np
 
+from .design_diagrams import DesignDiagrams
 from .identification import NameFields
 from .keyed import KEY_VERSION, DesignKeys
-from .naming import name_key
 from .shipped_keys import ShippedKeys
-from .tables import HOMFLY_MAX_CROSSINGS
 
 Key = tuple[int | str, ...]
 """A key: ``(hash, hash)`` at the first level; the second adds the HOMFLY-PT polynomial and crossings; the third is ``("diagram", digest)``."""
@@ -196,34 +194,6 @@ def trusted(named: NameFields, found: set[tuple[str, bool]]) -> bool:
     return names == {named.knot_name} and (len(mirrors) == 1 or named.mirror is None)
 
 
-def _simplified(pd: list[list[int]]) -> Any:
-    """Return regina's link of a PD code after regina's greedy simplification.
-
-    Regina's random moves start from its default seed each time, so a design's
-    simplified diagram, and so its second-level key, is the same in every run.
-    """
-    from .tables import regina_module
-
-    regina = regina_module()
-    regina.RandomEngine.reseedWithDefault()
-    link = regina.Link.fromPD(pd)
-    link.simplify()
-    return link
-
-
-def homfly_of(pd: list[list[int]]) -> tuple[str, int] | None:
-    """Return the HOMFLY-PT polynomial (regina) of a PD code and the crossings left by regina's simplification.
-
-    ``None`` when more than :data:`~lkspace.knots.tables.HOMFLY_MAX_CROSSINGS` are left.
-    """
-    if not pd:
-        return "1", 0
-    link = _simplified(pd)
-    if link.size() > HOMFLY_MAX_CROSSINGS:
-        return None
-    return str(link.homfly()), int(link.size())
-
-
 NOT_IN_TABLES = NameFields(
     status="unknown: not in the tables: no KnotInfo knot or LinkInfo link has its invariants (named by key only)"
 )
@@ -265,16 +235,17 @@ def share_names(
     first: list[Key | None] = [
         (int(a), int(b)) if ok else None for (a, b), ok in zip(found.keys.tolist(), found.keyed, strict=True)
     ]
-    rows = _share(found, first, cache, name_designs, second=False, by_key=by_key)
+    diagrams = DesignDiagrams(found)
+    rows = _share(diagrams, first, cache, name_designs, second=False, by_key=by_key)
     left = [d for d, row in enumerate(rows) if row is None]
-    diagrams = {d: found.diagram(d) for d in left}
+    diagrams.prepare(left)
     second: list[Key | None] = [None] * len(rows)
     for d in left:
         key = first[d]
-        invariants = homfly_of(diagrams[d][0]) if key is not None else None
+        invariants = diagrams.homfly(d) if key is not None else None
         if key is not None and invariants is not None:
             second[d] = (*key, *invariants)
-    for d, row in enumerate(_share(found, second, cache, name_designs, second=True, by_key=by_key)):
+    for d, row in enumerate(_share(diagrams, second, cache, name_designs, second=True, by_key=by_key)):
         if rows[d] is None:
             rows[d] = row
     own: dict[int, Key] = {}
@@ -283,7 +254,8 @@ def share_names(
             unkeyed = first[d] is None
             rows[d] = NameFields.refused(UNKEYED.format(crossings=int(found.crossings[d]))) if unkeyed else UNDECIDED
         elif rows[d] is None:
-            mine = _diagram_key(diagrams[d][0], diagrams[d][1])
+            pd, n_comp, _ = diagrams.diagram(d)
+            mine = _diagram_key(pd, n_comp)
             if cache.known(mine) and mine in cache.named:
                 rows[d] = cache.named[mine]
             else:
@@ -303,7 +275,7 @@ def _diagram_key(pd: list[list[int]], n_components: int) -> Key:
 
 
 def _share(
-    found: DesignKeys,
+    diagrams: DesignDiagrams,
     keys: list[Key | None],
     cache: KeyCache,
     name_designs: Callable[[list[int]], Iterable[NameFields]],
@@ -316,13 +288,13 @@ def _share(
     for d, k in enumerate(keys):
         if k is not None and k not in firsts and not cache.known(k):
             if by_key:
-                cache.named[k] = _by_key(found, d, k, second)
+                cache.named[k] = _by_key(diagrams, d, k, second)
             else:
                 firsts[k] = d
     for (k, d), named in zip(firsts.items(), name_designs(list(firsts.values())), strict=True):
         cache.full += 1
         rows[d] = named
-        pd, n_comp, signs = found.diagram(d)
+        pd, n_comp, signs = diagrams.diagram(d)
         jones = jones_of(pd, signs, n_comp)
         homfly, crossings = (str(k[2]), int(k[3])) if second else (None, None)
         if jones is not None and trusted(named, candidates(jones, n_comp, homfly, crossings)):
@@ -331,19 +303,20 @@ def _share(
             cache.remember(k, None)
         else:
             cache.own.add(k)
-    for d, k in enumerate(keys):
-        if rows[d] is None and k is not None and k in cache.named:
-            named = cache.named[k]
-            if second or _reaches_crossing_number(found, d, named):
-                rows[d] = named
+    shared = [(d, cache.named[k]) for d, k in enumerate(keys) if rows[d] is None and k is not None and k in cache.named]
+    if not second:
+        diagrams.prepare([d for d, named in shared if diagrams.told(d, named) is None])
+    for d, named in shared:
+        if second or diagrams.reaches_crossing_number(d, named):
+            rows[d] = named
     return rows
 
 
-def _by_key(found: DesignKeys, d: int, key: Key, second: bool) -> NameFields:
+def _by_key(diagrams: DesignDiagrams, d: int, key: Key, second: bool) -> NameFields:
     """Fields of a new key named by key only (``d``: its first design): no table type, or the table entries it matches."""
     if not second:
         return NOT_IN_TABLES
-    pd, n_comp, signs = found.diagram(d)
+    pd, n_comp, signs = diagrams.diagram(d)
     jones = jones_of(pd, signs, n_comp)
     if jones is None:
         return UNDECIDED
@@ -354,58 +327,6 @@ def _by_key(found: DesignKeys, d: int, key: Key, second: bool) -> NameFields:
     return NameFields(
         status=f"unknown: its invariants match {', '.join(names[:4])} (named by key only)", candidates=names
     )
-
-
-def _reaches_crossing_number(found: DesignKeys, d: int, named: NameFields) -> bool:
-    """Whether design ``d`` has a diagram of exactly the crossing number of ``named``'s name.
-
-    Its own diagram, or regina's simplification of it; for a sum (``L2a1#4_1``) the
-    factors' crossing numbers added.  Such a diagram bounds the design's crossing number
-    by the name's (11 or fewer for a LinkInfo link, 13 for a KnotInfo knot), and the
-    tables hold every prime link that small, so the key leaves the name alone (the key is
-    shared by no table type but the name's).  A link past the tables with the key
-    (L12n1741 beside L11n383, L2a1#11n_19 beside L2a1#4_1, a satellite, a link whose
-    volume is not the name's) never has so few crossings, and a diagram with fewer proves
-    another link (the composite L2a1#L4a1 beside the prime L11n420): both go on to the
-    second level.  Names no other link can undercut are not checked: a knot of at most 5
-    crossings (a sum of knots has at least 6) or a link of at most 3 (a sum or split link
-    of that many components has at least as many crossings; the tables hold every prime
-    one).  A split name holds only for a diagram in pieces (:func:`_visibly_split`).
-    """
-    name = named.knot_name
-    if named.split:
-        return _visibly_split(found, d)
-    if not name:
-        return True
-    need = sum(name_key(part)[0] for part in name.split("#"))
-    small = (
-        "#" not in name and named.table in ("knotinfo", "linkinfo") and need <= (5 if found.components[d] == 1 else 3)
-    )
-    if small or found.crossings[d] == need:
-        return True
-    if found.crossings[d] < need:
-        return False
-    return int(_simplified(found.diagram(d)[0]).size()) == need
-
-
-def _visibly_split(found: DesignKeys, d: int) -> bool:
-    """Whether design ``d``'s diagram, or regina's simplification of it, falls into pieces no crossing joins."""
-    if found.free[d] > 0:  # a component crossing nothing
-        return True
-    pd = found.diagram(d)[0]
-    parent: dict[int, int] = {}
-
-    def root(edge: int) -> int:
-        parent.setdefault(edge, edge)
-        while parent[edge] != edge:
-            parent[edge] = parent[parent[edge]]
-            edge = parent[edge]
-        return edge
-
-    for a, b, c, e in pd:  # a crossing joins its four edges: the pieces its two strands lie in
-        for other in (b, c, e):
-            parent[root(other)] = root(a)
-    return len({root(edge) for edge in parent}) > 1 or not _simplified(pd).isConnected()
 
 
 def jones_of(pd: list[list[int]], signs: np.ndarray, n_components: int) -> tuple[int, list[int]] | None:
