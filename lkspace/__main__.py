@@ -5,13 +5,23 @@ only once a command runs (:func:`lkspace.cli.main`).  Before that (while click a
 command line import) and after it (while the interpreter winds down) nothing is under
 way, so here Ctrl-C ends the program at once: one line, status 130, as an interrupted
 command.  What Python does before this module runs (its own start-up) is out of reach.
+
+Python's cyclic garbage collector runs after every 700 new container objects by default;
+a command makes millions (PD codes as lists, rows as dicts) that are freed by reference
+counting, so here it runs after :data:`GC_EVERY` (15% of the CPU of ``enumerate cube
+--labels -1..1 --identify``, the same memory).
 """
 
+import gc
 import os
 import signal
 import sys
 from types import FrameType
 from typing import NoReturn
+
+
+GC_EVERY = 50_000
+"""New container objects between runs of the garbage collector's youngest generation (Python's default 700)."""
 
 
 def _stop(signum: int, frame: FrameType | None) -> NoReturn:
@@ -25,6 +35,7 @@ def _stop(signum: int, frame: FrameType | None) -> NoReturn:
 def main() -> None:
     """Run the command line on ``sys.argv`` and exit with its status."""
     signal.signal(signal.SIGINT, _stop)
+    gc.set_threshold(GC_EVERY, *gc.get_threshold()[1:])
     from .cli import main as run
 
     try:

@@ -7,6 +7,7 @@ with the HOMFLY-PT polynomial of the same simplified diagram (:meth:`DesignDiagr
 
 from __future__ import annotations
 
+import functools
 from typing import Any
 
 import numpy as np
@@ -22,15 +23,16 @@ Diagram = tuple[list[list[int]], int, np.ndarray]
 """A design's PD code (1-based), its components and its crossing signs ``(n,) int64``."""
 
 
-def simplified(pd: list[list[int]]) -> Any:
-    """Return regina's link of a PD code after regina's greedy simplification.
+def simplified(pd: list[list[int]], regina: Any = None) -> Any:
+    """Return regina's link of a PD code after regina's greedy simplification (``regina``: the module, if at hand).
 
     Regina's random moves start from its default seed each time, so a design's
     simplified diagram, and so its second-level key, is the same in every run.
     """
-    from .tables import regina_module
+    if regina is None:
+        from .tables import regina_module
 
-    regina = regina_module()
+        regina = regina_module()
     regina.RandomEngine.reseedWithDefault()
     link = regina.Link.fromPD(pd)
     link.simplify()
@@ -58,32 +60,38 @@ class DesignDiagrams:
         self.found = found
         self._arrays = found.template.arrays()
         self._work = work_array(found.template)
-        self._diagrams: dict[int, Diagram] = {}
+        self._rows: dict[int, tuple[np.ndarray, np.ndarray, int]] = {}  # d -> PD rows, signs, components
         self._pieces: dict[int, int] = {}
         self._simplified: dict[int, Any] = {}
+        self._regina: Any = None
 
     def prepare(self, designs: list[int]) -> None:
         """Assemble the diagrams of ``designs`` (indices into the batch) not assembled yet."""
-        todo = [d for d in dict.fromkeys(designs) if d not in self._diagrams]
+        todo = [d for d in dict.fromkeys(designs) if d not in self._rows]
         if not todo:
             return
         vidx = np.ascontiguousarray(self.found.vidx[todo])
         pd, signs, offsets, components, pieces = assemble_many(self._arrays, vidx, self._work)
-        rows = pd.tolist()
         for i, d in enumerate(todo):
-            start, end = int(offsets[i]), int(offsets[i + 1])
-            self._diagrams[d] = (rows[start:end], int(components[i]), signs[start:end])
+            start, end = offsets[i], offsets[i + 1]
+            self._rows[d] = (pd[start:end], signs[start:end], int(components[i]))
             self._pieces[d] = int(pieces[i])
 
     def diagram(self, d: int) -> Diagram:
         """Return design ``d``'s PD code, components and crossing signs (:meth:`DesignKeys.diagram`'s)."""
-        self.prepare([d])
-        return self._diagrams[d]
+        if d not in self._rows:
+            self.prepare([d])
+        pd, signs, n_comp = self._rows[d]
+        return pd.tolist(), n_comp, signs
 
     def simplified(self, d: int) -> Any:
         """Return regina's simplification of design ``d``'s diagram (:func:`simplified`)."""
         if d not in self._simplified:
-            self._simplified[d] = simplified(self.diagram(d)[0])
+            if self._regina is None:
+                from .tables import regina_module
+
+                self._regina = regina_module()
+            self._simplified[d] = simplified(self.diagram(d)[0], self._regina)
         return self._simplified[d]
 
     def homfly(self, d: int) -> tuple[str, int] | None:
@@ -132,9 +140,16 @@ class DesignDiagrams:
     @staticmethod
     def _crossing_number(named: NameFields) -> int:
         """Return the crossing number of ``named``'s name (a sum's factors' added)."""
-        return sum(name_key(part)[0] for part in str(named.knot_name).split("#"))
+        return _crossing_number(str(named.knot_name))
 
     def _in_pieces(self, d: int) -> bool:
         """Whether design ``d``'s diagram, or regina's simplification of it, falls into pieces no crossing joins."""
-        self.prepare([d])
+        if d not in self._pieces:
+            self.prepare([d])
         return self._pieces[d] > 1 or not self.simplified(d).isConnected()
+
+
+@functools.cache
+def _crossing_number(name: str) -> int:
+    """Return the crossing number of a table name or a sum of them (``L2a1#4_1``: 6)."""
+    return sum(name_key(part)[0] for part in name.split("#"))
