@@ -19,7 +19,6 @@ import sys
 from types import FrameType
 from typing import NoReturn
 
-
 GC_EVERY = 50_000
 """New container objects between runs of the garbage collector's youngest generation (Python's default 700)."""
 
