@@ -39,9 +39,6 @@ if TYPE_CHECKING:
     from ..knots.batch import ChunkNames
     from ..knots.key_names import KeyCache
 
-IDENTIFY_CHUNK = 20_000
-"""Rows identified per call between progress updates (a second or so once their keys are known)."""
-
 
 @dataclass(frozen=True)
 class Identified:
@@ -195,7 +192,7 @@ def _identify_file(
 
     ``cache``: the names by invariant key of this run (:func:`lkspace.knots.key_names.disk_cache`).
     """
-    from ..knots.batch import NamerOptions, name_batch
+    from ..knots.batch import NamerOptions, iter_names
 
     options = NamerOptions(processes, isolate=isolate, by_key=by_key)
 
@@ -209,10 +206,9 @@ def _identify_file(
     labels = label_matrix(table.column("labels"), scaffold.n_edges)
     values = np.unique(labels)
     found: list[ChunkNames] = []
-    for start in range(0, len(labels), IDENTIFY_CHUNK):
-        piece = labels[start : start + IDENTIFY_CHUNK]
-        found.extend(name_batch(scaffold, piece, options, seed, False, cache=cache, label_values=values))
-        step.advance(len(piece))
+    for names in iter_names(scaffold, labels, options, seed, cache=cache, label_values=values):
+        found.append(names)
+        step.advance(len(names))
     for name, type_ in IDENTIFY_COLUMNS.items():
         column = identify_column(found, name, type_)
         if name in table.column_names:

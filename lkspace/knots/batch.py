@@ -24,6 +24,7 @@ from .budget import MAX_CROSSINGS, TIME_LIMIT, TimeLimitReached
 from .identification import Json, NameFields
 from .key_names import KeyCache, share_names
 from .keyed import DesignKeys, keys_of
+from .keys_ahead import KeysAhead
 from .naming import name_in_time, presimplified, status_of
 from .recognition import check_identifiable
 from .tables import knot_modules, tables
@@ -59,7 +60,7 @@ def _name_fields(item: tuple[list[list[int]], int]) -> NameFields:
 
 COLUMNS = ["knot_name", "components", "split", "mirror", "crossings", "jones", "linking_matrix", "status", "error"]
 
-BATCH = 20_000
+BATCH = 4096
 """Designs keyed per call of the compiled kernel (bounds the memory of one call)."""
 
 
@@ -159,21 +160,42 @@ def name_batch(
     label_values: ArrayLike | None = None,
 ) -> list[ChunkNames]:
     """:func:`identify_batch`'s names as they are found: one :class:`ChunkNames` per :data:`BATCH` designs."""
-    check_identifiable(scaffold)
     labels_2d = np.asarray(labels_2d, np.int64).reshape(-1, scaffold.n_edges)
-    cache = cache if cache is not None else KeyCache()
     chunks: list[ChunkNames] = []
+    with task("identifying", total=len(labels_2d)) as step:
+        for names in iter_names(scaffold, labels_2d, options, seed, cache=cache, label_values=label_values):
+            chunks.append(names)
+            if progress is not False:
+                step.advance(len(names))
+    return chunks
+
+
+def iter_names(
+    scaffold: Scaffold,
+    labels_2d: np.ndarray,
+    options: NamerOptions | None = None,
+    seed: int = 0,
+    *,
+    cache: KeyCache | None = None,
+    label_values: ArrayLike | None = None,
+) -> Iterator[ChunkNames]:
+    """Yield the names of ``labels_2d`` ``(n, n_edges)`` chunk by chunk (:data:`BATCH` designs), each chunk's keys computed while the one before is named (:class:`~lkspace.knots.keys_ahead.KeysAhead`)."""
+    check_identifiable(scaffold)
+    cache = cache if cache is not None else KeyCache()
     opts = options or NamerOptions()
+    chunks = [labels_2d[start : start + BATCH] for start in range(0, len(labels_2d), BATCH)]
+    fits = [keyable(scaffold, chunk) for chunk in chunks]
     with (
         Namer(opts.processes, opts.isolate, opts.time_limit) as namer,
-        task("identifying", total=len(labels_2d)) as step,
+        KeysAhead(scaffold, seed, label_values) as ahead,
     ):
-        for start in range(0, len(labels_2d), BATCH):
-            chunk = labels_2d[start : start + BATCH]
-            chunks.append(identify_chunk(scaffold, chunk, seed, cache, namer, label_values, opts.by_key))
-            if progress is not False:
-                step.advance(len(chunk))
-    return chunks
+        if chunks:
+            ahead.submit(chunks[0][fits[0]])
+        for i, chunk in enumerate(chunks):
+            found = ahead.result()
+            if i + 1 < len(chunks):
+                ahead.submit(chunks[i + 1][fits[i + 1]])
+            yield names_of_chunk(scaffold, chunk, fits[i], found, cache, namer, opts.by_key)
 
 
 @dataclass(frozen=True)
@@ -232,14 +254,40 @@ def identify_chunk(
     by_key: bool = False,
 ) -> ChunkNames:
     """Return the names of one chunk: refused designs set apart, the rest keyed and named by key (only, with ``by_key``)."""
+    fits = keyable(scaffold, labels_2d)
+    found = keys_of(scaffold, labels_2d[fits], seed, label_values)
+    return names_of_chunk(scaffold, labels_2d, fits, found, cache, namer, by_key)
+
+
+def keyable(scaffold: Scaffold, labels_2d: np.ndarray) -> np.ndarray:
+    """Return ``(n,) bool``: the designs of ``labels_2d`` to key (the others are refused by :func:`names_of_chunk`)."""
+    if _refusal(scaffold) is not None:
+        return np.zeros(len(labels_2d), bool)
+    return _estimate(scaffold, labels_2d) <= MAX_CROSSINGS
+
+
+def _estimate(scaffold: Scaffold, labels_2d: np.ndarray) -> np.ndarray:
+    """Return ``(n,) int64``: each design's crossings before simplification, about (sum of |t|(K-1) over the edges)."""
+    return (np.abs(labels_2d) * np.maximum(scaffold.edge_degrees - 1, 0)).sum(axis=1)
+
+
+def names_of_chunk(
+    scaffold: Scaffold,
+    labels_2d: np.ndarray,
+    fits: np.ndarray,
+    found: DesignKeys,
+    cache: KeyCache,
+    namer: Namer,
+    by_key: bool,
+) -> ChunkNames:
+    """Return the names of one chunk whose designs ``fits`` (:func:`keyable`) have the keys ``found``."""
     n = len(labels_2d)
     fields: list[NameFields] = []
     which = np.zeros(n, np.int64)
     components = np.full(n, -1, np.int64)
     linking = np.full(n, None, dtype=object)
     refusal = _refusal(scaffold)
-    estimate = (np.abs(labels_2d) * np.maximum(scaffold.edge_degrees - 1, 0)).sum(axis=1)
-    fits = estimate <= MAX_CROSSINGS if refusal is None else np.zeros(n, bool)
+    estimate = _estimate(scaffold, labels_2d)
     for d in np.flatnonzero(~fits).tolist():
         reason = refusal or (
             f"{scaffold.name}: the twists make about {int(estimate[d]):,} crossings (sum of |t|(K-1) over the edges) "
@@ -249,7 +297,6 @@ def identify_chunk(
         fields.append(NameFields(status=f"unknown: {reason}", error=reason))
     todo = np.flatnonzero(fits)
     if len(todo):
-        found = keys_of(scaffold, labels_2d[todo], seed, label_values)
 
         def name_designs(indices: list[int]) -> Iterator[NameFields]:
             return namer.name([found.diagram(d)[:2] for d in indices])

@@ -272,12 +272,19 @@ class DesignKeys:
         return pd.tolist(), int(n_comp), signs
 
 
-def keys_of(scaffold: Scaffold, labels_2d: np.ndarray, seed: int = 0, label_values: Any = None) -> DesignKeys:
-    """Keys of ``labels_2d`` (``(n_designs, n_edges)``, twists within ``label_values``, default their own)."""
+def keys_of(
+    scaffold: Scaffold, labels_2d: np.ndarray, seed: int = 0, label_values: Any = None, stop: Any = None
+) -> DesignKeys:
+    """Keys of ``labels_2d`` (``(n_designs, n_edges)``, twists within ``label_values``, default their own).
+
+    ``stop``: a :class:`threading.Event` that, once set, ends the keying between two
+    calls of the kernel with :class:`KeyingStopped` (for keying in another thread, which
+    Ctrl-C and time limits do not reach).
+    """
     values = np.unique(labels_2d) if label_values is None else np.union1d(label_values, np.unique(labels_2d))
     tmpl = template(scaffold, values, seed)
     vidx = np.ascontiguousarray(tmpl.value_index(labels_2d))
-    out = KeyArrays(*_keys_in_threads(tmpl, vidx))
+    out = KeyArrays(*_keys_in_threads(tmpl, vidx, stop))
     return DesignKeys(
         template=tmpl,
         vidx=vidx,
@@ -309,7 +316,11 @@ def key_threads() -> int:
     return len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count() or 1
 
 
-def _keys_in_threads(tmpl: DiagramTemplate, vidx: np.ndarray) -> tuple[np.ndarray, ...]:
+class KeyingStopped(Exception):
+    """Keying ended by its ``stop`` event (:func:`keys_of`)."""
+
+
+def _keys_in_threads(tmpl: DiagramTemplate, vidx: np.ndarray, stop: Any = None) -> tuple[np.ndarray, ...]:
     """:func:`design_keys` of ``vidx``: calls of about :data:`STEP_SECONDS`, each split over :func:`key_threads` threads.
 
     The kernel releases Python's lock, so the threads run at once; the designs go in
@@ -330,13 +341,15 @@ def _keys_in_threads(tmpl: DiagramTemplate, vidx: np.ndarray) -> tuple[np.ndarra
     with ThreadPoolExecutor(threads) as pool:
         start, step = 0, FIRST_STEP
         while start < len(vidx):
-            stop = min(len(vidx), start + step * threads)
-            bounds = np.linspace(start, stop, threads + 1).astype(np.int64)
+            if stop is not None and stop.is_set():
+                raise KeyingStopped
+            end = min(len(vidx), start + step * threads)
+            bounds = np.linspace(start, end, threads + 1).astype(np.int64)
             parts = [vidx[a:b] for a, b in zip(bounds[:-1], bounds[1:], strict=True) if b > a]
             began = time.perf_counter()
             found.extend(pool.map(run, parts) if len(parts) > 1 else [run(parts[0])])
-            rate = (stop - start) / len(parts) / max(time.perf_counter() - began, 1e-4)
-            start, step = stop, int(min(max(rate * STEP_SECONDS, 16), 1 << 16))
+            rate = (end - start) / len(parts) / max(time.perf_counter() - began, 1e-4)
+            start, step = end, int(min(max(rate * STEP_SECONDS, 16), 1 << 16))
     offsets = [found[0][4]]
     for part in found[1:]:
         offsets.append(part[4][1:] + offsets[-1][-1])
