@@ -178,17 +178,23 @@ def iter_names(
     *,
     cache: KeyCache | None = None,
     label_values: ArrayLike | None = None,
+    namer: Namer | None = None,
 ) -> Iterator[ChunkNames]:
-    """Yield the names of ``labels_2d`` ``(n, n_edges)`` chunk by chunk (:data:`BATCH` designs), each chunk's keys computed while the one before is named (:class:`~lkspace.knots.keys_ahead.KeysAhead`)."""
+    """Yield the names of ``labels_2d`` ``(n, n_edges)`` chunk by chunk (:data:`BATCH` designs).
+
+    Each chunk's keys are computed while the one before is named
+    (:class:`~lkspace.knots.keys_ahead.KeysAhead`).  ``namer``: one already open (its
+    workers kept across calls), else one for this call made from ``options``.
+    """
     check_identifiable(scaffold)
     cache = cache if cache is not None else KeyCache()
     opts = options or NamerOptions()
     chunks = [labels_2d[start : start + BATCH] for start in range(0, len(labels_2d), BATCH)]
     fits = [keyable(scaffold, chunk) for chunk in chunks]
-    with (
-        Namer(opts.processes, opts.isolate, opts.time_limit) as namer,
-        KeysAhead(scaffold, seed, label_values) as ahead,
-    ):
+    with contextlib.ExitStack() as stack:
+        if namer is None:
+            namer = stack.enter_context(Namer(opts.processes, opts.isolate, opts.time_limit))
+        ahead = stack.enter_context(KeysAhead(scaffold, seed, label_values))
         if chunks:
             ahead.submit(chunks[0][fits[0]])
         for i, chunk in enumerate(chunks):

@@ -44,7 +44,8 @@ from .records import AtlasResult, AtlasRun, AtlasType, ChiralityCounts, DesignRe
 from .screen import type_labels
 
 if TYPE_CHECKING:
-    from ..knots.batch import ChunkNames
+    from ..knots.batch import ChunkNames, Namer
+    from ..knots.key_names import KeyCache
 
 CACHE = "cache.jsonl"
 
@@ -302,6 +303,27 @@ def _open_cache(path: str, header: JsonObject, resume: bool) -> TextIO:
     return fh
 
 
+def _names(
+    scaffold: Scaffold,
+    rows: np.ndarray,
+    label_set: np.ndarray,
+    cache: KeyCache,
+    namer: Namer,
+    seed: int,
+    deadline: float | None,
+) -> Iterator[ChunkNames]:
+    """Names of ``rows`` chunk by chunk; past ``deadline`` none more (chunks of :data:`PARTIAL_BATCH` then)."""
+    from ..knots.batch import identify_chunk, iter_names
+
+    if deadline is None:
+        yield from iter_names(scaffold, rows, None, seed, cache=cache, label_values=label_set, namer=namer)
+        return
+    for start in range(0, len(rows), PARTIAL_BATCH):
+        if time.monotonic() > deadline:
+            return
+        yield identify_chunk(scaffold, rows[start : start + PARTIAL_BATCH], seed, cache, namer, label_set)
+
+
 def _records(
     scaffold: Scaffold,
     label_set: np.ndarray,
@@ -316,7 +338,7 @@ def _records(
     (:func:`~lkspace.linktypes.screen.type_labels`).  Past ``deadline`` (``time.monotonic()``)
     nothing more is identified: the rest is ``"skipped"`` (still counted).
     """
-    from ..knots.batch import BATCH, Namer, identify_chunk
+    from ..knots.batch import Namer
     from ..knots.key_names import disk_cache
 
     cache = disk_cache()
@@ -337,11 +359,7 @@ def _records(
             )
             rows = np.array(todo, np.int64).reshape(len(todo), scaffold.n_edges)
             fresh: list[DesignRecord] = []
-            step = BATCH if deadline is None else PARTIAL_BATCH
-            for start in range(0, len(rows), step):  # past the deadline, the rest of the batch is skipped
-                if deadline is not None and time.monotonic() > deadline:
-                    break
-                chunk = identify_chunk(scaffold, rows[start : start + step], options.seed, cache, namer, label_set)
+            for chunk in _names(scaffold, rows, label_set, cache, namer, options.seed, deadline):
                 fresh.extend(records_of(chunk))
             made = iter(fresh)
             for i, (k, z) in enumerate(zip(keys, zkeys, strict=True)):
