@@ -7,21 +7,29 @@ file alone, so the catalog is the same on every machine)::
     lkspace atlas WORK/cube.parquet -o results/atlas/cube-2..2
 
 and records wall and CPU seconds, peak RSS and the machine's load beside the commit
-(``results/bench_whole_space.md`` and ``.json``).  With ``--scheduler dask`` the parts run
-on a Dask LocalCluster of ``--jobs`` workers instead of local processes.  ``--add`` then
-adds the space to the shipped atlas index (``experiments/build_atlas.py --add-catalog``).
+(``results/bench_whole_space.md`` and ``.json``).  The CPU time and memory of every
+process the command starts (the fork server's workers, a Dask cluster's) are sampled
+with psutil twice a second, and the time each part is complete is read off the build
+folder.  Beside them, the kernels' rates on random designs of the space in this process:
+keys (:func:`lkspace.knots.keyed.keys_of`) and names by key (``share_names``).  With
+``--scheduler dask`` the parts run on a Dask LocalCluster of ``--jobs`` workers instead of
+local processes; ``--shards N`` cuts the space into N parts.  ``--add`` then adds the
+space to the shipped atlas index (``experiments/build_atlas.py --add-catalog``).
 
-Run: ``python experiments/bench_whole_space.py [--labels -2..2] [--jobs 2] [--work /tmp/whole]
-[--add]`` (about half an hour on 2 cores).
+Run: ``python experiments/bench_whole_space.py [--labels -2..2] [--jobs 2] [--shards N]
+[--scheduler dask] [--work /tmp/whole] [--add]`` (about half an hour on 2 cores).
 """
 
 from __future__ import annotations
 
 import argparse
+import glob
 import json
 import os
 import shutil
+import subprocess
 import sys
+from typing import Any
 
 from benchkit import RESULTS, ROOT, load_average, provenance, timed
 
@@ -34,6 +42,7 @@ def main() -> int:
     parser.add_argument("--labels", default="-2..2")
     parser.add_argument("--jobs", type=int, default=2)
     parser.add_argument("--scheduler", default="local")
+    parser.add_argument("--shards", type=int, help="parts of the catalog (default: lkspace's plan)")
     parser.add_argument("--work", default="/tmp/lkspace-whole-space")
     parser.add_argument("--add", action="store_true", help="add the space to the shipped atlas index")
     args = parser.parse_args()
@@ -44,10 +53,13 @@ def main() -> int:
     lk = [sys.executable, "-m", "lkspace"]
     space = f"{args.scaffold} {args.labels}"
     record: dict = {"provenance": provenance(), "space": space, "jobs": args.jobs, "scheduler": args.scheduler}
+    record["shards"] = args.shards
     record["load_before"] = load_average()
     enumerate_cmd = [*lk, "enumerate", args.scaffold, "--labels", args.labels, "--identify-by-key"]
     enumerate_cmd += ["--jobs", str(args.jobs), "--scheduler", args.scheduler, "-o", catalog]
-    record["enumerate"] = timed(enumerate_cmd, env)
+    enumerate_cmd += ["--shards", str(args.shards)] if args.shards else []
+    record["kernels"] = kernel_rates(args.scaffold, args.labels)
+    record["enumerate"] = timed_tree(enumerate_cmd, env, args.work)
     record["load_after_enumerate"] = load_average()
     folder = RESULTS / "atlas" / f"{args.scaffold.replace(':', '-')}{args.labels}"
     shutil.rmtree(folder, ignore_errors=True)
@@ -60,6 +72,7 @@ def main() -> int:
     record["statuses"] = {str(k)[:80]: int(v) for k, v in statuses.head(12).items()}
     record["types"] = int(cat.frame["knot_name"].nunique())
     name = f"bench_whole_space_{args.scaffold.replace(':', '-')}{args.labels}_{args.scheduler}"
+    name += f"_{args.shards}parts" if args.shards else ""
     (RESULTS / f"{name}.json").write_text(json.dumps(record, indent=1) + "\n")
     (RESULTS / f"{name}.md").write_text(report(record))
     print(report(record))
@@ -70,9 +83,75 @@ def main() -> int:
     return 0
 
 
+def timed_tree(cmd: list[str], env: dict[str, str], work: str) -> dict:
+    """Run ``cmd``: its wall time, the CPU seconds and peak RSS of it and every process it starts, when each part was done."""
+    import time
+
+    import psutil
+
+    start = time.perf_counter()
+    proc = subprocess.Popen(cmd, env=env, cwd=work, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    root = psutil.Process(proc.pid)
+    cpu: dict[int, float] = {}
+    peak_rss = 0.0
+    parts: dict[str, float] = {}
+    while proc.poll() is None:
+        rss = 0.0
+        for p in [root, *_children(root)]:
+            try:
+                times, memory = p.cpu_times(), p.memory_info()
+            except psutil.Error:
+                continue
+            cpu[p.pid] = times.user + times.system
+            rss += memory.rss
+        peak_rss = max(peak_rss, rss)
+        for path in glob.glob(os.path.join(work, "**", "part-*.parquet"), recursive=True, include_hidden=True):
+            parts.setdefault(os.path.basename(path), time.perf_counter() - start)
+        time.sleep(0.5)
+    wall = time.perf_counter() - start
+    err = proc.stderr.read() if proc.stderr else ""
+    if proc.returncode != 0:
+        raise RuntimeError(f"{' '.join(cmd)} failed ({proc.returncode}): {err[-2000:]}")
+    done = sorted(parts.values())
+    return {"wall": wall, "cpu_all": sum(cpu.values()), "rss_gb_all": peak_rss / 2**30, "parts_done_at": done}
+
+
+def _children(root: Any) -> list[Any]:
+    """Every process ``root`` started (and they started), as far as it can still be read."""
+    import psutil
+
+    try:
+        return root.children(recursive=True)
+    except psutil.Error:
+        return []
+
+
+def kernel_rates(scaffold_name: str, labels: str, n: int = 100_000) -> dict:
+    """Designs per second of keying and of naming by key, on ``n`` random designs of the space, in this process."""
+    import time
+
+    import numpy as np
+
+    from lkspace.knots.key_names import disk_cache, share_names
+    from lkspace.knots.keyed import keys_of
+
+    scaffold = lkspace.load(scaffold_name)
+    low, high = (int(x) for x in labels.replace("..", " ").split())
+    designs = np.random.default_rng(0).integers(low, high + 1, size=(n, scaffold.n_edges))
+    keys_of(scaffold, designs[:100])  # kernels loaded
+    began = time.perf_counter()
+    found = keys_of(scaffold, designs, label_values=np.arange(low, high + 1))
+    keyed = time.perf_counter() - began
+    began = time.perf_counter()
+    share_names(found, disk_cache(), lambda indices: iter(()), by_key=True)
+    named = time.perf_counter() - began
+    return {"designs": n, "keys_per_s": n / keyed, "names_by_key_per_s": n / named}
+
+
 def report(r: dict) -> str:
     p = r["provenance"]
-    e, a = r["enumerate"], r["atlas"]
+    e, a, k = r["enumerate"], r["atlas"], r["kernels"]
+    shards = f" --shards {r['shards']}" if r.get("shards") else ""
     lines = [
         f"# {r['space']} named whole",
         "",
@@ -80,14 +159,16 @@ def report(r: dict) -> str:
         f"{p['machine']['cpu_count']} cores, {p['machine']['cpu']}), {p['date']}; an empty name cache "
         "(the shipped key file alone); each command in a fresh process.",
         "",
-        "| command | wall (min) | CPU of the command's own process (min) | its peak RSS (GB) |",
+        "| command | wall (min) | CPU of it and every process it started (min) | their peak RSS together (GB) |",
         "|---|---|---|---|",
-        f"| `enumerate {r['space']} --identify-by-key --jobs {r['jobs']} --scheduler {r['scheduler']} -o` "
-        f"| {e['wall'] / 60:.1f} | {e['cpu'] / 60:.1f} | {e['rss_mb'] / 1024:.2f} |",
+        f"| `enumerate {r['space']} --identify-by-key --jobs {r['jobs']} --scheduler {r['scheduler']}{shards} -o` "
+        f"| {e['wall'] / 60:.1f} | {e['cpu_all'] / 60:.1f} | {e['rss_gb_all']:.2f} |",
         f"| `atlas CATALOG -o` | {a['wall'] / 60:.1f} | {a['cpu'] / 60:.1f} | {a['rss_mb'] / 1024:.2f} |",
         "",
-        "The worker processes that name the parts are started by a fork server, not by the command, so "
-        "their CPU time and memory are not in the command's figures.",
+        f"Parts complete at (min): {', '.join(f'{t / 60:.1f}' for t in e['parts_done_at'])}.",
+        "",
+        f"In one process, on {k['designs']:,} random designs of the space: keys {k['keys_per_s']:,.0f} "
+        f"designs/s (threads over the cores), names by key {k['names_by_key_per_s']:,.0f} designs/s.",
         "",
         f"Load average (1, 5, 15 min): {r['load_before']} before, {r['load_after_enumerate']} after the "
         f"enumeration, {r['load_after']} at the end.",
