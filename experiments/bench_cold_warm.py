@@ -3,8 +3,8 @@
 Cold: ``$LKSPACE_CACHE`` and ``$NUMBA_CACHE_DIR`` empty folders (no names by key, no
 tables index, no compiled kernels: what a new install meets; lkspace's shipped files,
 ``lkspace/data/*.xz`` and ``lkspace/compiled/shipped/``, are what make it cheap).
-Warm: the folders the cold run left.  Runs alternate cold, warm, cold, warm... so that
-load drifts hit both alike; the ratio cold/warm is of medians.  Each tree (``--tree``,
+Warm: the folders the cold run left.  Runs alternate cold, warm, cold, warm..., and
+between the trees, so that load drifts hit all alike; the ratio cold/warm is of medians.  Each tree (``--tree``,
 default this one; ``--before /work/main`` adds the tree before the change) runs with
 ``PYTHONPATH`` set to it.
 
@@ -32,37 +32,39 @@ from benchkit import RESULTS, ROOT, load_average, provenance, summary, timed
 SPACES = ["cube:-1..1", "whitehead:-1..1"]
 
 
-def run(tree: Path, space: str, runs: int) -> dict:
-    """Cold and warm :func:`benchkit.summary` of ``enumerate SPACE --identify`` with ``tree``'s lkspace."""
+def one_run(tree: Path, space: str, samples: dict) -> None:
+    """One cold and one warm ``enumerate SPACE --identify`` with ``tree``'s lkspace, added to ``samples``."""
     name, labels = space.split(":")
-    cold, warm = [], []
-    for _ in range(runs):
-        folder = tempfile.mkdtemp(prefix="lkspace-cold-")
-        cache, numba = os.path.join(folder, "cache"), os.path.join(folder, "numba")
-        env = {**os.environ, "PYTHONPATH": str(tree), "LKSPACE_CACHE": cache, "NUMBA_CACHE_DIR": numba}
-        out = os.path.join(folder, "x.parquet")
-        cmd = [sys.executable, "-m", "lkspace", "enumerate", name, "--labels", labels, "--identify", "-o", out]
-        # run in the temporary folder: `python -m` puts the working directory first on sys.path, and
-        # started in a checkout it would import that checkout instead of `tree`
-        cold.append({**timed(cmd, env, cwd=folder), "load": load_average()[0]})
-        os.remove(out)
-        warm.append({**timed(cmd, env, cwd=folder), "load": load_average()[0]})
-        designs = pq.read_metadata(out).num_rows
-        if not cold[1:]:
-            kernel = key_rate(name, out, env, folder)
-        shutil.rmtree(folder)
-        print(f"{tree} {space}: cold {cold[-1]['wall']:.2f} s, warm {warm[-1]['wall']:.2f} s", flush=True)
-    c, w = summary(cold), summary(warm)
-    c["load_1min"] = [s["load"] for s in cold]
-    w["load_1min"] = [s["load"] for s in warm]
-    rate = round(designs / w["median_s"])
+    folder = tempfile.mkdtemp(prefix="lkspace-cold-")
+    cache, numba = os.path.join(folder, "cache"), os.path.join(folder, "numba")
+    env = {**os.environ, "PYTHONPATH": str(tree), "LKSPACE_CACHE": cache, "NUMBA_CACHE_DIR": numba}
+    out = os.path.join(folder, "x.parquet")
+    cmd = [sys.executable, "-m", "lkspace", "enumerate", name, "--labels", labels, "--identify", "-o", out]
+    # run in the temporary folder: `python -m` puts the working directory first on sys.path, and
+    # started in a checkout it would import that checkout instead of `tree`
+    samples["cold"].append({**timed(cmd, env, cwd=folder), "load": load_average()[0]})
+    os.remove(out)
+    samples["warm"].append({**timed(cmd, env, cwd=folder), "load": load_average()[0]})
+    samples["designs"] = pq.read_metadata(out).num_rows
+    if "kernel" not in samples:
+        samples["kernel"] = key_rate(name, out, env, folder)
+    shutil.rmtree(folder)
+    cold, warm = samples["cold"][-1]["wall"], samples["warm"][-1]["wall"]
+    print(f"{tree} {space}: cold {cold:.2f} s, warm {warm:.2f} s", flush=True)
+
+
+def summed(samples: dict) -> dict:
+    """Cold and warm :func:`benchkit.summary` of one tree and space, their ratio and rates."""
+    c, w = summary(samples["cold"]), summary(samples["warm"])
+    c["load_1min"] = [s["load"] for s in samples["cold"]]
+    w["load_1min"] = [s["load"] for s in samples["warm"]]
     return {
         "cold": c,
         "warm": w,
         "ratio": round(c["median_s"] / w["median_s"], 2),
-        "designs": designs,
-        "warm_rate": rate,
-        "key_rate": kernel,
+        "designs": samples["designs"],
+        "warm_rate": round(samples["designs"] / w["median_s"]),
+        "key_rate": samples["kernel"],
     }
 
 
@@ -106,11 +108,17 @@ def main() -> None:
     args = parser.parse_args()
     trees = {"after": ROOT} if args.before is None else {"before": args.before, "after": ROOT}
     report: dict = {"provenance": provenance(), "load_start": load_average(), "spaces": {}}
+    jobs: dict[tuple[str, str], dict] = {}  # (tree label, space) -> samples; runs alternate between trees
     for label, tree in trees.items():
         report[f"{label}_commit"] = provenance(tree)["commit"]
-        spaces, runs = (args.before_space, args.before_runs) if label == "before" else (args.space, args.runs)
-        for space in spaces:
-            report["spaces"].setdefault(space, {})[label] = run(tree, space, runs)
+        for space in args.before_space if label == "before" else args.space:
+            jobs[label, space] = {"cold": [], "warm": []}
+    for i in range(max(args.runs, args.before_runs if args.before else 0)):
+        for (label, space), samples in jobs.items():
+            if i < (args.before_runs if label == "before" else args.runs):
+                one_run(trees[label], space, samples)
+    for (label, space), samples in jobs.items():
+        report["spaces"].setdefault(space, {})[label] = summed(samples)
     report["load_end"] = load_average()
     (RESULTS / f"{args.out}.json").write_text(json.dumps(report, indent=1) + "\n")
     lines = [
