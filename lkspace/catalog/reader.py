@@ -5,15 +5,17 @@ DataFrame with Arrow-backed dtypes (no Python objects per row) and the label vec
 one ``(n_designs, n_edges) int8`` array, decoded from the fixed-width ``key`` column
 (``--mode residues`` catalogs, which have none, decode the ``labels`` list column's
 values buffer).  Both are far cheaper than ``pandas.read_parquet``, which turns every
-list cell into a Python object.
+list cell into a Python object.  :func:`catalog_batches` streams the same, a record
+batch at a time, for readers whose memory must not grow with the rows (``atlas CATALOG``).
 """
 
 from __future__ import annotations
 
 import os
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 from functools import cached_property
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, TypeVar
 
 import numpy as np
 import pyarrow as pa
@@ -26,9 +28,10 @@ from ..strands.tracing import Trace, trace
 from ..words import noun
 from .metadata import JsonObject
 from .records import PartFooter
+from .schema import ROW_GROUP
 from .settings import catalog_scaffold
 from .transaction import load_manifest
-from .verify import damaged, open_catalog
+from .verify import CatalogParts, damaged, open_catalog
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -36,6 +39,8 @@ if TYPE_CHECKING:
 LABEL_COLUMNS = ("labels", "key")
 """Columns read into :attr:`Catalog.labels` rather than into the frame."""
 
+
+T = TypeVar("T")
 
 READ_ATTEMPTS = 3
 """Times :func:`read_catalog` reads a folder again when it was replaced by a new run while being read."""
@@ -107,14 +112,14 @@ class Catalog:
         return trace(self.scaffold, self.labels[row])
 
 
-def _labels_of(table: pa.Table) -> np.ndarray:
+def _labels_of(table: pa.Table | pa.RecordBatch) -> np.ndarray:
     """``(n_rows, n_edges) int8`` from the ``key`` column, else from the ``labels`` list column."""
     if "key" in table.column_names:
         column = table.column("key")
         width = column.type.byte_width
         out = np.empty((table.num_rows, width), np.int8)
         at = 0
-        for chunk in column.chunks:
+        for chunk in column.chunks if isinstance(column, pa.ChunkedArray) else [column]:
             data = np.frombuffer(chunk.buffers()[1], np.int8, count=len(chunk) * width, offset=chunk.offset * width)
             out[at : at + len(chunk)] = data.reshape(-1, width)
             at += len(chunk)
@@ -122,7 +127,8 @@ def _labels_of(table: pa.Table) -> np.ndarray:
     column = table.column("labels")
     if table.num_rows == 0:
         return np.zeros((0, 0), np.int8)
-    flat = np.concatenate([np.asarray(chunk.flatten(), np.int8) for chunk in column.chunks])
+    chunks = column.chunks if isinstance(column, pa.ChunkedArray) else [column]
+    flat = np.concatenate([np.asarray(chunk.flatten(), np.int8) for chunk in chunks])
     return flat.reshape(table.num_rows, -1)
 
 
@@ -149,14 +155,49 @@ def read_catalog(path: str | os.PathLike[str], columns: list[str] | None = None)
     (12, (12, 6), 64)
     """
     path = os.fspath(path)
+    return reread(path, lambda: _read(path, columns))
+
+
+def reread(path: str, read: Callable[[], T]) -> T:
+    """Return ``read()``, called again (up to :data:`READ_ATTEMPTS` times) when a new run replaced the folder ``path`` meanwhile."""
     for attempt in range(READ_ATTEMPTS):
         run = _run_of(path)
         try:
-            return _read(path, columns)
+            return read()
         except (FileNotFoundError, CatalogError):  # a new run may have replaced the folder while we read it
             if attempt == READ_ATTEMPTS - 1 or not os.path.exists(path) or _run_of(path) == run:
                 raise
     raise AssertionError("unreachable")  # pragma: no cover
+
+
+def catalog_batches(
+    parts: CatalogParts, columns: list[str], batch_rows: int = ROW_GROUP
+) -> Iterator[tuple[pa.RecordBatch, np.ndarray]]:
+    """Yield a catalog's rows as ``(batch, labels)``, part by part, at most ``batch_rows`` rows at a time.
+
+    ``batch`` holds ``columns`` (frame columns, as for :func:`read_catalog`), ``labels``
+    the batch's ``(n_rows, n_edges) int8`` twist labels.  Each part's SHA-256 is checked
+    just before its rows are read, and the data pages' checksums as they are; only one
+    batch is in memory at a time.  ``parts``: :func:`~lkspace.catalog.verify.open_catalog`'s;
+    wrap the whole reading in :func:`reread` to survive a folder replaced meanwhile.
+    """
+    schema = pq.read_schema(parts.files[0])
+    unknown = sorted(set(columns) - set(schema.names) | set(columns) & set(LABEL_COLUMNS))
+    if unknown:
+        raise CatalogError(
+            f"{parts.path}: no {noun(len(unknown), 'frame column')} {unknown}; columns are {schema.names}"
+        )
+    label_column = "key" if "key" in schema.names else "labels"
+    for part, file in enumerate(parts.files):
+        parts.verify(part)
+        try:
+            with pq.ParquetFile(file, page_checksum_verification=True) as parquet:
+                for batch in parquet.iter_batches(batch_size=batch_rows, columns=[*columns, label_column]):
+                    yield batch.select(columns), _labels_of(batch)
+        except FileNotFoundError:
+            raise
+        except (OSError, pa.ArrowException) as exc:
+            raise damaged(file, exc) from None
 
 
 def _run_of(path: str) -> object:
