@@ -9,8 +9,8 @@ file alone, so the catalog is the same on every machine)::
 and records wall and CPU seconds, peak RSS and the machine's load beside the commit
 (``results/bench_whole_space.md`` and ``.json``).  The CPU time and memory of every
 process the command starts (the fork server's workers, a Dask cluster's) are sampled
-with psutil twice a second, and the time each part is complete is read off the build
-folder.  Beside them, the kernels' rates on random designs of the space in this process:
+with psutil twice a second, and the time each part is complete is read off the catalog's
+parts.  Beside them, the kernels' rates on random designs of the space in this process:
 keys (:func:`lkspace.knots.keyed.keys_of`) and names by key (``share_names``).  With
 ``--scheduler dask`` the parts run on a Dask LocalCluster of ``--jobs`` workers instead of
 local processes; ``--shards N`` cuts the space into N parts.  ``--add`` then adds the
@@ -59,7 +59,7 @@ def main() -> int:
     enumerate_cmd += ["--jobs", str(args.jobs), "--scheduler", args.scheduler, "-o", catalog]
     enumerate_cmd += ["--shards", str(args.shards)] if args.shards else []
     record["kernels"] = kernel_rates(args.scaffold, args.labels)
-    record["enumerate"] = timed_tree(enumerate_cmd, env, args.work)
+    record["enumerate"] = timed_tree(enumerate_cmd, env, args.work, catalog)
     record["load_after_enumerate"] = load_average()
     folder = RESULTS / "atlas" / f"{args.scaffold.replace(':', '-')}{args.labels}"
     shutil.rmtree(folder, ignore_errors=True)
@@ -83,18 +83,22 @@ def main() -> int:
     return 0
 
 
-def timed_tree(cmd: list[str], env: dict[str, str], work: str) -> dict:
-    """Run ``cmd``: its wall time, the CPU seconds and peak RSS of it and every process it starts, when each part was done."""
+def timed_tree(cmd: list[str], env: dict[str, str], work: str, catalog: str) -> dict:
+    """Run ``cmd``: its wall time, the CPU seconds and peak RSS of it and every process it starts, when each part was done.
+
+    A part is done when it is last written (named, in the identify pass): the modification
+    times of the parts of ``catalog``, from the start.
+    """
     import time
 
     import psutil
 
+    began = time.time()
     start = time.perf_counter()
     proc = subprocess.Popen(cmd, env=env, cwd=work, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
     root = psutil.Process(proc.pid)
     cpu: dict[int, float] = {}
     peak_rss = 0.0
-    parts: dict[str, float] = {}
     while proc.poll() is None:
         rss = 0.0
         for p in [root, *_children(root)]:
@@ -105,14 +109,13 @@ def timed_tree(cmd: list[str], env: dict[str, str], work: str) -> dict:
             cpu[p.pid] = times.user + times.system
             rss += memory.rss
         peak_rss = max(peak_rss, rss)
-        for path in glob.glob(os.path.join(work, "**", "part-*.parquet"), recursive=True, include_hidden=True):
-            parts.setdefault(os.path.basename(path), time.perf_counter() - start)
         time.sleep(0.5)
     wall = time.perf_counter() - start
     err = proc.stderr.read() if proc.stderr else ""
     if proc.returncode != 0:
         raise RuntimeError(f"{' '.join(cmd)} failed ({proc.returncode}): {err[-2000:]}")
-    done = sorted(parts.values())
+    parts = glob.glob(os.path.join(catalog, "part-*.parquet")) if os.path.isdir(catalog) else [catalog]
+    done = sorted(os.path.getmtime(path) - began for path in parts)
     return {"wall": wall, "cpu_all": sum(cpu.values()), "rss_gb_all": peak_rss / 2**30, "parts_done_at": done}
 
 
