@@ -35,7 +35,12 @@ FORMAT_VERSIONS = (1,)
 """Catalog format versions this lkspace reads."""
 
 LATER_KEYS = ("symmetry_tolerance",)
-"""Settings recorded since format version 1 was fixed: a catalog without one was written before it existed."""
+"""Settings recorded since format version 1 was fixed: a catalog without one was written before it existed.
+
+Such a catalog has no ``digest`` either (footers were sealed after these were recorded,
+2026-12-02): a sealed footer without one is damaged
+(:meth:`~lkspace.catalog.records.PartFooter.from_json`).
+"""
 
 
 class Unrecorded(Enum):
