@@ -16,6 +16,7 @@ from typing import Any
 
 import numpy as np
 
+from ..runtime.workers import interruptible
 from .identification import NameFields
 from .keyed import KEY_VERSION, DesignKeys
 from .naming import name_key
@@ -182,7 +183,7 @@ def table_homfly(pd_text: str | None, mirror: bool) -> str | None:
     link = regina.Link.fromPD(json.loads(pd_text))
     if mirror:
         link.changeAll()
-    return str(link.homfly())
+    return str(interruptible(link.homfly, 2 ** int(link.size())))  # its work: exponential in the crossings
 
 
 def trusted(named: NameFields, found: set[tuple[str, bool]]) -> bool:
@@ -207,7 +208,7 @@ def _simplified(pd: list[list[int]]) -> Any:
     regina = regina_module()
     regina.RandomEngine.reseedWithDefault()
     link = regina.Link.fromPD(pd)
-    link.simplify()
+    interruptible(link.simplify, len(pd) ** 2)  # seconds on a wide diagram: Ctrl-C goes through at once
     return link
 
 
@@ -221,7 +222,7 @@ def homfly_of(pd: list[list[int]]) -> tuple[str, int] | None:
     link = _simplified(pd)
     if link.size() > HOMFLY_MAX_CROSSINGS:
         return None
-    return str(link.homfly()), int(link.size())
+    return str(interruptible(link.homfly, 2 ** int(link.size()))), int(link.size())
 
 
 NOT_IN_TABLES = NameFields(
