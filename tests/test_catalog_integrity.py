@@ -157,6 +157,7 @@ def test_extra_part(cat, written, capsys, tmp_path):
         (lambda m: [1, 2], ["not a JSON object"]),
         (lambda m: {**m, "parts": {"0": m["parts"]["0"]}}, ["unfinished"]),
         (lambda m: {**m, "parts": {k: {**v, "file": "../x.parquet"} for k, v in m["parts"].items()}}, ["malformed"]),
+        (lambda m: "[" * 100_000, ["not valid JSON"]),  # was an internal error (RecursionError)
     ],
 )
 def test_altered_manifest(cat, capsys, tmp_path, change, words):
@@ -184,6 +185,7 @@ def rewrite_footer(file, meta):
         (b'"a string"', ["not a JSON object"]),
         (b'{"format_version": 2, "scaffold": {}, "label_set": []}', ["format_version 2"]),
         (b'{"format_version": 1, "scaffold": "cube", "label_set": []}', ["no scaffold"]),
+        (b"[" * 100_000, ["not valid JSON"]),  # was an internal error (RecursionError)
     ],
 )
 def test_garbage_metadata_of_a_part(cat, capsys, tmp_path, meta, words):

@@ -77,7 +77,7 @@ def decode(raw: bytes | str, where: str) -> Json:
     """Parse the JSON text ``raw`` of ``where`` (``lkspace`` metadata or a manifest)."""
     try:
         data: Json = json.loads(raw)
-    except (UnicodeDecodeError, ValueError):
+    except (UnicodeDecodeError, ValueError, RecursionError):  # RecursionError: nested past the stack
         raise CatalogError(
             f"{where}: the 'lkspace' metadata is not valid JSON (damaged, or not written by lkspace)"
         ) from None
