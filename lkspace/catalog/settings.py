@@ -78,8 +78,8 @@ def check_settings(
     tolerance = settings.symmetry_tolerance if isinstance(settings.symmetry_tolerance, float) else None
     sample = None if isinstance(settings.sample, Unrecorded) else settings.sample
     seed = settings.seed if isinstance(settings.seed, int) else 0
-    selection = Selection(settings.mode, filters.components, filters.max_designs, sample, seed)
     try:
+        selection = Selection(settings.mode, filters.components, filters.max_designs, sample, seed)
         space = make_space(scaffold, np.array(settings.label_set, np.int64), symmetry, filters.no_zero, tolerance)
         again = catalog_metadata(space, selection)
         plan = None if shard is None else plan_fingerprint(space, selection, shard.count)

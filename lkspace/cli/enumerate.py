@@ -120,7 +120,7 @@ def _where_it_ran(
     metavar="N",
     help="spanning-trees mode: sample N uniform spanning trees instead of listing all.",
 )
-@click.option("--seed", type=int, default=0, show_default=True, help="Random seed for --sample.")
+@click.option("--seed", type=click.IntRange(min=0), default=0, show_default=True, help="Random seed for --sample.")
 @click.option(
     "--jobs", type=click.IntRange(1, MAX_JOBS), default=1, show_default=True, help="Parallel worker processes."
 )
