@@ -12,6 +12,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+import lkspace
 from lkspace.errors import ScaffoldError
 from lkspace.io.obj import parse_obj
 from tests.cli_calls import one_line_error, run
@@ -111,3 +112,24 @@ def test_any_mesh_with_any_extras_reads_back_the_same(scaffold, data):
     back = parse_obj(text, "tool.obj")
     assert back.faces() == scaffold.faces()
     assert np.array_equal(back.vertices, scaffold.vertices)
+
+
+@pytest.mark.parametrize("name", ["big.obj", "big.json"])
+def test_an_input_past_the_size_bound_is_refused_before_it_is_read(tmp_path, capsys, name):
+    """A sparse 10 GB mesh file was read whole (``lkspace info`` ran until the machine ran out of memory)."""
+    with open(tmp_path / name, "wb") as fh:
+        fh.truncate(10 * 2**30)
+    code, _out, err = run(capsys, "info", tmp_path / name)
+    assert code == 1
+    one_line_error(err, name, "10,240 MiB is past the 64 MiB lkspace reads", "decimate it")
+
+
+def test_a_twist_file_past_the_size_bound_is_refused(tmp_path, monkeypatch):
+    from lkspace.errors import LabelError
+    from lkspace.io import text
+    from lkspace.io.twists import read_twist_file
+
+    monkeypatch.setattr(text, "MAX_INPUT_BYTES", 1000)
+    (tmp_path / "t.txt").write_text("1\n" * 600)
+    with pytest.raises(LabelError, match="t.txt: .* MiB is past the .* MiB lkspace reads as twist input"):
+        read_twist_file(lkspace.load("cube"), str(tmp_path / "t.txt"))
