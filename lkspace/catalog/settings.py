@@ -143,10 +143,17 @@ def check_totals(file: str, totals: PartSummary, label_set: tuple[int, ...]) -> 
     by: dict[str, int] = {}
     covered = 0
     try:
-        for batch in pq.ParquetFile(file).iter_batches(columns=["labels", "components", "orbit_size"]):
+        parquet = pq.ParquetFile(file)
+        keyed = "key" in parquet.schema_arrow.names  # a designs catalog: the labels again, packed
+        for batch in parquet.iter_batches(columns=["labels", "components", "orbit_size", *(["key"] if keyed else [])]):
             covered = tally(batch, by, covered)
-            if not np.isin(batch.column("labels").flatten().to_numpy(), label_set).all():
+            labels = batch.column("labels").flatten().to_numpy()
+            if not np.isin(labels, label_set).all():
                 raise CatalogError(f"{file}: damaged: it holds labels outside the ones it keeps, {list(label_set)}")
+            if keyed and not _same_labels(labels, batch.column("key")):
+                raise CatalogError(f"{file}: damaged: a row's labels are not the ones its key holds")
+    except CatalogError:
+        raise
     except (OSError, pa.ArrowException, ValueError) as exc:
         reason = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
         raise CatalogError(f"{file}: damaged: {reason}") from None
@@ -156,3 +163,9 @@ def check_totals(file: str, totals: PartSummary, label_set: tuple[int, ...]) -> 
             f"{file}: damaged: its recorded totals (rows by components, assignments covered) "
             "are missing or not the ones its rows add up to"
         )
+
+
+def _same_labels(labels: np.ndarray, keys: pa.Array) -> bool:
+    """Whether the flattened ``labels`` of a batch are its ``key`` column's bytes (one int8 per edge, row after row)."""
+    packed = np.frombuffer(keys.buffers()[1], np.int8)[keys.offset * keys.type.byte_width :][: len(labels)]
+    return keys.null_count == 0 and len(packed) == len(labels) and np.array_equal(packed, labels)
