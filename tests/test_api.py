@@ -1,6 +1,8 @@
 """The public API: one way in for every stage, each taking a scaffold, a path or a name."""
 
 import json
+import os
+import re
 import subprocess
 import sys
 
@@ -185,3 +187,30 @@ def test_labels_and_label_set_words_in_json(capsys):
     assert main(["solve", "tetrahedron", "-n", "1", "--labels", "-1..1", "--json"]) == 0
     data = json.loads(capsys.readouterr().out)
     assert data["label_set"] == [-1, 0, 1] and len(data["solutions"][0]["labels"]) == 6
+
+
+@pytest.mark.parametrize(
+    "fields, words",
+    [
+        ({"components": 0}, "components: must be an integer of at least 1, got 0"),
+        ({"max_designs": -3}, "max_designs: must be an integer of at least 1, got -3"),  # had written every row
+        ({"sample": 0, "mode": "spanning-trees"}, "sample: must be an integer of at least 1"),
+        ({"seed": -1, "sample": 3, "mode": "spanning-trees"}, "seed: must be an integer of at least 0"),  # ValueError
+        ({"mode": "bogus"}, "mode 'bogus': use one of designs, residues, spanning-trees"),  # had walked designs
+        ({"components": True}, "components: must be an integer"),
+    ],
+)
+def test_a_selection_out_of_range_is_refused_where_it_is_made(fields, words):
+    with pytest.raises(lkspace.LkspaceError, match=re.escape(words)):
+        lkspace.Selection(**fields)
+
+
+def test_enumerate_seed_below_zero_is_a_usage_line(capsys, tmp_path):
+    """``enumerate --seed -1 --sample 3`` was an internal error (numpy's ValueError)."""
+    from tests.cli_calls import run
+
+    args = ["enumerate", "cube", "--labels", "-1..1", "--mode", "spanning-trees", "--sample", "3", "--seed", "-1"]
+    code, _, err = run(capsys, *args, "-o", tmp_path / "x.parquet")
+    assert code == 2
+    assert "--seed" in err
+    assert os.listdir(tmp_path) == []

@@ -22,7 +22,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 import lkspace
-from lkspace.errors import CatalogError
+from lkspace.errors import CatalogError, LkspaceWarning
 from lkspace.studio.browse import Browser
 from tests.cli_calls import one_line_error, run
 
@@ -157,6 +157,7 @@ def test_extra_part(cat, written, capsys, tmp_path):
         (lambda m: [1, 2], ["not a JSON object"]),
         (lambda m: {**m, "parts": {"0": m["parts"]["0"]}}, ["unfinished"]),
         (lambda m: {**m, "parts": {k: {**v, "file": "../x.parquet"} for k, v in m["parts"].items()}}, ["malformed"]),
+        (lambda m: "[" * 100_000, ["not valid JSON"]),  # was an internal error (RecursionError)
     ],
 )
 def test_altered_manifest(cat, capsys, tmp_path, change, words):
@@ -184,6 +185,7 @@ def rewrite_footer(file, meta):
         (b'"a string"', ["not a JSON object"]),
         (b'{"format_version": 2, "scaffold": {}, "label_set": []}', ["format_version 2"]),
         (b'{"format_version": 1, "scaffold": "cube", "label_set": []}', ["no scaffold"]),
+        (b"[" * 100_000, ["not valid JSON"]),  # was an internal error (RecursionError)
     ],
 )
 def test_garbage_metadata_of_a_part(cat, capsys, tmp_path, meta, words):
@@ -355,12 +357,29 @@ def edited(data, path, value):
 
 
 ONE_FILE_META = ("format_version", "scaffold", "label_set", "symmetry", "group_order", "acting_order", "assignments",
-                 "mode", "filters", "sample", "seed", "canonical_rule", "by_components", "assignments_covered", "rows")  # fmt: skip
+                 "mode", "filters", "sample", "seed", "canonical_rule", "by_components", "assignments_covered", "rows",
+                 "shard", "symmetry_tolerance")  # fmt: skip
 """The fields of a one-file catalog's metadata that verify checks against its scaffold and rows.
 
-Not among them: the shard's plan (a fingerprint of the walk), ``symmetry_tolerance``
-removed (an older lkspace did not record it), a ``max_designs`` the rows stay under.
+The shard's plan (a fingerprint of the walk) is computed again, and a footer with a digest
+must record ``symmetry_tolerance`` (every lkspace that sealed footers recorded it; its
+removal had verified, issue 35).  Left out by the test: a ``max_designs`` the rows stay
+under, a tolerance that gives the same group (both the same catalog).
 """
+
+
+def same_catalog(path, value):
+    """Whether the edit of ``path`` to ``value`` describes the same catalog (a limit not reached, the same group)."""
+    if path == ("filters", "max_designs"):
+        return isinstance(value, int) and not isinstance(value, bool) and value >= 87
+    if path == ("symmetry_tolerance",) and isinstance(value, float):
+        from lkspace.design.space import make_space
+
+        try:
+            return make_space(lkspace.load("tetrahedron"), "-1..1", tolerance=value).group_order == 12
+        except lkspace.LkspaceError:
+            return False
+    return False
 
 
 @settings(max_examples=150, deadline=None, derandomize=True, database=None,
@@ -374,9 +393,7 @@ def test_any_field_of_a_one_file_catalog_changed_and_sealed_again_is_refused_by_
     path = data.draw(st.sampled_from([p for p in fields(meta) if p[0] in ONE_FILE_META]), label="field")
     value = data.draw(st.one_of(st.just(REMOVED), JSON_VALUES), label="value")
     changed = edited(meta, path, value)
-    if path[0] == "filters" and path[-1] == "max_designs" and isinstance(value, int) and value >= 87:
-        return  # a limit the walk did not reach: the same catalog
-    if changed == meta:
+    if changed == meta or same_catalog(path, value):
         return
     changed["digest"] = metadata_digest(changed)
     one = tmp_path / "one.parquet"
@@ -386,6 +403,40 @@ def test_any_field_of_a_one_file_catalog_changed_and_sealed_again_is_refused_by_
     code, _, err = run(capsys, "verify", one)
     assert code == 1, (path, value)
     one_line_error(err, one.name)
+
+
+@pytest.mark.parametrize(
+    "edit, words",
+    [
+        (lambda m: m["shard"].update(plan="0" * 16), ["recorded plan '0000000000000000'"]),
+        (lambda m: m["shard"].update(plan=""), ["recorded plan ''"]),
+        (lambda m: m.pop("shard"), ["has no shard"]),
+        (lambda m: m.pop("symmetry_tolerance"), ["has a digest but no symmetry_tolerance"]),
+    ],
+    ids=["plan", "empty-plan", "no-shard", "no-tolerance"],
+)
+def test_a_one_file_catalogs_plan_and_tolerance_sealed_again_are_checked(written, tmp_path, capsys, edit, words):
+    """The plan edited or the shard or tolerance removed, the digest computed again: verify had said intact."""
+    from lkspace.catalog.metadata import metadata_digest
+
+    meta = json.loads(pq.read_metadata(written / "one.parquet").metadata[b"lkspace"])
+    edit(meta)
+    meta["digest"] = metadata_digest(meta)
+    one = tmp_path / "one.parquet"
+    pq.write_table(pq.read_table(written / "one.parquet").replace_schema_metadata({b"lkspace": json.dumps(meta)}), one)
+    code, out, err = run(capsys, "verify", one)
+    assert code == 1, out
+    one_line_error(err, one.name, *words)
+
+
+def test_a_footer_without_digest_or_tolerance_reads_as_an_older_catalog(written, tmp_path):
+    """A catalog written before the tolerance was recorded has no digest either: it reads (with a warning)."""
+    meta = json.loads(pq.read_metadata(written / "one.parquet").metadata[b"lkspace"])
+    old = {k: v for k, v in meta.items() if k not in ("digest", "symmetry_tolerance")}
+    one = tmp_path / "one.parquet"
+    pq.write_table(pq.read_table(written / "one.parquet").replace_schema_metadata({b"lkspace": json.dumps(old)}), one)
+    with pytest.warns(LkspaceWarning, match="has no digest"):
+        assert len(lkspace.read_catalog(one)) == 87
 
 
 @settings(max_examples=150, deadline=None, derandomize=True, database=None,

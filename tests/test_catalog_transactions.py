@@ -142,6 +142,26 @@ def test_lock_stops_a_second_writer_and_a_stale_lock_is_taken_over(tmp_path, cap
 
 
 @pytest.mark.parametrize(
+    "record",
+    [
+        {"pid": 2**70, "host": socket.gethostname(), "started": "now"},  # os.kill: OverflowError
+        "[" * 100_000,  # json.load: RecursionError
+        {"pid": True, "host": socket.gethostname()},
+    ],
+    ids=["huge-pid", "deep", "bool-pid"],
+)
+def test_a_lock_file_that_is_no_lock_record_is_one_line(tmp_path, capsys, record):
+    """A lock file holding a pid past a C long or JSON nested past the stack was an internal error."""
+    lock = tmp_path / ".t.parquet.lkspace-lock"
+    lock.write_text(record if isinstance(record, str) else json.dumps(record))
+    code, _, err = run(capsys, "enumerate", "tetrahedron", "-o", tmp_path / "t.parquet")
+    assert code == 1
+    assert err.count("\n") == 1
+    assert "another lkspace run is writing this catalog (a run that is starting)" in err
+    assert sorted(os.listdir(tmp_path)) == [lock.name]
+
+
+@pytest.mark.parametrize(
     "output, message",
     [
         ("", "empty"),

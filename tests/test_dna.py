@@ -15,6 +15,8 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 import lkspace
 from lkspace.dna.model import orient
@@ -339,3 +341,43 @@ def test_a_scale_too_large_or_too_small_is_one_line_naming_its_flag(capsys, tmp_
     one_line_error(err, "--nm-per-unit", "use a scale of at")
     assert "--scale" not in err
     assert os.listdir(tmp_path) == []
+
+
+@pytest.mark.parametrize("twist", ["100000", "922337203685477580", "9223372036854775807"])
+def test_helices_past_the_bound_are_refused_before_any_is_built(capsys, tmp_path, twist):
+    """At the default scale the size was unbounded: --twist 100000 ran for minutes, 9.2e17 was an internal
+    error (an array too big) and 2**63 - 1 wrapped around to one base pair per edge (a wrong design written)."""
+    code, _out, err = run(capsys, "export", "cube", "--twist", twist, "-o", tmp_path / "x.oxdna")
+    assert code == 2
+    one_line_error(err, "cube: its helices alone need", "past the 1,000,000 lkspace builds", "use smaller twists")
+    assert os.listdir(tmp_path) == []
+
+
+def stretched_box(ratio):
+    """A box 1 x 1 x ``ratio``: at the default scale its short edges set the scale, its long edges take linkers."""
+    corners = [(x, y, z * ratio) for x in (0, 1) for y in (0, 1) for z in (0, 1)]
+    faces = [[0, 1, 3, 2], [4, 6, 7, 5], [0, 4, 5, 1], [2, 3, 7, 6], [0, 2, 6, 4], [1, 5, 7, 3]]
+    return lkspace.Scaffold.from_faces(np.array(corners, float), faces, name=f"box-{ratio:g}")
+
+
+def test_linkers_past_the_bound_at_the_default_scale_are_refused(capsys, tmp_path):
+    """A box 10,000 times longer than wide: 1.4 million nucleotides of linkers at the default scale (minutes,
+    gigabytes); now one line before any is placed."""
+    lkspace.io.write(stretched_box(10_000), tmp_path / "long.obj")
+    code, _out, err = run(capsys, "export", tmp_path / "long.obj", "--twist", "4", "-o", tmp_path / "x.oxdna")
+    assert code == 2
+    one_line_error(err, "long.obj: at 10.6 nm per mesh unit its linkers could need", "make its edges more even")
+    assert sorted(os.listdir(tmp_path)) == ["long.obj"]
+
+
+@settings(max_examples=25, deadline=None, derandomize=True)
+@given(ratio=st.floats(1, 60), twist=st.integers(1, 8))
+def test_the_linker_bound_holds(ratio, twist):
+    """Property: the linkers built never exceed the bound the size check uses."""
+    from lkspace.dna.build import build
+    from lkspace.dna.helix import edge_frames, linker_bound
+
+    box = stretched_box(ratio)
+    design = build(box, np.full(box.n_edges, twist))
+    linkers = int(np.sum(design.nucleotides.edge < 0))
+    assert linkers <= linker_bound(box, design.bp, edge_frames(box)[3], design.nucleotides.scale)

@@ -274,3 +274,29 @@ def test_a_list_with_an_empty_item_or_non_ascii_digits_is_refused(capsys, option
             ["trace", "cube", f"--twist={spec}"] if option == "--twist" else ["enumerate", "cube", f"--labels={spec}"]
         )
         check(capsys, folder, [*argv, "--count-only"] if option == "--labels" else argv, codes=(2,))
+
+
+NUMBER_FLAGS = [
+    (["enumerate", "cube", "--labels", "-1..1", "--count-only", "--max-designs"], "1"),
+    (["enumerate", "cube", "--labels", "-1..1", "--count-only", "--components"], "1"),
+    (["export", "cube", "--twist", "1", "-o", "{folder}/x.obj", "--tube-radius"], "0.25"),
+    (["export", "cube", "--twist", "4", "-o", "{folder}/x.oxdna", "--nm-per-unit"], "6"),
+    (["identify", "cube", "--twist", "1", "--time-limit"], "5"),
+    (["surfaces", "cube", "--per-edge"], "2"),
+]
+
+
+@pytest.mark.parametrize(("argv", "good"), NUMBER_FLAGS, ids=[a[-1] for a, _ in NUMBER_FLAGS])
+@fuzz(10)
+@given(data=st.data())
+def test_a_number_flag_spelled_with_other_digits_or_separators_is_refused(capsys, argv, good, data):
+    """``--max-designs ١`` ran as 1 and ``--tube-radius 1_000`` as 1000 (Python's int and float read them): a
+    number flag now takes ASCII digits only, as the label lists do."""
+    digits = data.draw(
+        st.sampled_from(["\u0661", "\uff11", "\u00b9", "\u09e7"]), label="digit"
+    )  # a 1 of another script
+    spelled = data.draw(st.sampled_from([good.replace("1", digits) if "1" in good else digits + good,
+                                         good[0] + "_" + good[1:] if len(good) > 1 else good + "_0",
+                                         digits]), label="spelled")  # fmt: skip
+    with tempfile.TemporaryDirectory() as folder:
+        check(capsys, folder, [a.format(folder=folder) for a in argv] + [spelled], codes=(2,))

@@ -71,3 +71,28 @@ def test_the_key_of_a_wide_diagram_keeps_to_the_limit():
     used = sum(after[:4]) - sum(before[:4])  # this process and the children it waited for
     assert found.status.startswith("unknown: time limit 0.2 s")
     assert used < 1.0, used  # regina's Jones polynomial alone takes ~3 s of CPU
+
+
+def test_sharing_a_key_keeps_to_the_limit(monkeypatch):
+    """Sharing a known key may simplify the diagram and take its HOMFLY-PT polynomial (regina; minutes on a
+    simplified diagram of 35 crossings), which ran outside ``--time-limit``: now a diagram past 30 crossings
+    shares its key in a child stopped at the limit."""
+    import numpy as np
+
+    import lkspace
+    from lkspace.knots import from_labels
+
+    pytest.importorskip("regina")
+    scaffold = lkspace.load("dodecahedron")
+    labels = np.full(scaffold.n_edges, 2)  # a diagram of more than 30 crossings
+    lkspace.identify(scaffold, labels, time_limit=5)  # loads what any design needs
+
+    def slow_sharing(*args, **kwargs):
+        end = time.monotonic() + 30
+        while time.monotonic() < end:  # CPU without end, as a long C++ call uses it (bounded: no hang)
+            pass
+        return [None]
+
+    monkeypatch.setattr(from_labels, "share_names", slow_sharing)
+    found = lkspace.identify(scaffold, labels, time_limit=0.3)
+    assert found.status == "unknown: time limit 0.3 s reached (during naming by key)"

@@ -342,3 +342,59 @@ def test_ctrl_c_during_regina_s_jones_polynomial_goes_through_at_once():
     the state sum (112 crossings) is regina's Jones polynomial, one C++ call; it now runs in a thread."""
     proc = subprocess.run([sys.executable, "-c", REGINA_KEY], capture_output=True, text=True, timeout=HANG)
     assert proc.stdout == "interrupted during the call\n", proc.stderr
+
+
+REGINA_SHARE = """
+import os, signal, sys, threading
+import regina
+from lkspace.knots import design_diagrams, tables
+
+real = tables.regina_module()
+calls = []  # per long call: whether it ran off the main thread, and when it returned
+
+class Link:  # regina's link, sending Ctrl-C once its long C++ call (seconds, or minutes) has begun
+    @staticmethod
+    def fromPD(pd):
+        link = Link()
+        link.real = real.Link.fromPD(pd)
+        return link
+
+    def size(self):
+        return self.real.size()
+
+    def long(self, call):
+        calls.append(threading.current_thread() is not threading.main_thread())
+        threading.Timer(0.05, os.kill, (os.getpid(), signal.SIGINT)).start()
+        out = call()
+        calls.append("returned")
+        return out
+
+    def simplify(self):
+        return self.long(self.real.simplify) if sys.argv[1] == "simplify" else self.real.simplify()
+
+    def homfly(self):
+        return self.long(self.real.homfly)
+
+class Regina:
+    Link = Link
+    RandomEngine = real.RandomEngine
+
+tables.regina_module = lambda: Regina
+try:
+    if sys.argv[1] == "homfly":  # the torus knot T(6, 7): 35 crossings, minutes of HOMFLY-PT
+        design_diagrams.homfly_of_link(design_diagrams.simplified(real.ExampleLink.torus(6, 7).pdData(), Regina))
+    else:  # T(3, 2000): 4,000 crossings, seconds of simplification
+        design_diagrams.simplified(real.ExampleLink.torus(3, 2000).pdData(), Regina)
+except KeyboardInterrupt:
+    print("interrupted during the call" if calls == [True] else f"interrupted, calls {calls}")
+"""
+
+
+@pytest.mark.parametrize("call", ["homfly"])
+def test_ctrl_c_during_regina_s_calls_sharing_a_key_goes_through_at_once(call):
+    """Sharing names by key, regina took the HOMFLY-PT polynomial in the main thread: Ctrl-C waited for the
+    C++ call (minutes for a simplified diagram of 35 crossings).  Its simplification holds the GIL, so a
+    thread would not help there (``identify`` runs a wide diagram's in a child it can stop)."""
+    pytest.importorskip("regina")
+    proc = subprocess.run([sys.executable, "-c", REGINA_SHARE, call], capture_output=True, text=True, timeout=HANG)
+    assert proc.stdout == "interrupted during the call\n", proc.stderr

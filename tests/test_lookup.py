@@ -223,6 +223,21 @@ def test_not_an_atlas_exits_1(tmp_path):
     )
 
 
+@pytest.mark.parametrize("meta", [b"\xff\xfe", b"[" * 100_000, b"{not json"], ids=["not-utf8", "deep", "not-json"])
+def test_an_atlas_whose_metadata_is_not_json_exits_1(tmp_path, meta):
+    """Its metadata not UTF-8, not JSON or nested past Python's stack: an internal error (ValueError, RecursionError)."""
+    import pyarrow.parquet as pq
+
+    from lkspace.linktypes.lookup import META
+
+    table = pq.read_table(ROOT / "lkspace" / "data" / "atlas.parquet")
+    bad = tmp_path / "x.parquet"
+    pq.write_table(table.replace_schema_metadata({META: meta}), bad)
+    proc = lookup("3_1", "--atlas", str(bad), check=False)
+    assert proc.returncode == 1
+    assert proc.stderr == f"lkspace: error: --atlas {bad}: its {META.decode()} metadata is no JSON object\n"
+
+
 @pytest.fixture(scope="module")
 def small_atlas(tmp_path_factory):
     """An index of dihedron:3 with labels -1..1, built by the real script."""

@@ -13,28 +13,19 @@ buildable or not) and ``dna`` (:class:`~lkspace.catalog.metadata.DnaSetting`).
 from __future__ import annotations
 
 import os
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 
 import numpy as np
 
 from ..errors import CatalogError
 from ..io.json_values import JsonObject
-from .dna_rows import DNA_RULE, DnaSpace, dna_batches, dna_blocks
+from .dna_rows import DnaSpace, dna_batches, dna_blocks, dna_metadata
 from .identified import Identified
 from .lock import catalog_lock
-from .metadata import CatalogMetadata
-from .options import Selection
 from .records import PartFooter
 from .schema import expected_schema
-from .settings import catalog_metadata
 from .transaction import catalog_target
 from .writer import write_batches
-
-
-def dna_metadata(space: DnaSpace, components: int | None, max_designs: int | None) -> CatalogMetadata:
-    """Return the ``lkspace`` metadata of a DNA catalog: the usual keys and ``dna``."""
-    meta = catalog_metadata(space.space, Selection(components=components, max_designs=max_designs))
-    return replace(meta, assignments=space.assignments, canonical_rule=DNA_RULE, dna=space.setting)
 
 
 @dataclass(frozen=True)

@@ -33,8 +33,10 @@ from ..model.scaffold import Scaffold
 from ..strands.tracing import trace
 from .batches import gather_blocks
 from .columns import INT64_MAX
-from .metadata import DnaSetting, Filters
+from .metadata import CatalogMetadata, DnaSetting, Filters
+from .options import Selection
 from .schema import ROW_GROUP, expected_schema
+from .settings import catalog_metadata
 
 if TYPE_CHECKING:
     import pyarrow as pa
@@ -212,6 +214,12 @@ def dna_batches(
     yield from gather_blocks(dna_blocks(space, components), space.scaffold, max_designs, ROW_GROUP)
 
 
+def dna_metadata(space: DnaSpace, components: int | None, max_designs: int | None) -> CatalogMetadata:
+    """Return the ``lkspace`` metadata of a DNA catalog: the usual keys and ``dna``."""
+    meta = catalog_metadata(space.space, Selection(components=components, max_designs=max_designs))
+    return replace(meta, assignments=space.assignments, canonical_rule=DNA_RULE, dna=space.setting)
+
+
 def check_dna_rows(parts: CatalogParts) -> None:
     """Recompute the DNA catalog ``parts`` from its settings; raise unless its rows are exactly those designs."""
     import pyarrow as pa
@@ -234,6 +242,14 @@ def check_dna_rows(parts: CatalogParts) -> None:
         raise CatalogError(f"{path}: damaged: its dna windows are not the ones its scaffold has at its scale")
     filters = settings.filters if isinstance(settings.filters, Filters) else Filters()
     components, max_designs = filters.components, filters.max_designs
+    try:
+        again = dna_metadata(space, components, max_designs).to_json()
+    except LkspaceError as exc:
+        raise CatalogError(f"{path}: damaged: its filters are not ones lkspace writes: {exc}") from None
+    if settings.to_json() != again or parts.footer.shard is not None:  # counts, rule, tolerance: edited and sealed
+        raise CatalogError(
+            f"{path}: damaged: its recorded settings (counts, filters, shard) are not the ones its scaffold and scale give"
+        )
     expected = pa.Table.from_batches(
         list(dna_batches(space, components, max_designs)), schema=expected_schema(settings)
     )

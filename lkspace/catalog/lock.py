@@ -86,13 +86,13 @@ def _holder(lock: str) -> LockHolder | None:
             return None
         with open(lock, encoding="utf-8") as fh:
             data = json.load(fh)
-    except (OSError, ValueError):
+    except (OSError, ValueError, RecursionError):  # RecursionError: nested past the stack
         return None
     if not isinstance(data, dict):
         return None
     pid, host, started = data.get("pid"), data.get("host"), data.get("started")
-    if not isinstance(pid, int) or not isinstance(host, str):
-        return None
+    if isinstance(pid, bool) or not isinstance(pid, int) or not 0 < pid < 2**31 or not isinstance(host, str):
+        return None  # not a process number (os.kill overflowed past a C int)
     return LockHolder(pid, host, str(started))
 
 

@@ -35,7 +35,12 @@ FORMAT_VERSIONS = (1,)
 """Catalog format versions this lkspace reads."""
 
 LATER_KEYS = ("symmetry_tolerance",)
-"""Settings recorded since format version 1 was fixed: a catalog without one was written before it existed."""
+"""Settings recorded since format version 1 was fixed: a catalog without one was written before it existed.
+
+Such a catalog has no ``digest`` either (footers were sealed after these were recorded,
+2026-12-02): a sealed footer without one is damaged
+(:meth:`~lkspace.catalog.records.PartFooter.from_json`).
+"""
 
 
 class Unrecorded(Enum):
@@ -72,7 +77,7 @@ def decode(raw: bytes | str, where: str) -> Json:
     """Parse the JSON text ``raw`` of ``where`` (``lkspace`` metadata or a manifest)."""
     try:
         data: Json = json.loads(raw)
-    except (UnicodeDecodeError, ValueError):
+    except (UnicodeDecodeError, ValueError, RecursionError):  # RecursionError: nested past the stack
         raise CatalogError(
             f"{where}: the 'lkspace' metadata is not valid JSON (damaged, or not written by lkspace)"
         ) from None

@@ -50,6 +50,25 @@ class Selection:
     identify: bool = False
     by_key: bool = False
 
+    def __post_init__(self) -> None:
+        """Refuse a mode lkspace does not walk, counts below 1 and a seed below 0.
+
+        They had given 0 rows, every row (``max_designs=-3``), the designs walk (``mode="bogus"``)
+        or an internal error (``seed=-1``).
+        """
+        from ..design.space import WALK_MODES
+        from ..errors import UsageError
+
+        if self.mode not in WALK_MODES:
+            raise UsageError(f"mode {self.mode!r}: use one of {', '.join(WALK_MODES)}", parameter="mode")
+        for name in ("components", "max_designs", "sample", "seed"):
+            value = getattr(self, name)
+            least = 0 if name == "seed" else 1
+            if value is None and name != "seed":
+                continue
+            if isinstance(value, bool) or not isinstance(value, int) or value < least:
+                raise UsageError(f"{name}: must be an integer of at least {least}, got {value!r}", parameter=name)
+
 
 @dataclass(frozen=True)
 class Execution:

@@ -162,5 +162,22 @@ def make_plan(space: DesignSpace, selection: Selection, execution: Execution) ->
     return Plan(rows, size, split_classes(weights, shards))
 
 
+def plan_fingerprint(space: DesignSpace, selection: Selection, parts: int) -> str:
+    """Return the fingerprint of the plan of a run of ``space`` and ``selection`` cut into ``parts`` parts.
+
+    What the ``shard`` of every file of such a catalog records (:attr:`Plan.fingerprint`);
+    :func:`~lkspace.catalog.verify.verify_catalog` computes it again.  One part is one
+    range, whatever the space (no counts needed).
+
+    Raises
+    ------
+    LkspaceError
+        ``parts`` that no run of these settings is cut into.
+    """
+    if parts == 1:
+        return Plan(0, 0, None).fingerprint
+    return make_plan(space, selection, Execution(shards=parts, allow_large=True)).fingerprint
+
+
 def _gb(n: int) -> str:
     return f"{n / 1e9:.1f} GB" if n >= 1e8 else f"{n / 1e6:.1f} MB"

@@ -22,6 +22,7 @@ from dataclasses import dataclass, field
 
 from ..errors import CatalogError
 from .metadata import (
+    LATER_KEYS,
     CatalogMetadata,
     Json,
     JsonObject,
@@ -193,13 +194,20 @@ class PartFooter:
 
     @classmethod
     def from_json(cls, data: Json, where: str) -> PartFooter:
-        """Read the ``lkspace`` metadata of the file ``where``; a footer's ``digest`` is checked."""
+        """Read the ``lkspace`` metadata of the file ``where``; a footer's ``digest`` is checked.
+
+        A footer with a digest must record every setting: lkspace sealed footers only after it
+        recorded the :data:`~lkspace.catalog.metadata.LATER_KEYS` (an older catalog lacks both).
+        """
         meta = checked_header(data, where)
         digest = meta.get("digest")
         if digest is not None and digest != metadata_digest(meta):
             raise CatalogError(
                 f"{where}: damaged: its 'lkspace' metadata does not match the digest it was written with"
             )
+        missing = [k for k in LATER_KEYS if k not in meta]
+        if digest is not None and missing:  # every lkspace that seals its footers records them
+            raise CatalogError(f"{where}: damaged: its 'lkspace' metadata has a digest but no {missing[0]}")
         shard = meta.get("shard")
         return cls(
             CatalogMetadata.from_json(meta, where),

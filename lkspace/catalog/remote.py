@@ -82,7 +82,7 @@ def check_remote(url: str, argument: str = "path") -> None:
         with fs.open(root, "rb") as fh:
             raw = (pq.read_metadata(fh).metadata or {}).get(METADATA_KEY)
         meta: Json = json.loads(raw) if raw is not None else None
-    except (OSError, ValueError, pa.ArrowException):
+    except (OSError, ValueError, RecursionError, pa.ArrowException):
         meta = None
     if not lkspace_mark(meta):
         raise ExportError(

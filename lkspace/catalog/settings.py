@@ -21,16 +21,17 @@ from ..model.scaffold import Scaffold
 from ..symmetry.tolerance import resolve_tolerance
 from .metadata import (
     FORMAT_VERSION,
-    LATER_KEYS,
     UNRECORDED,
     CatalogMetadata,
     Filters,
     JsonObject,
     ScaffoldInfo,
     Unrecorded,
+    shown,
 )
 from .options import Selection
-from .records import PartFooter, PartSummary
+from .plan import plan_fingerprint
+from .records import PartFooter, PartSummary, Shard
 from .writer import tally
 
 CANONICAL_RULE = (
@@ -59,13 +60,18 @@ def catalog_metadata(space: DesignSpace, selection: Selection) -> CatalogMetadat
     )
 
 
-def check_settings(path: str, settings: CatalogMetadata, scaffold: Scaffold, totals: tuple[PartSummary, ...]) -> None:
+def check_settings(
+    path: str, settings: CatalogMetadata, scaffold: Scaffold, totals: tuple[PartSummary, ...], shard: Shard | None
+) -> None:
     """Raise unless ``settings`` are the ones :func:`catalog_metadata` gives for the space they name.
 
     The counts (``assignments``, ``group_order``, ``acting_order``), the tolerance and the
     canonical rule are computed again from the scaffold, label set, symmetry and selection
     recorded; a setting missing or changed (and sealed again) is refused, and so are
-    ``totals`` (of every file) that the recorded filters could not have given.
+    ``totals`` (of every file) that the recorded filters could not have given and a
+    ``shard`` whose plan is not the one these settings are cut into (or no shard at all).
+    The settings are a sealed footer's: every setting is there
+    (:meth:`~lkspace.catalog.records.PartFooter.from_json`).
     """
     filters = settings.filters if isinstance(settings.filters, Filters) else Filters()
     symmetry = "none" if isinstance(settings.symmetry, Unrecorded) else settings.symmetry
@@ -73,20 +79,25 @@ def check_settings(path: str, settings: CatalogMetadata, scaffold: Scaffold, tot
     sample = None if isinstance(settings.sample, Unrecorded) else settings.sample
     seed = settings.seed if isinstance(settings.seed, int) else 0
     try:
+        selection = Selection(settings.mode, filters.components, filters.max_designs, sample, seed)
         space = make_space(scaffold, np.array(settings.label_set, np.int64), symmetry, filters.no_zero, tolerance)
-        again = catalog_metadata(space, Selection(settings.mode, filters.components, filters.max_designs, sample, seed))
+        again = catalog_metadata(space, selection)
+        plan = None if shard is None else plan_fingerprint(space, selection, shard.count)
     except LkspaceError as exc:
         raise CatalogError(
             f"{path}: damaged: its 'lkspace' metadata names no design space lkspace builds: {exc}"
         ) from None
-    ours, theirs = settings.to_json(), again.to_json()
-    for key in LATER_KEYS:  # not recorded by an older lkspace
-        if key not in ours:
-            theirs.pop(key, None)
-    if ours != theirs or not _filtered(settings, filters, totals):
+    if settings.to_json() != again.to_json() or not _filtered(settings, filters, totals):
         raise CatalogError(
             f"{path}: damaged: its recorded settings (label set, symmetry, counts, filters) are not the ones "
             "its scaffold and label set give"
+        )
+    if shard is None:
+        raise CatalogError(f"{path}: damaged: its 'lkspace' metadata has no shard (part number, part count, plan)")
+    if shard.plan != plan:
+        raise CatalogError(
+            f"{path}: damaged: its recorded plan {shown(shard.plan)} is not the one its settings are cut "
+            f"into in {shard.count:,} part{'s' if shard.count > 1 else ''}"
         )
 
 
@@ -132,10 +143,17 @@ def check_totals(file: str, totals: PartSummary, label_set: tuple[int, ...]) -> 
     by: dict[str, int] = {}
     covered = 0
     try:
-        for batch in pq.ParquetFile(file).iter_batches(columns=["labels", "components", "orbit_size"]):
+        parquet = pq.ParquetFile(file)
+        keyed = "key" in parquet.schema_arrow.names  # a designs catalog: the labels again, packed
+        for batch in parquet.iter_batches(columns=["labels", "components", "orbit_size", *(["key"] if keyed else [])]):
             covered = tally(batch, by, covered)
-            if not np.isin(batch.column("labels").flatten().to_numpy(), label_set).all():
+            labels = batch.column("labels").flatten().to_numpy()
+            if not np.isin(labels, label_set).all():
                 raise CatalogError(f"{file}: damaged: it holds labels outside the ones it keeps, {list(label_set)}")
+            if keyed and not _same_labels(labels, batch.column("key")):
+                raise CatalogError(f"{file}: damaged: a row's labels are not the ones its key holds")
+    except CatalogError:
+        raise
     except (OSError, pa.ArrowException, ValueError) as exc:
         reason = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
         raise CatalogError(f"{file}: damaged: {reason}") from None
@@ -145,3 +163,9 @@ def check_totals(file: str, totals: PartSummary, label_set: tuple[int, ...]) -> 
             f"{file}: damaged: its recorded totals (rows by components, assignments covered) "
             "are missing or not the ones its rows add up to"
         )
+
+
+def _same_labels(labels: np.ndarray, keys: pa.Array) -> bool:
+    """Whether the flattened ``labels`` of a batch are its ``key`` column's bytes (one int8 per edge, row after row)."""
+    packed = np.frombuffer(keys.buffers()[1], np.int8)[keys.offset * keys.type.byte_width :][: len(labels)]
+    return keys.null_count == 0 and len(packed) == len(labels) and np.array_equal(packed, labels)

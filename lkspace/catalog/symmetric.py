@@ -20,13 +20,13 @@ import numpy as np
 from ..design.invariant import InvariantSpace, make_invariant_space
 from ..design.invariant_walk import MAX_FIXED, invariant_blocks
 from ..design.space import DesignSpace
-from ..errors import CatalogError
+from ..errors import CatalogError, LkspaceError
 from ..model.scaffold import Scaffold
 from ..model.specs import LabelSetSpec, parse_label_set
 from ..symmetry.group import SymmetryMode
 from .batches import gather_blocks
 from .lock import catalog_lock
-from .metadata import CatalogMetadata, json_object
+from .metadata import CatalogMetadata, Filters, Unrecorded, json_object
 from .options import Selection
 from .records import PartFooter
 from .schema import ROW_GROUP, expected_schema
@@ -170,3 +170,32 @@ def write_invariant_catalog(
         "label_set": space.label_set.tolist(),
         "invariant": meta.invariant,
     }
+
+
+def check_invariant_settings(path: str, footer: PartFooter, scaffold: Scaffold) -> None:
+    """Raise unless a symmetric catalog's settings are the ones :func:`invariant_metadata` gives for its subgroup.
+
+    Computed again from the scaffold, label set, symmetry, subgroup and filters recorded: a
+    count, the subgroup's summary or the rule edited (and sealed again) had verified, and so
+    had a shard, which a symmetric catalog (one file) never has.
+    """
+    settings = footer.settings
+    invariant = settings.invariant or {}
+    filters = settings.filters if isinstance(settings.filters, Filters) else Filters()
+    symmetry = "none" if isinstance(settings.symmetry, Unrecorded) else settings.symmetry
+    try:
+        labels = np.array(settings.label_set, np.int64)
+        subgroup = invariant.get("subgroup")
+        if not isinstance(subgroup, str):
+            raise CatalogError(f"subgroup {subgroup!r} is not a name")
+        space = make_invariant_space(scaffold, labels, symmetry, subgroup, filters.no_zero)
+        again = invariant_metadata(space, filters.components, filters.max_designs)
+    except LkspaceError as exc:
+        raise CatalogError(
+            f"{path}: damaged: its 'lkspace' metadata names no symmetric space lkspace builds: {exc}"
+        ) from None
+    if settings.to_json() != again.to_json() or footer.shard is not None:
+        raise CatalogError(
+            f"{path}: damaged: its recorded settings (subgroup, counts, filters, shard) are not the ones its scaffold, "
+            "label set and subgroup give"
+        )

@@ -152,7 +152,7 @@ def foreign_reason(path: str) -> str | None:
     try:
         raw = (pq.read_metadata(path).metadata or {}).get(b"lkspace")  # schema.METADATA_KEY: schema imports pyarrow
         meta: Json = json.loads(raw) if raw is not None else None
-    except (OSError, ValueError, pa.ArrowException):
+    except (OSError, ValueError, RecursionError, pa.ArrowException):
         return "is a file that is not an lkspace catalog (not a readable Parquet file)"
     if not lkspace_mark(meta):
         return "is a Parquet file that is not an lkspace catalog (no 'lkspace' metadata)"
@@ -214,7 +214,7 @@ def _manifest_json(folder: str) -> Json:
             return None
         with open(where, encoding="utf-8") as fh:
             data: Json = json.load(fh)
-    except (OSError, ValueError):
+    except (OSError, ValueError, RecursionError):  # RecursionError: nested past the stack
         return None
     return data
 

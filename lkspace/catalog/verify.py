@@ -381,7 +381,11 @@ def verify_catalog(path: str | os.PathLike[str]) -> CatalogCheck:
         check_dna_rows(parts)
         checks = "footer, CRC-32 of every data page, every row recomputed (DNA designs)"
     elif settings.invariant is None:  # a symmetric catalog's counts are its subgroup's (lkspace.catalog.symmetric)
-        check_settings(parts.files[0], settings, scaffold, parts.totals)
+        check_settings(parts.files[0], settings, scaffold, parts.totals, parts.footer.shard)
+    else:
+        from .symmetric import check_invariant_settings
+
+        check_invariant_settings(parts.files[0], parts.footer, scaffold)
     no_zero = isinstance(settings.filters, Filters) and settings.filters.no_zero
     kept_labels = tuple(t for t in settings.label_set if t or not no_zero)
     for file, totals in zip(parts.files, parts.totals, strict=True):

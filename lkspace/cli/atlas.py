@@ -19,7 +19,7 @@ from .common import (
     symmetry_tolerance,
 )
 from .export import is_catalog
-from .numbers import Finite
+from .numbers import Count, Finite
 
 
 @click.command("atlas")
@@ -36,14 +36,12 @@ from .numbers import Finite
 )
 @click.option(
     "--pictures",
-    type=click.IntRange(0, 200),
+    type=Count(0, 200),
     default=12,
     show_default=True,
     help="PNG pictures of the simplest designs of the first N named types.",
 )
-@click.option(
-    "--processes", type=click.IntRange(1, 256), default=1, show_default=True, help="Worker processes identifying."
-)
+@click.option("--processes", type=Count(1, 256), default=1, show_default=True, help="Worker processes identifying.")
 @click.option(
     "--time-limit",
     type=Finite(0),
@@ -59,7 +57,7 @@ from .numbers import Finite
     metavar="S",
     help="Identify for at most S seconds of wall-clock time, then write the atlas of the designs done (complete: false); 0: no limit.",
 )
-@click.option("--seed", type=click.IntRange(0, 2**31 - 1), default=0, show_default=True, help="Projection seed.")
+@click.option("--seed", type=Count(0, 2**31 - 1), default=0, show_default=True, help="Projection seed.")
 @json_option
 def atlas_cmd(
     mesh: str | None,

@@ -42,7 +42,7 @@ def construct_cmd(type_name: str | None, pd_text: str | None, output: str, as_js
     if pd_text is not None:
         try:
             pd = json.loads(pd_text.replace("(", "[").replace(")", "]").replace("X", "").replace("PD", ""))
-        except ValueError as exc:
+        except (ValueError, RecursionError) as exc:
             raise UsageError(f"--pd: not a PD code ({exc.args[0]}); write it as [[1,5,2,4],[3,1,4,6],...]") from exc
         if not isinstance(pd, list):
             raise UsageError("--pd: expected a list of crossings such as [[1,5,2,4],[3,1,4,6],[5,3,6,2]]")

@@ -17,15 +17,13 @@ from ..words import plural
 from .common import Context, emit
 from .export import export_cmd as plain_export
 from .export import resolve_design
-from .numbers import Finite
+from .numbers import Count, Finite
 
 DNA_KEEPS = {"mesh", "twist_spec", "null_spec", "row", "output", "as_json"}
 """Parameters of the plain export that a DNA export reads; any other one set is refused."""
 
 DNA_OPTIONS = [
-    click.Option(
-        ["--seed"], type=click.IntRange(0), default=None, help="DNA (.oxdna): seed of the random bases (default 0)."
-    ),
+    click.Option(["--seed"], type=Count(0), default=None, help="DNA (.oxdna): seed of the random bases (default 0)."),
     click.Option(
         ["--sequence"],
         metavar="BASES",

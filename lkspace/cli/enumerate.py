@@ -28,6 +28,7 @@ from .common import (
     symmetry_tolerance,
 )
 from .flags import flags_in
+from .numbers import Count
 
 if TYPE_CHECKING:
     from ..catalog.transaction import Destination
@@ -110,23 +111,21 @@ def _where_it_ran(
     show_default=True,
     help="One row per design, per residue-class orbit (topology), or per dual spanning tree.",
 )
-@click.option("--components", type=click.IntRange(min=1), metavar="N", help="Keep designs with N components.")
+@click.option("--components", type=Count(min=1), metavar="N", help="Keep designs with N components.")
 @click.option("--no-zero", is_flag=True, help="Leave out designs with a zero label.")
-@click.option("--max-designs", type=click.IntRange(min=1), metavar="M", help="Stop after M rows.")
+@click.option("--max-designs", type=Count(min=1), metavar="M", help="Stop after M rows.")
 @click.option("--count-only", is_flag=True, help="Print exact totals (Burnside) without writing rows.")
 @click.option(
     "--sample",
-    type=click.IntRange(min=1),
+    type=Count(min=1),
     metavar="N",
     help="spanning-trees mode: sample N uniform spanning trees instead of listing all.",
 )
-@click.option("--seed", type=int, default=0, show_default=True, help="Random seed for --sample.")
-@click.option(
-    "--jobs", type=click.IntRange(1, MAX_JOBS), default=1, show_default=True, help="Parallel worker processes."
-)
+@click.option("--seed", type=Count(min=0), default=0, show_default=True, help="Random seed for --sample.")
+@click.option("--jobs", type=Count(1, MAX_JOBS), default=1, show_default=True, help="Parallel worker processes.")
 @click.option(
     "--shards",
-    type=click.IntRange(1, MAX_SHARDS),
+    type=Count(1, MAX_SHARDS),
     help="Parts of the catalog (default: one per million designs; one file up to a million).",
 )
 @click.option(

@@ -15,7 +15,7 @@ from ..io.sources import reads_builtin
 from ..model.scaffold import Scaffold
 from ..words import plural
 from .common import Context, emit, json_option, labels_of, load_mesh, nulls_of, weld_option
-from .numbers import Finite
+from .numbers import Count, Finite
 from .relaxing import check_seed, relax_options, relaxed
 
 if TYPE_CHECKING:
@@ -90,7 +90,7 @@ def design_options(func: F) -> F:
             "--twist", "twist_spec", metavar="SPEC", help="One integer, a comma list per edge, or a file naming edges."
         ),
         click.option("--null", "null_spec", metavar="SPEC", help="Null edge-sides as FACE.SIDE, comma separated."),
-        click.option("--row", type=click.IntRange(min=0), help="Row of CATALOG.parquet to use (instead of --twist)."),
+        click.option("--row", type=Count(min=0), help="Row of CATALOG.parquet to use (instead of --twist)."),
         click.option(
             "--radius",
             "--inset",

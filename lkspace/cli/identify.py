@@ -8,7 +8,7 @@ import numpy as np
 from ..words import plural
 from .common import Context, emit, json_option
 from .export import design_options, params_of, resolve_design
-from .numbers import Finite
+from .numbers import Count, Finite
 
 TIME_LIMIT = 60.0
 """Default ``--time-limit`` of ``identify`` in seconds (:data:`lkspace.knots.budget.TIME_LIMIT`)."""
@@ -18,7 +18,7 @@ TIME_LIMIT = 60.0
 @design_options
 @click.option(
     "--seed",
-    type=click.IntRange(0, 2**31 - 1),
+    type=Count(0, 2**31 - 1),
     default=0,
     show_default=True,
     help="Seed of the generic projection (the next two are tried if it is not generic).",

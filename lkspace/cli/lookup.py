@@ -8,12 +8,12 @@ from __future__ import annotations
 
 import click
 
+from .numbers import Count
+
 
 @click.command("lookup")
 @click.argument("name")
-@click.option(
-    "--limit", type=click.IntRange(1, 10_000), default=10, show_default=True, help="Designs to list, simplest first."
-)
+@click.option("--limit", type=Count(1, 10_000), default=10, show_default=True, help="Designs to list, simplest first.")
 @click.option("--scaffold", metavar="S", default=None, help="Only designs on the scaffold S (a built-in name).")
 @click.option(
     "--atlas",

@@ -8,7 +8,7 @@ from typing import TYPE_CHECKING, Any, TypeVar
 import click
 
 from ..errors import UsageError
-from .numbers import Finite
+from .numbers import Count, Finite
 
 if TYPE_CHECKING:
     from ..geometry.realization import Realization
@@ -26,7 +26,7 @@ def relax_options(func: F) -> F:
         ),
         click.option(
             "--relax-steps",
-            type=click.IntRange(1),
+            type=Count(1),
             metavar="N",
             help="Relax (implies --relax) for at most N steps (default 50,000; designs converge in hundreds to thousands).",
         ),
@@ -43,19 +43,19 @@ def relax_options(func: F) -> F:
         ),
         click.option(
             "--relax-points",
-            type=click.IntRange(16, 64),
+            type=Count(16, 64),
             metavar="N",
             help="Refine (implies --relax-fine) with N flow points per rope diameter in the last pass, 16 to 64 (default 16): tighter, slower.",
         ),
         click.option(
             "--relax-escape",
-            type=click.IntRange(1),
+            type=Count(1),
             metavar="N",
             help="Relax (implies --relax), then N escape rounds: shake the tightest shape smoothly (seeded), relax it again, keep it if tighter.",
         ),
         click.option(
             "--relax-seed",
-            type=click.IntRange(0),
+            type=Count(0),
             metavar="S",
             help="Seed of the --relax-escape rounds' shakes, an integer >= 0 (default 0): another seed, other escapes.",
         ),

@@ -24,7 +24,7 @@ from .common import (
     usage_errors,
 )
 from .edges import edge_values, fix_label
-from .numbers import Finite
+from .numbers import Count, Finite
 
 MAX_SEED = 2**31 - 1
 """Largest ``--seed`` (CP-SAT takes a 32-bit signed seed)."""
@@ -48,7 +48,7 @@ MAX_COUNT = 10_000
 @click.option(
     "--components",
     "-n",
-    type=click.IntRange(min=1),
+    type=Count(min=1),
     default=None,
     help="Exact number of strand components N (more than the mesh can have: infeasible).",
 )
@@ -76,7 +76,7 @@ MAX_COUNT = 10_000
 @click.option("--signed", is_flag=True, help="With --linking-matrix: compare signs too (strands as traced).")
 @click.option(
     "--processes",
-    type=click.IntRange(min=1, max=256),
+    type=Count(min=1, max=256),
     default=1,
     show_default=True,
     help="With --type/--linking-matrix: worker processes screening designs.",
@@ -99,7 +99,7 @@ MAX_COUNT = 10_000
 )
 @click.option(
     "--count",
-    type=click.IntRange(min=1, max=MAX_COUNT),
+    type=Count(min=1, max=MAX_COUNT),
     default=1,
     show_default=True,
     help="Distinct designs wanted (they differ in how the strands connect).",
@@ -128,14 +128,14 @@ MAX_COUNT = 10_000
 )
 @click.option(
     "--workers",
-    type=click.IntRange(min=0, max=256),
+    type=Count(min=0, max=256),
     default=0,
     show_default=True,
     help="CP-SAT search workers (0: one per core).",
 )
 @click.option(
     "--seed",
-    type=click.IntRange(0, MAX_SEED),
+    type=Count(0, MAX_SEED),
     default=0,
     show_default=True,
     help="Random seed (search and spanning trees).",

@@ -9,11 +9,12 @@ import click
 from ..errors import MissingDependencyError
 from ..io.sources import reads_builtin
 from .common import Context, load_mesh
+from .numbers import Count
 
 
 @click.command("studio")
 @click.argument("mesh", required=False, metavar="[MESH|CATALOG.parquet]")
-@click.option("--port", type=click.IntRange(0, 65535), default=8765, show_default=True, help="Port (0: any free port).")
+@click.option("--port", type=Count(0, 65535), default=8765, show_default=True, help="Port (0: any free port).")
 @click.option(
     "--host", default="127.0.0.1", show_default=True, help="Address to listen on (others than 127.0.0.1 warn)."
 )

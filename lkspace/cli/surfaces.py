@@ -9,16 +9,13 @@ import click
 from ..errors import UsageError
 from ..words import plural
 from .common import Context, emit, json_option, load_mesh
+from .numbers import Count
 
 
 @click.command("surfaces")
 @click.argument("graph")
-@click.option(
-    "--max-length", type=click.IntRange(3, 12), default=6, show_default=True, help="Longest cycle that may be a face."
-)
-@click.option(
-    "--per-edge", type=click.IntRange(1, 6), default=2, show_default=True, help="Faces on every edge (2: surfaces)."
-)
+@click.option("--max-length", type=Count(3, 12), default=6, show_default=True, help="Longest cycle that may be a face.")
+@click.option("--per-edge", type=Count(1, 6), default=2, show_default=True, help="Faces on every edge (2: surfaces).")
 @click.option("--labels", "labels_spec", metavar="SET", help="Also count designs with labels from SET (e.g. -1..1).")
 @click.option(
     "--own-faces", is_flag=True, help="MESH's own faces only: its radial orders and structures, coordinates ignored."

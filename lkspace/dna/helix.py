@@ -156,6 +156,47 @@ def fit_scale(
     return scale
 
 
+def check_size(scaffold: Scaffold, bp: np.ndarray, length: np.ndarray, scale: float | None) -> None:
+    """Refuse a design of more than :data:`MAX_NUCLEOTIDES` before any is placed: helices, then linkers at ``scale``.
+
+    The linkers' count is bounded by the triangle inequality: the linker at a corner spans at
+    most the slack its two edges leave at that vertex (``scale * length - (bp - 1) * RISE_NM``
+    in all, over both ends of an edge) and the helices' radii, one nucleotide per
+    ``LINK_STEP_NM`` and one more.  At the default scale the shortest edge for its base pairs
+    sets the scale, so long edges beside it leave long linkers.
+    """
+    helices = 2.0 * float(bp.sum(dtype=np.float64))
+    name, most = scaffold.name, MAX_NUCLEOTIDES
+    if helices > most:
+        raise TooLargeError(
+            f"{name}: its helices alone need {_count(helices)} nucleotides, past the {most:,} lkspace builds; "
+            "use smaller twists (each half turn is about 5 base pairs) or a smaller mesh",
+            parameter="labels",
+        )
+    if scale is None:
+        return
+    linkers = linker_bound(scaffold, bp, length, scale)
+    if helices + linkers > most:
+        raise TooLargeError(
+            f"{name}: at {scale:.4g} nm per mesh unit its linkers could need {linkers:,.0f} nucleotides beside "
+            f"{helices:,.0f} in its helices, past the {most:,} lkspace builds; make its edges more even in length "
+            "for their twists (the shortest for its base pairs sets the scale) or use a smaller mesh",
+            parameter="nm_per_unit",
+        )
+
+
+def linker_bound(scaffold: Scaffold, bp: np.ndarray, length: np.ndarray, scale: float) -> float:
+    """Return at most how many unpaired nucleotides the corner linkers take at ``scale`` (:func:`check_size`)."""
+    slack = np.maximum(scale * length - (bp - 1) * RISE_NM, 0.0)
+    per_corner = 2 * UNIT_NM * (CM_RADIUS + BACKBONE) / LINK_STEP_NM + 1
+    return 2 * float(slack.sum()) / LINK_STEP_NM + scaffold.n_corners * per_corner
+
+
+def _count(n: float) -> str:
+    """``n`` in words for a message: with commas up to 10**15 (exact there), past it in powers of ten."""
+    return f"{n:,.0f}" if n < 1e15 else f"{n:.3g}"
+
+
 def place(
     scaffold: Scaffold, labels: np.ndarray, bp: np.ndarray, passes: Passes, nm_per_unit: float | None
 ) -> Nucleotides:
@@ -163,7 +204,9 @@ def place(
     d, e1, e2, length = edge_frames(scaffold)
     theta_a = start_angles(scaffold, d, e1, e2)
     gaps = vertex_gaps(scaffold, d)
+    check_size(scaffold, bp, length, None)
     s = fit_scale(scaffold, bp, gaps, length, nm_per_unit)
+    check_size(scaffold, bp, length, s)
     ab = scaffold.edge_vertices
     pts = scaffold.vertices * s
     t = SIGN * np.asarray(labels, np.float64)

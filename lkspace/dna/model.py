@@ -58,7 +58,8 @@ class Passes:
 def base_pairs(labels: np.ndarray, bp_per_turn: float = BP_PER_TURN) -> np.ndarray:
     """(n_edges,) int64: base pairs of each edge, ``round(bp_per_turn * t / 2)`` (at least 1)."""
     t = SIGN * np.asarray(labels, np.int64)
-    return np.maximum(np.round(bp_per_turn * t / 2.0).astype(np.int64), 1)
+    # at most 2**62: a twist near 2**63 had wrapped around in the cast to one base pair (a wrong design, silently)
+    return np.clip(np.round(bp_per_turn * t / 2.0), 1, 2.0**62).astype(np.int64)
 
 
 def check_buildable(scaffold: Scaffold, labels: np.ndarray) -> None:

@@ -68,15 +68,39 @@ def natural_twist(scaffold: Scaffold, nm_per_unit: float, bp_per_turn: float = B
     d, _e1, _e2, length = edge_frames(scaffold)
     gaps = vertex_gaps(scaffold, d)
     ab = scaffold.edge_vertices
-    n = (nm_per_unit * length - gaps[ab[:, 0]] - gaps[ab[:, 1]]) / RISE_NM + 1
-    return np.asarray(2 * n / bp_per_turn)
+    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):  # inf at a scale past floats: refused after
+        n = (nm_per_unit * length - gaps[ab[:, 0]] - gaps[ab[:, 1]]) / RISE_NM + 1
+        return np.asarray(2 * n / bp_per_turn)
+
+
+MAX_WINDOW_LABEL = 127
+"""Largest label a DNA window holds: a catalog's labels are int8 (about 670 base pairs on one edge)."""
 
 
 def window_labels(
     scaffold: Scaffold, nm_per_unit: float, window: float = 1.0, bp_per_turn: float = BP_PER_TURN
 ) -> list[list[int]]:
-    """Per edge, the labels within ``window`` half turns of its natural twist at ``nm_per_unit`` (at least 1), ascending."""
+    """Per edge, the labels within ``window`` half turns of its natural twist at ``nm_per_unit`` (at least 1), ascending.
+
+    A window past :data:`MAX_WINDOW_LABEL` is refused, naming the largest scale that fits
+    (``nm_per_unit`` 1e308 had been an internal error: labels past int8).
+    """
     natural = natural_twist(scaffold, nm_per_unit, bp_per_turn)
+    top = natural + window
+    if not np.all(np.isfinite(top)) or top.max(initial=0.0) > MAX_WINDOW_LABEL:
+        past = f"past label {MAX_WINDOW_LABEL} (about {MAX_WINDOW_LABEL * bp_per_turn / 2:.0f} base pairs on one edge)"
+        if not window < MAX_WINDOW_LABEL - 1:
+            raise TooLargeError(
+                f"window: {window:g} half turns about each edge's natural twist reaches {past}", parameter="window"
+            )
+        d, _e1, _e2, length = edge_frames(scaffold)
+        gaps, ab = vertex_gaps(scaffold, d), scaffold.edge_vertices
+        turns = (MAX_WINDOW_LABEL - window) * bp_per_turn / 2  # base pairs of the largest label
+        fits = float(np.min(((turns - 1) * RISE_NM + gaps[ab[:, 0]] + gaps[ab[:, 1]]) / length))
+        raise TooLargeError(
+            f"{scaffold.name}: at {nm_per_unit:g} nm per mesh unit an edge's window reaches {past}; "
+            f"use a scale of at most {max(fits, 0.0):.4g} or a smaller `window`"
+        )
     lo = np.maximum(np.ceil(natural - window), 1).astype(np.int64)
     hi = np.floor(natural + window).astype(np.int64)
     return [list(range(a, b + 1)) for a, b in zip(lo.tolist(), hi.tolist(), strict=True)]

@@ -1,11 +1,14 @@
 """Wavefront OBJ polygon meshes.
 
-Read: ``v x y z [w]`` and ``f a b c ...`` lines, face entries ``a``, ``a/b``, ``a//c`` or
-``a/b/c`` with 1-based or negative (relative) indices; ``#`` comments; ``vt``, ``vn``,
-``vp``, ``o``, ``g``, ``s``, ``usemtl``, ``mtllib`` and ``l`` lines are ignored.  Any other
-malformed line is an error naming the file and line.  A UTF-8 byte-order mark is fine;
-coordinates must be finite and within ``MAX_COORDINATE``.  ``weld`` merges vertices closer
-than a tolerance (:mod:`lkspace.io.weld`) before the scaffold is built.
+Read: ``v x y z [w]`` and ``v x y z r g b [a]`` lines (a weight or a vertex colour, as
+Blender and MeshLab write, is ignored) and ``f a b c ...`` lines, face entries ``a``,
+``a/b``, ``a//c`` or ``a/b/c`` with 1-based or negative (relative) indices; ``#``
+comments; a line ending in ``\\`` continues on the next; ``vt``, ``vn``, ``vp``, ``o``,
+``g``, ``s``, ``usemtl``, ``mtllib``, ``l`` and ``p`` lines are ignored.  Any other
+malformed line is an error naming the file and line (a continued statement: its first).
+A UTF-8 byte-order mark is fine; coordinates must be finite and within
+``MAX_COORDINATE``.  ``weld`` merges vertices closer than a tolerance
+(:mod:`lkspace.io.weld`) before the scaffold is built.
 """
 
 from __future__ import annotations
@@ -36,12 +39,23 @@ def parse_obj(text: str, name: str = "<obj>", tol: float | bool | None = None) -
     """
     vertices: list[list[float]] = []
     faces: list[list[int]] = []
-    lines = text.removeprefix("\ufeff").splitlines()  # a byte-order mark is no statement
+    # a byte-order mark is no statement; lines end at \n, \r\n or \r only (as editors number them)
+    lines = text.removeprefix("\ufeff").replace("\r\n", "\n").replace("\r", "\n").split("\n")
     with task(f"reading {name}", total=len(lines)) as step:
+        pending, first = "", 0  # a statement continued on the next line, and its first line
         for start in range(0, len(lines), CHUNK):
             for lineno, raw in enumerate(lines[start : start + CHUNK], start=start + 1):
-                _parse_line(raw, f"{name} line {lineno}", vertices, faces)
+                body = raw.split("#", 1)[0].rstrip()
+                if body.endswith("\\"):
+                    first = first if pending else lineno
+                    pending += body[:-1] + " "
+                    continue
+                where = f"{name} line {first if pending else lineno}"
+                _parse_line(pending + raw, where, vertices, faces)
+                pending = ""
             step.advance(min(CHUNK, len(lines) - start))
+        if pending:  # the last line continued on no line
+            _parse_line(pending, f"{name} line {first}", vertices, faces)
     if not vertices:
         raise ScaffoldError(f"{name}: no vertices ('v' lines) found")
     if not faces:
@@ -63,10 +77,15 @@ def _parse_line(raw: str, where: str, vertices: list[list[float]], faces: list[l
     tag, *parts = line.split()
     shown = raw.strip() if len(raw.strip()) <= 60 else raw.strip()[:57] + "..."
     if tag == "v":
-        if len(parts) not in (3, 4):
-            raise ScaffoldError(f"{where}: vertex needs 3 coordinates, got {len(parts)}: {shown!r}")
+        if len(parts) not in (3, 4, 6, 7):
+            raise ScaffoldError(
+                f"{where}: vertex needs 3 coordinates (then a weight or an r g b colour), got {len(parts)} "
+                f"values: {shown!r}"
+            )
         try:
             xyz = [float(p) for p in parts[:3]]
+            for extra in parts[3:]:  # the weight or colour: unused, but numbers
+                float(extra)
         except ValueError:
             raise ScaffoldError(f"{where}: vertex coordinates must be numbers: {shown!r}") from None
         if not all(abs(x) <= MAX_COORDINATE for x in xyz):  # NaN fails too

@@ -3,7 +3,7 @@
 Every input is checked to be a regular file first (:func:`~lkspace.io.paths.input_file`:
 a FIFO or a device would block), read as bytes, stripped of a UTF-8 byte-order mark and
 decoded as UTF-8; bytes that are not UTF-8 are an error naming the file, the line and
-the byte offset.  JSON nested past :data:`MAX_JSON_DEPTH` is refused before parsing.
+the byte offset.  A file past :data:`MAX_INPUT_BYTES` is refused before it is read.  JSON nested past :data:`MAX_JSON_DEPTH` is refused before parsing.
 """
 
 from __future__ import annotations
@@ -17,6 +17,11 @@ from ..errors import LkspaceError, ScaffoldError
 from .paths import input_file
 
 BOM = b"\xef\xbb\xbf"
+
+MAX_INPUT_BYTES = 64 * 2**20
+"""Largest input text file read (64 MiB): an OBJ takes about 35 times its size in memory while read
+(a 5 MB grid of 90,000 quads: 180 MB), so this bounds a read at about 2 GB; past it, before any byte
+is read, a one-line refusal (a sparse 10 GB file had been read until the machine ran out of memory)."""
 
 MAX_JSON_DEPTH = 64
 """Deepest nesting of ``[`` and ``{`` accepted in an input JSON file (lkspace files need 4)."""
@@ -32,9 +37,17 @@ def read_text(path: str | os.PathLike[str], what: str = "input", error: type[Lks
         raise error(str(exc)) from None
     try:
         with open(text, "rb") as fh:
-            data = fh.read()
+            size = os.fstat(fh.fileno()).st_size
+            if size > MAX_INPUT_BYTES:
+                raise error(
+                    f"{text}: {size / 2**20:,.0f} MiB is past the {MAX_INPUT_BYTES // 2**20} MiB lkspace reads "
+                    f"as {what} input; use a smaller file (a mesh this large has millions of faces: decimate it)"
+                )
+            data = fh.read(MAX_INPUT_BYTES + 1)  # a file grown since: still no more than this
     except OSError as exc:
         raise error(f"{text}: cannot read {what}: {exc.strerror or exc}") from None
+    if len(data) > MAX_INPUT_BYTES:
+        raise error(f"{text}: grew past the {MAX_INPUT_BYTES // 2**20} MiB lkspace reads as {what} input while read")
     if data.startswith(BOM):
         data = data[len(BOM) :]
     try:

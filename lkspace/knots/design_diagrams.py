@@ -12,6 +12,7 @@ from typing import Any
 
 import numpy as np
 
+from ..runtime.workers import interruptible
 from .assembled import assemble_many
 from .assembly import work_array
 from .identification import NameFields
@@ -46,7 +47,7 @@ def homfly_of_link(link: Any) -> tuple[str, int] | None:
     """
     if link.size() > HOMFLY_MAX_CROSSINGS:
         return None
-    return str(link.homfly()), int(link.size())
+    return str(interruptible(link.homfly, 2 ** int(link.size()))), int(link.size())  # work exponential in crossings
 
 
 class DesignDiagrams:

@@ -24,6 +24,7 @@ has every field the geometric path gives but ``min_distance``.
 from __future__ import annotations
 
 import time
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
@@ -34,7 +35,7 @@ from ..runtime.progress import Step
 from ..runtime.workers import interruptible
 from .assembly import assemble_one, work_array
 from .bracket import read_ends, smoothing_order
-from .budget import MAX_CROSSINGS, TimeLimitReached, run_in_time
+from .budget import INLINE_CROSSINGS, MAX_CROSSINGS, TimeLimitReached, run_in_time
 from .identification import Identification, Json, NameFields, Naming
 from .jones import jones_buffer_size, jones_into, jones_kernel
 from .key_names import KeyCache, disk_cache, share_names
@@ -202,7 +203,17 @@ def identify_labels(
             out.append(NameFields.refused(status) if refused else NameFields.of(named, status))
         return out
 
-    fields = share_names(found, cache, name_designs)[0]
+    def shared(stage: Callable[[str], None]) -> tuple[NameFields | None, dict[int, tuple[Naming, str]]]:
+        stage("naming by key")
+        return share_names(found, cache, name_designs)[0], full
+
+    # sharing a key may simplify the diagram and take its HOMFLY-PT polynomial (regina; minutes past
+    # 30 crossings): a wider diagram is named in a child stopped at the time limit, as naming in full is
+    left = None if not time_limit else max(time_limit - (time.monotonic() - t0), 1e-3)
+    try:
+        fields, full = run_in_time(shared, left if len(found.pd) > INLINE_CROSSINGS else None, step)
+    except TimeLimitReached as exc:
+        fields, full = NameFields.refused(f"unknown: time limit {time_limit:g} s reached (during {exc.stage})"), {}
     assert fields is not None
     named, status = full[0] if 0 in full else (naming_of(fields), fields.status)
     named = named_as_split(named)

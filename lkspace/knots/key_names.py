@@ -15,6 +15,7 @@ from fractions import Fraction
 
 import numpy as np
 
+from ..runtime.workers import interruptible
 from .design_diagrams import DesignDiagrams
 from .identification import NameFields
 from .keyed import KEY_VERSION, DesignKeys
@@ -180,7 +181,7 @@ def table_homfly(pd_text: str | None, mirror: bool) -> str | None:
     link = regina.Link.fromPD(json.loads(pd_text))
     if mirror:
         link.changeAll()
-    return str(link.homfly())
+    return str(interruptible(link.homfly, 2 ** int(link.size())))  # its work: exponential in the crossings
 
 
 def trusted(named: NameFields, found: set[tuple[str, bool]]) -> bool:

@@ -34,7 +34,7 @@ def parse_linking_matrix(linking_matrix: str) -> np.ndarray:
         text = linking_matrix.strip()
         rows = json.loads(text) if text.startswith("[") else [r.split(",") for r in text.split(";")]
         matrix = np.array([[int(str(v).strip()) for v in row] for row in rows], dtype=np.int64)
-    except (ValueError, TypeError, OverflowError):
+    except (ValueError, TypeError, OverflowError, RecursionError):
         raise UsageError(
             f"{where}: write integers, rows separated by ';' (e.g. 0,1;1,0) or JSON [[0,1],[1,0]]",
             parameter="linking_matrix",

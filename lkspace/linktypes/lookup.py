@@ -116,7 +116,10 @@ def read_index(path: str | None = None) -> tuple[list[IndexRow], JsonObject]:
             f"atlas {path}: not an atlas index (no {META.decode()} metadata); build one with experiments/build_atlas.py",
             parameter="atlas",
         )
-    meta = json.loads(raw)
+    try:
+        meta = json.loads(raw)
+    except (ValueError, RecursionError):  # ValueError: not UTF-8 or not JSON
+        meta = None
     if not isinstance(meta, dict):
         raise CatalogError(f"atlas {path}: its {META.decode()} metadata is no JSON object", parameter="atlas")
     rows = [IndexRow.from_row(row, f"atlas {path}, row {i}") for i, row in enumerate(table.to_pylist())]

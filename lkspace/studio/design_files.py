@@ -97,7 +97,7 @@ def is_design_file(path: str) -> bool:
         return False
     try:
         return is_design(json.loads(read_text(path, "design")))
-    except (LkspaceError, ValueError):
+    except (LkspaceError, ValueError, RecursionError):
         return False  # not readable as JSON: the scaffold reader says why
 
 
