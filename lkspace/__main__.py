@@ -9,7 +9,10 @@ command.  What Python does before this module runs (its own start-up) is out of 
 Python's cyclic garbage collector runs after every 700 new container objects by default;
 a command makes millions (PD codes as lists, rows as dicts) that are freed by reference
 counting, so here it runs after :data:`GC_EVERY` (15% of the CPU of ``enumerate cube
---labels -1..1 --identify``, the same memory).
+--labels -1..1 --identify``, the same memory).  Once the command is done, what it left is
+frozen (:func:`gc.freeze`): the interpreter's teardown then frees it by reference counting
+and the operating system, without the collector's passes over it (0.2 s of ``enumerate
+cube --labels -1..1 --identify``'s 1.7 s); exit handlers still run.
 """
 
 import gc
@@ -43,6 +46,7 @@ def main() -> None:
     except KeyboardInterrupt:  # the instant before the command line's handling starts
         _stop(signal.SIGINT, None)
     signal.signal(signal.SIGINT, _stop)  # the interpreter's teardown
+    gc.freeze()
     sys.exit(code)
 
 

@@ -9,6 +9,8 @@ import sys
 import pandas as pd
 import pyarrow.parquet as pq
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from lkspace.catalog.reader import read_metadata
 from lkspace.cli import main
@@ -109,3 +111,36 @@ def test_enumerate_identify_imports_neither_pandas_nor_scipys_spatial_tools(tmp_
     assert run.returncode == 0, run.stderr
     assert "LOADED []" in run.stderr
     assert pq.read_table(out).column("knot_name").null_count < pq.read_table(out).num_rows
+
+
+@settings(max_examples=60, deadline=None)
+@given(
+    rows=st.lists(st.lists(st.integers(-128, 127), min_size=5, max_size=5), max_size=12),
+    cuts=st.lists(st.integers(0, 12), max_size=3),
+    bits=st.sampled_from([8, 16, 64]),
+    large=st.booleans(),
+    start=st.integers(0, 3),
+)
+def test_label_matrix_reads_the_arrow_buffers_as_the_lists_hold_them(rows, cuts, bits, large, start):
+    """Chunks, slices, widths and large lists: the matrix from the raw buffers equals the lists' own values."""
+    import numpy as np
+    import pyarrow as pa
+
+    from lkspace.catalog.identified import label_matrix
+    from lkspace.errors import CatalogError
+
+    item = pa.int8() if bits == 8 else pa.int16() if bits == 16 else pa.int64()
+    kind = pa.large_list(item) if large else pa.list_(item)
+    whole = pa.array(rows, kind).slice(min(start, len(rows)))
+    bounds = sorted({0, len(whole), *(min(c, len(whole)) for c in cuts)})
+    column = pa.chunked_array([whole.slice(a, b - a) for a, b in zip(bounds[:-1], bounds[1:])], kind)
+    expected = np.array(whole.to_pylist(), np.int64).reshape(-1, 5)
+    assert np.array_equal(label_matrix(column, 5), expected)
+    if len(whole):
+        with pytest.raises(CatalogError, match="lists of 4 labels"):
+            label_matrix(column, 4)
+        ragged = pa.chunked_array([pa.array([*rows[:1], rows[0][:4]], kind)])
+        with pytest.raises(CatalogError, match="lists of 5 labels"):
+            label_matrix(ragged, 5)
+        with pytest.raises(CatalogError, match="without nulls"):
+            label_matrix(pa.chunked_array([pa.array([rows[0], None], kind)]), 5)

@@ -45,10 +45,10 @@ def test_a_key_searched_in_the_text_is_the_line_the_index_reads():
     for key in keys:
         assert searched.get(key) == every[key]
     assert searched.get((1, 2)) is None and searched.get(("diagram", "0" * 32)) is None
-    assert searched._lines is None  # no line was indexed for these lookups
+    assert searched._index is None  # no line was indexed for these lookups
     for key in keys:  # past SEARCHED lookups: the same answers from the index
         assert searched.get(key) == every[key]
-    assert searched._lines is not None and searched.get((1, 2)) is None
+    assert searched._index is not None and searched.get((1, 2)) is None
 
 
 def test_keys_of_pd_codes_equal_the_compiled_keys():

@@ -27,7 +27,7 @@ from .keyed import DesignKeys, keys_of
 from .keys_ahead import KeysAhead
 from .naming import name_in_time, presimplified, status_of
 from .recognition import check_identifiable
-from .tables import knot_modules, tables
+from .tables import knot_modules, regina_module, tables
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -197,6 +197,8 @@ def iter_names(
         ahead = stack.enter_context(KeysAhead(scaffold, seed, label_values))
         if chunks:
             ahead.submit(chunks[0][fits[0]])
+            if len(chunks) > 1:
+                regina_module()  # imported (0.09 s) while the first chunk is keyed: a whole space has designs to simplify
         for i, chunk in enumerate(chunks):
             found = ahead.result()
             if i + 1 < len(chunks):
@@ -230,7 +232,8 @@ class ChunkNames:
 
     def values(self, key: str) -> list[Json]:
         """Return the values of one :class:`NameFields` key, one per entry of :attr:`fields` (tuples as lists)."""
-        return [f.to_json()[key] for f in self.fields]
+        values = [getattr(f, key) for f in self.fields]  # to_json()'s values, without building each dict
+        return [list(v) if isinstance(v, tuple) else v for v in values]
 
     def column(self, key: str) -> list[Json]:
         """One value per design: a :class:`NameFields` key, ``components`` or ``linking_matrix``."""

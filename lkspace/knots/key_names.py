@@ -46,8 +46,9 @@ class KeyCache:
         The file shipped with lkspace (:func:`~lkspace.knots.shipped_keys.shipped_keys`):
         a key's line is read when the key is met and not in :attr:`named` or :attr:`own`.
     stored : dict
-        Key -> its line in :attr:`path` from earlier runs, read when the key is met (before
-        the shipped file): a run parses only the lines of the keys it meets.
+        A key's JSON text as :meth:`remember` writes it (``[1, 2]``) -> its line in
+        :attr:`path` from earlier runs, read when the key is met (before the shipped file):
+        a run parses only the lines of the keys it meets.
     """
 
     named: dict[Key, NameFields] = field(default_factory=dict)
@@ -55,13 +56,13 @@ class KeyCache:
     full: int = 0
     path: str | None = None
     shipped: ShippedKeys = field(default_factory=lambda: ShippedKeys(""))
-    stored: dict[Key, str] = field(default_factory=dict)
+    stored: dict[str, str] = field(default_factory=dict)
 
     def known(self, key: Key) -> bool:
         """Whether ``key`` was judged (by this run, an earlier one, or the shipped file); moves stored and shipped keys in."""
         if key in self.named or key in self.own:
             return True
-        text = self.stored.pop(key, None) or self.shipped.get(key)
+        text = self.stored.pop(json.dumps(list(key)), None) or self.shipped.get(key)
         if text is None:
             return False
         try:
@@ -121,28 +122,11 @@ def disk_cache(first: tuple[int, int] | None = None) -> KeyCache:
             for line in fh:
                 if mark is not None and mark not in line:
                     continue
-                key = _line_key(line)
-                if key is not None:
-                    cache.stored[key] = line  # a later line of a key wins
+                start, end = line.find("["), line.find('"fields"')
+                cache.stored[line[start : line.rfind("]", 0, end) + 1]] = line  # a later line of a key wins
     except OSError:
         pass
     return cache
-
-
-def _line_key(line: str) -> Key | None:
-    """Return the key of a cache line (``{"key": [...], "fields": ...}``) without reading its fields; ``None`` if torn."""
-    start, end = line.find("["), line.find('"fields"')
-    try:
-        return _key(json.loads(line[start : line.rfind("]", 0, end) + 1]))
-    except (json.JSONDecodeError, ValueError):
-        return None
-
-
-def _key(value: object) -> Key:
-    """Read a key from its JSON list (ints, and a HOMFLY-PT text at the second level)."""
-    if not isinstance(value, list) or not all(isinstance(v, (int, str)) and not isinstance(v, bool) for v in value):
-        raise ValueError(f"key: expected a list of int or str, got {value!r}")
-    return tuple(value)
 
 
 def candidates(

@@ -273,18 +273,24 @@ class DesignKeys:
 
 
 def keys_of(
-    scaffold: Scaffold, labels_2d: np.ndarray, seed: int = 0, label_values: Any = None, stop: Any = None
+    scaffold: Scaffold,
+    labels_2d: np.ndarray,
+    seed: int = 0,
+    label_values: Any = None,
+    stop: Any = None,
+    threads: int | None = None,
 ) -> DesignKeys:
     """Keys of ``labels_2d`` (``(n_designs, n_edges)``, twists within ``label_values``, default their own).
 
     ``stop``: a :class:`threading.Event` that, once set, ends the keying between two
     calls of the kernel with :class:`KeyingStopped` (for keying in another thread, which
-    Ctrl-C and time limits do not reach).
+    Ctrl-C and time limits do not reach).  ``threads``: how many key at once (default
+    :func:`key_threads`).
     """
     values = np.unique(labels_2d) if label_values is None else np.union1d(label_values, np.unique(labels_2d))
     tmpl = template(scaffold, values, seed)
     vidx = np.ascontiguousarray(tmpl.value_index(labels_2d))
-    out = KeyArrays(*_keys_in_threads(tmpl, vidx, stop))
+    out = KeyArrays(*_keys_in_threads(tmpl, vidx, stop, threads or key_threads()))
     return DesignKeys(
         template=tmpl,
         vidx=vidx,
@@ -320,8 +326,8 @@ class KeyingStopped(Exception):
     """Keying ended by its ``stop`` event (:func:`keys_of`)."""
 
 
-def _keys_in_threads(tmpl: DiagramTemplate, vidx: np.ndarray, stop: Any = None) -> tuple[np.ndarray, ...]:
-    """:func:`design_keys` of ``vidx``: calls of about :data:`STEP_SECONDS`, each split over :func:`key_threads` threads.
+def _keys_in_threads(tmpl: DiagramTemplate, vidx: np.ndarray, stop: Any, threads: int) -> tuple[np.ndarray, ...]:
+    """:func:`design_keys` of ``vidx``: calls of about :data:`STEP_SECONDS`, each split over ``threads`` threads.
 
     The kernel releases Python's lock, so the threads run at once; the designs go in
     consecutive parts, so the result does not depend on how they were split.
@@ -329,7 +335,7 @@ def _keys_in_threads(tmpl: DiagramTemplate, vidx: np.ndarray, stop: Any = None) 
     from concurrent.futures import ThreadPoolExecutor
 
     arrays, point = tmpl.arrays(), jones_point()
-    threads = max(1, key_threads())
+    threads = max(1, threads)
     _ = design_keys.compiled  # compiled (or loaded) once, here, not by racing threads
 
     def run(part: np.ndarray) -> tuple[np.ndarray, ...]:

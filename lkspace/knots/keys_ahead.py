@@ -3,7 +3,8 @@
 Keying runs in compiled code without Python's lock (:func:`lkspace.knots.keyed.keys_of`);
 naming by key is Python (regina's simplifications, the cache).  So a background thread
 keys chunk ``i + 1`` while the caller names chunk ``i``: on two cores the keying of all
-but the first chunk hides behind the naming.  The names are those of keying each chunk
+but the first chunk hides behind the naming.  The first chunk is keyed with every core
+(nothing else is running), the next ones with one thread (the naming keeps its core).  The names are those of keying each chunk
 when it is named: keys depend on the labels alone.
 """
 
@@ -32,6 +33,7 @@ class KeysAhead:
         self._stop = threading.Event()
         self._pool: ThreadPoolExecutor | None = None
         self._future: Future[DesignKeys] | None = None
+        self._submitted = 0
 
     def __enter__(self) -> KeysAhead:
         self._pool = ThreadPoolExecutor(1, thread_name_prefix="lkspace-keys")
@@ -49,8 +51,10 @@ class KeysAhead:
     def submit(self, labels_2d: np.ndarray) -> None:
         """Start keying ``labels_2d`` ``(n, n_edges)`` (the previous chunk's keys must have been taken)."""
         assert self._pool is not None and self._future is None, "one chunk ahead at a time"
-        args = (self.scaffold, labels_2d, self.seed, self.label_values, self._stop)
+        threads = None if self._submitted == 0 else 1
+        args = (self.scaffold, labels_2d, self.seed, self.label_values, self._stop, threads)
         self._future = self._pool.submit(keys_of, *args)
+        self._submitted += 1
 
     def result(self) -> DesignKeys:
         """Return the keys of the chunk submitted last (waiting for them; Ctrl-C is seen while waiting)."""

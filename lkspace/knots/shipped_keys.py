@@ -30,7 +30,7 @@ Key = tuple[int | str, ...]
 
 def line_of(key: Key, fields_json: str) -> str:
     """Return the file's line of ``key`` (``fields_json``: its fields as JSON, or ``null``)."""
-    return f'{{"key":{json.dumps(list(key), separators=(",", ":"))},"fields":{fields_json}}}'
+    return f'{{"key":{key_text(key)},"fields":{fields_json}}}'
 
 
 class ShippedKeys:
@@ -39,32 +39,45 @@ class ShippedKeys:
     def __init__(self, text: str) -> None:
         self.text = text
         self.searched = 0
-        self._lines: dict[Key, str] | None = None
+        self._index: dict[str, str] | None = None
 
     def get(self, key: Key) -> str | None:
         """Return the line of ``key``, or ``None``."""
-        if self._lines is None and self.searched < SEARCHED:
+        if self._index is None and self.searched < SEARCHED:
             self.searched += 1
             start = self.text.find(line_of(key, "")[:-1])
             if start < 0:
                 return None
             end = self.text.find("\n", start)
             return self.text[start : end if end >= 0 else len(self.text)]
-        return self.lines().get(key)
+        return self.index().get(key_text(key))
 
-    def lines(self) -> dict[Key, str]:
-        """Return every line of the file by its key."""
-        if self._lines is None:
-            self._lines = {}
+    def index(self) -> dict[str, str]:
+        """Return every line of the file by its key's compact JSON text (:func:`key_text`; no line parsed)."""
+        if self._index is None:
+            self._index = {}
             for item in self.text.splitlines():
                 end = item.find('],"fields":')
-                try:
-                    key = json.loads(item[7 : end + 1])  # the list after '{"key":'
-                except json.JSONDecodeError:
-                    continue
-                if isinstance(key, list):
-                    self._lines[tuple(key)] = item
-        return self._lines
+                if item.startswith('{"key":[') and end > 0:
+                    self._index[item[7 : end + 1]] = item
+        return self._index
+
+    def lines(self) -> dict[Key, str]:
+        """Return every line of the file by its key (each key parsed: for checks and rebuilds, not lookups)."""
+        out: dict[Key, str] = {}
+        for text, item in self.index().items():
+            try:
+                key = json.loads(text)
+            except json.JSONDecodeError:
+                continue
+            if isinstance(key, list):
+                out[tuple(key)] = item
+        return out
+
+
+def key_text(key: Key) -> str:
+    """Return ``key`` as the compact JSON text the file's lines hold (``[1,2]``)."""
+    return json.dumps(list(key), separators=(",", ":"))
 
 
 @functools.lru_cache(maxsize=1)
