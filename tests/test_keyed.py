@@ -131,8 +131,10 @@ def test_keys_in_threads_equal_keys_in_one(monkeypatch):
     cube = load("cube")
     labels = np.random.default_rng(3).integers(-2, 3, size=(701, cube.n_edges))
     monkeypatch.setattr(keyed, "FIRST_STEP", 50)  # then steps sized by time: any split must join exactly
-    one = keys_of(cube, labels, threads=1)
-    three = keys_of(cube, labels, threads=3)
+    monkeypatch.setattr(keyed, "key_threads", lambda: 1)
+    one = keys_of(cube, labels)
+    monkeypatch.setattr(keyed, "key_threads", lambda: 3)
+    three = keys_of(cube, labels)
     for name in ("keys", "crossings", "components", "keyed", "link_offsets", "link_values", "free", "jones_at"):
         assert np.array_equal(getattr(one, name), getattr(three, name)), name
     assert [three.linking_matrix(d) for d in range(len(labels))] == [one.linking_matrix(d) for d in range(len(labels))]

@@ -273,24 +273,45 @@ class DesignKeys:
 
 
 def keys_of(
-    scaffold: Scaffold,
-    labels_2d: np.ndarray,
-    seed: int = 0,
-    label_values: Any = None,
-    stop: Any = None,
-    threads: int | None = None,
+    scaffold: Scaffold, labels_2d: np.ndarray, seed: int = 0, label_values: Any = None, stop: Any = None
 ) -> DesignKeys:
     """Keys of ``labels_2d`` (``(n_designs, n_edges)``, twists within ``label_values``, default their own).
 
     ``stop``: a :class:`threading.Event` that, once set, ends the keying between two
     calls of the kernel with :class:`KeyingStopped` (for keying in another thread, which
-    Ctrl-C and time limits do not reach).  ``threads``: how many key at once (default
-    :func:`key_threads`).
+    Ctrl-C and time limits do not reach).
     """
+    tmpl, vidx = keying_input(scaffold, labels_2d, seed, label_values)
+    return keys_record(tmpl, vidx, _keys_in_threads(tmpl, vidx, stop))
+
+
+def keying_input(
+    scaffold: Scaffold, labels_2d: np.ndarray, seed: int = 0, label_values: Any = None
+) -> tuple[DiagramTemplate, np.ndarray]:
+    """Return the template that keys ``labels_2d`` and their indices into its values, ``(n_designs, n_edges)``."""
     values = np.unique(labels_2d) if label_values is None else np.union1d(label_values, np.unique(labels_2d))
     tmpl = template(scaffold, values, seed)
-    vidx = np.ascontiguousarray(tmpl.value_index(labels_2d))
-    out = KeyArrays(*_keys_in_threads(tmpl, vidx, stop, threads or key_threads()))
+    return tmpl, np.ascontiguousarray(tmpl.value_index(labels_2d))
+
+
+def key_part(tmpl: DiagramTemplate, vidx: np.ndarray) -> tuple[np.ndarray, ...]:
+    """Return :func:`design_keys`'s fields for ``vidx`` (value indices of some designs), in one call on this thread."""
+    return tuple(design_keys(tmpl.arrays(), vidx, work_array(tmpl), MAX_CROSSINGS, jones_point()))
+
+
+def joined(parts: list[tuple[np.ndarray, ...]]) -> tuple[np.ndarray, ...]:
+    """Return the fields of consecutive parts' :func:`key_part` as those of all their designs at once."""
+    offsets = [parts[0][4]]
+    for part in parts[1:]:
+        offsets.append(part[4][1:] + offsets[-1][-1])
+    fields = [np.concatenate([part[f] for part in parts]) for f in range(len(parts[0]))]
+    fields[4] = np.concatenate(offsets)
+    return tuple(fields)
+
+
+def keys_record(tmpl: DiagramTemplate, vidx: np.ndarray, fields: tuple[np.ndarray, ...]) -> DesignKeys:
+    """Return the :class:`DesignKeys` of designs ``vidx`` from their :func:`design_keys` ``fields``."""
+    out = KeyArrays(*fields)
     return DesignKeys(
         template=tmpl,
         vidx=vidx,
@@ -326,23 +347,18 @@ class KeyingStopped(Exception):
     """Keying ended by its ``stop`` event (:func:`keys_of`)."""
 
 
-def _keys_in_threads(tmpl: DiagramTemplate, vidx: np.ndarray, stop: Any, threads: int) -> tuple[np.ndarray, ...]:
-    """:func:`design_keys` of ``vidx``: calls of about :data:`STEP_SECONDS`, each split over ``threads`` threads.
+def _keys_in_threads(tmpl: DiagramTemplate, vidx: np.ndarray, stop: Any = None) -> tuple[np.ndarray, ...]:
+    """:func:`design_keys` of ``vidx``: calls of about :data:`STEP_SECONDS`, each split over :func:`key_threads` threads.
 
     The kernel releases Python's lock, so the threads run at once; the designs go in
     consecutive parts, so the result does not depend on how they were split.
     """
     from concurrent.futures import ThreadPoolExecutor
 
-    arrays, point = tmpl.arrays(), jones_point()
-    threads = max(1, threads)
+    threads = max(1, key_threads())
     _ = design_keys.compiled  # compiled (or loaded) once, here, not by racing threads
-
-    def run(part: np.ndarray) -> tuple[np.ndarray, ...]:
-        return tuple(design_keys(arrays, part, work_array(tmpl), MAX_CROSSINGS, point))
-
     if not len(vidx):
-        return run(vidx)
+        return key_part(tmpl, vidx)
     found: list[tuple[np.ndarray, ...]] = []
     with ThreadPoolExecutor(threads) as pool:
         start, step = 0, FIRST_STEP
@@ -353,12 +369,9 @@ def _keys_in_threads(tmpl: DiagramTemplate, vidx: np.ndarray, stop: Any, threads
             bounds = np.linspace(start, end, threads + 1).astype(np.int64)
             parts = [vidx[a:b] for a, b in zip(bounds[:-1], bounds[1:], strict=True) if b > a]
             began = time.perf_counter()
-            found.extend(pool.map(run, parts) if len(parts) > 1 else [run(parts[0])])
+            found.extend(
+                pool.map(functools.partial(key_part, tmpl), parts) if len(parts) > 1 else [key_part(tmpl, parts[0])]
+            )
             rate = (end - start) / len(parts) / max(time.perf_counter() - began, 1e-4)
             start, step = end, int(min(max(rate * STEP_SECONDS, 16), 1 << 16))
-    offsets = [found[0][4]]
-    for part in found[1:]:
-        offsets.append(part[4][1:] + offsets[-1][-1])
-    fields = [np.concatenate([part[f] for part in found]) for f in range(len(found[0]))]
-    fields[4] = np.concatenate(offsets)
-    return tuple(fields)
+    return joined(found)
