@@ -167,6 +167,33 @@ def test_writing_a_catalog_loads_no_pandas(tmp_path):
     assert table.num_rows == 10 and sum(table.column("orbit_size").to_pylist()) == 3**3
 
 
+def test_naming_a_space_by_key_loads_no_scipy_spatial_or_matplotlib(tmp_path):
+    """What names designs by key needs no KD-tree (scipy.spatial); igraph comes without matplotlib."""
+    out = tmp_path / "c.parquet"
+    modules, _ = imported_modules("enumerate", "cube", "--labels", "-1..1", "--identify", "-o", str(out))
+    assert "regina.engine" in modules and "lkspace.knots.keys_ahead" in modules  # names were made by key
+    assert not {m for m in modules if m.startswith(("scipy.spatial", "pandas", "matplotlib."))}
+    modules, _ = imported_modules("atlas", "cube", "--labels", "-1..1")
+    assert not {m for m in modules if m.startswith(("scipy.spatial", "matplotlib."))}
+    modules, out_text = imported_modules("solve", "cube", "--type", "10_1", "--labels", "-1..1")
+    assert "igraph" in modules and "exhausted" in out_text
+    assert not {m for m in modules if m.startswith("matplotlib.")}  # (a bare "matplotlib" is igraph's refused try)
+
+
+def test_igraph_comes_without_matplotlib_which_still_imports_after():
+    code = (
+        "import sys\n"
+        "from lkspace.runtime.graphs import igraph_module\n"
+        "ig = igraph_module()\n"
+        "assert 'matplotlib' not in sys.modules, 'matplotlib came with igraph'\n"
+        "assert ig.Graph.Ring(5).count_automorphisms() == 10\n"
+        "import matplotlib.pyplot\n"
+        "print(matplotlib.pyplot.figure is not None)\n"
+    )
+    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    assert proc.returncode == 0 and proc.stdout.strip() == "True", proc.stderr[-2000:]
+
+
 def test_trace_json_matches_reference_on_random_meshes(capsys, tmp_path):
     """The CLI's JSON, on random non-manifold OBJ files, against the independent tracer."""
     import warnings

@@ -168,7 +168,7 @@ def label_matrix(column: pa.ChunkedArray, n_edges: int) -> np.ndarray:
     """``(rows, n_edges) int64``: a catalog's ``labels`` column (lists of ``n_edges`` signed ints, no nulls) as a matrix.
 
     Read from the Arrow buffers: ``to_numpy`` would import pandas (0.2 s) in a fresh
-    process, and ``flatten`` Arrow's compute module (25 ms).
+    process.  A list of another length is refused, not read across rows.
     """
     lists = column.combine_chunks()
     values = lists.values if pa.types.is_list(lists.type) or pa.types.is_large_list(lists.type) else None

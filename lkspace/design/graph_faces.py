@@ -41,8 +41,9 @@ MAX_STEPS = 2_000_000
 
 def named_graph(name: str) -> tuple[int, list[tuple[int, int]]]:
     """``(n_vertices, edges)`` of a small named graph (``K4``, ``cube``, ``K3,3``, ``petersen``, ...)."""
-    import igraph as ig
+    from ..runtime.graphs import igraph_module
 
+    ig = igraph_module()
     makers = {
         "K4": lambda: ig.Graph.Full(4),
         "K5": lambda: ig.Graph.Full(5),
@@ -104,8 +105,9 @@ def graph_automorphisms(n_vertices: int, edges: Sequence[tuple[int, int]]) -> np
     Counted first (BLISS, without listing them): past :data:`MAX_AUTOMORPHISM_ENTRIES` it
     is a :class:`~lkspace.errors.TooLargeError`, before memory grows.
     """
-    import igraph as ig
+    from ..runtime.graphs import igraph_module
 
+    ig = igraph_module()
     check_graph(n_vertices, edges)
     graph = ig.Graph(n=n_vertices, edges=list(edges))
     count = int(graph.count_automorphisms())

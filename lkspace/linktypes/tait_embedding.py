@@ -40,8 +40,9 @@ def dual_graph(s: Scaffold) -> tuple[ig.Graph, dict[tuple[int, int], int]] | Non
     ``None`` unless every edge of ``s`` has two distinct faces and no two edges join the same
     two faces (the subgraph search needs a simple graph).
     """
-    import igraph as ig
+    from ..runtime.graphs import igraph_module
 
+    ig = igraph_module()
     sides: dict[int, list[int]] = {}
     for corner, e in enumerate(s.side_edge):
         sides.setdefault(int(e), []).append(int(s.corner_face[corner]))
@@ -108,8 +109,9 @@ def _embeddings(
     n_edges: int,
     tries: int,
 ) -> Iterator[np.ndarray]:
-    import igraph as ig
+    from ..runtime.graphs import igraph_module
 
+    ig = igraph_module()
     pattern = ig.Graph(n=n, edges=[(f, g) for f, g, _ in edges])
     maps = host.get_subisomorphisms_lad(pattern, induced=False)
     seen: set[bytes] = set()

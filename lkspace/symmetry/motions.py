@@ -34,7 +34,9 @@ Motion: TypeAlias = tuple[np.ndarray, np.ndarray, np.ndarray, LatticePart | None
 # ---- combinatorial candidates ---------------------------------------------------------
 def incidence_graph(scaffold: Scaffold) -> tuple[igraph.Graph, list[int]]:
     """Return the coloured vertex/edge/face incidence graph as ``(igraph.Graph, colours)``."""
-    import igraph
+    from ..runtime.graphs import igraph_module
+
+    igraph = igraph_module()
 
     nv, ne = scaffold.n_vertices, scaffold.n_edges
     ev = scaffold.edge_vertices
