@@ -38,7 +38,7 @@ from ..errors import CatalogError, TooLargeError, UsageError
 from ..model.scaffold import Scaffold
 from ..runtime.progress import task
 from .candidates import OrderedWalk
-from .examples import Examples
+from .examples import Examples, costs
 from .fields import JsonObject
 from .records import AtlasResult, AtlasRun, AtlasType, ChiralityCounts, DesignRecord
 from .screen import type_labels
@@ -110,12 +110,10 @@ class TypeEntry:
     chirality: dict[str, int] = field(default_factory=lambda: {"table": 0, "mirror": 0, "undetermined": 0})
     examples: Examples = field(default_factory=Examples)
 
-    def add(self, labels: np.ndarray, orbit: int, rec: DesignRecord) -> None:
-        """Count one design of this type."""
+    def add(self, labels: np.ndarray, orbit: int, rec: DesignRecord, cost: tuple[int, int, int]) -> None:
+        """Count one design of this type (``cost``: its :func:`~lkspace.linktypes.examples.costs` entry)."""
         self.designs += 1
         self.assignments += int(orbit)
-        a = np.abs(labels)
-        cost = (int(a.sum()), int((a != 0).sum()), int(a.max()) if len(a) else 0)
         if cost < self.cost:
             self.cost, self.simplest = cost, [int(x) for x in labels]
         self.examples.add(labels, cost, rec)
@@ -260,16 +258,17 @@ def atlas(
     deadline = None if not options.stop_after else t0 + options.stop_after
     try:
         with task(f"atlas of {scaffold.name}") as step:
-            for labels, orbit, source, rec in _records(scaffold, label_set, cached, options, deadline):
+            for labels, orbit, source, rec, cost in _records(scaffold, label_set, cached, options, deadline):
                 how[source] += 1
                 if rec is None:  # skipped or unwalked
                     continue
                 if source != "cache" and sink is not None:
                     sink.write(json.dumps({"labels": labels.tolist(), "record": rec.to_json()}) + "\n")
                     sink.flush()
-                types.setdefault(rec.type, TypeEntry(rec.type, rec.components)).add(labels, orbit, rec)
+                types.setdefault(rec.type, TypeEntry(rec.type, rec.components)).add(labels, orbit, rec, cost)
                 how["designs"] += 1
-                step.note(f"{how['designs']:,} designs, {len(types)} types")
+                if how["designs"] % 1024 == 0:  # a note per design would cost more than the rest of this loop
+                    step.note(f"{how['designs']:,} designs, {len(types)} types")
     finally:
         if sink is not None:
             sink.close()
@@ -330,8 +329,8 @@ def _records(
     cached: dict[tuple[int, ...], DesignRecord],
     options: AtlasOptions,
     deadline: float | None,
-) -> Iterator[tuple[np.ndarray, int, Source, DesignRecord | None]]:
-    """``(labels, orbit size, source, record)`` of every design; ``source`` says where the record came from.
+) -> Iterator[tuple[np.ndarray, int, Source, DesignRecord | None, tuple[int, int, int]]]:
+    """``(labels, orbit size, source, record, cost)`` of every design; ``source`` says where the record came from.
 
     ``"cache"`` (a previous run), ``"identified"`` (identified now) or ``"reused"``: a design
     that differs from one identified before only on edges of degree 1 has its type
@@ -349,6 +348,9 @@ def _records(
     )
     with Namer(options.processes, False, options.time_limit) as namer:
         for batch in walk:
+            labels64 = batch.labels.astype(np.int64)
+            cost_of = costs(labels64)
+            orbits = batch.orbit_sizes.tolist()
             keys = [tuple(r) for r in batch.labels.tolist()]
             zkeys = [tuple(r) for r in type_labels(scaffold, batch.labels).tolist()]
             for k, z in zip(keys, zkeys, strict=True):
@@ -374,6 +376,6 @@ def _records(
                     source = "skipped" if rec is None else "identified"
                     if rec is not None and families:
                         known[z] = rec
-                yield batch.labels[i].astype(np.int64), int(batch.orbit_sizes[i]), source, rec
+                yield labels64[i], orbits[i], source, rec, cost_of[i]
     if not walk.complete:
-        yield np.zeros(0, np.int64), 0, "unwalked", None
+        yield np.zeros(0, np.int64), 0, "unwalked", None, (0, 0, 0)

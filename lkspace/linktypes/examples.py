@@ -22,6 +22,12 @@ EXAMPLES = 5
 Key = tuple[tuple[int, int, int], tuple[int, ...]]
 
 
+def costs(labels_2d: np.ndarray) -> list[tuple[int, int, int]]:
+    """Each design's cost ``(sum |t|, non-zero labels, largest |t|)``, for ``labels_2d`` ``(n, n_edges)`` at once."""
+    a = np.abs(np.asarray(labels_2d, np.int64))
+    return list(zip(a.sum(axis=1).tolist(), (a != 0).sum(axis=1).tolist(), a.max(axis=1, initial=0).tolist()))
+
+
 @dataclass
 class Examples:
     """The ``k`` simplest designs of each chirality of a type, with what the atlas knows of them."""
