@@ -47,6 +47,9 @@ def test_a_batch_assembles_what_each_design_assembles_alone(name, seed, n):
         np.testing.assert_array_equal(signs[rows], one_signs)
         assert components[i] == n_comp
         assert pieces[i] == reference_pieces(one_pd, n_free)
+    as_python = assemble_many.py_func(arrays, np.ascontiguousarray(found.vidx), work_array(found.template))
+    for compiled, plain in zip((pd, signs, offsets, components, pieces), as_python, strict=True):
+        np.testing.assert_array_equal(compiled, plain)  # a few designs are assembled as Python (DesignDiagrams.prepare)
 
 
 def test_designs_prepared_together_or_alone_have_one_diagram():

@@ -72,7 +72,8 @@ class DesignDiagrams:
         if not todo:
             return
         vidx = np.ascontiguousarray(self.found.vidx[todo])
-        pd, signs, offsets, components, pieces = assemble_many(self._arrays, vidx, self._work)
+        work = len(todo) * len(self._work.local)  # steps, about: a few designs run as Python (no numba to load)
+        pd, signs, offsets, components, pieces = assemble_many.run(work, self._arrays, vidx, self._work)
         for i, d in enumerate(todo):
             start, end = offsets[i], offsets[i + 1]
             self._rows[d] = (pd[start:end], signs[start:end], int(components[i]))
