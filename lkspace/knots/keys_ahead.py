@@ -50,7 +50,7 @@ class KeysAhead:
         self._pool: ThreadPoolExecutor | None = None
         self._chunk: _Chunk | None = None
         self.futures: list[Future[tuple[np.ndarray, ...]]] = []
-        """Every unit's future so far (for checks)."""
+        """The futures of the units of the chunk submitted last (earlier chunks' keys are not held)."""
 
     def __enter__(self) -> KeysAhead:
         self._pool = ThreadPoolExecutor(1, thread_name_prefix="lkspace-keys")
@@ -73,7 +73,7 @@ class KeysAhead:
         tmpl, vidx = keying_input(self.scaffold, labels_2d, self.seed, self.label_values)
         units = [vidx[start : start + UNIT] for start in range(0, len(vidx), UNIT)] or [vidx]
         futures = [self._pool.submit(self._key_unit, tmpl, unit) for unit in units]
-        self.futures += futures
+        self.futures = futures
         self._chunk = _Chunk(tmpl, vidx, units, futures)
 
     def result(self) -> DesignKeys:
