@@ -121,12 +121,12 @@ def test_enumerate_identify_imports_neither_pandas_nor_scipys_spatial_tools(tmp_
     large=st.booleans(),
     start=st.integers(0, 3),
 )
-def test_label_matrix_reads_the_arrow_buffers_as_the_lists_hold_them(rows, cuts, bits, large, start):
+def test_label_rows_read_the_arrow_buffers_as_the_lists_hold_them(rows, cuts, bits, large, start):
     """Chunks, slices, widths and large lists: the matrix from the raw buffers equals the lists' own values."""
     import numpy as np
     import pyarrow as pa
 
-    from lkspace.catalog.identified import label_matrix
+    from lkspace.catalog.arrow_values import label_rows
     from lkspace.errors import CatalogError
 
     item = pa.int8() if bits == 8 else pa.int16() if bits == 16 else pa.int64()
@@ -135,12 +135,13 @@ def test_label_matrix_reads_the_arrow_buffers_as_the_lists_hold_them(rows, cuts,
     bounds = sorted({0, len(whole), *(min(c, len(whole)) for c in cuts)})
     column = pa.chunked_array([whole.slice(a, b - a) for a, b in zip(bounds[:-1], bounds[1:])], kind)
     expected = np.array(whole.to_pylist(), np.int64).reshape(-1, 5)
-    assert np.array_equal(label_matrix(column, 5), expected)
+    assert np.array_equal(label_rows(column, 5), expected)
     if len(whole):
+        assert np.array_equal(label_rows(column), expected)  # the width of the first list
         with pytest.raises(CatalogError, match="lists of 4 labels"):
-            label_matrix(column, 4)
+            label_rows(column, 4)
         ragged = pa.chunked_array([pa.array([*rows[:1], rows[0][:4]], kind)])
         with pytest.raises(CatalogError, match="lists of 5 labels"):
-            label_matrix(ragged, 5)
+            label_rows(ragged, 5)
         with pytest.raises(CatalogError, match="without nulls"):
-            label_matrix(pa.chunked_array([pa.array([rows[0], None], kind)]), 5)
+            label_rows(pa.chunked_array([pa.array([rows[0], None], kind)]), 5)

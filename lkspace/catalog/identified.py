@@ -31,6 +31,7 @@ from ..io.atomic import atomic_path
 from ..io.json_values import JsonObject
 from ..model.scaffold import Scaffold
 from ..runtime.progress import Step, task
+from .arrow_values import label_rows
 from .columns import numpy_column, value_column
 from .schema import IDENTIFY_COLUMNS, METADATA_KEY
 from .verify import file_metadata, open_catalog
@@ -164,30 +165,6 @@ def identify_column(chunks: list[ChunkNames], name: str, type_: pa.DataType) -> 
     return pa.concat_arrays(pieces) if pieces else value_column([], type_)
 
 
-def label_matrix(column: pa.ChunkedArray, n_edges: int) -> np.ndarray:
-    """``(rows, n_edges) int64``: a catalog's ``labels`` column (lists of ``n_edges`` signed ints, no nulls) as a matrix.
-
-    Read from the Arrow buffers: ``to_numpy`` would import pandas (0.2 s) in a fresh
-    process.  A list of another length is refused, not read across rows.
-    """
-    lists = column.combine_chunks()
-    values = lists.values if pa.types.is_list(lists.type) or pa.types.is_large_list(lists.type) else None
-    if values is None or not pa.types.is_signed_integer(values.type) or lists.null_count or values.null_count:
-        raise CatalogError(f"labels: expected lists of signed integers without nulls, got {column.type}")
-    offsets = _buffer(lists.offsets, len(lists) + 1)
-    if len(lists) and (offsets[0] != offsets[-1] - n_edges * len(lists) or np.any(np.diff(offsets) != n_edges)):
-        raise CatalogError(f"labels: expected lists of {n_edges} labels (one per edge)")
-    start = int(offsets[0]) if len(lists) else 0
-    return _buffer(values, n_edges * len(lists), start).astype(np.int64).reshape(-1, n_edges)
-
-
-def _buffer(array: pa.Array, count: int, start: int = 0) -> np.ndarray:
-    """Return ``count`` values of a null-free integer ``array`` from its ``start``, read from its data buffer (no copy)."""
-    width = array.type.bit_width // 8
-    dtype = np.dtype(f"int{8 * width}")
-    return np.frombuffer(array.buffers()[1], dtype, count=count, offset=(array.offset + start) * width)
-
-
 def _identify_file(
     file: str,
     scaffold: Scaffold,
@@ -214,7 +191,7 @@ def _identify_file(
     if footer.identified and footer.by_key == by_key:
         step.advance(table.num_rows)
         return None
-    labels = label_matrix(table.column("labels"), scaffold.n_edges)
+    labels = label_rows(table.column("labels"), scaffold.n_edges).astype(np.int64)
     values = np.unique(labels)
     found: list[ChunkNames] = []
     for names in iter_names(scaffold, labels, options, seed, cache=cache, label_values=values):

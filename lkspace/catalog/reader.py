@@ -26,6 +26,7 @@ from ..errors import CatalogError
 from ..model.scaffold import Scaffold
 from ..strands.tracing import Trace, trace
 from ..words import noun
+from .arrow_values import label_rows
 from .metadata import JsonObject
 from .records import PartFooter
 from .schema import ROW_GROUP
@@ -124,12 +125,7 @@ def _labels_of(table: pa.Table | pa.RecordBatch) -> np.ndarray:
             out[at : at + len(chunk)] = data.reshape(-1, width)
             at += len(chunk)
         return out
-    column = table.column("labels")
-    if table.num_rows == 0:
-        return np.zeros((0, 0), np.int8)
-    chunks = column.chunks if isinstance(column, pa.ChunkedArray) else [column]
-    flat = np.concatenate([np.asarray(chunk.flatten(), np.int8) for chunk in chunks])
-    return flat.reshape(table.num_rows, -1)
+    return label_rows(table.column("labels")).astype(np.int8, copy=False)
 
 
 def read_catalog(path: str | os.PathLike[str], columns: list[str] | None = None) -> Catalog:

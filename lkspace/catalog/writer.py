@@ -10,6 +10,7 @@ import pyarrow as pa
 import pyarrow.parquet as pq
 
 from ..io.atomic import atomic_path
+from .arrow_values import integer_values
 from .records import PartFooter, PartSummary
 from .schema import METADATA_KEY, ROW_GROUP
 
@@ -100,15 +101,8 @@ def tally(batch: pa.RecordBatch, by: dict[str, int], covered: int) -> int:
 
     The totals a catalog file records; -1 stands for a sum past 64 bits.
     """
-    comps = _values(batch.column("components"), np.int16)
+    comps = integer_values(batch.column("components"))
     for c, n in zip(*np.unique(comps, return_counts=True), strict=True):
         by[str(int(c))] = by.get(str(int(c)), 0) + int(n)
-    sizes = _values(batch.column("orbit_size"), np.int64)
+    sizes = integer_values(batch.column("orbit_size"))
     return -1 if covered < 0 or (sizes < 0).any() else covered + int(sizes.sum())  # -1: past 64 bits
-
-
-def _values(column: pa.Array, dtype: type[np.integer]) -> np.ndarray:
-    """Return the null-free integer column ``column`` as a numpy view (``to_numpy`` would import pandas)."""
-    if column.null_count:
-        raise ValueError(f"column of {column.type} has nulls")  # the schemas' summed columns have none
-    return np.frombuffer(column.buffers()[1], dtype, len(column), column.offset * np.dtype(dtype).itemsize)
